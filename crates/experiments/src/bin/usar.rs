@@ -1,0 +1,2 @@
+//! The `usar` command line.
+fn main() {}

@@ -1,0 +1,1 @@
+//! Library side of the `usar` command line: argument parsing and the commands.

@@ -1,0 +1,1 @@
+//! The USAR mission world of Yang & Parasuraman (SMC 2021), stepped with Rapier 2D.
