@@ -1,1 +1,3 @@
 //! The USAR mission world of Yang & Parasuraman (SMC 2021), stepped with Rapier 2D.
+
+pub mod scenario;
