@@ -1,0 +1,299 @@
+//! Needs distributions of a robot (Eq. 6) and of a group (Eqs. 8 and 10; Algorithm 4, NDC).
+
+use nalgebra::DVector;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Result, RneError};
+use crate::needs::{NeedsMatrix, NeedsVector, Weights};
+
+/// Default relative smoothing: `1e-9` of the total weighted needs is added to each category.
+pub const DEFAULT_RELATIVE_EPSILON: f64 = 1e-9;
+
+/// How zero categories are smoothed before normalising (not in the paper; see
+/// `docs/trust-model.md`).
+///
+/// A category that is zero on one side only (an observer has `cap = res = 0`, a carrier does
+/// not) makes `T(P||Q)` infinite. Smoothing adds `eps_abs` to every weighted need `n_k w_k`
+/// before normalising:
+///
+/// * [`Smoothing::Relative`]`(e)`: `eps_abs = e * sum_k n_k w_k`. Scale invariant: multiplying
+///   a needs vector by `c > 0` leaves its distribution unchanged. **Default**, with
+///   `e = 1e-9` ([`DEFAULT_RELATIVE_EPSILON`]); then a zero category gets probability
+///   `~1e-9` and a one-sided zero costs about `p_k * ln(p_k / 1e-9) <= ~20.7 p_k` nats.
+/// * [`Smoothing::Absolute`]`(e)`: `eps_abs = e` in weighted-need units. Not scale invariant,
+///   but an all-zero needs vector gets the uniform distribution instead of an error.
+/// * [`Smoothing::None`] (or either variant with `e = 0`): no smoothing; RNE may then be
+///   `f64::INFINITY` (never NaN).
+///
+/// Valid range: `e` finite and `>= 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Smoothing {
+    /// No smoothing.
+    None,
+    /// Add `e * total` to each weighted need (`e >= 0`).
+    Relative(f64),
+    /// Add `e` to each weighted need (`e >= 0`).
+    Absolute(f64),
+}
+
+impl Default for Smoothing {
+    fn default() -> Self {
+        Self::Relative(DEFAULT_RELATIVE_EPSILON)
+    }
+}
+
+impl Smoothing {
+    /// Checks the epsilon.
+    ///
+    /// # Errors
+    /// [`RneError::InvalidEpsilon`] if it is negative or not finite.
+    pub fn validate(self) -> Result<()> {
+        match self {
+            Self::None => Ok(()),
+            Self::Relative(e) | Self::Absolute(e) if e.is_finite() && e >= 0.0 => Ok(()),
+            Self::Relative(e) | Self::Absolute(e) => Err(RneError::InvalidEpsilon(e)),
+        }
+    }
+}
+
+/// Which entries of two distributions are compared in `sum_k p_k log(p_k / q_k)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Alignment {
+    /// Entry `k` is needs category `k` on both sides (Defs. 1-3, Eqs. 5, 9, 11). **Default.**
+    #[default]
+    Category,
+    /// Each distribution is sorted ascending before comparing, as Algorithm 4 (NDC) returns
+    /// `D.Sort()`: the `k`-th smallest share of one side is compared with the `k`-th smallest
+    /// of the other, whatever the categories.
+    Sorted,
+}
+
+/// Options for computing a needs distribution.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct DistributionOptions {
+    /// Zero-category smoothing; default `Relative(1e-9)`.
+    pub smoothing: Smoothing,
+    /// Category-aligned (default) or sorted (Algorithm 4).
+    pub alignment: Alignment,
+}
+
+/// A needs distribution `D = (d_1, ..., d_j)`: `j >= 1` entries, each in `[0, 1]`, summing to 1
+/// (up to rounding). Produced by [`needs_distribution`] or [`group_distribution`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "Vec<f64>")]
+pub struct Distribution(DVector<f64>);
+
+impl Distribution {
+    /// The shares as an `nalgebra` vector of length `j`.
+    pub fn as_dvector(&self) -> &DVector<f64> {
+        &self.0
+    }
+
+    /// The shares as a slice of length `j`.
+    pub fn as_slice(&self) -> &[f64] {
+        self.0.as_slice()
+    }
+
+    /// Number of entries `j`.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Always `false` (a distribution has at least one entry).
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Normalises non-negative weighted needs `v_k` into `d_k = (v_k + eps) / sum_k (v_k + eps)`.
+    fn from_weighted(
+        mut v: DVector<f64>,
+        opts: &DistributionOptions,
+        what: &'static str,
+    ) -> Result<Self> {
+        opts.smoothing.validate()?;
+        let total: f64 = v.sum();
+        let eps = match opts.smoothing {
+            Smoothing::None => 0.0,
+            Smoothing::Relative(e) => e * total,
+            Smoothing::Absolute(e) => e,
+        };
+        v.add_scalar_mut(eps);
+        let total = v.sum();
+        if total <= 0.0 || !total.is_finite() {
+            return Err(RneError::ZeroTotal { what });
+        }
+        v /= total;
+        if opts.alignment == Alignment::Sorted {
+            v.as_mut_slice().sort_by(f64::total_cmp);
+        }
+        Ok(Self(v))
+    }
+}
+
+impl From<Distribution> for Vec<f64> {
+    fn from(d: Distribution) -> Self {
+        d.0.as_slice().to_vec()
+    }
+}
+
+/// A robot's needs distribution, Eq. 6 (Def. 1) and Algorithm 4 (NDC):
+///
+/// `d_k = n_k w_k / sum_{k=1..j} n_k w_k`, then smoothed (see [`Smoothing`]) and, with
+/// [`Alignment::Sorted`], sorted ascending.
+///
+/// # Errors
+/// [`RneError::LengthMismatch`] if `needs.len() != weights.len()`; [`RneError::ZeroTotal`] if
+/// all weighted needs are zero and the smoothing adds nothing; [`RneError::InvalidEpsilon`].
+///
+/// # Reference
+/// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 6 and Algorithm 4 (NDC).
+pub fn needs_distribution(
+    needs: &NeedsVector,
+    weights: &Weights,
+    opts: &DistributionOptions,
+) -> Result<Distribution> {
+    if needs.len() != weights.len() {
+        return Err(RneError::LengthMismatch {
+            what: "needs vector",
+            expected: weights.len(),
+            actual: needs.len(),
+        });
+    }
+    let v = needs.as_dvector().component_mul(weights.as_dvector());
+    Distribution::from_weighted(v, opts, "needs vector")
+}
+
+/// A group's needs distribution, Eqs. 8 and 10 (Defs. 2-3):
+///
+/// `D_G[k] = w_k sum_{r=1..i} N[r, k] / sum_{k'} w_k' sum_r N[r, k']` for the `i x j` needs
+/// matrix `N` (weighted column sums, normalised), then smoothed and optionally sorted like
+/// [`needs_distribution`]. A group of one robot has that robot's distribution.
+///
+/// # Errors
+/// [`RneError::LengthMismatch`] if `group.categories() != weights.len()`, otherwise as
+/// [`needs_distribution`].
+///
+/// # Reference
+/// `D_G = (1_i^T N .* W^T) / (1_i^T N W)`; paper Defs. 2-3, Eqs. 8 and 10.
+pub fn group_distribution(
+    group: &NeedsMatrix,
+    weights: &Weights,
+    opts: &DistributionOptions,
+) -> Result<Distribution> {
+    if group.categories() != weights.len() {
+        return Err(RneError::LengthMismatch {
+            what: "group needs matrix",
+            expected: weights.len(),
+            actual: group.categories(),
+        });
+    }
+    let column_sums = group.as_dmatrix().row_sum().transpose();
+    let v = column_sums.component_mul(weights.as_dvector());
+    Distribution::from_weighted(v, opts, "group")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn w() -> Weights {
+        Weights::new(vec![6.0, 4.0, 2.0]).unwrap()
+    }
+
+    #[test]
+    fn example1_distributions() {
+        let opts = DistributionOptions {
+            smoothing: Smoothing::None,
+            ..Default::default()
+        };
+        let d = needs_distribution(
+            &NeedsVector::new(vec![86.0, 120.0, 30.0]).unwrap(),
+            &w(),
+            &opts,
+        )
+        .unwrap();
+        // The paper prints 0.4884 for d_11 in the text and 0.4886 in Eq. 15; 0.4886 is right.
+        for (got, want) in d.as_slice().iter().zip([0.488_636, 0.454_545, 0.056_818]) {
+            assert_relative_eq!(*got, want, epsilon = 1e-6);
+        }
+    }
+
+    #[test]
+    fn example2_group_distributions() {
+        let opts = DistributionOptions {
+            smoothing: Smoothing::None,
+            ..Default::default()
+        };
+        let g1 =
+            NeedsMatrix::from_rows(&[vec![82.0, 114.0, 24.0], vec![79.0, 117.0, 23.0]]).unwrap();
+        let d = group_distribution(&g1, &w(), &opts).unwrap();
+        for (got, want) in d.as_slice().iter().zip([0.4869, 0.4657, 0.0474]) {
+            assert_relative_eq!(*got, want, epsilon = 5e-5);
+        }
+    }
+
+    #[test]
+    fn smoothing_and_sorting() {
+        let n = NeedsVector::new(vec![0.0, 3.0, 1.0]).unwrap();
+        let ones = Weights::uniform(3).unwrap();
+        let none = DistributionOptions {
+            smoothing: Smoothing::None,
+            ..Default::default()
+        };
+        assert_eq!(
+            needs_distribution(&n, &ones, &none).unwrap().as_slice(),
+            &[0.0, 0.75, 0.25]
+        );
+        let d = needs_distribution(&n, &ones, &DistributionOptions::default()).unwrap();
+        assert!(d.as_slice()[0] > 0.0 && d.as_slice()[0] < 1e-8);
+        assert_relative_eq!(d.as_slice().iter().sum::<f64>(), 1.0, epsilon = 1e-12);
+        let sorted = DistributionOptions {
+            smoothing: Smoothing::None,
+            alignment: Alignment::Sorted,
+        };
+        assert_eq!(
+            needs_distribution(&n, &ones, &sorted).unwrap().as_slice(),
+            &[0.0, 0.25, 0.75]
+        );
+    }
+
+    #[test]
+    fn zero_vector_errors_unless_absolute_smoothing() {
+        let z = NeedsVector::new(vec![0.0, 0.0]).unwrap();
+        let ones = Weights::uniform(2).unwrap();
+        assert!(matches!(
+            needs_distribution(&z, &ones, &DistributionOptions::default()),
+            Err(RneError::ZeroTotal { .. })
+        ));
+        let abs = DistributionOptions {
+            smoothing: Smoothing::Absolute(1e-9),
+            ..Default::default()
+        };
+        assert_eq!(
+            needs_distribution(&z, &ones, &abs).unwrap().as_slice(),
+            &[0.5, 0.5]
+        );
+        let bad = DistributionOptions {
+            smoothing: Smoothing::Relative(-1.0),
+            ..Default::default()
+        };
+        assert_eq!(
+            needs_distribution(&z, &ones, &bad),
+            Err(RneError::InvalidEpsilon(-1.0))
+        );
+    }
+
+    #[test]
+    fn length_mismatch_is_reported() {
+        let n = NeedsVector::new(vec![1.0, 2.0]).unwrap();
+        assert_eq!(
+            needs_distribution(&n, &w(), &DistributionOptions::default()),
+            Err(RneError::LengthMismatch {
+                what: "needs vector",
+                expected: 3,
+                actual: 2
+            })
+        );
+    }
+}

@@ -1,0 +1,132 @@
+//! The error type of `rne-core`.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in `rne-core`.
+///
+/// Every variant names the offending index or value so that a caller (for example the `usar`
+/// command line) can turn it into a one-line message without more context.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum RneError {
+    /// Two vectors (or a vector and a matrix) that must have the same length do not.
+    ///
+    /// `what` names the mismatching input, `expected` is the reference length (usually the
+    /// number of weights `j`) and `actual` the length found.
+    #[error("{what} has {actual} values but {expected} were expected")]
+    LengthMismatch {
+        /// Which input mismatches (e.g. "needs vector", "group needs matrix").
+        what: &'static str,
+        /// The reference length.
+        expected: usize,
+        /// The length found.
+        actual: usize,
+    },
+    /// A need is negative, NaN or infinite (needs must be finite and `>= 0`).
+    #[error("needs[{index}] = {value}; needs must be finite and >= 0")]
+    InvalidNeed {
+        /// 0-based index of the need in its vector.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A weight is zero, negative, NaN or infinite (weights must be finite and `> 0`).
+    #[error("weights[{index}] = {value}; weights must be finite and > 0")]
+    InvalidWeight {
+        /// 0-based index of the weight.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A probability-like value (input of [`crate::relative_entropy`]) is negative or not finite.
+    #[error("probabilities[{index}] = {value}; values must be finite and >= 0")]
+    InvalidProbability {
+        /// 0-based index.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// An input that must hold at least one element is empty (no needs, an empty group, an
+    /// empty team or a task that receives no robot).
+    #[error("{what} is empty")]
+    Empty {
+        /// Which input is empty.
+        what: &'static str,
+    },
+    /// All weighted needs are zero and smoothing is off, so the needs distribution
+    /// (Eq. 6 / Eq. 8) is `0/0`.
+    #[error(
+        "{what} has all weighted needs equal to zero; its needs distribution is undefined (enable smoothing or give it a non-zero need)"
+    )]
+    ZeroTotal {
+        /// Which input (e.g. "needs vector", "group").
+        what: &'static str,
+    },
+    /// The smoothing epsilon is negative or not finite.
+    #[error("smoothing epsilon is {0}; it must be finite and >= 0")]
+    InvalidEpsilon(f64),
+    /// The logarithm base is not finite or not `> 1`.
+    #[error("log base is {0}; it must be finite and > 1")]
+    InvalidLogBase(f64),
+    /// A log base string could not be parsed.
+    #[error("cannot parse log base {0:?}; use e, 2, 10 or a number > 1")]
+    UnparsableLogBase(String),
+    /// A subgroup size is larger than the set it is taken from (Algorithm 2, ASC).
+    #[error("cannot take a subgroup of {size} from a set of {total}")]
+    InvalidSubgroupSize {
+        /// Requested subgroup size.
+        size: usize,
+        /// Size of the whole set.
+        total: usize,
+    },
+    /// A robot's kind index is outside the quota list.
+    #[error("robot id {id} has kind {kind} but only {kinds} kinds have quotas")]
+    UnknownKind {
+        /// Robot id.
+        id: usize,
+        /// Its kind index.
+        kind: usize,
+        /// Number of kinds (length of the quota list).
+        kinds: usize,
+    },
+    /// The quotas of a kind do not add up to the number of robots of that kind.
+    #[error(
+        "kind {kind} has {available} robots but its quotas ask for {easy} (easy) + {hard} (hard)"
+    )]
+    QuotaMismatch {
+        /// Kind index.
+        kind: usize,
+        /// Robots of that kind in the team.
+        available: usize,
+        /// Quota for the easy task.
+        easy: usize,
+        /// Quota for the hard task.
+        hard: usize,
+    },
+    /// Two robots share an id.
+    #[error("robot id {0} appears more than once")]
+    DuplicateRobot(usize),
+    /// A robot's scalar state (energy, HP, distance) is not finite.
+    #[error("robot id {id}: {field} is {value}; it must be finite")]
+    InvalidRobotState {
+        /// Robot id.
+        id: usize,
+        /// Field name.
+        field: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// An assignment is not a partition of the team that meets the quotas.
+    #[error("invalid assignment: {0}")]
+    InvalidAssignment(String),
+    /// A grouping-method name is not known.
+    #[error("unknown grouping method {name:?}; valid names: {valid}")]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// Comma-separated list of valid names.
+        valid: String,
+    },
+}
+
+/// Shorthand for `Result<T, RneError>`.
+pub type Result<T> = std::result::Result<T, RneError>;

@@ -1,0 +1,43 @@
+//! Building a grouping method from its name.
+
+use crate::error::{Result, RneError};
+use crate::grouping::dis::Dis;
+use crate::grouping::eng::Eng;
+use crate::grouping::hierarchical::HierarchicalRne;
+use crate::grouping::hp_dis::HpDis;
+use crate::grouping::method::GroupingMethod;
+use crate::rne::TrustModel;
+
+/// The names accepted by [`method_from_name`], in the paper's order of Sec. VI.C.
+pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
+
+/// Builds a built-in grouping method from its name (case-insensitive, surrounding spaces
+/// ignored): `"rne"` ([`HierarchicalRne`] with `rne_model`), `"dis"` ([`Dis`]), `"eng"`
+/// ([`Eng`]), `"hp_dis"` ([`HpDis`]; `"hp-dis"` is accepted too). `rne_model` is only used by
+/// `"rne"`.
+///
+/// ```
+/// use rne_core::{TrustModel, Weights};
+/// use rne_core::grouping::method_from_name;
+///
+/// let model = TrustModel::with_weights(Weights::uniform(7)?);
+/// assert_eq!(method_from_name("HP_DIS", &model)?.name(), "hp_dis");
+/// let err = method_from_name("random", &model).err().unwrap();
+/// assert_eq!(err.to_string(), r#"unknown grouping method "random"; valid names: rne, dis, eng, hp_dis"#);
+/// # Ok::<(), rne_core::RneError>(())
+/// ```
+///
+/// # Errors
+/// [`RneError::UnknownMethod`] listing the valid names.
+pub fn method_from_name(name: &str, rne_model: &TrustModel) -> Result<Box<dyn GroupingMethod>> {
+    match name.trim().to_ascii_lowercase().replace('-', "_").as_str() {
+        "rne" => Ok(Box::new(HierarchicalRne::new(rne_model.clone()))),
+        "dis" => Ok(Box::new(Dis)),
+        "eng" => Ok(Box::new(Eng)),
+        "hp_dis" => Ok(Box::new(HpDis)),
+        _ => Err(RneError::UnknownMethod {
+            name: name.to_string(),
+            valid: METHOD_NAMES.join(", "),
+        }),
+    }
+}
