@@ -1,0 +1,46 @@
+//! The top-level `usar` command line: [`Cli`] and the [`Command`] enum.
+//!
+//! To add a subcommand: write `src/commands/<name>.rs` with an `Args` struct and a `run`
+//! function, declare it in `src/commands/mod.rs`, add one variant to [`Command`] and one arm
+//! to [`run`]. Existing subcommands need no change.
+
+use std::io::Write;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+use crate::commands;
+
+const EXAMPLES: &str = "\
+Examples:
+  # Pairwise RNE trust of the paper's Example 1 (natural log, nats)
+  usar trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25
+
+  # Add agent-group and group-group trust (Examples 2 and 3)
+  usar trust --weights 6,4,2 --needs 86,120,30 --group \"82,114,24;79,117,23\" --group \"40,56,12;56,48,15\"";
+
+/// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
+#[derive(Debug, Parser)]
+#[command(name = "usar", version, about, after_help = EXAMPLES)]
+pub struct Cli {
+    /// The subcommand to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands of `usar`.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// RNE trust values between robots and groups (paper Defs. 1-3, Examples 1-3).
+    Trust(commands::trust::TrustArgs),
+}
+
+/// Runs the parsed command, writing its report to `out`.
+///
+/// # Errors
+/// Whatever the subcommand reports (bad input, I/O).
+pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
+    match cli.command {
+        Command::Trust(args) => commands::trust::run(&args, out),
+    }
+}

@@ -1,0 +1,3 @@
+//! The `usar` subcommands, one module each.
+
+pub mod trust;

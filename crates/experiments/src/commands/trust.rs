@@ -1,0 +1,253 @@
+//! `usar trust`: RNE trust values between robots and groups (paper Defs. 1-3, Eqs. 5-11).
+
+use std::io::Write;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use rne_core::{
+    Alignment, DEFAULT_RELATIVE_EPSILON, Distribution, LogBase, NeedsMatrix, NeedsVector,
+    RneOptions, Smoothing, TrustModel, Weights,
+};
+
+use crate::table::{matrix, row_minima, sig6};
+
+const EXAMPLES: &str = "\
+Examples:
+  # Paper Example 1: T(R1||R2) = 0.00372546, T(R1||R3) = 0.000504443 nats
+  usar trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25
+
+  # Paper Examples 2-3: robot-group and group-group trust
+  usar trust --weights 6,4,2 --needs 86,120,30 --group \"82,114,24;79,117,23\" --group \"40,56,12;56,48,15\"
+
+  # Base-10 logarithm, no smoothing, sorted distributions (Algorithm 4)
+  usar trust --weights 1,1 --needs 1,3 --needs 3,1 --log-base 10 --epsilon 0 --sorted
+
+Output: each needs distribution, then T(row || column) matrices; lower RNE = more trust,
+'*' marks the lowest value of each row (excluding the diagonal).";
+
+/// Arguments of `usar trust`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = EXAMPLES)]
+pub struct TrustArgs {
+    /// Weight of each needs category, comma-separated (j values, each > 0).
+    #[arg(long, value_name = "W1,W2,..", allow_hyphen_values = true)]
+    pub weights: String,
+
+    /// A robot's needs vector, comma-separated (j values, each >= 0). Repeat for each robot
+    /// (R1, R2, ...).
+    #[arg(long = "needs", value_name = "N1,N2,..", allow_hyphen_values = true)]
+    pub needs: Vec<String>,
+
+    /// A group's needs matrix: robots separated by ';', needs by ','. Repeat for each group
+    /// (G1, G2, ...). Adds robot-group and group-group trust.
+    #[arg(long = "group", value_name = "ROW;ROW;..", allow_hyphen_values = true)]
+    pub groups: Vec<String>,
+
+    /// Logarithm base: e (nats), 2 (bits), 10 or any number > 1.
+    #[arg(long, value_name = "BASE", default_value = "e")]
+    pub log_base: String,
+
+    /// Sort each distribution before comparing (Algorithm 4) instead of aligning categories.
+    #[arg(long)]
+    pub sorted: bool,
+
+    /// Relative smoothing: add EPS x total weighted needs to each weighted need before
+    /// normalising; 0 disables it (RNE may then be inf).
+    #[arg(long, value_name = "EPS", default_value_t = DEFAULT_RELATIVE_EPSILON, allow_hyphen_values = true)]
+    pub epsilon: f64,
+}
+
+/// Parses a comma-separated list of numbers; `what` names the input in errors.
+fn parse_list(text: &str, what: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .map(|t| {
+            let t = t.trim();
+            t.parse::<f64>()
+                .with_context(|| format!("{what}: {t:?} is not a number"))
+        })
+        .collect()
+}
+
+/// Parses one `--needs` or a group row and checks its length against the weights.
+fn parse_needs(text: &str, what: &str, j: usize) -> Result<NeedsVector> {
+    let values = parse_list(text, what)?;
+    if values.len() != j {
+        bail!("{what} has {} values but --weights has {j}", values.len());
+    }
+    NeedsVector::new(values).with_context(|| what.to_string())
+}
+
+fn unit(base: LogBase) -> String {
+    match base.value() {
+        _ if base == LogBase::E => "nats (natural log)".into(),
+        2.0 => "bits (log base 2)".into(),
+        10.0 => "hartleys (log base 10)".into(),
+        b => format!("log base {b} units"),
+    }
+}
+
+fn distribution_lines(labels: &[String], dists: &[Distribution]) -> String {
+    let w = labels.iter().map(String::len).max().unwrap_or(0);
+    labels
+        .iter()
+        .zip(dists)
+        .map(|(l, d)| {
+            let v: Vec<String> = d
+                .as_slice()
+                .iter()
+                .map(|x| format!("{:>10}", sig6(*x)))
+                .collect();
+            format!("  {l:w$}  {}\n", v.join(" "))
+        })
+        .collect()
+}
+
+/// One side of an RNE matrix: labels and their distributions.
+struct Side<'a> {
+    labels: &'a [String],
+    dists: &'a [Distribution],
+}
+
+/// Runs `usar trust`, writing the report to `out`.
+///
+/// # Errors
+/// A one-line message for bad input (naming the flag and its 1-based occurrence), or an I/O
+/// error.
+pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
+    let weights = Weights::new(parse_list(&args.weights, "--weights")?).context("--weights")?;
+    let j = weights.len();
+    if args.needs.is_empty() && args.groups.is_empty() {
+        bail!("give at least one --needs or --group");
+    }
+    let robots = args
+        .needs
+        .iter()
+        .enumerate()
+        .map(|(i, t)| parse_needs(t, &format!("--needs #{}", i + 1), j))
+        .collect::<Result<Vec<_>>>()?;
+    let groups = args
+        .groups
+        .iter()
+        .enumerate()
+        .map(|(g, t)| {
+            let rows = t
+                .split(';')
+                .enumerate()
+                .map(|(r, row)| parse_needs(row, &format!("--group #{} row {}", g + 1, r + 1), j))
+                .collect::<Result<Vec<_>>>()?;
+            NeedsMatrix::from_members(&rows).with_context(|| format!("--group #{}", g + 1))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let log_base: LogBase = args.log_base.parse().context("--log-base")?;
+    let smoothing = if args.epsilon == 0.0 {
+        Smoothing::None
+    } else {
+        Smoothing::Relative(args.epsilon)
+    };
+    let alignment = if args.sorted {
+        Alignment::Sorted
+    } else {
+        Alignment::Category
+    };
+    let model = TrustModel::new(
+        weights,
+        RneOptions {
+            smoothing,
+            alignment,
+            log_base,
+        },
+    )
+    .context("--epsilon")?;
+
+    let robot_labels: Vec<String> = (1..=robots.len()).map(|i| format!("R{i}")).collect();
+    let group_labels: Vec<String> = (1..=groups.len()).map(|i| format!("G{i}")).collect();
+    let rd = (robots.iter().enumerate())
+        .map(|(i, r)| {
+            model
+                .distribution(r)
+                .with_context(|| format!("--needs #{}", i + 1))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let gd = (groups.iter().enumerate())
+        .map(|(g, m)| {
+            model
+                .group_distribution(m)
+                .with_context(|| format!("--group #{}", g + 1))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let rne_matrix = |rows: &[Distribution], cols: &[Distribution]| -> Result<Vec<Vec<f64>>> {
+        rows.iter()
+            .map(|p| cols.iter().map(|q| Ok(model.rne(p, q)?)).collect())
+            .collect()
+    };
+
+    let smoothing_text = match smoothing {
+        Smoothing::Relative(e) => format!("relative smoothing {e:e}"),
+        _ => "no smoothing".to_string(),
+    };
+    let align_text = if args.sorted {
+        "sorted (Algorithm 4)"
+    } else {
+        "category-aligned"
+    };
+    writeln!(
+        out,
+        "Weights: {}; {align_text}; {smoothing_text}",
+        args.weights
+    )?;
+    writeln!(
+        out,
+        "RNE T(row || column) in {}; lower = more trust; * = lowest in row",
+        unit(log_base)
+    )?;
+    writeln!(out, "\nNeeds distributions (Eqs. 6, 8):")?;
+    write!(out, "{}", distribution_lines(&robot_labels, &rd))?;
+    write!(out, "{}", distribution_lines(&group_labels, &gd))?;
+    let robots_side = Side {
+        labels: &robot_labels,
+        dists: &rd,
+    };
+    let groups_side = Side {
+        labels: &group_labels,
+        dists: &gd,
+    };
+    let sections = [
+        (
+            "Robot-robot RNE T(Ri || Rj) (Eq. 5):",
+            &robots_side,
+            &robots_side,
+            true,
+        ),
+        (
+            "Robot-group RNE T(Ri || Gk) (Eq. 9):",
+            &robots_side,
+            &groups_side,
+            false,
+        ),
+        (
+            "Group-group RNE T(Gk || Gl) (Eq. 11):",
+            &groups_side,
+            &groups_side,
+            true,
+        ),
+    ];
+    for (title, trustors, trustees, square) in sections {
+        if trustors.dists.is_empty() || trustees.dists.is_empty() {
+            continue;
+        }
+        let values = rne_matrix(trustors.dists, trustees.dists)?;
+        let minima: Vec<Vec<usize>> = values
+            .iter()
+            .enumerate()
+            .map(|(r, row)| row_minima(row, square.then_some(r)))
+            .collect();
+        writeln!(out, "\n{title}")?;
+        write!(
+            out,
+            "{}",
+            matrix(trustors.labels, trustees.labels, &values, |r, c| minima[r]
+                .contains(&c))
+        )?;
+    }
+    Ok(())
+}

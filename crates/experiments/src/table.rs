@@ -1,0 +1,105 @@
+//! Plain-text number and matrix formatting shared by the commands.
+
+use std::fmt::Write as _;
+
+/// Formats `x` with 6 significant digits: `0.00372546`, `0.000504443`, `12.3457`; `0` for
+/// zero, `inf` for infinity; scientific notation below `1e-6` or from `1e9` up.
+pub fn sig6(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "NaN".into()
+        } else if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    if !(-6..9).contains(&magnitude) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5 - magnitude).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// Renders a labelled matrix. `values[r][c]` is shown with [`sig6`]; a cell gets a `*` when
+/// `marked(r, c)` is true. `row_labels.len() == values.len()`,
+/// `col_labels.len() == values[r].len()`.
+pub fn matrix(
+    row_labels: &[String],
+    col_labels: &[String],
+    values: &[Vec<f64>],
+    marked: impl Fn(usize, usize) -> bool,
+) -> String {
+    let cells: Vec<Vec<String>> = values
+        .iter()
+        .enumerate()
+        .map(|(r, row)| {
+            row.iter()
+                .enumerate()
+                .map(|(c, v)| format!("{}{}", sig6(*v), if marked(r, c) { "*" } else { " " }))
+                .collect()
+        })
+        .collect();
+    let label_w = row_labels.iter().map(String::len).max().unwrap_or(0);
+    let col_w = cells
+        .iter()
+        .flatten()
+        .map(String::len)
+        .chain(col_labels.iter().map(|l| l.len() + 1))
+        .max()
+        .unwrap_or(1);
+    let mut s = format!("  {:label_w$}", "");
+    for l in col_labels {
+        let _ = write!(s, "  {:>w$}", format!("{l} "), w = col_w);
+    }
+    s.push('\n');
+    for (label, row) in row_labels.iter().zip(&cells) {
+        let _ = write!(s, "  {label:label_w$}");
+        for cell in row {
+            let _ = write!(s, "  {cell:>col_w$}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Indices of the minimum of `row` ignoring `skip` (e.g. the diagonal); `None` if nothing
+/// remains. All tied minima are returned.
+pub fn row_minima(row: &[f64], skip: Option<usize>) -> Vec<usize> {
+    let min = row
+        .iter()
+        .enumerate()
+        .filter(|(c, _)| Some(*c) != skip)
+        .map(|(_, v)| *v)
+        .fold(f64::INFINITY, f64::min);
+    row.iter()
+        .enumerate()
+        .filter(|(c, v)| Some(*c) != skip && **v == min)
+        .map(|(c, _)| c)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn six_significant_digits() {
+        assert_eq!(sig6(0.003_725_460_66), "0.00372546");
+        assert_eq!(sig6(0.000_504_442_6), "0.000504443");
+        assert_eq!(sig6(12.345_678), "12.3457");
+        assert_eq!(sig6(0.0), "0");
+        assert_eq!(sig6(f64::INFINITY), "inf");
+        assert_eq!(sig6(1.5e-9), "1.50000e-9");
+    }
+
+    #[test]
+    fn minima_skip_the_diagonal() {
+        assert_eq!(row_minima(&[0.0, 2.0, 1.0], Some(0)), vec![2]);
+        assert_eq!(row_minima(&[0.0], Some(0)), Vec::<usize>::new());
+    }
+}
