@@ -1,0 +1,93 @@
+//! Loading: read a RON file, deserialize the [`ScenarioSpec`], validate it into a [`Scenario`].
+
+use std::path::Path;
+
+use ron::error::{Error as RonError, SpannedError};
+
+use super::error::{ScenarioError, SourceLocation};
+use super::locate::{SourceMap, join};
+use super::model::Scenario;
+use super::spec::ScenarioSpec;
+use super::validate::{Ctx, validate};
+
+/// Loads and validates the scenario file at `path` (RON, format in `docs/scenario-format.md`).
+/// Errors name the path as given.
+///
+/// # Errors
+/// [`ScenarioError::Io`] if the file cannot be read, [`ScenarioError::Syntax`] for RON syntax
+/// or shape errors (unknown or missing fields, wrong types), [`ScenarioError::Invalid`] for a
+/// broken rule (with field path and, where the field appears, line and column).
+pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
+    let path = path.as_ref();
+    let origin = path.display().to_string();
+    let src = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+        path: origin.clone(),
+        source,
+    })?;
+    from_str(&src, &origin)
+}
+
+/// Parses and validates a scenario from RON text. `origin` names the source in errors (a file
+/// path, or e.g. `"<inline>"`).
+///
+/// # Errors
+/// As [`load`], without [`ScenarioError::Io`].
+pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
+    let map = SourceMap::build(src);
+    let spec = parse_with(src, origin, &map)?;
+    validate(
+        &spec,
+        &Ctx {
+            origin,
+            map: Some(&map),
+        },
+    )
+}
+
+/// Parses RON text into the raw, unvalidated [`ScenarioSpec`] (e.g. to change a value, such as
+/// a kind's `count`, before [`ScenarioSpec::validate`]).
+///
+/// # Errors
+/// [`ScenarioError::Syntax`] with ron's position and, where it can be worked out, the field
+/// path.
+pub fn parse_spec(src: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError> {
+    parse_with(src, origin, &SourceMap::build(src))
+}
+
+fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, ScenarioError> {
+    ron::Options::default()
+        .from_str::<ScenarioSpec>(src)
+        .map_err(|e| syntax_error(e, origin, map))
+}
+
+/// Turns ron's error into a [`ScenarioError::Syntax`], adding the field path found at the
+/// error's position.
+fn syntax_error(e: SpannedError, origin: &str, map: &SourceMap) -> ScenarioError {
+    let pos = e.span.start;
+    let offset = map.offset_of(pos.line, pos.col);
+    let here = map.path_at(offset);
+    let field = match &e.code {
+        RonError::NoSuchStructField { found, .. } => Some(child_path(here, found)),
+        RonError::DuplicateStructField { field, .. } => Some(child_path(here, field)),
+        RonError::MissingStructField { field, .. } => Some(join(here.unwrap_or(""), field)),
+        _ => here.map(str::to_owned),
+    };
+    ScenarioError::Syntax {
+        location: SourceLocation {
+            origin: origin.to_owned(),
+            line_col: Some((pos.line, pos.col)),
+        },
+        field: field.filter(|f| !f.is_empty()),
+        message: e.code.to_string(),
+    }
+}
+
+/// The path of field `name` given the innermost path at the error: the path itself if it
+/// already ends with the field, otherwise the field inside it.
+fn child_path(here: Option<&str>, name: &str) -> String {
+    match here {
+        Some(p) if p == name || p.ends_with(&format!(".{name}")) => p.to_owned(),
+        Some(p) => join(p, name),
+        None => name.to_owned(),
+    }
+}

@@ -1,0 +1,531 @@
+//! Scenario loading: every shipped scenario loads, and broken scenarios get precise errors.
+
+use std::path::PathBuf;
+
+use usar_sim::scenario::{self, Locomotion, Role, ScenarioError, TaskLevel};
+
+fn scenarios_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
+}
+
+fn broken_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/broken")
+}
+
+#[test]
+fn every_shipped_scenario_loads() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(scenarios_dir())
+        .expect("scenarios/ exists")
+        .map(|e| e.expect("dir entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    assert!(
+        files.len() >= 2,
+        "expected paper.ron and corridor.ron, found {files:?}"
+    );
+    for f in &files {
+        let s = scenario::load(f).unwrap_or_else(|e| panic!("{e}"));
+        assert!(!s.robots.is_empty(), "{}", f.display());
+        assert_eq!(
+            s.robots.len(),
+            s.kinds.iter().map(|k| k.count).sum::<usize>(),
+            "{}",
+            f.display()
+        );
+        for t in &s.tasks {
+            assert!(!t.rescuees.is_empty());
+            assert!(t.rescuees.iter().all(|p| t.search_area.contains(p)));
+        }
+    }
+}
+
+/// A small valid scenario; tests break one thing at a time.
+const BASE: &str = r#"Scenario(
+    name: "base",
+    arena: (width_m: 30.0, height_m: 20.0),
+    kinds: [
+        (
+            name: "rover",
+            role: Carrier,
+            locomotion: Ground,
+            count: 2,
+            quota: (easy: 1, hard: 1),
+            body_radius_m: 0.4,
+            max_speed_m_per_s: 1.5,
+            sensing_range_m: 2.0,
+            observing_range_m: 1.0,
+            carrying_capacity: 2,
+            rescuing_resources: 2,
+            hp_needs_full: 2.0,
+            energy_needs_full: 1.5,
+            starts: List([(14.0, 2.0), (16.0, 2.0)]),
+        ),
+    ],
+    rest_station: (center_m: (25.0, 2.0), radius_m: 1.0),
+    tasks: (
+        easy: (
+            search_area: (min_m: (20.0, 14.0), max_m: (28.0, 18.0)),
+            goal_m: (24.0, 16.0),
+            drop_off: (center_m: (27.0, 5.0), radius_m: 1.0),
+            rescuees: Grid(spacing_m: 1.0),
+        ),
+        hard: (
+            search_area: (min_m: (2.0, 14.0), max_m: (10.0, 18.0)),
+            goal_m: (6.0, 16.0),
+            drop_off: (center_m: (3.0, 5.0), radius_m: 1.0),
+            rescuees: List([(3.0, 15.0), (4.0, 15.0)]),
+        ),
+    ),
+    debris: [
+        Circle(center_m: (15.0, 10.0), radius_m: 1.0),
+    ],
+)
+"#;
+
+/// 1-based line of the first line of `src` containing `needle`.
+fn line_of(src: &str, needle: &str) -> usize {
+    src.lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("{needle:?} not in source"))
+        + 1
+}
+
+fn broken(from: &str, to: &str) -> String {
+    assert!(BASE.contains(from), "{from:?} not in BASE");
+    BASE.replacen(from, to, 1)
+}
+
+#[test]
+fn base_is_valid_and_defaults_apply() {
+    let s = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.sim.dt_s, 0.02);
+    assert_eq!(s.sim.seed, 0);
+    assert_eq!(s.mission.duration_s, 600.0);
+    assert_eq!(s.mission.energy_pct_per_moving_step, 0.0045);
+    assert_eq!(s.mission.hp_pct_per_step_in_radiation, 0.0003);
+    assert_eq!(s.mission.no_observer_speed_factor, 0.7);
+    assert_eq!(s.mission.initial_energy.mean_pct, 80.0);
+    assert_eq!(s.mission.initial_hp.std_dev_pct, 10.0);
+    assert_eq!(s.navigation.grid_cell_m, 0.25);
+    assert_eq!(s.navigation.clearance_m, 0.1);
+    assert_eq!(s.navigation.waypoint_tolerance_m, 0.3);
+    assert!(s.collision.enabled);
+    assert_eq!(s.collision.lookahead_s, 1.0);
+    assert_eq!(s.collision.safety_margin_m, 0.2);
+    assert_eq!(s.collision.deadlock_after_s, 2.0);
+    assert_eq!(s.arena.wall_thickness_m, 0.5);
+    assert_eq!(s.needs_weights, [1.0; 7]);
+    // 8 x 4 m area, spacing 1: 9 x 5 grid.
+    assert_eq!(s.task(TaskLevel::Easy).rescuees.len(), 45);
+    assert_eq!(s.task(TaskLevel::Hard).rescuees.len(), 2);
+    assert_eq!(s.steps_per_trial(), 30_000);
+}
+
+/// (case, source, expected field path, line of this needle (None: no position), message part)
+type Case = (
+    &'static str,
+    String,
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+);
+
+fn inline_cases() -> Vec<Case> {
+    vec![
+        (
+            "quota sum",
+            broken("quota: (easy: 1, hard: 1)", "quota: (easy: 1, hard: 2)"),
+            "kinds[0].quota",
+            Some("quota: (easy: 1, hard: 2)"),
+            "easy 1 + hard 2 = 3 but count is 2",
+        ),
+        (
+            "start count",
+            broken("starts: List([(14.0, 2.0), (16.0, 2.0)])", "starts: List([(14.0, 2.0)])"),
+            "kinds[0].starts",
+            Some("starts: List([(14.0, 2.0)])"),
+            "1 start position(s) listed but count is 2",
+        ),
+        (
+            "unknown field",
+            broken("max_speed_m_per_s: 1.5", "max_speed: 1.5"),
+            "kinds[0].max_speed",
+            Some("max_speed: 1.5"),
+            "Unexpected field named `max_speed`",
+        ),
+        (
+            "missing field",
+            broken("            sensing_range_m: 2.0,\n", ""),
+            "kinds[0].sensing_range_m",
+            // ron reports missing fields at the struct's closing parenthesis.
+            Some("        ),"),
+            "missing field named `sensing_range_m`",
+        ),
+        (
+            "wrong type",
+            broken("count: 2", "count: \"two\""),
+            "kinds[0].count",
+            Some("count: \"two\""),
+            "Expected",
+        ),
+        (
+            "unknown variant",
+            broken("locomotion: Ground", "locomotion: Wheels"),
+            "kinds[0].locomotion",
+            Some("locomotion: Wheels"),
+            "Wheels",
+        ),
+        (
+            "negative radius",
+            broken("body_radius_m: 0.4", "body_radius_m: -0.4"),
+            "kinds[0].body_radius_m",
+            Some("body_radius_m: -0.4"),
+            "expected a finite number > 0, found -0.4",
+        ),
+        (
+            "search area outside arena",
+            broken("max_m: (10.0, 18.0)", "max_m: (10.0, 21.0)"),
+            "tasks.hard.search_area",
+            Some("search_area: (min_m: (2.0, 14.0), max_m: (10.0, 21.0))"),
+            "not inside the arena",
+        ),
+        (
+            "rescuee outside search area",
+            broken("List([(3.0, 15.0), (4.0, 15.0)])", "List([(3.0, 15.0),\n (11.0, 15.0)])"),
+            "tasks.hard.rescuees[1]",
+            Some(" (11.0, 15.0)])"),
+            "outside the search area",
+        ),
+        (
+            "start inside debris",
+            broken("(16.0, 2.0)]", "(15.0, 10.5)]"),
+            "kinds[0].starts[1]",
+            Some("starts: List"),
+            "overlaps debris[0]",
+        ),
+        (
+            "starts overlap",
+            broken("(16.0, 2.0)]", "(14.5, 2.0)]"),
+            "kinds[0].starts[1]",
+            Some("starts: List"),
+            "need at least 0.8 m",
+        ),
+        (
+            "threshold out of range",
+            broken("    debris: [", "    mission: (low_hp_pct: 130.0),\n    debris: ["),
+            "mission.low_hp_pct",
+            Some("low_hp_pct: 130.0"),
+            "expected a number in [0, 100], found 130",
+        ),
+        (
+            "weight zero",
+            broken("    debris: [", "    needs_weights: (cap: 0.0),\n    debris: ["),
+            "needs_weights.cap",
+            Some("needs_weights: (cap: 0.0)"),
+            "expected a finite number > 0, found 0",
+        ),
+        (
+            "goal inside debris",
+            broken("goal_m: (6.0, 16.0)", "goal_m: (15.0, 10.0)"),
+            "tasks.hard.goal_m",
+            Some("goal_m: (15.0, 10.0)"),
+            "debris[0]",
+        ),
+        (
+            "debris outside arena",
+            broken("Circle(center_m: (15.0, 10.0), radius_m: 1.0)", "Circle(center_m: (29.5, 10.0), radius_m: 1.0)"),
+            "debris[0]",
+            Some("Circle(center_m: (29.5"),
+            "not inside the arena",
+        ),
+        (
+            "duplicate kind name",
+            broken(
+                "    rest_station:",
+                "    rest_station:",
+            )
+            .replace(
+                "    ],\n    rest_station",
+                "        (name: \"rover\", role: Observer, locomotion: Aerial, count: 1, quota: (easy: 1, hard: 0), body_radius_m: 0.3, max_speed_m_per_s: 1.0, sensing_range_m: 12.0, observing_range_m: 50.0, carrying_capacity: 0, rescuing_resources: 0, hp_needs_full: 1.0, energy_needs_full: 1.0, starts: List([(15.0, 2.0)])),\n    ],\n    rest_station",
+            ),
+            "kinds[1].name",
+            Some("(name: \"rover\", role: Observer"),
+            "duplicate kind name \"rover\"",
+        ),
+        (
+            "debris field cannot fit",
+            broken(
+                "    debris: [",
+                "    debris_fields: [(region: (min_m: (1.0, 8.0), max_m: (5.0, 12.0)), count: 30, shape: Circles(radius_m: (0.5, 1.0)))],\n    debris: [",
+            ),
+            "debris_fields[0].count",
+            Some("count: 30"),
+            "placed only",
+        ),
+        (
+            "dt longer than trial",
+            broken("    debris: [", "    sim: (dt_s: 5.0),\n    mission: (duration_s: 1.0),\n    debris: ["),
+            "sim.dt_s",
+            Some("sim: (dt_s: 5.0)"),
+            "longer than the trial",
+        ),
+        (
+            "syntax error",
+            broken("count: 2,", "count: 2"),
+            "kinds[0]",
+            Some("quota: (easy: 1, hard: 1)"),
+            "Expected",
+        ),
+    ]
+}
+
+fn check(name: &str, err: &ScenarioError, src: &str, field: &str, needle: Option<&str>, msg: &str) {
+    let text = err.to_string();
+    assert_eq!(err.field(), Some(field), "{name}: {text}");
+    assert!(text.contains(&format!("{field}: ")), "{name}: {text}");
+    assert!(text.contains(msg), "{name}: message {msg:?} not in {text}");
+    match needle {
+        Some(n) => {
+            let line = line_of(src, n);
+            let (l, _) = err
+                .line_col()
+                .unwrap_or_else(|| panic!("{name}: no position: {text}"));
+            assert_eq!(l, line, "{name}: {text}");
+            assert!(text.contains(&format!(":{line}:")), "{name}: {text}");
+        }
+        None => assert_eq!(err.line_col(), None, "{name}: {text}"),
+    }
+}
+
+#[test]
+fn broken_inline_sources_get_precise_errors() {
+    for (name, src, field, needle, msg) in inline_cases() {
+        let err = scenario::from_str(&src, "inline.ron").expect_err(name);
+        println!("{name}: {err}");
+        assert_eq!(err.origin(), "inline.ron");
+        assert!(err.to_string().starts_with("inline.ron:"), "{name}: {err}");
+        check(name, &err, &src, field, needle, msg);
+    }
+}
+
+/// Fixture files: (file, field, line, message part).
+const FIXTURES: &[(&str, &str, usize, &str)] = &[
+    (
+        "quota_mismatch.ron",
+        "kinds[1].quota",
+        0,
+        "easy 2 + hard 2 = 4 but count is 3",
+    ),
+    (
+        "unknown_field.ron",
+        "tasks.easy.goal",
+        0,
+        "Unexpected field named `goal`",
+    ),
+    (
+        "rescuee_outside.ron",
+        "tasks.easy.rescuees[2]",
+        0,
+        "outside the search area",
+    ),
+    (
+        "radiation_outside.ron",
+        "radiation_zones[1]",
+        0,
+        "not inside the arena",
+    ),
+    (
+        "row_overlap.ron",
+        "kinds[0].starts",
+        0,
+        "need at least 0.8 m",
+    ),
+];
+
+#[test]
+fn broken_fixture_files_get_precise_errors() {
+    for &(file, field, _, msg) in FIXTURES {
+        let path = broken_dir().join(file);
+        let src = std::fs::read_to_string(&path).expect("fixture exists");
+        // Each fixture marks the offending line with a `// <- error` comment.
+        let needle = "// <- error";
+        let err = scenario::load(&path).expect_err(file);
+        println!("{err}");
+        assert!(
+            err.to_string().starts_with(&path.display().to_string()),
+            "{file}: {err}"
+        );
+        check(file, &err, &src, field, Some(needle), msg);
+    }
+}
+
+#[test]
+fn missing_file_is_an_io_error() {
+    let err = scenario::load("/nonexistent/none.ron").expect_err("missing");
+    assert!(matches!(err, ScenarioError::Io { .. }));
+    assert!(
+        err.to_string()
+            .starts_with("/nonexistent/none.ron: cannot read")
+    );
+}
+
+#[test]
+fn validate_spec_without_source_has_field_but_no_position() {
+    let mut spec = scenario::parse_spec(BASE, "base.ron").expect("parses");
+    spec.kinds[0].count = 3;
+    let err = spec.validate("edited").expect_err("count changed");
+    assert_eq!(err.field(), Some("kinds[0].quota"));
+    assert_eq!(err.line_col(), None);
+    assert_eq!(
+        err.to_string(),
+        "edited: kinds[0].quota: easy 1 + hard 1 = 2 but count is 3"
+    );
+}
+
+#[test]
+fn paper_scenario_matches_the_paper() {
+    let s = scenario::load(scenarios_dir().join("paper.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let by_role = |r: Role| s.kinds.iter().find(|k| k.role == r).expect("role present");
+    let (c, sup, o) = (
+        by_role(Role::Carrier),
+        by_role(Role::Supplier),
+        by_role(Role::Observer),
+    );
+    assert_eq!((c.count, sup.count, o.count), (6, 4, 2));
+    assert_eq!((c.quota, sup.quota, o.quota), ([3, 3], [2, 2], [1, 1]));
+    assert_eq!(o.locomotion, Locomotion::Aerial);
+    // Section VI.B ratios.
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * b.abs().max(1.0);
+    assert!(close(c.max_speed_m_per_s, 1.5 * o.max_speed_m_per_s));
+    assert!(close(sup.max_speed_m_per_s, c.max_speed_m_per_s));
+    assert!(close(o.sensing_range_m, 6.0 * c.sensing_range_m));
+    assert!(close(sup.sensing_range_m, c.sensing_range_m));
+    assert_eq!(c.carrying_capacity, 6 * sup.carrying_capacity);
+    assert_eq!(o.carrying_capacity, 0);
+    assert_eq!(sup.rescuing_resources, 10 * c.rescuing_resources);
+    assert_eq!(o.rescuing_resources, 0);
+    assert!(close(o.observing_range_m, 1000.0 * c.observing_range_m));
+    assert!(close(sup.observing_range_m, c.observing_range_m));
+    assert!(close(c.hp_needs_full, 2.0 * o.hp_needs_full));
+    assert!(close(sup.hp_needs_full, c.hp_needs_full));
+    assert!(close(c.energy_needs_full, 1.5 * o.energy_needs_full));
+    assert!(close(sup.energy_needs_full, c.energy_needs_full));
+
+    // Geometry: hard goal about 1.25 times as far from the team as the easy goal.
+    let n = s.robots.len() as f64;
+    let centroid = s.robots.iter().fold(nalgebra::Vector2::zeros(), |acc, r| {
+        acc + r.start_in_world.coords
+    }) / n;
+    let d = |l: TaskLevel| (s.task(l).goal.coords - centroid).norm();
+    let ratio = d(TaskLevel::Hard) / d(TaskLevel::Easy);
+    assert!((1.2..=1.3).contains(&ratio), "ratio {ratio}");
+    assert!(s.task(TaskLevel::Hard).goal.x < s.arena.width_m / 2.0);
+    assert!(s.task(TaskLevel::Easy).goal.x > s.arena.width_m / 2.0);
+    // Dense grids: hundreds of rescuees per task.
+    for t in &s.tasks {
+        assert!(t.rescuees.len() >= 200, "{} rescuees", t.rescuees.len());
+    }
+    // The hard side (left half) holds far more debris and radiation.
+    let left = |x: f64| x < s.arena.width_m / 2.0;
+    let debris_left = s
+        .debris
+        .iter()
+        .filter(|d| match d {
+            usar_sim::scenario::Debris::Rect { center, .. } => left(center.x),
+            usar_sim::scenario::Debris::Circle(c) => left(c.center.x),
+        })
+        .count();
+    let debris_right = s.debris.len() - debris_left;
+    assert!(
+        debris_left >= 2 * debris_right + 8,
+        "{debris_left} vs {debris_right}"
+    );
+    let rad_left = s
+        .radiation_zones
+        .iter()
+        .filter(|z| left(z.area.center.x))
+        .count();
+    assert!((5..=7).contains(&rad_left));
+    assert!((2..=3).contains(&(s.radiation_zones.len() - rad_left)));
+}
+
+#[test]
+fn corridor_scales_to_2_4_8_robots() {
+    let path = scenarios_dir().join("corridor.ron");
+    let src = std::fs::read_to_string(&path).expect("corridor.ron");
+    for per_end in [1usize, 2, 4] {
+        let mut spec = scenario::parse_spec(&src, "corridor.ron").expect("parses");
+        spec.kinds[0].count = per_end;
+        spec.kinds[0].quota.easy = per_end;
+        spec.kinds[1].count = per_end;
+        spec.kinds[1].quota.hard = per_end;
+        let s = spec
+            .validate("corridor.ron")
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(s.robots.len(), 2 * per_end);
+        // Everyone is on the corridor's centre line; the groups face each other.
+        assert!(
+            s.robots
+                .iter()
+                .all(|r| (r.start_in_world.y - 1.1).abs() < 1e-12)
+        );
+        let east_max = s
+            .robots
+            .iter()
+            .filter(|r| r.kind == 0)
+            .map(|r| r.start_in_world.x)
+            .fold(f64::MIN, f64::max);
+        let west_min = s
+            .robots
+            .iter()
+            .filter(|r| r.kind == 1)
+            .map(|r| r.start_in_world.x)
+            .fold(f64::MAX, f64::min);
+        assert!(east_max < west_min);
+    }
+    let s = scenario::load(&path).expect("loads");
+    // Too narrow for two bodies side by side plus margins: head-on paths collide.
+    let r = s.kinds[0].body_radius_m;
+    let band = s.arena.height_m - 2.0 * (r + s.navigation.clearance_m);
+    let pass_offset = 2.0 * r + s.collision.safety_margin_m;
+    // A robot on the centre line leaves no room to pass (the other must yield) ...
+    assert!(band / 2.0 < pass_offset, "band {band}");
+    // ... but hugging opposite walls, two robots can pass.
+    assert!(band >= pass_offset, "band {band}");
+    // Each group's task is at the far end.
+    assert!(s.task(TaskLevel::Easy).goal.x > 20.0);
+    assert!(s.task(TaskLevel::Hard).goal.x < 4.0);
+}
+
+#[test]
+fn debris_generation_is_deterministic() {
+    let path = scenarios_dir().join("paper.ron");
+    let a = scenario::load(&path).expect("loads");
+    let b = scenario::load(&path).expect("loads");
+    assert_eq!(a.debris, b.debris);
+    let src = std::fs::read_to_string(&path).expect("paper.ron");
+    let c = scenario::from_str(
+        &src.replace("seed: Some(2021)", "seed: Some(7)"),
+        "paper7.ron",
+    )
+    .expect("other seed loads");
+    assert_ne!(a.debris, c.debris);
+    assert_eq!(a.debris.len(), c.debris.len());
+}
+
+#[test]
+fn format_doc_minimal_example_loads() {
+    let doc = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/scenario-format.md"),
+    )
+    .expect("docs/scenario-format.md");
+    let start = doc.find("## A minimal example").expect("section");
+    let block = &doc[start..];
+    let open = block.find("```ron\n").expect("ron block") + "```ron\n".len();
+    let close = block[open..].find("```").expect("block end") + open;
+    let s = scenario::from_str(&block[open..close], "scenario-format.md")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.name, "tiny");
+    assert_eq!(s.sim.seed, 7);
+}
