@@ -1,0 +1,200 @@
+//! Rapier bodies and colliders of the USAR world: boundary walls, debris, robot discs, and their
+//! collision groups.
+//!
+//! Physics runs in `f32` (Rapier's default); the scenario is `f64`. Conversions happen here and
+//! in [`crate::world::World`] only.
+
+use parry2d::bounding_volume::Aabb;
+use parry2d::math::{Pose, Vector as Vec2};
+use parry2d::query::PointQuery;
+use parry2d::shape::{Ball, Cuboid, Shape};
+use rapier2d::prelude::{
+    ColliderBuilder, Group, InteractionGroups, InteractionTestMode, PhysicsWorld, RigidBodyBuilder,
+    RigidBodyHandle,
+};
+
+use crate::scenario::{Debris, Locomotion, PointM, Scenario};
+
+/// Collision group of the four boundary walls.
+pub const WALLS: Group = Group::GROUP_1;
+/// Collision group of debris (static obstacles inside the arena).
+pub const DEBRIS: Group = Group::GROUP_2;
+/// Collision group of ground robots (carriers, suppliers).
+pub const GROUND: Group = Group::GROUP_3;
+/// Collision group of aerial robots (observers).
+pub const AERIAL: Group = Group::GROUP_4;
+
+/// Collision groups of a body on `layer`: ground robots collide with walls, debris and ground
+/// robots; aerial robots collide with walls and aerial robots only (they fly over debris and
+/// ground robots).
+pub fn robot_groups(layer: Locomotion) -> InteractionGroups {
+    match layer {
+        Locomotion::Ground => {
+            InteractionGroups::new(GROUND, WALLS | DEBRIS | GROUND, InteractionTestMode::And)
+        }
+        Locomotion::Aerial => {
+            InteractionGroups::new(AERIAL, WALLS | AERIAL, InteractionTestMode::And)
+        }
+    }
+}
+
+/// Converts a scenario point (metres, `f64`) to a physics vector (`f32`).
+pub fn to_vec2(p: &PointM) -> Vec2 {
+    Vec2::new(p.x as f32, p.y as f32)
+}
+
+/// Converts a physics vector (`f32`) to a scenario point (exact).
+pub fn to_point(v: Vec2) -> PointM {
+    PointM::new(f64::from(v.x), f64::from(v.y))
+}
+
+/// The shape of a static obstacle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StaticShape {
+    /// A disc.
+    Ball(Ball),
+    /// A (possibly rotated, see the pose) rectangle.
+    Cuboid(Cuboid),
+}
+
+/// A static obstacle (wall or debris) for exact parry2d queries, in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticObstacle {
+    /// The shape, in its local frame.
+    pub shape: StaticShape,
+    /// Position and rotation of the shape in the world frame.
+    pub pose: Pose,
+    /// `true` for the boundary walls (which aerial robots collide with too), `false` for debris.
+    pub is_wall: bool,
+}
+
+impl StaticObstacle {
+    fn as_shape(&self) -> &dyn Shape {
+        match &self.shape {
+            StaticShape::Ball(b) => b,
+            StaticShape::Cuboid(c) => c,
+        }
+    }
+
+    /// Distance from `p` to the obstacle's surface, metres; 0 inside (parry2d point query).
+    pub fn distance_to_point(&self, p: Vec2) -> f32 {
+        match &self.shape {
+            StaticShape::Ball(b) => b.distance_to_point(&self.pose, p, true),
+            StaticShape::Cuboid(c) => c.distance_to_point(&self.pose, p, true),
+        }
+    }
+
+    /// World-frame bounding box.
+    pub fn aabb(&self) -> Aabb {
+        self.as_shape().compute_aabb(&self.pose)
+    }
+
+    fn collider(&self) -> ColliderBuilder {
+        let b = match &self.shape {
+            StaticShape::Ball(b) => ColliderBuilder::ball(b.radius),
+            StaticShape::Cuboid(c) => ColliderBuilder::cuboid(c.half_extents.x, c.half_extents.y),
+        };
+        let groups = if self.is_wall {
+            InteractionGroups::new(WALLS, GROUND | AERIAL, InteractionTestMode::And)
+        } else {
+            InteractionGroups::new(DEBRIS, GROUND, InteractionTestMode::And)
+        };
+        b.position(self.pose)
+            .friction(0.0)
+            .restitution(0.0)
+            .collision_groups(groups)
+    }
+}
+
+/// The four boundary walls (outside the field, `arena.wall_thickness_m` thick, overlapping at
+/// the corners) followed by the debris, in scenario order.
+pub fn static_obstacles(s: &Scenario) -> Vec<StaticObstacle> {
+    let w = s.arena.width_m as f32;
+    let h = s.arena.height_m as f32;
+    let t = s.arena.wall_thickness_m as f32;
+    let wall = |cx: f32, cy: f32, hx: f32, hy: f32| StaticObstacle {
+        shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
+        pose: Pose::translation(cx, cy),
+        is_wall: true,
+    };
+    let mut out = vec![
+        wall(-t / 2.0, h / 2.0, t / 2.0, h / 2.0 + t),
+        wall(w + t / 2.0, h / 2.0, t / 2.0, h / 2.0 + t),
+        wall(w / 2.0, -t / 2.0, w / 2.0 + t, t / 2.0),
+        wall(w / 2.0, h + t / 2.0, w / 2.0 + t, t / 2.0),
+    ];
+    for d in &s.debris {
+        out.push(match d {
+            Debris::Rect {
+                center,
+                half_extents_m,
+                rotation_rad,
+            } => StaticObstacle {
+                shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(
+                    half_extents_m.x as f32,
+                    half_extents_m.y as f32,
+                ))),
+                pose: Pose::new(to_vec2(center), *rotation_rad as f32),
+                is_wall: false,
+            },
+            Debris::Circle(c) => StaticObstacle {
+                shape: StaticShape::Ball(Ball::new(c.radius_m as f32)),
+                pose: Pose::from_translation(to_vec2(&c.center)),
+                is_wall: false,
+            },
+        });
+    }
+    out
+}
+
+/// The Rapier world of a scenario without any mission logic: zero gravity, fixed step
+/// `sim.dt_s`, static colliders for walls and debris, one dynamic, rotation-locked,
+/// frictionless disc per robot (never sleeping).
+pub struct PhysicsScene {
+    /// All Rapier state.
+    pub physics: PhysicsWorld,
+    /// Body of robot `id`, indexed by id.
+    pub robot_bodies: Vec<RigidBodyHandle>,
+    /// Walls then debris, for exact distance queries (same shapes as the colliders).
+    pub statics: Vec<StaticObstacle>,
+}
+
+impl PhysicsScene {
+    /// Builds the scene of `s` with robots at their start positions, at rest.
+    pub fn new(s: &Scenario) -> Self {
+        let mut physics = PhysicsWorld::new();
+        physics.gravity = Vec2::ZERO;
+        physics.integration_parameters.dt = s.sim.dt_s as f32;
+        let statics = static_obstacles(s);
+        for o in &statics {
+            physics.insert_collider(o.collider(), None);
+        }
+        let robot_bodies = s
+            .robots
+            .iter()
+            .map(|r| {
+                let kind = &s.kinds[r.kind];
+                let body = RigidBodyBuilder::dynamic()
+                    .translation(to_vec2(&r.start_in_world))
+                    .lock_rotations()
+                    .can_sleep(false);
+                let collider = ColliderBuilder::ball(kind.body_radius_m as f32)
+                    .friction(0.0)
+                    .restitution(0.0)
+                    .density(1.0)
+                    .collision_groups(robot_groups(kind.locomotion));
+                physics.insert(body, collider).0
+            })
+            .collect();
+        Self {
+            physics,
+            robot_bodies,
+            statics,
+        }
+    }
+
+    /// Advances the physics by one fixed step.
+    pub fn step(&mut self) {
+        self.physics.step();
+    }
+}

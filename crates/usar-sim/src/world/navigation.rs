@@ -1,0 +1,297 @@
+//! Path planning of ground robots: a clearance grid built with parry2d distance queries, grid A*
+//! (the `pathfinding` crate) and line-of-sight path smoothing.
+//!
+//! The grid stores, per cell, the distance from the cell centre to the nearest wall or debris
+//! surface (capped). A cell is *free* for inflation `i` when that distance is `>= i`; the world
+//! plans with `i = body radius + navigation.clearance_m + cell / 2` (the half cell covers points
+//! of a free cell away from its centre).
+
+use std::collections::HashMap;
+
+use parry2d::math::Vector as Vec2;
+use pathfinding::prelude::astar;
+
+use super::bodies::StaticObstacle;
+use super::error::NavError;
+use crate::scenario::Arena;
+
+/// A* cost of a straight grid move (a diagonal costs [`DIAGONAL_COST`]).
+const STRAIGHT_COST: u32 = 1000;
+/// A* cost of a diagonal grid move (~ sqrt(2) * [`STRAIGHT_COST`]).
+const DIAGONAL_COST: u32 = 1414;
+/// Most entries the plan cache holds before it is cleared (bounded memory).
+const PLAN_CACHE_CAPACITY: usize = 4096;
+
+/// Per-cell distance to the nearest static obstacle over the arena `[0, W] x [0, H]`.
+#[derive(Debug, Clone)]
+pub struct ClearanceGrid {
+    cell: f32,
+    nx: u32,
+    ny: u32,
+    dist: Vec<f32>,
+}
+
+impl ClearanceGrid {
+    /// Builds the grid: square cells of side `cell_m` (> 0) from the origin, covering the arena;
+    /// each cell holds `min(cap_m, distance from its centre to the nearest obstacle surface)`
+    /// (parry2d point distance; 0 inside an obstacle). Only cells within `cap_m` of an
+    /// obstacle's bounding box are queried, so building costs O(cells near obstacles).
+    pub fn build(arena: &Arena, statics: &[StaticObstacle], cell_m: f64, cap_m: f32) -> Self {
+        let cell = cell_m as f32;
+        let nx = ((arena.width_m / cell_m).ceil() as u32).max(1);
+        let ny = ((arena.height_m / cell_m).ceil() as u32).max(1);
+        let mut dist = vec![cap_m; (nx * ny) as usize];
+        for o in statics {
+            let bb = o.aabb();
+            let lo_x = ((bb.mins.x - cap_m) / cell).floor().max(0.0) as u32;
+            let lo_y = ((bb.mins.y - cap_m) / cell).floor().max(0.0) as u32;
+            let hi_x = ((bb.maxs.x + cap_m) / cell).ceil().max(0.0) as u32;
+            let hi_y = ((bb.maxs.y + cap_m) / cell).ceil().max(0.0) as u32;
+            for iy in lo_y..hi_y.min(ny) {
+                for ix in lo_x..hi_x.min(nx) {
+                    let c = Vec2::new((ix as f32 + 0.5) * cell, (iy as f32 + 0.5) * cell);
+                    let d = o.distance_to_point(c);
+                    let slot = &mut dist[(iy * nx + ix) as usize];
+                    if d < *slot {
+                        *slot = d;
+                    }
+                }
+            }
+        }
+        Self { cell, nx, ny, dist }
+    }
+
+    /// Side of a cell, metres.
+    pub fn cell_m(&self) -> f32 {
+        self.cell
+    }
+
+    /// Number of cells along x and y.
+    pub fn dims(&self) -> (u32, u32) {
+        (self.nx, self.ny)
+    }
+
+    /// Index of the cell containing `p` (clamped to the grid).
+    pub fn cell_index(&self, p: Vec2) -> u32 {
+        let ix = ((p.x / self.cell).floor().max(0.0) as u32).min(self.nx - 1);
+        let iy = ((p.y / self.cell).floor().max(0.0) as u32).min(self.ny - 1);
+        iy * self.nx + ix
+    }
+
+    /// Centre of cell `idx`, metres.
+    pub fn cell_center(&self, idx: u32) -> Vec2 {
+        let ix = idx % self.nx;
+        let iy = idx / self.nx;
+        Vec2::new((ix as f32 + 0.5) * self.cell, (iy as f32 + 0.5) * self.cell)
+    }
+
+    /// Clearance (capped distance to the nearest obstacle) of the cell containing `p`, metres.
+    pub fn clearance_at(&self, p: Vec2) -> f32 {
+        self.dist[self.cell_index(p) as usize]
+    }
+
+    /// Whether cell `idx` is free for `inflation` metres.
+    pub fn is_free(&self, idx: u32, inflation: f32) -> bool {
+        self.dist[idx as usize] >= inflation
+    }
+
+    /// Whether every point of segment `a`-`b` (sampled every `cell / 4`) lies in a cell free for
+    /// `inflation`. Only the first `max_len` metres of the segment are checked.
+    pub fn line_of_sight(&self, a: Vec2, b: Vec2, inflation: f32, max_len: f32) -> bool {
+        let d = b - a;
+        let len = d.length().min(max_len);
+        let step = self.cell * 0.25;
+        let n = (len / step).ceil() as u32;
+        let dir = if d.length() > 0.0 {
+            d / d.length()
+        } else {
+            Vec2::ZERO
+        };
+        (0..=n).all(|k| {
+            let t = (k as f32 * step).min(len);
+            self.clearance_at(a + dir * t) >= inflation
+        })
+    }
+
+    /// The free cell nearest to `p` (Euclidean, centre to `p`; ties by lower index) within
+    /// `radius_m`, if any.
+    pub fn nearest_free(&self, p: Vec2, inflation: f32, radius_m: f32) -> Option<u32> {
+        let r = (radius_m / self.cell).ceil() as i64;
+        let c = self.cell_index(p);
+        let (cx, cy) = (i64::from(c % self.nx), i64::from(c / self.nx));
+        let mut best: Option<(f32, u32)> = None;
+        for iy in (cy - r).max(0)..=(cy + r).min(i64::from(self.ny) - 1) {
+            for ix in (cx - r).max(0)..=(cx + r).min(i64::from(self.nx) - 1) {
+                let idx = (iy as u32) * self.nx + ix as u32;
+                if !self.is_free(idx, inflation) {
+                    continue;
+                }
+                let d2 = (self.cell_center(idx) - p).length_squared();
+                if d2 <= radius_m * radius_m && best.is_none_or(|(bd, _)| d2 < bd) {
+                    best = Some((d2, idx));
+                }
+            }
+        }
+        best.map(|(_, idx)| idx)
+    }
+
+    fn successors(&self, idx: u32, inflation: f32, out: &mut Vec<(u32, u32)>) {
+        out.clear();
+        let ix = (idx % self.nx) as i64;
+        let iy = (idx / self.nx) as i64;
+        let free = |x: i64, y: i64| {
+            x >= 0
+                && y >= 0
+                && x < i64::from(self.nx)
+                && y < i64::from(self.ny)
+                && self.is_free((y as u32) * self.nx + x as u32, inflation)
+        };
+        for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+            if free(ix + dx, iy + dy) {
+                out.push((
+                    ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
+                    STRAIGHT_COST,
+                ));
+            }
+        }
+        for (dx, dy) in [(1, 1), (-1, 1), (1, -1), (-1, -1)] {
+            // No corner cutting: both orthogonal neighbours must be free too.
+            if free(ix + dx, iy + dy) && free(ix + dx, iy) && free(ix, iy + dy) {
+                out.push((
+                    ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
+                    DIAGONAL_COST,
+                ));
+            }
+        }
+    }
+
+    fn octile(&self, a: u32, b: u32) -> u32 {
+        let dx = (a % self.nx).abs_diff(b % self.nx);
+        let dy = (a / self.nx).abs_diff(b / self.nx);
+        let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
+        STRAIGHT_COST * hi + (DIAGONAL_COST - STRAIGHT_COST) * lo
+    }
+}
+
+/// Cache key: inflation (f32 bits), start cell, goal cell.
+type PlanKey = (u32, u32, u32);
+
+/// Grid A* with line-of-sight smoothing and a plan cache keyed by (inflation, start cell, goal
+/// cell). Deterministic: a cache hit returns exactly what planning would.
+#[derive(Debug, Clone, Default)]
+pub struct PathPlanner {
+    cache: HashMap<PlanKey, Vec<u32>>,
+    succ: Vec<(u32, u32)>,
+}
+
+impl PathPlanner {
+    /// An empty planner.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Plans from `from` to `to` for `inflation` metres; writes the waypoints (the start
+    /// excluded, the effective goal last) into `out` and returns the effective goal: `to` if its
+    /// cell is free, else the nearest free cell centre within `inflation + 2 cells`.
+    ///
+    /// # Errors
+    /// [`NavError`] when the goal is outside `[0, w] x [0, h]`, start or goal are blocked with no
+    /// free cell near, or no path exists.
+    pub fn plan(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        from: Vec2,
+        to: Vec2,
+        inflation: f32,
+        out: &mut Vec<Vec2>,
+    ) -> Result<Vec2, NavError> {
+        out.clear();
+        if !(to.is_finite() && to.x >= 0.0 && to.y >= 0.0 && to.x <= arena.0 && to.y <= arena.1) {
+            return Err(NavError::GoalOutsideArena);
+        }
+        let snap_radius = inflation + 2.0 * grid.cell_m();
+        let start_raw = grid.cell_index(from);
+        let start = if grid.is_free(start_raw, inflation) {
+            start_raw
+        } else {
+            grid.nearest_free(from, inflation, snap_radius)
+                .ok_or(NavError::StartBlocked)?
+        };
+        let goal_raw = grid.cell_index(to);
+        let (goal, goal_point) = if grid.is_free(goal_raw, inflation) {
+            (goal_raw, to)
+        } else {
+            let g = grid
+                .nearest_free(to, inflation, snap_radius)
+                .ok_or(NavError::GoalBlocked)?;
+            (g, grid.cell_center(g))
+        };
+        let key = (inflation.to_bits(), start, goal);
+        if !self.cache.contains_key(&key) {
+            let cells = self.search(grid, start, goal, inflation)?;
+            if self.cache.len() >= PLAN_CACHE_CAPACITY {
+                self.cache.clear();
+            }
+            self.cache.insert(key, cells);
+        }
+        let cells = &self.cache[&key];
+        if start != start_raw {
+            out.push(grid.cell_center(start));
+        }
+        // Interior waypoints: the smoothed cells without the start and goal cells.
+        if cells.len() > 2 {
+            out.extend(
+                cells[1..cells.len() - 1]
+                    .iter()
+                    .map(|&c| grid.cell_center(c)),
+            );
+        }
+        out.push(goal_point);
+        Ok(goal_point)
+    }
+
+    /// A* plus smoothing; returns smoothed cell indices from `start` to `goal` (both included).
+    fn search(
+        &mut self,
+        grid: &ClearanceGrid,
+        start: u32,
+        goal: u32,
+        inflation: f32,
+    ) -> Result<Vec<u32>, NavError> {
+        if start == goal {
+            return Ok(vec![start, goal]);
+        }
+        let succ = &mut self.succ;
+        let (raw, _) = astar(
+            &start,
+            |&n| {
+                grid.successors(n, inflation, succ);
+                succ.clone()
+            },
+            |&n| grid.octile(n, goal),
+            |&n| n == goal,
+        )
+        .ok_or(NavError::NoPath)?;
+        Ok(smooth(grid, &raw, inflation))
+    }
+}
+
+/// Greedy line-of-sight smoothing: from each anchor, jump to the farthest following cell still
+/// visible (checked on cell centres).
+fn smooth(grid: &ClearanceGrid, raw: &[u32], inflation: f32) -> Vec<u32> {
+    let mut out = vec![raw[0]];
+    let mut anchor = 0;
+    while anchor < raw.len() - 1 {
+        let a = grid.cell_center(raw[anchor]);
+        let mut next = anchor + 1;
+        while next + 1 < raw.len()
+            && grid.line_of_sight(a, grid.cell_center(raw[next + 1]), inflation, f32::INFINITY)
+        {
+            next += 1;
+        }
+        out.push(raw[next]);
+        anchor = next;
+    }
+    out
+}

@@ -1,0 +1,389 @@
+//! Priority-based collision avoidance with deadlock solving (paper, section V, Algorithm 5).
+//!
+//! Each step, in this order:
+//! 1. **About to collide.** Two *active* robots (goal set and not reached) on the same layer
+//!    (ground-ground or aerial-aerial), at most `max(sensing_i, sensing_j)` apart, are about to
+//!    collide when, moving with their intended velocities, they approach each other
+//!    (`(p_j - p_i) . (v_j - v_i) < 0`) and their closest distance within
+//!    `collision.lookahead_s` is below `r_i + r_j + collision.safety_margin_m`.
+//! 2. **Collision lists** are the connected components (two or more robots) of that relation.
+//!    A list is sorted by the caller's priority key (lower first, ties by id). With rotation
+//!    count `R` (see 4) the head is `sorted[R mod len]`; the head moves, the others are *held*
+//!    (commanded zero velocity).
+//! 3. **Followers join.** An active robot that is not held and whose intended motion would hit a
+//!    held robot (taken as standing still, same test as 1) joins that robot's list (repeated
+//!    until no robot joins); heads are then recomputed.
+//! 4. **Deadlock.** A list is deadlocked when no member has *moved*, i.e. made progress along
+//!    its path (remaining path length below its best value by more than
+//!    [`DEADLOCK_PROGRESS_TOLERANCE_M`]), while in a list for at least
+//!    `collision.deadlock_after_s`. (Progress rather than displacement: a blocked head that
+//!    jitters sideways must not hide a deadlock.) Then the list's rotation count `R` is incremented (the next
+//!    robot in priority order becomes the head: Algorithm 5's `Swap(C, 0, C[i])` with `i++`)
+//!    and the members' stall timers restart; this repeats while the deadlock persists. A
+//!    merged list takes the largest `R` of its members; a robot in no list has `R = 0`.
+//! 5. **Moving robots steer** (heads and robots in no list): held, idle, arrived and
+//!    zero-speed robots of the same layer within sensing range are obstacles standing still;
+//!    the intended velocity is rotated by the smallest angle (15 degree steps up to 120 degrees,
+//!    right side first) whose straight motion keeps clear of them for the look-ahead (same test
+//!    as 1) and, for ground robots, does not drive into walls or debris. If no heading is clear
+//!    the robot stands still this step (blocked).
+
+use parry2d::math::Vector as Vec2;
+
+use super::navigation::ClearanceGrid;
+use crate::scenario::{CollisionParams, Locomotion};
+
+/// Progress (decrease of the remaining path length below its best value since the stall timer
+/// last restarted) below which a list member counts as "not moved" for deadlock detection,
+/// metres.
+pub const DEADLOCK_PROGRESS_TOLERANCE_M: f32 = 0.05;
+/// Step between candidate steering headings, radians (15 degrees).
+pub const STEER_ANGLE_STEP_RAD: f32 = std::f32::consts::PI / 12.0;
+/// Number of candidate deflections per side (8 x 15 = 120 degrees).
+pub const STEER_STEPS_PER_SIDE: u32 = 8;
+/// How far ahead a deflected heading is checked against walls and debris, metres (at most).
+pub const STEER_STATIC_LOOKAHEAD_M: f32 = 0.25;
+/// Gap to walls and debris a deflected heading must keep (beyond the body radius), metres.
+pub const STEER_STATIC_GAP_M: f32 = 0.05;
+
+/// What the resolver needs to know about one robot this step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ResolverInput {
+    /// Position, metres.
+    pub pos: Vec2,
+    /// Intended velocity (path following, before avoidance), metres per second.
+    pub intent: Vec2,
+    /// Body radius, metres.
+    pub radius: f32,
+    /// Effective sensing range, metres.
+    pub sensing: f32,
+    /// Collision layer.
+    pub layer: Locomotion,
+    /// Goal set and not reached.
+    pub active: bool,
+    /// Priority key: lower goes first, ties by id.
+    pub key: f64,
+    /// Remaining path length to the goal (distance to the current waypoint plus the rest of
+    /// the path), metres; progress for deadlock detection is its decrease.
+    pub remaining: f32,
+}
+
+/// The resolver's decision for one robot this step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Decision {
+    /// Member of a collision list.
+    pub in_list: bool,
+    /// Held (zero velocity).
+    pub held: bool,
+    /// Joined a list this step (was in none at the previous step).
+    pub joined: bool,
+    /// A deadlock was detected in its list this step (the order was rotated).
+    pub deadlock_detected: bool,
+    /// It left a list whose order had been rotated (its deadlock cleared).
+    pub deadlock_resolved: bool,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Memory {
+    best: f32,
+    stall_s: f64,
+    rotation: u32,
+    in_list: bool,
+}
+
+/// The collision resolver: persistent per-robot memory plus scratch buffers (no allocation per
+/// step).
+#[derive(Debug, Clone)]
+pub struct Resolver {
+    params: CollisionParams,
+    parent: Vec<usize>,
+    size: Vec<usize>,
+    held: Vec<bool>,
+    members: Vec<usize>,
+    memory: Vec<Memory>,
+    decisions: Vec<Decision>,
+    deadlocked_lists: u64,
+    largest_list: usize,
+}
+
+/// Whether two discs moving with relative position `r = p_j - p_i` and relative velocity
+/// `v = v_j - v_i` approach each other and come closer than `clear` within `horizon` seconds.
+pub fn about_to_collide(r: Vec2, v: Vec2, clear: f32, horizon: f32) -> bool {
+    let rv = r.dot(v);
+    if rv >= 0.0 {
+        return false;
+    }
+    let t = (-rv / v.length_squared()).min(horizon);
+    (r + v * t).length_squared() < clear * clear
+}
+
+fn find(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+fn union(parent: &mut [usize], size: &mut [usize], a: usize, b: usize) -> bool {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra == rb {
+        return false;
+    }
+    // Deterministic: the smaller id becomes the root.
+    let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+    parent[hi] = lo;
+    size[lo] += size[hi];
+    true
+}
+
+impl Resolver {
+    /// A resolver for `n` robots.
+    pub fn new(params: CollisionParams, n: usize) -> Self {
+        let memory = vec![Memory::default(); n];
+        let n = memory.len();
+        Self {
+            params,
+            parent: (0..n).collect(),
+            size: vec![1; n],
+            held: vec![false; n],
+            members: Vec::with_capacity(n),
+            memory,
+            decisions: vec![Decision::default(); n],
+            deadlocked_lists: 0,
+            largest_list: 0,
+        }
+    }
+
+    /// Lists found deadlocked (and rotated) by the last [`Resolver::resolve`].
+    pub fn deadlocked_lists(&self) -> u64 {
+        self.deadlocked_lists
+    }
+
+    /// Members of the largest list of the last [`Resolver::resolve`] (0 without lists).
+    pub fn largest_list(&self) -> usize {
+        self.largest_list
+    }
+
+    /// Decisions of the last [`Resolver::resolve`], indexed by robot id.
+    pub fn decisions(&self) -> &[Decision] {
+        &self.decisions
+    }
+
+    fn sensed(a: &ResolverInput, b: &ResolverInput) -> bool {
+        let range = a.sensing.max(b.sensing);
+        (b.pos - a.pos).length_squared() <= range * range
+    }
+
+    fn clearance(&self, a: &ResolverInput, b: &ResolverInput) -> f32 {
+        a.radius + b.radius + self.params.safety_margin_m as f32
+    }
+
+    /// Head of the list rooted at `root`: collects its members (ascending id), sorts them by
+    /// (key, id) and picks `sorted[rotation mod len]`. Returns the rotation used.
+    fn list_members(&mut self, inputs: &[ResolverInput], root: usize) -> u32 {
+        self.members.clear();
+        let mut rotation = 0;
+        for i in 0..inputs.len() {
+            if find(&mut self.parent, i) == root {
+                self.members.push(i);
+                rotation = rotation.max(self.memory[i].rotation);
+            }
+        }
+        self.members
+            .sort_unstable_by(|&a, &b| inputs[a].key.total_cmp(&inputs[b].key).then(a.cmp(&b)));
+        rotation
+    }
+
+    /// Marks every list member held except its head (no side effects on memory).
+    fn assign_heads(&mut self, inputs: &[ResolverInput]) {
+        let n = inputs.len();
+        self.held.iter_mut().for_each(|h| *h = false);
+        for i in 0..n {
+            let root = find(&mut self.parent, i);
+            if root != i || self.size[root] < 2 {
+                continue;
+            }
+            let rotation = self.list_members(inputs, root);
+            let head = self.members[rotation as usize % self.members.len()];
+            for &m in &self.members {
+                self.held[m] = m != head;
+            }
+        }
+    }
+
+    /// Builds the collision lists, detects deadlocks and decides who is held (rules 1-4 of the
+    /// module docs). `inputs` is indexed by robot id.
+    pub fn resolve(&mut self, inputs: &[ResolverInput], dt: f64) {
+        let n = inputs.len();
+        // Progress of last step's list members (rule 4's "moved").
+        for (mem, input) in self.memory.iter_mut().zip(inputs) {
+            if mem.in_list && input.remaining >= mem.best - DEADLOCK_PROGRESS_TOLERANCE_M {
+                mem.stall_s += dt;
+            } else {
+                mem.best = input.remaining;
+                mem.stall_s = 0.0;
+            }
+        }
+        let horizon = self.params.lookahead_s as f32;
+        for i in 0..n {
+            self.parent[i] = i;
+            self.size[i] = 1;
+        }
+        // Rule 1: pairs about to collide.
+        for i in 0..n {
+            let a = &inputs[i];
+            if !a.active {
+                continue;
+            }
+            for (j, b) in inputs.iter().enumerate().skip(i + 1) {
+                if !b.active || a.layer != b.layer || !Self::sensed(a, b) {
+                    continue;
+                }
+                if about_to_collide(
+                    b.pos - a.pos,
+                    b.intent - a.intent,
+                    self.clearance(a, b),
+                    horizon,
+                ) {
+                    union(&mut self.parent, &mut self.size, i, j);
+                }
+            }
+        }
+        // Rules 2-3: heads, then followers join held robots, until nobody joins.
+        self.assign_heads(inputs);
+        for _ in 0..n {
+            let mut changed = false;
+            for i in 0..n {
+                let a = &inputs[i];
+                if !a.active || self.held[i] || a.intent == Vec2::ZERO {
+                    continue;
+                }
+                for (j, b) in inputs.iter().enumerate() {
+                    if !self.held[j] || a.layer != b.layer || !Self::sensed(a, b) {
+                        continue;
+                    }
+                    if find(&mut self.parent, i) == find(&mut self.parent, j) {
+                        continue;
+                    }
+                    if about_to_collide(b.pos - a.pos, -a.intent, self.clearance(a, b), horizon) {
+                        changed |= union(&mut self.parent, &mut self.size, i, j);
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+            self.assign_heads(inputs);
+        }
+        // Rule 4: deadlocks, final heads, memory and decisions.
+        let after = self.params.deadlock_after_s;
+        self.held.iter_mut().for_each(|h| *h = false);
+        for d in &mut self.decisions {
+            *d = Decision::default();
+        }
+        self.deadlocked_lists = 0;
+        self.largest_list = 0;
+        for i in 0..n {
+            let root = find(&mut self.parent, i);
+            if root != i || self.size[root] < 2 {
+                continue;
+            }
+            let mut rotation = self.list_members(inputs, root);
+            let deadlocked = self
+                .members
+                .iter()
+                .all(|&m| self.memory[m].in_list && self.memory[m].stall_s >= after);
+            if deadlocked {
+                rotation = rotation.wrapping_add(1);
+                self.deadlocked_lists += 1;
+            }
+            self.largest_list = self.largest_list.max(self.members.len());
+            let head = self.members[rotation as usize % self.members.len()];
+            for &m in &self.members {
+                let mem = &mut self.memory[m];
+                mem.rotation = rotation;
+                if deadlocked {
+                    mem.stall_s = 0.0;
+                    mem.best = inputs[m].remaining;
+                }
+                let d = &mut self.decisions[m];
+                d.in_list = true;
+                d.held = m != head;
+                d.joined = !mem.in_list;
+                d.deadlock_detected = deadlocked;
+                self.held[m] = m != head;
+            }
+        }
+        for (i, input) in inputs.iter().enumerate() {
+            let mem = &mut self.memory[i];
+            let d = &mut self.decisions[i];
+            if !d.in_list {
+                d.deadlock_resolved = mem.in_list && mem.rotation > 0;
+                mem.rotation = 0;
+                mem.stall_s = 0.0;
+                mem.best = input.remaining;
+            }
+            mem.in_list = d.in_list;
+        }
+    }
+
+    /// Rule 5: the velocity robot `i` (not held) commands, its intent deflected around robots
+    /// standing still; `None` when every candidate heading is blocked. `static_inflation` is
+    /// the body radius plus [`STEER_STATIC_GAP_M`] (ground robots), or `None` for aerial robots
+    /// (no static check).
+    pub fn steer(
+        &self,
+        inputs: &[ResolverInput],
+        i: usize,
+        grid: &ClearanceGrid,
+        static_inflation: Option<f32>,
+    ) -> Option<Vec2> {
+        let a = &inputs[i];
+        if a.intent == Vec2::ZERO {
+            return Some(Vec2::ZERO);
+        }
+        let horizon = self.params.lookahead_s as f32;
+        let speed = a.intent.length();
+        let here = grid.clearance_at(a.pos);
+        let clear_of_robots = |w: Vec2| {
+            inputs.iter().enumerate().all(|(j, b)| {
+                let still = self.held[j] || !b.active || b.intent == Vec2::ZERO;
+                j == i
+                    || !still
+                    || b.layer != a.layer
+                    || !Self::sensed(a, b)
+                    || !about_to_collide(b.pos - a.pos, -w, self.clearance(a, b), horizon)
+            })
+        };
+        let clear_of_statics = |w: Vec2| {
+            let Some(infl) = static_inflation else {
+                return true;
+            };
+            let len = (speed * horizon).min(STEER_STATIC_LOOKAHEAD_M);
+            let dir = w / speed;
+            let step = grid.cell_m() * 0.5;
+            let n = (len / step).ceil() as u32;
+            (1..=n).all(|k| {
+                let c = grid.clearance_at(a.pos + dir * (k as f32 * step).min(len));
+                c >= infl || c >= here
+            })
+        };
+        if clear_of_robots(a.intent) {
+            return Some(a.intent);
+        }
+        for k in 1..=STEER_STEPS_PER_SIDE {
+            for sign in [-1.0f32, 1.0] {
+                let (s, c) = (sign * k as f32 * STEER_ANGLE_STEP_RAD).sin_cos();
+                let w = Vec2::new(
+                    a.intent.x * c - a.intent.y * s,
+                    a.intent.x * s + a.intent.y * c,
+                );
+                if clear_of_robots(w) && clear_of_statics(w) {
+                    return Some(w);
+                }
+            }
+        }
+        None
+    }
+}
