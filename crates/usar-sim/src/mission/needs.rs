@@ -1,0 +1,65 @@
+//! A robot's 7-entry needs vector (hp, v, sen, eng, res, cap, obs) from its current state
+//! (paper, Eqs. 17-19 and section VI.B).
+
+use rne_core::NeedsVector;
+
+use crate::scenario::RobotKind;
+
+/// Index of each entry of the needs vector, in the paper's order (Eqs. 17-19).
+pub mod entry {
+    /// Health points.
+    pub const HP: usize = 0;
+    /// Speed.
+    pub const V: usize = 1;
+    /// Sensing range.
+    pub const SEN: usize = 2;
+    /// Energy (battery).
+    pub const ENG: usize = 3;
+    /// Rescuing resources.
+    pub const RES: usize = 4;
+    /// Carrying capacity.
+    pub const CAP: usize = 5;
+    /// Observing range.
+    pub const OBS: usize = 6;
+}
+
+/// How HP scales a robot's speed, sensing range and observing range (paper, section VI.B:
+/// "the lower its HP, the smaller its velocity, sensing, and observing range").
+///
+/// The paper gives no function; we use the linear one `f(hp) = hp_pct / 100`, clamped to
+/// `[0, 1]`: a robot at 90 % HP moves at 90 % of its kind's top speed. See
+/// `docs/mission-model.md`.
+pub fn hp_factor(hp_pct: f64) -> f64 {
+    (hp_pct / 100.0).clamp(0.0, 1.0)
+}
+
+/// The needs vector of a robot of `kind` at `hp_pct` and `energy_pct` (both in `[0, 100]`),
+/// with `resources` rescuing resources and `capacity` free carrying capacity left.
+///
+/// Entries (paper, Eqs. 17-19, ratios of section VI.B through the kind's fields):
+/// `hp = hp_needs_full * hp_pct/100`, `v = max_speed_m_per_s * f(hp)`,
+/// `sen = sensing_range_m * f(hp)`, `eng = energy_needs_full * energy_pct/100`,
+/// `res = resources`, `cap = capacity`, `obs = observing_range_m * f(hp)`, with `f` =
+/// [`hp_factor`]. Units are mixed (that is the paper's model); the needs distribution
+/// normalises them with the scenario's weights.
+pub fn needs_vector(
+    kind: &RobotKind,
+    hp_pct: f64,
+    energy_pct: f64,
+    resources: u32,
+    capacity: u32,
+) -> NeedsVector {
+    let f = hp_factor(hp_pct);
+    let values = vec![
+        kind.hp_needs_full * hp_pct.clamp(0.0, 100.0) / 100.0,
+        kind.max_speed_m_per_s * f,
+        kind.sensing_range_m * f,
+        kind.energy_needs_full * energy_pct.clamp(0.0, 100.0) / 100.0,
+        f64::from(resources),
+        f64::from(capacity),
+        kind.observing_range_m * f,
+    ];
+    // Every entry is finite and non-negative: the kind was validated (positive, finite fields)
+    // and the levels are clamped above.
+    NeedsVector::new(values).expect("needs entries are finite and non-negative by construction")
+}

@@ -1,0 +1,80 @@
+//! A robot's mission state: levels, phase, group, load (paper, section VI.B).
+
+use serde::{Deserialize, Serialize};
+
+use crate::scenario::TaskLevel;
+
+/// What a robot is doing in the mission.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Phase {
+    /// At its start position, waiting for the next round.
+    AtStart,
+    /// Going to its task's search area.
+    ToSearchArea,
+    /// In the search area: rescuing (ground robots) or observing (observers).
+    Searching,
+    /// Nothing left to do in the search area (full, or nothing to claim): standing still until
+    /// its group leaves.
+    Waiting,
+    /// Carrying its load to the task's drop-off.
+    ToDropOff,
+    /// Going back to its start position after the drop-off.
+    ToStart,
+    /// Left its task with low energy or HP; going to the rest station.
+    ToRest,
+    /// At the rest station until the given simulated time, seconds.
+    Recharging {
+        /// When recharging ends, seconds since the trial start.
+        until_s: f64,
+    },
+    /// Recharged; going back to its start position.
+    RestToStart,
+}
+
+/// A robot's mission-level state (the physical state is [`crate::world::RobotState`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MissionRobot {
+    /// Robot id.
+    pub id: usize,
+    /// Energy (battery), percent, in `[0, 100]`.
+    pub energy_pct: f64,
+    /// Health points, percent, in `[0, 100]`.
+    pub hp_pct: f64,
+    /// What it is doing.
+    pub phase: Phase,
+    /// The task whose group it belongs to this round, if any.
+    pub task: Option<TaskLevel>,
+    /// Free carrying capacity, rescuees.
+    pub capacity_free: u32,
+    /// Rescuing resources it still holds.
+    pub resources: u32,
+    /// Rescuees it carries (indices into its task's rescuees).
+    pub load: Vec<usize>,
+    /// The rescuee it is driving to, if any.
+    pub claim: Option<usize>,
+    /// Simulated time by which the claimed rescuee must be picked up, seconds; past it the
+    /// claim is given up (see `docs/mission-model.md`).
+    pub claim_deadline_s: f64,
+    /// Next blind-search waypoint (groups without an observer), index into the task's sweep.
+    pub sweep_next: usize,
+    /// Sweep waypoints visited this round.
+    pub sweep_visited: usize,
+}
+
+impl MissionRobot {
+    /// Whether the robot is away for its safety or basic needs (rest station or on the way).
+    pub fn is_resting(&self) -> bool {
+        matches!(
+            self.phase,
+            Phase::ToRest | Phase::Recharging { .. } | Phase::RestToStart
+        )
+    }
+
+    /// Whether the robot is in its group's search phase (on the way, searching or waiting).
+    pub fn is_on_task(&self) -> bool {
+        matches!(
+            self.phase,
+            Phase::ToSearchArea | Phase::Searching | Phase::Waiting
+        )
+    }
+}

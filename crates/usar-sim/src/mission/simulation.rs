@@ -1,0 +1,665 @@
+//! [`Simulation`]: one trial of the persistent USAR mission (paper, sections IV-VI) on top of
+//! the physical [`World`].
+
+use rne_core::grouping::GroupingMethod;
+
+use super::error::MissionError;
+use super::grouping::group_available;
+use super::initial::{draw_initial_levels, trial_seed};
+use super::metrics::{PerTask, RobotMetrics, RoundRecord, TrialResult};
+use super::needs::hp_factor;
+use super::rescuees::{RescueeField, RescueeStatus};
+use super::robot::{MissionRobot, Phase};
+use crate::scenario::{Locomotion, PointM, Rect, Role, Scenario, TaskLevel};
+use crate::world::World;
+
+/// Spacing of the blind-search (lawn-mower) waypoints of a group without an observer, metres.
+pub const SWEEP_SPACING_M: f64 = 2.0;
+
+/// A claim on a rescuee expires after `CLAIM_SLACK_S + CLAIM_TIME_FACTOR * d / v` seconds, with
+/// `d` the straight-line distance to it when claimed (metres) and `v` the robot's current
+/// top speed (m/s, at least 0.1): time for a detour around debris and robots, not for being
+/// stuck. Expired claims mark the rescuee `Skipped` until the next round.
+pub const CLAIM_SLACK_S: f64 = 10.0;
+/// See [`CLAIM_SLACK_S`].
+pub const CLAIM_TIME_FACTOR: f64 = 3.0;
+
+/// One trial: the world, the team's mission state, the rounds and the metrics.
+///
+/// ```no_run
+/// use rne_core::{TrustModel, Weights, grouping::method_from_name};
+/// use usar_sim::{mission::Simulation, scenario};
+///
+/// let s = scenario::load("scenarios/paper.ron")?;
+/// let model = TrustModel::with_weights(Weights::new(s.needs_weights.to_vec())?);
+/// let mut sim = Simulation::for_trial(&s, method_from_name("rne", &model)?, 0);
+/// let result = sim.run_to_end()?;
+/// println!("hard {} easy {}", result.rescued.hard, result.rescued.easy);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Simulation {
+    scenario: Scenario,
+    method: Box<dyn GroupingMethod>,
+    world: World,
+    robots: Vec<MissionRobot>,
+    fields: [RescueeField; 2],
+    sweeps: [Vec<PointM>; 2],
+    rounds: Vec<RoundRecord>,
+    round_open: bool,
+    steps_done: u64,
+    total_steps: u64,
+    trial: u32,
+    seed: u64,
+    metrics: Vec<RobotMetrics>,
+    energy_by_task: PerTask<f64>,
+    hp_by_task: PerTask<f64>,
+    rescued: PerTask<u32>,
+}
+
+impl Simulation {
+    /// A trial whose starting team is drawn from `seed` (see [`draw_initial_levels`]), grouped
+    /// by `method`. The trial index recorded in the result is 0.
+    pub fn new(scenario: &Scenario, method: Box<dyn GroupingMethod>, seed: u64) -> Self {
+        let levels = draw_initial_levels(scenario, seed);
+        let robots = levels
+            .iter()
+            .enumerate()
+            .map(|(id, l)| {
+                let kind = scenario.kind_of(id);
+                MissionRobot {
+                    id,
+                    energy_pct: l.energy_pct,
+                    hp_pct: l.hp_pct,
+                    phase: Phase::AtStart,
+                    task: None,
+                    capacity_free: kind.carrying_capacity,
+                    resources: kind.rescuing_resources,
+                    load: Vec::new(),
+                    claim: None,
+                    claim_deadline_s: 0.0,
+                    sweep_next: 0,
+                    sweep_visited: 0,
+                }
+            })
+            .collect();
+        let metrics = (0..scenario.robots.len())
+            .map(|id| RobotMetrics {
+                id,
+                kind: scenario.kind_of(id).name.clone(),
+                ..RobotMetrics::default()
+            })
+            .collect();
+        let field = |l: TaskLevel| {
+            let t = scenario.task(l);
+            RescueeField::new(t.rescuees.clone(), t.search_area)
+        };
+        Self {
+            world: World::new(scenario),
+            fields: TaskLevel::ALL.map(field),
+            sweeps: TaskLevel::ALL.map(|l| sweep_waypoints(&scenario.task(l).search_area)),
+            scenario: scenario.clone(),
+            method,
+            robots,
+            rounds: Vec::new(),
+            round_open: false,
+            steps_done: 0,
+            total_steps: scenario.steps_per_trial(),
+            trial: 0,
+            seed,
+            metrics,
+            energy_by_task: PerTask::default(),
+            hp_by_task: PerTask::default(),
+            rescued: PerTask::default(),
+        }
+    }
+
+    /// Trial `trial` (0-based) of a sweep over `scenario`: seed
+    /// `trial_seed(scenario.sim.seed, trial)`, so every method sees the same starting team.
+    pub fn for_trial(scenario: &Scenario, method: Box<dyn GroupingMethod>, trial: u32) -> Self {
+        let mut sim = Self::new(scenario, method, trial_seed(scenario.sim.seed, trial));
+        sim.trial = trial;
+        sim
+    }
+
+    /// Replaces the trial length, seconds (> 0), e.g. for short runs; default
+    /// `mission.duration_s`.
+    pub fn with_duration_s(mut self, duration_s: f64) -> Self {
+        self.total_steps = (duration_s / self.scenario.sim.dt_s).ceil().max(0.0) as u64;
+        self
+    }
+
+    /// The physical world (positions, velocities, resolver counters).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The team's mission state, indexed by robot id.
+    pub fn robots(&self) -> &[MissionRobot] {
+        &self.robots
+    }
+
+    /// The rescuees of task `level`.
+    pub fn rescuees(&self, level: TaskLevel) -> &RescueeField {
+        &self.fields[level.index()]
+    }
+
+    /// The rounds so far (the last may be open).
+    pub fn rounds(&self) -> &[RoundRecord] {
+        &self.rounds
+    }
+
+    /// The scenario being run.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// Simulated time, seconds.
+    pub fn time_s(&self) -> f64 {
+        self.world.time_s()
+    }
+
+    /// Steps taken and steps in the whole trial.
+    pub fn progress(&self) -> (u64, u64) {
+        (self.steps_done, self.total_steps)
+    }
+
+    /// Whether the time limit has been reached.
+    pub fn is_finished(&self) -> bool {
+        self.steps_done >= self.total_steps
+    }
+
+    /// Advances the trial by one step of `sim.dt_s`: regroups if a round is due, lets every
+    /// robot decide, steps the world, then accounts energy, HP, detections, pick-ups,
+    /// deliveries and arrivals. Does nothing once the trial is finished.
+    ///
+    /// # Errors
+    /// [`MissionError::Grouping`] if the grouping method fails.
+    pub fn step(&mut self) -> Result<(), MissionError> {
+        if self.is_finished() {
+            return Ok(());
+        }
+        if !self.round_open {
+            self.start_round()?;
+        }
+        self.decide();
+        self.world.step();
+        self.steps_done += 1;
+        self.account();
+        if self.round_open && self.round_complete() {
+            self.close_round(true);
+        }
+        if self.is_finished() && self.round_open {
+            self.close_round(false);
+        }
+        Ok(())
+    }
+
+    /// Runs the trial to its time limit and returns its metrics.
+    ///
+    /// # Errors
+    /// As [`Simulation::step`].
+    pub fn run_to_end(&mut self) -> Result<TrialResult, MissionError> {
+        while !self.is_finished() {
+            self.step()?;
+        }
+        Ok(self.result())
+    }
+
+    /// The metrics so far (complete once [`Simulation::is_finished`]).
+    pub fn result(&self) -> TrialResult {
+        let mut robots = self.metrics.clone();
+        for (m, (r, w)) in robots
+            .iter_mut()
+            .zip(self.robots.iter().zip(self.world.robots()))
+        {
+            m.distance_m = w.distance_travelled_m;
+            m.final_energy_pct = r.energy_pct;
+            m.final_hp_pct = r.hp_pct;
+            m.time_held_s = w.counters.time_held_s;
+            m.collision_lists = w.counters.lists_joined as u32;
+            m.deadlocks_resolved = w.counters.deadlocks_resolved as u32;
+        }
+        TrialResult {
+            scenario: self.scenario.name.clone(),
+            method: self.method.name().to_ascii_uppercase(),
+            trial: self.trial,
+            seed: self.seed,
+            duration_s: self.total_steps as f64 * self.scenario.sim.dt_s,
+            rescued: self.rescued,
+            energy_spent_pct: self.energy_by_task,
+            hp_lost_pct: self.hp_by_task,
+            rounds: self.rounds.clone(),
+            robots,
+        }
+    }
+
+    // ----- rounds -------------------------------------------------------------------------
+
+    fn start_round(&mut self) -> Result<(), MissionError> {
+        let available: Vec<usize> = self
+            .robots
+            .iter()
+            .filter(|r| r.phase == Phase::AtStart)
+            .map(|r| r.id)
+            .collect();
+        if available.is_empty() {
+            return Ok(());
+        }
+        let assignment = group_available(
+            &self.scenario,
+            self.method.as_ref(),
+            &self.robots,
+            &available,
+        )?;
+        for field in &mut self.fields {
+            field.forget();
+        }
+        for level in TaskLevel::ALL {
+            let ids = match level {
+                TaskLevel::Easy => &assignment.easy,
+                TaskLevel::Hard => &assignment.hard,
+            };
+            let sweep_len = self.sweeps[level.index()].len().max(1);
+            for (ordinal, &id) in ids.iter().enumerate() {
+                let kind = self.scenario.kind_of(id);
+                let r = &mut self.robots[id];
+                r.task = Some(level);
+                r.phase = Phase::ToSearchArea;
+                r.capacity_free = kind.carrying_capacity;
+                r.resources = kind.rescuing_resources;
+                r.claim = None;
+                r.sweep_next = ordinal * sweep_len / ids.len();
+                r.sweep_visited = 0;
+                let task = self.scenario.task(level);
+                let target = match kind.locomotion {
+                    Locomotion::Ground => task.goal,
+                    Locomotion::Aerial => task.search_area.center(),
+                };
+                let _ = self.world.set_goal(id, Some(target));
+            }
+        }
+        self.rounds.push(RoundRecord {
+            start_s: self.world.time_s(),
+            end_s: self.world.time_s(),
+            completed: false,
+            groups: PerTask {
+                easy: assignment.easy,
+                hard: assignment.hard,
+            },
+            rescued: PerTask::default(),
+        });
+        self.round_open = true;
+        Ok(())
+    }
+
+    fn round_complete(&self) -> bool {
+        self.robots
+            .iter()
+            .filter(|r| r.task.is_some())
+            .all(|r| r.phase == Phase::AtStart)
+    }
+
+    fn close_round(&mut self, completed: bool) {
+        if let Some(round) = self.rounds.last_mut() {
+            round.end_s = self.world.time_s();
+            round.completed = completed;
+        }
+        for r in &mut self.robots {
+            r.task = None;
+        }
+        self.round_open = false;
+    }
+
+    // ----- decisions before the physics step ----------------------------------------------
+
+    fn has_observer(&self, level: TaskLevel) -> bool {
+        self.robots.iter().any(|r| {
+            r.task == Some(level)
+                && !r.is_resting()
+                && self.scenario.kind_of(r.id).role == Role::Observer
+        })
+    }
+
+    /// Resources of the members of `level`'s group not yet promised to a claim.
+    fn unclaimed_pool(&self, level: TaskLevel) -> u32 {
+        let (pool, claims) = self
+            .robots
+            .iter()
+            .filter(|r| r.task == Some(level) && !r.is_resting())
+            .fold((0u32, 0u32), |(p, c), r| {
+                (p + r.resources, c + u32::from(r.claim.is_some()))
+            });
+        pool.saturating_sub(claims)
+    }
+
+    fn decide(&mut self) {
+        for level in TaskLevel::ALL {
+            if self.group_should_leave(level) {
+                self.leave_search_area(level);
+            }
+        }
+        let observer = TaskLevel::ALL.map(|l| self.has_observer(l));
+        for id in 0..self.robots.len() {
+            let kind = self.scenario.kind_of(id);
+            let r = &self.robots[id];
+            let f = hp_factor(r.hp_pct);
+            let blind = r.task.is_some_and(|t| !observer[t.index()]);
+            let penalty = if blind && r.task.is_some() {
+                self.scenario.mission.no_observer_speed_factor
+            } else {
+                1.0
+            };
+            // Factors are finite and >= 0 and ids are valid, so the setters cannot fail.
+            let _ = self.world.set_speed_factor(id, f * penalty);
+            let _ = self.world.set_sensing_factor(id, f);
+            let _ = self.world.set_priority_key(id, r.energy_pct);
+            if kind.locomotion == Locomotion::Ground && r.is_on_task() {
+                self.decide_ground_on_task(id, blind);
+            }
+        }
+    }
+
+    fn group_should_leave(&self, level: TaskLevel) -> bool {
+        let members: Vec<&MissionRobot> = self
+            .robots
+            .iter()
+            .filter(|r| r.task == Some(level) && r.is_on_task())
+            .collect();
+        if members.is_empty() {
+            return false;
+        }
+        let ground =
+            |r: &&&MissionRobot| self.scenario.kind_of(r.id).locomotion == Locomotion::Ground;
+        let pool: u32 = self
+            .robots
+            .iter()
+            .filter(|r| r.task == Some(level) && !r.is_resting())
+            .map(|r| r.resources)
+            .sum();
+        let free_capacity: u32 = members.iter().filter(ground).map(|r| r.capacity_free).sum();
+        let observer_arriving = members.iter().any(|r| {
+            self.scenario.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea
+        });
+        let nothing_more = members
+            .iter()
+            .filter(ground)
+            .all(|r| r.phase == Phase::Waiting)
+            && !observer_arriving;
+        pool == 0 || free_capacity == 0 || nothing_more
+    }
+
+    fn leave_search_area(&mut self, level: TaskLevel) {
+        let drop_off = self.scenario.task(level).drop_off.center;
+        for id in 0..self.robots.len() {
+            let r = &mut self.robots[id];
+            if r.task != Some(level) || !r.is_on_task() {
+                continue;
+            }
+            if let Some(i) = r.claim.take() {
+                self.fields[level.index()].release(i);
+            }
+            r.phase = Phase::ToDropOff;
+            let _ = self.world.set_goal(id, Some(drop_off));
+        }
+    }
+
+    fn decide_ground_on_task(&mut self, id: usize, blind: bool) {
+        let Some(level) = self.robots[id].task else {
+            return;
+        };
+        if self.robots[id].claim.is_some() {
+            return;
+        }
+        let pos = self.world.robot(id).position;
+        let can_rescue = self.robots[id].capacity_free > 0 && self.unclaimed_pool(level) > 0;
+        if can_rescue {
+            // A rescuee under another ground robot's body (plus the safety margin) cannot be
+            // reached.
+            let margin = self.scenario.collision.safety_margin_m;
+            let occupied: Vec<(PointM, f64)> = self
+                .world
+                .robots()
+                .iter()
+                .filter(|o| o.id != id && o.locomotion == Locomotion::Ground)
+                .map(|o| (o.position, o.radius_m + margin))
+                .collect();
+            let free = |p: &PointM| occupied.iter().all(|(c, r)| (c - p).norm() > *r);
+            let speed =
+                self.scenario.kind_of(id).max_speed_m_per_s * self.world.robot(id).speed_factor;
+            let field = &mut self.fields[level.index()];
+            while let Some(i) = field.nearest_known_waiting(&pos, free) {
+                let target = field.position(i);
+                if self.world.set_goal(id, Some(target)).is_ok() {
+                    field.claim(i, id);
+                    let r = &mut self.robots[id];
+                    r.claim = Some(i);
+                    r.claim_deadline_s = self.world.time_s()
+                        + CLAIM_SLACK_S
+                        + CLAIM_TIME_FACTOR * (target - pos).norm() / speed.max(0.1);
+                    r.phase = Phase::Searching;
+                    return;
+                }
+                field.settle(i, RescueeStatus::Unreachable);
+            }
+        }
+        let r = &self.robots[id];
+        match r.phase {
+            Phase::ToSearchArea => {}
+            _ if blind && can_rescue && r.sweep_visited < self.sweeps[level.index()].len() => {
+                let w = self.world.robot(id);
+                if w.goal.is_none() || w.goal_reached {
+                    self.next_sweep_waypoint(id, level);
+                }
+            }
+            Phase::Waiting => {}
+            _ => {
+                self.robots[id].phase = Phase::Waiting;
+                let _ = self.world.set_goal(id, None);
+            }
+        }
+    }
+
+    fn next_sweep_waypoint(&mut self, id: usize, level: TaskLevel) {
+        let sweep = &self.sweeps[level.index()];
+        while self.robots[id].sweep_visited < sweep.len() {
+            let r = &mut self.robots[id];
+            let p = sweep[r.sweep_next % sweep.len()];
+            r.sweep_next = (r.sweep_next + 1) % sweep.len();
+            r.sweep_visited += 1;
+            r.phase = Phase::Searching;
+            if self.world.set_goal(id, Some(p)).is_ok() {
+                return;
+            }
+        }
+    }
+
+    // ----- accounting after the physics step ----------------------------------------------
+
+    fn account(&mut self) {
+        let m = self.scenario.mission.clone();
+        let dt = self.scenario.sim.dt_s;
+        let now = self.world.time_s();
+        for id in 0..self.robots.len() {
+            let w = self.world.robot(id);
+            let (moved, pos, reached, radius) =
+                (w.moved_this_step, w.position, w.goal_reached, w.radius_m);
+            let rad = self.world.radiation_factor(id);
+            let r = &mut self.robots[id];
+            let met = &mut self.metrics[id];
+            if moved {
+                let spent = m.energy_pct_per_moving_step.min(r.energy_pct);
+                r.energy_pct -= spent;
+                met.energy_spent_pct += spent;
+                if let Some(t) = r.task {
+                    *self.energy_by_task.get_mut(t) += spent;
+                }
+            }
+            if rad > 0.0 {
+                let lost = (m.hp_pct_per_step_in_radiation * rad).min(r.hp_pct);
+                r.hp_pct -= lost;
+                met.hp_lost_pct += lost;
+                met.time_in_radiation_s += dt;
+                if let Some(t) = r.task {
+                    *self.hp_by_task.get_mut(t) += lost;
+                }
+            }
+            let kind = self.scenario.kind_of(id);
+            if let Some(t) = r.task
+                && r.is_on_task()
+            {
+                let range = radius + kind.observing_range_m * hp_factor(r.hp_pct);
+                self.fields[t.index()].detect(&pos, range);
+            }
+            self.advance_phase(id, pos, reached, now);
+            let r = &self.robots[id];
+            if !r.is_resting() && (r.energy_pct < m.low_energy_pct || r.hp_pct < m.low_hp_pct) {
+                self.go_rest(id);
+            }
+        }
+    }
+
+    fn advance_phase(&mut self, id: usize, pos: PointM, reached: bool, now: f64) {
+        let r = &self.robots[id];
+        match r.phase {
+            Phase::ToSearchArea | Phase::Searching | Phase::Waiting => {
+                let level = r.task.expect("robots on a task belong to a group");
+                if r.claim.is_some() {
+                    self.try_pick_up(id, level, pos, reached);
+                }
+                let r = &mut self.robots[id];
+                if r.phase == Phase::ToSearchArea
+                    && (reached || self.scenario.task(level).search_area.contains(&pos))
+                {
+                    r.phase = Phase::Searching;
+                }
+            }
+            Phase::ToDropOff => {
+                let level = r
+                    .task
+                    .expect("robots going to a drop-off belong to a group");
+                if reached || self.scenario.task(level).drop_off.contains(&pos) {
+                    self.deliver(id, level);
+                    self.robots[id].phase = Phase::ToStart;
+                    let start = self.scenario.robots[id].start_in_world;
+                    let _ = self.world.set_goal(id, Some(start));
+                }
+            }
+            Phase::ToStart | Phase::RestToStart => {
+                if reached {
+                    self.robots[id].phase = Phase::AtStart;
+                    let _ = self.world.set_goal(id, None);
+                }
+            }
+            Phase::ToRest => {
+                if reached || self.scenario.rest_station.contains(&pos) {
+                    self.robots[id].phase = Phase::Recharging {
+                        until_s: now + self.scenario.mission.recharge_s,
+                    };
+                    let _ = self.world.set_goal(id, None);
+                }
+            }
+            Phase::Recharging { until_s } => {
+                if now + 1e-9 >= until_s {
+                    let r = &mut self.robots[id];
+                    r.energy_pct = 100.0;
+                    r.hp_pct = 100.0;
+                    r.phase = Phase::RestToStart;
+                    self.metrics[id].recharges += 1;
+                    let start = self.scenario.robots[id].start_in_world;
+                    let _ = self.world.set_goal(id, Some(start));
+                }
+            }
+            Phase::AtStart => {}
+        }
+    }
+
+    fn try_pick_up(&mut self, id: usize, level: TaskLevel, pos: PointM, reached: bool) {
+        let Some(i) = self.robots[id].claim else {
+            return;
+        };
+        let field = &mut self.fields[level.index()];
+        let reach =
+            self.scenario.kind_of(id).body_radius_m + self.scenario.navigation.waypoint_tolerance_m;
+        let d = (field.position(i) - pos).norm();
+        if d > reach + 1e-9 {
+            if reached {
+                // Arrived at the effective goal but the rescuee is out of reach (it lies
+                // inside inflated debris): nobody will get it.
+                field.settle(i, RescueeStatus::Unreachable);
+                self.robots[id].claim = None;
+            } else if self.world.time_s() > self.robots[id].claim_deadline_s {
+                field.settle(i, RescueeStatus::Skipped);
+                self.robots[id].claim = None;
+            }
+            return;
+        }
+        let Some(donor) = self
+            .robots
+            .iter()
+            .position(|r| r.task == Some(level) && !r.is_resting() && r.resources > 0)
+        else {
+            field.release(i);
+            self.robots[id].claim = None;
+            return;
+        };
+        self.robots[donor].resources -= 1;
+        field.pick_up(i, id);
+        let r = &mut self.robots[id];
+        r.claim = None;
+        r.capacity_free -= 1;
+        r.load.push(i);
+        self.metrics[id].picked_up += 1;
+        let _ = self.world.set_goal(id, None);
+    }
+
+    fn deliver(&mut self, id: usize, level: TaskLevel) {
+        let load = std::mem::take(&mut self.robots[id].load);
+        let n = load.len() as u32;
+        for i in load {
+            self.fields[level.index()].settle(i, RescueeStatus::Delivered);
+        }
+        *self.rescued.get_mut(level) += n;
+        self.metrics[id].delivered += n;
+        if let Some(round) = self.rounds.last_mut() {
+            *round.rescued.get_mut(level) += n;
+        }
+    }
+
+    fn go_rest(&mut self, id: usize) {
+        let r = &mut self.robots[id];
+        if let Some(level) = r.task {
+            let field = &mut self.fields[level.index()];
+            if let Some(i) = r.claim.take() {
+                field.release(i);
+            }
+            for i in r.load.drain(..) {
+                field.settle(i, RescueeStatus::Abandoned);
+            }
+        }
+        r.task = None;
+        r.phase = Phase::ToRest;
+        let _ = self
+            .world
+            .set_goal(id, Some(self.scenario.rest_station.center));
+    }
+}
+
+/// Blind-search waypoints over a search area: a lawn-mower pattern of rows `SWEEP_SPACING_M`
+/// apart, alternating direction, starting at the bottom-left.
+pub fn sweep_waypoints(area: &Rect) -> Vec<PointM> {
+    let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
+    let nx = ((w / SWEEP_SPACING_M).floor() as usize).max(1);
+    let ny = ((h / SWEEP_SPACING_M).floor() as usize).max(1);
+    let mut out = Vec::with_capacity(nx * ny);
+    for j in 0..ny {
+        let y = area.min.y + (j as f64 + 0.5) * h / ny as f64;
+        for k in 0..nx {
+            let i = if j % 2 == 0 { k } else { nx - 1 - k };
+            out.push(PointM::new(
+                area.min.x + (i as f64 + 0.5) * w / nx as f64,
+                y,
+            ));
+        }
+    }
+    out
+}
