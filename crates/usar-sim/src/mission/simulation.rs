@@ -16,13 +16,12 @@ use crate::world::World;
 /// Spacing of the blind-search (lawn-mower) waypoints of a group without an observer, metres.
 pub const SWEEP_SPACING_M: f64 = 2.0;
 
-/// A claim on a rescuee expires after `CLAIM_SLACK_S + CLAIM_TIME_FACTOR * d / v` seconds, with
-/// `d` the straight-line distance to it when claimed (metres) and `v` the robot's current
-/// top speed (m/s, at least 0.1): time for a detour around debris and robots, not for being
-/// stuck. Expired claims mark the rescuee `Skipped` until the next round.
-pub const CLAIM_SLACK_S: f64 = 10.0;
-/// See [`CLAIM_SLACK_S`].
-pub const CLAIM_TIME_FACTOR: f64 = 3.0;
+/// A claim on a rescuee is given up when the robot has not come `CLAIM_PROGRESS_M` closer to
+/// it for `CLAIM_STALL_S` seconds (other robots stand in the way, or it is wedged): the
+/// rescuee is then `Skipped` until the next round. Seconds.
+pub const CLAIM_STALL_S: f64 = 10.0;
+/// See [`CLAIM_STALL_S`]. Metres.
+pub const CLAIM_PROGRESS_M: f64 = 0.5;
 
 /// One trial: the world, the team's mission state, the rounds and the metrics.
 ///
@@ -76,7 +75,8 @@ impl Simulation {
                     resources: kind.rescuing_resources,
                     load: Vec::new(),
                     claim: None,
-                    claim_deadline_s: 0.0,
+                    claim_best_m: 0.0,
+                    claim_progress_s: 0.0,
                     sweep_next: 0,
                     sweep_visited: 0,
                 }
@@ -413,19 +413,17 @@ impl Simulation {
         let pos = self.world.robot(id).position;
         let can_rescue = self.robots[id].capacity_free > 0 && self.unclaimed_pool(level) > 0;
         if can_rescue {
-            // A rescuee under another ground robot's body (plus the safety margin) cannot be
-            // reached.
-            let margin = self.scenario.collision.safety_margin_m;
+            // A rescuee where this robot's body would overlap another ground robot's body plus
+            // the safety margin cannot be reached.
+            let reach = self.world.robot(id).radius_m + self.scenario.collision.safety_margin_m;
             let occupied: Vec<(PointM, f64)> = self
                 .world
                 .robots()
                 .iter()
                 .filter(|o| o.id != id && o.locomotion == Locomotion::Ground)
-                .map(|o| (o.position, o.radius_m + margin))
+                .map(|o| (o.position, o.radius_m + reach))
                 .collect();
             let free = |p: &PointM| occupied.iter().all(|(c, r)| (c - p).norm() > *r);
-            let speed =
-                self.scenario.kind_of(id).max_speed_m_per_s * self.world.robot(id).speed_factor;
             let field = &mut self.fields[level.index()];
             while let Some(i) = field.nearest_known_waiting(&pos, free) {
                 let target = field.position(i);
@@ -433,9 +431,8 @@ impl Simulation {
                     field.claim(i, id);
                     let r = &mut self.robots[id];
                     r.claim = Some(i);
-                    r.claim_deadline_s = self.world.time_s()
-                        + CLAIM_SLACK_S
-                        + CLAIM_TIME_FACTOR * (target - pos).norm() / speed.max(0.1);
+                    r.claim_best_m = (target - pos).norm();
+                    r.claim_progress_s = self.world.time_s();
                     r.phase = Phase::Searching;
                     return;
                 }
@@ -587,9 +584,16 @@ impl Simulation {
                 // inside inflated debris): nobody will get it.
                 field.settle(i, RescueeStatus::Unreachable);
                 self.robots[id].claim = None;
-            } else if self.world.time_s() > self.robots[id].claim_deadline_s {
-                field.settle(i, RescueeStatus::Skipped);
-                self.robots[id].claim = None;
+            } else {
+                let now = self.world.time_s();
+                let r = &mut self.robots[id];
+                if d < r.claim_best_m - CLAIM_PROGRESS_M {
+                    r.claim_best_m = d;
+                    r.claim_progress_s = now;
+                } else if now - r.claim_progress_s > CLAIM_STALL_S {
+                    field.settle(i, RescueeStatus::Skipped);
+                    r.claim = None;
+                }
             }
             return;
         }

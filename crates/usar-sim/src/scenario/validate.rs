@@ -1013,8 +1013,8 @@ mod tests {
         assert_eq!(s.robots.len(), 12);
         let kinds: Vec<usize> = s.robots.iter().map(|r| r.kind).collect();
         assert_eq!(kinds, [0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2]);
-        assert_eq!(s.robots[0].start_in_world, Point2::new(36.25, 4.0));
-        assert_eq!(s.robots[5].start_in_world, Point2::new(43.75, 4.0));
+        assert_eq!(s.robots[0].start_in_world, Point2::new(32.5, 3.0));
+        assert_eq!(s.robots[5].start_in_world, Point2::new(47.5, 3.0));
     }
 
     #[test]

@@ -1,0 +1,169 @@
+//! Invariants of the mission that hold whatever the golden numbers are: checked at every step
+//! of a full 600 s paper.ron trial for each built-in grouping method.
+
+use integration_tests::{method, paper};
+use usar_sim::mission::{Phase, RescueeStatus, Simulation};
+use usar_sim::scenario::TaskLevel;
+
+const EPS: f64 = 1e-9;
+
+fn check_method(name: &str) {
+    let s = paper();
+    let mut sim = Simulation::for_trial(&s, method(name, &s), 0);
+    let mut prev: Vec<(f64, f64, Phase)> = sim
+        .robots()
+        .iter()
+        .map(|r| (r.energy_pct, r.hp_pct, r.phase))
+        .collect();
+    let mut rounds_seen = 0;
+    while !sim.is_finished() {
+        sim.step().expect("built-in methods do not fail");
+        let world = sim.world();
+        for r in sim.robots() {
+            let kind = s.kind_of(r.id);
+            let w = world.robot(r.id);
+            let (e0, h0, phase0) = prev[r.id];
+            assert!(
+                (0.0..=100.0).contains(&r.energy_pct),
+                "{name}: energy {}",
+                r.energy_pct
+            );
+            assert!((0.0..=100.0).contains(&r.hp_pct), "{name}: hp {}", r.hp_pct);
+            assert!(
+                r.capacity_free <= kind.carrying_capacity,
+                "{name}: capacity"
+            );
+            assert!(r.resources <= kind.rescuing_resources, "{name}: resources");
+            assert!(
+                r.load.len() as u32 + r.capacity_free <= kind.carrying_capacity,
+                "{name}: robot {} carries more than its capacity",
+                r.id
+            );
+            // Energy falls only on moving steps, by exactly the paper's rate (or to 0).
+            if r.energy_pct < e0 - EPS {
+                assert!(
+                    w.moved_this_step,
+                    "{name}: robot {} lost energy standing still",
+                    r.id
+                );
+                let expected = s.mission.energy_pct_per_moving_step.min(e0);
+                assert!(
+                    (e0 - r.energy_pct - expected).abs() < 1e-9,
+                    "{name}: energy rate"
+                );
+            }
+            // Energy rises only when a recharge at the rest station ends.
+            if r.energy_pct > e0 + EPS {
+                assert!(
+                    matches!(phase0, Phase::Recharging { .. }),
+                    "{name}: energy rose"
+                );
+                assert!(s.rest_station.contains(&w.position) || w.goal.is_some());
+                assert_eq!(r.energy_pct, 100.0);
+            }
+            // HP falls only inside radiation zones, at the paper's rate times the dose factor.
+            if r.hp_pct < h0 - EPS {
+                let factor = world.radiation_factor(r.id);
+                assert!(
+                    factor > 0.0,
+                    "{name}: robot {} lost HP outside radiation",
+                    r.id
+                );
+                let expected = (s.mission.hp_pct_per_step_in_radiation * factor).min(h0);
+                assert!((h0 - r.hp_pct - expected).abs() < 1e-9, "{name}: HP rate");
+            }
+            if r.hp_pct > h0 + EPS {
+                assert!(
+                    matches!(phase0, Phase::Recharging { .. }),
+                    "{name}: HP rose"
+                );
+            }
+        }
+        // A round ends only with every member of its groups back at its start position (or
+        // away at the rest station, having left its group).
+        let completed = sim.rounds().iter().filter(|r| r.completed).count();
+        if completed > rounds_seen {
+            rounds_seen = completed;
+            let closed = sim
+                .rounds()
+                .iter()
+                .rev()
+                .find(|r| r.completed)
+                .expect("completed");
+            for level in TaskLevel::ALL {
+                for &id in closed.groups.get(level) {
+                    let r = &sim.robots()[id];
+                    let gap = (world.robot(id).position - s.robots[id].start_in_world).norm();
+                    assert!(
+                        r.is_resting()
+                            || (r.phase == Phase::AtStart
+                                && gap <= s.navigation.waypoint_tolerance_m + 1e-6),
+                        "{name}: a round closed with robot {id} away ({:?}, {gap} m)",
+                        r.phase
+                    );
+                }
+            }
+        }
+        prev = sim
+            .robots()
+            .iter()
+            .map(|r| (r.energy_pct, r.hp_pct, r.phase))
+            .collect();
+    }
+    let result = sim.result();
+    // Every delivered rescuee was picked up exactly once; nobody was picked up twice.
+    for level in TaskLevel::ALL {
+        let field = sim.rescuees(level);
+        let mut delivered = 0;
+        for i in 0..field.len() {
+            assert!(field.pickups(i) <= 1, "{name}: rescuee {i} picked up twice");
+            if field.status(i) == RescueeStatus::Delivered {
+                assert_eq!(field.pickups(i), 1, "{name}: delivered without pick-up");
+                delivered += 1;
+            }
+        }
+        assert_eq!(
+            delivered,
+            *result.rescued.get(level),
+            "{name}: {level:?} count"
+        );
+    }
+    let picked: u32 = result.robots.iter().map(|m| m.picked_up).sum();
+    let delivered: u32 = result.robots.iter().map(|m| m.delivered).sum();
+    assert_eq!(delivered, result.rescued_total());
+    assert!(picked >= delivered);
+    let per_round: u32 = result
+        .rounds
+        .iter()
+        .map(|r| r.rescued.easy + r.rescued.hard)
+        .sum();
+    assert_eq!(per_round, result.rescued_total());
+    assert!(
+        result.rescued_total() > 0,
+        "{name}: a 600 s trial rescued nobody"
+    );
+    assert!(
+        result.rounds.len() >= 2,
+        "{name}: fewer than two rounds in 600 s"
+    );
+}
+
+#[test]
+fn invariants_rne() {
+    check_method("rne");
+}
+
+#[test]
+fn invariants_dis() {
+    check_method("dis");
+}
+
+#[test]
+fn invariants_eng() {
+    check_method("eng");
+}
+
+#[test]
+fn invariants_hp_dis() {
+    check_method("hp_dis");
+}
