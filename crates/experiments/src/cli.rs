@@ -17,7 +17,11 @@ Examples:
   usar trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25
 
   # Add agent-group and group-group trust (Examples 2 and 3)
-  usar trust --weights 6,4,2 --needs 86,120,30 --group \"82,114,24;79,117,23\" --group \"40,56,12;56,48,15\"";
+  usar trust --weights 6,4,2 --needs 86,120,30 --group \"82,114,24;79,117,23\" --group \"40,56,12;56,48,15\"
+
+  # Draw the paper's arena as SVG; add --trace to draw the paths of one trial
+  usar render scenarios/paper.ron --out arena.svg
+  usar render scenarios/paper.ron --out trace.svg --trace --duration 200";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]
@@ -33,6 +37,8 @@ pub struct Cli {
 pub enum Command {
     /// RNE trust values between robots and groups (paper Defs. 1-3, Examples 1-3).
     Trust(commands::trust::TrustArgs),
+    /// Top-down SVG picture of a scenario, optionally with the robots' paths in one trial.
+    Render(commands::render::RenderArgs),
 }
 
 /// Runs the parsed command, writing its report to `out`.
@@ -42,5 +48,6 @@ pub enum Command {
 pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
     match cli.command {
         Command::Trust(args) => commands::trust::run(&args, out),
+        Command::Render(args) => commands::render::run(&args, out),
     }
 }

@@ -3,16 +3,43 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use usar_sim::scenario::{Circle as Disc, Debris, Locomotion, PointM, Role, Scenario, TaskLevel};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use usar_sim::scenario::{
+    Circle as Disc, Debris, Locomotion, PointM, Rect, Role, Scenario, TaskLevel,
+};
 
 use crate::atomic::write_atomic;
 
-/// Pixels per metre of the picture.
-const PX_PER_M: f64 = 12.0;
+/// Length of the longer side of the drawn field (arena plus walls and a margin), pixels; the
+/// scale is clamped to [`MIN_PX_PER_M`, `MAX_PX_PER_M`].
+const MAP_TARGET_PX: f64 = 960.0;
+/// Smallest scale, pixels per metre.
+const MIN_PX_PER_M: f64 = 4.0;
+/// Largest scale, pixels per metre (a narrow corridor is drawn large, not huge).
+const MAX_PX_PER_M: f64 = 40.0;
 /// Vertices used to draw a circle as a polygon in world coordinates.
 const CIRCLE_VERTICES: usize = 40;
+/// Width of the legend column, pixels.
+const LEGEND_PX: u32 = 200;
+/// Height of one legend entry, pixels.
+const LEGEND_ROW_PX: i32 = 20;
+/// Approximate width of one character of the 12 px description font, pixels (for wrapping).
+const DESCRIPTION_CHAR_PX: f64 = 6.6;
+
+const WALL: RGBColor = RGBColor(60, 60, 60);
+const DEBRIS: RGBColor = RGBColor(140, 100, 60);
+const RESCUEE: RGBColor = RGBColor(90, 90, 90);
+const EASY: RGBColor = RGBColor(198, 219, 239);
+const HARD: RGBColor = RGBColor(253, 208, 162);
+const REST: RGBColor = RGBColor(180, 140, 220);
+/// Radiation colour of the weakest zone; the strongest is [`RADIATION_HIGH`].
+const RADIATION_LOW: RGBColor = RGBColor(245, 215, 60);
+const RADIATION_HIGH: RGBColor = RGBColor(225, 95, 0);
+/// Opacity of radiation zones (search areas and rescuees stay visible below them).
+const RADIATION_ALPHA: f64 = 0.5;
 
 /// The path one robot took: its positions in the world frame, metres, in time order.
 pub type Trace = Vec<PointM>;
@@ -26,12 +53,26 @@ pub fn role_color(role: Role) -> RGBColor {
     }
 }
 
+/// Colour of kind `k` of `s`: its role's colour ([`role_color`]); a second or later kind of
+/// the same role is drawn darker, so kinds stay apart.
+pub fn kind_color(s: &Scenario, k: usize) -> RGBColor {
+    let role = s.kinds[k].role;
+    let same_role_before = s.kinds[..k].iter().filter(|o| o.role == role).count();
+    let c = role_color(role);
+    let f = 0.6_f64.powi(same_role_before.min(3) as i32);
+    let dim = |v: u8| (f64::from(v) * f).round() as u8;
+    RGBColor(dim(c.0), dim(c.1), dim(c.2))
+}
+
 /// Draws `scenario` top-down as SVG and writes it atomically to `out`.
 ///
-/// Shows the walls, debris (brown), radiation zones (shaded by dose rate factor, the strongest
-/// zone darkest), both search areas with their rescuees, goal points (crosses), drop-offs,
-/// the rest station, start positions and robots by kind (aerial robots with a ring), and,
-/// when `traces` is given (indexed by robot id), the path each robot took.
+/// Shows the walls, debris (brown), radiation zones (shaded by dose rate factor: the weakest
+/// yellow, the strongest orange, labelled `x<factor>` when the factors differ), both search
+/// areas with their rescuees, goal points (crosses), drop-offs, the rest station, robots at
+/// their start positions by kind (colour by role, see [`kind_color`]; aerial robots with a ring;
+/// labelled by id), a
+/// legend and a scale bar, and, when `traces` is given (indexed by robot id), the path each
+/// robot took with a hollow disc where it ended.
 ///
 /// # Errors
 /// If drawing or writing the file fails.
@@ -40,53 +81,128 @@ pub fn render_svg(scenario: &Scenario, traces: Option<&[Trace]>, out: &Path) -> 
     write_atomic(out, svg.as_bytes()).with_context(|| format!("writing {}", out.display()))
 }
 
+/// The drawing's geometry: field extent in metres and the scale.
+struct Layout {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    px_per_m: f64,
+    map_w: u32,
+    map_h: u32,
+}
+
+impl Layout {
+    fn new(s: &Scenario) -> Self {
+        let a = s.arena;
+        let pad = a.wall_thickness_m + 1.0;
+        let (x0, x1) = (-pad, a.width_m + pad);
+        let (y0, y1) = (-pad, a.height_m + pad);
+        let px_per_m = (MAP_TARGET_PX / (x1 - x0).max(y1 - y0)).clamp(MIN_PX_PER_M, MAX_PX_PER_M);
+        Self {
+            x0,
+            x1,
+            y0,
+            y1,
+            px_per_m,
+            map_w: ((x1 - x0) * px_per_m).round() as u32,
+            map_h: ((y1 - y0) * px_per_m).round() as u32,
+        }
+    }
+}
+
+/// Splits `text` into lines of at most `width` characters at spaces.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.len() + 1 + word.len() > width {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
 /// Same as [`render_svg`] but returns the SVG text.
 ///
 /// # Errors
 /// If plotters fails to draw (it should not for a valid scenario).
 pub fn render_svg_string(scenario: &Scenario, traces: Option<&[Trace]>) -> Result<String> {
-    let a = scenario.arena;
-    let pad = a.wall_thickness_m + 1.0;
-    let (x0, x1) = (-pad, a.width_m + pad);
-    let (y0, y1) = (-pad, a.height_m + pad);
-    let legend_px = 150u32;
-    let w_px = ((x1 - x0) * PX_PER_M).round() as u32;
-    let h_px = ((y1 - y0) * PX_PER_M).round() as u32 + 30;
+    let l = Layout::new(scenario);
+    let total_w = l.map_w + LEGEND_PX;
+    let description = wrap(
+        &scenario.description,
+        ((f64::from(total_w) - 16.0) / DESCRIPTION_CHAR_PX) as usize,
+    );
+    let header_px = 30 + 16 * description.len() as u32;
+    let legend = legend_entries(scenario, traces.is_some());
+    let legend_h = 16 + LEGEND_ROW_PX as u32 * (legend.len() as u32 + 2);
+    let total_h = header_px + l.map_h.max(legend_h);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (w_px + legend_px, h_px)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (total_w, total_h)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
-        let (map_area, legend_area) = root.split_horizontally(w_px);
+        let (header, body) = root.split_vertically(header_px);
+        draw_header(&header, scenario, &description)?;
+        let (map_column, legend_area) = body.split_horizontally(l.map_w);
+        let (map_area, _) = map_column.split_vertically(l.map_h);
         let mut chart = ChartBuilder::on(&map_area)
-            .caption(
-                format!("{}: {}", scenario.name, scenario.description),
-                ("sans-serif", 14),
-            )
-            .build_cartesian_2d(x0..x1, y0..y1)
+            .build_cartesian_2d(l.x0..l.x1, l.y0..l.y1)
             .map_err(draw_err)?;
         draw_static(&mut chart, scenario)?;
         if let Some(traces) = traces {
-            for (id, trace) in traces.iter().enumerate().take(scenario.robots.len()) {
-                let color = role_color(scenario.kind_of(id).role).mix(0.6);
-                chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        trace.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(),
-                        color.stroke_width(1),
-                    )))
-                    .map_err(draw_err)?;
-            }
+            draw_paths(&mut chart, scenario, traces)?;
         }
         draw_robots(&mut chart, scenario)?;
-        draw_legend(&legend_area, scenario)?;
+        if let Some(traces) = traces {
+            draw_ends(&mut chart, scenario, traces)?;
+        }
+        draw_legend(&legend_area, &legend, l.px_per_m)?;
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
 }
 
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
 fn draw_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
     anyhow::anyhow!("drawing the SVG failed: {e}")
+}
+
+fn font(size: u32) -> TextStyle<'static> {
+    ("sans-serif", size).into_font().into()
+}
+
+fn draw_header(area: &Area<'_>, s: &Scenario, description: &[String]) -> Result<()> {
+    let title = ("sans-serif", 16)
+        .into_font()
+        .style(FontStyle::Bold)
+        .into_text_style(area);
+    area.draw(&Text::new(
+        format!(
+            "{} ({} m x {} m, {} robots)",
+            s.name,
+            s.arena.width_m,
+            s.arena.height_m,
+            s.robots.len()
+        ),
+        (8, 6),
+        title,
+    ))
+    .map_err(draw_err)?;
+    for (i, line) in description.iter().enumerate() {
+        area.draw(&Text::new(line.clone(), (8, 28 + 16 * i as i32), font(12)))
+            .map_err(draw_err)?;
+    }
+    Ok(())
 }
 
 fn disc_polygon(c: &Disc) -> Vec<(f64, f64)> {
@@ -99,6 +215,13 @@ fn disc_polygon(c: &Disc) -> Vec<(f64, f64)> {
             )
         })
         .collect()
+}
+
+/// The closed outline of a disc (first vertex repeated at the end).
+fn disc_outline(c: &Disc) -> Vec<(f64, f64)> {
+    let mut pts = disc_polygon(c);
+    pts.push(pts[0]);
+    pts
 }
 
 fn debris_polygon(d: &Debris) -> Vec<(f64, f64)> {
@@ -121,10 +244,44 @@ fn debris_polygon(d: &Debris) -> Vec<(f64, f64)> {
     }
 }
 
+fn task_color(level: TaskLevel) -> RGBColor {
+    match level {
+        TaskLevel::Easy => EASY,
+        TaskLevel::Hard => HARD,
+    }
+}
+
+/// Colour of a radiation zone of dose rate factor `f` among factors in `[lo, hi]`.
+fn radiation_color(f: f64, lo: f64, hi: f64) -> RGBColor {
+    let t = if hi > lo { (f - lo) / (hi - lo) } else { 0.0 };
+    let mix = |a: u8, b: u8| (f64::from(a) + t * (f64::from(b) - f64::from(a))).round() as u8;
+    RGBColor(
+        mix(RADIATION_LOW.0, RADIATION_HIGH.0),
+        mix(RADIATION_LOW.1, RADIATION_HIGH.1),
+        mix(RADIATION_LOW.2, RADIATION_HIGH.2),
+    )
+}
+
+/// The distinct dose rate factors of the scenario's zones, ascending.
+fn dose_levels(s: &Scenario) -> Vec<f64> {
+    let mut v: Vec<f64> = s
+        .radiation_zones
+        .iter()
+        .map(|z| z.dose_rate_factor)
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// A label centred on `(x, y)` horizontally, hanging below it (`VPos::Top`) or sitting on it.
+fn label_at(text: String, x: f64, y: f64, size: u32, v: VPos) -> Text<'static, (f64, f64), String> {
+    Text::new(text, (x, y), font(size).pos(Pos::new(HPos::Center, v)))
+}
+
 fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     let a = s.arena;
     let t = a.wall_thickness_m;
-    let wall = RGBColor(60, 60, 60).filled();
     let walls = [
         [(-t, -t), (a.width_m + t, 0.0)],
         [(-t, a.height_m), (a.width_m + t, a.height_m + t)],
@@ -132,163 +289,369 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
         [(a.width_m, 0.0), (a.width_m + t, a.height_m)],
     ];
     chart
-        .draw_series(walls.iter().map(|r| Rectangle::new(*r, wall)))
+        .draw_series(walls.iter().map(|r| Rectangle::new(*r, WALL.filled())))
         .map_err(draw_err)?;
 
+    // Search areas and rescuees first: radiation, debris and labels go on top.
     for level in TaskLevel::ALL {
         let task = s.task(level);
-        let fill = match level {
-            TaskLevel::Easy => RGBColor(198, 219, 239),
-            TaskLevel::Hard => RGBColor(253, 208, 162),
-        };
         let r = task.search_area;
         chart
-            .draw_series(std::iter::once(Rectangle::new(
+            .draw_series([Rectangle::new(
                 [(r.min.x, r.min.y), (r.max.x, r.max.y)],
-                fill.filled(),
-            )))
+                task_color(level).filled(),
+            )])
             .map_err(draw_err)?;
         chart
             .draw_series(
                 task.rescuees
                     .iter()
-                    .map(|p| Circle::new((p.x, p.y), 1, RGBColor(90, 90, 90).filled())),
+                    .map(|p| Circle::new((p.x, p.y), 1, RESCUEE.filled())),
             )
             .map_err(draw_err)?;
-        let label = format!(
-            "{} search area ({} rescuees)",
-            level.name(),
-            task.rescuees.len()
-        );
         chart
-            .draw_series(std::iter::once(Text::new(
-                label,
-                (r.min.x, r.max.y + 0.8),
-                ("sans-serif", 12),
-            )))
-            .map_err(draw_err)?;
-        chart
-            .draw_series(std::iter::once(Polygon::new(
+            .draw_series([Polygon::new(
                 disc_polygon(&task.drop_off),
-                fill.mix(0.9).filled(),
-            )))
+                task_color(level).filled(),
+            )])
             .map_err(draw_err)?;
         chart
-            .draw_series(std::iter::once(Text::new(
-                format!("{} drop-off", level.name()),
-                (
-                    task.drop_off.center.x - task.drop_off.radius_m,
-                    task.drop_off.center.y,
-                ),
-                ("sans-serif", 11),
-            )))
-            .map_err(draw_err)?;
-        chart
-            .draw_series(std::iter::once(Cross::new(
-                (task.goal.x, task.goal.y),
-                6,
-                BLACK.stroke_width(2),
-            )))
+            .draw_series([PathElement::new(
+                disc_outline(&task.drop_off),
+                task_color(level).mix(1.0).stroke_width(1),
+            )])
             .map_err(draw_err)?;
     }
 
-    let max_dose = s
-        .radiation_zones
-        .iter()
-        .map(|z| z.dose_rate_factor)
-        .fold(0.0_f64, f64::max);
+    let doses = dose_levels(s);
+    let (lo, hi) = (
+        doses.first().copied().unwrap_or(1.0),
+        doses.last().copied().unwrap_or(1.0),
+    );
     for z in &s.radiation_zones {
-        let shade = 0.15 + 0.45 * (z.dose_rate_factor / max_dose.max(f64::MIN_POSITIVE));
+        let c = radiation_color(z.dose_rate_factor, lo, hi);
         chart
-            .draw_series(std::iter::once(Polygon::new(
+            .draw_series([Polygon::new(
                 disc_polygon(&z.area),
-                RGBColor(230, 200, 0).mix(shade).filled(),
-            )))
+                c.mix(RADIATION_ALPHA).filled(),
+            )])
+            .map_err(draw_err)?;
+        chart
+            .draw_series([PathElement::new(disc_outline(&z.area), c.stroke_width(1))])
             .map_err(draw_err)?;
     }
     chart
         .draw_series(
             s.debris
                 .iter()
-                .map(|d| Polygon::new(debris_polygon(d), RGBColor(140, 100, 60).filled())),
+                .map(|d| Polygon::new(debris_polygon(d), DEBRIS.filled())),
         )
         .map_err(draw_err)?;
+    if doses.len() > 1 {
+        chart
+            .draw_series(s.radiation_zones.iter().map(|z| {
+                label_at(
+                    format!("x{}", z.dose_rate_factor),
+                    z.area.center.x,
+                    z.area.center.y,
+                    10,
+                    VPos::Center,
+                )
+            }))
+            .map_err(draw_err)?;
+    }
     chart
-        .draw_series(std::iter::once(Polygon::new(
+        .draw_series([Polygon::new(
             disc_polygon(&s.rest_station),
-            RGBColor(180, 140, 220).mix(0.6).filled(),
-        )))
+            REST.mix(0.6).filled(),
+        )])
         .map_err(draw_err)?;
+
+    // Labels last so nothing covers them.
+    for level in TaskLevel::ALL {
+        let task = s.task(level);
+        let r = task.search_area;
+        let text = format!(
+            "{} search area ({} rescuees)",
+            level.name(),
+            task.rescuees.len()
+        );
+        draw_area_label(chart, s, &r, text)?;
+        let d = task.drop_off;
+        chart
+            .draw_series([label_at(
+                format!("{} drop-off", level.name()),
+                d.center.x,
+                d.center.y - d.radius_m,
+                11,
+                VPos::Top,
+            )])
+            .map_err(draw_err)?;
+        chart
+            .draw_series([Cross::new(
+                (task.goal.x, task.goal.y),
+                6,
+                BLACK.stroke_width(2),
+            )])
+            .map_err(draw_err)?;
+    }
+    let rs = s.rest_station;
     chart
-        .draw_series(std::iter::once(Text::new(
-            "rest station",
-            (
-                s.rest_station.center.x - s.rest_station.radius_m,
-                s.rest_station.center.y,
-            ),
-            ("sans-serif", 11),
-        )))
+        .draw_series([label_at(
+            "rest station".into(),
+            rs.center.x,
+            rs.center.y - rs.radius_m,
+            11,
+            VPos::Top,
+        )])
         .map_err(draw_err)?;
     Ok(())
 }
 
+/// Labels a search area above its top-left corner; where the wall leaves no room, below it,
+/// else inside its top edge on a white band. Right-aligned when it would run past the arena.
+fn draw_area_label(chart: &mut Chart<'_, '_>, s: &Scenario, r: &Rect, text: String) -> Result<()> {
+    let px_per_m = Layout::new(s).px_per_m;
+    let w_m = text.len() as f64 * DESCRIPTION_CHAR_PX / px_per_m;
+    let h_m = 10.0 / px_per_m;
+    let a = s.arena;
+    let (y, v, inside) = if r.max.y + h_m <= a.height_m {
+        (r.max.y, VPos::Bottom, false)
+    } else if r.min.y - h_m >= 0.0 {
+        (r.min.y, VPos::Top, false)
+    } else {
+        (r.max.y, VPos::Top, true)
+    };
+    let (x, h) = if r.min.x + w_m > a.width_m {
+        (r.max.x, HPos::Right)
+    } else {
+        (r.min.x, HPos::Left)
+    };
+    if inside {
+        let (bx0, bx1) = match h {
+            HPos::Right => (r.max.x - w_m, r.max.x),
+            _ => (r.min.x, r.min.x + w_m),
+        };
+        chart
+            .draw_series([Rectangle::new(
+                [(bx0, r.max.y - h_m), (bx1, r.max.y)],
+                WHITE.mix(0.8).filled(),
+            )])
+            .map_err(draw_err)?;
+    }
+    chart
+        .draw_series([Text::new(text, (x, y), font(12).pos(Pos::new(h, v)))])
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+fn draw_paths(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace]) -> Result<()> {
+    for (id, trace) in traces.iter().enumerate().take(s.robots.len()) {
+        let color = kind_color(s, s.robots[id].kind);
+        chart
+            .draw_series([PathElement::new(
+                trace.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(),
+                color.mix(0.6).stroke_width(1),
+            )])
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+/// Where each traced robot ended: hollow discs of the body's size, on top of everything.
+fn draw_ends(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace]) -> Result<()> {
+    for (id, trace) in traces.iter().enumerate().take(s.robots.len()) {
+        let kind = s.kind_of(id);
+        let Some(end) = trace.last() else { continue };
+        let body = Disc {
+            center: *end,
+            radius_m: kind.body_radius_m,
+        };
+        chart
+            .draw_series([Polygon::new(disc_polygon(&body), WHITE.filled())])
+            .map_err(draw_err)?;
+        chart
+            .draw_series([PathElement::new(
+                disc_outline(&body),
+                kind_color(s, s.robots[id].kind).stroke_width(2),
+            )])
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
 fn draw_robots(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
-    for robot in &s.robots {
+    for (id, robot) in s.robots.iter().enumerate() {
         let kind = &s.kinds[robot.kind];
         let body = Disc {
             center: robot.start_in_world,
             radius_m: kind.body_radius_m,
         };
-        let color = role_color(kind.role);
+        let color = kind_color(s, robot.kind);
         chart
-            .draw_series(std::iter::once(Polygon::new(
-                disc_polygon(&body),
-                color.filled(),
-            )))
+            .draw_series([Polygon::new(disc_polygon(&body), color.filled())])
             .map_err(draw_err)?;
+        let mut reach = kind.body_radius_m;
         if kind.locomotion == Locomotion::Aerial {
+            reach *= 1.8;
             let ring = Disc {
-                radius_m: kind.body_radius_m * 1.8,
+                radius_m: reach,
                 ..body
             };
-            let mut pts = disc_polygon(&ring);
-            pts.push(pts[0]);
             chart
-                .draw_series(std::iter::once(PathElement::new(
-                    pts,
-                    color.stroke_width(1),
-                )))
+                .draw_series([PathElement::new(disc_outline(&ring), color.stroke_width(1))])
                 .map_err(draw_err)?;
         }
+        chart
+            .draw_series([label_at(
+                id.to_string(),
+                body.center.x,
+                body.center.y - reach,
+                9,
+                VPos::Top,
+            )])
+            .map_err(draw_err)?;
     }
     Ok(())
 }
 
-fn draw_legend(
-    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
-    s: &Scenario,
-) -> Result<()> {
-    let mut y = 40;
-    let font = ("sans-serif", 12).into_font();
-    let mut entry = |label: String, color: RGBColor| -> Result<()> {
-        area.draw(&Rectangle::new([(8, y - 9), (20, y + 3)], color.filled()))
-            .map_err(draw_err)?;
-        area.draw(&Text::new(label, (26, y - 8), font.clone()))
-            .map_err(draw_err)?;
-        y += 20;
-        Ok(())
-    };
-    for kind in &s.kinds {
-        entry(
-            format!("{} x{}", kind.name, kind.count),
-            role_color(kind.role),
-        )?;
+/// What a legend entry shows left of its text.
+enum Swatch {
+    /// A filled square.
+    Square(RGBColor),
+    /// A filled square with an outline of the second colour.
+    Outlined(RGBColor, RGBColor),
+    /// A robot: a disc, ringed for aerial robots.
+    Robot(RGBColor, bool),
+    /// A hollow disc (where a traced robot ended).
+    Hollow(RGBColor),
+    /// A small dot (a rescuee).
+    Dot(RGBColor),
+    /// A cross (a goal point).
+    Cross,
+    /// A line (a path).
+    Line(RGBColor),
+}
+
+fn legend_entries(s: &Scenario, traced: bool) -> Vec<(Swatch, String)> {
+    let mut v: Vec<(Swatch, String)> = s
+        .kinds
+        .iter()
+        .enumerate()
+        .map(|(i, k)| {
+            let aerial = k.locomotion == Locomotion::Aerial;
+            let how = if aerial { "aerial" } else { "ground" };
+            (
+                Swatch::Robot(kind_color(s, i), aerial),
+                format!("{} x{} ({how})", k.name, k.count),
+            )
+        })
+        .collect();
+    if traced {
+        v.push((
+            Swatch::Line(RGBColor(120, 120, 120)),
+            "path (colour by kind)".into(),
+        ));
+        v.push((
+            Swatch::Hollow(RGBColor(120, 120, 120)),
+            "where it ended".into(),
+        ));
     }
-    entry("debris".into(), RGBColor(140, 100, 60))?;
-    entry("radiation zone".into(), RGBColor(230, 200, 0))?;
-    entry("easy task".into(), RGBColor(198, 219, 239))?;
-    entry("hard task".into(), RGBColor(253, 208, 162))?;
-    entry("rest station".into(), RGBColor(180, 140, 220))?;
-    entry("goal point (x)".into(), BLACK)?;
+    if !s.debris.is_empty() {
+        v.push((Swatch::Square(DEBRIS), "debris".into()));
+    }
+    let doses = dose_levels(s);
+    let (lo, hi) = (
+        doses.first().copied().unwrap_or(1.0),
+        doses.last().copied().unwrap_or(1.0),
+    );
+    for f in &doses {
+        let c = radiation_color(*f, lo, hi);
+        v.push((
+            Swatch::Outlined(over_white(c, RADIATION_ALPHA), c),
+            format!("radiation, dose x{f}"),
+        ));
+    }
+    v.push((Swatch::Square(EASY), "easy task: area, drop-off".into()));
+    v.push((Swatch::Square(HARD), "hard task: area, drop-off".into()));
+    v.push((Swatch::Dot(RESCUEE), "rescuee".into()));
+    v.push((Swatch::Cross, "task goal point".into()));
+    v.push((Swatch::Square(REST), "rest station".into()));
+    v
+}
+
+/// What `c` at opacity `alpha` looks like on white paper.
+fn over_white(c: RGBColor, alpha: f64) -> RGBColor {
+    let blend = |v: u8| (f64::from(v) * alpha + 255.0 * (1.0 - alpha)).round() as u8;
+    RGBColor(blend(c.0), blend(c.1), blend(c.2))
+}
+
+fn draw_legend(area: &Area<'_>, entries: &[(Swatch, String)], px_per_m: f64) -> Result<()> {
+    let mut y = 16;
+    for (swatch, label) in entries {
+        let (cx, cy) = (14, y);
+        match swatch {
+            Swatch::Square(c) => area
+                .draw(&Rectangle::new([(8, cy - 6), (20, cy + 6)], c.filled()))
+                .map_err(draw_err)?,
+            Swatch::Outlined(fill, line) => {
+                area.draw(&Rectangle::new([(8, cy - 6), (20, cy + 6)], fill.filled()))
+                    .map_err(draw_err)?;
+                area.draw(&Rectangle::new(
+                    [(8, cy - 6), (20, cy + 6)],
+                    line.stroke_width(1),
+                ))
+                .map_err(draw_err)?;
+            }
+            Swatch::Robot(c, ring) => {
+                area.draw(&Circle::new((cx, cy), 5, c.filled()))
+                    .map_err(draw_err)?;
+                if *ring {
+                    area.draw(&Circle::new((cx, cy), 8, c.stroke_width(1)))
+                        .map_err(draw_err)?;
+                }
+            }
+            Swatch::Hollow(c) => area
+                .draw(&Circle::new((cx, cy), 5, c.stroke_width(2)))
+                .map_err(draw_err)?,
+            Swatch::Dot(c) => area
+                .draw(&Circle::new((cx, cy), 2, c.filled()))
+                .map_err(draw_err)?,
+            Swatch::Cross => area
+                .draw(&Cross::new((cx, cy), 6, BLACK.stroke_width(2)))
+                .map_err(draw_err)?,
+            Swatch::Line(c) => area
+                .draw(&PathElement::new(
+                    vec![(6, cy + 4), (12, cy - 3), (16, cy + 2), (22, cy - 5)],
+                    c.stroke_width(2),
+                ))
+                .map_err(draw_err)?,
+        }
+        area.draw(&Text::new(
+            label.clone(),
+            (28, cy),
+            font(12).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))
+        .map_err(draw_err)?;
+        y += LEGEND_ROW_PX;
+    }
+    // Scale bar: the longest round length that fits in the legend column.
+    let len_m = [100.0, 50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5]
+        .into_iter()
+        .find(|m| m * px_per_m <= f64::from(LEGEND_PX) - 40.0)
+        .unwrap_or(0.5);
+    let len_px = (len_m * px_per_m).round() as i32;
+    let by = y + LEGEND_ROW_PX / 2;
+    area.draw(&PathElement::new(
+        vec![(8, by - 4), (8, by), (8 + len_px, by), (8 + len_px, by - 4)],
+        BLACK.stroke_width(2),
+    ))
+    .map_err(draw_err)?;
+    area.draw(&Text::new(
+        format!("{len_m} m"),
+        (8 + len_px / 2, by + 3),
+        font(11).pos(Pos::new(HPos::Center, VPos::Top)),
+    ))
+    .map_err(draw_err)?;
     Ok(())
 }

@@ -1,7 +1,14 @@
-//! Corridor head-on meetings: the priority resolver (paper, section V, Algorithm 5) lets 2, 4
-//! and 8 ground robots swap ends safely; without it the same meeting stays stuck.
+//! Corridor head-on meetings in `scenarios/corridor.ron` (24 m x 3.4 m): the priority resolver
+//! (paper, section V, Algorithm 5) lets 2, 4 and 8 ground robots swap ends safely; without it
+//! the same meeting stays stuck.
 
-use usar_sim::world::{World, fixtures};
+use usar_sim::scenario::{self, PointM, Scenario, TaskLevel};
+use usar_sim::world::World;
+
+/// The shipped corridor scenario.
+const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
+/// Distance between neighbouring goal slots at each end, metres (see `corridor.ron`).
+const SLOT_STEP_M: f64 = 1.5;
 
 /// Every robot must reach its goal within this simulated time, seconds.
 const BOUND_S: f64 = 90.0;
@@ -18,10 +25,43 @@ struct Outcome {
     steps_held: u64,
 }
 
+/// `scenarios/corridor.ron` with `per_side` robots of each kind (all on their kind's task).
+fn corridor(per_side: usize) -> Scenario {
+    let src = std::fs::read_to_string(CORRIDOR).expect("scenarios/corridor.ron");
+    let mut spec = scenario::parse_spec(&src, CORRIDOR).unwrap_or_else(|e| panic!("{e}"));
+    spec.kinds[0].count = per_side;
+    spec.kinds[0].quota.easy = per_side;
+    spec.kinds[1].count = per_side;
+    spec.kinds[1].quota.hard = per_side;
+    spec.validate(&format!("corridor.ron ({per_side} per end)"))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Swap goals: the `k`-th east-bound robot (kind 0, the easy task at the east end) drives to
+/// the easy goal moved `k` slots back towards the middle, the `k`-th west-bound robot (kind 1)
+/// likewise to the hard goal, so the front robot of a row takes the deepest slot and arrivals
+/// never block later ones.
+fn swap_goals(s: &Scenario) -> Vec<PointM> {
+    let easy = s.task(TaskLevel::Easy).goal;
+    let hard = s.task(TaskLevel::Hard).goal;
+    let mut seen = [0usize; 2];
+    s.robots
+        .iter()
+        .map(|r| {
+            let k = seen[r.kind] as f64;
+            seen[r.kind] += 1;
+            match r.kind {
+                0 => PointM::new(easy.x - SLOT_STEP_M * k, easy.y),
+                _ => PointM::new(hard.x + SLOT_STEP_M * k, hard.y),
+            }
+        })
+        .collect()
+}
+
 fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {
-    let mut s = fixtures::corridor(per_side);
+    let mut s = corridor(per_side);
     s.collision.enabled = enabled;
-    let goals = fixtures::corridor_goals(&s);
+    let goals = swap_goals(&s);
     let mut w = World::new(&s);
     for (id, g) in goals.iter().enumerate() {
         w.set_goal(id, Some(*g))
@@ -105,4 +145,27 @@ fn without_the_resolver_the_head_on_meeting_stays_stuck() {
         assert!(o.arrived < 2 * per_side);
         assert_eq!(o.lists_joined, 0);
     }
+}
+
+#[test]
+fn the_shipped_corridor_lets_a_robot_pass_a_held_one() {
+    let s = corridor(4);
+    let r = s.kinds[0].body_radius_m;
+    // Lateral offset to pass a robot standing on the centre line, plus what the planner keeps
+    // from the wall: 1.0 m + 0.625 m on each side of the centre line.
+    let pass = 2.0 * r + s.collision.safety_margin_m;
+    let to_wall = r + s.navigation.clearance_m + s.navigation.grid_cell_m / 2.0;
+    let needed = 2.0 * (pass + to_wall);
+    assert!(
+        s.arena.height_m >= needed,
+        "corridor {} m wide, passing needs {needed} m",
+        s.arena.height_m
+    );
+    // Everyone starts on the centre line, the groups facing each other, 1 m apart in a row.
+    let y = s.arena.height_m / 2.0;
+    assert!(s.robots.iter().all(|p| p.start_in_world.y == y));
+    let goals = swap_goals(&s);
+    let xs: Vec<f64> = goals.iter().map(|g| g.x).collect();
+    assert_eq!(xs, [22.5, 21.0, 19.5, 18.0, 1.5, 3.0, 4.5, 6.0]);
+    assert!(goals.iter().all(|g| g.y == y));
 }

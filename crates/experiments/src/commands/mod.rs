@@ -1,3 +1,4 @@
 //! The `usar` subcommands, one module each.
 
+pub mod render;
 pub mod trust;

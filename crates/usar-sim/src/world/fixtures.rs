@@ -14,11 +14,6 @@ use crate::scenario::{
 
 /// Body radius of the fixtures' ground robots, metres (as in `scenarios/*.ron`).
 pub const GROUND_RADIUS_M: f64 = 0.4;
-/// Width (y extent) of the [`corridor`] arena, metres.
-pub const CORRIDOR_WIDTH_M: f64 = 3.4;
-/// Length (x extent) of the [`corridor`] arena, metres.
-pub const CORRIDOR_LENGTH_M: f64 = 24.0;
-
 fn kind(name: &str, role: Role, locomotion: Locomotion, count: usize, radius: f64) -> RobotKind {
     let aerial = locomotion == Locomotion::Aerial;
     RobotKind {
@@ -111,76 +106,6 @@ fn scenario(
             seed: 1,
         },
     }
-}
-
-/// A straight walled corridor, [`CORRIDOR_LENGTH_M`] x [`CORRIDOR_WIDTH_M`], with
-/// `per_side` (1..=4) ground robots (radius 0.4 m, 1.5 m/s) in a row on the centre line at each
-/// end, facing each other: ids `0..per_side` start at the west end (id 0 in front, at
-/// x = 6.5 m, then 5.5, ...), ids `per_side..2 per_side` at the east end (front at 17.5 m).
-///
-/// The width lets one robot pass another that stands still on the centre line (offset
-/// `2 r + margin = 1.0 m`, plus `r + clearance + cell / 2` to the wall: `3.25 m`), but not two
-/// robots driving head-on on the centre line. Use [`corridor_goals`] for the swap goals.
-///
-/// # Panics
-/// If `per_side` is not in `1..=4`.
-pub fn corridor(per_side: usize) -> Scenario {
-    assert!((1..=4).contains(&per_side), "per_side must be 1..=4");
-    let y = CORRIDOR_WIDTH_M / 2.0;
-    let kinds = vec![
-        kind(
-            "eastbound",
-            Role::Carrier,
-            Locomotion::Ground,
-            per_side,
-            GROUND_RADIUS_M,
-        ),
-        kind(
-            "westbound",
-            Role::Carrier,
-            Locomotion::Ground,
-            per_side,
-            GROUND_RADIUS_M,
-        ),
-    ];
-    let mut robots = Vec::new();
-    for k in 0..per_side {
-        robots.push(RobotStart {
-            kind: 0,
-            start_in_world: PointM::new(6.5 - k as f64, y),
-        });
-    }
-    for k in 0..per_side {
-        robots.push(RobotStart {
-            kind: 1,
-            start_in_world: PointM::new(17.5 + k as f64, y),
-        });
-    }
-    let arena = Arena {
-        width_m: CORRIDOR_LENGTH_M,
-        height_m: CORRIDOR_WIDTH_M,
-        wall_thickness_m: 0.5,
-    };
-    let goals = [PointM::new(22.6, y), PointM::new(1.4, y)];
-    scenario("corridor-wide", arena, kinds, robots, goals, Vec::new())
-}
-
-/// Swap goals of [`corridor`]: each robot drives to the far end, the front robot of a row to
-/// the deepest slot (east-bound robot `k` to x = 22.5 - 1.5 k, west-bound robot `k` to
-/// x = 1.5 + 1.5 k), so arrivals never block later ones (slots 1.5 m apart leave room for the
-/// 1.0 m clearance `2 r + margin` plus the 0.3 m arrival tolerance).
-pub fn corridor_goals(s: &Scenario) -> Vec<PointM> {
-    let per_side = s.robots.len() / 2;
-    let y = s.arena.height_m / 2.0;
-    (0..s.robots.len())
-        .map(|id| {
-            if id < per_side {
-                PointM::new(22.5 - 1.5 * id as f64, y)
-            } else {
-                PointM::new(1.5 + 1.5 * (id - per_side) as f64, y)
-            }
-        })
-        .collect()
 }
 
 /// The debris block of [`debris_crossing`]: a 4 m x 4 m square centred at (10, 5).

@@ -1,0 +1,173 @@
+//! End-to-end tests of `usar render` (runs the built binary).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn usar(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(args)
+        .output()
+        .expect("run usar")
+}
+
+fn paper() -> PathBuf {
+    PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenarios/paper.ron"
+    ))
+}
+
+fn text(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Checks that `svg` looks like one complete SVG document.
+fn assert_svg(svg: &str) {
+    assert!(svg.starts_with("<svg"), "{}", &svg[..svg.len().min(200)]);
+    assert!(svg.trim_end().ends_with("</svg>"));
+    assert_eq!(svg.matches("<svg").count(), 1);
+    assert_eq!(svg.matches("<text").count(), svg.matches("</text>").count());
+}
+
+#[test]
+fn renders_the_paper_arena() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("pictures/arena.svg");
+    let o = usar(&["render", text(&paper()), "--out", text(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("12 robots"));
+    let svg = std::fs::read_to_string(&out).expect("SVG written");
+    assert_svg(&svg);
+    for label in [
+        "hard search area (240 rescuees)",
+        "easy search area (240 rescuees)",
+        "hard drop-off",
+        "easy drop-off",
+        "rest station",
+        "carrier x6 (ground)",
+        "supplier x4 (ground)",
+        "observer x2 (aerial)",
+        "radiation, dose x1.5",
+    ] {
+        assert!(svg.contains(label), "missing {label:?}");
+    }
+    // Every robot is labelled by its id at its start (ids 0..=11).
+    let ids = (0..12)
+        .filter(|id| svg.contains(&format!(">\n{id}\n</text>")))
+        .count();
+    assert_eq!(ids, 12);
+    // No trace without --trace.
+    assert!(!svg.contains("where it ended"));
+    // Nothing half-written is left beside the picture.
+    let names: Vec<_> = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, ["arena.svg"]);
+}
+
+#[test]
+fn trace_draws_paths_of_a_short_trial() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("trace.svg");
+    let o = usar(&[
+        "render",
+        text(&paper()),
+        "--out",
+        text(&out),
+        "--trace",
+        "--method",
+        "dis",
+        "--trial",
+        "1",
+        "--duration",
+        "5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    // 5 s sampled every 0.5 s, plus the start: 11 samples per robot.
+    assert!(
+        stdout.contains("trial 1 with dis over 5.0 s, 11 samples"),
+        "{stdout}"
+    );
+    let svg = std::fs::read_to_string(&out).expect("SVG written");
+    assert_svg(&svg);
+    assert!(svg.contains("where it ended"));
+    // One path per robot (and one polyline in the legend).
+    assert!(svg.matches("<polyline").count() >= 12);
+}
+
+#[test]
+fn a_missing_scenario_fails_with_its_path() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let missing = dir.path().join("no-such.ron");
+    let out = dir.path().join("x.svg");
+    let o = usar(&["render", text(&missing), "--out", text(&out)]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        e.contains("cannot load scenario") && e.contains("no-such.ron"),
+        "{e}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_broken_scenario_prints_the_loaders_message() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let src = std::fs::read_to_string(paper()).expect("paper.ron");
+    let broken = src.replacen("duration_s: 600.0", "duration_s: -1.0", 1);
+    assert_ne!(src, broken, "paper.ron sets mission.duration_s");
+    let path = dir.path().join("broken.ron");
+    std::fs::write(&path, broken).unwrap();
+    let o = usar(&[
+        "render",
+        text(&path),
+        "--out",
+        text(&dir.path().join("x.svg")),
+    ]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    // file:line:col: field: message
+    let line = src
+        .lines()
+        .position(|l| l.contains("duration_s: 600.0"))
+        .unwrap()
+        + 1;
+    assert!(e.contains(&format!("broken.ron:{line}:")), "{e}");
+    assert!(e.contains("mission.duration_s"), "{e}");
+}
+
+#[test]
+fn bad_options_are_reported() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("x.svg");
+    let o = usar(&[
+        "render",
+        text(&paper()),
+        "--out",
+        text(&out),
+        "--trace",
+        "--method",
+        "nope",
+    ]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("--method") && e.contains("rne"), "{e}");
+    // Trial options need --trace.
+    let o = usar(&[
+        "render",
+        text(&paper()),
+        "--out",
+        text(&out),
+        "--trial",
+        "2",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--trace"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
