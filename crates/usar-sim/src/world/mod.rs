@@ -7,8 +7,7 @@
 //! - [`radiation`]: radiation zones.
 //! - [`robot`]: the per-robot state the mission layer reads.
 //! - [`simulation`]: [`World`], the API the mission layer drives.
-//! - [`fixtures`]: scenarios built in code (corridor, debris crossing, paper-like) for tests and
-//!   benchmarks.
+//! - [`fixtures`]: small scenarios built in code (a debris crossing) for tests.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
