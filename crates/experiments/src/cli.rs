@@ -21,7 +21,12 @@ Examples:
 
   # Draw the paper's arena as SVG; add --trace to draw the paths of one trial
   usar render scenarios/paper.ron --out arena.svg
-  usar render scenarios/paper.ron --out trace.svg --trace --duration 200";
+  usar render scenarios/paper.ron --out trace.svg --trace --duration 200
+
+  # Validate a scenario; run one trial; run the paper's whole comparison
+  usar check scenarios/paper.ron
+  usar run scenarios/paper.ron --method rne --trial 0
+  usar sweep scenarios/paper.ron --trials 10 --out results/paper";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]
@@ -39,6 +44,12 @@ pub enum Command {
     Trust(commands::trust::TrustArgs),
     /// Top-down SVG picture of a scenario, optionally with the robots' paths in one trial.
     Render(commands::render::RenderArgs),
+    /// Validate a scenario file and print what it holds (or the loader's error).
+    Check(commands::check::CheckArgs),
+    /// One mission trial: rescuees, costs, rounds and per-robot figures.
+    Run(commands::run::RunArgs),
+    /// Every grouping method x every trial in parallel: CSV tables, statistics, figures, report.
+    Sweep(commands::sweep::SweepArgs),
 }
 
 /// Runs the parsed command, writing its report to `out`.
@@ -49,5 +60,8 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
     match cli.command {
         Command::Trust(args) => commands::trust::run(&args, out),
         Command::Render(args) => commands::render::run(&args, out),
+        Command::Check(args) => commands::check::run(&args, out),
+        Command::Run(args) => commands::run::run(&args, out),
+        Command::Sweep(args) => commands::sweep::run(&args, out),
     }
 }

@@ -4,5 +4,11 @@
 pub mod atomic;
 pub mod cli;
 pub mod commands;
+pub mod figures;
+pub mod journal;
 pub mod render;
+pub mod report;
+pub mod stats;
+pub mod summary;
+pub mod sweep;
 pub mod table;

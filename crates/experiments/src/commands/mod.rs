@@ -1,4 +1,7 @@
 //! The `usar` subcommands, one module each.
 
+pub mod check;
 pub mod render;
+pub mod run;
+pub mod sweep;
 pub mod trust;

@@ -1,0 +1,203 @@
+//! Descriptive statistics and two-sample tests for sweep summaries and claim checks.
+//!
+//! - [`Summary`]: mean, sample standard deviation and the 95 % confidence interval of the mean
+//!   from Student's t distribution (`statrs::distribution::StudentsT`).
+//! - [`welch_greater`]: Welch's unequal-variance t-test, one-sided. statrs 0.19 has no
+//!   two-sample t-test, so the statistic and the Welch-Satterthwaite degrees of freedom are
+//!   computed here and the p-value comes from statrs's `StudentsT` CDF.
+//! - [`mann_whitney_greater`]: the Mann-Whitney U test, one-sided, from
+//!   `statrs::stats_tests::mannwhitneyu` with the normal approximation (tie and continuity
+//!   corrected). Not statrs's exact method: in statrs 0.19.1 its exact one-sided p-value is
+//!   the complement of the right one when the first sample is not larger than the second
+//!   (e.g. `[5, 6, 7, 8]` greater than `[1, 2, 3, 4]` gives 0.986 instead of 1/70).
+
+use statrs::distribution::{ContinuousCDF, StudentsT};
+use statrs::stats_tests::Alternative;
+use statrs::stats_tests::mannwhitneyu::{MannWhitneyUMethod, mannwhitneyu};
+
+/// Mean, spread and 95 % confidence interval of a sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summary {
+    /// Sample size.
+    pub n: usize,
+    /// Arithmetic mean; NaN when `n == 0`.
+    pub mean: f64,
+    /// Sample standard deviation (n - 1 in the denominator); NaN when `n < 2`.
+    pub sd: f64,
+    /// Half width of the 95 % confidence interval of the mean, `t(0.975, n-1) sd / sqrt(n)`;
+    /// NaN when `n < 2`.
+    pub ci95: f64,
+}
+
+impl Summary {
+    /// Summarises `xs`.
+    pub fn of(xs: &[f64]) -> Self {
+        let n = xs.len();
+        if n == 0 {
+            return Self {
+                n,
+                mean: f64::NAN,
+                sd: f64::NAN,
+                ci95: f64::NAN,
+            };
+        }
+        let mean = xs.iter().sum::<f64>() / n as f64;
+        if n < 2 {
+            return Self {
+                n,
+                mean,
+                sd: f64::NAN,
+                ci95: f64::NAN,
+            };
+        }
+        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+        let sd = var.sqrt();
+        let t = t_quantile(0.975, (n - 1) as f64);
+        Self {
+            n,
+            mean,
+            sd,
+            ci95: t * sd / (n as f64).sqrt(),
+        }
+    }
+
+    /// Lower end of the 95 % confidence interval.
+    pub fn ci_low(&self) -> f64 {
+        self.mean - self.ci95
+    }
+
+    /// Upper end of the 95 % confidence interval.
+    pub fn ci_high(&self) -> f64 {
+        self.mean + self.ci95
+    }
+}
+
+/// Quantile `p` of Student's t with `dof` degrees of freedom (statrs).
+fn t_quantile(p: f64, dof: f64) -> f64 {
+    match StudentsT::new(0.0, 1.0, dof) {
+        Ok(t) => t.inverse_cdf(p),
+        Err(_) => f64::NAN,
+    }
+}
+
+/// Result of a one-sided two-sample test of "x is greater than y".
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TestResult {
+    /// The test statistic (Welch's t, or U of `x` for Mann-Whitney).
+    pub statistic: f64,
+    /// Degrees of freedom (Welch-Satterthwaite); NaN for Mann-Whitney.
+    pub dof: f64,
+    /// One-sided p-value; NaN when the test is undefined (a sample with fewer than 2 values).
+    pub p: f64,
+}
+
+/// Welch's t-test of H1: mean(x) > mean(y), one-sided.
+///
+/// `t = (mx - my) / sqrt(vx/nx + vy/ny)`, `dof` by Welch-Satterthwaite, `p = 1 - F_t(t)` with
+/// `F_t` the CDF of statrs's `StudentsT`. When both samples have zero variance, `p` is 0 if
+/// `mx > my` and 1 otherwise. NaN p when either sample has fewer than two values.
+pub fn welch_greater(x: &[f64], y: &[f64]) -> TestResult {
+    let (sx, sy) = (Summary::of(x), Summary::of(y));
+    if sx.n < 2 || sy.n < 2 {
+        return TestResult {
+            statistic: f64::NAN,
+            dof: f64::NAN,
+            p: f64::NAN,
+        };
+    }
+    let (ax, ay) = (sx.sd.powi(2) / sx.n as f64, sy.sd.powi(2) / sy.n as f64);
+    let se2 = ax + ay;
+    let diff = sx.mean - sy.mean;
+    if se2 == 0.0 {
+        return TestResult {
+            statistic: if diff > 0.0 {
+                f64::INFINITY
+            } else if diff < 0.0 {
+                f64::NEG_INFINITY
+            } else {
+                0.0
+            },
+            dof: f64::NAN,
+            p: if diff > 0.0 { 0.0 } else { 1.0 },
+        };
+    }
+    let t = diff / se2.sqrt();
+    let dof = se2.powi(2) / (ax.powi(2) / (sx.n - 1) as f64 + ay.powi(2) / (sy.n - 1) as f64);
+    let p = match StudentsT::new(0.0, 1.0, dof) {
+        Ok(d) => d.sf(t),
+        Err(_) => f64::NAN,
+    };
+    TestResult {
+        statistic: t,
+        dof,
+        p,
+    }
+}
+
+/// Mann-Whitney U test of H1: x tends to be greater than y, one-sided (statrs, normal
+/// approximation with tie and continuity correction; see the module docs for why not the
+/// exact method). NaN p when a sample is empty.
+pub fn mann_whitney_greater(x: &[f64], y: &[f64]) -> TestResult {
+    match mannwhitneyu(
+        x,
+        y,
+        MannWhitneyUMethod::AsymptoticInclContinuityCorrection,
+        Alternative::Greater,
+    ) {
+        Ok((u, p)) => TestResult {
+            statistic: u,
+            dof: f64::NAN,
+            p,
+        },
+        Err(_) => TestResult {
+            statistic: f64::NAN,
+            dof: f64::NAN,
+            p: f64::NAN,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_matches_hand_values() {
+        let s = Summary::of(&[1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(s.n, 4);
+        assert!((s.mean - 2.5).abs() < 1e-12);
+        assert!((s.sd - 1.290_994_448_7).abs() < 1e-9);
+        // t(0.975, 3) = 3.182446305
+        assert!((s.ci95 - 3.182_446_305 * 1.290_994_448_7 / 2.0).abs() < 1e-6);
+        assert!(Summary::of(&[]).mean.is_nan());
+        assert!(Summary::of(&[1.0]).sd.is_nan());
+    }
+
+    #[test]
+    fn welch_matches_hand_computation() {
+        // Equal variances 5/3 and sizes 4: t = 2 / sqrt(2 (5/3) / 4) = 2.19089, dof = 6,
+        // one-sided p = 0.0354938 (t CDF integrated numerically).
+        let x = [3.0, 4.0, 5.0, 6.0];
+        let y = [1.0, 2.0, 3.0, 4.0];
+        let r = welch_greater(&x, &y);
+        assert!((r.statistic - 2.190_890_230).abs() < 1e-8);
+        assert!((r.dof - 6.0).abs() < 1e-9);
+        assert!((r.p - 0.035_493_827).abs() < 1e-6, "p = {}", r.p);
+        let back = welch_greater(&y, &x);
+        assert!((back.p + r.p - 1.0).abs() < 1e-9);
+        assert!(welch_greater(&[1.0], &x).p.is_nan());
+        assert_eq!(welch_greater(&[2.0, 2.0], &[1.0, 1.0]).p, 0.0);
+        assert_eq!(welch_greater(&[1.0, 1.0], &[1.0, 1.0]).p, 1.0);
+    }
+
+    #[test]
+    fn mann_whitney_one_sided() {
+        let r = mann_whitney_greater(&[5.0, 6.0, 7.0, 8.0], &[1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(r.statistic, 16.0);
+        // scipy.stats.mannwhitneyu(x, y, alternative="greater", method="asymptotic")
+        // -> 0.015191 (z = (16 - 8 - 0.5) / sqrt(12)); the exact p would be 1/70 = 0.0143.
+        assert!((r.p - 0.015_191).abs() < 1e-5, "p = {}", r.p);
+        let back = mann_whitney_greater(&[1.0, 2.0, 3.0, 4.0], &[5.0, 6.0, 7.0, 8.0]);
+        assert!(back.p > 0.98, "p = {}", back.p);
+    }
+}

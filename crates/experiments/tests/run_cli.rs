@@ -1,0 +1,85 @@
+//! `usar run`: one trial's metrics on the terminal and as JSON.
+
+use std::process::{Command, Output};
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+
+fn usar(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(args)
+        .output()
+        .expect("run usar")
+}
+
+#[test]
+fn run_prints_metrics_and_writes_json() {
+    let tmp = tempfile::tempdir().unwrap();
+    let json = tmp.path().join("t.json");
+    let o = usar(&[
+        "run",
+        PAPER,
+        "--method",
+        "hp_dis",
+        "--trial",
+        "1",
+        "--duration",
+        "30",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for needle in [
+        "trial 1 with HP_DIS",
+        "rescuees",
+        "hard",
+        "easy",
+        "total",
+        "rounds:",
+        "deadl.",
+    ] {
+        assert!(out.contains(needle), "{needle} missing in\n{out}");
+    }
+    let r: usar_sim::mission::TrialResult =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r.method, "HP_DIS");
+    assert_eq!(r.trial, 1);
+    assert_eq!(r.seed, usar_sim::mission::trial_seed(2021, 1));
+    assert_eq!(r.robots.len(), 12);
+    assert!((r.duration_s - 30.0).abs() < 1e-9);
+}
+
+#[test]
+fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = (tmp.path().join("a.json"), tmp.path().join("b.json"));
+    let seed = usar_sim::mission::trial_seed(2021, 0).to_string();
+    for (args, path) in [(["--trial", "0"], &a), (["--seed", seed.as_str()], &b)] {
+        let o = usar(&[
+            "run",
+            PAPER,
+            "--method",
+            "rne",
+            args[0],
+            args[1],
+            "--duration",
+            "10",
+            "--json",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let read = |p: &std::path::Path| -> usar_sim::mission::TrialResult {
+        serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+    };
+    assert_eq!(read(&a).row(), read(&b).row());
+}
+
+#[test]
+fn run_refuses_bad_options() {
+    let o = usar(&["run", PAPER, "--method", "nope", "--duration", "1"]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("nope"));
+    let o = usar(&["run", PAPER, "--trial", "1", "--seed", "3"]);
+    assert!(!o.status.success());
+}

@@ -1,0 +1,107 @@
+//! `usar sweep`: a sweep killed part-way and resumed writes the same trials.csv and
+//! summary.csv as an uninterrupted one; --resume refuses a journal of other parameters.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
+const STOPPED: i32 = 75;
+
+fn sweep(out: &Path, extra: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["sweep", PAPER, "--methods", "rne,dis", "--trials", "2"])
+        .args(["--duration", "40", "--quiet", "--out"])
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("run usar")
+}
+
+fn read(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn journal_trials(dir: &Path) -> usize {
+    std::fs::read_to_string(dir.join("journal.jsonl"))
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("{\"trial\""))
+        .count()
+}
+
+#[test]
+fn resumed_sweep_matches_uninterrupted_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let whole = tmp.path().join("whole");
+    let parts = tmp.path().join("parts");
+
+    let o = sweep(&whole, &["--threads", "2"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(journal_trials(&whole), 4);
+
+    // Killed after the first trial is journaled: no tables yet, one trial in the journal.
+    let o = sweep(&parts, &["--threads", "2", "--stop-after", "1"]);
+    assert_eq!(
+        o.status.code(),
+        Some(STOPPED),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!parts.join("trials.csv").exists());
+    assert_eq!(journal_trials(&parts), 1);
+
+    // Running again without --resume refuses to touch the journal.
+    let o = sweep(&parts, &[]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--resume"));
+
+    // Resume runs only the three missing trials.
+    let o = sweep(&parts, &["--threads", "1", "--resume"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("ran 3 trials"), "{stdout}");
+    assert_eq!(journal_trials(&parts), 4);
+
+    for name in ["trials.csv", "summary.csv"] {
+        assert!(read(&whole, name) == read(&parts, name), "{name} differs");
+    }
+    let rows = String::from_utf8(read(&whole, "trials.csv")).unwrap();
+    let methods: Vec<&str> = rows
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap())
+        .collect();
+    assert_eq!(methods, ["RNE", "RNE", "DIS", "DIS"]);
+    for f in [
+        "report.md",
+        "fig3a_rescuees.svg",
+        "fig3b_energy_per_rescuee.svg",
+        "fig3c_hp_per_rescuee.svg",
+    ] {
+        assert!(parts.join(f).exists(), "{f} missing");
+    }
+
+    // A resume of a finished sweep runs nothing and rewrites the same files.
+    let o = sweep(&parts, &["--resume"]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("all 4 trials came from the journal"));
+    assert!(read(&whole, "trials.csv") == read(&parts, "trials.csv"));
+}
+
+#[test]
+fn resume_refuses_a_journal_of_other_parameters() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    let o = sweep(&dir, &["--stop-after", "1"]);
+    assert_eq!(o.status.code(), Some(STOPPED));
+    let o = sweep(&dir, &["--resume", "--seed", "7"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("other parameters") && err.contains("seed 2021 vs 7"),
+        "{err}"
+    );
+    // The journal is left as it was.
+    assert_eq!(journal_trials(&dir), 1);
+}
