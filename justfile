@@ -1,21 +1,40 @@
 # Recipes for the commands in the README. `just --list` shows them.
 
+usar := "cargo run --release -p experiments --bin usar --"
+
 # Show the recipes.
 default:
     @just --list
 
-# The main job: RNE trust values of the paper's Example 1.
-trust:
-    cargo run --release -p experiments --bin usar -- trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25
+# The main job: the paper's comparison (4 methods x 10 trials x 600 s) into results/paper/.
+sweep *ARGS:
+    {{usar}} sweep scenarios/paper.ron {{ARGS}}
 
-# The README's test command (what CI runs).
+# The README's test command.
 test:
     cargo test --workspace
 
-# Everything CI checks: formatting, lints, tests.
+# Everything CI checks: formatting, lints, tests, a short sweep.
 ci:
     bash .ci/run
 
-# Criterion benchmarks.
+# One trial of paper.ron with a grouping method (rne, dis, eng, hp_dis).
+run METHOD="rne" TRIAL="0":
+    {{usar}} run scenarios/paper.ron --method {{METHOD}} --trial {{TRIAL}}
+
+# Validate a scenario file and print a summary.
+check FILE="scenarios/paper.ron":
+    {{usar}} check {{FILE}}
+
+# Draw paper.ron, and the paths of the first 200 s of trial 0, as SVG.
+render:
+    {{usar}} render scenarios/paper.ron --out docs/img/paper-arena.svg
+    {{usar}} render scenarios/paper.ron --out docs/img/paper-trace.svg --trace --duration 200
+
+# RNE trust values of the paper's Example 1.
+trust:
+    {{usar}} trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25
+
+# Benchmarks: grouping, world stepping vs bare Rapier, one trial and the whole sweep.
 bench:
     cargo bench --workspace

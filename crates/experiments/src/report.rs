@@ -15,14 +15,14 @@ use crate::sweep::SweepOutcome;
 /// Significance level of the claim checks (one-sided).
 pub const ALPHA: f64 = 0.05;
 
-/// Software version written into reports: the crate version, plus `git describe` when the
-/// binary was built with `USAR_GIT_DESCRIBE` set (e.g.
-/// `USAR_GIT_DESCRIBE=$(git describe --always --dirty) cargo build --release`).
+/// Software version written into reports: the crate version, plus the commit
+/// (`git describe --always --dirty`, recorded by `build.rs` at build time, or taken from
+/// `USAR_GIT_DESCRIBE` in the build environment).
 pub fn software_version() -> String {
     match option_env!("USAR_GIT_DESCRIBE") {
         Some(g) if !g.is_empty() => format!("usar {} ({g})", env!("CARGO_PKG_VERSION")),
         _ => format!(
-            "usar {} (commit not recorded: build with USAR_GIT_DESCRIBE set to record it)",
+            "usar {} (commit not recorded: built outside a git checkout)",
             env!("CARGO_PKG_VERSION")
         ),
     }
