@@ -2,13 +2,10 @@
 //! (paper, section V, Algorithm 5) lets 2, 4 and 8 ground robots swap ends safely; without it
 //! the same meeting stays stuck.
 
-use usar_sim::scenario::{self, PointM, Scenario, TaskLevel};
-use usar_sim::world::World;
+mod common;
 
-/// The shipped corridor scenario.
-const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
-/// Distance between neighbouring goal slots at each end, metres (see `corridor.ron`).
-const SLOT_STEP_M: f64 = 1.5;
+use common::{corridor, swap_goals};
+use usar_sim::world::World;
 
 /// Every robot must reach its goal within this simulated time, seconds.
 const BOUND_S: f64 = 90.0;
@@ -23,39 +20,6 @@ struct Outcome {
     resolved: u64,
     lists_joined: u64,
     steps_held: u64,
-}
-
-/// `scenarios/corridor.ron` with `per_side` robots of each kind (all on their kind's task).
-fn corridor(per_side: usize) -> Scenario {
-    let src = std::fs::read_to_string(CORRIDOR).expect("scenarios/corridor.ron");
-    let mut spec = scenario::parse_spec(&src, CORRIDOR).unwrap_or_else(|e| panic!("{e}"));
-    spec.kinds[0].count = per_side;
-    spec.kinds[0].quota.easy = per_side;
-    spec.kinds[1].count = per_side;
-    spec.kinds[1].quota.hard = per_side;
-    spec.validate(&format!("corridor.ron ({per_side} per end)"))
-        .unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// Swap goals: the `k`-th east-bound robot (kind 0, the easy task at the east end) drives to
-/// the easy goal moved `k` slots back towards the middle, the `k`-th west-bound robot (kind 1)
-/// likewise to the hard goal, so the front robot of a row takes the deepest slot and arrivals
-/// never block later ones.
-fn swap_goals(s: &Scenario) -> Vec<PointM> {
-    let easy = s.task(TaskLevel::Easy).goal;
-    let hard = s.task(TaskLevel::Hard).goal;
-    let mut seen = [0usize; 2];
-    s.robots
-        .iter()
-        .map(|r| {
-            let k = seen[r.kind] as f64;
-            seen[r.kind] += 1;
-            match r.kind {
-                0 => PointM::new(easy.x - SLOT_STEP_M * k, easy.y),
-                _ => PointM::new(hard.x + SLOT_STEP_M * k, hard.y),
-            }
-        })
-        .collect()
 }
 
 fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {

@@ -2,7 +2,9 @@
 //! debris is an adversary of ground robots only).
 
 use usar_sim::scenario::{Debris, PointM};
-use usar_sim::world::{World, fixtures};
+mod common;
+
+use usar_sim::world::World;
 
 /// Simulated time within which both robots must arrive, seconds (straight line: 14 m).
 const BOUND_S: f64 = 30.0;
@@ -12,7 +14,7 @@ fn inside_block(p: &PointM, grow: f64) -> bool {
         center,
         half_extents_m,
         ..
-    } = fixtures::debris_block()
+    } = common::debris_crossing().debris[0]
     else {
         unreachable!()
     };
@@ -22,7 +24,7 @@ fn inside_block(p: &PointM, grow: f64) -> bool {
 
 #[test]
 fn aerial_flies_over_debris_ground_goes_around() {
-    let s = fixtures::debris_crossing();
+    let s = common::debris_crossing();
     let mut w = World::new(&s);
     w.set_goal(0, Some(s.tasks[0].goal)).unwrap();
     w.set_goal(1, Some(s.tasks[1].goal)).unwrap();
@@ -68,7 +70,7 @@ fn aerial_flies_over_debris_ground_goes_around() {
 
 #[test]
 fn unreachable_goal_is_reported_not_panicking() {
-    let s = fixtures::debris_crossing();
+    let s = common::debris_crossing();
     let mut w = World::new(&s);
     let err = w.set_goal(0, Some(PointM::new(50.0, 5.0))).unwrap_err();
     assert!(matches!(

@@ -7,13 +7,11 @@
 //! - [`radiation`]: radiation zones.
 //! - [`robot`]: the per-robot state the mission layer reads.
 //! - [`simulation`]: [`World`], the API the mission layer drives.
-//! - [`fixtures`]: small scenarios built in code (a debris crossing) for tests.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
 mod error;
-pub mod fixtures;
 pub mod navigation;
 pub mod radiation;
 pub mod resolver;
