@@ -151,19 +151,25 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         .iter()
         .filter(|d| matches!(d, Debris::Rect { .. }))
         .count();
+    let doses = if s.radiation_zones.is_empty() {
+        String::new()
+    } else {
+        let factors: Vec<String> = s
+            .radiation_zones
+            .iter()
+            .map(|z| z.dose_rate_factor.to_string())
+            .collect();
+        format!(" (dose factors {})", factors.join(", "))
+    };
     writeln!(
         out,
-        "\ndebris: {} ({} rectangles, {} discs); radiation zones: {} (dose factors {}); rest \
-         station ({:.1}, {:.1}) r {} m",
+        "\ndebris: {} ({} rectangles, {} discs); radiation zones: {}{}; rest station \
+         ({:.1}, {:.1}) r {} m",
         s.debris.len(),
         rects,
         s.debris.len() - rects,
         s.radiation_zones.len(),
-        s.radiation_zones
-            .iter()
-            .map(|z| z.dose_rate_factor.to_string())
-            .collect::<Vec<_>>()
-            .join(", "),
+        doses,
         s.rest_station.center.x,
         s.rest_station.center.y,
         s.rest_station.radius_m
