@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use experiments::sweep::{SweepConfig, TestHooks, run_sweep, trust_model};
+use experiments::sweep::{MethodFactory, SweepConfig, TestHooks, run_sweep, trust_model};
 use rne_core::grouping::{METHOD_NAMES, method_from_name};
 use usar_sim::mission::Simulation;
 
@@ -51,6 +51,7 @@ fn main() {
             scenario: scenario.clone(),
             scenario_path: path.clone(),
             methods: METHOD_NAMES.iter().map(|s| s.to_string()).collect(),
+            method_factory: MethodFactory::builtin(),
             trials: 10,
             base_seed: scenario.sim.seed,
             duration_s: duration,

@@ -10,14 +10,14 @@
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 use rayon::prelude::*;
-use rne_core::grouping::method_from_name;
+use rne_core::grouping::{GroupingMethod, method_from_name};
 use rne_core::{TrustModel, Weights};
 use usar_sim::mission::{Simulation, TrialResult, trial_seed};
 use usar_sim::scenario::Scenario;
@@ -44,6 +44,72 @@ pub struct TestHooks {
     pub stop_after: Option<usize>,
 }
 
+/// Builds a grouping method from its name, once per trial (methods need not be `Clone` and
+/// are never shared between threads). [`MethodFactory::builtin`] knows `rne`, `dis`, `eng` and
+/// `hp_dis`; wrap it to add methods of your own without touching the sweep:
+///
+/// ```
+/// use experiments::sweep::MethodFactory;
+/// use rne_core::grouping::{Eng, GroupingMethod};
+///
+/// // `my_eng` is ENG under another name; anything else falls back to the built-ins.
+/// let factory = MethodFactory::new(|name, model| match name {
+///     "my_eng" => Ok(Box::new(Eng) as Box<dyn GroupingMethod>),
+///     other => MethodFactory::builtin().build(other, model),
+/// });
+/// let model = rne_core::TrustModel::with_weights(rne_core::Weights::uniform(7)?);
+/// assert_eq!(factory.build("my_eng", &model)?.name(), "eng");
+/// assert_eq!(factory.build("dis", &model)?.name(), "dis");
+/// # Ok::<(), rne_core::RneError>(())
+/// ```
+#[derive(Clone)]
+pub struct MethodFactory(Arc<MethodBuilder>);
+
+/// The function behind a [`MethodFactory`].
+type MethodBuilder =
+    dyn Fn(&str, &TrustModel) -> rne_core::Result<Box<dyn GroupingMethod>> + Send + Sync;
+
+impl MethodFactory {
+    /// A factory from a function `(name, RNE trust model of the scenario) -> method`.
+    pub fn new(
+        f: impl Fn(&str, &TrustModel) -> rne_core::Result<Box<dyn GroupingMethod>>
+        + Send
+        + Sync
+        + 'static,
+    ) -> Self {
+        Self(Arc::new(f))
+    }
+
+    /// The built-in methods, by [`method_from_name`].
+    pub fn builtin() -> Self {
+        Self::new(method_from_name)
+    }
+
+    /// Builds the method called `name`.
+    ///
+    /// # Errors
+    /// Whatever the factory reports for an unknown name (the built-ins list the valid names).
+    pub fn build(
+        &self,
+        name: &str,
+        model: &TrustModel,
+    ) -> rne_core::Result<Box<dyn GroupingMethod>> {
+        (self.0)(name, model)
+    }
+}
+
+impl Default for MethodFactory {
+    fn default() -> Self {
+        Self::builtin()
+    }
+}
+
+impl std::fmt::Debug for MethodFactory {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("MethodFactory")
+    }
+}
+
 /// Everything a sweep needs.
 #[derive(Debug, Clone)]
 pub struct SweepConfig {
@@ -51,8 +117,11 @@ pub struct SweepConfig {
     pub scenario: Scenario,
     /// Path the scenario was loaded from (for the report).
     pub scenario_path: PathBuf,
-    /// Method names as accepted by `method_from_name` (e.g. `rne`, `hp_dis`).
+    /// Method names as accepted by `method_factory` (built-ins: `rne`, `dis`, `eng`,
+    /// `hp_dis`).
     pub methods: Vec<String>,
+    /// Builds each trial's grouping method from its name (default: the built-ins).
+    pub method_factory: MethodFactory,
     /// Trials per method.
     pub trials: u32,
     /// Base seed.
@@ -120,8 +189,10 @@ impl SweepOutcome {
 ///
 /// # Errors
 /// An unknown method name.
-pub fn canonical_method(name: &str, model: &TrustModel) -> Result<String> {
-    let m = method_from_name(name, model).with_context(|| format!("method {name:?}"))?;
+pub fn canonical_method(name: &str, factory: &MethodFactory, model: &TrustModel) -> Result<String> {
+    let m = factory
+        .build(name, model)
+        .with_context(|| format!("method {name:?}"))?;
     Ok(m.name().to_ascii_uppercase())
 }
 
@@ -150,7 +221,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
         methods: cfg
             .methods
             .iter()
-            .map(|m| canonical_method(m, &model))
+            .map(|m| canonical_method(m, &cfg.method_factory, &model))
             .collect::<Result<_>>()?,
         trials: cfg.trials,
         base_seed: cfg.base_seed,
@@ -171,6 +242,7 @@ struct Job {
 /// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken.
 fn run_trial(
     scenario: &Scenario,
+    factory: &MethodFactory,
     model: &TrustModel,
     job: &Job,
     duration_s: f64,
@@ -178,7 +250,9 @@ fn run_trial(
     tick: &(dyn Fn(u64) + Sync),
 ) -> Result<TrialResult, String> {
     let body = || -> Result<TrialResult, String> {
-        let method = method_from_name(&job.method_arg, model).map_err(|e| e.to_string())?;
+        let method = factory
+            .build(&job.method_arg, model)
+            .map_err(|e| e.to_string())?;
         let mut sim = Simulation::new(scenario, method, job.seed).with_duration_s(duration_s);
         let mut last = 0u64;
         while !sim.is_finished() {
@@ -372,9 +446,17 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
                 .iter()
                 .any(|(m, k)| *m == job.method && *k == job.trial);
             let t0 = Instant::now();
-            let outcome = run_trial(scenario, &model, job, cfg.duration_s, fail, &|n| {
-                pb.inc(n);
-            });
+            let outcome = run_trial(
+                scenario,
+                &cfg.method_factory,
+                &model,
+                job,
+                cfg.duration_s,
+                fail,
+                &|n| {
+                    pb.inc(n);
+                },
+            );
             let record = TrialRecord {
                 method: job.method.clone(),
                 trial: job.trial,

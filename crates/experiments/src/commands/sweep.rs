@@ -13,7 +13,8 @@ use crate::report::{CLAIMS, check_claim, num};
 use crate::stats::Summary;
 use crate::summary::{metric, rows_of, values};
 use crate::sweep::{
-    SweepConfig, TestHooks, canonical_method, default_out_dir, run_sweep, trust_model,
+    MethodFactory, SweepConfig, TestHooks, canonical_method, default_out_dir, run_sweep,
+    trust_model,
 };
 
 const EXAMPLES: &str = "\
@@ -97,7 +98,7 @@ fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)>
         .trim()
         .parse::<u32>()
         .with_context(|| format!("--fail-trial {spec:?}: K is not a trial index"))?;
-    Ok((canonical_method(m, model)?, k))
+    Ok((canonical_method(m, &MethodFactory::builtin(), model)?, k))
 }
 
 /// Runs `usar sweep`.
@@ -121,6 +122,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let cfg = SweepConfig {
         scenario_path: args.scenario.clone(),
         methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
+        method_factory: MethodFactory::builtin(),
         trials: args.trials,
         base_seed: args.seed.unwrap_or(scenario.sim.seed),
         duration_s: args.duration.unwrap_or(scenario.mission.duration_s),

@@ -1,0 +1,78 @@
+//! A grouping method of the user's own runs through the sweep machinery (journal, tables,
+//! statistics) via `SweepConfig::method_factory`, next to a built-in one.
+
+use std::path::PathBuf;
+
+use experiments::sweep::{MethodFactory, SweepConfig, TestHooks, run_sweep};
+use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+use usar_sim::scenario;
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+
+/// Sends the lowest ids of each kind to the easy task.
+struct ById;
+
+impl GroupingMethod for ById {
+    fn name(&self) -> &str {
+        "by_id"
+    }
+    fn assign(&self, request: &GroupingRequest) -> rne_core::Result<Assignment> {
+        let (mut easy, mut hard) = (Vec::new(), Vec::new());
+        for (kind, quota) in request.quotas().iter().enumerate() {
+            for (i, robot) in request.members_of_kind(kind).into_iter().enumerate() {
+                if i < quota.easy {
+                    easy.push(robot.id);
+                } else {
+                    hard.push(robot.id);
+                }
+            }
+        }
+        Ok(Assignment::new(easy, hard))
+    }
+}
+
+fn config(out_dir: PathBuf, methods: &[&str]) -> SweepConfig {
+    let scenario = scenario::load(PAPER).unwrap();
+    SweepConfig {
+        scenario_path: PAPER.into(),
+        methods: methods.iter().map(|m| m.to_string()).collect(),
+        method_factory: MethodFactory::new(|name, model| match name {
+            "by_id" => Ok(Box::new(ById) as Box<dyn GroupingMethod>),
+            other => MethodFactory::builtin().build(other, model),
+        }),
+        trials: 2,
+        base_seed: 3,
+        duration_s: 40.0,
+        threads: 2,
+        out_dir,
+        resume: false,
+        overwrite: false,
+        progress: false,
+        hooks: TestHooks::default(),
+        scenario,
+    }
+}
+
+#[test]
+fn a_custom_method_is_swept_like_the_built_ins() {
+    let tmp = tempfile::tempdir().unwrap();
+    let outcome = run_sweep(&config(tmp.path().join("s"), &["by_id", "dis"])).unwrap();
+    assert!(outcome.failures.is_empty(), "{:?}", outcome.failures);
+    assert_eq!(outcome.header.methods, ["BY_ID", "DIS"]);
+    let by_id: Vec<_> = outcome.results.iter().filter(|r| r.method == "BY_ID").collect();
+    assert_eq!(by_id.len(), 2);
+    // The custom method's groups are what it says: the lowest ids of each kind go easy.
+    for r in by_id {
+        assert_eq!(r.rounds[0].groups.easy, [0, 1, 2, 6, 7, 10]);
+    }
+    let trials = std::fs::read_to_string(tmp.path().join("s/trials.csv")).unwrap();
+    assert_eq!(trials.lines().filter(|l| l.contains(",BY_ID,")).count(), 2);
+}
+
+#[test]
+fn an_unknown_name_is_refused_before_anything_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let err = run_sweep(&config(tmp.path().join("s"), &["nope"])).unwrap_err();
+    assert!(format!("{err:#}").contains("unknown grouping method \"nope\""), "{err:#}");
+    assert!(!tmp.path().join("s/journal.jsonl").exists());
+}
