@@ -271,3 +271,31 @@ fn ground_robots_never_enter_debris_during_a_trial() {
         }
     }
 }
+
+#[test]
+fn the_needs_vector_follows_the_robot_state() {
+    use usar_sim::mission::entry;
+    let s = paper();
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0);
+    let id = 0; // a carrier
+    let kind = s.kind_of(id);
+    let before = sim.needs(id);
+    while sim.robots()[id].load.is_empty() && !sim.is_finished() {
+        sim.step().unwrap();
+    }
+    let r = &sim.robots()[id];
+    let now = sim.needs(id);
+    let v = now.as_slice();
+    assert!((v[entry::ENG] - kind.energy_needs_full * r.energy_pct / 100.0).abs() < 1e-12);
+    assert!((v[entry::HP] - kind.hp_needs_full * r.hp_pct / 100.0).abs() < 1e-12);
+    assert!((v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct)).abs() < 1e-12);
+    assert_eq!(v[entry::CAP], f64::from(r.capacity_free));
+    assert!(
+        v[entry::CAP] < before.as_slice()[entry::CAP],
+        "picking up used capacity"
+    );
+    assert!(
+        v[entry::ENG] < before.as_slice()[entry::ENG],
+        "driving used energy"
+    );
+}

@@ -1,13 +1,14 @@
 //! [`Simulation`]: one trial of the persistent USAR mission (paper, sections IV-VI) on top of
 //! the physical [`World`].
 
+use rne_core::NeedsVector;
 use rne_core::grouping::GroupingMethod;
 
 use super::error::MissionError;
 use super::grouping::group_available;
 use super::initial::{draw_initial_levels, trial_seed};
 use super::metrics::{PerTask, RobotMetrics, RoundRecord, TrialResult};
-use super::needs::hp_factor;
+use super::needs::{hp_factor, needs_vector};
 use super::rescuees::{RescueeField, RescueeStatus};
 use super::robot::{MissionRobot, Phase};
 use crate::scenario::{Locomotion, PointM, Rect, Role, Scenario, TaskLevel};
@@ -136,6 +137,24 @@ impl Simulation {
     /// The team's mission state, indexed by robot id.
     pub fn robots(&self) -> &[MissionRobot] {
         &self.robots
+    }
+
+    /// Robot `id`'s needs vector now (Eqs. 17-19; see [`needs_vector`]): its current HP and
+    /// energy, and the rescuing resources and free carrying capacity it holds at this step.
+    /// (Grouping methods see the same vector with capacity and resources refilled, as at the
+    /// start of a round.)
+    ///
+    /// # Panics
+    /// If `id` is not a robot id.
+    pub fn needs(&self, id: usize) -> NeedsVector {
+        let r = &self.robots[id];
+        needs_vector(
+            self.scenario.kind_of(id),
+            r.hp_pct,
+            r.energy_pct,
+            r.resources,
+            r.capacity_free,
+        )
     }
 
     /// The rescuees of task `level`.
