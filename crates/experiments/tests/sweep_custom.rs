@@ -59,7 +59,11 @@ fn a_custom_method_is_swept_like_the_built_ins() {
     let outcome = run_sweep(&config(tmp.path().join("s"), &["by_id", "dis"])).unwrap();
     assert!(outcome.failures.is_empty(), "{:?}", outcome.failures);
     assert_eq!(outcome.header.methods, ["BY_ID", "DIS"]);
-    let by_id: Vec<_> = outcome.results.iter().filter(|r| r.method == "BY_ID").collect();
+    let by_id: Vec<_> = outcome
+        .results
+        .iter()
+        .filter(|r| r.method == "BY_ID")
+        .collect();
     assert_eq!(by_id.len(), 2);
     // The custom method's groups are what it says: the lowest ids of each kind go easy.
     for r in by_id {
@@ -73,6 +77,9 @@ fn a_custom_method_is_swept_like_the_built_ins() {
 fn an_unknown_name_is_refused_before_anything_runs() {
     let tmp = tempfile::tempdir().unwrap();
     let err = run_sweep(&config(tmp.path().join("s"), &["nope"])).unwrap_err();
-    assert!(format!("{err:#}").contains("unknown grouping method \"nope\""), "{err:#}");
+    assert!(
+        format!("{err:#}").contains("unknown grouping method \"nope\""),
+        "{err:#}"
+    );
     assert!(!tmp.path().join("s/journal.jsonl").exists());
 }

@@ -52,11 +52,11 @@ pub struct MissionRobot {
     pub load: Vec<usize>,
     /// The rescuee it is driving to, if any.
     pub claim: Option<usize>,
-    /// Closest the robot has come to its claimed rescuee (in steps of at least
-    /// `CLAIM_PROGRESS_M`), metres.
-    pub claim_best_m: f64,
-    /// When it last came `CLAIM_PROGRESS_M` closer to its claimed rescuee, seconds.
-    pub claim_progress_s: f64,
+    /// Closest the robot has come to its current search target (claimed rescuee or sweep
+    /// waypoint), in steps of at least `CLAIM_PROGRESS_M`, metres.
+    pub target_best_m: f64,
+    /// When it last came `CLAIM_PROGRESS_M` closer to its current search target, seconds.
+    pub target_progress_s: f64,
     /// Next blind-search waypoint (groups without an observer), index into the task's sweep.
     pub sweep_next: usize,
     /// Sweep waypoints visited this round.

@@ -76,8 +76,8 @@ impl Simulation {
                     resources: kind.rescuing_resources,
                     load: Vec::new(),
                     claim: None,
-                    claim_best_m: 0.0,
-                    claim_progress_s: 0.0,
+                    target_best_m: 0.0,
+                    target_progress_s: 0.0,
                     sweep_next: 0,
                     sweep_visited: 0,
                 }
@@ -450,8 +450,8 @@ impl Simulation {
                     field.claim(i, id);
                     let r = &mut self.robots[id];
                     r.claim = Some(i);
-                    r.claim_best_m = (target - pos).norm();
-                    r.claim_progress_s = self.world.time_s();
+                    r.target_best_m = (target - pos).norm();
+                    r.target_progress_s = self.world.time_s();
                     r.phase = Phase::Searching;
                     return;
                 }
@@ -463,7 +463,11 @@ impl Simulation {
             Phase::ToSearchArea => {}
             _ if blind && can_rescue && r.sweep_visited < self.sweeps[level.index()].len() => {
                 let w = self.world.robot(id);
-                if w.goal.is_none() || w.goal_reached {
+                let stalled = match w.goal {
+                    None => true,
+                    Some(g) => w.goal_reached || self.sweep_stalled(id, (g - w.position).norm()),
+                };
+                if stalled {
                     self.next_sweep_waypoint(id, level);
                 }
             }
@@ -475,14 +479,31 @@ impl Simulation {
         }
     }
 
+    /// Whether a sweeping robot, `d` metres from its waypoint, has stalled (no
+    /// `CLAIM_PROGRESS_M` of progress for `CLAIM_STALL_S`, e.g. a robot parked on the
+    /// waypoint); records progress otherwise.
+    fn sweep_stalled(&mut self, id: usize, d: f64) -> bool {
+        let now = self.world.time_s();
+        let r = &mut self.robots[id];
+        if d < r.target_best_m - CLAIM_PROGRESS_M {
+            r.target_best_m = d;
+            r.target_progress_s = now;
+        }
+        now - r.target_progress_s > CLAIM_STALL_S
+    }
+
     fn next_sweep_waypoint(&mut self, id: usize, level: TaskLevel) {
         let sweep = &self.sweeps[level.index()];
+        let pos = self.world.robot(id).position;
+        let now = self.world.time_s();
         while self.robots[id].sweep_visited < sweep.len() {
             let r = &mut self.robots[id];
             let p = sweep[r.sweep_next % sweep.len()];
             r.sweep_next = (r.sweep_next + 1) % sweep.len();
             r.sweep_visited += 1;
             r.phase = Phase::Searching;
+            r.target_best_m = (p - pos).norm();
+            r.target_progress_s = now;
             if self.world.set_goal(id, Some(p)).is_ok() {
                 return;
             }
@@ -547,6 +568,12 @@ impl Simulation {
                     && (reached || self.scenario.task(level).search_area.contains(&pos))
                 {
                     r.phase = Phase::Searching;
+                    if r.claim.is_none() {
+                        // In the area now: the approach goal (the task's goal point, where
+                        // others may stand) is dropped; the next decision picks a rescuee, a
+                        // sweep waypoint, or waiting.
+                        let _ = self.world.set_goal(id, None);
+                    }
                 }
             }
             Phase::ToDropOff => {
@@ -606,10 +633,10 @@ impl Simulation {
             } else {
                 let now = self.world.time_s();
                 let r = &mut self.robots[id];
-                if d < r.claim_best_m - CLAIM_PROGRESS_M {
-                    r.claim_best_m = d;
-                    r.claim_progress_s = now;
-                } else if now - r.claim_progress_s > CLAIM_STALL_S {
+                if d < r.target_best_m - CLAIM_PROGRESS_M {
+                    r.target_best_m = d;
+                    r.target_progress_s = now;
+                } else if now - r.target_progress_s > CLAIM_STALL_S {
                     field.settle(i, RescueeStatus::Skipped);
                     r.claim = None;
                 }

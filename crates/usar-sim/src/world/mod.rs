@@ -21,5 +21,6 @@ mod simulation;
 pub use error::{NavError, WorldError};
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use simulation::{
-    MOVED_TOLERANCE_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, World, WorldStats,
+    CORNER_PASS_M, MOVED_TOLERANCE_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, World,
+    WorldStats,
 };

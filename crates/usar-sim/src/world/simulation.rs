@@ -24,6 +24,10 @@ pub const MOVED_TOLERANCE_M: f64 = 1e-4;
 pub const PATH_CHECK_INTERVAL_STEPS: u64 = 10;
 /// Longest stretch of the line of sight checked by the periodic path check, metres.
 pub const PATH_CHECK_MAX_M: f32 = 4.0;
+/// A ground robot within this distance of a path corner, beyond the line through the corner
+/// perpendicular to the next leg and in sight of the next waypoint, counts the corner as
+/// passed, metres.
+pub const CORNER_PASS_M: f32 = 2.0;
 
 /// World-level totals.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -507,7 +511,21 @@ impl World {
             }
         }
         let last = nav.path.len() - 1;
-        while nav.wp < last && (nav.path[nav.wp] - p).length() <= tol {
+        while nav.wp < last {
+            let corner = nav.path[nav.wp];
+            let next = nav.path[nav.wp + 1];
+            let d = (corner - p).length();
+            // A corner is passed when reached, or when the robot is near it, already beyond
+            // the line through it perpendicular to the next leg, and sees the next waypoint.
+            // Without the second rule robots queueing at a corner all aim at the same point,
+            // which their own bodies cover: a jam no priority order resolves.
+            let passed = d <= tol
+                || (d <= CORNER_PASS_M
+                    && (p - corner).dot(next - corner) > 0.0
+                    && self.grid.line_of_sight(p, next, check_infl, f32::INFINITY));
+            if !passed {
+                break;
+            }
             nav.wp += 1;
         }
         let target = nav.path[nav.wp.min(last)];
