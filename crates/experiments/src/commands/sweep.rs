@@ -60,7 +60,7 @@ pub struct SweepArgs {
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub duration: Option<f64>,
 
-    /// Output folder; default results/<scenario name>/.
+    /// Output folder; default `results/<scenario name>/`.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 

@@ -5,8 +5,8 @@
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
-//! - [`robot`]: the per-robot state the mission layer reads.
-//! - [`simulation`]: [`World`], the API the mission layer drives.
+//! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
+//! - `simulation`: [`World`], the API the mission layer drives.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
