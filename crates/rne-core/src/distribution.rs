@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, RneError};
 use crate::needs::{NeedsMatrix, NeedsVector, Weights};
+use crate::vector_newtype::vector_newtype;
 
 /// Default relative smoothing: `1e-9` of the total weighted needs is added to each category.
 pub const DEFAULT_RELATIVE_EPSILON: f64 = 1e-9;
@@ -84,26 +85,6 @@ pub struct DistributionOptions {
 pub struct Distribution(DVector<f64>);
 
 impl Distribution {
-    /// The shares as an `nalgebra` vector of length `j`.
-    pub fn as_dvector(&self) -> &DVector<f64> {
-        &self.0
-    }
-
-    /// The shares as a slice of length `j`.
-    pub fn as_slice(&self) -> &[f64] {
-        self.0.as_slice()
-    }
-
-    /// Number of entries `j`.
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Always `false` (a distribution has at least one entry).
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-
     /// Normalises non-negative weighted needs `v_k` into `d_k = (v_k + eps) / sum_k (v_k + eps)`.
     fn from_weighted(
         mut v: DVector<f64>,
@@ -130,11 +111,7 @@ impl Distribution {
     }
 }
 
-impl From<Distribution> for Vec<f64> {
-    fn from(d: Distribution) -> Self {
-        d.0.as_slice().to_vec()
-    }
-}
+vector_newtype!(Distribution, "shares");
 
 /// A robot's needs distribution, Eq. 6 (Def. 1) and Algorithm 4 (NDC):
 ///

@@ -30,6 +30,7 @@ pub mod error;
 pub mod grouping;
 pub mod needs;
 pub mod rne;
+mod vector_newtype;
 
 pub use combinations::{Bipartition, combinations, two_way_splits};
 pub use distribution::{

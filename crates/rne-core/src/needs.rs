@@ -4,6 +4,7 @@ use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, RneError};
+use crate::vector_newtype::vector_newtype;
 
 fn check_needs(values: &[f64]) -> Result<()> {
     if values.is_empty() {
@@ -42,41 +43,9 @@ impl NeedsVector {
         check_needs(&values)?;
         Ok(Self(DVector::from_vec(values)))
     }
-
-    /// The needs as an `nalgebra` column vector of length `j`.
-    pub fn as_dvector(&self) -> &DVector<f64> {
-        &self.0
-    }
-
-    /// The needs as a slice of length `j`.
-    pub fn as_slice(&self) -> &[f64] {
-        self.0.as_slice()
-    }
-
-    /// Number of needs categories `j` (always `>= 1`).
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Always `false` (a needs vector has at least one entry); provided for clippy's
-    /// `len_without_is_empty`.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
 }
 
-impl TryFrom<Vec<f64>> for NeedsVector {
-    type Error = RneError;
-    fn try_from(values: Vec<f64>) -> Result<Self> {
-        Self::new(values)
-    }
-}
-
-impl From<NeedsVector> for Vec<f64> {
-    fn from(n: NeedsVector) -> Self {
-        n.0.as_slice().to_vec()
-    }
-}
+vector_newtype!(NeedsVector, "needs", validated);
 
 /// The weight vector `W = (w_1, ..., w_j)` giving each needs category's priority (Def. 1, Eq. 6).
 ///
@@ -115,40 +84,9 @@ impl Weights {
     pub fn uniform(j: usize) -> Result<Self> {
         Self::new(vec![1.0; j])
     }
-
-    /// The weights as an `nalgebra` column vector of length `j`.
-    pub fn as_dvector(&self) -> &DVector<f64> {
-        &self.0
-    }
-
-    /// The weights as a slice of length `j`.
-    pub fn as_slice(&self) -> &[f64] {
-        self.0.as_slice()
-    }
-
-    /// Number of categories `j` (always `>= 1`).
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Always `false`; provided for clippy's `len_without_is_empty`.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
 }
 
-impl TryFrom<Vec<f64>> for Weights {
-    type Error = RneError;
-    fn try_from(values: Vec<f64>) -> Result<Self> {
-        Self::new(values)
-    }
-}
-
-impl From<Weights> for Vec<f64> {
-    fn from(w: Weights) -> Self {
-        w.0.as_slice().to_vec()
-    }
-}
+vector_newtype!(Weights, "weights", validated);
 
 /// A group's needs matrix (Eq. 10): `i` rows (robots) by `j` columns (needs categories).
 ///
