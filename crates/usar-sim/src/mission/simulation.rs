@@ -339,15 +339,20 @@ impl Simulation {
         })
     }
 
-    /// Resources of the members of `level`'s group not yet promised to a claim.
-    fn unclaimed_pool(&self, level: TaskLevel) -> u32 {
-        let (pool, claims) = self
-            .robots
+    /// The group pool of `level`: rescuing resources held by its members that are not away
+    /// resting, and how many of those members hold a claim.
+    fn group_pool(&self, level: TaskLevel) -> (u32, u32) {
+        self.robots
             .iter()
             .filter(|r| r.task == Some(level) && !r.is_resting())
-            .fold((0u32, 0u32), |(p, c), r| {
+            .fold((0, 0), |(p, c), r| {
                 (p + r.resources, c + u32::from(r.claim.is_some()))
-            });
+            })
+    }
+
+    /// Resources of the members of `level`'s group not yet promised to a claim.
+    fn unclaimed_pool(&self, level: TaskLevel) -> u32 {
+        let (pool, claims) = self.group_pool(level);
         pool.saturating_sub(claims)
     }
 
@@ -363,7 +368,7 @@ impl Simulation {
             let r = &self.robots[id];
             let f = hp_factor(r.hp_pct);
             let blind = r.task.is_some_and(|t| !observer[t.index()]);
-            let penalty = if blind && r.task.is_some() {
+            let penalty = if blind {
                 self.scenario.mission.no_observer_speed_factor
             } else {
                 1.0
@@ -378,32 +383,28 @@ impl Simulation {
         }
     }
 
+    /// Whether `level`'s group must leave its search area (see `docs/mission-model.md`): its
+    /// pool of resources or its ground members' free capacity is used up, or nothing more is
+    /// to be had (every ground member waits and no observer is still flying in). Called every
+    /// step, so it allocates nothing.
     fn group_should_leave(&self, level: TaskLevel) -> bool {
-        let members: Vec<&MissionRobot> = self
-            .robots
-            .iter()
-            .filter(|r| r.task == Some(level) && r.is_on_task())
-            .collect();
-        if members.is_empty() {
+        let on_task = || {
+            self.robots
+                .iter()
+                .filter(move |r| r.task == Some(level) && r.is_on_task())
+        };
+        let ground =
+            |r: &&MissionRobot| self.scenario.kind_of(r.id).locomotion == Locomotion::Ground;
+        if on_task().next().is_none() {
             return false;
         }
-        let ground =
-            |r: &&&MissionRobot| self.scenario.kind_of(r.id).locomotion == Locomotion::Ground;
-        let pool: u32 = self
-            .robots
-            .iter()
-            .filter(|r| r.task == Some(level) && !r.is_resting())
-            .map(|r| r.resources)
-            .sum();
-        let free_capacity: u32 = members.iter().filter(ground).map(|r| r.capacity_free).sum();
-        let observer_arriving = members.iter().any(|r| {
+        let (pool, _) = self.group_pool(level);
+        let free_capacity: u32 = on_task().filter(ground).map(|r| r.capacity_free).sum();
+        let observer_arriving = on_task().any(|r| {
             self.scenario.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea
         });
-        let nothing_more = members
-            .iter()
-            .filter(ground)
-            .all(|r| r.phase == Phase::Waiting)
-            && !observer_arriving;
+        let nothing_more =
+            on_task().filter(ground).all(|r| r.phase == Phase::Waiting) && !observer_arriving;
         pool == 0 || free_capacity == 0 || nothing_more
     }
 
