@@ -136,11 +136,6 @@ impl RescueeField {
         best.map(|(_, i)| i)
     }
 
-    /// Whether any known rescuee is waiting to be claimed.
-    pub fn any_known_waiting(&self) -> bool {
-        (0..self.positions.len()).any(|i| self.known[i] && self.status[i] == RescueeStatus::Waiting)
-    }
-
     /// Robot `robot` claims waiting rescuee `i`.
     pub fn claim(&mut self, i: usize, robot: usize) {
         debug_assert_eq!(self.status[i], RescueeStatus::Waiting);
@@ -164,13 +159,5 @@ impl RescueeField {
     /// `Unreachable`).
     pub fn settle(&mut self, i: usize, status: RescueeStatus) {
         self.status[i] = status;
-    }
-
-    /// Number of rescuees delivered so far.
-    pub fn delivered(&self) -> usize {
-        self.status
-            .iter()
-            .filter(|s| **s == RescueeStatus::Delivered)
-            .count()
     }
 }
