@@ -1,4 +1,4 @@
-//! Needs distributions of a robot (Eq. 6) and of a group (Eqs. 8 and 10; Algorithm 4, NDC).
+//! Needs distributions of a robot (Eq. 8) and of a group (Eqs. 11 and 16; Algorithm 4, NDC).
 
 use nalgebra::DVector;
 use serde::{Deserialize, Serialize};
@@ -60,7 +60,7 @@ impl Smoothing {
 /// Which entries of two distributions are compared in `sum_k p_k log(p_k / q_k)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum Alignment {
-    /// Entry `k` is needs category `k` on both sides (Defs. 1-3, Eqs. 5, 9, 11). **Default.**
+    /// Entry `k` is needs category `k` on both sides (Defs. 1-3, Eqs. 7, 12, 17). **Default.**
     #[default]
     Category,
     /// Each distribution is sorted ascending before comparing, as Algorithm 4 (NDC) returns
@@ -113,7 +113,7 @@ impl Distribution {
 
 vector_newtype!(Distribution, "shares");
 
-/// A robot's needs distribution, Eq. 6 (Def. 1) and Algorithm 4 (NDC):
+/// A robot's needs distribution, Eq. 8 (Def. 1) and Algorithm 4 (NDC):
 ///
 /// `d_k = n_k w_k / sum_{k=1..j} n_k w_k`, then smoothed (see [`Smoothing`]) and, with
 /// [`Alignment::Sorted`], sorted ascending.
@@ -123,7 +123,7 @@ vector_newtype!(Distribution, "shares");
 /// all weighted needs are zero and the smoothing adds nothing; [`RneError::InvalidEpsilon`].
 ///
 /// # Reference
-/// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 6 and Algorithm 4 (NDC).
+/// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 8 and Algorithm 4 (NDC).
 pub fn needs_distribution(
     needs: &NeedsVector,
     weights: &Weights,
@@ -140,7 +140,7 @@ pub fn needs_distribution(
     Distribution::from_weighted(v, opts, "needs vector")
 }
 
-/// A group's needs distribution, Eqs. 8 and 10 (Defs. 2-3):
+/// A group's needs distribution, Eqs. 11 and 16 (Defs. 2-3):
 ///
 /// `D_G[k] = w_k sum_{r=1..i} N[r, k] / sum_{k'} w_k' sum_r N[r, k']` for the `i x j` needs
 /// matrix `N` (weighted column sums, normalised), then smoothed and optionally sorted like
@@ -151,7 +151,7 @@ pub fn needs_distribution(
 /// [`needs_distribution`].
 ///
 /// # Reference
-/// `D_G = (1_i^T N .* W^T) / (1_i^T N W)`; paper Defs. 2-3, Eqs. 8 and 10.
+/// `D_G = (1_i^T N .* W^T) / (1_i^T N W)`; paper Defs. 2-3, Eqs. 11 and 16.
 pub fn group_distribution(
     group: &NeedsMatrix,
     weights: &Weights,
@@ -190,7 +190,7 @@ mod tests {
             &opts,
         )
         .unwrap();
-        // The paper prints 0.4884 for d_11 in the text and 0.4886 in Eq. 15; 0.4886 is right.
+        // The paper prints 0.4884 for d_11 in the text and 0.4886 in Eq. 9; 0.4886 is right.
         for (got, want) in d.as_slice().iter().zip([0.488_636, 0.454_545, 0.056_818]) {
             assert_relative_eq!(*got, want, epsilon = 1e-6);
         }

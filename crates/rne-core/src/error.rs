@@ -53,7 +53,7 @@ pub enum RneError {
         what: &'static str,
     },
     /// All weighted needs are zero and smoothing is off, so the needs distribution
-    /// (Eq. 6 / Eq. 8) is `0/0`.
+    /// (Eq. 8 / Eq. 11) is `0/0`.
     #[error(
         "{what} has all weighted needs equal to zero; its needs distribution is undefined (enable smoothing or give it a non-zero need)"
     )]

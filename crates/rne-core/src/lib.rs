@@ -5,8 +5,8 @@
 //! Model", IEEE SMC 2021.
 //!
 //! * [`needs`]: needs vectors, weights, group needs matrices (Defs. 1-3).
-//! * [`distribution`]: needs distributions (Eqs. 6, 8, 10; Algorithm 4), smoothing, alignment.
-//! * [`rne`](mod@rne): RNE `T(P||Q)` (Eqs. 5, 9, 11; Algorithm 3) and [`TrustModel`].
+//! * [`distribution`]: needs distributions (Eqs. 8, 11, 16; Algorithm 4), smoothing, alignment.
+//! * [`rne`](mod@rne): RNE `T(P||Q)` (Eqs. 7, 12, 17; Algorithm 3) and [`TrustModel`].
 //! * [`combinations`](mod@combinations): all subgroup combinations (Algorithm 2).
 //! * [`grouping`]: hierarchical RNE grouping (Algorithm 1) and the DIS, ENG, HP_DIS baselines.
 //!

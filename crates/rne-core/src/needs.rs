@@ -21,11 +21,11 @@ fn check_needs(values: &[f64]) -> Result<()> {
     }
 }
 
-/// One robot's needs vector `N_R = (n_1, ..., n_j)` (paper Def. 1, Eqs. 12-14).
+/// One robot's needs vector `N_R = (n_1, ..., n_j)` (paper Def. 1, Eqs. 19-21).
 ///
 /// Shape: `j >= 1` entries, one per needs category (e.g. `hp, v, sen, eng, res, cap, obs` in the
 /// paper's USAR team). Each entry is finite and `>= 0`, in whatever unit the category uses;
-/// only ratios matter after weighting and normalisation (Eq. 6).
+/// only ratios matter after weighting and normalisation (Eq. 8).
 ///
 /// Serialises as a plain list of numbers; deserialising validates.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -47,7 +47,7 @@ impl NeedsVector {
 
 vector_newtype!(NeedsVector, "needs", validated);
 
-/// The weight vector `W = (w_1, ..., w_j)` giving each needs category's priority (Def. 1, Eq. 6).
+/// The weight vector `W = (w_1, ..., w_j)` giving each needs category's priority (Def. 1, Eq. 8).
 ///
 /// Shape: `j >= 1` entries, each finite and `> 0` (dimensionless). Example 1 uses `[6, 4, 2]`.
 /// Serialises as a plain list of numbers; deserialising validates.
@@ -88,7 +88,7 @@ impl Weights {
 
 vector_newtype!(Weights, "weights", validated);
 
-/// A group's needs matrix (Eq. 10): `i` rows (robots) by `j` columns (needs categories).
+/// A group's needs matrix (Eq. 15): `i` rows (robots) by `j` columns (needs categories).
 ///
 /// Every entry is finite and `>= 0`; `i >= 1` and `j >= 1`. Serialises as a list of rows.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -1,4 +1,4 @@
-//! Property tests of RNE (Eqs. 5, 9, 11) over random needs vectors.
+//! Property tests of RNE (Eqs. 7, 12, 17) over random needs vectors.
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;

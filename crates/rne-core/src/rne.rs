@@ -1,4 +1,4 @@
-//! Relative Needs Entropy (Eqs. 1, 5, 9, 11; Algorithm 3, GRC) and the trust model.
+//! Relative Needs Entropy (Eqs. 1, 7, 12, 17; Algorithm 3, GRC) and the trust model.
 
 use std::fmt;
 use std::str::FromStr;
@@ -144,7 +144,7 @@ pub fn relative_entropy(p: &[f64], q: &[f64], base: LogBase) -> Result<f64> {
     Ok(nats / base.ln())
 }
 
-/// RNE `T(P||Q) = sum_k p_k log_b(p_k / q_k)` between two needs distributions (Eqs. 5, 9, 11;
+/// RNE `T(P||Q) = sum_k p_k log_b(p_k / q_k)` between two needs distributions (Eqs. 7, 12, 17;
 /// Algorithm 3 loop body). `>= 0` by Gibbs' inequality; rounding noise below zero is clamped
 /// to 0. Returns `f64::INFINITY` when `q_k = 0 < p_k` for some `k` (only possible without
 /// smoothing). Lower = more trust.
@@ -153,7 +153,7 @@ pub fn relative_entropy(p: &[f64], q: &[f64], base: LogBase) -> Result<f64> {
 /// [`RneError::LengthMismatch`] if the lengths differ.
 ///
 /// # Reference
-/// `T(P||Q) = D_KL(P||Q)`; paper Eqs. 5, 9, 11 and Algorithm 3 (GRC).
+/// `T(P||Q) = D_KL(P||Q)`; paper Eqs. 7, 12, 17 and Algorithm 3 (GRC).
 pub fn rne(p: &Distribution, q: &Distribution, base: LogBase) -> Result<f64> {
     Ok(relative_entropy(p.as_slice(), q.as_slice(), base)?.max(0.0))
 }
@@ -218,12 +218,12 @@ impl TrustModel {
         &self.options
     }
 
-    /// A robot's needs distribution (Eq. 6, Algorithm 4). Errors as [`needs_distribution`].
+    /// A robot's needs distribution (Eq. 8, Algorithm 4). Errors as [`needs_distribution`].
     pub fn distribution(&self, needs: &NeedsVector) -> Result<Distribution> {
         needs_distribution(needs, &self.weights, &self.options.distribution())
     }
 
-    /// A group's needs distribution (Eqs. 8, 10). Errors as [`group_distribution`].
+    /// A group's needs distribution (Eqs. 11, 16). Errors as [`group_distribution`].
     pub fn group_distribution(&self, group: &NeedsMatrix) -> Result<Distribution> {
         group_distribution(group, &self.weights, &self.options.distribution())
     }
@@ -236,7 +236,7 @@ impl TrustModel {
         rne(p, q, self.options.log_base)
     }
 
-    /// Agent-agent trust `T(R1||R2)`, Def. 1, Eq. 5 (Example 1).
+    /// Agent-agent trust `T(R1||R2)`, Def. 1, Eq. 7 (Example 1).
     ///
     /// # Errors
     /// As [`needs_distribution`] for either robot.
@@ -244,7 +244,7 @@ impl TrustModel {
         self.rne(&self.distribution(trustor)?, &self.distribution(trustee)?)
     }
 
-    /// Agent-group trust `T(D_R||D_RG)`, Def. 2, Eq. 9 (Example 2).
+    /// Agent-group trust `T(D_R||D_RG)`, Def. 2, Eq. 12 (Example 2).
     ///
     /// # Errors
     /// As [`needs_distribution`] and [`group_distribution`].
@@ -255,7 +255,7 @@ impl TrustModel {
         )
     }
 
-    /// Group-group trust `T(D_N1||D_N2)`, Def. 3, Eq. 11, Algorithm 3 (GRC) (Example 3).
+    /// Group-group trust `T(D_N1||D_N2)`, Def. 3, Eq. 17, Algorithm 3 (GRC) (Example 3).
     ///
     /// # Errors
     /// As [`group_distribution`] for either group.

@@ -1,4 +1,4 @@
-//! `usar trust`: RNE trust values between robots and groups (paper Defs. 1-3, Eqs. 5-11).
+//! `usar trust`: RNE trust values between robots and groups (paper Defs. 1-3, Eqs. 7-17).
 
 use std::io::Write;
 
@@ -200,7 +200,7 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
         "RNE T(row || column) in {}; lower = more trust; * = lowest in row",
         unit(log_base)
     )?;
-    writeln!(out, "\nNeeds distributions (Eqs. 6, 8):")?;
+    writeln!(out, "\nNeeds distributions (Eqs. 8, 11):")?;
     write!(out, "{}", distribution_lines(&robot_labels, &rd))?;
     write!(out, "{}", distribution_lines(&group_labels, &gd))?;
     let robots_side = Side {
@@ -213,19 +213,19 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
     };
     let sections = [
         (
-            "Robot-robot RNE T(Ri || Rj) (Eq. 5):",
+            "Robot-robot RNE T(Ri || Rj) (Eq. 7):",
             &robots_side,
             &robots_side,
             true,
         ),
         (
-            "Robot-group RNE T(Ri || Gk) (Eq. 9):",
+            "Robot-group RNE T(Ri || Gk) (Eq. 12):",
             &robots_side,
             &groups_side,
             false,
         ),
         (
-            "Group-group RNE T(Gk || Gl) (Eq. 11):",
+            "Group-group RNE T(Gk || Gl) (Eq. 17):",
             &groups_side,
             &groups_side,
             true,

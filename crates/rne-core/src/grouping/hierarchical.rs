@@ -40,7 +40,7 @@ pub struct HierarchicalOutcome {
 ///
 /// 1. **Split** (Alg. 1 lines 3-5, Alg. 2): among all splits of the kind into subgroups of
 ///    sizes `e_k` and `h_k` ([`two_way_splits`], each unordered split once), take the one with
-///    the largest *between-RNE* `J(A, B) = T(A||B) + T(B||A)` (group distributions, Eq. 8;
+///    the largest *between-RNE* `J(A, B) = T(A||B) + T(B||A)` (group distributions, Eq. 16;
 ///    0 if a side is empty). Ties: first in ASC order.
 /// 2. **Merge** (Alg. 1 lines 6-11): the running pair `(X1, X2)` is merged with the kind's
 ///    pair `(Y1, Y2)` by the pairing `(X1+Y1, X2+Y2)` or `(X1+Y2, X2+Y1)` with the larger
@@ -82,7 +82,7 @@ impl HierarchicalRne {
     }
 
     /// Between-RNE of two groups: the symmetric sum `J(A,B) = T(A||B) + T(B||A)` of group
-    /// RNEs (Eq. 11), `>= 0`, possibly `+inf` without smoothing. Defined as 0 if either group
+    /// RNEs (Eq. 17), `>= 0`, possibly `+inf` without smoothing. Defined as 0 if either group
     /// is empty (nothing to compare).
     ///
     /// # Errors
@@ -101,7 +101,7 @@ impl HierarchicalRne {
     }
 
     /// Within-group RNE: the mean over members `r` of the agent-group RNE `T(D_r || D_G)`
-    /// (Eq. 9) to the group `G` they belong to. Lower = the group trusts itself more. 0 for an
+    /// (Eq. 12) to the group `G` they belong to. Lower = the group trusts itself more. 0 for an
     /// empty group.
     ///
     /// # Errors

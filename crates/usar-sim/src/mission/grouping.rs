@@ -26,7 +26,7 @@ pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<
 }
 
 /// The snapshot of robot `r` standing at its start position, as grouping methods see it: its
-/// needs vector (Eqs. 17-19 with full capacity and resources, refilled each round), energy,
+/// needs vector (Eqs. 19-21 with full capacity and resources, refilled each round), energy,
 /// HP, and the straight-line distance from its start position to each task's goal point.
 pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
     let start = scenario.robots[r.id].start_in_world;

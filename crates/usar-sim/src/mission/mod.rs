@@ -1,7 +1,7 @@
 //! The persistent USAR mission on top of the world: needs, rounds, rescuing, regrouping and
 //! metrics (paper, sections IV-VI). The rules are in `docs/mission-model.md`.
 //!
-//! - [`needs`](needs_vector): a robot's 7-entry needs vector (Eqs. 17-19).
+//! - [`needs`](needs_vector): a robot's 7-entry needs vector (Eqs. 19-21).
 //! - [`draw_initial_levels`]: the trial's starting energy and HP (common random numbers).
 //! - [`group_available`]: regrouping at each round's start with adapted quotas.
 //! - [`Simulation`]: one trial; [`TrialResult`]: its metrics.

@@ -1,11 +1,11 @@
 //! A robot's 7-entry needs vector (hp, v, sen, eng, res, cap, obs) from its current state
-//! (paper, Eqs. 17-19 and section VI.B).
+//! (paper, Eqs. 19-21 and section VI.B).
 
 use rne_core::NeedsVector;
 
 use crate::scenario::RobotKind;
 
-/// Index of each entry of the needs vector, in the paper's order (Eqs. 17-19).
+/// Index of each entry of the needs vector, in the paper's order (Eqs. 19-21).
 pub mod entry {
     /// Health points.
     pub const HP: usize = 0;
@@ -36,7 +36,7 @@ pub fn hp_factor(hp_pct: f64) -> f64 {
 /// The needs vector of a robot of `kind` at `hp_pct` and `energy_pct` (both in `[0, 100]`),
 /// with `resources` rescuing resources and `capacity` free carrying capacity left.
 ///
-/// Entries (paper, Eqs. 17-19, ratios of section VI.B through the kind's fields):
+/// Entries (paper, Eqs. 19-21, ratios of section VI.B through the kind's fields):
 /// `hp = hp_needs_full * hp_pct/100`, `v = max_speed_m_per_s * f(hp)`,
 /// `sen = sensing_range_m * f(hp)`, `eng = energy_needs_full * energy_pct/100`,
 /// `res = resources`, `cap = capacity`, `obs = observing_range_m * f(hp)`, with `f` =

@@ -139,7 +139,7 @@ impl Simulation {
         &self.robots
     }
 
-    /// Robot `id`'s needs vector now (Eqs. 17-19; see [`needs_vector`]): its current HP and
+    /// Robot `id`'s needs vector now (Eqs. 19-21; see [`needs_vector`]): its current HP and
     /// energy, and the rescuing resources and free carrying capacity it holds at this step.
     /// (Grouping methods see the same vector with capacity and resources refilled, as at the
     /// start of a round.)

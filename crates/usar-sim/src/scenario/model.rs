@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 /// A point in the world frame, metres.
 pub type PointM = Point2<f64>;
 
-/// Number of entries of the paper's needs vector (hp, v, sen, eng, res, cap, obs), Eqs. 17-19.
+/// Number of entries of the paper's needs vector (hp, v, sen, eng, res, cap, obs), Eqs. 19-21.
 pub const NEEDS_LEN: usize = 7;
 
 /// A fully validated USAR scenario (paper, sections IV-VI).
@@ -41,7 +41,7 @@ pub struct Scenario {
     pub debris: Vec<Debris>,
     /// Radiation zones: robots inside lose HP.
     pub radiation_zones: Vec<RadiationZone>,
-    /// Weights of the 7-entry needs vector (hp, v, sen, eng, res, cap, obs), all > 0 (Eq. 6).
+    /// Weights of the 7-entry needs vector (hp, v, sen, eng, res, cap, obs), all > 0 (Eq. 8).
     pub needs_weights: [f64; NEEDS_LEN],
     /// Mission rules: energy and HP costs, thresholds, recharging, initial levels (section VI.B).
     pub mission: MissionParams,
