@@ -67,12 +67,20 @@ pub struct TrialRecord {
     pub outcome: Outcome,
 }
 
-/// One line of the journal.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// One line of the journal, as read back.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 enum Line {
     Header(SweepHeader),
     Trial(TrialRecord),
+}
+
+/// One line of the journal, as written: the same JSON as [`Line`], borrowing its content.
+#[derive(Serialize)]
+#[serde(rename_all = "snake_case")]
+enum LineRef<'a> {
+    Header(&'a SweepHeader),
+    Trial(&'a TrialRecord),
 }
 
 /// An open journal, appending one flushed line per record.
@@ -102,7 +110,7 @@ impl Journal {
             .open(&path)
             .with_context(|| format!("creating {}", path.display()))?;
         let mut j = Self { path, file };
-        j.append_line(&Line::Header(header.clone()))?;
+        j.append_line(&LineRef::Header(header))?;
         Ok(j)
     }
 
@@ -129,9 +137,11 @@ impl Journal {
             let complete = line.ends_with('\n');
             let parsed = serde_json::from_str::<Line>(line.trim_end());
             match parsed {
+                // A last line without its newline was cut short by a kill, even when what
+                // was written of it happens to parse: the record is redone.
+                _ if i > 0 && i + 1 == n_lines && !complete => break,
                 Ok(Line::Header(h)) if i == 0 => found = Some(h),
                 Ok(Line::Trial(r)) if i > 0 && complete => records.push(r),
-                Err(_) if i + 1 == n_lines && !complete => break, // cut short by a kill
                 Ok(_) | Err(_) => bail!(
                     "{}:{}: not a valid journal line; the journal is damaged (move it away \
                      and run the sweep again without --resume)",
@@ -170,10 +180,10 @@ impl Journal {
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, record: &TrialRecord) -> Result<()> {
-        self.append_line(&Line::Trial(record.clone()))
+        self.append_line(&LineRef::Trial(record))
     }
 
-    fn append_line(&mut self, line: &Line) -> Result<()> {
+    fn append_line(&mut self, line: &LineRef<'_>) -> Result<()> {
         let mut s = serde_json::to_string(line).context("serialising a journal line")?;
         s.push('\n');
         self.file
@@ -293,6 +303,14 @@ mod tests {
         drop(j);
         let (_, recs) = Journal::open_resume(dir.path(), &header()).unwrap();
         assert_eq!(recs, vec![record(0), record(1)]);
+        // A kill after the record but before its newline: the record parses but is redone.
+        let whole = serde_json::to_string(&LineRef::Trial(&record(2))).unwrap();
+        let mut f = OpenOptions::new().append(true).open(&path).unwrap();
+        f.write_all(whole.as_bytes()).unwrap();
+        drop(f);
+        let (_, recs) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(recs, vec![record(0), record(1)]);
+        assert!(fs::read_to_string(&path).unwrap().ends_with('\n'));
     }
 
     #[test]

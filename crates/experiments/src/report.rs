@@ -227,7 +227,9 @@ pub fn pval(p: f64) -> String {
     }
 }
 
-fn mean_sd(s: &Summary) -> String {
+/// `mean ± sd` of a summary, the mean alone when the sd is undefined (n = 1), `n/a` for no
+/// values.
+pub(crate) fn mean_sd(s: &Summary) -> String {
     if s.n == 0 {
         "n/a".to_string()
     } else if s.sd.is_finite() {

@@ -2,8 +2,9 @@
 
 use std::fmt::Write as _;
 
-/// Formats `x` with 6 significant digits: `0.00372546`, `0.000504443`, `12.3457`; `0` for
-/// zero, `inf` for infinity; scientific notation below `1e-6` or from `1e9` up.
+/// Formats `x` with 6 significant digits below `1e6` (`0.00372546`, `0.000504443`,
+/// `12.3457`); from `1e6` to `1e9` as a whole number (up to 9 digits); `0` for zero, `inf`
+/// for infinity; scientific notation below `1e-6` or from `1e9` up.
 pub fn sig6(x: f64) -> String {
     if x == 0.0 {
         return "0".to_string();
@@ -67,7 +68,7 @@ pub fn matrix(
     s
 }
 
-/// Indices of the minimum of `row` ignoring `skip` (e.g. the diagonal); `None` if nothing
+/// Indices of the minimum of `row` ignoring `skip` (e.g. the diagonal); empty if nothing
 /// remains. All tied minima are returned.
 pub fn row_minima(row: &[f64], skip: Option<usize>) -> Vec<usize> {
     let min = row

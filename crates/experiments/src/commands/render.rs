@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use rne_core::grouping::method_from_name;
-use rne_core::{TrustModel, Weights};
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario};
 
@@ -70,8 +69,7 @@ pub fn trace_trial(
     trial: u32,
     duration_s: Option<f64>,
 ) -> Result<Vec<Trace>> {
-    let weights = Weights::new(scenario.needs_weights.to_vec()).context("needs_weights")?;
-    let model = TrustModel::with_weights(weights);
+    let model = crate::sweep::trust_model(scenario)?;
     let method = method_from_name(method, &model).context("--method")?;
     let mut sim = Simulation::for_trial(scenario, method, trial);
     if let Some(d) = duration_s {

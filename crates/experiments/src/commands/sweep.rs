@@ -9,7 +9,7 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario;
 
-use crate::report::{CLAIMS, check_claim, num};
+use crate::report::{CLAIMS, check_claim, mean_sd};
 use crate::stats::Summary;
 use crate::summary::{metric, rows_of, values};
 use crate::sweep::{
@@ -188,12 +188,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
         let rows = rows_of(&o.results, m);
         write!(out, "{m:<8}")?;
         for c in cols {
-            let s = Summary::of(&values(&rows, metric(c)));
-            let cell = if s.sd.is_finite() {
-                format!("{} ± {}", num(s.mean), num(s.sd))
-            } else {
-                num(s.mean)
-            };
+            let cell = mean_sd(&Summary::of(&values(&rows, metric(c))));
             write!(out, " {cell:>16}")?;
         }
         writeln!(out)?;
@@ -201,11 +196,20 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     writeln!(out, "\nclaims (one-sided Welch, p < 0.05):")?;
     for c in CLAIMS {
         let chk = check_claim(c, &o.results, &h.methods);
+        // A NaN p (a comparison that could not be tested) makes the worst p NaN ("n/a"),
+        // rather than being skipped by max.
         let worst_p = chk
             .comparisons
             .iter()
             .map(|x| x.welch.p)
-            .fold(f64::NAN, f64::max);
+            .reduce(|a, b| {
+                if a.is_nan() || b.is_nan() {
+                    f64::NAN
+                } else {
+                    a.max(b)
+                }
+            })
+            .unwrap_or(f64::NAN);
         writeln!(
             out,
             "  ({}) {}: {} (max p = {})",
