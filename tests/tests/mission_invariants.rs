@@ -58,7 +58,11 @@ fn check_method(name: &str) {
                     matches!(phase0, Phase::Recharging { .. }),
                     "{name}: energy rose"
                 );
-                assert!(s.rest_station.contains(&w.position) || w.goal.is_some());
+                assert!(
+                    s.rest_station.contains(&w.position),
+                    "{name}: robot {} recharged outside the rest station",
+                    r.id
+                );
                 assert_eq!(r.energy_pct, 100.0);
             }
             // HP falls only inside radiation zones, at the paper's rate times the dose factor.
@@ -128,10 +132,8 @@ fn check_method(name: &str) {
             "{name}: {level:?} count"
         );
     }
-    let picked: u32 = result.robots.iter().map(|m| m.picked_up).sum();
     let delivered: u32 = result.robots.iter().map(|m| m.delivered).sum();
     assert_eq!(delivered, result.rescued_total());
-    assert!(picked >= delivered);
     let per_round: u32 = result
         .rounds
         .iter()

@@ -139,10 +139,21 @@ fn paper_team_random_levels_hard_group_is_stronger_in_most_trials() {
     println!(
         "hard group stronger: {stronger}/{trials}; per kind (carrier, supplier, observer): {per_kind:?}"
     );
-    // Not guaranteed trial by trial (RNE sees needs *shares*, not levels); in practice ~90 %.
+    // Not guaranteed trial by trial (RNE sees needs *shares*, not levels). The run is
+    // deterministic and gives 97/100 and per kind [90, 84, 70], the figures docs/trust-model.md
+    // quotes; the bounds keep those statements true, including that the observer is the
+    // exception.
     assert!(
-        stronger >= 80,
+        stronger >= 95,
         "hard group stronger in only {stronger}/{trials} trials"
+    );
+    assert!(
+        per_kind[0] >= 85 && per_kind[1] >= 80,
+        "per kind {per_kind:?}"
+    );
+    assert!(
+        per_kind[2] <= 80,
+        "the observer caveat no longer holds: {per_kind:?}"
     );
 }
 
@@ -242,11 +253,17 @@ proptest! {
         let model = TrustModel::new(Weights::uniform(3).unwrap(), opts).unwrap();
         for name in METHOD_NAMES {
             let method = method_from_name(name, &model).unwrap();
-            match method.group(&req) {
+            // `assign`, not `group`: `group` would validate the partition itself.
+            match method.assign(&req) {
                 Ok(a) => {
                     prop_assert_eq!(a.easy.len() + a.hard.len(), req.robots().len());
                     for r in req.robots() {
-                        prop_assert!(a.task_of(r.id).is_some());
+                        let in_easy = a.easy.contains(&r.id);
+                        prop_assert!(in_easy != a.hard.contains(&r.id), "{}: robot {} placed {} times", name, r.id, if in_easy { 2 } else { 0 });
+                    }
+                    for (kind, q) in req.quotas().iter().enumerate() {
+                        let of_kind = |ids: &[usize]| ids.iter().filter(|&&id| req.robot(id).is_some_and(|r| r.kind == kind)).count();
+                        prop_assert_eq!((of_kind(&a.easy), of_kind(&a.hard)), (q.easy, q.hard), "{}: kind {}", name, kind);
                     }
                 }
                 // RNE cannot build the distribution of an all-zero group; nothing else fails.

@@ -57,10 +57,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn trial_seeds_differ_and_repeat() {
+    fn trial_seeds_are_pinned_and_distinct() {
+        // Pinned: changing `trial_seed` would silently change every sweep's starting teams
+        // (the seeds reports of paper.ron, base 2021, list).
+        assert_eq!(trial_seed(2021, 0), 4_805_600_293_067_301_895);
+        assert_eq!(trial_seed(2021, 9), 1_107_063_473_387_133_596);
         let a: Vec<u64> = (0..10).map(|k| trial_seed(1, k)).collect();
-        let b: Vec<u64> = (0..10).map(|k| trial_seed(1, k)).collect();
-        assert_eq!(a, b);
         let mut sorted = a.clone();
         sorted.sort_unstable();
         sorted.dedup();
