@@ -344,6 +344,7 @@ pub fn report_md(input: &ReportInput<'_>) -> String {
         r.push('\n');
     }
     r.push('\n');
+    round_lengths(&mut r, methods, &o.results);
 
     // Claims.
     let _ = writeln!(r, "## The paper's claims (section VI, Fig. 3)\n");
@@ -475,4 +476,48 @@ pub fn report_md(input: &ReportInput<'_>) -> String {
         );
     }
     r
+}
+
+/// Appends the "Round lengths" subsection: completed rounds per method and over all methods,
+/// with their median, 95th percentile (statrs order statistics) and longest length, seconds,
+/// and the mean number of rounds started per trial. A stalled round (robots unable to get
+/// back) shows up here long before it moves a mean.
+fn round_lengths(r: &mut String, methods: &[String], results: &[TrialResult]) {
+    use statrs::statistics::{Data, OrderStatistics};
+    let _ = writeln!(
+        r,
+        "### Round lengths\n\nCompleted rounds (a round cut by the time limit is not \
+         counted), seconds.\n\n| method | completed rounds | median | 95th percentile | \
+         longest | rounds started per trial |\n|---|---|---|---|---|---|"
+    );
+    let all = std::iter::once("all").chain(methods.iter().map(String::as_str));
+    for m in all {
+        let trials: Vec<&TrialResult> = results
+            .iter()
+            .filter(|t| m == "all" || t.method == m)
+            .collect();
+        let lengths: Vec<f64> = trials
+            .iter()
+            .flat_map(|t| t.rounds.iter().filter(|x| x.completed))
+            .map(|x| x.end_s - x.start_s)
+            .collect();
+        if lengths.is_empty() {
+            let _ = writeln!(r, "| {m} | 0 | n/a | n/a | n/a | n/a |");
+            continue;
+        }
+        let started =
+            trials.iter().map(|t| t.rounds.len()).sum::<usize>() as f64 / trials.len() as f64;
+        let longest = lengths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let mut data = Data::new(lengths.clone());
+        let _ = writeln!(
+            r,
+            "| {m} | {} | {} | {} | {} | {} |",
+            lengths.len(),
+            num(data.median()),
+            num(data.percentile(95)),
+            num(longest),
+            num(started)
+        );
+    }
+    r.push('\n');
 }
