@@ -161,7 +161,8 @@ pub struct RobotKind {
 pub struct RobotStart {
     /// Index into [`Scenario::kinds`].
     pub kind: usize,
-    /// Start position, world frame, metres; inside the arena and outside debris.
+    /// Start position, world frame, metres; inside the arena, and for ground robots clear of
+    /// debris by at least the body radius.
     pub start_in_world: PointM,
 }
 
@@ -304,8 +305,9 @@ pub struct CollisionParams {
     pub lookahead_s: f64,
     /// Gap kept between bodies, metres, >= 0 (default 0.2).
     pub safety_margin_m: f64,
-    /// A collision list whose members have all stood still this long is a deadlock, seconds,
-    /// > 0 (default 2.0).
+    /// A collision list none of whose members has made progress along its path (remaining
+    /// path length down by more than 0.05 m) for this long is a deadlock, seconds, > 0
+    /// (default 2.0).
     pub deadlock_after_s: f64,
 }
 

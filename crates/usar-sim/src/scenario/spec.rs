@@ -431,7 +431,8 @@ pub struct CollisionSpec {
     pub lookahead_s: f64,
     /// Gap kept between bodies, metres, finite, >= 0; default 0.2.
     pub safety_margin_m: f64,
-    /// Standstill time that makes a deadlock, seconds, finite, > 0; default 2.0.
+    /// Time without progress along their paths (see `docs/world-model.md`) that makes a
+    /// collision list a deadlock, seconds, finite, > 0; default 2.0.
     pub deadlock_after_s: f64,
 }
 

@@ -135,8 +135,9 @@ impl ClearanceGrid {
         best.map(|(_, idx)| idx)
     }
 
-    fn successors(&self, idx: u32, inflation: f32, out: &mut Vec<(u32, u32)>) {
-        out.clear();
+    fn successors(&self, idx: u32, inflation: f32) -> impl Iterator<Item = (u32, u32)> + use<> {
+        let mut out = [(0u32, 0u32); 8];
+        let mut k = 0;
         let ix = (idx % self.nx) as i64;
         let iy = (idx / self.nx) as i64;
         let free = |x: i64, y: i64| {
@@ -148,21 +149,24 @@ impl ClearanceGrid {
         };
         for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
             if free(ix + dx, iy + dy) {
-                out.push((
+                out[k] = (
                     ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
                     STRAIGHT_COST,
-                ));
+                );
+                k += 1;
             }
         }
         for (dx, dy) in [(1, 1), (-1, 1), (1, -1), (-1, -1)] {
             // No corner cutting: both orthogonal neighbours must be free too.
             if free(ix + dx, iy + dy) && free(ix + dx, iy) && free(ix, iy + dy) {
-                out.push((
+                out[k] = (
                     ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
                     DIAGONAL_COST,
-                ));
+                );
+                k += 1;
             }
         }
+        out.into_iter().take(k)
     }
 
     fn octile(&self, a: u32, b: u32) -> u32 {
@@ -180,8 +184,7 @@ type PlanKey = (u32, u32, u32);
 /// cell). Deterministic: a cache hit returns exactly what planning would.
 #[derive(Debug, Clone, Default)]
 pub struct PathPlanner {
-    cache: HashMap<PlanKey, Vec<u32>>,
-    succ: Vec<(u32, u32)>,
+    cache: HashMap<PlanKey, Result<Vec<u32>, NavError>>,
 }
 
 impl PathPlanner {
@@ -228,14 +231,16 @@ impl PathPlanner {
             (g, grid.cell_center(g))
         };
         let key = (inflation.to_bits(), start, goal);
+        // Failures are cached too: the grid never changes, so a search that found no path
+        // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
-            let cells = self.search(grid, start, goal, inflation)?;
+            let cells = self.search(grid, start, goal, inflation);
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
                 self.cache.clear();
             }
             self.cache.insert(key, cells);
         }
-        let cells = &self.cache[&key];
+        let cells = self.cache[&key].as_ref().map_err(|e| *e)?;
         if start != start_raw {
             out.push(grid.cell_center(start));
         }
@@ -262,13 +267,9 @@ impl PathPlanner {
         if start == goal {
             return Ok(vec![start, goal]);
         }
-        let succ = &mut self.succ;
         let (raw, _) = astar(
             &start,
-            |&n| {
-                grid.successors(n, inflation, succ);
-                succ.clone()
-            },
+            |&n| grid.successors(n, inflation),
             |&n| grid.octile(n, goal),
             |&n| n == goal,
         )

@@ -141,7 +141,6 @@ impl Resolver {
     /// A resolver for `n` robots.
     pub fn new(params: CollisionParams, n: usize) -> Self {
         let memory = vec![Memory::default(); n];
-        let n = memory.len();
         Self {
             params,
             parent: (0..n).collect(),

@@ -354,10 +354,12 @@ impl World {
         let p = to_vec2(&position);
         let (w, h) = self.arena;
         if !(p.is_finite() && p.x >= 0.0 && p.y >= 0.0 && p.x <= w && p.y <= h) {
-            return Err(WorldError::InvalidValue {
-                what: "teleport x",
-                value: position.x,
-            });
+            let (what, value) = if p.x.is_finite() && p.x >= 0.0 && p.x <= w {
+                ("teleport y", position.y)
+            } else {
+                ("teleport x", position.x)
+            };
+            return Err(WorldError::InvalidValue { what, value });
         }
         self.set_goal(id, None)?;
         let nav = &mut self.nav[id];
@@ -457,6 +459,7 @@ impl World {
     fn update_intent(&mut self, id: usize) {
         let tol = self.navigation.waypoint_tolerance_m as f32;
         let check_infl = self.check_inflation(id);
+        let infl = self.plan_inflation(id);
         let steps = self.stats.steps;
         let dt = self.dt as f32;
         let state = &mut self.robots[id];
@@ -489,25 +492,21 @@ impl World {
                 .grid
                 .line_of_sight(p, target, check_infl, PATH_CHECK_MAX_M)
                 && let Some(requested) = nav.requested
-            {
-                let infl = nav.radius
-                    + self.navigation.clearance_m as f32
-                    + 0.5 * self.navigation.grid_cell_m as f32;
-                if let Ok(eff) = self.planner.plan(
+                // On failure the old path is kept; physics keeps the robot out of obstacles.
+                && let Ok(eff) = self.planner.plan(
                     &self.grid,
                     self.arena,
                     p,
                     requested,
                     infl,
                     &mut self.scratch,
-                ) {
-                    std::mem::swap(&mut nav.path, &mut self.scratch);
-                    nav.goal = Some(eff);
-                    state.goal = Some(to_point(eff));
-                    nav.wp = 0;
-                    state.counters.replans += 1;
-                }
-                // On failure the old path is kept; physics keeps the robot out of obstacles.
+                )
+            {
+                std::mem::swap(&mut nav.path, &mut self.scratch);
+                nav.goal = Some(eff);
+                state.goal = Some(to_point(eff));
+                nav.wp = 0;
+                state.counters.replans += 1;
             }
         }
         let last = nav.path.len() - 1;
