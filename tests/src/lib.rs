@@ -2,7 +2,8 @@
 
 use rne_core::grouping::{GroupingMethod, method_from_name};
 use rne_core::{TrustModel, Weights};
-use usar_sim::scenario::{self, Scenario};
+use usar_sim::mission::Simulation;
+use usar_sim::scenario::{self, ClampedNormal, Scenario};
 
 /// Path of a file in the workspace's `scenarios/` folder.
 pub fn scenario_path(file: &str) -> String {
@@ -25,4 +26,33 @@ pub fn paper() -> Scenario {
 pub fn method(name: &str, s: &Scenario) -> Box<dyn GroupingMethod> {
     let model = TrustModel::with_weights(Weights::new(s.needs_weights.to_vec()).expect("weights"));
     method_from_name(name, &model).expect("built-in method")
+}
+
+/// A "distribution" that always draws `level_pct` (no spread), for fixed starting levels.
+pub fn fixed(level_pct: f64) -> ClampedNormal {
+    ClampedNormal {
+        mean_pct: level_pct,
+        std_dev_pct: 0.0,
+        min_pct: 0.0,
+        max_pct: 100.0,
+    }
+}
+
+/// `(method, trial, hard rescuees, easy rescuees)` of whole trials 0 and 1 of `s` for each
+/// built-in grouping method, in the order rne, dis, eng, hp_dis: the golden numbers the
+/// tests pin.
+///
+/// # Panics
+/// If a trial fails (built-in methods do not).
+pub fn golden_counts(s: &Scenario) -> Vec<(&'static str, u32, u32, u32)> {
+    let mut out = Vec::new();
+    for name in ["rne", "dis", "eng", "hp_dis"] {
+        for trial in 0..2 {
+            let r = Simulation::for_trial(s, method(name, s), trial)
+                .run_to_end()
+                .expect("built-in methods do not fail");
+            out.push((name, trial, r.rescued.hard, r.rescued.easy));
+        }
+    }
+    out
 }

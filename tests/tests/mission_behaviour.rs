@@ -1,19 +1,8 @@
 //! Behaviour of the mission rules (paper, section VI.B), each on a variant of paper.ron.
 
-use integration_tests::{method, paper};
+use integration_tests::{fixed, method, paper};
 use usar_sim::mission::{Phase, Simulation, hp_factor};
-use usar_sim::scenario::{
-    Circle, ClampedNormal, Locomotion, RadiationZone, Role, Scenario, TaskLevel,
-};
-
-fn fixed(level_pct: f64) -> ClampedNormal {
-    ClampedNormal {
-        mean_pct: level_pct,
-        std_dev_pct: 0.0,
-        min_pct: 0.0,
-        max_pct: 100.0,
-    }
-}
+use usar_sim::scenario::{Circle, Locomotion, RadiationZone, Role, Scenario, TaskLevel};
 
 /// Highest speed robot `id` reaches during the first `seconds` of the trial, m/s.
 fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
@@ -87,7 +76,7 @@ fn lower_hp_means_lower_speed() {
     let (low, _) = run(60.0);
     assert!((full - v_max).abs() < 0.02 * v_max, "{full}");
     assert!(
-        (low - hp_factor(60.0) * v_max).abs() < 0.02 * v_max,
+        (low - hp_factor(60.0, paper().mission.min_hp_factor) * v_max).abs() < 0.02 * v_max,
         "{low}"
     );
     assert!(low < full);
@@ -288,7 +277,10 @@ fn the_needs_vector_follows_the_robot_state() {
     let v = now.as_slice();
     assert!((v[entry::ENG] - kind.energy_needs_full * r.energy_pct / 100.0).abs() < 1e-12);
     assert!((v[entry::HP] - kind.hp_needs_full * r.hp_pct / 100.0).abs() < 1e-12);
-    assert!((v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct)).abs() < 1e-12);
+    assert!(
+        (v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct, s.mission.min_hp_factor)).abs()
+            < 1e-12
+    );
     assert_eq!(v[entry::CAP], f64::from(r.capacity_free));
     assert!(
         v[entry::CAP] < before.as_slice()[entry::CAP],

@@ -39,14 +39,17 @@ fn check_method(name: &str) {
                 "{name}: robot {} carries more than its capacity",
                 r.id
             );
-            // Energy falls only on moving steps, by exactly the paper's rate (or to 0).
+            // Energy falls only on moving steps, by exactly the scenario's rates per moving
+            // step and per metre moved (or to 0).
             if r.energy_pct < e0 - EPS {
                 assert!(
                     w.moved_this_step,
                     "{name}: robot {} lost energy standing still",
                     r.id
                 );
-                let expected = s.mission.energy_pct_per_moving_step.min(e0);
+                let m = &s.mission;
+                let expected =
+                    (m.energy_pct_per_moving_step + m.energy_pct_per_m * w.step_distance_m).min(e0);
                 assert!(
                     (e0 - r.energy_pct - expected).abs() < 1e-9,
                     "{name}: energy rate"

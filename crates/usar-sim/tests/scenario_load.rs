@@ -426,28 +426,27 @@ fn paper_scenario_matches_the_paper() {
     for t in &s.tasks {
         assert!(t.rescuees.len() >= 200, "{} rescuees", t.rescuees.len());
     }
-    // The hard side (left half) holds far more debris and radiation.
-    let left = |x: f64| x < s.arena.width_m / 2.0;
-    let debris_left = s
+    // The hard side (left of the team) holds far more debris and radiation than the easy
+    // side (right of it); the cluster in front of the team lies between the two.
+    let (hard_side, easy_side) = (|x: f64| x < 33.0, |x: f64| x > 47.0);
+    let debris_x: Vec<f64> = s
         .debris
         .iter()
-        .filter(|d| match d {
-            usar_sim::scenario::Debris::Rect { center, .. } => left(center.x),
-            usar_sim::scenario::Debris::Circle(c) => left(c.center.x),
+        .map(|d| match d {
+            usar_sim::scenario::Debris::Rect { center, .. } => center.x,
+            usar_sim::scenario::Debris::Circle(c) => c.center.x,
         })
-        .count();
-    let debris_right = s.debris.len() - debris_left;
-    assert!(
-        debris_left >= 2 * debris_right + 8,
-        "{debris_left} vs {debris_right}"
-    );
-    let rad_left = s
-        .radiation_zones
-        .iter()
-        .filter(|z| left(z.area.center.x))
-        .count();
-    assert!((5..=7).contains(&rad_left));
-    assert!((2..=3).contains(&(s.radiation_zones.len() - rad_left)));
+        .collect();
+    let debris_hard = debris_x.iter().filter(|x| hard_side(**x)).count();
+    let debris_easy = debris_x.iter().filter(|x| easy_side(**x)).count();
+    assert_eq!((debris_hard, debris_easy), (16, 3));
+    let rad = |side: fn(f64) -> bool| {
+        s.radiation_zones
+            .iter()
+            .filter(|z| side(z.area.center.x))
+            .count()
+    };
+    assert_eq!((rad(hard_side), rad(easy_side)), (6, 1));
 }
 
 #[test]

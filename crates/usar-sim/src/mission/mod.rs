@@ -22,4 +22,4 @@ pub use metrics::{PerTask, RobotMetrics, RoundRecord, TrialResult, TrialRow};
 pub use needs::{entry, hp_factor, needs_vector};
 pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
-pub use simulation::{SWEEP_SPACING_M, Simulation, sweep_waypoints};
+pub use simulation::{Simulation, sweep_spacing_m, sweep_waypoints};

@@ -27,14 +27,16 @@ pub mod entry {
 /// "the lower its HP, the smaller its velocity, sensing, and observing range").
 ///
 /// The paper gives no function; we use the linear one `f(hp) = hp_pct / 100`, clamped to
-/// `[0, 1]`: a robot at 90 % HP moves at 90 % of its kind's top speed. See
-/// `docs/mission-model.md`.
-pub fn hp_factor(hp_pct: f64) -> f64 {
-    (hp_pct / 100.0).clamp(0.0, 1.0)
+/// `[min_factor, 1]`: a robot at 90 % HP moves at 90 % of its kind's top speed, and no robot
+/// drops below `min_factor` (`mission.min_hp_factor`, in `[0, 1]`; 0 lets a robot at 0 % HP
+/// stop dead). See `docs/mission-model.md`.
+pub fn hp_factor(hp_pct: f64, min_factor: f64) -> f64 {
+    (hp_pct / 100.0).clamp(0.0, 1.0).max(min_factor)
 }
 
 /// The needs vector of a robot of `kind` at `hp_pct` and `energy_pct` (both in `[0, 100]`),
-/// with `resources` rescuing resources and `capacity` free carrying capacity left.
+/// with `resources` rescuing resources and `capacity` free carrying capacity left, under the
+/// HP effect floor `min_hp_factor` (see [`hp_factor`]).
 ///
 /// Entries (paper, Eqs. 19-21, ratios of section VI.B through the kind's fields):
 /// `hp = hp_needs_full * hp_pct/100`, `v = max_speed_m_per_s * f(hp)`,
@@ -44,12 +46,13 @@ pub fn hp_factor(hp_pct: f64) -> f64 {
 /// normalises them with the scenario's weights.
 pub fn needs_vector(
     kind: &RobotKind,
+    min_hp_factor: f64,
     hp_pct: f64,
     energy_pct: f64,
     resources: u32,
     capacity: u32,
 ) -> NeedsVector {
-    let f = hp_factor(hp_pct);
+    let f = hp_factor(hp_pct, min_hp_factor);
     let values = vec![
         kind.hp_needs_full * hp_pct.clamp(0.0, 100.0) / 100.0,
         kind.max_speed_m_per_s * f,

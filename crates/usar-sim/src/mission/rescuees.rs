@@ -70,7 +70,8 @@ impl RescueeField {
         self.status[i]
     }
 
-    /// How many times rescuee `i` was picked up (at most once in a correct run).
+    /// How many times rescuee `i` was picked up (at most once in a correct run, unless it was
+    /// put back by a leaving robot: see [`RescueeField::put_back`]).
     pub fn pickups(&self, i: usize) -> u32 {
         self.pickups[i]
     }
@@ -153,6 +154,15 @@ impl RescueeField {
     pub fn pick_up(&mut self, i: usize, robot: usize) {
         self.status[i] = RescueeStatus::Carried(robot);
         self.pickups[i] += 1;
+    }
+
+    /// Puts carried rescuee `i` back where it was found: it waits again, unknown to everyone
+    /// (`mission.load_on_leave: ReturnToArea`). It may be picked up again, so
+    /// [`RescueeField::pickups`] can exceed 1 for it.
+    pub fn put_back(&mut self, i: usize) {
+        self.status[i] = RescueeStatus::Waiting;
+        self.known[i] = false;
+        self.unknown_waiting += 1;
     }
 
     /// Sets the final status of a carried or claimed rescuee (`Delivered`, `Abandoned` or

@@ -61,15 +61,24 @@ pub struct MissionRobot {
     pub sweep_next: usize,
     /// Sweep waypoints visited this round.
     pub sweep_visited: usize,
+    /// Set when the robot has left its task for the rest station but first delivers its load
+    /// at the drop-off (`mission.load_on_leave: DeliverFirst`): it is then away for its needs
+    /// although its phase is `ToDropOff`.
+    pub leaving: bool,
+    /// While the robot is rescuing its claimed rescuee (standing within reach for
+    /// `mission.pickup_s`): when the rescue is done, seconds since the trial start.
+    pub picking_until_s: Option<f64>,
 }
 
 impl MissionRobot {
-    /// Whether the robot is away for its safety or basic needs (rest station or on the way).
+    /// Whether the robot is away for its safety or basic needs (rest station or on the way,
+    /// including a last delivery on the way there; see [`MissionRobot::leaving`]).
     pub fn is_resting(&self) -> bool {
-        matches!(
-            self.phase,
-            Phase::ToRest | Phase::Recharging { .. } | Phase::RestToStart
-        )
+        self.leaving
+            || matches!(
+                self.phase,
+                Phase::ToRest | Phase::Recharging { .. } | Phase::RestToStart
+            )
     }
 
     /// Whether the robot is in its group's search phase (on the way, searching or waiting).

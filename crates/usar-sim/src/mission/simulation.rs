@@ -11,11 +11,10 @@ use super::metrics::{PerTask, RobotMetrics, RoundRecord, TrialResult};
 use super::needs::{hp_factor, needs_vector};
 use super::rescuees::{RescueeField, RescueeStatus};
 use super::robot::{MissionRobot, Phase};
-use crate::scenario::{Locomotion, PointM, Rect, Role, Scenario, TaskLevel};
+use crate::scenario::{
+    LoadOnLeave, Locomotion, PointM, Rect, Refresh, Role, RoundStart, Scenario, TaskLevel,
+};
 use crate::world::World;
-
-/// Spacing of the blind-search (lawn-mower) waypoints of a group without an observer, metres.
-pub const SWEEP_SPACING_M: f64 = 2.0;
 
 /// A claim on a rescuee is given up when the robot has not come `CLAIM_PROGRESS_M` closer to
 /// it for `CLAIM_STALL_S` seconds (other robots stand in the way, or it is wedged): the
@@ -46,6 +45,9 @@ pub struct Simulation {
     sweeps: [Vec<PointM>; 2],
     rounds: Vec<RoundRecord>,
     round_open: bool,
+    /// When the first ground member of each task's group entered its search area this round,
+    /// seconds (for `mission.search_time_budget_s`).
+    search_started_s: [Option<f64>; 2],
     steps_done: u64,
     total_steps: u64,
     trial: u32,
@@ -80,6 +82,8 @@ impl Simulation {
                     target_progress_s: 0.0,
                     sweep_next: 0,
                     sweep_visited: 0,
+                    leaving: false,
+                    picking_until_s: None,
                 }
             })
             .collect();
@@ -97,12 +101,14 @@ impl Simulation {
         Self {
             world: World::new(scenario),
             fields: TaskLevel::ALL.map(field),
-            sweeps: TaskLevel::ALL.map(|l| sweep_waypoints(&scenario.task(l).search_area)),
+            sweeps: TaskLevel::ALL
+                .map(|l| sweep_waypoints(&scenario.task(l).search_area, sweep_spacing_m(scenario))),
             scenario: scenario.clone(),
             method,
             robots,
             rounds: Vec::new(),
             round_open: false,
+            search_started_s: [None; 2],
             steps_done: 0,
             total_steps: scenario.steps_per_trial(),
             trial: 0,
@@ -150,6 +156,7 @@ impl Simulation {
         let r = &self.robots[id];
         needs_vector(
             self.scenario.kind_of(id),
+            self.scenario.mission.min_hp_factor,
             r.hp_pct,
             r.energy_pct,
             r.resources,
@@ -261,7 +268,10 @@ impl Simulation {
             .filter(|r| r.phase == Phase::AtStart)
             .map(|r| r.id)
             .collect();
-        if available.is_empty() {
+        let everyone_back = available.len() == self.robots.len();
+        if available.is_empty()
+            || (self.scenario.mission.round_start == RoundStart::AllBack && !everyone_back)
+        {
             return Ok(());
         }
         let assignment = group_available(
@@ -273,6 +283,7 @@ impl Simulation {
         for field in &mut self.fields {
             field.forget();
         }
+        self.search_started_s = [None; 2];
         for level in TaskLevel::ALL {
             let ids = match level {
                 TaskLevel::Easy => &assignment.easy,
@@ -366,7 +377,7 @@ impl Simulation {
         for id in 0..self.robots.len() {
             let kind = self.scenario.kind_of(id);
             let r = &self.robots[id];
-            let f = hp_factor(r.hp_pct);
+            let f = hp_factor(r.hp_pct, self.scenario.mission.min_hp_factor);
             let blind = r.task.is_some_and(|t| !observer[t.index()]);
             let penalty = if blind {
                 self.scenario.mission.no_observer_speed_factor
@@ -384,9 +395,10 @@ impl Simulation {
     }
 
     /// Whether `level`'s group must leave its search area (see `docs/mission-model.md`): its
-    /// pool of resources or its ground members' free capacity is used up, or nothing more is
-    /// to be had (every ground member waits and no observer is still flying in). Called every
-    /// step, so it allocates nothing.
+    /// pool of resources or its ground members' free capacity is used up, nothing more is
+    /// to be had (every ground member waits and no observer is still flying in), or its search
+    /// time budget (`mission.search_time_budget_s`) is spent. Called every step, so it
+    /// allocates nothing.
     fn group_should_leave(&self, level: TaskLevel) -> bool {
         let on_task = || {
             self.robots
@@ -405,7 +417,14 @@ impl Simulation {
         });
         let nothing_more =
             on_task().filter(ground).all(|r| r.phase == Phase::Waiting) && !observer_arriving;
-        pool == 0 || free_capacity == 0 || nothing_more
+        let out_of_time = match (
+            self.scenario.mission.search_time_budget_s,
+            self.search_started_s[level.index()],
+        ) {
+            (Some(budget_s), Some(start_s)) => self.world.time_s() - start_s >= budget_s,
+            _ => false,
+        };
+        pool == 0 || free_capacity == 0 || nothing_more || out_of_time
     }
 
     fn leave_search_area(&mut self, level: TaskLevel) {
@@ -418,6 +437,7 @@ impl Simulation {
             if let Some(i) = r.claim.take() {
                 self.fields[level.index()].release(i);
             }
+            r.picking_until_s = None;
             r.phase = Phase::ToDropOff;
             let _ = self.world.set_goal(id, Some(drop_off));
         }
@@ -519,13 +539,19 @@ impl Simulation {
         let now = self.world.time_s();
         for id in 0..self.robots.len() {
             let w = self.world.robot(id);
-            let (moved, pos, reached, radius) =
-                (w.moved_this_step, w.position, w.goal_reached, w.radius_m);
+            let (moved, step_m, pos, reached, radius) = (
+                w.moved_this_step,
+                w.step_distance_m,
+                w.position,
+                w.goal_reached,
+                w.radius_m,
+            );
             let rad = self.world.radiation_factor(id);
             let r = &mut self.robots[id];
             let met = &mut self.metrics[id];
             if moved {
-                let spent = m.energy_pct_per_moving_step.min(r.energy_pct);
+                let cost = m.energy_pct_per_moving_step + m.energy_pct_per_m * step_m;
+                let spent = cost.min(r.energy_pct);
                 r.energy_pct -= spent;
                 met.energy_spent_pct += spent;
                 if let Some(t) = r.task {
@@ -545,7 +571,7 @@ impl Simulation {
             if let Some(t) = r.task
                 && r.is_on_task()
             {
-                let range = radius + kind.observing_range_m * hp_factor(r.hp_pct);
+                let range = radius + kind.observing_range_m * hp_factor(r.hp_pct, m.min_hp_factor);
                 self.fields[t.index()].detect(&pos, range);
             }
             self.advance_phase(id, pos, reached, now);
@@ -564,10 +590,12 @@ impl Simulation {
                 if r.claim.is_some() {
                     self.try_pick_up(id, level, pos, reached);
                 }
+                let in_area = self.scenario.task(level).search_area.contains(&pos);
+                if in_area && self.scenario.kind_of(id).locomotion == Locomotion::Ground {
+                    self.search_started_s[level.index()].get_or_insert(now);
+                }
                 let r = &mut self.robots[id];
-                if r.phase == Phase::ToSearchArea
-                    && (reached || self.scenario.task(level).search_area.contains(&pos))
-                {
+                if r.phase == Phase::ToSearchArea && (reached || in_area) {
                     r.phase = Phase::Searching;
                     if r.claim.is_none() {
                         // In the area now: the approach goal (the task's goal point, where
@@ -583,9 +611,13 @@ impl Simulation {
                     .expect("robots going to a drop-off belong to a group");
                 if reached || self.scenario.task(level).drop_off.contains(&pos) {
                     self.deliver(id, level);
-                    self.robots[id].phase = Phase::ToStart;
-                    let start = self.scenario.robots[id].start_in_world;
-                    let _ = self.world.set_goal(id, Some(start));
+                    if self.robots[id].leaving {
+                        self.go_rest(id);
+                    } else {
+                        self.robots[id].phase = Phase::ToStart;
+                        let start = self.scenario.robots[id].start_in_world;
+                        let _ = self.world.set_goal(id, Some(start));
+                    }
                 }
             }
             Phase::ToStart | Phase::RestToStart => {
@@ -604,9 +636,15 @@ impl Simulation {
             }
             Phase::Recharging { until_s } => {
                 if now + 1e-9 >= until_s {
+                    let m = &self.scenario.mission;
                     let r = &mut self.robots[id];
-                    r.energy_pct = 100.0;
-                    r.hp_pct = 100.0;
+                    let both = m.refresh == Refresh::Both;
+                    if both || r.energy_pct < m.low_energy_pct {
+                        r.energy_pct = 100.0;
+                    }
+                    if both || r.hp_pct < m.low_hp_pct {
+                        r.hp_pct = 100.0;
+                    }
                     r.phase = Phase::RestToStart;
                     self.metrics[id].recharges += 1;
                     let start = self.scenario.robots[id].start_in_world;
@@ -644,6 +682,20 @@ impl Simulation {
             }
             return;
         }
+        // Within reach: the rescue takes `pickup_s` of standing still (0: at once).
+        let pickup_s = self.scenario.mission.pickup_s;
+        if pickup_s > 0.0 {
+            let now = self.world.time_s();
+            match self.robots[id].picking_until_s {
+                None => {
+                    self.robots[id].picking_until_s = Some(now + pickup_s);
+                    let _ = self.world.set_goal(id, None);
+                    return;
+                }
+                Some(until_s) if now + 1e-9 < until_s => return,
+                Some(_) => self.robots[id].picking_until_s = None,
+            }
+        }
         let Some(donor) = self
             .robots
             .iter()
@@ -676,17 +728,36 @@ impl Simulation {
         }
     }
 
+    /// Robot `id` leaves its task and group for the rest station (energy or HP below its
+    /// threshold). Its claim is released; its load is abandoned, put back, or first delivered
+    /// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
+    /// [`MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
     fn go_rest(&mut self, id: usize) {
+        let rule = self.scenario.mission.load_on_leave;
         let r = &mut self.robots[id];
         if let Some(level) = r.task {
             let field = &mut self.fields[level.index()];
             if let Some(i) = r.claim.take() {
                 field.release(i);
             }
+            r.picking_until_s = None;
+            if rule == LoadOnLeave::DeliverFirst && !r.leaving && !r.load.is_empty() {
+                r.leaving = true;
+                r.phase = Phase::ToDropOff;
+                let drop_off = self.scenario.task(level).drop_off.center;
+                let _ = self.world.set_goal(id, Some(drop_off));
+                return;
+            }
             for i in r.load.drain(..) {
-                field.settle(i, RescueeStatus::Abandoned);
+                match rule {
+                    LoadOnLeave::ReturnToArea => field.put_back(i),
+                    LoadOnLeave::Abandon | LoadOnLeave::DeliverFirst => {
+                        field.settle(i, RescueeStatus::Abandoned);
+                    }
+                }
             }
         }
+        r.leaving = false;
         r.task = None;
         r.phase = Phase::ToRest;
         let _ = self
@@ -695,12 +766,18 @@ impl Simulation {
     }
 }
 
-/// Blind-search waypoints over a search area: a lawn-mower pattern of rows `SWEEP_SPACING_M`
-/// apart, alternating direction, starting at the bottom-left.
-pub fn sweep_waypoints(area: &Rect) -> Vec<PointM> {
+/// Blind-search waypoints over a search area: a lawn-mower pattern of `ceil(height /
+/// spacing_m)` rows (at least 1) at the centres of equal horizontal strips, alternating
+/// direction, starting at the bottom-left; along each row `ceil(width / spacing_m)` points (at
+/// least 1) at the centres of equal vertical strips. Rows and points are thus at most
+/// `spacing_m` apart and at most `spacing_m / 2` from the area's edges, so a robot following
+/// them passes within `spacing_m / 2` of every point between the first and the last column
+/// and within `spacing_m / √2` of every point of the area (the corners). `spacing_m` is finite
+/// and `> 0`.
+pub fn sweep_waypoints(area: &Rect, spacing_m: f64) -> Vec<PointM> {
     let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
-    let nx = ((w / SWEEP_SPACING_M).floor() as usize).max(1);
-    let ny = ((h / SWEEP_SPACING_M).floor() as usize).max(1);
+    let nx = ((w / spacing_m).ceil() as usize).max(1);
+    let ny = ((h / spacing_m).ceil() as usize).max(1);
     let mut out = Vec::with_capacity(nx * ny);
     for j in 0..ny {
         let y = area.min.y + (j as f64 + 0.5) * h / ny as f64;
@@ -713,4 +790,65 @@ pub fn sweep_waypoints(area: &Rect) -> Vec<PointM> {
         }
     }
     out
+}
+
+/// The spacing of a scenario's blind-search rows, metres: `mission.sweep_spacing_m` if set,
+/// otherwise the narrowest detection width of its ground kinds, `2 * (body_radius_m +
+/// observing_range_m)` (at full HP), so that a sweep detects every rescuee of the area.
+pub fn sweep_spacing_m(scenario: &Scenario) -> f64 {
+    scenario.mission.sweep_spacing_m.unwrap_or_else(|| {
+        scenario
+            .kinds
+            .iter()
+            .filter(|k| k.locomotion == Locomotion::Ground)
+            .map(|k| 2.0 * (k.body_radius_m + k.observing_range_m))
+            .fold(f64::INFINITY, f64::min)
+            .min(f64::MAX)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sweep_passes_within_half_its_spacing_of_every_point() {
+        let area = Rect {
+            min: PointM::new(6.0, 47.0),
+            max: PointM::new(26.0, 59.0),
+        };
+        for spacing in [0.9, 2.0, 3.3] {
+            let w = sweep_waypoints(&area, spacing);
+            // Distance from p to the polyline through the waypoints.
+            let dist = |p: &PointM| {
+                w.windows(2)
+                    .map(|s| {
+                        let (a, b) = (s[0], s[1]);
+                        let ab = b - a;
+                        let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+                        (a + ab * t - p).norm()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            for i in 0..=40 {
+                for j in 0..=24 {
+                    let p = PointM::new(
+                        area.min.x + (area.max.x - area.min.x) * f64::from(i) / 40.0,
+                        area.min.y + (area.max.y - area.min.y) * f64::from(j) / 24.0,
+                    );
+                    let inner = p.x >= w[0].x && p.x <= w[1].x.max(w[w.len() - 1].x);
+                    let bound = if inner {
+                        spacing / 2.0
+                    } else {
+                        spacing / std::f64::consts::SQRT_2
+                    };
+                    assert!(
+                        dist(&p) <= bound + 1e-9,
+                        "spacing {spacing}: {p:?} is {} m from the sweep",
+                        dist(&p)
+                    );
+                }
+            }
+        }
+    }
 }

@@ -260,6 +260,83 @@ pub struct ClampedNormal {
     pub max_pct: f64,
 }
 
+/// How the doses of overlapping radiation zones combine at a point (paper silent; see
+/// `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RadiationOverlap {
+    /// The doses of all zones containing the point add (default: the authors' Unity scene
+    /// applies damage once per overlapping radiation trigger per physics step).
+    #[default]
+    Sum,
+    /// Only the strongest zone counts.
+    Max,
+}
+
+/// How a radiation zone's dose varies with the distance `d` from its centre, inside its radius
+/// `r` (paper silent; see `docs/mission-model.md`). Outside the disc the dose is 0.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RadiationFalloff {
+    /// The full `dose_rate_factor` everywhere inside the disc (default).
+    #[default]
+    Uniform,
+    /// `dose_rate_factor * (1 - d / r)`: the full factor at the source, 0 at the rim (a third
+    /// of the uniform dose on average over the disc).
+    Linear,
+}
+
+/// Which task's quota shrinks first when robots of a kind are away recharging at a round's
+/// start (paper silent; see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum AwayQuotas {
+    /// The hard task is filled first; the easy task takes what is left (default).
+    #[default]
+    HardestFirst,
+    /// The easy task is filled first; the hard task takes what is left.
+    EasiestFirst,
+    /// The shortfall is shared: one robot at a time is taken from the task whose quota is
+    /// currently larger (ties: from the easy task).
+    Even,
+}
+
+/// When a new round may start (paper, section VI.B: "After each round, when all agents are
+/// back to the initial position, the whole group members will regroup").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RoundStart {
+    /// As soon as the previous round's groups are back; robots away at the rest station (or on
+    /// their way back from it) sit the round out and quotas shrink by `away_quotas` (default).
+    #[default]
+    Available,
+    /// Only when every robot of the team is back at its start position: every round groups the
+    /// whole team with the full quotas (`away_quotas` never applies).
+    AllBack,
+}
+
+/// What becomes of the rescuees a robot carries when it leaves its task for the rest station
+/// (paper silent; see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LoadOnLeave {
+    /// They are dropped and lost for the trial (default).
+    #[default]
+    Abandon,
+    /// They are put back where they were found and wait again (known to nobody).
+    ReturnToArea,
+    /// The robot first drives to its task's drop-off and delivers them (they count for the
+    /// task), then goes to the rest station.
+    DeliverFirst,
+}
+
+/// What a stay at the rest station restores (paper: "recharging its energy (or for refreshing
+/// its health HP)"; see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Refresh {
+    /// Energy and HP both to 100 % (default).
+    #[default]
+    Both,
+    /// Only the level(s) below their threshold (`low_energy_pct`, `low_hp_pct`) when the robot
+    /// arrived, to 100 %.
+    LowOnly,
+}
+
 /// Mission rules (paper, section VI.B). Defaults are the paper's values.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MissionParams {
@@ -267,8 +344,35 @@ pub struct MissionParams {
     pub duration_s: f64,
     /// Energy spent per simulation step while moving, percent (paper: 0.0045).
     pub energy_pct_per_moving_step: f64,
+    /// Energy spent per metre moved, percent per metre, `>= 0` (the authors' Unity code charges
+    /// `energy -= distance * k`); adds to `energy_pct_per_moving_step`.
+    pub energy_pct_per_m: f64,
     /// HP lost per simulation step inside a radiation zone of factor 1, percent (paper: 0.0003).
     pub hp_pct_per_step_in_radiation: f64,
+    /// How overlapping zones combine.
+    pub radiation_overlap: RadiationOverlap,
+    /// How a zone's dose varies with the distance from its centre.
+    pub radiation_falloff: RadiationFalloff,
+    /// When a new round may start.
+    pub round_start: RoundStart,
+    /// Which quota shrinks first when robots are away at a round's start.
+    pub away_quotas: AwayQuotas,
+    /// What becomes of a leaving robot's load.
+    pub load_on_leave: LoadOnLeave,
+    /// Longest time a group searches its area, seconds from the moment its first ground member
+    /// enters it, `> 0`; `None`: no limit (the group leaves only when full, out of resources,
+    /// or when nothing more is to be found).
+    pub search_time_budget_s: Option<f64>,
+    /// What a stay at the rest station restores.
+    pub refresh: Refresh,
+    /// Row spacing of a blind group's lawn-mower search, metres, `> 0`; `None`: the narrowest
+    /// ground detection width (see `mission::sweep_spacing_m`).
+    pub sweep_spacing_m: Option<f64>,
+    /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]` (see
+    /// `mission::hp_factor`).
+    pub min_hp_factor: f64,
+    /// Time a ground robot stands at a rescuee to rescue it, seconds, `>= 0` (0: at once).
+    pub pickup_s: f64,
     /// Below this energy a robot leaves its task to recharge, percent (paper: 30).
     pub low_energy_pct: f64,
     /// Below this HP a robot leaves its task to refresh, percent (paper: 30).

@@ -10,7 +10,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::model::{Locomotion, Role};
+use super::model::{
+    AwayQuotas, LoadOnLeave, Locomotion, RadiationFalloff, RadiationOverlap, Refresh, Role,
+    RoundStart,
+};
 
 /// A point or vector `(x, y)` in metres, world frame.
 pub type XyM = [f64; 2];
@@ -357,8 +360,39 @@ pub struct MissionSpec {
     pub duration_s: f64,
     /// Energy spent per moving step, percent, finite, >= 0; default 0.0045.
     pub energy_pct_per_moving_step: f64,
+    /// Energy spent per metre moved, percent per metre, finite, >= 0; default 0 (adds to
+    /// `energy_pct_per_moving_step`).
+    pub energy_pct_per_m: f64,
     /// HP lost per step in a radiation zone of factor 1, percent, finite, >= 0; default 0.0003.
     pub hp_pct_per_step_in_radiation: f64,
+    /// How overlapping radiation zones combine: `Sum` (default) or `Max`.
+    pub radiation_overlap: RadiationOverlap,
+    /// How a zone's dose varies inside it: `Uniform` (default) or `Linear`.
+    pub radiation_falloff: RadiationFalloff,
+    /// When a new round may start: `Available` (default; robots away sit it out) or `AllBack`
+    /// (the whole team must be back at its start positions).
+    pub round_start: RoundStart,
+    /// Which quota shrinks first when robots are away at a round's start: `HardestFirst`
+    /// (default), `EasiestFirst` or `Even`.
+    pub away_quotas: AwayQuotas,
+    /// What becomes of a leaving robot's load: `Abandon` (default), `ReturnToArea` or
+    /// `DeliverFirst`.
+    pub load_on_leave: LoadOnLeave,
+    /// Longest search per group and round, seconds, finite, > 0, written `Some(40.0)`; default
+    /// `None` (no limit).
+    pub search_time_budget_s: Option<f64>,
+    /// What a stay at the rest station restores: `Both` (default) or `LowOnly`.
+    pub refresh: Refresh,
+    /// Row spacing of a blind group's lawn-mower search, metres, finite, > 0, written
+    /// `Some(2.0)`; default `None`: the narrowest ground detection width
+    /// `2 * (body_radius_m + observing_range_m)`, so a sweep covers the whole area.
+    pub sweep_spacing_m: Option<f64>,
+    /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]`; default 0
+    /// (the factor is `hp_pct / 100`, so a robot at 0 % HP stops).
+    pub min_hp_factor: f64,
+    /// Time a ground robot stands at a rescuee to rescue it (secure and load it), seconds,
+    /// finite, >= 0; default 0 (at once).
+    pub pickup_s: f64,
     /// Recharge threshold, percent, in `[0, 100]`; default 30.
     pub low_energy_pct: f64,
     /// Refresh threshold, percent, in `[0, 100]`; default 30.
@@ -378,7 +412,18 @@ impl Default for MissionSpec {
         Self {
             duration_s: 600.0,
             energy_pct_per_moving_step: 0.0045,
+            energy_pct_per_m: 0.0,
             hp_pct_per_step_in_radiation: 0.0003,
+            radiation_overlap: RadiationOverlap::default(),
+            radiation_falloff: RadiationFalloff::default(),
+            round_start: RoundStart::default(),
+            away_quotas: AwayQuotas::default(),
+            load_on_leave: LoadOnLeave::default(),
+            search_time_budget_s: None,
+            refresh: Refresh::default(),
+            sweep_spacing_m: None,
+            min_hp_factor: 0.0,
+            pickup_s: 0.0,
             low_energy_pct: 30.0,
             low_hp_pct: 30.0,
             recharge_s: 30.0,

@@ -500,10 +500,27 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
             "mission.energy_pct_per_moving_step",
             m.energy_pct_per_moving_step,
         )?,
+        energy_pct_per_m: ctx.non_negative("mission.energy_pct_per_m", m.energy_pct_per_m)?,
         hp_pct_per_step_in_radiation: ctx.non_negative(
             "mission.hp_pct_per_step_in_radiation",
             m.hp_pct_per_step_in_radiation,
         )?,
+        radiation_overlap: m.radiation_overlap,
+        radiation_falloff: m.radiation_falloff,
+        round_start: m.round_start,
+        away_quotas: m.away_quotas,
+        load_on_leave: m.load_on_leave,
+        search_time_budget_s: m
+            .search_time_budget_s
+            .map(|b| ctx.positive("mission.search_time_budget_s", b))
+            .transpose()?,
+        refresh: m.refresh,
+        sweep_spacing_m: m
+            .sweep_spacing_m
+            .map(|v| ctx.positive("mission.sweep_spacing_m", v))
+            .transpose()?,
+        min_hp_factor: ctx.in_range("mission.min_hp_factor", m.min_hp_factor, 0.0, 1.0)?,
+        pickup_s: ctx.non_negative("mission.pickup_s", m.pickup_s)?,
         low_energy_pct: ctx.in_range("mission.low_energy_pct", m.low_energy_pct, 0.0, 100.0)?,
         low_hp_pct: ctx.in_range("mission.low_hp_pct", m.low_hp_pct, 0.0, 100.0)?,
         recharge_s: ctx.non_negative("mission.recharge_s", m.recharge_s)?,
@@ -939,8 +956,8 @@ mod tests {
     #[test]
     fn paper_debris_keeps_gaps_ground_robots_fit_through() {
         let s = load(scenario_file("paper.ron")).expect("paper.ron loads");
-        // 8 + 3 listed, 8 generated.
-        assert_eq!(s.debris.len(), 19);
+        // 8 + 3 listed, 8 + 5 generated.
+        assert_eq!(s.debris.len(), 24);
         for (i, a) in s.debris.iter().enumerate() {
             for b in &s.debris[i + 1..] {
                 let d = distance_between(a, b);

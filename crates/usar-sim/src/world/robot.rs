@@ -75,7 +75,10 @@ pub struct RobotState {
     /// [`crate::world::MOVED_TOLERANCE_M`] (for energy accounting: the paper charges energy
     /// per *moving* step, section VI.B).
     pub moved_this_step: bool,
-    /// Total path length travelled, metres (sum of the per-step displacements of moving steps).
+    /// Displacement over the last step, metres: its length when the robot moved
+    /// (`moved_this_step`), 0 otherwise (for energy charged per metre, `mission.energy_pct_per_m`).
+    pub step_distance_m: f64,
+    /// Total path length travelled, metres (sum of `step_distance_m` over all steps).
     pub distance_travelled_m: f64,
     /// Whether the robot is a member of a collision list at the last step.
     pub in_collision_list: bool,

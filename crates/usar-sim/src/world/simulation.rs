@@ -9,7 +9,7 @@ use rapier2d::prelude::RigidBodyHandle;
 use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::navigation::{ClearanceGrid, PathPlanner};
-use super::radiation;
+use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput, STEER_STATIC_GAP_M};
 use super::robot::{Motion, RobotCounters, RobotState};
 use crate::scenario::{
@@ -86,6 +86,7 @@ pub struct World {
     robots: Vec<RobotState>,
     inputs: Vec<ResolverInput>,
     zones: Vec<RadiationZone>,
+    dose_rule: DoseRule,
     arena: (f32, f32),
     dt: f64,
     collision: CollisionParams,
@@ -132,6 +133,7 @@ impl World {
                 goal_reached: false,
                 motion: Motion::Idle,
                 moved_this_step: false,
+                step_distance_m: 0.0,
                 distance_travelled_m: 0.0,
                 in_collision_list: false,
                 held: false,
@@ -164,6 +166,10 @@ impl World {
             robots,
             inputs,
             zones: s.radiation_zones.clone(),
+            dose_rule: DoseRule {
+                overlap: s.mission.radiation_overlap,
+                falloff: s.mission.radiation_falloff,
+            },
             arena: (s.arena.width_m as f32, s.arena.height_m as f32),
             dt: s.sim.dt_s,
             collision: s.collision,
@@ -416,9 +422,11 @@ impl World {
         rest.iter().map(|&v| to_point(v))
     }
 
-    /// Sum of `dose_rate_factor` over the radiation zones containing `p` (0 outside all zones).
+    /// The radiation dose factor at `p` under the scenario's dose rule
+    /// (`mission.radiation_overlap`, `mission.radiation_falloff`; see
+    /// [`radiation::radiation_factor_at`]): 0 outside all zones, dimensionless.
     pub fn radiation_factor_at(&self, p: &PointM) -> f64 {
-        radiation::radiation_factor_at(&self.zones, p)
+        radiation::radiation_factor_at(&self.zones, p, self.dose_rule)
     }
 
     /// [`World::radiation_factor_at`] robot `id`'s position.
@@ -627,9 +635,8 @@ impl World {
             state.position = to_point(p);
             state.velocity = Vector2::new(f64::from(v.x), f64::from(v.y));
             state.moved_this_step = disp > MOVED_TOLERANCE_M;
-            if state.moved_this_step {
-                state.distance_travelled_m += disp;
-            }
+            state.step_distance_m = if state.moved_this_step { disp } else { 0.0 };
+            state.distance_travelled_m += state.step_distance_m;
         }
     }
 }

@@ -1,0 +1,433 @@
+//! The mission rules the paper leaves open (`mission.*` options, `docs/mission-model.md`): each
+//! setting's behaviour, on variants of paper.ron.
+
+use integration_tests::{fixed, method, paper};
+use usar_sim::mission::{
+    Phase, RescueeStatus, Simulation, hp_factor, sweep_spacing_m, sweep_waypoints,
+};
+use usar_sim::scenario::{
+    Circle, LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZone, Refresh, Role,
+    RoundStart, Scenario, TaskLevel,
+};
+
+#[test]
+fn energy_is_charged_per_moving_step_plus_per_metre() {
+    let mut s = paper();
+    s.mission.energy_pct_per_moving_step = 0.001;
+    s.mission.energy_pct_per_m = 0.2;
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(60.0);
+    let mut charged = 0;
+    while !sim.is_finished() {
+        let before: Vec<f64> = sim.robots().iter().map(|r| r.energy_pct).collect();
+        sim.step().unwrap();
+        for r in sim.robots() {
+            let w = sim.world().robot(r.id);
+            let lost = before[r.id] - r.energy_pct;
+            let expected = if w.moved_this_step {
+                (0.001 + 0.2 * w.step_distance_m).min(before[r.id])
+            } else {
+                0.0
+            };
+            assert!(
+                (lost - expected).abs() < 1e-9,
+                "robot {}: lost {lost}, expected {expected}",
+                r.id
+            );
+            charged += usize::from(w.moved_this_step);
+        }
+    }
+    assert!(charged > 10_000, "only {charged} moving robot-steps");
+}
+
+/// Every robot starts just above the energy threshold, so all leave for the rest station at
+/// once; two overlapping radiation zones cover the rest station.
+fn resting_in_two_zones(overlap: RadiationOverlap, falloff: RadiationFalloff) -> Scenario {
+    let mut s = paper();
+    s.mission.initial_energy = fixed(30.05);
+    s.mission.initial_hp = fixed(90.0);
+    s.mission.radiation_overlap = overlap;
+    s.mission.radiation_falloff = falloff;
+    // Low enough that nobody reaches 0 % HP (the loss is then clamped) within the test.
+    s.mission.hp_pct_per_step_in_radiation = 0.001;
+    let c = s.rest_station.center;
+    for (dx, factor) in [(0.0, 2.0), (1.0, 1.0)] {
+        s.radiation_zones.push(RadiationZone {
+            area: Circle {
+                center: usar_sim::scenario::PointM::new(c.x + dx, c.y),
+                radius_m: s.rest_station.radius_m + 3.0,
+            },
+            dose_rate_factor: factor,
+        });
+    }
+    s
+}
+
+#[test]
+fn overlapping_zones_sum_or_take_the_strongest_and_linear_dose_falls_off() {
+    use RadiationFalloff::{Linear, Uniform};
+    use RadiationOverlap::{Max, Sum};
+    for (overlap, falloff) in [(Sum, Uniform), (Max, Uniform), (Sum, Linear), (Max, Linear)] {
+        let s = resting_in_two_zones(overlap, falloff);
+        let zones = &s.radiation_zones[s.radiation_zones.len() - 2..];
+        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(90.0);
+        let mut checked = 0;
+        while !sim.is_finished() {
+            let before: Vec<(f64, Phase)> =
+                sim.robots().iter().map(|r| (r.hp_pct, r.phase)).collect();
+            sim.step().unwrap();
+            for r in sim.robots() {
+                let (hp0, phase0) = before[r.id];
+                if !(matches!(phase0, Phase::Recharging { .. })
+                    && matches!(r.phase, Phase::Recharging { .. }))
+                {
+                    continue;
+                }
+                // The dose by hand: each zone's factor, uniform or falling off linearly.
+                let p = sim.world().robot(r.id).position;
+                let doses = zones.iter().map(|z| {
+                    let d = (p - z.area.center).norm();
+                    match falloff {
+                        Uniform => z.dose_rate_factor,
+                        Linear => z.dose_rate_factor * (1.0 - d / z.area.radius_m),
+                    }
+                });
+                let dose = match overlap {
+                    Sum => doses.sum::<f64>(),
+                    Max => doses.fold(0.0, f64::max),
+                };
+                let lost = hp0 - r.hp_pct;
+                let expected = s.mission.hp_pct_per_step_in_radiation * dose;
+                assert!(
+                    (lost - expected).abs() < 1e-9,
+                    "{overlap:?}/{falloff:?}: lost {lost}, expected {expected}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 500, "{overlap:?}/{falloff:?}: {checked} checks");
+    }
+}
+
+/// Robots grouped in each round of a whole trial of `s` with DIS.
+fn group_sizes(s: &Scenario) -> Vec<usize> {
+    let r = Simulation::for_trial(s, method("dis", s), 0)
+        .run_to_end()
+        .unwrap();
+    r.rounds
+        .iter()
+        .map(|x| x.groups.easy.len() + x.groups.hard.len())
+        .collect()
+}
+
+#[test]
+fn all_back_rounds_group_the_whole_team_and_available_rounds_do_not() {
+    let mut s = paper();
+    s.mission.round_start = RoundStart::AllBack;
+    let all_back = group_sizes(&s);
+    assert!(all_back.len() >= 4, "{all_back:?}");
+    assert!(
+        all_back.iter().all(|&n| n == s.robots.len()),
+        "{all_back:?}"
+    );
+    s.mission.round_start = RoundStart::Available;
+    let available = group_sizes(&s);
+    assert!(
+        available.iter().any(|&n| n < s.robots.len()),
+        "robots recharge during the trial, so some round must go without them: {available:?}"
+    );
+}
+
+/// A robot that left its group for the rest station while carrying rescuees.
+struct LeaveWithLoad {
+    id: usize,
+    load: Vec<usize>,
+    task: TaskLevel,
+    at_s: f64,
+}
+
+/// Runs 200 s of paper.ron with every robot low on energy (so several leave mid-round, some
+/// carrying rescuees) under `rule`; calls `check` after every step with the leaves of that step
+/// and returns the finished simulation and all leaves.
+fn leave_with_load(
+    rule: LoadOnLeave,
+    mut check: impl FnMut(&Simulation, &[LeaveWithLoad]),
+) -> (Simulation, Vec<LeaveWithLoad>) {
+    let mut s = paper();
+    s.mission.initial_energy = fixed(36.0);
+    s.mission.initial_hp = fixed(100.0);
+    s.mission.load_on_leave = rule;
+    s.mission.search_time_budget_s = None;
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(200.0);
+    let mut leaves = Vec::new();
+    while !sim.is_finished() {
+        let before: Vec<_> = sim
+            .robots()
+            .iter()
+            .map(|r| (r.load.clone(), r.task, r.is_resting()))
+            .collect();
+        sim.step().unwrap();
+        let seen = leaves.len();
+        for r in sim.robots() {
+            let (load, task, resting) = &before[r.id];
+            if !resting && r.is_resting() && !load.is_empty() {
+                leaves.push(LeaveWithLoad {
+                    id: r.id,
+                    load: load.clone(),
+                    task: task.expect("a robot with a load is in a group"),
+                    at_s: sim.time_s(),
+                });
+            }
+        }
+        check(&sim, &leaves[seen..]);
+    }
+    assert!(
+        !leaves.is_empty(),
+        "{rule:?}: no robot left carrying rescuees"
+    );
+    (sim, leaves)
+}
+
+#[test]
+fn a_leaving_robot_abandons_its_load() {
+    leave_with_load(LoadOnLeave::Abandon, |sim, leaves| {
+        for l in leaves {
+            for &i in &l.load {
+                assert_eq!(sim.rescuees(l.task).status(i), RescueeStatus::Abandoned);
+            }
+            assert!(sim.robots()[l.id].load.is_empty());
+        }
+    });
+}
+
+#[test]
+fn a_leaving_robot_puts_its_load_back() {
+    leave_with_load(LoadOnLeave::ReturnToArea, |sim, leaves| {
+        for l in leaves {
+            for &i in &l.load {
+                assert_eq!(sim.rescuees(l.task).status(i), RescueeStatus::Waiting);
+            }
+        }
+    });
+}
+
+#[test]
+fn a_leaving_robot_delivers_its_load_first() {
+    let (sim, leaves) = leave_with_load(LoadOnLeave::DeliverFirst, |sim, leaves| {
+        for l in leaves {
+            // It drives to its task's drop-off with its load, away from its group's work.
+            let r = &sim.robots()[l.id];
+            assert_eq!(
+                (r.phase, r.leaving, &r.load),
+                (Phase::ToDropOff, true, &l.load)
+            );
+            assert_eq!(r.task, Some(l.task));
+        }
+    });
+    // Everyone who left early enough has delivered and been to the rest station.
+    let early: Vec<_> = leaves.iter().filter(|l| l.at_s < 120.0).collect();
+    assert!(!early.is_empty());
+    for l in early {
+        let field = sim.rescuees(l.task);
+        assert!(
+            l.load
+                .iter()
+                .all(|&i| field.status(i) == RescueeStatus::Delivered)
+        );
+        assert!(sim.result().robots[l.id].recharges >= 1);
+    }
+}
+
+#[test]
+fn a_group_leaves_when_its_search_time_budget_is_spent() {
+    let s = paper();
+    let budget = s
+        .mission
+        .search_time_budget_s
+        .expect("paper.ron has a budget");
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(300.0);
+    let mut first_in: [Option<f64>; 2] = [None; 2];
+    let mut ended = [false; 2];
+    let mut rounds = 0;
+    let mut cut_short = 0;
+    while !sim.is_finished() {
+        sim.step().unwrap();
+        if sim.rounds().len() != rounds {
+            rounds = sim.rounds().len();
+            first_in = [None; 2];
+            ended = [false; 2];
+        }
+        let now = sim.time_s();
+        for level in TaskLevel::ALL {
+            let area = s.task(level).search_area;
+            let s = &s;
+            let sim = &sim;
+            let members = move || {
+                sim.robots().iter().filter(move |r| {
+                    r.task == Some(level) && s.kind_of(r.id).role != Role::Observer
+                })
+            };
+            if first_in[level.index()].is_none()
+                && members().any(|r| area.contains(&sim.world().robot(r.id).position))
+            {
+                first_in[level.index()] = Some(now);
+            }
+            let Some(t0) = first_in[level.index()] else {
+                continue;
+            };
+            let searching = members().any(|r| r.is_on_task());
+            if now > t0 + budget + 2.0 * s.sim.dt_s {
+                assert!(
+                    !searching,
+                    "{level:?} group still searching at {now} s (in at {t0} s)"
+                );
+            }
+            // The budget, not capacity or resources, ended this trip: the group turned for
+            // its drop-off just as the budget ran out, with room left.
+            let turned = members().any(|r| r.phase == Phase::ToDropOff);
+            if !ended[level.index()] && turned {
+                ended[level.index()] = true;
+                let free: u32 = members().map(|r| r.capacity_free).sum();
+                if now >= t0 + budget && now <= t0 + budget + 2.0 * s.sim.dt_s && free > 0 {
+                    cut_short += 1;
+                }
+            }
+        }
+    }
+    assert!(cut_short > 0, "the budget never ended a trip");
+}
+
+#[test]
+fn low_only_refresh_restores_only_the_level_below_its_threshold() {
+    for (refresh, hp_after) in [(Refresh::LowOnly, 60.0), (Refresh::Both, 100.0)] {
+        let mut s = paper();
+        s.mission.initial_energy = fixed(30.05);
+        s.mission.initial_hp = fixed(60.0);
+        s.mission.refresh = refresh;
+        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(120.0);
+        let id = 0;
+        while sim.result().robots[id].recharges == 0 && !sim.is_finished() {
+            sim.step().unwrap();
+        }
+        let r = &sim.robots()[id];
+        assert_eq!(sim.result().robots[id].recharges, 1, "{refresh:?}");
+        assert_eq!(r.energy_pct, 100.0, "{refresh:?}");
+        // No radiation between the start and the rest station: HP is untouched or full.
+        assert_eq!(r.hp_pct, hp_after, "{refresh:?}");
+    }
+}
+
+/// Fraction of a scenario's rescuees that a ground robot following its task's blind sweep
+/// (`sweep_waypoints` at `sweep_spacing_m`) passes within its detection radius of
+/// (body radius + observing range at full HP).
+fn swept_fraction(s: &Scenario) -> f64 {
+    let kind = &s.kinds[0];
+    let reach = kind.body_radius_m + kind.observing_range_m;
+    let (mut seen, mut all) = (0, 0);
+    for task in &s.tasks {
+        let w = sweep_waypoints(&task.search_area, sweep_spacing_m(s));
+        for p in &task.rescuees {
+            let d = w
+                .windows(2)
+                .map(|seg| {
+                    let (a, b) = (seg[0], seg[1]);
+                    let ab = b - a;
+                    let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+                    (a + ab * t - p).norm()
+                })
+                .fold(f64::INFINITY, f64::min);
+            seen += usize::from(d <= reach + 1e-9);
+            all += 1;
+        }
+    }
+    seen as f64 / all as f64
+}
+
+#[test]
+fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
+    // Regression: rows 2 m apart put a ground robot (detection radius 0.45 m) midway between
+    // the rows of a 1 m rescuee grid, so a group without an observer could only find rescuees
+    // by chance. The default spacing is the detection width.
+    let s = paper();
+    assert_eq!(s.mission.sweep_spacing_m, None);
+    assert!((sweep_spacing_m(&s) - 0.9).abs() < 1e-12);
+    assert_eq!(swept_fraction(&s), 1.0);
+    let v0 = usar_sim::scenario::load(integration_tests::scenario_path("paper-v0.ron")).unwrap();
+    assert_eq!(v0.mission.sweep_spacing_m, Some(2.0));
+    let f = swept_fraction(&v0);
+    assert!(f < 0.2, "2 m rows pass {f} of the rescuees");
+}
+
+#[test]
+fn hp_slows_a_robot_no_further_than_the_floor() {
+    let top = |min_factor: f64| {
+        let mut s = paper();
+        s.mission.initial_hp = fixed(5.0);
+        s.mission.initial_energy = fixed(100.0);
+        s.mission.min_hp_factor = min_factor;
+        let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
+        let mut top: f64 = 0.0;
+        while sim.time_s() < 8.0 {
+            sim.step().unwrap();
+            top = top.max(sim.world().robot(0).velocity.norm());
+        }
+        (top, s.kind_of(0).max_speed_m_per_s)
+    };
+    let (floored, v_max) = top(0.2);
+    assert!((hp_factor(5.0, 0.2) - 0.2).abs() < 1e-12);
+    assert!(
+        (floored - 0.2 * v_max).abs() < 0.02 * v_max,
+        "{floored} vs {}",
+        0.2 * v_max
+    );
+    let (linear, _) = top(0.0);
+    assert!(
+        (linear - 0.05 * v_max).abs() < 0.01 * v_max,
+        "{linear} vs {}",
+        0.05 * v_max
+    );
+}
+
+#[test]
+fn a_rescue_takes_pickup_s_standing_still() {
+    let s = paper();
+    let pickup_s = s.mission.pickup_s;
+    assert!(pickup_s > 0.0);
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(120.0);
+    let n = s.robots.len();
+    let mut since: Vec<Option<f64>> = vec![None; n];
+    let mut rescues = 0;
+    while !sim.is_finished() {
+        let before: Vec<(u32, Option<f64>)> = sim
+            .robots()
+            .iter()
+            .map(|r| (r.capacity_free, r.picking_until_s))
+            .collect();
+        sim.step().unwrap();
+        let now = sim.time_s();
+        for r in sim.robots() {
+            let (cap0, picking0) = before[r.id];
+            if picking0.is_none() && r.picking_until_s.is_some() {
+                since[r.id] = Some(now);
+            }
+            if r.picking_until_s.is_some() {
+                // Standing still: no goal (other robots may still nudge its body).
+                assert!(
+                    sim.world().robot(r.id).goal.is_none(),
+                    "robot {} drives",
+                    r.id
+                );
+            }
+            if r.capacity_free < cap0 {
+                let start = since[r.id].take().expect("a rescue starts before it ends");
+                let took = now - start;
+                assert!(
+                    (took - pickup_s).abs() <= s.sim.dt_s + 1e-9,
+                    "robot {}: rescue took {took} s",
+                    r.id
+                );
+                rescues += 1;
+            }
+        }
+    }
+    assert!(rescues >= 10, "{rescues} rescues");
+}
