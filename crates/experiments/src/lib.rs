@@ -2,6 +2,7 @@
 //! ([`commands`]). The binary `src/bin/usar.rs` only parses and dispatches.
 
 pub mod atomic;
+pub mod calibration;
 pub mod cli;
 pub mod commands;
 pub mod figures;
