@@ -56,7 +56,10 @@ mod tests {
         ] {
             let spec = parse_spec(src, name).unwrap();
             let text = spec_to_ron(&spec, &["first\nsecond".into()]).unwrap();
-            assert!(text.starts_with("// first\n// second\nScenario(\n"), "{text}");
+            assert!(
+                text.starts_with("// first\n// second\nScenario(\n"),
+                "{text}"
+            );
             let back = parse_spec(&text, "back.ron").unwrap();
             assert_eq!(back, spec, "{name}");
             assert_eq!(

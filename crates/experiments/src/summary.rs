@@ -7,7 +7,7 @@
 use anyhow::{Context, Result};
 use usar_sim::mission::{TrialResult, TrialRow};
 
-use crate::stats::Summary;
+use crate::analysis::CellAnalysis;
 
 /// A metric of [`TrialRow`]: its CSV column name, a short label and how to read it
 /// (`None` when undefined for the trial, e.g. a cost per rescuee when nobody was rescued).
@@ -80,6 +80,11 @@ pub const METRICS: [Metric; 17] = [
     metric!(mean_round_s, "mean round time (s)", opt),
 ];
 
+/// The metric called `name`, if there is one.
+pub fn find_metric(name: &str) -> Option<Metric> {
+    METRICS.iter().find(|m| m.name == name).copied()
+}
+
 /// The metric called `name`.
 ///
 /// # Panics
@@ -117,8 +122,9 @@ pub fn trials_csv(results: &[TrialResult]) -> Result<Vec<u8>> {
     w.into_inner().context("finishing trials.csv")
 }
 
-/// Formats a statistic for `summary.csv`: shortest round-trip form, empty when undefined.
-fn cell(x: f64) -> String {
+/// Formats a statistic for `summary.csv` and `grid.csv`: shortest round-trip form, empty when
+/// undefined.
+pub fn stat_cell(x: f64) -> String {
     if x.is_finite() {
         format!("{x}")
     } else {
@@ -126,13 +132,13 @@ fn cell(x: f64) -> String {
     }
 }
 
-/// `summary.csv`: per method (in `methods` order) and metric (in [`METRICS`] order): `n`,
-/// mean, standard deviation and the 95 % t confidence interval of the mean. Undefined
-/// statistics (fewer than two values) are empty cells.
+/// `summary.csv`: per method (in sweep order) and metric (in [`METRICS`] order): `n`, mean,
+/// standard deviation and the 95 % t confidence interval of the mean, from the cell's
+/// analysis. Undefined statistics (fewer than two values) are empty cells.
 ///
 /// # Errors
 /// A CSV serialisation error (not expected).
-pub fn summary_csv(results: &[TrialResult], methods: &[String]) -> Result<Vec<u8>> {
+pub fn summary_csv(cell: &CellAnalysis) -> Result<Vec<u8>> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "method",
@@ -144,19 +150,17 @@ pub fn summary_csv(results: &[TrialResult], methods: &[String]) -> Result<Vec<u8
         "ci95_low",
         "ci95_high",
     ])?;
-    for m in methods {
-        let rows = rows_of(results, m);
-        for metric in METRICS {
-            let s = Summary::of(&values(&rows, metric));
+    for m in &cell.methods {
+        for (metric, s) in METRICS.iter().zip(&m.metrics) {
             w.write_record([
-                m.clone(),
+                m.method.clone(),
                 metric.name.to_string(),
                 s.n.to_string(),
-                cell(s.mean),
-                cell(s.sd),
-                cell(s.ci95),
-                cell(s.ci_low()),
-                cell(s.ci_high()),
+                stat_cell(s.mean),
+                stat_cell(s.sd),
+                stat_cell(s.ci95),
+                stat_cell(s.ci_low()),
+                stat_cell(s.ci_high()),
             ])?;
         }
     }

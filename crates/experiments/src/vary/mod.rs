@@ -21,7 +21,7 @@ mod value;
 use std::fmt;
 
 use serde_json::Value;
-use usar_sim::scenario::ScenarioSpec;
+use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 
 pub use path::{FieldPath, Step};
 pub use split::split_top_level;
@@ -172,6 +172,29 @@ pub fn apply_overrides(
     Ok(out)
 }
 
+/// The one-line message for a spec with `overrides` that breaks a rule:
+/// `FLAG FIELD=VALUE: field.path: message`, naming the override whose field the rule is
+/// about, or every override when the rule is about none (or several) of their fields. `flag`
+/// is how the overrides were given (`--vary`, `--set`).
+pub fn rule_error(flag: &str, overrides: &[Override], e: &ScenarioError) -> String {
+    let (field, message) = match e {
+        ScenarioError::Invalid { field, message, .. } => (field.as_str(), message.as_str()),
+        other => return format!("{other}"),
+    };
+    let about = FieldPath::parse(field).ok();
+    let culprits: Vec<&Override> = overrides
+        .iter()
+        .filter(|o| about.as_ref().is_some_and(|p| p.overlaps(&o.path)))
+        .collect();
+    let named: Vec<&Override> = if culprits.len() == 1 {
+        culprits
+    } else {
+        overrides.iter().collect()
+    };
+    let names: Vec<String> = named.iter().map(|o| format!("{flag} {o}")).collect();
+    format!("{}: {field}: {message}", names.join(" "))
+}
+
 #[cfg(test)]
 mod tests {
     use usar_sim::scenario::{Role, StartsSpec, parse_spec};
@@ -224,7 +247,10 @@ mod tests {
         assert_eq!(s.tasks.hard.goal_m, [10.0, 50.0]);
         assert!(matches!(
             s.kinds[0].starts,
-            StartsSpec::Row { first_m: [30.0, 3.0], .. }
+            StartsSpec::Row {
+                first_m: [30.0, 3.0],
+                ..
+            }
         ));
         assert_eq!(s.kinds[2].role, Role::Observer);
         assert_eq!(s.debris_fields[0].seed, None);

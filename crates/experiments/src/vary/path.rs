@@ -62,7 +62,9 @@ impl FieldPath {
                     Step::All
                 } else {
                     Step::Index(inner.parse().map_err(|_| {
-                        format!("field path {text:?}: expected an index or * in [], found {inner:?}")
+                        format!(
+                            "field path {text:?}: expected an index or * in [], found {inner:?}"
+                        )
                     })?)
                 });
                 rest = &after[close + 1..];
@@ -81,12 +83,15 @@ impl FieldPath {
     /// Whether two paths can name the same value: one is a prefix of the other, with `[*]`
     /// matching any index (`mission` and `mission.duration_s`; `zones[*].r` and `zones[2].r`).
     pub fn overlaps(&self, other: &FieldPath) -> bool {
-        self.steps.iter().zip(&other.steps).all(|(a, b)| match (a, b) {
-            (Step::Field(x), Step::Field(y)) => x == y,
-            (Step::Index(i), Step::Index(j)) => i == j,
-            (Step::All, Step::Index(_) | Step::All) | (Step::Index(_), Step::All) => true,
-            _ => false,
-        })
+        self.steps
+            .iter()
+            .zip(&other.steps)
+            .all(|(a, b)| match (a, b) {
+                (Step::Field(x), Step::Field(y)) => x == y,
+                (Step::Index(i), Step::Index(j)) => i == j,
+                (Step::All, Step::Index(_) | Step::All) | (Step::Index(_), Step::All) => true,
+                _ => false,
+            })
     }
 
     /// Replaces the value(s) this path names inside `root` with `make(old value)`; `[*]`

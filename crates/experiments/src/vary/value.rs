@@ -412,7 +412,11 @@ mod tests {
         );
         // A named struct keeps its fields; the name is dropped.
         assert_eq!(
-            conv("Circle(radius_m: 2)", json!({"center_m": [0, 0], "radius_m": 1.0})).unwrap(),
+            conv(
+                "Circle(radius_m: 2)",
+                json!({"center_m": [0, 0], "radius_m": 1.0})
+            )
+            .unwrap(),
             json!({"radius_m": 2})
         );
     }
@@ -436,8 +440,11 @@ mod tests {
             json!({"List": [[1, 1]]})
         );
         assert_eq!(
-            conv("Grid(spacing_m: 2)", json!({"Grid": {"spacing_m": 1.0, "margin_m": 0.5}}))
-                .unwrap(),
+            conv(
+                "Grid(spacing_m: 2)",
+                json!({"Grid": {"spacing_m": 1.0, "margin_m": 0.5}})
+            )
+            .unwrap(),
             json!({"Grid": {"spacing_m": 2}})
         );
     }
@@ -447,8 +454,14 @@ mod tests {
         for (text, want) in [
             ("", "expected a value at character 1, found the end"),
             ("(1, 2", "expected ',' or ')' at character 6, found the end"),
-            ("1 2", "expected the end of the value at character 3, found '2'"),
-            ("(a: 1, 2)", "mixed named and unnamed items at character 9, found ')'"),
+            (
+                "1 2",
+                "expected the end of the value at character 3, found '2'",
+            ),
+            (
+                "(a: 1, 2)",
+                "mixed named and unnamed items at character 9, found ')'",
+            ),
             ("\"abc", "string not closed at character 1, found '\"'"),
             ("[1,,]", "expected a value at character 4, found ','"),
         ] {
