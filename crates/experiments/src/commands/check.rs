@@ -41,8 +41,8 @@ pub struct CheckArgs {
     pub scenario: PathBuf,
 
     /// Set a field before validating (repeatable, applied in order): a path such as
-    /// mission.duration_s, kinds[0].count or radiation_zones[*].radius_m, and one RON value
-    /// (commas included).
+    /// `mission.duration_s`, `kinds[0].count` or `radiation_zones[*].radius_m`, and one RON
+    /// value (commas included).
     #[arg(long, value_name = "FIELD=VALUE", allow_hyphen_values = true)]
     pub set: Vec<String>,
 
