@@ -7,8 +7,8 @@ use statrs::statistics::{Data, OrderStatistics};
 use usar_sim::mission::TrialResult;
 
 use crate::claims::{CLAIMS, ClaimCheck, check_claim};
+use crate::metrics::{METRICS, rows_of, values};
 use crate::stats::Summary;
-use crate::summary::{METRICS, rows_of, values};
 use crate::sweep::SweepOutcome;
 
 /// The analysis of a whole sweep: one [`CellAnalysis`] per grid cell, in cell order.

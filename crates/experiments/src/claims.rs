@@ -4,8 +4,8 @@
 
 use usar_sim::mission::TrialResult;
 
+use crate::metrics::{metric, rows_of, values};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
-use crate::summary::{metric, rows_of, values};
 
 /// Significance level of the claim checks (one-sided).
 pub const ALPHA: f64 = 0.05;
@@ -28,7 +28,7 @@ pub struct Claim {
     pub text: &'static str,
     /// Method the claim is about, upper case.
     pub subject: &'static str,
-    /// Metric name (see [`crate::summary::METRICS`]).
+    /// Metric name (see [`crate::metrics::METRICS`]).
     pub metric: &'static str,
     /// Highest or lowest.
     pub direction: Direction,

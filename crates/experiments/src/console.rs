@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
-use crate::summary::{Metric, metric};
+use crate::metrics::{Metric, metric};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
 use crate::table::{mean_sd, pval};
 

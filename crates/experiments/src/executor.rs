@@ -16,7 +16,31 @@ use usar_sim::scenario::Scenario;
 
 use crate::journal::{Journal, Outcome, TrialRecord};
 use crate::method_factory::MethodFactory;
-use crate::sweep::{STOP_EXIT_CODE, SweepConfig};
+
+/// Exit status of a sweep stopped on purpose by [`TestHooks::stop_after`].
+pub const STOP_EXIT_CODE: i32 = 75;
+
+/// Hooks for tests: make trials fail and simulate a kill.
+#[derive(Debug, Clone, Default)]
+pub struct TestHooks {
+    /// Trials that panic on purpose: (method, upper case; trial index).
+    pub fail: Vec<(String, u32)>,
+    /// Exit the process abruptly (status [`STOP_EXIT_CODE`], no output files) once this many
+    /// trials have been journaled by this run; trials still running are lost, as in a kill.
+    pub stop_after: Option<usize>,
+}
+
+/// How to run a sweep's jobs.
+pub(crate) struct Runner<'a> {
+    /// Builds each trial's method.
+    pub(crate) factory: &'a MethodFactory,
+    /// Test hooks.
+    pub(crate) hooks: &'a TestHooks,
+    /// Show a progress bar (on a terminal).
+    pub(crate) progress: bool,
+    /// Worker threads (>= 1).
+    pub(crate) threads: usize,
+}
 
 /// Steps between two progress-bar updates from a running trial.
 const PROGRESS_EVERY_STEPS: u64 = 50;
@@ -37,6 +61,8 @@ pub(crate) struct Job {
 
 /// What one cell needs to run trials.
 pub(crate) struct CellPlan<'a> {
+    /// ` in cell <folder>` for a grid cell, empty otherwise (for messages).
+    pub(crate) label: String,
     /// The cell's scenario.
     pub(crate) scenario: &'a Scenario,
     /// Its trust model (its `needs_weights` may be varied).
@@ -49,17 +75,16 @@ pub(crate) struct CellPlan<'a> {
     pub(crate) steps_per_trial: u64,
 }
 
-/// Runs `jobs` on a pool of `threads`, journaling each record as it ends; returns the new
-/// records (in completion order).
+/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends; returns the
+/// new records (in completion order).
 pub(crate) fn execute(
-    cfg: &SweepConfig,
+    runner: &Runner<'_>,
     plans: &[CellPlan<'_>],
     jobs: &[Job],
     journal: Journal,
-    threads: usize,
 ) -> Result<Vec<TrialRecord>> {
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
+        .num_threads(runner.threads.max(1))
         .build()
         .context("starting the thread pool")?;
     let total_us = jobs
@@ -72,7 +97,7 @@ pub(crate) fn execute(
         String::new()
     };
     let pb = progress_bar(
-        cfg.progress,
+        runner.progress,
         &format!("0/{} trials{over}", jobs.len()),
         total_us,
     );
@@ -87,7 +112,7 @@ pub(crate) fn execute(
                 return;
             }
             let plan = &plans[job.cell];
-            let record = run_job(cfg, plan, job, &|steps| pb.inc(steps * plan.step_us));
+            let record = run_job(runner, plan, job, &|steps| pb.inc(steps * plan.step_us));
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
             if let Err(e) = j.append(&record) {
                 abort.store(true, Ordering::SeqCst);
@@ -102,15 +127,12 @@ pub(crate) fn execute(
                 pb.suspend(|| {
                     eprintln!(
                         "trial {} #{} (seed {}){} failed: {msg}",
-                        record.method,
-                        record.trial,
-                        record.seed,
-                        cell_words(cfg, record.cell)
+                        record.method, record.trial, record.seed, plans[record.cell].label
                     );
                 });
             }
             pb.set_message(format!("{n}/{} trials{over}", jobs.len()));
-            if cfg.hooks.stop_after.is_some_and(|s| n >= s) {
+            if runner.hooks.stop_after.is_some_and(|s| n >= s) {
                 pb.suspend(|| eprintln!("--stop-after {n}: stopping abruptly"));
                 std::process::exit(STOP_EXIT_CODE);
             }
@@ -133,28 +155,20 @@ pub(crate) fn execute(
         .unwrap_or_else(PoisonError::into_inner))
 }
 
-/// ` in cell c01_...` for a grid, nothing otherwise.
-fn cell_words(cfg: &SweepConfig, cell: usize) -> String {
-    match &cfg.grid {
-        Some(g) => format!(" in cell {}", g.cells[cell].dir),
-        None => String::new(),
-    }
-}
-
 /// Runs one job into its journal record.
 fn run_job(
-    cfg: &SweepConfig,
+    runner: &Runner<'_>,
     plan: &CellPlan<'_>,
     job: &Job,
     tick: &(dyn Fn(u64) + Sync),
 ) -> TrialRecord {
-    let fail = cfg
+    let fail = runner
         .hooks
         .fail
         .iter()
         .any(|(m, k)| *m == job.method && *k == job.trial);
     let t0 = Instant::now();
-    let outcome = run_trial(plan, &cfg.method_factory, job, fail, tick);
+    let outcome = run_trial(plan, runner.factory, job, fail, tick);
     TrialRecord {
         cell: job.cell,
         method: job.method.clone(),

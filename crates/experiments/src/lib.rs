@@ -4,9 +4,11 @@
 //! A sweep runs, analysis judges, outputs write: [`sweep::run_sweep`] runs the trials (of
 //! every cell of a [`grid`] built from `--vary` overrides, [`vary`]) into the [`journal`] and
 //! returns data; [`analysis::Analysis`] computes the statistics and [`claims`] once per cell;
-//! [`output::write_outputs`] writes the CSV files ([`summary`], [`grid::csv`]), figures
-//! ([`figures`], [`grid::figures`]) and reports ([`report`], [`grid::report`]), and
-//! [`console`] the terminal summary, all from that analysis.
+//! [`output::write_outputs`] writes the CSV files ([`summary`], [`grid_outputs::csv`]),
+//! figures ([`figures`], [`grid_outputs::figures`]) and reports ([`report`],
+//! [`grid_outputs::report`]), and [`console`] the terminal summary, all from that analysis.
+//! Module dependencies go one way: vary, grid -> sweep (with executor, journal) -> analysis
+//! (with claims, metrics, stats) -> outputs.
 
 pub mod analysis;
 pub mod atomic;
@@ -18,8 +20,10 @@ mod executor;
 pub mod figures;
 pub mod fingerprint;
 pub mod grid;
+pub mod grid_outputs;
 pub mod journal;
 pub mod method_factory;
+pub mod metrics;
 pub mod output;
 pub mod render;
 pub mod report;

@@ -15,13 +15,14 @@ use anyhow::Result;
 use crate::analysis::Analysis;
 use crate::atomic::write_atomic;
 use crate::figures::{FIGURES, figure_svg};
-use crate::grid::csv::grid_csv;
-use crate::grid::figures::{figure_file, grid_figure_svg};
-use crate::grid::report::{GridReportInput, grid_md};
 use crate::grid::{Grid, GridCell};
+use crate::grid_outputs::csv::grid_csv;
+use crate::grid_outputs::figures::{figure_file, grid_figure_svg};
+use crate::grid_outputs::report::{GridReportInput, grid_md};
+use crate::metrics::Metric;
 use crate::report::{ReportInput, report_md};
 use crate::spec_ron::spec_to_ron;
-use crate::summary::{Metric, summary_csv, trials_csv};
+use crate::summary::{summary_csv, trials_csv};
 use crate::sweep::{SweepConfig, SweepOutcome};
 
 /// Metrics of `grid.md` and its figures when `--grid-metrics` is not given.

@@ -12,7 +12,7 @@ use crate::analysis::CellAnalysis;
 use crate::claims::{ALPHA, Verdict};
 use crate::figures::FIGURES;
 use crate::grid::GridCell;
-use crate::summary::{METRICS, metric};
+use crate::metrics::{METRICS, metric};
 use crate::sweep::SweepOutcome;
 use crate::table::{mean_sd, num, pval};
 

@@ -16,7 +16,8 @@ use anyhow::{Context, Result, bail};
 use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::Scenario;
 
-use crate::executor::{CellPlan, Job, execute};
+use crate::executor::{CellPlan, Job, Runner, execute};
+pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
 use crate::fingerprint::scenario_hash;
 use crate::grid::Grid;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
@@ -25,19 +26,6 @@ use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, Outcome, SweepHeader, TrialRecord,
     header_diff, read_header,
 };
-
-/// Exit status of a sweep stopped on purpose by [`TestHooks::stop_after`].
-pub const STOP_EXIT_CODE: i32 = 75;
-
-/// Hooks for tests: make trials fail and simulate a kill.
-#[derive(Debug, Clone, Default)]
-pub struct TestHooks {
-    /// Trials that panic on purpose: (method, upper case; trial index).
-    pub fail: Vec<(String, u32)>,
-    /// Exit the process abruptly (status [`STOP_EXIT_CODE`], no output files) once this many
-    /// trials have been journaled by this run; trials still running are lost, as in a kill.
-    pub stop_after: Option<usize>,
-}
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
 /// the fields that differ:
@@ -405,9 +393,14 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         .cell_scenarios()
         .into_iter()
         .zip(&header.grid.cells)
-        .map(|(scenario, h)| {
+        .enumerate()
+        .map(|(i, (scenario, h))| {
             let steps = (h.duration_s / scenario.sim.dt_s).ceil().max(0.0) as u64;
             Ok(CellPlan {
+                label: match &cfg.grid {
+                    Some(g) => format!(" in cell {}", g.cells[i].dir),
+                    None => String::new(),
+                },
                 scenario,
                 model: trust_model(scenario)?,
                 duration_s: h.duration_s,
@@ -447,7 +440,13 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
 
     let threads = cfg.threads.max(1);
     let start = Instant::now();
-    let new_records = execute(cfg, &plans, &jobs, journal, threads)?;
+    let runner = Runner {
+        factory: &cfg.method_factory,
+        hooks: &cfg.hooks,
+        progress: cfg.progress,
+        threads,
+    };
+    let new_records = execute(&runner, &plans, &jobs, journal)?;
     let wall_s = start.elapsed().as_secs_f64();
     Ok(collect(
         header,

@@ -14,8 +14,8 @@ use usar_sim::scenario;
 use crate::analysis::Analysis;
 use crate::console::print_sweep;
 use crate::grid::Grid;
+use crate::metrics::{METRICS, Metric, find_metric};
 use crate::output::{DEFAULT_GRID_METRICS, write_outputs};
-use crate::summary::{METRICS, Metric, find_metric};
 use crate::sweep::{
     MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method, default_out_dir,
     run_sweep, trust_model,

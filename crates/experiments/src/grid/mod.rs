@@ -3,13 +3,10 @@
 //!
 //! [`Grid::build`] makes and validates every cell before anything runs: each cell is the base
 //! scenario spec with the cell's values set ([`crate::vary`]), validated exactly as a scenario
-//! file is. Its submodules write the grid's outputs: [`csv`] (`grid.csv`), [`figures`] (one
-//! SVG per chosen metric) and [`report`] (`grid.md`); [`names`] makes the cell folders' names.
+//! file is; [`names`] makes the cell folders' names. The grid's own files are written by
+//! [`crate::grid_outputs`].
 
-pub mod csv;
-pub mod figures;
 pub mod names;
-pub mod report;
 
 use anyhow::{Result, anyhow, bail};
 use serde_json::Value;

@@ -17,8 +17,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::analysis::Analysis;
 use crate::figures::{FIGURE_SIZE, draw_err, method_color};
 use crate::journal::SweepHeader;
+use crate::metrics::Metric;
 use crate::stats::Summary;
-use crate::summary::Metric;
 use crate::table::num;
 
 /// A chart on an SVG string with numeric axes.

@@ -8,8 +8,8 @@ use std::path::Path;
 use crate::analysis::Analysis;
 use crate::claims::CLAIMS;
 use crate::grid::Grid;
+use crate::metrics::{METRICS, Metric};
 use crate::report::software_version;
-use crate::summary::{METRICS, Metric};
 use crate::sweep::SweepOutcome;
 use crate::table::num;
 

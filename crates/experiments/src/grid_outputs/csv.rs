@@ -4,7 +4,8 @@ use anyhow::{Context, Result};
 
 use crate::analysis::Analysis;
 use crate::journal::SweepHeader;
-use crate::summary::{METRICS, stat_cell};
+use crate::metrics::METRICS;
+use crate::summary::stat_cell;
 
 /// `grid.csv`: one column per varied field (named by its path, holding the cell's value as
 /// written), then `method, metric, n, mean, sd, ci95_low, ci95_high`; one row per cell (in
