@@ -296,3 +296,46 @@ fn bad_vary_inputs_are_one_line_errors_and_run_nothing() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--vary"));
     assert!(!out.exists());
 }
+
+#[test]
+fn each_cell_runs_its_own_duration_unless_duration_is_given() {
+    let tmp = tempfile::tempdir().unwrap();
+    // The simulated length of each journaled trial, by cell.
+    let run = |out: &Path, extra: &[&str]| -> Vec<(u64, f64)> {
+        let o = Command::new(env!("CARGO_BIN_EXE_usar"))
+            .args([
+                "sweep",
+                PAPER,
+                "--methods",
+                "rne",
+                "--trials",
+                "1",
+                "--quiet",
+            ])
+            .args(["--vary", "mission.duration_s=3,6", "--out"])
+            .arg(out)
+            .args(extra)
+            .output()
+            .expect("run usar");
+        ok(&o);
+        let mut d: Vec<(u64, f64)> = text(&out.join("journal.jsonl"))
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: serde_json::Value = serde_json::from_str(l).unwrap();
+                let t = &v["trial"];
+                let cell = t["cell"].as_u64().unwrap();
+                (cell, t["outcome"]["ok"]["duration_s"].as_f64().unwrap())
+            })
+            .collect();
+        d.sort_by_key(|x| x.0);
+        d
+    };
+    assert_eq!(run(&tmp.path().join("own"), &[]), [(0, 3.0), (1, 6.0)]);
+    let md = text(&tmp.path().join("own/grid.md"));
+    assert!(md.contains("of each cell's `mission.duration_s`"), "{md}");
+    assert_eq!(
+        run(&tmp.path().join("fixed"), &["--duration", "2"]),
+        [(0, 2.0), (1, 2.0)]
+    );
+}
