@@ -142,7 +142,7 @@ fn check_name(name: &str, path: &str) -> Result<(), String> {
 
 /// The content of an enum variant object `{"Variant": content}` (one key, starting with an
 /// upper-case letter; struct fields are snake_case).
-pub(crate) fn variant_content(v: &mut Value) -> Option<(&str, &mut Value)> {
+fn variant_content(v: &mut Value) -> Option<(&str, &mut Value)> {
     match v {
         Value::Object(map) if map.len() == 1 => {
             let (k, content) = map.iter_mut().next()?;
@@ -154,7 +154,7 @@ pub(crate) fn variant_content(v: &mut Value) -> Option<(&str, &mut Value)> {
 }
 
 /// What a JSON value is, in the words of a scenario file.
-pub(crate) fn kind_of(v: &Value) -> String {
+fn kind_of(v: &Value) -> String {
     match v {
         Value::Null => "None".into(),
         Value::Bool(_) => "a boolean".into(),
