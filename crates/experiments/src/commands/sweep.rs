@@ -33,11 +33,11 @@ Examples:
   usar sweep scenarios/paper.ron --resume
 
   # A parameter sweep: the comparison once per value of a scenario field
-  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003 \
+  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003 \\
       --methods rne,dis --trials 5 --out results/hp-rate
 
   # Two fields (2 x 3 cells, heat maps), a wildcard over a list, chosen metrics
-  usar sweep scenarios/paper.ron --vary 'radiation_zones[*].dose_rate_factor=1,2' \
+  usar sweep scenarios/paper.ron --vary 'radiation_zones[*].dose_rate_factor=1,2' \\
       --vary 'kinds[0].max_speed_m_per_s=1.0,1.5,2.0' --grid-metrics rescued_total,rounds
 
   # Reproduce one cell as a file (each cell folder also holds its scenario.ron)
@@ -49,8 +49,8 @@ fig3b_energy_per_rescuee.svg, fig3c_hp_per_rescuee.svg. With --vary: journal.jso
 (every metric, one row per cell x method x metric), grid.md and grid_<metric>.svg at the top,
 and one folder per cell (c00_<field>=<value>...) with the files above plus scenario.ron. Field
 paths are written as the loader's errors write them (mission.duration_s, kinds[0].count,
-tasks.hard.goal_m, radiation_zones[*].radius_m); values are RON (0.003, true, Linear,
-(1.0, 2.0), Some(3), PerMetre(0.15)), split on top-level commas. Every cell is validated like
+tasks.hard.goal_m, radiation_zones[*].radius_m); values are RON (0.003, true, Aerial,
+(1.0, 2.0), Some(3), Grid(spacing_m: 2.0)), split on top-level commas. Every cell is validated like
 a scenario file before anything runs. The CSV files depend only on the scenario, grid,
 methods, trials, seed and duration (not on --threads or interruptions). Running the same
 command again continues its journal (like --resume) and rewrites the files.

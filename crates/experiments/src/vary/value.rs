@@ -2,10 +2,10 @@
 //! guided by the value they replace.
 //!
 //! Accepted: numbers (`0.003`, `-5`, `1e-4`), `true`/`false`, strings quoted (`"a b"`, with
-//! `\"` and `\\` escapes) or bare (`paper2`, `Linear`: a unit enum variant is a string in
+//! `\"` and `\\` escapes) or bare (`paper2`, `Aerial`: a unit enum variant is a string in
 //! JSON), `Some(x)` and `None`, tuples and lists (`(1.0, 2.0)`, `[(1, 2), (3, 4)]`), structs
-//! (`(mean_pct: 70.0, std_dev_pct: 5.0)`, the struct name optional) and enum variants
-//! (`PerMetre(0.15)`, `Row(first_m: (30.0, 3.0), step_m: (3.0, 0.0))`).
+//! (`(mean_pct: 70.0, std_dev_pct: 5.0)`, the struct name optional) and enum variants with
+//! data (newtype `Name(x)`, struct-like `Row(first_m: (30.0, 3.0), step_m: (3.0, 0.0))`).
 //!
 //! The JSON shape of the old value decides what a bare word becomes: `1` for a string field is
 //! the string `"1"`, `true` for a boolean field a boolean; a number field takes only a finite
