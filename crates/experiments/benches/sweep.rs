@@ -10,7 +10,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use experiments::sweep::{MethodFactory, SweepConfig, TestHooks, run_sweep, trust_model};
+use experiments::analysis::Analysis;
+use experiments::output::write_outputs;
+use experiments::sweep::{SweepConfig, run_sweep, trust_model};
 use rne_core::grouping::{METHOD_NAMES, method_from_name};
 use usar_sim::mission::Simulation;
 
@@ -48,22 +50,16 @@ fn main() {
     for threads in [1usize, 2] {
         let tmp = tempfile::tempdir().expect("temp dir");
         let cfg = SweepConfig {
-            scenario: scenario.clone(),
-            scenario_path: path.clone(),
             methods: METHOD_NAMES.iter().map(|s| s.to_string()).collect(),
-            method_factory: MethodFactory::builtin(),
             trials: 10,
-            base_seed: scenario.sim.seed,
-            duration_s: duration,
             threads,
             out_dir: tmp.path().to_path_buf(),
-            resume: false,
-            overwrite: false,
             progress: false,
-            hooks: TestHooks::default(),
+            ..SweepConfig::new(scenario.clone(), path.clone())
         };
         let t0 = Instant::now();
         let o = run_sweep(&cfg).expect("sweep runs");
+        write_outputs(&cfg, &o, &Analysis::of(&o), &[]).expect("files written");
         let wall = t0.elapsed().as_secs_f64();
         let sim = o.simulated_s();
         println!(

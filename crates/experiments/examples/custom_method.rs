@@ -14,7 +14,9 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use experiments::sweep::{MethodFactory, SweepConfig, TestHooks, run_sweep};
+use experiments::analysis::Analysis;
+use experiments::output::write_outputs;
+use experiments::sweep::{MethodFactory, SweepConfig, run_sweep};
 use rne_core::grouping::{GroupingMethod, HierarchicalRne};
 use rne_core::{Alignment, RneOptions, TrustModel};
 use usar_sim::mission::TrialResult;
@@ -48,34 +50,27 @@ fn main() -> Result<()> {
     });
 
     let cfg = SweepConfig {
-        scenario_path: path,
         methods: ["rne", "rne_sorted", "eng"].map(String::from).to_vec(),
         method_factory: factory,
         trials,
-        base_seed: scenario.sim.seed,
-        duration_s: scenario.mission.duration_s,
-        threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
         out_dir,
-        resume: false,
         overwrite: true,
-        progress: true,
-        hooks: TestHooks::default(),
-        scenario,
+        ..SweepConfig::new(scenario, path)
     };
+    // A sweep runs (into its journal), the analysis judges, the outputs are written from it.
     let outcome = run_sweep(&cfg)?;
+    let analysis = Analysis::of(&outcome);
+    write_outputs(&cfg, &outcome, &analysis, &[])?;
+    let results = &outcome.cells[0].results;
     println!(
         "{} trials in {:.2} s; files in {}",
-        outcome.results.len(),
+        results.len(),
         outcome.wall_s,
         cfg.out_dir.display()
     );
     println!("method        rescued: hard    easy   total (means over trials)");
     for method in &outcome.header.methods {
-        let runs: Vec<&TrialResult> = outcome
-            .results
-            .iter()
-            .filter(|r| &r.method == method)
-            .collect();
+        let runs: Vec<&TrialResult> = results.iter().filter(|r| &r.method == method).collect();
         let mean = |f: fn(&TrialResult) -> u32| {
             runs.iter().map(|r| f64::from(f(r))).sum::<f64>() / runs.len().max(1) as f64
         };

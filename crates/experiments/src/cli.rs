@@ -26,7 +26,10 @@ Examples:
   # Validate a scenario; run one trial; run the paper's whole comparison
   usar check scenarios/paper.ron
   usar run scenarios/paper.ron --method rne --trial 0
-  usar sweep scenarios/paper.ron --trials 10 --out results/paper";
+  usar sweep scenarios/paper.ron --trials 10 --out results/paper
+
+  # A parameter sweep: the comparison once per value of a scenario field (see docs/sweeps.md)
+  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]

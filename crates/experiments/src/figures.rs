@@ -2,13 +2,11 @@
 //! easy, total; one bar per method) of the mean over trials with 95 % confidence-interval error
 //! bars. SVG via plotters; text is plain SVG `<text>`, so no fonts are needed to write them.
 
+use crate::analysis::CellAnalysis;
+use crate::stats::Summary;
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use usar_sim::mission::TrialResult;
-
-use crate::stats::Summary;
-use crate::summary::{metric, rows_of, values};
 
 /// Width and height of each figure, pixels.
 pub const FIGURE_SIZE: (u32, u32) = (820, 440);
@@ -76,27 +74,19 @@ pub fn method_color(i: usize) -> RGBColor {
     PALETTE[i % PALETTE.len()]
 }
 
-fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
+pub(crate) fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow!("drawing a figure: {e:?}")
 }
 
-/// Draws `spec` for `results` (methods in `methods` order) and returns the SVG text.
+/// Draws `spec` from a cell's analysis (methods in sweep order) and returns the SVG text.
 ///
 /// # Errors
 /// If plotters fails to draw.
-pub fn figure_svg(
-    spec: &FigureSpec,
-    results: &[TrialResult],
-    methods: &[String],
-) -> Result<String> {
+pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
+    let methods: Vec<&str> = cell.methods.iter().map(|m| m.method.as_str()).collect();
     // stats[method][group]
-    let stats: Vec<[Summary; 3]> = methods
-        .iter()
-        .map(|m| {
-            let rows = rows_of(results, m);
-            spec.metrics
-                .map(|name| Summary::of(&values(&rows, metric(name))))
-        })
+    let stats: Vec<[Summary; 3]> = (0..methods.len())
+        .map(|i| spec.metrics.map(|name| cell.summary(i, name)))
         .collect();
     let top = stats
         .iter()
@@ -160,7 +150,7 @@ pub fn figure_svg(
                 .map_err(draw_err)?;
             legend_area
                 .draw(&Text::new(
-                    name.as_str(),
+                    *name,
                     (32, y),
                     ("sans-serif", 15)
                         .into_font()

@@ -1,15 +1,36 @@
 //! Library side of the `usar` command line: argument parsing ([`cli`]) and the commands
 //! ([`commands`]). The binary `src/bin/usar.rs` only parses and dispatches.
+//!
+//! A sweep runs, analysis judges, outputs write: [`sweep::run_sweep`] runs the trials (of
+//! every cell of a [`grid`] built from `--vary` overrides, [`vary`]) into the [`journal`] and
+//! returns data; [`analysis::Analysis`] computes the statistics and [`claims`] once per cell;
+//! [`output::write_outputs`] writes the CSV files ([`summary`], [`grid_outputs::csv`]),
+//! figures ([`figures`], [`grid_outputs::figures`]) and reports ([`report`],
+//! [`grid_outputs::report`]), and [`console`] the terminal summary, all from that analysis.
+//! Module dependencies go one way: vary, grid -> sweep (with executor, journal) -> analysis
+//! (with claims, metrics, stats) -> outputs.
 
+pub mod analysis;
 pub mod atomic;
 pub mod calibration;
+pub mod claims;
 pub mod cli;
 pub mod commands;
+pub mod console;
+mod executor;
 pub mod figures;
+pub mod fingerprint;
+pub mod grid;
+pub mod grid_outputs;
 pub mod journal;
+pub mod method_factory;
+pub mod metrics;
+pub mod output;
 pub mod render;
 pub mod report;
+pub mod spec_ron;
 pub mod stats;
 pub mod summary;
 pub mod sweep;
 pub mod table;
+pub mod vary;

@@ -1,138 +1,73 @@
-//! A sweep: every grouping method for every trial of a scenario, in parallel, with a journal
-//! that makes it resumable, then `trials.csv`, `summary.csv`, the figures and `report.md`.
+//! A sweep: every grouping method for every trial of every grid cell, in parallel, with a
+//! journal that makes it resumable. [`run_sweep`] runs and returns data only; the analysis
+//! ([`crate::analysis`]) judges it and [`crate::output`] writes the files.
 //!
-//! Trial `k` of every method starts from the same team (seed `trial_seed(base_seed, k)`:
-//! common random numbers). Each finished trial is appended to the journal
-//! ([`crate::journal`]) as soon as it ends; `--resume` reruns only trials with no successful
-//! record. The output files are built from the journal's records alone, sorted by method
-//! order then trial, so they do not depend on thread count, completion order or
-//! interruptions.
+//! A sweep without `--vary` is a grid of one cell, the scenario itself. Trial `k` of every
+//! method and every cell starts from the same team (seed `trial_seed(base_seed, k)`: common
+//! random numbers). Each finished trial is appended to the journal ([`crate::journal`]) as soon
+//! as it ends; a resume reruns only trials with no successful record. All jobs of all cells
+//! go through one thread pool; results are sorted by cell, method order and trial, so they do
+//! not depend on thread count, completion order or interruptions.
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
-use rayon::prelude::*;
-use rne_core::grouping::{GroupingMethod, method_from_name};
-use rne_core::{TrustModel, Weights};
-use usar_sim::mission::{Simulation, TrialResult, trial_seed};
+use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::Scenario;
 
-use crate::atomic::write_atomic;
-use crate::figures::{FIGURES, figure_svg};
-use crate::journal::{JOURNAL_FORMAT, Journal, Outcome, SweepHeader, TrialRecord, fnv1a64_hex};
-use crate::report::{ReportInput, report_md};
-use crate::summary::{summary_csv, trials_csv};
+use crate::executor::{CellPlan, Job, Runner, execute};
+pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
+use crate::fingerprint::scenario_hash;
+use crate::grid::Grid;
+pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 
-/// Exit status of a sweep stopped on purpose by [`TestHooks::stop_after`].
-pub const STOP_EXIT_CODE: i32 = 75;
+use crate::journal::{
+    CellHeader, GridHeader, JOURNAL_FORMAT, Journal, Outcome, SweepHeader, TrialRecord,
+    header_diff, read_header,
+};
 
-/// Steps between two progress-bar updates from a running trial.
-const PROGRESS_EVERY_STEPS: u64 = 50;
-
-/// Hooks for tests: make trials fail and simulate a kill.
-#[derive(Debug, Clone, Default)]
-pub struct TestHooks {
-    /// Trials that panic on purpose: (method, upper case; trial index).
-    pub fail: Vec<(String, u32)>,
-    /// Exit the process abruptly (status [`STOP_EXIT_CODE`], no output files) once this many
-    /// trials have been journaled by this run; trials still running are lost, as in a kill.
-    pub stop_after: Option<usize>,
-}
-
-/// Builds a grouping method from its name, once per trial (methods need not be `Clone` and
-/// are never shared between threads). [`MethodFactory::builtin`] knows `rne`, `dis`, `eng` and
-/// `hp_dis`; wrap it to add methods of your own without touching the sweep:
+/// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
+/// the fields that differ:
 ///
-/// ```
-/// use experiments::sweep::MethodFactory;
-/// use rne_core::grouping::{Eng, GroupingMethod};
+/// ```no_run
+/// use experiments::sweep::{SweepConfig, run_sweep};
 ///
-/// // `my_eng` is ENG under another name; anything else falls back to the built-ins.
-/// let factory = MethodFactory::new(|name, model| match name {
-///     "my_eng" => Ok(Box::new(Eng) as Box<dyn GroupingMethod>),
-///     other => MethodFactory::builtin().build(other, model),
-/// });
-/// let model = rne_core::TrustModel::with_weights(rne_core::Weights::uniform(7)?);
-/// assert_eq!(factory.build("my_eng", &model)?.name(), "eng");
-/// assert_eq!(factory.build("dis", &model)?.name(), "dis");
-/// # Ok::<(), rne_core::RneError>(())
+/// let scenario = usar_sim::scenario::load("scenarios/paper.ron")?;
+/// let cfg = SweepConfig {
+///     methods: vec!["rne".into(), "dis".into()],
+///     trials: 2,
+///     ..SweepConfig::new(scenario, "scenarios/paper.ron")
+/// };
+/// let outcome = run_sweep(&cfg)?;
+/// assert_eq!(outcome.cells[0].results.len(), 4);
+/// # Ok::<(), anyhow::Error>(())
 /// ```
-#[derive(Clone)]
-pub struct MethodFactory(Arc<MethodBuilder>);
-
-/// The function behind a [`MethodFactory`].
-type MethodBuilder =
-    dyn Fn(&str, &TrustModel) -> rne_core::Result<Box<dyn GroupingMethod>> + Send + Sync;
-
-impl MethodFactory {
-    /// A factory from a function `(name, RNE trust model of the scenario) -> method`.
-    pub fn new(
-        f: impl Fn(&str, &TrustModel) -> rne_core::Result<Box<dyn GroupingMethod>>
-        + Send
-        + Sync
-        + 'static,
-    ) -> Self {
-        Self(Arc::new(f))
-    }
-
-    /// The built-in methods, by [`method_from_name`].
-    pub fn builtin() -> Self {
-        Self::new(method_from_name)
-    }
-
-    /// Builds the method called `name`.
-    ///
-    /// # Errors
-    /// Whatever the factory reports for an unknown name (the built-ins list the valid names).
-    pub fn build(
-        &self,
-        name: &str,
-        model: &TrustModel,
-    ) -> rne_core::Result<Box<dyn GroupingMethod>> {
-        (self.0)(name, model)
-    }
-}
-
-impl Default for MethodFactory {
-    fn default() -> Self {
-        Self::builtin()
-    }
-}
-
-impl std::fmt::Debug for MethodFactory {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("MethodFactory")
-    }
-}
-
-/// Everything a sweep needs.
 #[derive(Debug, Clone)]
 pub struct SweepConfig {
-    /// The scenario.
+    /// The scenario (with a grid: the base scenario the cells vary).
     pub scenario: Scenario,
-    /// Path the scenario was loaded from (for the report).
+    /// Path the scenario was loaded from (for the reports).
     pub scenario_path: PathBuf,
+    /// The grid of `--vary`; `None` sweeps `scenario` alone, into `out_dir` itself.
+    pub grid: Option<Grid>,
     /// Method names as accepted by `method_factory` (built-ins: `rne`, `dis`, `eng`,
     /// `hp_dis`).
     pub methods: Vec<String>,
     /// Builds each trial's grouping method from its name (default: the built-ins).
     pub method_factory: MethodFactory,
-    /// Trials per method.
+    /// Trials per method and cell (>= 1).
     pub trials: u32,
-    /// Base seed.
+    /// Base seed (the same for every cell).
     pub base_seed: u64,
-    /// Simulated length of each trial, seconds.
-    pub duration_s: f64,
+    /// Simulated length of each trial, seconds (> 0); `None`: each cell's
+    /// `mission.duration_s`.
+    pub duration_s: Option<f64>,
     /// Worker threads (>= 1).
     pub threads: usize,
-    /// Output folder.
+    /// Output folder; the journal is at its top.
     pub out_dir: PathBuf,
-    /// Continue the journal in `out_dir`.
+    /// Continue the journal in `out_dir` (refused if it has other parameters).
     pub resume: bool,
     /// Discard an existing journal in `out_dir` and start afresh.
     pub overwrite: bool,
@@ -142,9 +77,52 @@ pub struct SweepConfig {
     pub hooks: TestHooks,
 }
 
+impl SweepConfig {
+    /// The defaults of `usar sweep` for `scenario`: no grid, the four built-in methods, 10
+    /// trials, the scenario's `sim.seed` as base seed, each cell's `mission.duration_s`, all
+    /// cores, output folder `results/<scenario name>/`, no resume or overwrite, a progress
+    /// bar, no test hooks.
+    pub fn new(scenario: Scenario, scenario_path: impl Into<PathBuf>) -> Self {
+        Self {
+            scenario_path: scenario_path.into(),
+            grid: None,
+            methods: rne_core::grouping::METHOD_NAMES
+                .iter()
+                .map(|m| m.to_string())
+                .collect(),
+            method_factory: MethodFactory::builtin(),
+            trials: 10,
+            base_seed: scenario.sim.seed,
+            duration_s: None,
+            threads: std::thread::available_parallelism().map_or(1, usize::from),
+            out_dir: default_out_dir(&scenario),
+            resume: false,
+            overwrite: false,
+            progress: true,
+            hooks: TestHooks::default(),
+            scenario,
+        }
+    }
+
+    /// The scenario of each cell, in cell order: the grid's, or `scenario` alone.
+    pub fn cell_scenarios(&self) -> Vec<&Scenario> {
+        match &self.grid {
+            Some(g) => g.cells.iter().map(|c| &c.scenario).collect(),
+            None => vec![&self.scenario],
+        }
+    }
+
+    /// The trial length of a cell with `scenario`: `duration_s` or its `mission.duration_s`.
+    pub fn duration_of(&self, scenario: &Scenario) -> f64 {
+        self.duration_s.unwrap_or(scenario.mission.duration_s)
+    }
+}
+
 /// A trial that failed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure {
+    /// Grid cell index.
+    pub cell: usize,
     /// Method, upper case.
     pub method: String,
     /// Trial index.
@@ -155,18 +133,45 @@ pub struct Failure {
     pub message: String,
 }
 
-/// What a sweep produced.
-#[derive(Debug, Clone)]
-pub struct SweepOutcome {
-    /// The journal header (the sweep's parameters).
-    pub header: SweepHeader,
+/// What a sweep produced in one grid cell.
+#[derive(Debug, Clone, Default)]
+pub struct CellOutcome {
     /// Successful trials, sorted by method order then trial.
     pub results: Vec<TrialResult>,
     /// Failed trials, in the same order.
     pub failures: Vec<Failure>,
+    /// Trials of this cell run by this invocation.
+    pub ran: usize,
+    /// Successful trials of this cell taken from the journal of an earlier run.
+    pub reused: usize,
+    /// Sum of the wall-clock times of this invocation's trials of this cell, seconds.
+    pub trial_wall_sum_s: f64,
+}
+
+/// How the sweep came by its journal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JournalUse {
+    /// A new journal (none was there, or `--overwrite` removed it).
+    Created,
+    /// `--resume` continued the journal.
+    Resumed,
+    /// A journal with the same parameters was there and was continued as with `--resume`
+    /// (running the same command twice).
+    Reused,
+}
+
+/// What a sweep produced: data only (see [`crate::analysis`] and [`crate::output`]).
+#[derive(Debug, Clone)]
+pub struct SweepOutcome {
+    /// The journal header (the sweep's parameters and grid).
+    pub header: SweepHeader,
+    /// Per grid cell, in cell order.
+    pub cells: Vec<CellOutcome>,
+    /// How the journal was come by.
+    pub journal: JournalUse,
     /// Trials run by this invocation.
     pub ran: usize,
-    /// Trials taken from the journal of an earlier run.
+    /// Successful trials taken from the journal of an earlier run.
     pub reused: usize,
     /// Wall-clock time of this invocation's trials, seconds.
     pub wall_s: f64,
@@ -174,50 +179,55 @@ pub struct SweepOutcome {
     pub trial_wall_sum_s: f64,
     /// Threads used.
     pub threads: usize,
-    /// Files written, in order.
-    pub files: Vec<PathBuf>,
 }
 
 impl SweepOutcome {
     /// Simulated seconds run by this invocation.
     pub fn simulated_s(&self) -> f64 {
-        self.ran as f64 * self.header.duration_s
+        self.cells
+            .iter()
+            .zip(&self.header.grid.cells)
+            .map(|(c, h)| c.ran as f64 * h.duration_s)
+            .sum()
+    }
+
+    /// Every failed trial, by cell, method order and trial.
+    pub fn failures(&self) -> impl Iterator<Item = &Failure> {
+        self.cells.iter().flat_map(|c| &c.failures)
+    }
+
+    /// Trials the sweep has in all: cells x methods x trials.
+    pub fn expected_trials(&self) -> usize {
+        self.header.grid.cells.len() * self.header.methods.len() * self.header.trials as usize
     }
 }
 
-/// Canonical (upper-case) name of a method, as `TrialResult::method` spells it.
-///
-/// # Errors
-/// An unknown method name.
-pub fn canonical_method(name: &str, factory: &MethodFactory, model: &TrustModel) -> Result<String> {
-    let m = factory
-        .build(name, model)
-        .with_context(|| format!("method {name:?}"))?;
-    Ok(m.name().to_ascii_uppercase())
-}
-
-/// The RNE trust model of `scenario` (its `needs_weights`).
-///
-/// # Errors
-/// Weights rne-core rejects.
-pub fn trust_model(scenario: &Scenario) -> Result<TrustModel> {
-    let weights =
-        Weights::new(scenario.needs_weights.to_vec()).context("scenario needs_weights")?;
-    Ok(TrustModel::with_weights(weights))
-}
-
-/// The sweep's header: its parameters as recorded in the journal.
+/// The sweep's header: its parameters and grid as recorded in the journal.
 ///
 /// # Errors
 /// An unknown method, or a scenario that cannot be serialised.
 pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
-    let json = serde_json::to_vec(&cfg.scenario).context("serialising the scenario")?;
     let model = trust_model(&cfg.scenario)?;
+    let values: Vec<Vec<String>> = match &cfg.grid {
+        Some(g) => g.cells.iter().map(|c| c.values()).collect(),
+        None => vec![Vec::new()],
+    };
+    let cells = cfg
+        .cell_scenarios()
+        .into_iter()
+        .zip(values)
+        .map(|(s, values)| {
+            Ok(CellHeader {
+                values,
+                scenario_hash: scenario_hash(s)?,
+                duration_s: cfg.duration_of(s),
+            })
+        })
+        .collect::<Result<_>>()?;
     Ok(SweepHeader {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
         scenario: cfg.scenario.name.clone(),
-        scenario_hash: fnv1a64_hex(&json),
         methods: cfg
             .methods
             .iter()
@@ -225,305 +235,262 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
             .collect::<Result<_>>()?,
         trials: cfg.trials,
         base_seed: cfg.base_seed,
-        duration_s: cfg.duration_s,
+        grid: GridHeader {
+            fields: cfg.grid.as_ref().map(Grid::fields).unwrap_or_default(),
+            cells,
+        },
     })
 }
 
-/// One job: a method and a trial index.
-#[derive(Debug, Clone)]
-struct Job {
-    method_arg: String,
-    method: String,
-    trial: u32,
-    seed: u64,
+/// One job of the sweep: indices of its cell and method, and its trial.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct JobId {
+    /// Grid cell index.
+    pub cell: usize,
+    /// Index of the method in the sweep's method order.
+    pub method: usize,
+    /// Trial index.
+    pub trial: u32,
 }
 
-/// Runs one trial, turning errors and panics into `Err(message)`. `tick(n)` is called every
-/// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken.
-fn run_trial(
-    scenario: &Scenario,
-    factory: &MethodFactory,
-    model: &TrustModel,
-    job: &Job,
-    duration_s: f64,
-    fail: bool,
-    tick: &(dyn Fn(u64) + Sync),
-) -> Result<TrialResult, String> {
-    let body = || -> Result<TrialResult, String> {
-        let method = factory
-            .build(&job.method_arg, model)
-            .map_err(|e| e.to_string())?;
-        let mut sim = Simulation::new(scenario, method, job.seed).with_duration_s(duration_s);
-        let mut last = 0u64;
-        while !sim.is_finished() {
-            sim.step()
-                .map_err(|e| format!("at t = {:.2} s: {e}", sim.time_s()))?;
-            let (done, total) = sim.progress();
-            if fail && done * 2 >= total {
-                panic!(
-                    "failing on purpose (--fail-trial {}:{})",
-                    job.method, job.trial
-                );
-            }
-            if done - last >= PROGRESS_EVERY_STEPS {
-                tick(done - last);
-                last = done;
+/// Every job of a sweep of `cells` x `methods` x `trials`, in the canonical order jobs are
+/// started in: trial-major, then cell, then method, so a partial sweep has every cell and
+/// method on its first trials. A split of the sweep into shards would split this list.
+pub fn job_list(cells: usize, methods: usize, trials: u32) -> Vec<JobId> {
+    let mut jobs = Vec::with_capacity(cells * methods * trials as usize);
+    for trial in 0..trials {
+        for cell in 0..cells {
+            for method in 0..methods {
+                jobs.push(JobId {
+                    cell,
+                    method,
+                    trial,
+                });
             }
         }
-        tick(sim.progress().0 - last);
-        let mut result = sim.result();
-        result.trial = job.trial;
-        Ok(result)
-    };
-    match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(r) => r,
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic payload".to_string());
-            Err(format!("panicked: {msg}"))
-        }
+    }
+    jobs
+}
+
+/// Where the record of each job goes: one slot per (cell, method, trial).
+struct Slots {
+    methods: Vec<String>,
+    cells: usize,
+    trials: u32,
+}
+
+impl Slots {
+    fn len(&self) -> usize {
+        self.cells * self.methods.len() * self.trials as usize
+    }
+
+    fn of(&self, cell: usize, method: &str, trial: u32) -> Option<usize> {
+        let m = self.methods.iter().position(|x| x == method)?;
+        (cell < self.cells && trial < self.trials)
+            .then(|| (cell * self.methods.len() + m) * self.trials as usize + trial as usize)
+    }
+
+    fn of_record(&self, r: &TrialRecord) -> Option<usize> {
+        self.of(r.cell, &r.method, r.trial)
     }
 }
 
-fn progress_bar(cfg: &SweepConfig, trials: usize, steps_per_trial: u64) -> ProgressBar {
-    let draw = cfg.progress && std::io::IsTerminal::is_terminal(&std::io::stderr());
-    if !draw {
-        return ProgressBar::hidden();
-    }
-    let dt = cfg.scenario.sim.dt_s;
-    let pb = ProgressBar::with_draw_target(
-        Some(trials as u64 * steps_per_trial),
-        ProgressDrawTarget::stderr(),
-    );
-    let style = ProgressStyle::with_template(
-        "{elapsed_precise} [{bar:32.cyan/blue}] {msg}, {simrate}, ETA {eta}",
+fn is_ok(r: Option<&TrialRecord>) -> bool {
+    matches!(
+        r,
+        Some(TrialRecord {
+            outcome: Outcome::Ok(_),
+            ..
+        })
     )
-    .unwrap_or_else(|_| ProgressStyle::default_bar())
-    .with_key(
-        "simrate",
-        move |s: &ProgressState, w: &mut dyn std::fmt::Write| {
-            let _ = write!(w, "{:.0} sim-s/s", s.per_sec() * dt);
-        },
-    )
-    .progress_chars("=> ");
-    pb.set_style(style);
-    pb.set_message(format!("0/{trials} trials"));
-    pb.enable_steady_tick(std::time::Duration::from_millis(250));
-    pb
 }
 
-/// Runs the sweep and writes its files into `cfg.out_dir`. Failed trials do not stop it: they
-/// are journaled and listed in [`SweepOutcome::failures`] (the caller decides the exit status).
-///
-/// # Errors
-/// Bad parameters, a journal that cannot be started or resumed, or an I/O error writing the
-/// journal or the output files.
-pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
+/// Refuses parameters no sweep can run with.
+fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     if cfg.trials == 0 {
         bail!("--trials must be at least 1");
     }
     if cfg.methods.is_empty() {
         bail!("--methods needs at least one method");
     }
-    if !(cfg.duration_s.is_finite() && cfg.duration_s > 0.0) {
-        bail!(
-            "--duration: expected a number of seconds > 0, found {}",
-            cfg.duration_s
-        );
-    }
-    let header = header_of(cfg)?;
+    if let Some(d) = cfg.duration_s
+        && !(d.is_finite() && d > 0.0)
     {
-        let mut seen = header.methods.clone();
-        seen.sort();
-        seen.dedup();
-        if seen.len() != header.methods.len() {
-            bail!(
-                "--methods lists a method twice: {}",
-                header.methods.join(",")
-            );
-        }
+        bail!("--duration: expected a number of seconds > 0, found {d}");
+    }
+    let mut seen = header.methods.clone();
+    seen.sort();
+    seen.dedup();
+    if seen.len() != header.methods.len() {
+        bail!(
+            "--methods lists a method twice: {}",
+            header.methods.join(",")
+        );
     }
     for (m, k) in &cfg.hooks.fail {
         if !header.methods.contains(m) || *k >= cfg.trials {
             bail!("--fail-trial {m}:{k} names no trial of this sweep");
         }
     }
-    let model = trust_model(&cfg.scenario)?;
+    Ok(())
+}
 
-    let journal_path = Journal::path_in(&cfg.out_dir);
-    let (journal, previous) = if cfg.resume && journal_path.exists() {
-        Journal::open_resume(&cfg.out_dir, &header)?
-    } else {
-        if journal_path.exists() {
-            if cfg.overwrite {
-                std::fs::remove_file(&journal_path)
-                    .with_context(|| format!("removing {}", journal_path.display()))?;
-            } else {
-                bail!(
-                    "{} already exists: pass --resume to continue that sweep, or --overwrite \
-                     to start afresh (or choose another --out)",
-                    journal_path.display()
-                );
-            }
+/// Creates, resumes or reuses the journal in `cfg.out_dir`, with the records it holds.
+fn open_journal(
+    cfg: &SweepConfig,
+    header: &SweepHeader,
+) -> Result<(Journal, Vec<TrialRecord>, JournalUse)> {
+    let path = Journal::path_in(&cfg.out_dir);
+    if !path.exists() {
+        return Ok((
+            Journal::create(&cfg.out_dir, header)?,
+            Vec::new(),
+            JournalUse::Created,
+        ));
+    }
+    if cfg.resume {
+        let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
+        return Ok((j, records, JournalUse::Resumed));
+    }
+    if cfg.overwrite {
+        std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
+        return Ok((
+            Journal::create(&cfg.out_dir, header)?,
+            Vec::new(),
+            JournalUse::Created,
+        ));
+    }
+    let why = match read_header(&path) {
+        Ok(found) if &found == header => {
+            let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
+            return Ok((j, records, JournalUse::Reused));
         }
-        (Journal::create(&cfg.out_dir, &header)?, Vec::new())
+        Ok(found) => format!(
+            "it was written with other parameters: {}",
+            header_diff(&found, header)
+        ),
+        Err(e) => format!("{e:#}"),
     };
+    bail!(
+        "{} already exists ({why}): pass --resume to continue that sweep, or --overwrite to \
+         start afresh (or choose another --out)",
+        path.display()
+    )
+}
 
-    // Last record per (method, trial) wins.
-    let slot = |method: &str, trial: u32| -> Option<usize> {
-        let mi = header.methods.iter().position(|m| m == method)?;
-        (trial < cfg.trials).then(|| mi * cfg.trials as usize + trial as usize)
+/// Runs the sweep (every job without a successful record in the journal) and returns its
+/// data. Failed trials do not stop it: they are journaled and listed in
+/// [`CellOutcome::failures`] (the caller decides the exit status). No file but the journal is
+/// written.
+///
+/// # Errors
+/// Bad parameters, a journal that cannot be started or resumed, or an I/O error writing the
+/// journal.
+pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
+    let header = header_of(cfg)?;
+    check_config(cfg, &header)?;
+    let plans = cfg
+        .cell_scenarios()
+        .into_iter()
+        .zip(&header.grid.cells)
+        .enumerate()
+        .map(|(i, (scenario, h))| {
+            let steps = (h.duration_s / scenario.sim.dt_s).ceil().max(0.0) as u64;
+            Ok(CellPlan {
+                label: match &cfg.grid {
+                    Some(g) => format!(" in cell {}", g.cells[i].dir),
+                    None => String::new(),
+                },
+                scenario,
+                model: trust_model(scenario)?,
+                duration_s: h.duration_s,
+                step_us: (scenario.sim.dt_s * 1e6).round().max(1.0) as u64,
+                steps_per_trial: steps,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let (journal, previous, journal_use) = open_journal(cfg, &header)?;
+
+    let slots = Slots {
+        methods: header.methods.clone(),
+        cells: plans.len(),
+        trials: cfg.trials,
     };
-    let n_slots = header.methods.len() * cfg.trials as usize;
-    let mut records: Vec<Option<TrialRecord>> = vec![None; n_slots];
+    // Last record per (cell, method, trial) wins.
+    let mut records: Vec<Option<TrialRecord>> = vec![None; slots.len()];
     for r in previous {
-        if let Some(i) = slot(&r.method, r.trial) {
+        if let Some(i) = slots.of_record(&r) {
             records[i] = Some(r);
         }
     }
-    let reused = records
-        .iter()
-        .filter(|r| {
-            matches!(
-                r,
-                Some(TrialRecord {
-                    outcome: Outcome::Ok(_),
-                    ..
-                })
-            )
+    let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
+        .into_iter()
+        .filter(|id| {
+            let i = slots.of(id.cell, &header.methods[id.method], id.trial);
+            !is_ok(i.and_then(|i| records[i].as_ref()))
         })
-        .count();
-
-    // Jobs trial-major, so a partial sweep has every method on the first trials.
-    let mut jobs = Vec::new();
-    for trial in 0..cfg.trials {
-        for (arg, method) in cfg.methods.iter().zip(&header.methods) {
-            let i = slot(method, trial).unwrap_or(usize::MAX);
-            if matches!(
-                records.get(i),
-                Some(Some(TrialRecord {
-                    outcome: Outcome::Ok(_),
-                    ..
-                }))
-            ) {
-                continue;
-            }
-            jobs.push(Job {
-                method_arg: arg.clone(),
-                method: method.clone(),
-                trial,
-                seed: trial_seed(cfg.base_seed, trial),
-            });
-        }
-    }
+        .map(|id| Job {
+            cell: id.cell,
+            method_arg: cfg.methods[id.method].clone(),
+            method: header.methods[id.method].clone(),
+            trial: id.trial,
+            seed: trial_seed(cfg.base_seed, id.trial),
+        })
+        .collect();
 
     let threads = cfg.threads.max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .context("starting the thread pool")?;
-    let scenario = &cfg.scenario;
-    let steps_per_trial = (cfg.duration_s / scenario.sim.dt_s).ceil().max(0.0) as u64;
-    let pb = progress_bar(cfg, jobs.len(), steps_per_trial);
-    let journal = Mutex::new(journal);
-    let new_records: Mutex<Vec<TrialRecord>> = Mutex::new(Vec::new());
-    let journal_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
-    let abort = AtomicBool::new(false);
-    let done = AtomicUsize::new(0);
-    let n_jobs = jobs.len();
     let start = Instant::now();
-    pool.install(|| {
-        jobs.par_iter().for_each(|job| {
-            if abort.load(Ordering::SeqCst) {
-                return;
-            }
-            let fail = cfg
-                .hooks
-                .fail
-                .iter()
-                .any(|(m, k)| *m == job.method && *k == job.trial);
-            let t0 = Instant::now();
-            let outcome = run_trial(
-                scenario,
-                &cfg.method_factory,
-                &model,
-                job,
-                cfg.duration_s,
-                fail,
-                &|n| {
-                    pb.inc(n);
-                },
-            );
-            let record = TrialRecord {
-                method: job.method.clone(),
-                trial: job.trial,
-                seed: job.seed,
-                wall_s: t0.elapsed().as_secs_f64(),
-                outcome: match outcome {
-                    Ok(r) => Outcome::Ok(Box::new(r)),
-                    Err(msg) => Outcome::Failed(msg),
-                },
-            };
-            let mut j = journal
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner);
-            if let Err(e) = j.append(&record) {
-                abort.store(true, Ordering::SeqCst);
-                journal_error
-                    .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner)
-                    .get_or_insert(e);
-                return;
-            }
-            let n = done.fetch_add(1, Ordering::SeqCst) + 1;
-            if let Outcome::Failed(msg) = &record.outcome {
-                pb.suspend(|| {
-                    eprintln!(
-                        "trial {} #{} (seed {}) failed: {msg}",
-                        record.method, record.trial, record.seed
-                    );
-                });
-            }
-            pb.set_message(format!("{n}/{n_jobs} trials"));
-            if cfg.hooks.stop_after.is_some_and(|s| n >= s) {
-                pb.suspend(|| eprintln!("--stop-after {n}: stopping abruptly"));
-                std::process::exit(STOP_EXIT_CODE);
-            }
-            drop(j);
-            new_records
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner)
-                .push(record);
-        });
-    });
-    pb.finish_and_clear();
+    let runner = Runner {
+        factory: &cfg.method_factory,
+        hooks: &cfg.hooks,
+        progress: cfg.progress,
+        threads,
+    };
+    let new_records = execute(&runner, &plans, &jobs, journal)?;
     let wall_s = start.elapsed().as_secs_f64();
-    if let Some(e) = journal_error
-        .into_inner()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
-    {
-        return Err(e.context("the journal could not be written; the sweep stopped"));
+    Ok(collect(
+        header,
+        &slots,
+        records,
+        new_records,
+        journal_use,
+        wall_s,
+        threads,
+    ))
+}
+
+/// Sorts the journal's and this run's records into per-cell outcomes.
+fn collect(
+    header: SweepHeader,
+    slots: &Slots,
+    mut records: Vec<Option<TrialRecord>>,
+    new_records: Vec<TrialRecord>,
+    journal: JournalUse,
+    wall_s: f64,
+    threads: usize,
+) -> SweepOutcome {
+    let mut cells = vec![CellOutcome::default(); slots.cells];
+    for r in &records {
+        if let Some(r) = r.as_ref().filter(|r| is_ok(Some(r))) {
+            cells[r.cell].reused += 1;
+        }
     }
-    let new_records = new_records
-        .into_inner()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let ran = new_records.len();
     let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
     for r in new_records {
-        if let Some(i) = slot(&r.method, r.trial) {
+        let cell = &mut cells[r.cell];
+        cell.ran += 1;
+        cell.trial_wall_sum_s += r.wall_s;
+        if let Some(i) = slots.of_record(&r) {
             records[i] = Some(r);
         }
     }
-
-    let mut results = Vec::new();
-    let mut failures = Vec::new();
     for r in records.into_iter().flatten() {
+        let cell = &mut cells[r.cell];
         match r.outcome {
-            Outcome::Ok(res) => results.push(*res),
-            Outcome::Failed(message) => failures.push(Failure {
+            Outcome::Ok(res) => cell.results.push(*res),
+            Outcome::Failed(message) => cell.failures.push(Failure {
+                cell: r.cell,
                 method: r.method,
                 trial: r.trial,
                 seed: r.seed,
@@ -531,46 +498,17 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             }),
         }
     }
-
-    let mut outcome = SweepOutcome {
+    let reused = cells.iter().map(|c| c.reused).sum();
+    SweepOutcome {
         header,
-        results,
-        failures,
+        cells,
+        journal,
         ran,
         reused,
         wall_s,
         trial_wall_sum_s,
         threads,
-        files: Vec::new(),
-    };
-    outcome.files = write_outputs(cfg, &outcome)?;
-    Ok(outcome)
-}
-
-/// Writes `trials.csv`, `summary.csv`, the figures and `report.md` atomically into
-/// `cfg.out_dir`; returns their paths.
-fn write_outputs(cfg: &SweepConfig, o: &SweepOutcome) -> Result<Vec<PathBuf>> {
-    let dir = &cfg.out_dir;
-    let methods = &o.header.methods;
-    let mut files = Vec::new();
-    let mut put = |name: &str, bytes: &[u8]| -> Result<()> {
-        let p = dir.join(name);
-        write_atomic(&p, bytes)?;
-        files.push(p);
-        Ok(())
-    };
-    put("trials.csv", &trials_csv(&o.results)?)?;
-    put("summary.csv", &summary_csv(&o.results, methods)?)?;
-    for spec in &FIGURES {
-        put(spec.file, figure_svg(spec, &o.results, methods)?.as_bytes())?;
     }
-    let report = report_md(&ReportInput {
-        scenario: &cfg.scenario,
-        scenario_path: &cfg.scenario_path,
-        outcome: o,
-    });
-    put("report.md", report.as_bytes())?;
-    Ok(files)
 }
 
 /// Default output folder for a scenario: `results/<scenario name>/`.

@@ -2,6 +2,8 @@
 
 use std::fmt::Write as _;
 
+use crate::stats::Summary;
+
 /// Formats `x` with 6 significant digits below `1e6` (`0.00372546`, `0.000504443`,
 /// `12.3457`); from `1e6` to `1e9` as a whole number (up to 9 digits); `0` for zero, `inf`
 /// for infinity; scientific notation below `1e-6` or from `1e9` up.
@@ -82,6 +84,46 @@ pub fn row_minima(row: &[f64], skip: Option<usize>) -> Vec<usize> {
         .filter(|(c, v)| Some(*c) != skip && **v == min)
         .map(|(c, _)| c)
         .collect()
+}
+
+/// Formats a number for tables: 3 significant decimals for small values, fewer for large.
+pub fn num(x: f64) -> String {
+    if !x.is_finite() {
+        return "n/a".to_string();
+    }
+    let a = x.abs();
+    if a >= 100.0 {
+        format!("{x:.1}")
+    } else if a >= 1.0 {
+        format!("{x:.2}")
+    } else if a >= 0.01 || a == 0.0 {
+        format!("{x:.3}")
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// Formats a p-value.
+pub fn pval(p: f64) -> String {
+    if !p.is_finite() {
+        "n/a".to_string()
+    } else if p < 0.001 {
+        format!("{p:.1e}")
+    } else {
+        format!("{p:.3}")
+    }
+}
+
+/// `mean ± sd` of a summary, the mean alone when the sd is undefined (n = 1), `n/a` for no
+/// values.
+pub fn mean_sd(s: &Summary) -> String {
+    if s.n == 0 {
+        "n/a".to_string()
+    } else if s.sd.is_finite() {
+        format!("{} ± {}", num(s.mean), num(s.sd))
+    } else {
+        num(s.mean)
+    }
 }
 
 #[cfg(test)]

@@ -69,3 +69,64 @@ fn every_subcommand_help_has_examples() {
     let o = usar(&["--help"]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("usar sweep scenarios/paper.ron"));
 }
+
+#[test]
+fn check_set_print_and_hash_reproduce_an_overridden_scenario() {
+    let tmp = tempfile::tempdir().unwrap();
+    let set = [
+        "--set",
+        "mission.hp_pct_per_step_in_radiation=0.003",
+        "--set",
+        "kinds[0].starts.first_m=(31.5, 3.0)",
+    ];
+    let o = usar(&[&["check", PAPER][..], &set, &["--print"]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let printed = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        printed.contains("hp_pct_per_step_in_radiation: 0.003,"),
+        "{printed}"
+    );
+    assert!(printed.contains("first_m: (31.5, 3.0)"), "{printed}");
+    let file = tmp.path().join("hot.ron");
+    std::fs::write(&file, &printed).unwrap();
+    let file = file.to_str().unwrap();
+
+    // The printed file validates to the same scenario: same hash as the overrides give.
+    let hash_of = |args: &[&str]| {
+        let o = usar(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap().trim().to_string()
+    };
+    let h = hash_of(&[&["check", PAPER][..], &set, &["--hash"]].concat());
+    assert_eq!(h.len(), 16, "{h}");
+    assert_eq!(hash_of(&["check", file, "--hash"]), h);
+    assert_ne!(hash_of(&["check", PAPER, "--hash"]), h);
+    // The summary shows it too.
+    let o = usar(&["check", file]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains(&format!("scenario hash {h}")));
+}
+
+#[test]
+fn check_set_errors_name_the_override() {
+    for (set, want) in [
+        (
+            "mission.duration_s=-5",
+            "error: --set mission.duration_s=-5: mission.duration_s: expected a finite number > \
+             0, found -5\n",
+        ),
+        (
+            "kinds[9].count=1",
+            "error: --set kinds[9].count=1: no element [9] in kinds: it has 3 (indices 0 to 2)\n",
+        ),
+        (
+            "collision.enabled=maybe",
+            "error: --set collision.enabled=maybe: collision.enabled: expected true or false, \
+             found maybe\n",
+        ),
+    ] {
+        let o = usar(&["check", PAPER, "--set", set]);
+        assert!(!o.status.success(), "{set}");
+        assert_eq!(String::from_utf8_lossy(&o.stderr), want);
+        assert!(o.stdout.is_empty());
+    }
+}

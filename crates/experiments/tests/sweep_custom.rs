@@ -1,9 +1,11 @@
-//! A grouping method of the user's own runs through the sweep machinery (journal, tables,
-//! statistics) via `SweepConfig::method_factory`, next to a built-in one.
+//! A grouping method of the user's own runs through the sweep machinery (journal, analysis,
+//! tables) via `SweepConfig::method_factory`, next to a built-in one.
 
 use std::path::PathBuf;
 
-use experiments::sweep::{MethodFactory, SweepConfig, TestHooks, run_sweep};
+use experiments::analysis::Analysis;
+use experiments::output::write_outputs;
+use experiments::sweep::{MethodFactory, SweepConfig, run_sweep};
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 use usar_sim::scenario;
 
@@ -34,7 +36,6 @@ impl GroupingMethod for ById {
 fn config(out_dir: PathBuf, methods: &[&str]) -> SweepConfig {
     let scenario = scenario::load(PAPER).unwrap();
     SweepConfig {
-        scenario_path: PAPER.into(),
         methods: methods.iter().map(|m| m.to_string()).collect(),
         method_factory: MethodFactory::new(|name, model| match name {
             "by_id" => Ok(Box::new(ById) as Box<dyn GroupingMethod>),
@@ -42,24 +43,29 @@ fn config(out_dir: PathBuf, methods: &[&str]) -> SweepConfig {
         }),
         trials: 2,
         base_seed: 3,
-        duration_s: 40.0,
+        duration_s: Some(40.0),
         threads: 2,
         out_dir,
-        resume: false,
-        overwrite: false,
         progress: false,
-        hooks: TestHooks::default(),
-        scenario,
+        ..SweepConfig::new(scenario, PAPER)
     }
 }
 
 #[test]
 fn a_custom_method_is_swept_like_the_built_ins() {
     let tmp = tempfile::tempdir().unwrap();
-    let outcome = run_sweep(&config(tmp.path().join("s"), &["by_id", "dis"])).unwrap();
-    assert!(outcome.failures.is_empty(), "{:?}", outcome.failures);
+    let cfg = config(tmp.path().join("s"), &["by_id", "dis"]);
+    let outcome = run_sweep(&cfg).unwrap();
+    assert_eq!(outcome.failures().count(), 0);
     assert_eq!(outcome.header.methods, ["BY_ID", "DIS"]);
-    let by_id: Vec<_> = outcome
+    // run_sweep writes only the journal; the outputs are written from the analysis.
+    assert!(!tmp.path().join("s/trials.csv").exists());
+    assert!(tmp.path().join("s/journal.jsonl").exists());
+    let analysis = Analysis::of(&outcome);
+    assert_eq!(analysis.cells[0].methods[0].method, "BY_ID");
+    assert_eq!(analysis.cells[0].methods[0].trials, 2);
+    write_outputs(&cfg, &outcome, &analysis, &[]).unwrap();
+    let by_id: Vec<_> = outcome.cells[0]
         .results
         .iter()
         .filter(|r| r.method == "BY_ID")

@@ -51,10 +51,15 @@ fn resumed_sweep_matches_uninterrupted_one() {
     assert!(!parts.join("trials.csv").exists());
     assert_eq!(journal_trials(&parts), 1);
 
-    // Running again without --resume refuses to touch the journal.
-    let o = sweep(&parts, &[]);
+    // Running again with other parameters and without --resume refuses to touch the journal.
+    let o = sweep(&parts, &["--seed", "9"]);
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--resume"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--resume") && err.contains("--overwrite") && err.contains("seed 2021 vs 9"),
+        "{err}"
+    );
+    assert_eq!(journal_trials(&parts), 1);
 
     // Resume runs only the three missing trials.
     let o = sweep(&parts, &["--threads", "1", "--resume"]);

@@ -1,21 +1,36 @@
-//! `usar check`: validates a scenario file and prints what it holds, or the loader's error.
+//! `usar check`: validates a scenario file (optionally with fields overridden by `--set`) and
+//! prints what it holds, its scenario hash, or the resulting spec as RON; or the loader's
+//! error.
 
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario, TaskLevel};
 
+use crate::fingerprint::scenario_hash;
+use crate::spec_ron::spec_to_ron;
+use crate::vary::{Override, apply_overrides, rule_error};
+
 const EXAMPLES: &str = "\
 Examples:
-  # Validate the paper's scenario and print a summary
+  # Validate the paper's scenario and print a summary (with its scenario hash)
   usar check scenarios/paper.ron
 
   # In a script: the exit status is non-zero for an invalid file
   usar check my.ron > /dev/null && echo valid
 
-An invalid file prints the loader's error as `file:line:col: field.path: message` on stderr.";
+  # Override fields (paths and values as for `usar sweep --vary`) and write the result as a
+  # scenario file: reproduces a grid cell's scenario.ron
+  usar check scenarios/paper.ron --set mission.hp_pct_per_step_in_radiation=0.003 \\
+      --set 'kinds[0].starts.first_m=(30.0, 3.0)' --print > hot.ron
+
+  # Only the scenario hash (as in sweep journals, reports and grid.md)
+  usar check results/grid/c01_hp_pct_per_step_in_radiation=0.003/scenario.ron --hash
+
+An invalid file prints the loader's error as `file:line:col: field.path: message` on stderr;
+a bad --set as `--set FIELD=VALUE: field.path: message`.";
 
 /// Arguments of `usar check`.
 #[derive(Debug, Clone, Args)]
@@ -24,16 +39,66 @@ pub struct CheckArgs {
     /// The scenario file (RON) to validate.
     #[arg(value_name = "SCENARIO")]
     pub scenario: PathBuf,
+
+    /// Set a field before validating (repeatable, applied in order): a path such as
+    /// `mission.duration_s`, `kinds[0].count` or `radiation_zones[*].radius_m`, and one RON
+    /// value (commas included).
+    #[arg(long, value_name = "FIELD=VALUE", allow_hyphen_values = true)]
+    pub set: Vec<String>,
+
+    /// Print the (overridden) scenario spec as RON, every field written out, instead of the
+    /// summary.
+    #[arg(long, conflicts_with = "hash")]
+    pub print: bool,
+
+    /// Print only the scenario hash.
+    #[arg(long)]
+    pub hash: bool,
 }
 
 /// Runs `usar check`.
 ///
 /// # Errors
-/// The loader's error (its message names the file, line, column and field), unchanged.
+/// The loader's error (its message names the file, line, column and field), unchanged; a bad
+/// `--set` (`--set FIELD=VALUE: field.path: message`).
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
-    let s = scenario::load(&args.scenario)?;
-    summarise(&s, out)?;
-    writeln!(out, "\n{}: valid", args.scenario.display())?;
+    let origin = args.scenario.display().to_string();
+    // The file alone first, so its own errors keep their line and column.
+    let base = scenario::load(&args.scenario)?;
+    let overrides = args
+        .set
+        .iter()
+        .map(|a| Override::parse(a).map_err(|e| anyhow!("--set {a}: {e}")))
+        .collect::<Result<Vec<_>>>()?;
+    let needs_spec = args.print || !overrides.is_empty();
+    let (spec, s) = if needs_spec {
+        let text = std::fs::read_to_string(&args.scenario)
+            .with_context(|| format!("{origin}: cannot read scenario file"))?;
+        let spec = apply_overrides(&scenario::parse_spec(&text, &origin)?, &overrides)
+            .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i]))?;
+        let s = spec
+            .validate(&origin)
+            .map_err(|e| anyhow!(rule_error("--set", &overrides, &e)))?;
+        (Some(spec), s)
+    } else {
+        (None, base)
+    };
+    let hash = scenario_hash(&s)?;
+    if args.hash {
+        writeln!(out, "{hash}")?;
+    } else if let (true, Some(spec)) = (args.print, &spec) {
+        let mut comments = vec![format!("{origin}, scenario hash {hash}")];
+        if !overrides.is_empty() {
+            let sets: Vec<String> = overrides.iter().map(ToString::to_string).collect();
+            comments[0] = format!("{origin} with {}, scenario hash {hash}", sets.join(", "));
+        }
+        write!(out, "{}", spec_to_ron(spec, &comments)?)?;
+    } else {
+        summarise(&s, out)?;
+        writeln!(out, "scenario hash {hash}")?;
+        let sets: Vec<String> = overrides.iter().map(|o| format!(" --set {o}")).collect();
+        writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
+    }
     Ok(())
 }
 

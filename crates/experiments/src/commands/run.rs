@@ -12,8 +12,8 @@ use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario::{self, TaskLevel};
 
 use crate::atomic::write_atomic;
-use crate::report::num;
 use crate::sweep::trust_model;
+use crate::table::num;
 
 const EXAMPLES: &str = "\
 Examples:

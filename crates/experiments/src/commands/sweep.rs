@@ -1,5 +1,7 @@
-//! `usar sweep`: every grouping method for every trial of a scenario, in parallel; writes
-//! `trials.csv`, `summary.csv`, the Fig. 3 figures and `report.md`.
+//! `usar sweep`: every grouping method for every trial of a scenario, in parallel, optionally
+//! once per cell of a grid of scenario field values (`--vary`); writes `trials.csv`,
+//! `summary.csv`, the Fig. 3 figures and `report.md` (per cell, plus `grid.csv` and
+//! `grid.md` for a grid).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -9,12 +11,14 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario;
 
-use crate::report::{CLAIMS, check_claim, mean_sd};
-use crate::stats::Summary;
-use crate::summary::{metric, rows_of, values};
+use crate::analysis::Analysis;
+use crate::console::print_sweep;
+use crate::grid::Grid;
+use crate::metrics::{METRICS, Metric, find_metric};
+use crate::output::{DEFAULT_GRID_METRICS, write_outputs};
 use crate::sweep::{
-    MethodFactory, SweepConfig, TestHooks, canonical_method, default_out_dir, run_sweep,
-    trust_model,
+    MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method, default_out_dir,
+    run_sweep, trust_model,
 };
 
 const EXAMPLES: &str = "\
@@ -28,10 +32,28 @@ Examples:
   # Continue a sweep that was interrupted (runs only the missing or failed trials)
   usar sweep scenarios/paper.ron --resume
 
+  # A parameter sweep: the comparison once per value of a scenario field
+  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003 \\
+      --methods rne,dis --trials 5 --out results/hp-rate
+
+  # Two fields (2 x 3 cells, heat maps), a wildcard over a list, chosen metrics
+  usar sweep scenarios/paper.ron --vary 'radiation_zones[*].dose_rate_factor=1,2' \\
+      --vary 'kinds[0].max_speed_m_per_s=1.0,1.5,2.0' --grid-metrics rescued_total,rounds
+
+  # Reproduce one cell as a file (each cell folder also holds its scenario.ron)
+  usar check scenarios/paper.ron --set mission.hp_pct_per_step_in_radiation=0.003 --print
+
 Output folder (default results/<scenario name>/): journal.jsonl (every finished trial, appended
 as it ends), trials.csv, summary.csv, report.md, fig3a_rescuees.svg,
-fig3b_energy_per_rescuee.svg, fig3c_hp_per_rescuee.svg. trials.csv and summary.csv depend only
-on the scenario, methods, trials, seed and duration (not on --threads or interruptions).
+fig3b_energy_per_rescuee.svg, fig3c_hp_per_rescuee.svg. With --vary: journal.jsonl, grid.csv
+(every metric, one row per cell x method x metric), grid.md and grid_<metric>.svg at the top,
+and one folder per cell (c00_<field>=<value>...) with the files above plus scenario.ron. Field
+paths are written as the loader's errors write them (mission.duration_s, kinds[0].count,
+tasks.hard.goal_m, radiation_zones[*].radius_m); values are RON (0.003, true, Aerial,
+(1.0, 2.0), Some(3), Grid(spacing_m: 2.0)), split on top-level commas. Every cell is validated like
+a scenario file before anything runs. The CSV files depend only on the scenario, grid,
+methods, trials, seed and duration (not on --threads or interruptions). Running the same
+command again continues its journal (like --resume) and rewrites the files.
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
@@ -60,6 +82,17 @@ pub struct SweepArgs {
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub duration: Option<f64>,
 
+    /// Vary a scenario field: run the sweep once per value, in a grid over every --vary
+    /// (repeatable; the first varies slowest). FIELD is a path such as
+    /// `mission.duration_s`, `kinds[0].count` or `radiation_zones[*].radius_m`; values are RON.
+    #[arg(long, value_name = "FIELD=V1,V2,..", allow_hyphen_values = true)]
+    pub vary: Vec<String>,
+
+    /// Metrics of grid.md and its figures (names as in summary.csv); default
+    /// rescued_total,rescued_hard,rescued_easy.
+    #[arg(long, value_name = "NAME,..", value_delimiter = ',', requires = "vary")]
+    pub grid_metrics: Vec<String>,
+
     /// Output folder; default `results/<scenario name>/`.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
@@ -69,7 +102,8 @@ pub struct SweepArgs {
     pub threads: Option<usize>,
 
     /// Continue the sweep journaled in the output folder: run only trials it lacks (or that
-    /// failed). Refused if the journal was written with other parameters.
+    /// failed). Refused if the journal was written with other parameters. (A journal with the
+    /// same parameters is continued even without --resume.)
     #[arg(long)]
     pub resume: bool,
 
@@ -101,12 +135,46 @@ fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)>
     Ok((canonical_method(m, &MethodFactory::builtin(), model)?, k))
 }
 
-/// Runs `usar sweep`.
+/// The metrics named by `--grid-metrics`, or the default ones.
 ///
 /// # Errors
-/// A bad scenario or option, a journal that cannot be resumed, an I/O error, or failed trials
-/// (after every other trial has run and the files are written).
-pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
+/// An unknown name (the message lists the valid ones).
+pub fn grid_metrics(names: &[String]) -> Result<Vec<Metric>> {
+    if names.is_empty() {
+        return Ok(DEFAULT_GRID_METRICS
+            .iter()
+            .filter_map(|n| find_metric(n))
+            .collect());
+    }
+    names
+        .iter()
+        .map(|n| {
+            find_metric(n.trim()).with_context(|| {
+                let valid: Vec<&str> = METRICS.iter().map(|m| m.name).collect();
+                format!(
+                    "--grid-metrics: unknown metric {:?} (metrics: {})",
+                    n.trim(),
+                    valid.join(", ")
+                )
+            })
+        })
+        .collect()
+}
+
+/// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`.
+fn grid_of(args: &SweepArgs) -> Result<Option<Grid>> {
+    if args.vary.is_empty() {
+        return Ok(None);
+    }
+    let origin = args.scenario.display().to_string();
+    let text = std::fs::read_to_string(&args.scenario)
+        .with_context(|| format!("{origin}: cannot read scenario file"))?;
+    let spec = scenario::parse_spec(&text, &origin)?;
+    Grid::build(&spec, &args.vary).map(Some)
+}
+
+/// The sweep's configuration from the arguments.
+fn config(args: &SweepArgs) -> Result<SweepConfig> {
     let scenario = scenario::load(&args.scenario)?;
     let model = trust_model(&scenario)?;
     let fail = args
@@ -119,13 +187,14 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
-    let cfg = SweepConfig {
+    Ok(SweepConfig {
         scenario_path: args.scenario.clone(),
+        grid: grid_of(args)?,
         methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
         method_factory: MethodFactory::builtin(),
         trials: args.trials,
         base_seed: args.seed.unwrap_or(scenario.sim.seed),
-        duration_s: args.duration.unwrap_or(scenario.mission.duration_s),
+        duration_s: args.duration,
         threads,
         out_dir: args
             .out
@@ -139,103 +208,44 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
             stop_after: args.stop_after,
         },
         scenario,
-    };
-    let o = run_sweep(&cfg)?;
+    })
+}
 
-    // Terminal summary.
-    let h = &o.header;
-    writeln!(
-        out,
-        "sweep {}: {} x {} trials x {} s, base seed {}",
-        h.scenario,
-        h.methods.join(","),
-        h.trials,
-        h.duration_s,
-        h.base_seed
-    )?;
-    if o.ran > 0 {
-        let rate = o.simulated_s() / o.wall_s.max(1e-9);
-        writeln!(
-            out,
-            "ran {} trials in {:.2} s on {} thread(s): {:.0} sim-s per wall-s ({:.0} per thread){}",
-            o.ran,
-            o.wall_s,
-            o.threads,
-            rate,
-            rate / o.threads as f64,
-            if o.reused > 0 {
-                format!("; {} from the journal", o.reused)
-            } else {
-                String::new()
-            }
-        )?;
-    } else {
-        writeln!(out, "all {} trials came from the journal", o.reused)?;
+/// Runs `usar sweep`: run, analyse, write, summarise.
+///
+/// # Errors
+/// A bad scenario, `--vary` or option, a journal that cannot be resumed, an I/O error, or
+/// failed trials (after every other trial has run and the files are written).
+pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
+    let metrics = grid_metrics(&args.grid_metrics)?;
+    let cfg = config(args)?;
+    let o = run_sweep(&cfg)?;
+    let analysis = Analysis::of(&o);
+    let files = write_outputs(&cfg, &o, &analysis, &metrics)?;
+    print_sweep(out, &cfg, &o, &analysis, &metrics, &files)?;
+    failed_trials(&cfg, &o)
+}
+
+/// The error listing failed trials, if any.
+fn failed_trials(cfg: &SweepConfig, o: &SweepOutcome) -> Result<()> {
+    let failures: Vec<String> = o
+        .failures()
+        .map(|f| {
+            let cell = match &cfg.grid {
+                Some(g) => format!(" in cell {}", g.cells[f.cell].dir),
+                None => String::new(),
+            };
+            format!("{} trial {}{cell} ({})", f.method, f.trial, f.message)
+        })
+        .collect();
+    if failures.is_empty() {
+        return Ok(());
     }
-    let cols = [
-        "rescued_total",
-        "rescued_hard",
-        "rescued_easy",
-        "energy_per_hard_rescuee_pct",
-        "hp_per_hard_rescuee_pct",
-    ];
-    write!(out, "\n{:<8}", "method")?;
-    for c in ["total", "hard", "easy", "eng/hard", "hp/hard"] {
-        write!(out, " {c:>16}")?;
-    }
-    writeln!(out)?;
-    for m in &h.methods {
-        let rows = rows_of(&o.results, m);
-        write!(out, "{m:<8}")?;
-        for c in cols {
-            let cell = mean_sd(&Summary::of(&values(&rows, metric(c))));
-            write!(out, " {cell:>16}")?;
-        }
-        writeln!(out)?;
-    }
-    writeln!(out, "\nclaims (one-sided Welch, p < 0.05):")?;
-    for c in CLAIMS {
-        let chk = check_claim(c, &o.results, &h.methods);
-        // A NaN p (a comparison that could not be tested) makes the worst p NaN ("n/a"),
-        // rather than being skipped by max.
-        let worst_p = chk
-            .comparisons
-            .iter()
-            .map(|x| x.welch.p)
-            .reduce(|a, b| {
-                if a.is_nan() || b.is_nan() {
-                    f64::NAN
-                } else {
-                    a.max(b)
-                }
-            })
-            .unwrap_or(f64::NAN);
-        writeln!(
-            out,
-            "  ({}) {}: {} (max p = {})",
-            c.id,
-            c.text,
-            chk.verdict.words(),
-            crate::report::pval(worst_p)
-        )?;
-    }
-    writeln!(out, "\nwrote:")?;
-    for f in &o.files {
-        writeln!(out, "  {}", f.display())?;
-    }
-    if !o.failures.is_empty() {
-        let list = o
-            .failures
-            .iter()
-            .map(|f| format!("{} trial {} ({})", f.method, f.trial, f.message))
-            .collect::<Vec<_>>()
-            .join("; ");
-        bail!(
-            "{} of {} trials failed: {list}. The other trials are in the files above; run again \
-             with --resume to retry the failed ones",
-            o.failures.len(),
-            h.methods.len() * h.trials as usize
-        );
-    }
-    Ok(())
+    bail!(
+        "{} of {} trials failed: {}. The other trials are in the files above; run again with \
+         --resume to retry the failed ones",
+        failures.len(),
+        o.expected_trials(),
+        failures.join("; ")
+    )
 }

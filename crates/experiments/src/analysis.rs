@@ -1,0 +1,155 @@
+//! One analysis pass over a sweep's results, once per grid cell: per method and metric the
+//! summary statistics, the paper's claims checked, and the round lengths. Every output (CSV
+//! files, figures, `report.md`, `grid.*`, the terminal summary) is rendered from it, so the
+//! numbers are computed once and agree everywhere.
+
+use statrs::statistics::{Data, OrderStatistics};
+use usar_sim::mission::TrialResult;
+
+use crate::claims::{CLAIMS, ClaimCheck, check_claim};
+use crate::metrics::{METRICS, rows_of, values};
+use crate::stats::Summary;
+use crate::sweep::SweepOutcome;
+
+/// The analysis of a whole sweep: one [`CellAnalysis`] per grid cell, in cell order.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    /// Per cell.
+    pub cells: Vec<CellAnalysis>,
+}
+
+impl Analysis {
+    /// Analyses every cell of `outcome`.
+    pub fn of(outcome: &SweepOutcome) -> Self {
+        Self {
+            cells: outcome
+                .cells
+                .iter()
+                .map(|c| CellAnalysis::of(&c.results, &outcome.header.methods))
+                .collect(),
+        }
+    }
+}
+
+/// The analysis of one cell's results.
+#[derive(Debug, Clone)]
+pub struct CellAnalysis {
+    /// Per method, in sweep order.
+    pub methods: Vec<MethodStats>,
+    /// The paper's claims ([`CLAIMS`]) checked, in that order.
+    pub claims: Vec<ClaimCheck>,
+    /// Completed-round lengths over all methods (label `all`), then per method.
+    pub rounds: Vec<RoundStats>,
+}
+
+/// Statistics of one method's trials in one cell.
+#[derive(Debug, Clone)]
+pub struct MethodStats {
+    /// Method, upper case.
+    pub method: String,
+    /// Successful trials.
+    pub trials: usize,
+    /// Summary of each metric, in [`METRICS`] order (a metric undefined for a trial, such as
+    /// a cost per rescuee without rescuees, leaves that trial out).
+    pub metrics: Vec<Summary>,
+}
+
+/// Lengths of the completed rounds of some trials, seconds (a round cut by the time limit is
+/// not counted). Statistics are NaN when no round completed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoundStats {
+    /// `all` or the method.
+    pub label: String,
+    /// Completed rounds.
+    pub completed: usize,
+    /// Median length, seconds.
+    pub median_s: f64,
+    /// 95th percentile of the lengths (statrs order statistics), seconds.
+    pub p95_s: f64,
+    /// Longest, seconds.
+    pub longest_s: f64,
+    /// Mean number of rounds started per trial.
+    pub started_per_trial: f64,
+}
+
+impl CellAnalysis {
+    /// Analyses `results` (the successful trials of one cell) for `methods` (upper case, in
+    /// sweep order).
+    pub fn of(results: &[TrialResult], methods: &[String]) -> Self {
+        let stats = methods
+            .iter()
+            .map(|m| {
+                let rows = rows_of(results, m);
+                MethodStats {
+                    method: m.clone(),
+                    trials: rows.len(),
+                    metrics: METRICS
+                        .iter()
+                        .map(|metric| Summary::of(&values(&rows, *metric)))
+                        .collect(),
+                }
+            })
+            .collect();
+        let claims = CLAIMS
+            .iter()
+            .map(|c| check_claim(*c, results, methods))
+            .collect();
+        let all = std::iter::once("all").chain(methods.iter().map(String::as_str));
+        let rounds = all
+            .map(|label| {
+                let trials: Vec<&TrialResult> = results
+                    .iter()
+                    .filter(|t| label == "all" || t.method == label)
+                    .collect();
+                round_stats(label, &trials)
+            })
+            .collect();
+        Self {
+            methods: stats,
+            claims,
+            rounds,
+        }
+    }
+
+    /// The summary of metric `name` for the method at index `method`.
+    ///
+    /// # Panics
+    /// If `method` is out of range or no metric has that name (programming errors).
+    pub fn summary(&self, method: usize, name: &str) -> Summary {
+        let i = METRICS
+            .iter()
+            .position(|m| m.name == name)
+            .unwrap_or_else(|| panic!("unknown metric {name}"));
+        self.methods[method].metrics[i]
+    }
+}
+
+fn round_stats(label: &str, trials: &[&TrialResult]) -> RoundStats {
+    let lengths: Vec<f64> = trials
+        .iter()
+        .flat_map(|t| t.rounds.iter().filter(|x| x.completed))
+        .map(|x| x.end_s - x.start_s)
+        .collect();
+    if lengths.is_empty() {
+        return RoundStats {
+            label: label.to_string(),
+            completed: 0,
+            median_s: f64::NAN,
+            p95_s: f64::NAN,
+            longest_s: f64::NAN,
+            started_per_trial: f64::NAN,
+        };
+    }
+    let started = trials.iter().map(|t| t.rounds.len()).sum::<usize>() as f64 / trials.len() as f64;
+    let longest = lengths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let completed = lengths.len();
+    let mut data = Data::new(lengths);
+    RoundStats {
+        label: label.to_string(),
+        completed,
+        median_s: data.median(),
+        p95_s: data.percentile(95),
+        longest_s: longest,
+        started_per_trial: started,
+    }
+}

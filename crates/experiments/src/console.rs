@@ -1,0 +1,188 @@
+//! The terminal summary of `usar sweep`, rendered from the sweep's analysis: what ran, a table
+//! of the main metrics per method (per cell and chosen metric for a grid), the paper's claims
+//! (without a grid; a grid has them per cell in `grid.md`) and the files written.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::Result;
+
+use crate::analysis::{Analysis, CellAnalysis};
+use crate::metrics::{Metric, metric};
+use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
+use crate::table::{mean_sd, pval};
+
+/// Columns of the one-cell table: metric name and heading.
+const COLUMNS: [(&str, &str); 5] = [
+    ("rescued_total", "total"),
+    ("rescued_hard", "hard"),
+    ("rescued_easy", "easy"),
+    ("energy_per_hard_rescuee_pct", "eng/hard"),
+    ("hp_per_hard_rescuee_pct", "hp/hard"),
+];
+
+/// Writes the summary of a finished sweep to `out`.
+///
+/// # Errors
+/// An I/O error writing to `out`.
+pub fn print_sweep(
+    out: &mut dyn Write,
+    cfg: &SweepConfig,
+    o: &SweepOutcome,
+    analysis: &Analysis,
+    grid_metrics: &[Metric],
+    files: &[PathBuf],
+) -> Result<()> {
+    let h = &o.header;
+    if o.journal == JournalUse::Reused {
+        writeln!(
+            out,
+            "{} holds this very sweep (same parameters): continuing it as with --resume",
+            crate::journal::Journal::path_in(&cfg.out_dir).display()
+        )?;
+    }
+    let mut durations: Vec<f64> = h.grid.cells.iter().map(|c| c.duration_s).collect();
+    durations.dedup();
+    let length = match durations.as_slice() {
+        [d] => format!("{d} s"),
+        _ => "each cell's mission.duration_s".to_string(),
+    };
+    let grid = match &cfg.grid {
+        Some(g) => format!(
+            " over a grid of {} cells ({})",
+            g.cells.len(),
+            h.grid.fields.join(" x ")
+        ),
+        None => String::new(),
+    };
+    writeln!(
+        out,
+        "sweep {}{grid}: {} x {} trials x {length}, base seed {}",
+        h.scenario,
+        h.methods.join(","),
+        h.trials,
+        h.base_seed
+    )?;
+    ran_line(out, o)?;
+    match &cfg.grid {
+        None => {
+            method_table(out, &analysis.cells[0])?;
+            claims(out, &analysis.cells[0])?;
+            writeln!(out, "\nwrote:")?;
+            for f in files {
+                writeln!(out, "  {}", f.display())?;
+            }
+        }
+        Some(g) => {
+            for m in grid_metrics {
+                grid_table(out, o, analysis, *m)?;
+            }
+            writeln!(out, "\nwrote:")?;
+            for f in files
+                .iter()
+                .filter(|f| f.parent() == Some(cfg.out_dir.as_path()))
+            {
+                writeln!(out, "  {}", f.display())?;
+            }
+            writeln!(
+                out,
+                "  and {} cell folders in {} ({} .. {}), each with trials.csv, summary.csv, \
+                 report.md, figures and scenario.ron",
+                g.cells.len(),
+                cfg.out_dir.display(),
+                g.cells.first().map_or("", |c| c.dir.as_str()),
+                g.cells.last().map_or("", |c| c.dir.as_str())
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn ran_line(out: &mut dyn Write, o: &SweepOutcome) -> Result<()> {
+    if o.ran == 0 {
+        writeln!(out, "all {} trials came from the journal", o.reused)?;
+        return Ok(());
+    }
+    let rate = o.simulated_s() / o.wall_s.max(1e-9);
+    writeln!(
+        out,
+        "ran {} trials in {:.2} s on {} thread(s): {:.0} sim-s per wall-s ({:.0} per thread){}",
+        o.ran,
+        o.wall_s,
+        o.threads,
+        rate,
+        rate / o.threads as f64,
+        if o.reused > 0 {
+            format!("; {} from the journal", o.reused)
+        } else {
+            String::new()
+        }
+    )?;
+    Ok(())
+}
+
+fn method_table(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
+    write!(out, "\n{:<8}", "method")?;
+    for (_, heading) in COLUMNS {
+        write!(out, " {heading:>16}")?;
+    }
+    writeln!(out)?;
+    for (i, m) in a.methods.iter().enumerate() {
+        write!(out, "{:<8}", m.method)?;
+        for (name, _) in COLUMNS {
+            write!(out, " {:>16}", mean_sd(&a.summary(i, name)))?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
+fn claims(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
+    writeln!(out, "\nclaims (one-sided Welch, p < 0.05):")?;
+    for chk in &a.claims {
+        writeln!(
+            out,
+            "  ({}) {}: {} (max p = {})",
+            chk.claim.id,
+            chk.claim.text,
+            chk.verdict.words(),
+            pval(chk.worst_p())
+        )?;
+    }
+    Ok(())
+}
+
+/// One chosen metric of a grid: a row per cell (index and values), a column per method.
+fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Metric) -> Result<()> {
+    let h = &o.header;
+    let digits = h
+        .grid
+        .cells
+        .len()
+        .saturating_sub(1)
+        .to_string()
+        .len()
+        .max(2);
+    let labels: Vec<String> = h
+        .grid
+        .cells
+        .iter()
+        .enumerate()
+        .map(|(i, c)| format!("c{i:0digits$} {}", c.values.join(", ")))
+        .collect();
+    let w = labels.iter().map(String::len).max().unwrap_or(4).max(4);
+    writeln!(out, "\n{} ({}), mean ± sd:", metric(m.name).label, m.name)?;
+    write!(out, "{:<w$}", "cell")?;
+    for method in &h.methods {
+        write!(out, " {method:>16}")?;
+    }
+    writeln!(out)?;
+    for (label, a) in labels.iter().zip(&analysis.cells) {
+        write!(out, "{label:<w$}")?;
+        for i in 0..a.methods.len() {
+            write!(out, " {:>16}", mean_sd(&a.summary(i, m.name)))?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}

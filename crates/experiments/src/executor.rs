@@ -1,0 +1,256 @@
+//! Running a sweep's jobs: one thread pool for every job of every cell, a journal line per
+//! finished trial, failures and panics isolated to their trial, a progress bar over the whole
+//! sweep's simulated time with an ETA, and the `--fail-trial` / `--stop-after` test hooks.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
+use rayon::prelude::*;
+use rne_core::TrustModel;
+use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::scenario::Scenario;
+
+use crate::journal::{Journal, Outcome, TrialRecord};
+use crate::method_factory::MethodFactory;
+
+/// Exit status of a sweep stopped on purpose by [`TestHooks::stop_after`].
+pub const STOP_EXIT_CODE: i32 = 75;
+
+/// Hooks for tests: make trials fail and simulate a kill.
+#[derive(Debug, Clone, Default)]
+pub struct TestHooks {
+    /// Trials that panic on purpose: (method, upper case; trial index).
+    pub fail: Vec<(String, u32)>,
+    /// Exit the process abruptly (status [`STOP_EXIT_CODE`], no output files) once this many
+    /// trials have been journaled by this run; trials still running are lost, as in a kill.
+    pub stop_after: Option<usize>,
+}
+
+/// How to run a sweep's jobs.
+pub(crate) struct Runner<'a> {
+    /// Builds each trial's method.
+    pub(crate) factory: &'a MethodFactory,
+    /// Test hooks.
+    pub(crate) hooks: &'a TestHooks,
+    /// Show a progress bar (on a terminal).
+    pub(crate) progress: bool,
+    /// Worker threads (>= 1).
+    pub(crate) threads: usize,
+}
+
+/// Steps between two progress-bar updates from a running trial.
+const PROGRESS_EVERY_STEPS: u64 = 50;
+
+/// A job ready to run.
+pub(crate) struct Job {
+    /// Grid cell index.
+    pub(crate) cell: usize,
+    /// The method's name as given to the factory.
+    pub(crate) method_arg: String,
+    /// The method's canonical (upper-case) name.
+    pub(crate) method: String,
+    /// Trial index.
+    pub(crate) trial: u32,
+    /// The trial's seed.
+    pub(crate) seed: u64,
+}
+
+/// What one cell needs to run trials.
+pub(crate) struct CellPlan<'a> {
+    /// ` in cell <folder>` for a grid cell, empty otherwise (for messages).
+    pub(crate) label: String,
+    /// The cell's scenario.
+    pub(crate) scenario: &'a Scenario,
+    /// Its trust model (its `needs_weights` may be varied).
+    pub(crate) model: TrustModel,
+    /// Trial length, seconds.
+    pub(crate) duration_s: f64,
+    /// Simulated microseconds per step (progress-bar units).
+    pub(crate) step_us: u64,
+    /// Steps per trial.
+    pub(crate) steps_per_trial: u64,
+}
+
+/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends; returns the
+/// new records (in completion order).
+pub(crate) fn execute(
+    runner: &Runner<'_>,
+    plans: &[CellPlan<'_>],
+    jobs: &[Job],
+    journal: Journal,
+) -> Result<Vec<TrialRecord>> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(runner.threads.max(1))
+        .build()
+        .context("starting the thread pool")?;
+    let total_us = jobs
+        .iter()
+        .map(|j| plans[j.cell].steps_per_trial * plans[j.cell].step_us)
+        .sum();
+    let over = if plans.len() > 1 {
+        format!(" over {} cells", plans.len())
+    } else {
+        String::new()
+    };
+    let pb = progress_bar(
+        runner.progress,
+        &format!("0/{} trials{over}", jobs.len()),
+        total_us,
+    );
+    let journal = Mutex::new(journal);
+    let new_records: Mutex<Vec<TrialRecord>> = Mutex::new(Vec::new());
+    let journal_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
+    let abort = AtomicBool::new(false);
+    let done = AtomicUsize::new(0);
+    pool.install(|| {
+        jobs.par_iter().for_each(|job| {
+            if abort.load(Ordering::SeqCst) {
+                return;
+            }
+            let plan = &plans[job.cell];
+            let record = run_job(runner, plan, job, &|steps| pb.inc(steps * plan.step_us));
+            let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
+            if let Err(e) = j.append(&record) {
+                abort.store(true, Ordering::SeqCst);
+                journal_error
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .get_or_insert(e);
+                return;
+            }
+            let n = done.fetch_add(1, Ordering::SeqCst) + 1;
+            if let Outcome::Failed(msg) = &record.outcome {
+                pb.suspend(|| {
+                    eprintln!(
+                        "trial {} #{} (seed {}){} failed: {msg}",
+                        record.method, record.trial, record.seed, plans[record.cell].label
+                    );
+                });
+            }
+            pb.set_message(format!("{n}/{} trials{over}", jobs.len()));
+            if runner.hooks.stop_after.is_some_and(|s| n >= s) {
+                pb.suspend(|| eprintln!("--stop-after {n}: stopping abruptly"));
+                std::process::exit(STOP_EXIT_CODE);
+            }
+            drop(j);
+            new_records
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .push(record);
+        });
+    });
+    pb.finish_and_clear();
+    if let Some(e) = journal_error
+        .into_inner()
+        .unwrap_or_else(PoisonError::into_inner)
+    {
+        return Err(e.context("the journal could not be written; the sweep stopped"));
+    }
+    Ok(new_records
+        .into_inner()
+        .unwrap_or_else(PoisonError::into_inner))
+}
+
+/// Runs one job into its journal record.
+fn run_job(
+    runner: &Runner<'_>,
+    plan: &CellPlan<'_>,
+    job: &Job,
+    tick: &(dyn Fn(u64) + Sync),
+) -> TrialRecord {
+    let fail = runner
+        .hooks
+        .fail
+        .iter()
+        .any(|(m, k)| *m == job.method && *k == job.trial);
+    let t0 = Instant::now();
+    let outcome = run_trial(plan, runner.factory, job, fail, tick);
+    TrialRecord {
+        cell: job.cell,
+        method: job.method.clone(),
+        trial: job.trial,
+        seed: job.seed,
+        wall_s: t0.elapsed().as_secs_f64(),
+        outcome: match outcome {
+            Ok(r) => Outcome::Ok(Box::new(r)),
+            Err(msg) => Outcome::Failed(msg),
+        },
+    }
+}
+
+/// Runs one trial, turning errors and panics into `Err(message)`. `tick(n)` is called every
+/// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken.
+fn run_trial(
+    plan: &CellPlan<'_>,
+    factory: &MethodFactory,
+    job: &Job,
+    fail: bool,
+    tick: &(dyn Fn(u64) + Sync),
+) -> Result<TrialResult, String> {
+    let body = || -> Result<TrialResult, String> {
+        let method = factory
+            .build(&job.method_arg, &plan.model)
+            .map_err(|e| e.to_string())?;
+        let mut sim =
+            Simulation::new(plan.scenario, method, job.seed).with_duration_s(plan.duration_s);
+        let mut last = 0u64;
+        while !sim.is_finished() {
+            sim.step()
+                .map_err(|e| format!("at t = {:.2} s: {e}", sim.time_s()))?;
+            let (done, total) = sim.progress();
+            if fail && done * 2 >= total {
+                panic!(
+                    "failing on purpose (--fail-trial {}:{})",
+                    job.method, job.trial
+                );
+            }
+            if done - last >= PROGRESS_EVERY_STEPS {
+                tick(done - last);
+                last = done;
+            }
+        }
+        tick(sim.progress().0 - last);
+        let mut result = sim.result();
+        result.trial = job.trial;
+        Ok(result)
+    };
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(r) => r,
+        Err(payload) => {
+            let msg = payload
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic payload".to_string());
+            Err(format!("panicked: {msg}"))
+        }
+    }
+}
+
+/// A bar over the simulated time of all jobs (`total_us` microseconds), with the simulation
+/// rate and an ETA; hidden unless `show` and stderr is a terminal.
+fn progress_bar(show: bool, message: &str, total_us: u64) -> ProgressBar {
+    if !(show && std::io::IsTerminal::is_terminal(&std::io::stderr())) {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::with_draw_target(Some(total_us), ProgressDrawTarget::stderr());
+    let style = ProgressStyle::with_template(
+        "{elapsed_precise} [{bar:32.cyan/blue}] {msg}, {simrate}, ETA {eta}",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar())
+    .with_key(
+        "simrate",
+        |s: &ProgressState, w: &mut dyn std::fmt::Write| {
+            let _ = write!(w, "{:.0} sim-s/s", s.per_sec() / 1e6);
+        },
+    )
+    .progress_chars("=> ");
+    pb.set_style(style);
+    pb.set_message(message.to_string());
+    pb.enable_steady_tick(std::time::Duration::from_millis(250));
+    pb
+}

@@ -1,0 +1,285 @@
+//! A parameter grid: `usar sweep --vary FIELD=V1,V2,... [--vary ...]` runs the sweep once per
+//! cell of the Cartesian product of the value lists (the first `--vary` varying slowest).
+//!
+//! [`Grid::build`] makes and validates every cell before anything runs: each cell is the base
+//! scenario spec with the cell's values set ([`crate::vary`]), validated exactly as a scenario
+//! file is; [`names`] makes the cell folders' names. The grid's own files are written by
+//! [`crate::grid_outputs`].
+
+pub mod names;
+
+use anyhow::{Result, anyhow, bail};
+use serde_json::Value;
+use usar_sim::scenario::{Scenario, ScenarioSpec};
+
+use crate::vary::{Override, Vary, apply_overrides, rule_error, spec_json};
+
+/// The cells of a parameter sweep.
+#[derive(Debug, Clone)]
+pub struct Grid {
+    /// The parsed `--vary` arguments, in order.
+    pub varies: Vec<Vary>,
+    /// The cells, first `--vary` varying slowest.
+    pub cells: Vec<GridCell>,
+}
+
+/// One cell: the base scenario with one value of each varied field.
+#[derive(Debug, Clone)]
+pub struct GridCell {
+    /// Index in [`Grid::cells`].
+    pub index: usize,
+    /// The overrides that make this cell, one per `--vary`, in `--vary` order.
+    pub overrides: Vec<Override>,
+    /// The cell's scenario spec (what its `scenario.ron` holds).
+    pub spec: ScenarioSpec,
+    /// The cell's validated scenario.
+    pub scenario: Scenario,
+    /// Name of the cell's folder under the output folder (see [`names::cell_dir`]).
+    pub dir: String,
+}
+
+impl GridCell {
+    /// The value of each varied field as written, in `--vary` order.
+    pub fn values(&self) -> Vec<String> {
+        self.overrides
+            .iter()
+            .map(|o| o.value.text.clone())
+            .collect()
+    }
+}
+
+impl Grid {
+    /// Parses the `--vary` arguments `args` and builds every cell from `base`.
+    ///
+    /// # Errors
+    /// One line naming the `--vary` argument and what is wrong: a malformed argument, a field
+    /// given twice (or two overlapping fields, such as `zones[*].r` and `zones[2].r`), a path
+    /// that names nothing (`--vary mission.hp_rate=1: no field "hp_rate" in mission (fields:
+    /// duration_s, ...)`), a value of the wrong type, two values giving the same scenario, or
+    /// a cell that breaks a rule (`--vary mission.duration_s=-5: mission.duration_s: expected
+    /// a finite number > 0, found -5`; a rule broken only by a combination names every value
+    /// of the cell).
+    pub fn build(base: &ScenarioSpec, args: &[String]) -> Result<Self> {
+        if args.is_empty() {
+            bail!("a grid needs at least one --vary");
+        }
+        let varies = args
+            .iter()
+            .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {a}: {e}")))
+            .collect::<Result<Vec<_>>>()?;
+        check_distinct(&varies)?;
+        let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
+        for (v, arg) in varies.iter().zip(args) {
+            check_values(base, &base_json, v, arg)?;
+        }
+        let labels = names::field_labels(&varies.iter().map(|v| &v.path).collect::<Vec<_>>());
+        let n_cells = varies.iter().map(|v| v.values.len()).product::<usize>();
+        let mut cells = Vec::with_capacity(n_cells);
+        for index in 0..n_cells {
+            let overrides = cell_overrides(&varies, index);
+            let origin = format!("cell {index}");
+            let spec = apply_overrides(base, &overrides)
+                .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i]))?;
+            let scenario = spec
+                .validate(&origin)
+                .map_err(|e| anyhow!(rule_error("--vary", &overrides, &e)))?;
+            let values: Vec<&str> = overrides.iter().map(|o| o.value.text.as_str()).collect();
+            cells.push(GridCell {
+                index,
+                dir: names::cell_dir(index, n_cells, &labels, &values),
+                overrides,
+                spec,
+                scenario,
+            });
+        }
+        Ok(Self { varies, cells })
+    }
+
+    /// The varied field paths, in `--vary` order.
+    pub fn fields(&self) -> Vec<String> {
+        self.varies.iter().map(|v| v.path.to_string()).collect()
+    }
+}
+
+/// The overrides of cell `index`: the first `--vary` varies slowest.
+fn cell_overrides(varies: &[Vary], index: usize) -> Vec<Override> {
+    let mut rest = index;
+    let mut picks = vec![0; varies.len()];
+    for (i, v) in varies.iter().enumerate().rev() {
+        picks[i] = rest % v.values.len();
+        rest /= v.values.len();
+    }
+    varies.iter().zip(picks).map(|(v, k)| v.at(k)).collect()
+}
+
+/// No field may be varied twice, directly or through a wildcard or an enclosing field.
+fn check_distinct(varies: &[Vary]) -> Result<()> {
+    for (i, a) in varies.iter().enumerate() {
+        for b in &varies[..i] {
+            if a.path == b.path {
+                bail!("--vary {} is given twice: vary each field once", a.path);
+            }
+            if a.path.overlaps(&b.path) {
+                bail!(
+                    "--vary {} overlaps --vary {}: they set some of the same values",
+                    b.path,
+                    a.path
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The path names something, each value has the right type on the base spec, and no two
+/// values give the same spec.
+fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> Result<()> {
+    v.path
+        .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
+        .map_err(|e| anyhow!("--vary {arg}: {e}"))?;
+    let mut specs: Vec<ScenarioSpec> = Vec::with_capacity(v.values.len());
+    for (k, value) in v.values.iter().enumerate() {
+        let o = v.at(k);
+        let spec = apply_overrides(base, std::slice::from_ref(&o))
+            .map_err(|(_, e)| anyhow!("--vary {o}: {e}"))?;
+        if let Some(j) = specs.iter().position(|s| *s == spec) {
+            bail!(
+                "--vary {arg}: values {} and {} give the same scenario",
+                v.values[j].text,
+                value.text
+            );
+        }
+        specs.push(spec);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use usar_sim::scenario::parse_spec;
+
+    use super::*;
+
+    const PAPER: &str = include_str!("../../../../scenarios/paper.ron");
+
+    fn build(args: &[&str]) -> Result<Grid> {
+        let base = parse_spec(PAPER, "paper.ron").unwrap();
+        Grid::build(
+            &base,
+            &args.iter().map(|s| s.to_string()).collect::<Vec<_>>(),
+        )
+    }
+
+    fn err(args: &[&str]) -> String {
+        format!("{:#}", build(args).unwrap_err())
+    }
+
+    #[test]
+    fn cells_are_the_product_first_field_slowest() {
+        let g = build(&[
+            "mission.hp_pct_per_step_in_radiation=0.0003,0.003",
+            "kinds[0].max_speed_m_per_s=1,1.5,2",
+        ])
+        .unwrap();
+        assert_eq!(
+            g.fields(),
+            [
+                "mission.hp_pct_per_step_in_radiation",
+                "kinds[0].max_speed_m_per_s"
+            ]
+        );
+        let values: Vec<Vec<String>> = g.cells.iter().map(GridCell::values).collect();
+        assert_eq!(
+            values,
+            [
+                ["0.0003", "1"],
+                ["0.0003", "1.5"],
+                ["0.0003", "2"],
+                ["0.003", "1"],
+                ["0.003", "1.5"],
+                ["0.003", "2"]
+            ]
+        );
+        let c = &g.cells[4];
+        assert_eq!(c.index, 4);
+        assert_eq!(c.scenario.mission.hp_pct_per_step_in_radiation, 0.003);
+        assert_eq!(c.scenario.kinds[0].max_speed_m_per_s, 1.5);
+        assert_eq!(
+            c.dir,
+            "c04_hp_pct_per_step_in_radiation=0.003_max_speed_m_per_s=1.5"
+        );
+    }
+
+    #[test]
+    fn rule_errors_name_the_vary_argument() {
+        assert_eq!(
+            err(&["mission.duration_s=60,-5"]),
+            "--vary mission.duration_s=-5: mission.duration_s: expected a finite number > 0, \
+             found -5"
+        );
+        // A wildcard names its field; the rule's field is the element's.
+        let e = err(&["radiation_zones[*].radius_m=2,100"]);
+        assert!(
+            e.starts_with("--vary radiation_zones[*].radius_m=100: radiation_zones[0]"),
+            "{e}"
+        );
+        // The rule's field belongs to one varied field: that one is named.
+        assert_eq!(
+            err(&["kinds[0].count=6,4", "kinds[0].quota.easy=3,1"]),
+            "--vary kinds[0].quota.easy=1: kinds[0].quota: easy 1 + hard 3 = 4 but count is 6"
+        );
+        // The rule is about no varied field: every value of the cell is named.
+        let e = err(&[
+            "debris[0].center_m=(30.0, 18.0),(58.0, 44.0)",
+            "mission.recharge_s=10",
+        ]);
+        assert!(
+            e.starts_with(
+                "--vary debris[0].center_m=(58.0, 44.0) --vary mission.recharge_s=10: \
+                 tasks.easy.goal_m: goal (58, 44) is 0.000 m from debris[0]"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn bad_arguments_are_refused() {
+        let e = err(&["mission.hp_rate=1"]);
+        assert!(
+            e.starts_with(
+                "--vary mission.hp_rate=1: no field \"hp_rate\" in mission (fields: duration_s, \
+                 energy_pct_per_moving_step,"
+            ),
+            "{e}"
+        );
+        assert_eq!(
+            err(&["radiation_zones[8].radius_m=1"]),
+            "--vary radiation_zones[8].radius_m=1: no element [8] in radiation_zones: it has 8 \
+             (indices 0 to 7)"
+        );
+        assert_eq!(
+            err(&["mission.duration_s=60,abc"]),
+            "--vary mission.duration_s=abc: mission.duration_s: expected a number, found abc"
+        );
+        assert_eq!(
+            err(&["mission.duration_s=1", "mission.duration_s=2"]),
+            "--vary mission.duration_s is given twice: vary each field once"
+        );
+        assert_eq!(
+            err(&[
+                "radiation_zones[*].radius_m=1",
+                "radiation_zones[2].radius_m=2"
+            ]),
+            "--vary radiation_zones[*].radius_m overlaps --vary radiation_zones[2].radius_m: \
+             they set some of the same values"
+        );
+        assert_eq!(
+            err(&["mission.duration_s=60,60.0"]),
+            "--vary mission.duration_s=60,60.0: values 60 and 60.0 give the same scenario"
+        );
+        assert_eq!(
+            err(&["mission.duration_s"]),
+            "--vary mission.duration_s: expected FIELD=VALUE"
+        );
+    }
+}

@@ -1,0 +1,477 @@
+//! The grid's figures, one SVG per chosen metric (plotters, plain SVG text, no fonts needed):
+//!
+//! - one varied field: the metric's mean against the field's value, one line per method with
+//!   its 95 % confidence interval as a shaded band; the x axis is numeric when every value is
+//!   a number, else categorical (values in `--vary` order);
+//! - two varied fields: a heat map per method (first field across, second up), coloured by
+//!   the mean on one scale shared by all methods (viridis), each cell labelled with its mean;
+//! - more fields: no figure (`grid.md` has the tables).
+
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use plotters::style::colors::colormaps::ViridisRGB;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use crate::analysis::Analysis;
+use crate::figures::{FIGURE_SIZE, draw_err, method_color};
+use crate::journal::SweepHeader;
+use crate::metrics::Metric;
+use crate::stats::Summary;
+use crate::table::num;
+
+/// A chart on an SVG string with numeric axes.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Width of the legend strip at the right of a line chart, pixels.
+const LEGEND_W: u32 = 110;
+/// Width of one heat-map panel, pixels.
+const PANEL_W: u32 = 380;
+/// Width of the colour bar strip at the right of the heat maps, pixels.
+const COLORBAR_W: u32 = 100;
+
+/// File name of the grid figure of `metric`: `grid_<metric name>.svg`.
+pub fn figure_file(metric: Metric) -> String {
+    format!("grid_{}.svg", metric.name)
+}
+
+/// The grid figure of `metric`, or `None` when more than two fields are varied.
+///
+/// # Errors
+/// If plotters fails to draw.
+pub fn grid_figure_svg(
+    header: &SweepHeader,
+    analysis: &Analysis,
+    metric: Metric,
+) -> Result<Option<String>> {
+    let fields = &header.grid.fields;
+    let stats = |method: usize| -> Vec<Summary> {
+        analysis
+            .cells
+            .iter()
+            .map(|c| c.summary(method, metric.name))
+            .collect()
+    };
+    let per_method: Vec<Vec<Summary>> = (0..header.methods.len()).map(stats).collect();
+    let values = |f: usize| -> Vec<String> {
+        header
+            .grid
+            .cells
+            .iter()
+            .map(|c| c.values[f].clone())
+            .collect()
+    };
+    match fields.len() {
+        1 => line_chart(&fields[0], &values(0), &header.methods, &per_method, metric).map(Some),
+        2 => {
+            let (xs, ys) = (distinct(&values(0)), distinct(&values(1)));
+            heat_maps(&fields[..2], &xs, &ys, &header.methods, &per_method, metric).map(Some)
+        }
+        _ => Ok(None),
+    }
+}
+
+/// The distinct values in first-seen order (a field's values in `--vary` order).
+fn distinct(values: &[String]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for v in values {
+        if !out.contains(v) {
+            out.push(v.clone());
+        }
+    }
+    out
+}
+
+/// Every value as a finite number, or `None` if one is not.
+fn numeric(values: &[String]) -> Option<Vec<f64>> {
+    values
+        .iter()
+        .map(|v| v.parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect()
+}
+
+/// Lowest and highest of the band ends (or means where the band is undefined), padded.
+fn y_range(per_method: &[Vec<Summary>]) -> (f64, f64) {
+    let (lo, hi) = per_method
+        .iter()
+        .flatten()
+        .flat_map(|s| {
+            if s.ci95.is_finite() {
+                [s.ci_low(), s.ci_high()]
+            } else {
+                [s.mean, s.mean]
+            }
+        })
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo { (hi - lo) * 0.08 } else { 1.0 };
+    (lo - pad, hi + pad)
+}
+
+fn line_chart(
+    field: &str,
+    values: &[String],
+    methods: &[String],
+    per_method: &[Vec<Summary>],
+    metric: Metric,
+) -> Result<String> {
+    let xs: Vec<f64> =
+        numeric(values).unwrap_or_else(|| (0..values.len()).map(|i| i as f64).collect());
+    let categorical = numeric(values).is_none();
+    let (x_lo, x_hi) = xs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        });
+    let x_pad = if categorical {
+        0.5
+    } else if x_hi > x_lo {
+        (x_hi - x_lo) * 0.05
+    } else {
+        1.0
+    };
+    let (y_lo, y_hi) = y_range(per_method);
+    // Points in increasing x, so lines and bands run left to right.
+    let mut order: Vec<usize> = (0..xs.len()).collect();
+    order.sort_by(|a, b| xs[*a].total_cmp(&xs[*b]));
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, FIGURE_SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let (plot_area, legend_area) = root.split_horizontally(FIGURE_SIZE.0 - LEGEND_W);
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(format!("{} vs {field}", metric.label), ("sans-serif", 18))
+            .margin(12)
+            .margin_bottom(30)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d((x_lo - x_pad)..(x_hi + x_pad), y_lo..y_hi)
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_labels(if categorical { 0 } else { 8 })
+            .x_desc(field)
+            .y_desc(metric.label)
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 15))
+            .light_line_style(RGBColor(238, 238, 238))
+            .max_light_lines(1)
+            .draw()
+            .map_err(draw_err)?;
+        for (i, (name, stats)) in methods.iter().zip(per_method).enumerate() {
+            draw_method(&mut chart, method_color(i), &xs, &order, stats)?;
+            legend_entry(&legend_area, i, name, method_color(i))?;
+        }
+        if categorical {
+            let style = ("sans-serif", 13)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Center, VPos::Top));
+            for (k, v) in values.iter().enumerate() {
+                let (px, py) = chart.backend_coord(&(xs[k], y_lo));
+                root.draw(&Text::new(v.as_str(), (px, py + 6), style.clone()))
+                    .map_err(draw_err)?;
+            }
+        }
+        footnote(
+            &root,
+            "lines: mean over trials; bands: 95 % confidence interval of the mean (t)",
+        )?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+/// One method's band, line and points; `order` lists the points in increasing x.
+fn draw_method(
+    chart: &mut Chart<'_, '_>,
+    color: RGBColor,
+    xs: &[f64],
+    order: &[usize],
+    stats: &[Summary],
+) -> Result<()> {
+    for run in band_runs(order, stats) {
+        let mut poly: Vec<(f64, f64)> = run.iter().map(|&k| (xs[k], stats[k].ci_high())).collect();
+        poly.extend(run.iter().rev().map(|&k| (xs[k], stats[k].ci_low())));
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                poly,
+                color.mix(0.18).filled(),
+            )))
+            .map_err(draw_err)?;
+    }
+    let line: Vec<(f64, f64)> = order
+        .iter()
+        .filter(|&&k| stats[k].mean.is_finite())
+        .map(|&k| (xs[k], stats[k].mean))
+        .collect();
+    chart
+        .draw_series(line.iter().map(|p| Circle::new(*p, 3, color.filled())))
+        .map_err(draw_err)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            line,
+            color.stroke_width(2),
+        )))
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+/// Runs of consecutive points (in x order) whose confidence interval is defined.
+fn band_runs(order: &[usize], stats: &[Summary]) -> Vec<Vec<usize>> {
+    let mut runs: Vec<Vec<usize>> = Vec::new();
+    let mut run = Vec::new();
+    for &k in order {
+        if stats[k].ci95.is_finite() && stats[k].mean.is_finite() {
+            run.push(k);
+        } else if !run.is_empty() {
+            runs.push(std::mem::take(&mut run));
+        }
+    }
+    if !run.is_empty() {
+        runs.push(run);
+    }
+    runs
+}
+
+fn legend_entry(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    i: usize,
+    name: &str,
+    color: RGBColor,
+) -> Result<()> {
+    let y = 60 + 26 * i as i32;
+    area.draw(&Rectangle::new([(8, y - 7), (24, y + 7)], color.filled()))
+        .map_err(draw_err)?;
+    area.draw(&Text::new(
+        name,
+        (32, y),
+        ("sans-serif", 15)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Center)),
+    ))
+    .map_err(draw_err)
+}
+
+fn footnote(root: &DrawingArea<SVGBackend<'_>, Shift>, text: &str) -> Result<()> {
+    let (_, h) = root.dim_in_pixel();
+    root.draw(&Text::new(
+        text,
+        (16, h as i32 - 16),
+        ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90)),
+    ))
+    .map_err(draw_err)
+}
+
+fn heat_maps(
+    fields: &[String],
+    xs: &[String],
+    ys: &[String],
+    methods: &[String],
+    per_method: &[Vec<Summary>],
+    metric: Metric,
+) -> Result<String> {
+    let means = per_method
+        .iter()
+        .flatten()
+        .map(|s| s.mean)
+        .filter(|m| m.is_finite());
+    let (lo, hi) = means.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
+    let (lo, hi) = if lo.is_finite() {
+        (lo, hi.max(lo + 1e-12))
+    } else {
+        (0.0, 1.0)
+    };
+    let size = (
+        PANEL_W * methods.len().max(1) as u32 + COLORBAR_W,
+        FIGURE_SIZE.1 + 20,
+    );
+    let mut svg = String::new();
+    {
+        let base = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        base.fill(&WHITE).map_err(draw_err)?;
+        let root = base
+            .titled(
+                &format!("{}: mean over trials", metric.label),
+                ("sans-serif", 18),
+            )
+            .map_err(draw_err)?;
+        let (panels, bar) = root.split_horizontally(size.0 - COLORBAR_W);
+        for (area, (name, stats)) in panels
+            .split_evenly((1, methods.len().max(1)))
+            .iter()
+            .zip(methods.iter().zip(per_method))
+        {
+            heat_panel(&base, area, name, fields, (xs, ys), stats, (lo, hi))?;
+        }
+        color_bar(&bar, lo, hi)?;
+        footnote(
+            &root,
+            "cells: mean over trials (n/a: no trial defines the metric)",
+        )?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+/// One method's heat map in `area` (`base`: the whole figure, for labels placed in absolute
+/// pixels); `stats[cell]`, cells in grid order (first field slowest).
+fn heat_panel(
+    base: &DrawingArea<SVGBackend<'_>, Shift>,
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    method: &str,
+    fields: &[String],
+    (xs, ys): (&[String], &[String]),
+    stats: &[Summary],
+    (lo, hi): (f64, f64),
+) -> Result<()> {
+    let (nx, ny) = (xs.len(), ys.len());
+    let mut chart = ChartBuilder::on(area)
+        .caption(method, ("sans-serif", 16))
+        .margin(10)
+        .margin_bottom(30)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0f64..nx as f64, 0f64..ny as f64)
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_labels(0)
+        .y_labels(0)
+        .x_desc(fields[0].as_str())
+        .y_desc(fields[1].as_str())
+        .axis_desc_style(("sans-serif", 13))
+        .draw()
+        .map_err(draw_err)?;
+    for (cell, s) in stats.iter().enumerate() {
+        let (i, j) = (cell / ny, cell % ny);
+        let (x, y) = (i as f64, j as f64);
+        let t = if hi > lo {
+            (s.mean - lo) / (hi - lo)
+        } else {
+            0.5
+        };
+        let fill = if s.mean.is_finite() {
+            ViridisRGB::get_color_normalized(s.mean, lo, hi)
+        } else {
+            RGBColor(200, 200, 200)
+        };
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x, y), (x + 1.0, y + 1.0)],
+                fill.filled(),
+            )))
+            .map_err(draw_err)?;
+        let text_color = if s.mean.is_finite() && t < 0.6 {
+            WHITE
+        } else {
+            BLACK
+        };
+        let label = if s.mean.is_finite() {
+            num(s.mean)
+        } else {
+            "n/a".into()
+        };
+        chart
+            .draw_series(std::iter::once(Text::new(
+                label,
+                (x + 0.5, y + 0.5),
+                ("sans-serif", 13)
+                    .into_font()
+                    .color(&text_color)
+                    .pos(Pos::new(HPos::Center, VPos::Center)),
+            )))
+            .map_err(draw_err)?;
+    }
+    axis_values(base, &chart, xs, ys)
+}
+
+/// The values of the two fields written under the columns and left of the rows, on `base`
+/// (the whole figure: the chart gives absolute pixel positions).
+fn axis_values(
+    base: &DrawingArea<SVGBackend<'_>, Shift>,
+    chart: &Chart<'_, '_>,
+    xs: &[String],
+    ys: &[String],
+) -> Result<()> {
+    let below = ("sans-serif", 12)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    for (i, v) in xs.iter().enumerate() {
+        let (px, py) = chart.backend_coord(&(i as f64 + 0.5, 0.0));
+        base.draw(&Text::new(v.as_str(), (px, py + 4), below.clone()))
+            .map_err(draw_err)?;
+    }
+    let left = ("sans-serif", 12)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Right, VPos::Center));
+    for (j, v) in ys.iter().enumerate() {
+        let (px, py) = chart.backend_coord(&(0.0, j as f64 + 0.5));
+        base.draw(&Text::new(v.as_str(), (px - 4, py), left.clone()))
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+/// A vertical viridis bar from `lo` (bottom) to `hi` (top), labelled at both ends.
+fn color_bar(area: &DrawingArea<SVGBackend<'_>, Shift>, lo: f64, hi: f64) -> Result<()> {
+    let (top, bottom, left, width) = (70i32, 360i32, 14i32, 22i32);
+    let steps = 48;
+    for k in 0..steps {
+        let f0 = f64::from(k) / f64::from(steps);
+        let y1 = bottom - ((bottom - top) as f64 * f0) as i32;
+        let y0 = bottom - ((bottom - top) as f64 * (f64::from(k + 1) / f64::from(steps))) as i32;
+        let c = ViridisRGB::get_color_normalized(f0, 0.0, 1.0);
+        area.draw(&Rectangle::new(
+            [(left, y0), (left + width, y1)],
+            c.filled(),
+        ))
+        .map_err(draw_err)?;
+    }
+    let style = ("sans-serif", 12)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    area.draw(&Text::new(num(hi), (left + width + 6, top), style.clone()))
+        .map_err(draw_err)?;
+    area.draw(&Text::new(num(lo), (left + width + 6, bottom), style))
+        .map_err(draw_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numeric_axis_only_when_every_value_is_a_number() {
+        assert_eq!(numeric(&["0.1".into(), "-2".into()]), Some(vec![0.1, -2.0]));
+        assert_eq!(numeric(&["0.1".into(), "Linear".into()]), None);
+        assert_eq!(numeric(&["inf".into()]), None);
+        assert_eq!(distinct(&["a".into(), "b".into(), "a".into()]), ["a", "b"]);
+    }
+
+    #[test]
+    fn bands_skip_undefined_intervals() {
+        let s = |ci: f64| Summary {
+            n: 2,
+            mean: 1.0,
+            sd: 1.0,
+            ci95: ci,
+        };
+        let stats = [s(1.0), s(f64::NAN), s(1.0), s(1.0)];
+        assert_eq!(band_runs(&[0, 1, 2, 3], &stats), vec![vec![0], vec![2, 3]]);
+        assert_eq!(y_range(&[vec![s(f64::NAN)]]), (0.0, 2.0));
+    }
+}

@@ -1,0 +1,165 @@
+//! Writing a sweep's files from its outcome and analysis, every file atomically
+//! ([`crate::atomic`]).
+//!
+//! Without a grid, the output folder gets `trials.csv`, `summary.csv`, the three figures and
+//! `report.md` (beside the journal). With a grid, each cell's folder (see
+//! [`crate::grid::names`]) gets those files plus `scenario.ron`, and the top of the output
+//! folder gets `grid.csv`, `grid.md` and one `grid_<metric>.svg` per chosen metric (for one or
+//! two varied fields). Nothing written depends on thread count or interruptions except the
+//! timings in `report.md`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+
+use crate::analysis::Analysis;
+use crate::atomic::write_atomic;
+use crate::figures::{FIGURES, figure_svg};
+use crate::grid::{Grid, GridCell};
+use crate::grid_outputs::csv::grid_csv;
+use crate::grid_outputs::figures::{figure_file, grid_figure_svg};
+use crate::grid_outputs::report::{GridReportInput, grid_md};
+use crate::metrics::Metric;
+use crate::report::{ReportInput, report_md};
+use crate::spec_ron::spec_to_ron;
+use crate::summary::{summary_csv, trials_csv};
+use crate::sweep::{SweepConfig, SweepOutcome};
+
+/// Metrics of `grid.md` and its figures when `--grid-metrics` is not given.
+pub const DEFAULT_GRID_METRICS: [&str; 3] = ["rescued_total", "rescued_hard", "rescued_easy"];
+
+/// Writes every output file of the sweep into `cfg.out_dir`; returns their paths in the order
+/// written. `grid_metrics` chooses the metrics of `grid.md` and its figures (ignored without
+/// a grid).
+///
+/// # Errors
+/// An I/O error, or a figure plotters fails to draw.
+pub fn write_outputs(
+    cfg: &SweepConfig,
+    outcome: &SweepOutcome,
+    analysis: &Analysis,
+    grid_metrics: &[Metric],
+) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    let Some(grid) = &cfg.grid else {
+        write_cell(&cfg.out_dir, cfg, outcome, analysis, 0, None, &mut files)?;
+        return Ok(files);
+    };
+    for cell in &grid.cells {
+        let dir = cfg.out_dir.join(&cell.dir);
+        write_cell(
+            &dir,
+            cfg,
+            outcome,
+            analysis,
+            cell.index,
+            Some(cell),
+            &mut files,
+        )?;
+        let ron = spec_to_ron(&cell.spec, &scenario_comments(cfg, outcome, cell))?;
+        put(&dir, "scenario.ron", ron.as_bytes(), &mut files)?;
+    }
+    write_grid(cfg, grid, outcome, analysis, grid_metrics, &mut files)?;
+    Ok(files)
+}
+
+fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut Vec<PathBuf>) -> Result<()> {
+    let p = dir.join(name);
+    write_atomic(&p, bytes)?;
+    files.push(p);
+    Ok(())
+}
+
+/// One cell's `trials.csv`, `summary.csv`, figures and `report.md` into `dir`.
+fn write_cell(
+    dir: &Path,
+    cfg: &SweepConfig,
+    outcome: &SweepOutcome,
+    analysis: &Analysis,
+    cell: usize,
+    grid_cell: Option<&GridCell>,
+    files: &mut Vec<PathBuf>,
+) -> Result<()> {
+    let a = &analysis.cells[cell];
+    put(
+        dir,
+        "trials.csv",
+        &trials_csv(&outcome.cells[cell].results)?,
+        files,
+    )?;
+    put(dir, "summary.csv", &summary_csv(a)?, files)?;
+    for spec in &FIGURES {
+        put(dir, spec.file, figure_svg(spec, a)?.as_bytes(), files)?;
+    }
+    let report = report_md(&ReportInput {
+        scenario: grid_cell.map_or(&cfg.scenario, |g| &g.scenario),
+        scenario_path: &cfg.scenario_path,
+        outcome,
+        cell,
+        analysis: a,
+        grid_cell,
+    });
+    put(dir, "report.md", report.as_bytes(), files)
+}
+
+/// The comment lines at the top of a cell's `scenario.ron`.
+fn scenario_comments(cfg: &SweepConfig, outcome: &SweepOutcome, cell: &GridCell) -> Vec<String> {
+    let sets: Vec<String> = cell
+        .overrides
+        .iter()
+        .map(|o| format!("--set '{o}'"))
+        .collect();
+    vec![
+        format!(
+            "Cell {} of the grid in ../grid.md: {} with {}.",
+            cell.index,
+            cfg.scenario_path.display(),
+            cell.overrides
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        format!(
+            "Scenario hash {} (`usar check scenario.ron` shows it). The same scenario: usar check {} {} --print",
+            outcome.header.grid.cells[cell.index].scenario_hash,
+            cfg.scenario_path.display(),
+            sets.join(" ")
+        ),
+    ]
+}
+
+/// `grid.csv`, the grid figures and `grid.md` at the top of the output folder.
+fn write_grid(
+    cfg: &SweepConfig,
+    grid: &Grid,
+    outcome: &SweepOutcome,
+    analysis: &Analysis,
+    metrics: &[Metric],
+    files: &mut Vec<PathBuf>,
+) -> Result<()> {
+    let dir = &cfg.out_dir;
+    put(
+        dir,
+        "grid.csv",
+        &grid_csv(&outcome.header, analysis)?,
+        files,
+    )?;
+    let mut figures = Vec::new();
+    for m in metrics {
+        if let Some(svg) = grid_figure_svg(&outcome.header, analysis, *m)? {
+            let name = figure_file(*m);
+            put(dir, &name, svg.as_bytes(), files)?;
+            figures.push(name);
+        }
+    }
+    let md = grid_md(&GridReportInput {
+        scenario_path: &cfg.scenario_path,
+        grid,
+        outcome,
+        analysis,
+        metrics,
+        figures: &figures,
+    });
+    put(dir, "grid.md", md.as_bytes(), files)
+}

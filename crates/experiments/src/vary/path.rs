@@ -1,0 +1,415 @@
+//! Field paths into a scenario spec, as the loader's error messages write them
+//! (`mission.duration_s`, `kinds[0].max_speed_m_per_s`, `tasks.hard.goal_m`), plus the
+//! wildcard `[*]` for every element of a list, and setting the value(s) they name in the
+//! spec's JSON form.
+//!
+//! The JSON form is what `serde_json::to_value` makes of a `ScenarioSpec`: structs are
+//! objects, lists and tuples arrays, unit enum variants strings, other enum variants
+//! single-key objects `{"Variant": content}` and `None` null. A path walks through a variant
+//! object transparently (its key is not part of the path), so `kinds[0].starts.first_m`
+//! names the `first_m` of a `Row(first_m: .., step_m: ..)` and `tasks.easy.rescuees[2]` the
+//! third point of a `List([...])`, as in the loader's messages.
+
+use std::fmt;
+
+use serde_json::Value;
+
+/// One step of a [`FieldPath`].
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Step {
+    /// A struct field, `.name` (or the first name of the path).
+    Field(String),
+    /// A list element, `[i]` (0-based).
+    Index(usize),
+    /// Every element of a list, `[*]`.
+    All,
+}
+
+/// A parsed field path: `name(.name | [i] | [*])*`, names being `[A-Za-z_][A-Za-z0-9_]*`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct FieldPath {
+    steps: Vec<Step>,
+}
+
+impl FieldPath {
+    /// Parses `text`, e.g. `radiation_zones[*].dose_rate_factor`.
+    ///
+    /// # Errors
+    /// An empty path, a name with characters outside `[A-Za-z0-9_]` or starting with a digit,
+    /// a bracket that does not hold an index or `*`, or a misplaced `.`/`[`; the message says
+    /// where.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let mut steps = Vec::new();
+        let mut rest = text;
+        let mut expect_name = true;
+        while !rest.is_empty() || expect_name {
+            if expect_name {
+                let end = rest.find(['.', '[']).unwrap_or(rest.len());
+                let name = &rest[..end];
+                check_name(name, text)?;
+                steps.push(Step::Field(name.to_string()));
+                rest = &rest[end..];
+                expect_name = false;
+            } else if let Some(after) = rest.strip_prefix('.') {
+                rest = after;
+                expect_name = true;
+            } else if let Some(after) = rest.strip_prefix('[') {
+                let close = after
+                    .find(']')
+                    .ok_or_else(|| format!("field path {text:?}: '[' is not closed"))?;
+                let inner = after[..close].trim();
+                steps.push(if inner == "*" {
+                    Step::All
+                } else {
+                    Step::Index(inner.parse().map_err(|_| {
+                        format!(
+                            "field path {text:?}: expected an index or * in [], found {inner:?}"
+                        )
+                    })?)
+                });
+                rest = &after[close + 1..];
+            } else {
+                return Err(format!("field path {text:?}: unexpected {rest:?}"));
+            }
+        }
+        Ok(Self { steps })
+    }
+
+    /// The steps, first to last.
+    pub fn steps(&self) -> &[Step] {
+        &self.steps
+    }
+
+    /// Whether two paths can name the same value: one is a prefix of the other, with `[*]`
+    /// matching any index (`mission` and `mission.duration_s`; `zones[*].r` and `zones[2].r`).
+    pub fn overlaps(&self, other: &FieldPath) -> bool {
+        self.steps
+            .iter()
+            .zip(&other.steps)
+            .all(|(a, b)| match (a, b) {
+                (Step::Field(x), Step::Field(y)) => x == y,
+                (Step::Index(i), Step::Index(j)) => i == j,
+                (Step::All, Step::Index(_) | Step::All) | (Step::Index(_), Step::All) => true,
+                _ => false,
+            })
+    }
+
+    /// Replaces the value(s) this path names inside `root` with `make(old value)`; `[*]`
+    /// calls `make` once per element.
+    ///
+    /// # Errors
+    /// A field the struct does not have (the message lists the fields it has), an index out
+    /// of range or into something that is not a list, or `[*]` over an empty list, each
+    /// message naming the path walked so far; or the error `make` returns, prefixed with the
+    /// path of the value it was making (`zones[*].r: expected a number, found x`).
+    pub fn set(
+        &self,
+        root: &mut Value,
+        make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+    ) -> Result<(), String> {
+        set_at(root, &self.steps, &mut String::new(), make)
+    }
+}
+
+impl fmt::Display for FieldPath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, step) in self.steps.iter().enumerate() {
+            match step {
+                Step::Field(name) if i == 0 => f.write_str(name)?,
+                Step::Field(name) => write!(f, ".{name}")?,
+                Step::Index(k) => write!(f, "[{k}]")?,
+                Step::All => f.write_str("[*]")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+fn check_name(name: &str, path: &str) -> Result<(), String> {
+    let ok = name
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if ok {
+        Ok(())
+    } else if name.is_empty() {
+        Err(format!("field path {path:?}: expected a field name"))
+    } else {
+        Err(format!("field path {path:?}: {name:?} is not a field name"))
+    }
+}
+
+/// The content of an enum variant object `{"Variant": content}` (one key, starting with an
+/// upper-case letter; struct fields are snake_case).
+fn variant_content(v: &mut Value) -> Option<(&str, &mut Value)> {
+    match v {
+        Value::Object(map) if map.len() == 1 => {
+            let (k, content) = map.iter_mut().next()?;
+            k.starts_with(|c: char| c.is_ascii_uppercase())
+                .then_some((k.as_str(), content))
+        }
+        _ => None,
+    }
+}
+
+/// What a JSON value is, in the words of a scenario file.
+fn kind_of(v: &Value) -> String {
+    match v {
+        Value::Null => "None".into(),
+        Value::Bool(_) => "a boolean".into(),
+        Value::Number(_) => "a number".into(),
+        Value::String(_) => "a string or unit variant".into(),
+        Value::Array(_) => "a list or tuple".into(),
+        Value::Object(_) => "a struct".into(),
+    }
+}
+
+fn where_(here: &str) -> String {
+    if here.is_empty() {
+        "the scenario".into()
+    } else {
+        here.into()
+    }
+}
+
+fn set_at(
+    node: &mut Value,
+    steps: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+) -> Result<(), String> {
+    let Some(step) = steps.first() else {
+        *node = make(node).map_err(|e| format!("{}: {e}", where_(here)))?;
+        return Ok(());
+    };
+    // A variant object is walked through: its key is not part of the path.
+    if let Some((_, content)) = variant_content(node) {
+        return set_at(content, steps, here, make);
+    }
+    let shown = where_(here);
+    let len = here.len();
+    let result = match (step, &mut *node) {
+        (Step::Field(name), Value::Object(map)) => match map.get_mut(name) {
+            Some(child) => {
+                push_field(here, name);
+                set_at(child, &steps[1..], here, make)
+            }
+            None => {
+                let fields: Vec<&str> = map.keys().map(String::as_str).collect();
+                Err(format!(
+                    "no field {name:?} in {shown} (fields: {})",
+                    fields.join(", ")
+                ))
+            }
+        },
+        (Step::Index(i), Value::Array(items)) => {
+            let n = items.len();
+            match items.get_mut(*i) {
+                Some(child) => {
+                    here.push_str(&format!("[{i}]"));
+                    set_at(child, &steps[1..], here, make)
+                }
+                None if n == 0 => Err(format!("no element [{i}] in {shown}: it is empty")),
+                None => Err(format!(
+                    "no element [{i}] in {shown}: it has {n} (indices 0 to {})",
+                    n - 1
+                )),
+            }
+        }
+        (Step::All, Value::Array(items)) => {
+            if items.is_empty() {
+                Err(format!("{shown} is empty: [*] sets nothing"))
+            } else {
+                here.push_str("[*]");
+                items
+                    .iter_mut()
+                    .try_for_each(|child| set_at(child, &steps[1..], here, make))
+            }
+        }
+        (step, other) => Err(format!(
+            "{shown} is {}, which has no {}",
+            kind_of(other),
+            describe(step)
+        )),
+    };
+    here.truncate(len);
+    result
+}
+
+fn push_field(here: &mut String, name: &str) {
+    if !here.is_empty() {
+        here.push('.');
+    }
+    here.push_str(name);
+}
+
+fn describe(step: &Step) -> String {
+    match step {
+        Step::Field(name) => format!("field {name:?}"),
+        Step::Index(i) => format!("element [{i}]"),
+        Step::All => "elements [*]".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+
+    fn p(s: &str) -> FieldPath {
+        FieldPath::parse(s).unwrap()
+    }
+
+    #[test]
+    fn parses_and_displays_paths() {
+        for s in [
+            "mission.hp_pct_per_step_in_radiation",
+            "kinds[0].max_speed_m_per_s",
+            "radiation_zones[*].dose_rate_factor",
+            "tasks.hard.goal_m",
+            "tasks.easy.rescuees[2][1]",
+            "name",
+        ] {
+            assert_eq!(p(s).to_string(), s);
+        }
+        assert_eq!(
+            p("kinds[1].count").steps(),
+            [
+                Step::Field("kinds".into()),
+                Step::Index(1),
+                Step::Field("count".into())
+            ]
+        );
+        assert_eq!(p("a[ * ]").steps()[1], Step::All);
+    }
+
+    #[test]
+    fn rejects_malformed_paths() {
+        for (s, needle) in [
+            ("", "expected a field name"),
+            ("mission.", "expected a field name"),
+            ("a..b", "expected a field name"),
+            (".a", "expected a field name"),
+            ("kinds[x]", "expected an index or * in [], found \"x\""),
+            ("kinds[-1]", "expected an index"),
+            ("kinds[0", "'[' is not closed"),
+            ("kinds[0]x", "unexpected \"x\""),
+            ("max-speed", "\"max-speed\" is not a field name"),
+            ("0abc", "is not a field name"),
+        ] {
+            let e = FieldPath::parse(s).unwrap_err();
+            assert!(e.contains(needle), "{s:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn overlap_treats_wildcards_and_prefixes() {
+        assert!(p("mission").overlaps(&p("mission.duration_s")));
+        assert!(p("zones[*].r").overlaps(&p("zones[2].r")));
+        assert!(p("zones[2].r").overlaps(&p("zones[*]")));
+        assert!(!p("zones[1].r").overlaps(&p("zones[2].r")));
+        assert!(!p("zones[*].r").overlaps(&p("zones[*].c")));
+        assert!(!p("mission.a").overlaps(&p("sim.a")));
+    }
+
+    fn set(v: &mut Value, path: &str, new: Value) -> Result<(), String> {
+        p(path).set(v, &mut |_| Ok(new.clone()))
+    }
+
+    fn doc() -> Value {
+        json!({
+            "mission": {"duration_s": 600.0, "low_hp_pct": 30.0},
+            "kinds": [
+                {"count": 6, "starts": {"Row": {"first_m": [1.0, 2.0], "step_m": [3.0, 0.0]}}},
+                {"count": 4, "starts": {"List": [[1.0, 1.0], [2.0, 2.0]]}}
+            ],
+            "zones": [{"r": 1.0}, {"r": 2.0}],
+            "empty": [],
+            "seed": null
+        })
+    }
+
+    #[test]
+    fn sets_fields_elements_and_wildcards() {
+        let mut v = doc();
+        set(&mut v, "mission.duration_s", json!(5.0)).unwrap();
+        set(&mut v, "kinds[1].count", json!(2)).unwrap();
+        set(&mut v, "zones[*].r", json!(9.0)).unwrap();
+        set(&mut v, "seed", json!(42)).unwrap();
+        assert_eq!(v["mission"]["duration_s"], json!(5.0));
+        assert_eq!(v["kinds"][1]["count"], json!(2));
+        assert_eq!(v["zones"], json!([{"r": 9.0}, {"r": 9.0}]));
+        assert_eq!(v["seed"], json!(42));
+        // The maker sees each old value.
+        let mut seen = Vec::new();
+        p("zones[*].r")
+            .set(&mut doc(), &mut |old| {
+                seen.push(old.clone());
+                Ok(json!(0))
+            })
+            .unwrap();
+        assert_eq!(seen, [json!(1.0), json!(2.0)]);
+        let e = p("zones[*].r")
+            .set(&mut doc(), &mut |_| Err("bad".into()))
+            .unwrap_err();
+        assert_eq!(e, "zones[*].r: bad");
+    }
+
+    #[test]
+    fn walks_through_enum_variants() {
+        let mut v = doc();
+        set(&mut v, "kinds[0].starts.first_m", json!([5.0, 6.0])).unwrap();
+        assert_eq!(v["kinds"][0]["starts"]["Row"]["first_m"], json!([5.0, 6.0]));
+        set(&mut v, "kinds[1].starts[1]", json!([7.0, 7.0])).unwrap();
+        assert_eq!(v["kinds"][1]["starts"]["List"][1], json!([7.0, 7.0]));
+        // The variant itself can be replaced.
+        set(&mut v, "kinds[1].starts", json!({"Row": {}})).unwrap();
+        assert_eq!(v["kinds"][1]["starts"], json!({"Row": {}}));
+    }
+
+    #[test]
+    fn explains_bad_paths() {
+        let cases = [
+            (
+                "mission.hp_rate",
+                "no field \"hp_rate\" in mission (fields: duration_s, low_hp_pct)",
+            ),
+            (
+                "nope",
+                "no field \"nope\" in the scenario (fields: mission, kinds, zones, empty, seed)",
+            ),
+            (
+                "zones[5].r",
+                "no element [5] in zones: it has 2 (indices 0 to 1)",
+            ),
+            ("empty[0]", "no element [0] in empty: it is empty"),
+            ("empty[*].r", "empty is empty: [*] sets nothing"),
+            (
+                "mission.duration_s.x",
+                "mission.duration_s is a number, which has no field \"x\"",
+            ),
+            (
+                "mission[0]",
+                "mission is a struct, which has no element [0]",
+            ),
+            (
+                "zones.r",
+                "zones is a list or tuple, which has no field \"r\"",
+            ),
+            (
+                "kinds[1].starts.first_m",
+                "kinds[1].starts is a list or tuple, which has no field \"first_m\"",
+            ),
+            (
+                "kinds[0].starts.nope",
+                "no field \"nope\" in kinds[0].starts (fields: first_m, step_m)",
+            ),
+        ];
+        for (path, want) in cases {
+            let e = set(&mut doc(), path, json!(1)).unwrap_err();
+            assert_eq!(e, want, "{path}");
+        }
+    }
+}
