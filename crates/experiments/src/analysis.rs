@@ -6,6 +6,7 @@
 use statrs::statistics::{Data, OrderStatistics};
 use usar_sim::mission::TrialResult;
 
+use crate::calibration::{self, Target};
 use crate::claims::{CLAIMS, ClaimCheck, check_claim};
 use crate::metrics::{METRICS, rows_of, values};
 use crate::stats::Summary;
@@ -40,6 +41,9 @@ pub struct CellAnalysis {
     pub claims: Vec<ClaimCheck>,
     /// Completed-round lengths over all methods (label `all`), then per method.
     pub rounds: Vec<RoundStats>,
+    /// The calibration targets with this cell's statistics pooled over all its trials, in
+    /// [`calibration::TARGETS`] order (see `docs/calibration.md`).
+    pub pooled: Vec<(Target, f64)>,
 }
 
 /// Statistics of one method's trials in one cell.
@@ -108,6 +112,7 @@ impl CellAnalysis {
             methods: stats,
             claims,
             rounds,
+            pooled: calibration::check(results),
         }
     }
 

@@ -53,6 +53,7 @@ pub fn report_md(input: &ReportInput<'_>) -> String {
     setup(&mut r, input);
     results(&mut r, input.analysis);
     round_lengths(&mut r, input.analysis);
+    pooled(&mut r, input.analysis);
     claims(&mut r, input.analysis);
     let _ = writeln!(r, "## Figures\n");
     for f in &FIGURES {
@@ -179,6 +180,32 @@ fn results(r: &mut String, a: &CellAnalysis) {
 /// their median, 95th percentile and longest length, seconds, and the mean number of rounds
 /// started per trial. A stalled round (robots unable to get back) shows up here long before
 /// it moves a mean.
+/// Appends the "Pooled statistics" subsection: the calibration targets (the authors' results
+/// sheet, pooled over methods) next to this sweep's values pooled the same way.
+fn pooled(r: &mut String, a: &CellAnalysis) {
+    let _ = writeln!(
+        r,
+        "### Pooled statistics
+
+Over all trials of all methods, as ratios of means: the          method-independent statistics `scenarios/paper.ron` is calibrated against (the          authors' results sheet; `docs/calibration.md`). A value outside the band is marked          **out**.
+
+| statistic | this sweep | target | band |
+|---|---|---|---|"
+    );
+    for (t, x) in &a.pooled {
+        let mark = if t.holds(*x) { "" } else { " **out**" };
+        let _ = writeln!(
+            r,
+            "| {} | {}{mark} | {} | ± {} |",
+            t.label,
+            num(*x),
+            t.value,
+            t.band
+        );
+    }
+    r.push('\n');
+}
+
 fn round_lengths(r: &mut String, a: &CellAnalysis) {
     let _ = writeln!(
         r,

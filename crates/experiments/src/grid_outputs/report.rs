@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::analysis::Analysis;
+use crate::calibration;
 use crate::claims::CLAIMS;
 use crate::grid::Grid;
 use crate::metrics::{METRICS, Metric};
@@ -37,6 +38,7 @@ pub fn grid_md(input: &GridReportInput<'_>) -> String {
     let _ = writeln!(r, "# Grid report: {}\n", input.outcome.header.scenario);
     setup(&mut r, input);
     cells(&mut r, input);
+    pooled(&mut r, input);
     for (i, m) in input.metrics.iter().enumerate() {
         metric_section(&mut r, input, *m, input.figures.get(i));
     }
@@ -146,6 +148,33 @@ fn cells(r: &mut String, input: &GridReportInput<'_>) {
             c.duration_s,
             o.results.len()
         );
+    }
+    r.push('\n');
+}
+
+/// The calibration statistics of every cell, pooled over its trials of all methods, against
+/// their targets (`docs/calibration.md`); a value outside its band is marked with `!`.
+fn pooled(r: &mut String, input: &GridReportInput<'_>) {
+    let h = &input.outcome.header;
+    let _ = writeln!(
+        r,
+        "## Pooled statistics
+
+Per cell, over all trials of all methods (ratios of means;          calibration targets of `docs/calibration.md` in the header, `!` marks a value outside          its band).
+"
+    );
+    let labels: Vec<String> = calibration::TARGETS
+        .iter()
+        .map(|t| format!("{} ({} ± {})", t.label, t.value, t.band))
+        .collect();
+    table_head(r, &h.grid.fields, &labels);
+    for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {
+        cell_start(r, index, &c.values);
+        for (t, x) in &a.pooled {
+            let mark = if t.holds(*x) { "" } else { " !" };
+            let _ = write!(r, " {}{mark} |", num(*x));
+        }
+        r.push('\n');
     }
     r.push('\n');
 }
