@@ -185,12 +185,10 @@ fn results(r: &mut String, a: &CellAnalysis) {
 fn pooled(r: &mut String, a: &CellAnalysis) {
     let _ = writeln!(
         r,
-        "### Pooled statistics
-
-Over all trials of all methods, as ratios of means: the          method-independent statistics `scenarios/paper.ron` is calibrated against (the          authors' results sheet; `docs/calibration.md`). A value outside the band is marked          **out**.
-
-| statistic | this sweep | target | band |
-|---|---|---|---|"
+        "### Pooled statistics\n\nOver all trials of all methods, as ratios of means: the \
+         method-independent statistics `scenarios/paper.ron` is calibrated against (the \
+         authors' results sheet; `docs/calibration.md`). A value outside the band is marked \
+         **out**.\n\n| statistic | this sweep | target | band |\n|---|---|---|---|"
     );
     for (t, x) in &a.pooled {
         let mark = if t.holds(*x) { "" } else { " **out**" };

@@ -158,10 +158,9 @@ fn pooled(r: &mut String, input: &GridReportInput<'_>) {
     let h = &input.outcome.header;
     let _ = writeln!(
         r,
-        "## Pooled statistics
-
-Per cell, over all trials of all methods (ratios of means;          calibration targets of `docs/calibration.md` in the header, `!` marks a value outside          its band).
-"
+        "## Pooled statistics\n\nPer cell, over all trials of all methods (ratios of means; \
+         calibration targets of `docs/calibration.md` in the header, `!` marks a value outside \
+         its band).\n"
     );
     let labels: Vec<String> = calibration::TARGETS
         .iter()
