@@ -92,6 +92,14 @@ fn numeric(values: &[String]) -> Option<Vec<f64>> {
 }
 
 /// Lowest and highest of the band ends (or means where the band is undefined), padded.
+/// Whether positive numeric axis values span at least a factor of 10 (then the axis is drawn
+/// on a log scale, as for a rate varied over a decade).
+fn spans_a_decade(v: &[f64]) -> bool {
+    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    lo > 0.0 && hi / lo >= 10.0 - 1e-9
+}
+
 fn y_range(per_method: &[Vec<Summary>]) -> (f64, f64) {
     let (lo, hi) = per_method
         .iter()
@@ -121,9 +129,13 @@ fn line_chart(
     per_method: &[Vec<Summary>],
     metric: Metric,
 ) -> Result<String> {
-    let xs: Vec<f64> =
-        numeric(values).unwrap_or_else(|| (0..values.len()).map(|i| i as f64).collect());
     let categorical = numeric(values).is_none();
+    let log_x = numeric(values).is_some_and(|v| spans_a_decade(&v));
+    let xs: Vec<f64> = match numeric(values) {
+        Some(v) if log_x => v.iter().map(|x| x.log10()).collect(),
+        Some(v) => v,
+        None => (0..values.len()).map(|i| i as f64).collect(),
+    };
     let (x_lo, x_hi) = xs
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
@@ -153,10 +165,16 @@ fn line_chart(
             .y_label_area_size(64)
             .build_cartesian_2d((x_lo - x_pad)..(x_hi + x_pad), y_lo..y_hi)
             .map_err(draw_err)?;
+        let x_desc = if log_x {
+            format!("{field} (log scale)")
+        } else {
+            field.to_string()
+        };
         chart
             .configure_mesh()
-            .x_labels(if categorical { 0 } else { 8 })
-            .x_desc(field)
+            // Categorical and log axes are labelled at the varied values (below).
+            .x_labels(if categorical || log_x { 0 } else { 8 })
+            .x_desc(x_desc)
             .y_desc(metric.label)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 15))
@@ -168,7 +186,7 @@ fn line_chart(
             draw_method(&mut chart, method_color(i), &xs, &order, stats)?;
             legend_entry(&legend_area, i, name, method_color(i))?;
         }
-        if categorical {
+        if categorical || log_x {
             let style = ("sans-serif", 13)
                 .into_font()
                 .color(&BLACK)
@@ -453,6 +471,13 @@ fn color_bar(area: &DrawingArea<SVGBackend<'_>, Shift>, lo: f64, hi: f64) -> Res
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_axis_for_positive_values_over_a_decade() {
+        assert!(spans_a_decade(&[0.00174, 0.0055, 0.0174]));
+        assert!(!spans_a_decade(&[1.0, 9.0]));
+        assert!(!spans_a_decade(&[0.0, 1.0, 100.0]));
+    }
 
     #[test]
     fn numeric_axis_only_when_every_value_is_a_number() {
