@@ -361,13 +361,71 @@ fn broken_fixture_files_get_precise_errors() {
 }
 
 #[test]
-fn missing_file_is_an_io_error() {
+fn missing_file_is_an_io_error_that_says_its_cause_once() {
     let err = scenario::load("/nonexistent/none.ron").expect_err("missing");
     assert!(matches!(err, ScenarioError::Io { .. }));
+    let msg = err.to_string();
     assert!(
-        err.to_string()
-            .starts_with("/nonexistent/none.ron: cannot read")
+        msg.starts_with("/nonexistent/none.ron: cannot read"),
+        "{msg}"
     );
+    assert_eq!(msg.matches("No such file").count(), 1, "{msg}");
+    // Printed with its chain (as `usar` does), the cause still appears once.
+    let chained = format!("{:#}", anyhow_like(&err));
+    assert_eq!(chained.matches("No such file").count(), 1, "{chained}");
+}
+
+/// The message and every `source()` below it, joined with ": " (what `anyhow`'s `{:#}` prints).
+fn anyhow_like(err: &dyn std::error::Error) -> String {
+    let mut out = err.to_string();
+    let mut cur = err.source();
+    while let Some(e) = cur {
+        out.push_str(": ");
+        out.push_str(&e.to_string());
+        cur = e.source();
+    }
+    out
+}
+
+#[test]
+fn a_byte_that_is_not_utf8_is_reported_at_its_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.ron");
+    let mut bytes = BASE.as_bytes().to_vec();
+    // Third line, after its first four characters.
+    let third = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| **b == b'\n')
+        .nth(1)
+        .map(|(i, _)| i + 1)
+        .unwrap();
+    bytes.insert(third + 4, 0xff);
+    std::fs::write(&path, &bytes).unwrap();
+    let err = scenario::load(&path).expect_err("not UTF-8");
+    assert_eq!(err.line_col(), Some((3, 5)), "{err}");
+    assert!(err.to_string().contains("0xff is not UTF-8"), "{err}");
+}
+
+#[test]
+fn deep_nesting_is_a_positioned_error_not_a_stack_overflow() {
+    for open in ["(", "[", "{"] {
+        let close = match open {
+            "(" => ")",
+            "[" => "]",
+            _ => "}",
+        };
+        let depth = 200_000;
+        let src = BASE.replacen(
+            "width_m: 30.0",
+            &format!("width_m: {}{}", open.repeat(depth), close.repeat(depth)),
+            1,
+        );
+        assert_ne!(src, BASE);
+        let err = scenario::from_str(&src, "deep.ron").expect_err("nested");
+        assert!(err.line_col().is_some(), "{err}");
+        assert_eq!(err.to_string().lines().count(), 1, "{err}");
+    }
 }
 
 #[test]

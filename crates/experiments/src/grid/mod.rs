@@ -253,9 +253,9 @@ mod tests {
             "{e}"
         );
         assert_eq!(
-            err(&["radiation_zones[8].radius_m=1"]),
-            "--vary radiation_zones[8].radius_m=1: no element [8] in radiation_zones: it has 8 \
-             (indices 0 to 7)"
+            err(&["radiation_zones[7].radius_m=1"]),
+            "--vary radiation_zones[7].radius_m=1: no element [7] in radiation_zones: it has 7 \
+             (indices 0 to 6)"
         );
         assert_eq!(
             err(&["mission.duration_s=60,abc"]),

@@ -33,14 +33,14 @@ impl fmt::Display for SourceLocation {
 /// The `Display` form is one line: `origin[:line:col]: [field.path: ]message`.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
-    /// The file could not be read.
-    #[error("{path}: cannot read scenario file: {source}")]
+    /// The file could not be read. The I/O error is part of the one-line message (not also a
+    /// `source()`, so a chain-printing caller does not repeat it).
+    #[error("{path}: cannot read scenario file: {error}")]
     Io {
         /// The path that was given.
         path: String,
         /// The underlying I/O error.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The text is not valid RON or does not have the shape of a scenario spec (unknown or
     /// missing field, wrong type, unknown enum variant, ...). Reported by ron, with position.

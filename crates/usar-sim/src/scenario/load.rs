@@ -20,11 +20,35 @@ use super::validate::{Ctx, validate};
 pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
     let path = path.as_ref();
     let origin = path.display().to_string();
-    let src = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+    let bytes = std::fs::read(path).map_err(|error| ScenarioError::Io {
         path: origin.clone(),
-        source,
+        error,
     })?;
-    from_str(&src, &origin)
+    let src = utf8(&bytes, &origin)?;
+    from_str(src, &origin)
+}
+
+/// The file's text, or a [`ScenarioError::Syntax`] at the first byte that is not UTF-8 (line
+/// and column of that byte; columns count the characters before it, as ron does).
+fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let valid = &bytes[..e.valid_up_to()];
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        // The prefix is valid UTF-8 by construction.
+        let col = std::str::from_utf8(&valid[line_start..]).map_or(1, |s| s.chars().count() + 1);
+        ScenarioError::Syntax {
+            location: SourceLocation {
+                origin: origin.to_owned(),
+                line_col: Some((line, col)),
+            },
+            field: None,
+            message: format!(
+                "byte 0x{:02x} is not UTF-8; scenario files are UTF-8 text",
+                bytes[e.valid_up_to()]
+            ),
+        }
+    })
 }
 
 /// Parses and validates a scenario from RON text. `origin` names the source in errors (a file

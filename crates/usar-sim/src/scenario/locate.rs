@@ -41,6 +41,7 @@ impl SourceMap {
             s: src.as_bytes(),
             pos: 0,
             entries: Vec::new(),
+            depth: 0,
         };
         sc.skip_ws_and_attributes();
         sc.value("");
@@ -127,10 +128,17 @@ pub(crate) fn join(parent: &str, field: &str) -> String {
     }
 }
 
+/// Deepest nesting of brackets the skim follows; deeper text is left to ron (whose own
+/// recursion limit, 128, reports it as a positioned error). Keeps the skim's recursion, and so
+/// its stack use, bounded whatever the input.
+const MAX_NESTING: usize = 128;
+
 struct Scanner<'a> {
     s: &'a [u8],
     pos: usize,
     entries: Vec<Entry>,
+    /// Brackets open at the cursor.
+    depth: usize,
 }
 
 fn is_delim(b: u8) -> bool {
@@ -313,8 +321,20 @@ impl Scanner<'_> {
         }
     }
 
-    /// Skims `(...)`, `[...]` or `{...}` at the cursor.
+    /// Skims `(...)`, `[...]` or `{...}` at the cursor; gives up (`false`) beyond
+    /// [`MAX_NESTING`] open brackets.
     fn container(&mut self, path: &str, close: u8) -> bool {
+        if self.depth >= MAX_NESTING {
+            return false;
+        }
+        self.depth += 1;
+        let ok = self.container_items(path, close);
+        self.depth -= 1;
+        ok
+    }
+
+    /// The items of the container whose opening bracket is at the cursor.
+    fn container_items(&mut self, path: &str, close: u8) -> bool {
         self.pos += 1;
         let mut index = 0usize;
         loop {
