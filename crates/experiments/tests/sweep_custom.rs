@@ -11,7 +11,8 @@ use usar_sim::scenario;
 
 const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
 
-/// Sends the lowest ids of each kind to the easy task.
+/// Deals each kind's robots out in id order, easiest task first: the lowest ids of each kind
+/// go to the easy task.
 struct ById;
 
 impl GroupingMethod for ById {
@@ -19,17 +20,14 @@ impl GroupingMethod for ById {
         "by_id"
     }
     fn assign(&self, request: &GroupingRequest) -> rne_core::Result<Assignment> {
-        let (mut easy, mut hard) = (Vec::new(), Vec::new());
+        let mut groups = vec![Vec::new(); request.tasks()];
         for (kind, quota) in request.quotas().iter().enumerate() {
-            for (i, robot) in request.members_of_kind(kind).into_iter().enumerate() {
-                if i < quota.easy {
-                    easy.push(robot.id);
-                } else {
-                    hard.push(robot.id);
-                }
+            let mut ids = request.members_of_kind(kind).into_iter().map(|r| r.id);
+            for &task in request.hardest_first().iter().rev() {
+                groups[task].extend(ids.by_ref().take(quota[task]));
             }
         }
-        Ok(Assignment::new(easy, hard))
+        Ok(Assignment::new(groups))
     }
 }
 

@@ -5,7 +5,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use rne_core::grouping::{
-    GroupingMethod, GroupingRequest, KindQuota, METHOD_NAMES, RobotSnapshot, method_from_name,
+    GroupingMethod, GroupingRequest, METHOD_NAMES, RobotSnapshot, method_from_name,
 };
 use rne_core::{NeedsVector, TrustModel, Weights};
 
@@ -25,18 +25,13 @@ fn team(kinds: usize, per_kind: usize, j: usize) -> GroupingRequest {
                 needs: NeedsVector::new(needs).expect("valid needs"),
                 energy_pct: level,
                 hp_pct: 100.0 - level / 2.0,
-                distance_to_goal_m: [10.0 + i as f64, 30.0 - i as f64],
+                distance_to_goal_m: vec![10.0 + i as f64, 30.0 - i as f64],
             });
         }
     }
-    let quotas = vec![
-        KindQuota {
-            easy: per_kind / 2,
-            hard: per_kind - per_kind / 2
-        };
-        kinds
-    ];
-    GroupingRequest::new(robots, quotas).expect("valid request")
+    // Two tasks, easy = 0 and hard = 1.
+    let quotas = vec![vec![per_kind / 2, per_kind - per_kind / 2]; kinds];
+    GroupingRequest::new(robots, quotas, vec![1, 0]).expect("valid request")
 }
 
 /// The paper's team: 6 carriers, 4 suppliers, 2 observers, 7 needs.
@@ -58,12 +53,12 @@ fn paper_team() -> GroupingRequest {
                 needs: NeedsVector::new(needs).expect("valid needs"),
                 energy_pct: e * 100.0,
                 hp_pct: h * 100.0,
-                distance_to_goal_m: [20.0, 40.0],
+                distance_to_goal_m: vec![20.0, 40.0],
             }
         })
         .collect();
-    let q = |n| KindQuota { easy: n, hard: n };
-    GroupingRequest::new(robots, vec![q(3), q(2), q(1)]).expect("valid request")
+    let q = |n| vec![n, n];
+    GroupingRequest::new(robots, vec![q(3), q(2), q(1)], vec![1, 0]).expect("valid request")
 }
 
 fn bench(c: &mut Criterion) {

@@ -1,4 +1,5 @@
-//! All Subgroup Combinations (Algorithm 2, ASC): every way to split a set into two subgroups.
+//! All Subgroup Combinations (Algorithm 2, ASC): every way to split a set into two subgroups,
+//! enumerated lazily (one split at a time, never all in memory).
 
 use serde::{Deserialize, Serialize};
 
@@ -14,34 +15,135 @@ pub struct Bipartition {
     pub second: Vec<usize>,
 }
 
+impl Bipartition {
+    /// The split whose first subgroup is `first` (indices into `0..n`, any order, no
+    /// duplicates); both lists come out sorted ascending.
+    pub fn from_first(n: usize, mut first: Vec<usize>) -> Self {
+        first.sort_unstable();
+        let second = complement(n, &first);
+        Self { first, second }
+    }
+}
+
+/// The indices of `0..n` not in the ascending list `first`, ascending.
+fn complement(n: usize, first: &[usize]) -> Vec<usize> {
+    let mut second = Vec::with_capacity(n.saturating_sub(first.len()));
+    let mut next = first.iter().peekable();
+    for i in 0..n {
+        if next.peek() == Some(&&i) {
+            next.next();
+        } else {
+            second.push(i);
+        }
+    }
+    second
+}
+
+/// Lazy iterator over all `m`-subsets of `0..n` in lexicographic order, built by
+/// [`combinations`]. Holds one subset (`m` indices) at a time.
+#[derive(Debug, Clone)]
+pub struct Combinations {
+    n: usize,
+    current: Vec<usize>,
+    done: bool,
+}
+
+impl Iterator for Combinations {
+    type Item = Vec<usize>;
+
+    fn next(&mut self) -> Option<Vec<usize>> {
+        if self.done {
+            return None;
+        }
+        let out = self.current.clone();
+        let (n, m) = (self.n, self.current.len());
+        // Advance to the next subset: the rightmost position that can still be incremented.
+        match (0..m).rev().find(|&i| self.current[i] < n - m + i) {
+            Some(i) => {
+                self.current[i] += 1;
+                for k in i + 1..m {
+                    self.current[k] = self.current[k - 1] + 1;
+                }
+            }
+            None => self.done = true,
+        }
+        Some(out)
+    }
+}
+
 /// All `m`-subsets of `0..n` in lexicographic order (the order in which Algorithm 2 emits
-/// them: fix the first element, recurse on the rest).
+/// them: fix the first element, recurse on the rest), as a lazy iterator.
 ///
-/// Returns `C(n, m)` subsets, each sorted ascending; one empty subset if `m == 0`.
+/// Yields `C(n, m)` subsets ([`split_count`] gives the count without enumerating), each sorted
+/// ascending; one empty subset if `m == 0`. Memory: `O(m)` whatever `n` and `m`.
 ///
 /// # Errors
 /// [`RneError::InvalidSubgroupSize`] if `m > n`.
-pub fn combinations(n: usize, m: usize) -> Result<Vec<Vec<usize>>> {
+pub fn combinations(n: usize, m: usize) -> Result<Combinations> {
     if m > n {
         return Err(RneError::InvalidSubgroupSize { size: m, total: n });
     }
-    let mut out = Vec::new();
-    let mut current: Vec<usize> = (0..m).collect();
-    loop {
-        out.push(current.clone());
-        // Find the rightmost position that can still be incremented.
-        let Some(i) = (0..m).rev().find(|&i| current[i] < n - m + i) else {
-            return Ok(out);
+    Ok(Combinations {
+        n,
+        current: (0..m).collect(),
+        done: false,
+    })
+}
+
+/// `C(n, m)`, saturating at `u128::MAX` (never overflows or panics); 0 if `m > n`.
+pub fn binomial(n: usize, m: usize) -> u128 {
+    if m > n {
+        return 0;
+    }
+    let m = m.min(n - m) as u128;
+    let n = n as u128;
+    let mut c: u128 = 1;
+    for i in 0..m {
+        // c * (n - i) / (i + 1) is exact at every step (c = C(n, i) before it).
+        c = match c.checked_mul(n - i) {
+            Some(p) => p / (i + 1),
+            None => return u128::MAX,
         };
-        current[i] += 1;
-        for k in i + 1..m {
-            current[k] = current[k - 1] + 1;
+    }
+    c
+}
+
+/// How many splits [`two_way_splits`]`(n, m)` yields: `C(n, m)`, halved when `m = n - m > 0`
+/// (each unordered split once); 0 if `m > n`; saturating at `u128::MAX`.
+///
+/// Examples: 10 for the paper's 6 carriers split 3/3, 462 for 12 robots split 6/6, 92,378 for
+/// 20 split 10/10, 7.8e7 for 30 split 15/15, 1.6e13 for 48 split 24/24.
+pub fn split_count(n: usize, m: usize) -> u128 {
+    let c = binomial(n, m);
+    if 2 * m == n && n > 0 { c / 2 } else { c }
+}
+
+/// Lazy iterator over the splits of [`two_way_splits`]; holds one split at a time.
+#[derive(Debug, Clone)]
+pub struct TwoWaySplits {
+    n: usize,
+    firsts: Combinations,
+    symmetric: bool,
+}
+
+impl Iterator for TwoWaySplits {
+    type Item = Bipartition;
+
+    fn next(&mut self) -> Option<Bipartition> {
+        let first = self.firsts.next()?;
+        // With equal halves, the splits whose first subgroup contains index 0 come first in
+        // lexicographic order; the rest are mirror images of them.
+        if self.symmetric && first.first() != Some(&0) {
+            self.firsts.done = true;
+            return None;
         }
+        let second = complement(self.n, &first);
+        Some(Bipartition { first, second })
     }
 }
 
 /// Algorithm 2 (ASC), generalised to unequal sizes: every split of `0..n` into a first
-/// subgroup of size `m` and a second of size `n - m`, each split **once**.
+/// subgroup of size `m` and a second of size `n - m`, each split **once**, as a lazy iterator.
 ///
 /// * `m != n - m`: the subgroups are distinguishable by size; all `C(n, m)` splits, first
 ///   subgroups in lexicographic order.
@@ -49,11 +151,8 @@ pub fn combinations(n: usize, m: usize) -> Result<Vec<Vec<usize>>> {
 ///   whose first subgroup contains index 0 are emitted (still in lexicographic order).
 ///   For `n = 0` one split `(∅, ∅)` is returned.
 ///
-/// Size: all splits are built in memory, `C(n, m)` of them, halved when `m = n - m` (10 for the
-/// paper's 6 carriers split 3/3, 462 for 12 robots split 6/6, 7.8e7 for 30 split 15/15): keep
-/// kinds to a couple of dozen robots. The
-/// hierarchical grouping scores every split, so its time grows the same way (see the
-/// `grouping` bench: 2.5 ms for 4 kinds of 12).
+/// Size: [`split_count`]`(n, m)` splits (10 for the paper's 6 carriers split 3/3, 92,378 for
+/// 20 robots split 10/10, 1.6e13 for 48 split 24/24), produced one at a time in `O(n)` memory.
 ///
 /// # Errors
 /// [`RneError::InvalidSubgroupSize`] if `m > n`.
@@ -61,16 +160,12 @@ pub fn combinations(n: usize, m: usize) -> Result<Vec<Vec<usize>>> {
 /// # Reference
 /// `ASC(A, m) = { (S, A \ S) : S ⊆ A, |S| = m }` modulo swapping when `|S| = |A \ S|`;
 /// paper Algorithm 2 and Sec. V (`C_x^{x/2}` combinations).
-pub fn two_way_splits(n: usize, m: usize) -> Result<Vec<Bipartition>> {
-    let symmetric = 2 * m == n && n > 0;
-    Ok(combinations(n, m)?
-        .into_iter()
-        .filter(|first| !symmetric || first.first() == Some(&0))
-        .map(|first| {
-            let second = (0..n).filter(|i| first.binary_search(i).is_err()).collect();
-            Bipartition { first, second }
-        })
-        .collect())
+pub fn two_way_splits(n: usize, m: usize) -> Result<TwoWaySplits> {
+    Ok(TwoWaySplits {
+        n,
+        firsts: combinations(n, m)?,
+        symmetric: 2 * m == n && n > 0,
+    })
 }
 
 #[cfg(test)]
@@ -80,7 +175,7 @@ mod tests {
     #[test]
     fn combinations_counts_and_order() {
         assert_eq!(
-            combinations(4, 2).unwrap(),
+            combinations(4, 2).unwrap().collect::<Vec<_>>(),
             vec![
                 vec![0, 1],
                 vec![0, 2],
@@ -90,15 +185,21 @@ mod tests {
                 vec![2, 3]
             ]
         );
-        assert_eq!(combinations(3, 0).unwrap(), vec![Vec::<usize>::new()]);
-        assert_eq!(combinations(3, 3).unwrap(), vec![vec![0, 1, 2]]);
-        assert_eq!(combinations(10, 5).unwrap().len(), 252);
+        assert_eq!(
+            combinations(3, 0).unwrap().collect::<Vec<_>>(),
+            vec![Vec::<usize>::new()]
+        );
+        assert_eq!(
+            combinations(3, 3).unwrap().collect::<Vec<_>>(),
+            vec![vec![0, 1, 2]]
+        );
+        assert_eq!(combinations(10, 5).unwrap().count(), 252);
         assert!(combinations(2, 3).is_err());
     }
 
     #[test]
     fn equal_halves_emitted_once() {
-        let s = two_way_splits(4, 2).unwrap();
+        let s: Vec<_> = two_way_splits(4, 2).unwrap().collect();
         assert_eq!(s.len(), 3);
         assert_eq!(
             s[0],
@@ -107,17 +208,17 @@ mod tests {
                 second: vec![2, 3]
             }
         );
-        assert_eq!(two_way_splits(6, 3).unwrap().len(), 10);
-        assert_eq!(two_way_splits(2, 1).unwrap().len(), 1);
+        assert_eq!(two_way_splits(6, 3).unwrap().count(), 10);
+        assert_eq!(two_way_splits(2, 1).unwrap().count(), 1);
     }
 
     #[test]
     fn unequal_sizes_emit_all() {
-        let s = two_way_splits(5, 2).unwrap();
+        let s: Vec<_> = two_way_splits(5, 2).unwrap().collect();
         assert_eq!(s.len(), 10);
         assert!(s.iter().all(|b| b.first.len() == 2 && b.second.len() == 3));
         assert_eq!(
-            two_way_splits(3, 0).unwrap(),
+            two_way_splits(3, 0).unwrap().collect::<Vec<_>>(),
             vec![Bipartition {
                 first: vec![],
                 second: vec![0, 1, 2]
@@ -129,7 +230,8 @@ mod tests {
     fn every_split_is_a_partition_and_unique() {
         for n in 0..8 {
             for m in 0..=n {
-                let s = two_way_splits(n, m).unwrap();
+                let s: Vec<_> = two_way_splits(n, m).unwrap().collect();
+                assert_eq!(s.len() as u128, split_count(n, m), "n = {n}, m = {m}");
                 let mut seen = std::collections::HashSet::new();
                 for b in &s {
                     let mut all: Vec<usize> = b.first.iter().chain(&b.second).copied().collect();
@@ -141,5 +243,32 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn counts_are_exact_and_saturate() {
+        assert_eq!(binomial(48, 24), 32_247_603_683_100);
+        assert_eq!(split_count(48, 24), 16_123_801_841_550);
+        assert_eq!(split_count(20, 10), 92_378);
+        assert_eq!(split_count(6, 3), 10);
+        assert_eq!(split_count(0, 0), 1);
+        assert_eq!(split_count(2, 3), 0);
+        assert_eq!(binomial(1000, 500), u128::MAX);
+        assert_eq!(binomial(1000, 1), 1000);
+    }
+
+    #[test]
+    fn huge_enumerations_are_lazy() {
+        // C(48, 24) splits cannot be held in memory; taking a few must be instant.
+        let first: Vec<_> = two_way_splits(48, 24).unwrap().take(3).collect();
+        assert_eq!(first[0].first, (0..24).collect::<Vec<_>>());
+        assert_eq!(first[2].first.last(), Some(&25));
+        assert_eq!(
+            Bipartition::from_first(5, vec![3, 1]),
+            Bipartition {
+                first: vec![1, 3],
+                second: vec![0, 2, 4]
+            }
+        );
     }
 }

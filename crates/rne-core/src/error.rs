@@ -46,7 +46,7 @@ pub enum RneError {
         value: f64,
     },
     /// An input that must hold at least one element is empty (no needs, an empty group, an
-    /// empty team or a task that receives no robot).
+    /// empty team or no task).
     #[error("{what} is empty")]
     Empty {
         /// Which input is empty.
@@ -88,24 +88,62 @@ pub enum RneError {
         /// Number of kinds (length of the quota list).
         kinds: usize,
     },
-    /// The quotas of a kind do not add up to the number of robots of that kind.
+    /// The task quotas of a kind do not add up to the number of robots of that kind.
     #[error(
-        "kind {kind} has {available} robots but its quotas ask for {easy} (easy) + {hard} (hard)"
+        "kind {kind} has {available} robots but its task quotas {quotas:?} sum to {}",
+        quotas.iter().sum::<usize>()
     )]
     QuotaMismatch {
         /// Kind index.
         kind: usize,
         /// Robots of that kind in the team.
         available: usize,
-        /// Quota for the easy task.
-        easy: usize,
-        /// Quota for the hard task.
-        hard: usize,
+        /// The kind's quota per task.
+        quotas: Vec<usize>,
+    },
+    /// A kind's quota list does not have one entry per task.
+    #[error("kind {kind} has {actual} task quotas but there are {tasks} tasks")]
+    QuotaTaskCount {
+        /// Kind index.
+        kind: usize,
+        /// Number of tasks `K`.
+        tasks: usize,
+        /// Length of the kind's quota list.
+        actual: usize,
+    },
+    /// A robot's distance list does not have one entry per task.
+    #[error("robot id {id} has {actual} distances to task goals but there are {tasks} tasks")]
+    DistanceCount {
+        /// Robot id.
+        id: usize,
+        /// Number of tasks `K`.
+        tasks: usize,
+        /// Length of the robot's distance list.
+        actual: usize,
+    },
+    /// A robot's distance to a task goal is not finite.
+    #[error("robot id {id}: distance_to_goal_m[{task}] is {value}; it must be finite")]
+    InvalidDistance {
+        /// Robot id.
+        id: usize,
+        /// Task index.
+        task: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// The tasks' difficulty order is not a permutation of the task indices `0..K`.
+    #[error(
+        "task difficulty order {order:?} is not a permutation of 0..{}",
+        order.len()
+    )]
+    InvalidTaskOrder {
+        /// The order given (hardest first).
+        order: Vec<usize>,
     },
     /// Two robots share an id.
     #[error("robot id {0} appears more than once")]
     DuplicateRobot(usize),
-    /// A robot's scalar state (energy, HP, distance) is not finite.
+    /// A robot's scalar state (energy or HP) is not finite.
     #[error("robot id {id}: {field} is {value}; it must be finite")]
     InvalidRobotState {
         /// Robot id.

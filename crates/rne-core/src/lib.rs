@@ -32,7 +32,9 @@ pub mod needs;
 pub mod rne;
 mod vector_newtype;
 
-pub use combinations::{Bipartition, combinations, two_way_splits};
+pub use combinations::{
+    Bipartition, Combinations, TwoWaySplits, binomial, combinations, split_count, two_way_splits,
+};
 pub use distribution::{
     Alignment, DEFAULT_RELATIVE_EPSILON, Distribution, DistributionOptions, Smoothing,
     group_distribution, needs_distribution,

@@ -1,76 +1,83 @@
-//! The output of a grouping method: which robots go to the easy and to the hard task.
+//! The output of a grouping method: which robots go to which of the `K` tasks.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, RneError};
-use crate::grouping::request::{GroupingRequest, Task};
+use crate::grouping::request::GroupingRequest;
 
-/// Robot ids per task, each list sorted ascending. Use [`Assignment::validate`] to check it
-/// is a partition of a request's team that meets the quotas.
+/// Robot ids per task: `groups[t]` holds the ids sent to task `t` (`K` lists, each sorted
+/// ascending; a list may be empty). Use [`Assignment::validate`] to check it is a partition of
+/// a request's team that meets the quotas.
 #[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct Assignment {
-    /// Ids of the robots sent to the easy task.
-    pub easy: Vec<usize>,
-    /// Ids of the robots sent to the hard task.
-    pub hard: Vec<usize>,
+    /// `groups[t]`: ids of the robots sent to task `t`, ascending.
+    pub groups: Vec<Vec<usize>>,
 }
 
 impl Assignment {
-    /// Builds an assignment, sorting both lists.
-    pub fn new(mut easy: Vec<usize>, mut hard: Vec<usize>) -> Self {
-        easy.sort_unstable();
-        hard.sort_unstable();
-        Self { easy, hard }
-    }
-
-    /// The ids sent to `task`.
-    pub fn ids(&self, task: Task) -> &[usize] {
-        match task {
-            Task::Easy => &self.easy,
-            Task::Hard => &self.hard,
+    /// Builds an assignment from one id list per task, sorting each list.
+    pub fn new(mut groups: Vec<Vec<usize>>) -> Self {
+        for g in &mut groups {
+            g.sort_unstable();
         }
+        Self { groups }
     }
 
-    /// The task robot `id` is sent to, if it is assigned.
-    pub fn task_of(&self, id: usize) -> Option<Task> {
-        if self.easy.contains(&id) {
-            Some(Task::Easy)
-        } else if self.hard.contains(&id) {
-            Some(Task::Hard)
-        } else {
-            None
-        }
+    /// Number of tasks (lists).
+    pub fn tasks(&self) -> usize {
+        self.groups.len()
     }
 
-    /// Checks that every robot of `request` appears exactly once, no unknown id appears, and
-    /// each task receives exactly its per-kind quota.
+    /// The ids sent to task `task` (empty for an unknown task).
+    pub fn ids(&self, task: usize) -> &[usize] {
+        self.groups.get(task).map_or(&[], Vec::as_slice)
+    }
+
+    /// The task robot `id` is sent to, if it is assigned (the first such task if it appears
+    /// twice). `O(K log n)`: binary search in each sorted list.
+    pub fn task_of(&self, id: usize) -> Option<usize> {
+        self.groups
+            .iter()
+            .position(|g| g.binary_search(&id).is_ok())
+    }
+
+    /// Checks that there is one list per task of `request`, every robot of `request` appears
+    /// exactly once, no unknown id appears, and each task receives exactly its per-kind
+    /// quota. `O(n log n)`.
     ///
     /// # Errors
-    /// [`RneError::InvalidAssignment`] describing the first violation (naming the robot id or
-    /// kind).
+    /// [`RneError::InvalidAssignment`] describing the first violation (naming the robot id,
+    /// task or kind).
     pub fn validate(&self, request: &GroupingRequest) -> Result<()> {
         let bad = |msg: String| Err(RneError::InvalidAssignment(msg));
-        let mut seen = std::collections::HashSet::new();
-        let mut counts = vec![[0usize; 2]; request.kinds()];
-        for task in [Task::Easy, Task::Hard] {
-            for &id in self.ids(task) {
-                let Some(robot) = request.robot(id) else {
+        if self.groups.len() != request.tasks() {
+            return bad(format!(
+                "{} groups for {} tasks",
+                self.groups.len(),
+                request.tasks()
+            ));
+        }
+        let robots = request.robots();
+        let mut seen = vec![false; robots.len()];
+        let mut counts = vec![vec![0usize; request.tasks()]; request.kinds()];
+        for (task, group) in self.groups.iter().enumerate() {
+            for &id in group {
+                let Ok(at) = robots.binary_search_by_key(&id, |r| r.id) else {
                     return bad(format!("robot id {id} is not in the team"));
                 };
-                if !seen.insert(id) {
+                if std::mem::replace(&mut seen[at], true) {
                     return bad(format!("robot id {id} is assigned more than once"));
                 }
-                counts[robot.kind][task as usize] += 1;
+                counts[robots[at].kind][task] += 1;
             }
         }
-        if let Some(r) = request.robots().iter().find(|r| !seen.contains(&r.id)) {
-            return bad(format!("robot id {} is not assigned", r.id));
+        if let Some(at) = seen.iter().position(|s| !s) {
+            return bad(format!("robot id {} is not assigned", robots[at].id));
         }
         for (kind, (q, c)) in request.quotas().iter().zip(&counts).enumerate() {
-            if [q.easy, q.hard] != *c {
+            if q != c {
                 return bad(format!(
-                    "kind {kind} got {} easy + {} hard but the quota is {} + {}",
-                    c[0], c[1], q.easy, q.hard
+                    "kind {kind} got {c:?} robots per task but the quotas are {q:?}"
                 ));
             }
         }

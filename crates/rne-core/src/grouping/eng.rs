@@ -3,15 +3,17 @@
 use crate::error::Result;
 use crate::grouping::assignment::Assignment;
 use crate::grouping::method::GroupingMethod;
-use crate::grouping::ranked::top_ranked_to_hard;
+use crate::grouping::ranked::fill_from_hardest;
 use crate::grouping::request::GroupingRequest;
 
 /// ENG: within each kind, sort robots by `energy_pct` descending (ties: lower id first) and
-/// send the top `quota.hard` to the hard task, the rest to the easy task.
+/// fill the tasks from the hardest down, each with its quota for the kind: the highest
+/// batteries go to the hardest task. Two tasks: the top `quota[hard]` go hard, the rest easy.
+/// `O(n log n)`.
 ///
 /// # Reference
-/// `hard_k = argmax_{S ⊆ kind k, |S| = h_k} min_{r ∈ S} energy_r` (the `h_k` highest
-/// batteries); paper Sec. VI.C "ENG - Energy-based".
+/// Per kind, rank by `(-energy_r, id_r)`; the first `q[t_1]` go to the hardest task `t_1`, the
+/// next `q[t_2]` to `t_2`, ...; paper Sec. VI.C "ENG - Energy-based".
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Eng;
 
@@ -21,7 +23,7 @@ impl GroupingMethod for Eng {
     }
 
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
-        Ok(top_ranked_to_hard(request, |a, b| {
+        Ok(fill_from_hardest(request, |a, b| {
             b.energy_pct.total_cmp(&a.energy_pct)
         }))
     }

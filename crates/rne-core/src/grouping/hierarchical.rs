@@ -1,5 +1,5 @@
-//! Hierarchical RNE trust-based grouping (Algorithm 1), generalised to any number of kinds and
-//! to per-kind quotas.
+//! Hierarchical RNE trust-based grouping (Algorithm 1), generalised to any number of kinds,
+//! to per-kind quotas and to `K >= 1` tasks.
 
 use serde::{Deserialize, Serialize};
 
@@ -7,36 +7,25 @@ use crate::combinations::{Bipartition, two_way_splits};
 use crate::error::Result;
 use crate::grouping::assignment::Assignment;
 use crate::grouping::method::GroupingMethod;
-use crate::grouping::request::{GroupingRequest, Task};
+use crate::grouping::outcome::HierarchicalOutcome;
+use crate::grouping::request::GroupingRequest;
+use crate::grouping::robot::RobotSnapshot;
 use crate::needs::{NeedsMatrix, NeedsVector};
 use crate::rne::TrustModel;
 
 /// Relative tolerance under which two scores count as tied (the earlier candidate wins).
-const TIE_TOLERANCE: f64 = 1e-12;
+pub(crate) const TIE_TOLERANCE: f64 = 1e-12;
 
 /// `true` if `candidate` beats `best` by more than the tie tolerance.
-fn beats(candidate: f64, best: f64) -> bool {
+pub(crate) fn beats(candidate: f64, best: f64) -> bool {
     candidate > best + TIE_TOLERANCE * best.abs().max(1.0)
 }
 
-/// The result of [`HierarchicalRne::group_detailed`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct HierarchicalOutcome {
-    /// The final assignment.
-    pub assignment: Assignment,
-    /// Symmetric RNE `T(E||H) + T(H||E)` between the final easy and hard groups.
-    pub between_rne: f64,
-    /// Within-group RNE (see [`HierarchicalRne::within_group_rne`]) of `[easy, hard]`.
-    pub within_rne: [f64; 2],
-    /// `true` if unequal quotas fixed which merged group goes hard (the trust rule was not
-    /// needed); `false` if the more trusted group was chosen for the hard task.
-    pub forced_by_quotas: bool,
-}
-
-/// RNE trust-based grouping, paper Algorithm 1 (with Algorithms 2-4), generalised.
+/// RNE trust-based grouping, paper Algorithm 1 (with Algorithms 2-4), generalised to `K`
+/// tasks by recursive bisection down the difficulty order.
 ///
-/// Kinds are processed in index order (= the merge order; paper: carrier, supplier,
-/// observer). For kind `k` with quota `(e_k, h_k)`:
+/// **Two tasks (the paper).** Kinds are processed in index order (= the merge order; paper:
+/// carrier, supplier, observer). For kind `k` with quota `(e_k, h_k)` (easy, hard):
 ///
 /// 1. **Split** (Alg. 1 lines 3-5, Alg. 2): among all splits of the kind into subgroups of
 ///    sizes `e_k` and `h_k` ([`two_way_splits`], each unordered split once), take the one with
@@ -52,22 +41,26 @@ pub struct HierarchicalOutcome {
 /// Quotas: when `e_k != h_k` the sizes say which subgroup of kind `k` is bound for which
 /// task, so only pairings consistent with that are feasible, and once any such kind is
 /// merged the final easy/hard choice is forced by the quotas (step 3 is skipped; reported
-/// by [`HierarchicalOutcome::forced_by_quotas`]). With equal quotas (the paper's 3/2/1 per
-/// task) every pairing is feasible and step 3 decides.
+/// by [`Bisection::forced_by_quotas`](crate::grouping::Bisection::forced_by_quotas)). With
+/// equal quotas (the paper's 3/2/1 per task) every pairing is feasible and step 3 decides.
+///
+/// **`K` tasks.** With the tasks `t_1, ..., t_K` from the hardest to the easiest, level `l`
+/// runs steps 1-3 on the robots not yet assigned, with `t_l` as the "hard" side (quota
+/// `q_k[t_l]`) and all easier tasks together as the "easy" side (quota
+/// `sum_{i > l} q_k[t_i]`); the hard side's group goes to `t_l` and the next level splits the
+/// easy side's group. The easiest task takes what is left. `K = 2` is the paper's algorithm
+/// exactly; `K = 1` sends everyone to the one task.
+///
+/// Cost: step 1 scores every split of a kind (`C(n_k, e_k)`, halved for equal halves), each
+/// in `O(n_k j)`; steps 2-3 are `O(n j)` per merge and per level.
 ///
 /// # Reference
 /// `G_k = argmax_{(A,B) ∈ ASC(kind k)} J(A,B)`; `G_{1..k} = argmax_{pairings of G_{1..k-1}, G_k} J`;
-/// `hard = argmin_{G ∈ G_{1..K}} mean_{r ∈ G} T(D_r || D_G)`; paper Algorithm 1 and Sec. VI.C.
+/// `hard = argmin_{G ∈ G_{1..K}} mean_{r ∈ G} T(D_r || D_G)`; paper Algorithm 1 and Sec. VI.C;
+/// the `K`-task recursion is ours (`docs/trust-model.md`, "K tasks").
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct HierarchicalRne {
     model: TrustModel,
-}
-
-/// A pair of groups (robot ids) and, if fixed by unequal quotas, the task of the first.
-struct Pair {
-    first: Vec<usize>,
-    second: Vec<usize>,
-    first_task: Option<Task>,
 }
 
 impl HierarchicalRne {
@@ -83,7 +76,7 @@ impl HierarchicalRne {
 
     /// Between-RNE of two groups: the symmetric sum `J(A,B) = T(A||B) + T(B||A)` of group
     /// RNEs (Eq. 17), `>= 0`, possibly `+inf` without smoothing. Defined as 0 if either group
-    /// is empty (nothing to compare).
+    /// is empty (nothing to compare). `O((|A| + |B|) j)`.
     ///
     /// # Errors
     /// As [`TrustModel::group_group`].
@@ -102,7 +95,7 @@ impl HierarchicalRne {
 
     /// Within-group RNE: the mean over members `r` of the agent-group RNE `T(D_r || D_G)`
     /// (Eq. 12) to the group `G` they belong to. Lower = the group trusts itself more. 0 for an
-    /// empty group.
+    /// empty group. `O(|G| j)`.
     ///
     /// # Errors
     /// As [`TrustModel::agent_group`].
@@ -122,7 +115,8 @@ impl HierarchicalRne {
 
     /// Step 1 for one kind: the split of `members` into subgroups of sizes
     /// `(first_size, members.len() - first_size)` with the largest [`between_rne`](Self::between_rne),
-    /// first in ASC order on ties, and its score. Indices refer to `members`.
+    /// first in ASC order on ties, and its score. Indices refer to `members`. The splits are
+    /// enumerated lazily ([`two_way_splits`]).
     ///
     /// # Errors
     /// [`crate::RneError::InvalidSubgroupSize`] if `first_size > members.len()`; as
@@ -142,112 +136,56 @@ impl HierarchicalRne {
             }
         }
         // `two_way_splits` always yields at least one split.
-        Ok(best.unwrap_or((
-            Bipartition {
-                first: vec![],
-                second: vec![],
-            },
-            0.0,
-        )))
+        Ok(best.unwrap_or((Bipartition::from_first(0, vec![]), 0.0)))
     }
 
-    fn needs_of<'a>(request: &'a GroupingRequest, ids: &[usize]) -> Vec<&'a NeedsVector> {
+    /// The needs vectors of the robots `ids` of `request`, in the order of `ids`.
+    pub(crate) fn needs_of<'a>(
+        request: &'a GroupingRequest,
+        ids: &[usize],
+    ) -> Vec<&'a NeedsVector> {
         ids.iter()
             .filter_map(|&id| request.robot(id))
             .map(|r| &r.needs)
             .collect()
     }
 
-    /// Runs steps 1-3 and returns the assignment with its diagnostics.
+    /// Runs the `K`-task grouping (steps 1-3 once per bisection, hardest task first) and
+    /// returns the assignment with its diagnostics.
     ///
     /// # Errors
     /// As [`TrustModel::group_distribution`] (e.g. [`crate::RneError::LengthMismatch`] if a
-    /// robot's needs vector does not match the weights).
+    /// robot's needs vector does not match the weights, [`crate::RneError::ZeroTotal`] for a
+    /// subgroup whose needs are all zero).
     pub fn group_detailed(&self, request: &GroupingRequest) -> Result<HierarchicalOutcome> {
-        let mut acc: Option<Pair> = None;
-        for (kind, quota) in request.quotas().iter().enumerate() {
-            let robots = request.members_of_kind(kind);
-            if robots.is_empty() {
-                continue;
+        let order = request.hardest_first();
+        let mut groups = vec![Vec::new(); request.tasks()];
+        let mut remaining: Vec<&RobotSnapshot> = request.robots().iter().collect();
+        let mut bisections = Vec::new();
+        for (level, &task) in order.iter().enumerate().take(order.len() - 1) {
+            if remaining.is_empty() {
+                break;
             }
-            let needs: Vec<_> = robots.iter().map(|r| &r.needs).collect();
-            let (split, _) = self.best_split(&needs, quota.easy)?;
-            let ids = |idx: &[usize]| idx.iter().map(|&i| robots[i].id).collect::<Vec<_>>();
-            let pair = Pair {
-                first: ids(&split.first),
-                second: ids(&split.second),
-                first_task: (quota.easy != quota.hard).then_some(Task::Easy),
-            };
-            acc = Some(match acc {
-                None => pair,
-                Some(x) => self.merge(request, x, pair)?,
-            });
+            let quotas: Vec<[usize; 2]> = request
+                .quotas()
+                .iter()
+                .map(|q| [order[level + 1..].iter().map(|&t| q[t]).sum(), q[task]])
+                .collect();
+            let mut cut = self.bisect(request, &remaining, &quotas, task)?;
+            cut.rest.sort_unstable();
+            groups[task] = cut.task;
+            remaining = cut
+                .rest
+                .iter()
+                .filter_map(|&id| request.robot(id))
+                .collect();
+            bisections.push(cut.bisection);
         }
-        let Some(pair) = acc else {
-            return Err(crate::RneError::Empty { what: "team" });
-        };
-        let g1 = Self::needs_of(request, &pair.first);
-        let g2 = Self::needs_of(request, &pair.second);
-        let within = [self.within_group_rne(&g1)?, self.within_group_rne(&g2)?];
-        let between_rne = self.between_rne(&g1, &g2)?;
-        let first_task = pair.first_task.unwrap_or(if beats(within[0], within[1]) {
-            Task::Easy
-        } else {
-            Task::Hard
-        });
-        let (assignment, within_rne) = match first_task {
-            Task::Easy => (Assignment::new(pair.first, pair.second), within),
-            Task::Hard => (
-                Assignment::new(pair.second, pair.first),
-                [within[1], within[0]],
-            ),
-        };
+        groups[order[order.len() - 1]] = remaining.iter().map(|r| r.id).collect();
         Ok(HierarchicalOutcome {
-            assignment,
-            between_rne,
-            within_rne,
-            forced_by_quotas: pair.first_task.is_some(),
+            assignment: Assignment::new(groups),
+            bisections,
         })
-    }
-
-    /// Step 2: merges the running pair `x` with a kind's pair `y`.
-    fn merge(&self, request: &GroupingRequest, x: Pair, y: Pair) -> Result<Pair> {
-        let mut best: Option<(Pair, f64)> = None;
-        for flip in [false, true] {
-            let (y1, y2) = if flip {
-                (&y.second, &y.first)
-            } else {
-                (&y.first, &y.second)
-            };
-            let y_task = if flip {
-                y.first_task.map(Task::other)
-            } else {
-                y.first_task
-            };
-            if let (Some(a), Some(b)) = (x.first_task, y_task)
-                && a != b
-            {
-                continue; // infeasible under the quotas
-            }
-            let first: Vec<usize> = x.first.iter().chain(y1).copied().collect();
-            let second: Vec<usize> = x.second.iter().chain(y2).copied().collect();
-            let score = self.between_rne(
-                &Self::needs_of(request, &first),
-                &Self::needs_of(request, &second),
-            )?;
-            if best.as_ref().is_none_or(|(_, s)| beats(score, *s)) {
-                best = Some((
-                    Pair {
-                        first,
-                        second,
-                        first_task: x.first_task.or(y_task),
-                    },
-                    score,
-                ));
-            }
-        }
-        // At least one pairing is always feasible: a fixed pair can be flipped to agree.
-        Ok(best.map(|(p, _)| p).unwrap_or(x))
     }
 }
 

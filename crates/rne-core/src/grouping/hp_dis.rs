@@ -3,15 +3,17 @@
 use crate::error::Result;
 use crate::grouping::assignment::Assignment;
 use crate::grouping::method::GroupingMethod;
-use crate::grouping::ranked::top_ranked_to_hard;
-use crate::grouping::request::{GroupingRequest, Task};
+use crate::grouping::ranked::fill_from_hardest;
+use crate::grouping::request::GroupingRequest;
 
 /// HP_DIS: within each kind, sort robots by `hp_pct` descending; equal HP is broken by the
-/// distance to the hard task's goal ascending (the DIS idea: the robot nearer the hard goal
-/// goes there), then by id. The top `quota.hard` go to the hard task.
+/// distance to the hardest task's goal ascending (the DIS idea: the robot nearer the hard goal
+/// goes there), then by id. The tasks are filled from the hardest down, each with its quota
+/// for the kind. Two tasks: the top `quota[hard]` go hard. `O(n log n)`.
 ///
 /// # Reference
-/// Sort key `(-hp_r, d_r[hard], id_r)`, first `h_k` to hard; paper Sec. VI.C "HP_DIS".
+/// Sort key `(-hp_r, d_r[t_1], id_r)` with `t_1` the hardest task; the first `q[t_1]` go to
+/// `t_1`, the next `q[t_2]` to the second hardest, ...; paper Sec. VI.C "HP_DIS".
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HpDis;
 
@@ -21,11 +23,11 @@ impl GroupingMethod for HpDis {
     }
 
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
-        let hard = Task::Hard as usize;
-        Ok(top_ranked_to_hard(request, |a, b| {
+        let hardest = request.hardest_first()[0];
+        Ok(fill_from_hardest(request, |a, b| {
             b.hp_pct
                 .total_cmp(&a.hp_pct)
-                .then(a.distance_to_goal_m[hard].total_cmp(&b.distance_to_goal_m[hard]))
+                .then(a.distance_to_goal_m[hardest].total_cmp(&b.distance_to_goal_m[hardest]))
         }))
     }
 }

@@ -4,7 +4,8 @@ use crate::error::Result;
 use crate::grouping::assignment::Assignment;
 use crate::grouping::request::GroupingRequest;
 
-/// A way to split a team into an easy-task and a hard-task group under per-kind quotas.
+/// A way to split a team into one group per task (`K >= 1` tasks; the paper: an easy and a
+/// hard task) under per-kind quotas.
 ///
 /// Object safe and `Send + Sync`, so methods can be stored as `Box<dyn GroupingMethod>` and
 /// shared across threads. To add a method, implement [`name`](Self::name) and
@@ -14,7 +15,7 @@ use crate::grouping::request::GroupingRequest;
 /// use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 /// use rne_core::Result;
 ///
-/// /// Sends the lowest ids of each kind to the easy task.
+/// /// Deals each kind's robots out in id order, easiest task first.
 /// struct ById;
 ///
 /// impl GroupingMethod for ById {
@@ -22,13 +23,14 @@ use crate::grouping::request::GroupingRequest;
 ///         "by_id"
 ///     }
 ///     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
-///         let (mut easy, mut hard) = (Vec::new(), Vec::new());
+///         let mut groups = vec![Vec::new(); request.tasks()];
 ///         for (kind, quota) in request.quotas().iter().enumerate() {
-///             for (i, robot) in request.members_of_kind(kind).into_iter().enumerate() {
-///                 if i < quota.easy { easy.push(robot.id) } else { hard.push(robot.id) }
+///             let mut ids = request.members_of_kind(kind).into_iter().map(|r| r.id);
+///             for &task in request.hardest_first().iter().rev() {
+///                 groups[task].extend(ids.by_ref().take(quota[task]));
 ///             }
 ///         }
-///         Ok(Assignment::new(easy, hard))
+///         Ok(Assignment::new(groups))
 ///     }
 /// }
 ///

@@ -1,7 +1,10 @@
-//! Grouping a team into an easy-task and a hard-task group (paper Sec. V and VI.C).
+//! Grouping a team into one group per task, `K >= 1` tasks of different difficulty (paper
+//! Sec. V and VI.C: an easy and a hard task).
 //!
-//! [`GroupingMethod`] is the common trait; [`HierarchicalRne`] (Algorithm 1), [`Dis`],
-//! [`Eng`] and [`HpDis`] are the built-in methods; [`method_from_name`] builds one from its name.
+//! [`GroupingRequest`] holds the team ([`RobotSnapshot`]s), per-kind task quotas and the
+//! tasks' difficulty order; a method returns an [`Assignment`]. [`GroupingMethod`] is the
+//! common trait; [`HierarchicalRne`] (Algorithm 1), [`Dis`], [`Eng`] and [`HpDis`] are the
+//! built-in methods; [`method_from_name`] builds one from its name.
 
 mod assignment;
 mod dis;
@@ -9,9 +12,12 @@ mod eng;
 mod hierarchical;
 mod hp_dis;
 mod method;
+mod outcome;
 mod ranked;
 mod registry;
 mod request;
+mod robot;
+mod two_way;
 
 #[cfg(test)]
 mod tests;
@@ -19,8 +25,10 @@ mod tests;
 pub use assignment::Assignment;
 pub use dis::Dis;
 pub use eng::Eng;
-pub use hierarchical::{HierarchicalOutcome, HierarchicalRne};
+pub use hierarchical::HierarchicalRne;
 pub use hp_dis::HpDis;
 pub use method::GroupingMethod;
+pub use outcome::{Bisection, HierarchicalOutcome};
 pub use registry::{METHOD_NAMES, method_from_name};
-pub use request::{GroupingRequest, KindQuota, RobotSnapshot, Task};
+pub use request::GroupingRequest;
+pub use robot::RobotSnapshot;

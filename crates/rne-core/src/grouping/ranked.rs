@@ -1,29 +1,29 @@
-//! Shared helper of the ranking baselines (ENG, HP_DIS): rank each kind, send the top to the
-//! hard task.
+//! Shared helper of the ranking baselines (ENG, HP_DIS): rank each kind, fill the tasks from
+//! the hardest down.
 
 use std::cmp::Ordering;
 
 use crate::grouping::assignment::Assignment;
-use crate::grouping::request::{GroupingRequest, RobotSnapshot};
+use crate::grouping::request::GroupingRequest;
+use crate::grouping::robot::RobotSnapshot;
 
 /// For each kind, sorts its robots with `better_first` (the first robot is the most suited to
-/// the hard task) and sends the first `quota.hard` of them to the hard task, the rest to the
-/// easy task. The sort is stable over the id order, so equal robots keep id order.
-pub(crate) fn top_ranked_to_hard(
+/// hard work) and deals them out in that order to the tasks from the hardest to the easiest,
+/// each task taking its quota for the kind. The sort is stable over the id order, so equal
+/// robots keep id order. With two tasks: the top `quota[hard]` go hard, the rest easy.
+/// `O(n log n)`.
+pub(crate) fn fill_from_hardest(
     request: &GroupingRequest,
     better_first: impl Fn(&RobotSnapshot, &RobotSnapshot) -> Ordering,
 ) -> Assignment {
-    let (mut easy, mut hard) = (Vec::new(), Vec::new());
+    let mut groups = vec![Vec::new(); request.tasks()];
     for (kind, quota) in request.quotas().iter().enumerate() {
         let mut members = request.members_of_kind(kind);
         members.sort_by(|a, b| better_first(a, b));
-        for (rank, robot) in members.into_iter().enumerate() {
-            if rank < quota.hard {
-                hard.push(robot.id)
-            } else {
-                easy.push(robot.id)
-            }
+        let mut ranked = members.into_iter();
+        for &task in request.hardest_first() {
+            groups[task].extend(ranked.by_ref().take(quota[task]).map(|r| r.id));
         }
     }
-    Assignment::new(easy, hard)
+    Assignment::new(groups)
 }

@@ -1,14 +1,16 @@
 //! Regrouping at a round's start: robot snapshots, quotas adapted to who is available, and the
 //! grouping method's assignment (paper, sections V and VI.B-C).
 
-use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest, KindQuota, RobotSnapshot};
+use rne_core::grouping::{GroupingMethod, GroupingRequest, RobotSnapshot};
 
 use super::error::MissionError;
+use super::metrics::PerTask;
 use super::needs::needs_vector;
 use super::robot::MissionRobot;
 use crate::scenario::{AwayQuotas, Scenario, TaskLevel};
 
-/// Quotas for the robots available this round, one per kind. Per kind with `n` robots available
+/// Quotas for the robots available this round, one `[easy, hard]` pair per kind (indexed by
+/// [`TaskLevel::index`]). Per kind with `n` robots available
 /// and scenario quotas `(q_easy, q_hard)` (`n <= q_easy + q_hard = count`), the shortfall
 /// `q_easy + q_hard - n` is taken from the quotas by `mission.away_quotas`:
 /// - `HardestFirst`: `hard = min(q_hard, n)`, `easy = min(q_easy, n - hard)`;
@@ -16,7 +18,7 @@ use crate::scenario::{AwayQuotas, Scenario, TaskLevel};
 /// - `Even`: one robot at a time from the task whose quota is currently larger (ties: easy).
 ///
 /// See `docs/mission-model.md`.
-pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<KindQuota> {
+pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<[usize; 2]> {
     let rule = scenario.mission.away_quotas;
     scenario
         .kinds
@@ -30,17 +32,11 @@ pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<
             match rule {
                 AwayQuotas::HardestFirst => {
                     let hard = q_hard.min(n);
-                    KindQuota {
-                        easy: q_easy.min(n - hard),
-                        hard,
-                    }
+                    [q_easy.min(n - hard), hard]
                 }
                 AwayQuotas::EasiestFirst => {
                     let easy = q_easy.min(n);
-                    KindQuota {
-                        easy,
-                        hard: q_hard.min(n - easy),
-                    }
+                    [easy, q_hard.min(n - easy)]
                 }
                 AwayQuotas::Even => {
                     let (mut easy, mut hard) = (q_easy, q_hard);
@@ -51,7 +47,7 @@ pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<
                             hard -= 1;
                         }
                     }
-                    KindQuota { easy, hard }
+                    [easy, hard]
                 }
             }
         })
@@ -77,13 +73,16 @@ pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
         ),
         energy_pct: r.energy_pct,
         hp_pct: r.hp_pct,
-        distance_to_goal_m: TaskLevel::ALL.map(|l| (scenario.task(l).goal - start).norm()),
+        distance_to_goal_m: TaskLevel::ALL
+            .map(|l| (scenario.task(l).goal - start).norm())
+            .to_vec(),
     }
 }
 
 /// Groups the robots with ids `available` (at their start positions, not resting) with
-/// `method`. When one task's adapted quotas are all zero, every available robot goes to the
-/// other task without asking the method (a method needs two non-empty groups).
+/// `method`: a two-task grouping request (tasks indexed by [`TaskLevel::index`], the hard task
+/// the harder) with the adapted quotas, and the method's groups as easy and hard ids. A task
+/// whose adapted quotas are all zero gets an empty group.
 ///
 /// # Errors
 /// [`MissionError::Grouping`] when the method fails or returns an invalid assignment.
@@ -92,33 +91,30 @@ pub fn group_available(
     method: &dyn GroupingMethod,
     robots: &[MissionRobot],
     available: &[usize],
-) -> Result<Assignment, MissionError> {
+) -> Result<PerTask<Vec<usize>>, MissionError> {
     let mut per_kind = vec![0usize; scenario.kinds.len()];
     for &id in available {
         per_kind[scenario.robots[id].kind] += 1;
     }
-    let quotas = adapted_quotas(scenario, &per_kind);
-    if quotas.iter().all(|q| q.easy == 0) {
-        return Ok(Assignment::new(Vec::new(), available.to_vec()));
-    }
-    if quotas.iter().all(|q| q.hard == 0) {
-        return Ok(Assignment::new(available.to_vec(), Vec::new()));
-    }
+    let quotas = adapted_quotas(scenario, &per_kind)
+        .into_iter()
+        .map(Vec::from)
+        .collect();
     let snapshots = available
         .iter()
         .map(|&id| snapshot(scenario, &robots[id]))
         .collect();
-    let request =
-        GroupingRequest::new(snapshots, quotas).map_err(|source| MissionError::Grouping {
-            method: method.name().to_string(),
-            source,
-        })?;
-    method
-        .group(&request)
-        .map_err(|source| MissionError::Grouping {
-            method: method.name().to_string(),
-            source,
-        })
+    let hardest_first = vec![TaskLevel::Hard.index(), TaskLevel::Easy.index()];
+    let failed = |source| MissionError::Grouping {
+        method: method.name().to_string(),
+        source,
+    };
+    let request = GroupingRequest::new(snapshots, quotas, hardest_first).map_err(failed)?;
+    let mut groups = method.group(&request).map_err(failed)?.groups;
+    Ok(PerTask {
+        hard: std::mem::take(&mut groups[TaskLevel::Hard.index()]),
+        easy: std::mem::take(&mut groups[TaskLevel::Easy.index()]),
+    })
 }
 
 #[cfg(test)]
@@ -136,8 +132,8 @@ mod tests {
     /// (easy, hard) per kind for carriers (quota 3 + 3) with `n` available.
     fn carriers(rule: AwayQuotas, n: usize) -> (usize, usize) {
         let s = paper_with(rule);
-        let q = adapted_quotas(&s, &[n, 4, 2])[0];
-        (q.easy, q.hard)
+        let [easy, hard] = adapted_quotas(&s, &[n, 4, 2])[0];
+        (easy, hard)
     }
 
     #[test]
@@ -160,10 +156,7 @@ mod tests {
         for rule in [HardestFirst, EasiestFirst, Even] {
             let s = paper_with(rule);
             let q = adapted_quotas(&s, &[6, 4, 2]);
-            assert_eq!(
-                q.iter().map(|q| (q.easy, q.hard)).collect::<Vec<_>>(),
-                [(3, 3), (2, 2), (1, 1)]
-            );
+            assert_eq!(q, [[3, 3], [2, 2], [1, 1]]);
         }
     }
 }

@@ -274,7 +274,7 @@ impl Simulation {
         {
             return Ok(());
         }
-        let assignment = group_available(
+        let groups = group_available(
             &self.scenario,
             self.method.as_ref(),
             &self.robots,
@@ -285,10 +285,7 @@ impl Simulation {
         }
         self.search_started_s = [None; 2];
         for level in TaskLevel::ALL {
-            let ids = match level {
-                TaskLevel::Easy => &assignment.easy,
-                TaskLevel::Hard => &assignment.hard,
-            };
+            let ids = groups.get(level);
             let sweep_len = self.sweeps[level.index()].len().max(1);
             for (ordinal, &id) in ids.iter().enumerate() {
                 let kind = self.scenario.kind_of(id);
@@ -312,10 +309,7 @@ impl Simulation {
             start_s: self.world.time_s(),
             end_s: self.world.time_s(),
             completed: false,
-            groups: PerTask {
-                easy: assignment.easy,
-                hard: assignment.hard,
-            },
+            groups,
             rescued: PerTask::default(),
         });
         self.round_open = true;
