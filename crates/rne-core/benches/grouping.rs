@@ -1,9 +1,17 @@
-//! Criterion benchmarks of the hierarchical RNE grouping (Algorithm 1) and the baselines.
+//! Criterion benchmarks of the hierarchical RNE grouping (Algorithm 1) and the baselines, from
+//! the paper's 12 robots to a 1,000-robot team (500 carriers, 333 suppliers, 167 observers,
+//! 4 tasks). At the end it prints the process's peak resident set (`VmHWM`, Linux), which
+//! bounds the memory any one grouping used (criterion's own included).
+//!
+//! ```sh
+//! cargo bench -p rne-core --bench grouping -- --quick
+//! ```
 #![allow(missing_docs)]
 
 use std::hint::black_box;
+use std::time::Duration;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::Criterion;
 use rne_core::grouping::{
     GroupingMethod, GroupingRequest, METHOD_NAMES, RobotSnapshot, method_from_name,
 };
@@ -61,22 +69,54 @@ fn paper_team() -> GroupingRequest {
     GroupingRequest::new(robots, vec![q(3), q(2), q(1)], vec![1, 0]).expect("valid request")
 }
 
+#[path = "support/large_team.rs"]
+mod large_team;
+
+/// The process's peak resident set size in kB (`VmHWM` in `/proc/self/status`), if reported.
+fn peak_rss_kb() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
 fn bench(c: &mut Criterion) {
     let cases = [
-        ("paper_12_robots_3_kinds", paper_team(), 7),
-        ("8_kinds_x_8_robots", team(8, 8, 7), 7),
-        ("4_kinds_x_12_robots", team(4, 12, 7), 7),
+        ("paper_12_robots_3_kinds", paper_team()),
+        ("8_kinds_x_8_robots", team(8, 8, 7)),
+        ("4_kinds_x_12_robots", team(4, 12, 7)),
+        // One kind of 48 split 24/24: 1.6e13 splits, beyond the exact limit.
+        ("1_kind_x_48_robots", team(1, 48, 7)),
+        (
+            "1000_robots_3_kinds_4_tasks",
+            large_team::large_team([500, 333, 167], 4, 7),
+        ),
     ];
-    for (label, request, j) in &cases {
-        let model = TrustModel::with_weights(Weights::uniform(*j).expect("weights"));
+    let model = TrustModel::with_weights(Weights::uniform(7).expect("weights"));
+    let mut group = c.benchmark_group("grouping");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+    for (label, request) in &cases {
         for name in METHOD_NAMES {
             let method: Box<dyn GroupingMethod> = method_from_name(name, &model).expect("method");
-            c.bench_function(&format!("{name}/{label}"), |b| {
+            group.bench_function(format!("{name}/{label}"), |b| {
                 b.iter(|| method.group(black_box(request)).expect("grouping"))
             });
         }
     }
+    group.finish();
 }
 
-criterion_group!(benches, bench);
-criterion_main!(benches);
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    bench(&mut c);
+    c.final_summary();
+    match peak_rss_kb() {
+        Some(kb) => println!(
+            "peak resident set of the bench process: {:.1} MB",
+            kb as f64 / 1024.0
+        ),
+        None => println!("peak resident set: not reported on this platform"),
+    }
+}

@@ -153,6 +153,8 @@ impl Iterator for TwoWaySplits {
 ///
 /// Size: [`split_count`]`(n, m)` splits (10 for the paper's 6 carriers split 3/3, 92,378 for
 /// 20 robots split 10/10, 1.6e13 for 48 split 24/24), produced one at a time in `O(n)` memory.
+/// The hierarchical grouping scores them all only while the count is within
+/// [`HierarchicalRne::exact_split_limit`](crate::grouping::HierarchicalRne::exact_split_limit).
 ///
 /// # Errors
 /// [`RneError::InvalidSubgroupSize`] if `m > n`.

@@ -164,7 +164,18 @@ pub fn group_distribution(
             actual: group.categories(),
         });
     }
-    let column_sums = group.as_dmatrix().row_sum().transpose();
+    group_distribution_from_sums(group.as_dmatrix().row_sum().transpose(), weights, opts)
+}
+
+/// [`group_distribution`] from the group's column sums `sum_r N[r, k]` (length `j`, equal to
+/// `weights.len()`; the caller checks). Bit-identical to [`group_distribution`] when the sums
+/// are accumulated member by member from `0.0` in the matrix's row order, which is how
+/// `nalgebra` sums a column.
+pub(crate) fn group_distribution_from_sums(
+    column_sums: DVector<f64>,
+    weights: &Weights,
+    opts: &DistributionOptions,
+) -> Result<Distribution> {
     let v = column_sums.component_mul(weights.as_dvector());
     Distribution::from_weighted(v, opts, "group")
 }

@@ -3,15 +3,21 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::combinations::{Bipartition, two_way_splits};
-use crate::error::Result;
+use crate::combinations::{Bipartition, split_count, two_way_splits};
+use crate::error::{Result, RneError};
 use crate::grouping::assignment::Assignment;
 use crate::grouping::method::GroupingMethod;
 use crate::grouping::outcome::HierarchicalOutcome;
 use crate::grouping::request::GroupingRequest;
 use crate::grouping::robot::RobotSnapshot;
+use crate::grouping::split_heuristic::heuristic_split;
+use crate::grouping::split_scorer::SplitScorer;
 use crate::needs::{NeedsMatrix, NeedsVector};
 use crate::rne::TrustModel;
+
+/// Default of [`HierarchicalRne::exact_split_limit`]: 200,000 splits per kind (a kind of up
+/// to 20 robots is always split exactly: `C(20, 10) / 2 = 92,378`).
+pub const DEFAULT_EXACT_SPLIT_LIMIT: u64 = 200_000;
 
 /// Relative tolerance under which two scores count as tied (the earlier candidate wins).
 pub(crate) const TIE_TOLERANCE: f64 = 1e-12;
@@ -51,8 +57,18 @@ pub(crate) fn beats(candidate: f64, best: f64) -> bool {
 /// easy side's group. The easiest task takes what is left. `K = 2` is the paper's algorithm
 /// exactly; `K = 1` sends everyone to the one task.
 ///
-/// Cost: step 1 scores every split of a kind (`C(n_k, e_k)`, halved for equal halves), each
-/// in `O(n_k j)`; steps 2-3 are `O(n j)` per merge and per level.
+/// **Large kinds.** Step 1 is exact (every split scored, the paper's result with its
+/// tie-breaking) while the kind's split count ([`split_count`]`(n_k, e_k)`) is at most
+/// [`exact_split_limit`](Self::exact_split_limit) (default [`DEFAULT_EXACT_SPLIT_LIMIT`]);
+/// beyond it a heuristic finds a split of the same sizes within the same scheme: initial
+/// splits from sorting the members by each needs share, improved by pairwise swaps between
+/// the halves (Kernighan-Lin style) until no swap increases `J` (see
+/// [`best_split_heuristic`](Self::best_split_heuristic); `docs/trust-model.md`, "Grouping at
+/// scale"). Steps 2-3 are unchanged.
+///
+/// Cost: exact step 1 scores `split_count(n_k, e_k)` splits in `O(n_k j)` each; the heuristic
+/// is about `O(n_k^2 j)`; steps 2-3 are `O(n j)` per merge and per level. Memory is `O(n j)`
+/// whatever the team size: splits are enumerated lazily.
 ///
 /// # Reference
 /// `G_k = argmax_{(A,B) ∈ ASC(kind k)} J(A,B)`; `G_{1..k} = argmax_{pairings of G_{1..k-1}, G_k} J`;
@@ -61,12 +77,43 @@ pub(crate) fn beats(candidate: f64, best: f64) -> bool {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct HierarchicalRne {
     model: TrustModel,
+    #[serde(default = "default_limit")]
+    exact_split_limit: u64,
+}
+
+fn default_limit() -> u64 {
+    DEFAULT_EXACT_SPLIT_LIMIT
 }
 
 impl HierarchicalRne {
-    /// A grouping method using `model` (weights, smoothing, alignment, log base).
+    /// A grouping method using `model` (weights, smoothing, alignment, log base), with the
+    /// default exact split limit ([`DEFAULT_EXACT_SPLIT_LIMIT`]).
     pub fn new(model: TrustModel) -> Self {
-        Self { model }
+        Self {
+            model,
+            exact_split_limit: DEFAULT_EXACT_SPLIT_LIMIT,
+        }
+    }
+
+    /// The same method with another exact split limit: a kind is split exactly while its
+    /// number of splits is at most `limit` (unit: splits, as counted by [`split_count`]),
+    /// heuristically beyond. `0` makes every kind of two or more robots heuristic; `u64::MAX`
+    /// makes every kind exact (at any cost in time, never in memory).
+    pub fn with_exact_split_limit(mut self, limit: u64) -> Self {
+        self.exact_split_limit = limit;
+        self
+    }
+
+    /// The exact split limit in splits per kind (default [`DEFAULT_EXACT_SPLIT_LIMIT`]).
+    pub fn exact_split_limit(&self) -> u64 {
+        self.exact_split_limit
+    }
+
+    /// `true` if a kind of `n` robots split into `first_size` and `n - first_size` is split
+    /// exactly: its [`split_count`] is at most the limit, or it has a single split.
+    pub fn split_is_exact(&self, n: usize, first_size: usize) -> bool {
+        let count = split_count(n, first_size);
+        count <= 1 || count <= u128::from(self.exact_split_limit)
     }
 
     /// The trust model.
@@ -114,29 +161,81 @@ impl HierarchicalRne {
     }
 
     /// Step 1 for one kind: the split of `members` into subgroups of sizes
-    /// `(first_size, members.len() - first_size)` with the largest [`between_rne`](Self::between_rne),
-    /// first in ASC order on ties, and its score. Indices refer to `members`. The splits are
-    /// enumerated lazily ([`two_way_splits`]).
+    /// `(first_size, members.len() - first_size)` and its [`between_rne`](Self::between_rne):
+    /// [`best_split_exact`](Self::best_split_exact) if
+    /// [`split_is_exact`](Self::split_is_exact), otherwise
+    /// [`best_split_heuristic`](Self::best_split_heuristic). Indices refer to `members`.
     ///
     /// # Errors
-    /// [`crate::RneError::InvalidSubgroupSize`] if `first_size > members.len()`; as
-    /// [`between_rne`](Self::between_rne).
+    /// As the two methods.
     pub fn best_split(
         &self,
         members: &[&NeedsVector],
         first_size: usize,
     ) -> Result<(Bipartition, f64)> {
+        if self.split_is_exact(members.len(), first_size) {
+            self.best_split_exact(members, first_size)
+        } else {
+            self.best_split_heuristic(members, first_size)
+        }
+    }
+
+    /// The exact step 1: every split of [`two_way_splits`] (enumerated lazily, one at a
+    /// time) scored by [`between_rne`](Self::between_rne); the largest wins, the first in ASC
+    /// order on ties (paper Algorithm 1 lines 3-5 with Algorithm 2). Time
+    /// `O(split_count(n, first_size) n j)`, memory `O(n j)`; mind the time beyond a few
+    /// hundred thousand splits.
+    ///
+    /// # Errors
+    /// [`RneError::InvalidSubgroupSize`] if `first_size > members.len()`; as
+    /// [`between_rne`](Self::between_rne).
+    pub fn best_split_exact(
+        &self,
+        members: &[&NeedsVector],
+        first_size: usize,
+    ) -> Result<(Bipartition, f64)> {
+        let splits = two_way_splits(members.len(), first_size)?;
+        let scorer = SplitScorer::new(&self.model, members)?;
         let mut best: Option<(Bipartition, f64)> = None;
-        for split in two_way_splits(members.len(), first_size)? {
-            let a: Vec<_> = split.first.iter().map(|&i| members[i]).collect();
-            let b: Vec<_> = split.second.iter().map(|&i| members[i]).collect();
-            let score = self.between_rne(&a, &b)?;
+        for split in splits {
+            let score = scorer.exact(&split.first, &split.second)?;
             if best.as_ref().is_none_or(|(_, s)| beats(score, *s)) {
                 best = Some((split, score));
             }
         }
         // `two_way_splits` always yields at least one split.
         Ok(best.unwrap_or((Bipartition::from_first(0, vec![]), 0.0)))
+    }
+
+    /// The heuristic step 1 for kinds beyond the exact limit: a split of the same sizes with
+    /// a high, locally maximal between-RNE. Initial splits sort the members by each needs
+    /// share (and by their weighted total), highest `first_size` first or last; these (for
+    /// kinds of more than 64 robots only the best three) are improved by swapping one member
+    /// of each side while that increases `J`
+    /// (candidate swaps ranked by the first-order change of `J`, each evaluated exactly from
+    /// running column sums in `O(j)`; a final pass over all `first_size (n - first_size)`
+    /// swaps confirms that none improves). Deterministic. Time about `O(n^2 j)`, memory
+    /// `O(n j)`. The returned score is the exact [`between_rne`](Self::between_rne) of the
+    /// split.
+    ///
+    /// # Errors
+    /// [`RneError::InvalidSubgroupSize`] if `first_size > members.len()`; as
+    /// [`between_rne`](Self::between_rne) for the chosen split.
+    pub fn best_split_heuristic(
+        &self,
+        members: &[&NeedsVector],
+        first_size: usize,
+    ) -> Result<(Bipartition, f64)> {
+        if first_size > members.len() {
+            return Err(RneError::InvalidSubgroupSize {
+                size: first_size,
+                total: members.len(),
+            });
+        }
+        let scorer = SplitScorer::new(&self.model, members)?;
+        let split = heuristic_split(&scorer, first_size);
+        let score = scorer.exact(&split.first, &split.second)?;
+        Ok((split, score))
     }
 
     /// The needs vectors of the robots `ids` of `request`, in the order of `ids`.

@@ -17,6 +17,8 @@ mod ranked;
 mod registry;
 mod request;
 mod robot;
+mod split_heuristic;
+mod split_scorer;
 mod two_way;
 
 #[cfg(test)]
@@ -25,7 +27,7 @@ mod tests;
 pub use assignment::Assignment;
 pub use dis::Dis;
 pub use eng::Eng;
-pub use hierarchical::HierarchicalRne;
+pub use hierarchical::{DEFAULT_EXACT_SPLIT_LIMIT, HierarchicalRne};
 pub use hp_dis::HpDis;
 pub use method::GroupingMethod;
 pub use outcome::{Bisection, HierarchicalOutcome};

@@ -23,6 +23,9 @@ pub struct Bisection {
     /// `true` if unequal quotas fixed which merged group went to the task (the trust rule was
     /// not needed); `false` if the more trusted group was chosen for it.
     pub forced_by_quotas: bool,
+    /// Kinds whose split exceeded the exact split limit and was found by the heuristic
+    /// (empty when the whole level is exact, as for the paper's team).
+    pub heuristic_kinds: Vec<usize>,
 }
 
 /// The result of [`HierarchicalRne::group_detailed`](crate::grouping::HierarchicalRne::group_detailed).

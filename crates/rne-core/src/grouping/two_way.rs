@@ -60,12 +60,16 @@ impl HierarchicalRne {
         task: usize,
     ) -> Result<Cut> {
         let mut acc: Option<Pair> = None;
+        let mut heuristic_kinds = Vec::new();
         for (kind, &[rest, to_task]) in quotas.iter().enumerate() {
             let members: Vec<_> = robots.iter().filter(|r| r.kind == kind).collect();
             if members.is_empty() {
                 continue;
             }
             let needs: Vec<_> = members.iter().map(|r| &r.needs).collect();
+            if !self.split_is_exact(needs.len(), rest) {
+                heuristic_kinds.push(kind);
+            }
             let (split, _) = self.best_split(&needs, rest)?;
             let ids = |idx: &[usize]| idx.iter().map(|&i| members[i].id).collect::<Vec<_>>();
             let pair = Pair {
@@ -100,6 +104,7 @@ impl HierarchicalRne {
                 between_rne,
                 within_rne,
                 forced_by_quotas: pair.first_side.is_some(),
+                heuristic_kinds,
             },
         })
     }

@@ -7,3 +7,5 @@ mod k_tasks;
 mod oracle_two_task;
 mod paper_team;
 mod properties;
+mod scale;
+mod scorer;

@@ -106,3 +106,45 @@ fn unequal_quotas_fix_the_orientation() {
         4
     );
 }
+
+#[test]
+fn random_paper_teams_match_the_two_task_oracle() {
+    use super::oracle_two_task as oracle;
+    use crate::grouping::{Dis, Eng, HpDis};
+    // 300 teams with the paper's needs ratios and Sec. VI.B's random levels (7 needs, kinds
+    // of 6, 4, 2): the simulator's case, where K = 2 must not move by one bit.
+    let rne = HierarchicalRne::new(uniform_model());
+    for seed in 1000..1300 {
+        let mut g = Gauss(seed);
+        let mut levels = [(0.0, 0.0); 12];
+        for l in &mut levels {
+            let energy = g.sample(80.0, 20.0);
+            *l = (g.sample(90.0, 10.0), energy);
+        }
+        let req = paper_team(&levels);
+        let pair = |a: crate::grouping::Assignment| oracle::EasyHard {
+            easy: a.groups[EASY].clone(),
+            hard: a.groups[HARD].clone(),
+        };
+        assert_eq!(
+            Ok(pair(rne.group(&req).unwrap())),
+            oracle::rne(&rne, &req),
+            "seed {seed}"
+        );
+        assert_eq!(
+            pair(Dis.group(&req).unwrap()),
+            oracle::dis(&req),
+            "seed {seed}"
+        );
+        assert_eq!(
+            pair(Eng.group(&req).unwrap()),
+            oracle::eng(&req),
+            "seed {seed}"
+        );
+        assert_eq!(
+            pair(HpDis.group(&req).unwrap()),
+            oracle::hp_dis(&req),
+            "seed {seed}"
+        );
+    }
+}
