@@ -245,14 +245,12 @@ fn bad_vary_inputs_are_one_line_errors_and_run_nothing() {
         (
             &["--vary", "mission.hp_rate=1"],
             "error: --vary mission.hp_rate=1: no field \"hp_rate\" in mission (fields: \
-             duration_s, energy_pct_per_moving_step, hp_pct_per_step_in_radiation, \
-             low_energy_pct, low_hp_pct, recharge_s, no_observer_speed_factor, initial_energy, \
-             initial_hp)",
+             duration_s, energy_pct_per_moving_step,",
         ),
         (
             &["--vary", "radiation_zones[8].radius_m=1,2"],
             "error: --vary radiation_zones[8].radius_m=1,2: no element [8] in radiation_zones: \
-             it has 8 (indices 0 to 7)",
+             it has 7 (indices 0 to 6)",
         ),
         (
             &["--vary", "kinds[0].count=6,many"],

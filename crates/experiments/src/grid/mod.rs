@@ -254,8 +254,8 @@ mod tests {
         );
         assert_eq!(
             err(&["radiation_zones[8].radius_m=1"]),
-            "--vary radiation_zones[8].radius_m=1: no element [8] in radiation_zones: it has 8 \
-             (indices 0 to 7)"
+            "--vary radiation_zones[8].radius_m=1: no element [8] in radiation_zones: it has 7 \
+             (indices 0 to 6)"
         );
         assert_eq!(
             err(&["mission.duration_s=60,abc"]),
