@@ -10,6 +10,7 @@
 //! not depend on thread count, completion order or interruptions.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
@@ -20,6 +21,7 @@ use crate::executor::{CellPlan, Job, Runner, execute};
 pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
 use crate::fingerprint::scenario_hash;
 use crate::grid::Grid;
+use crate::lock::OutputLock;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 
 use crate::journal::{
@@ -179,6 +181,9 @@ pub struct SweepOutcome {
     pub trial_wall_sum_s: f64,
     /// Threads used.
     pub threads: usize,
+    /// The lock on the output folder ([`crate::lock`]), held while this outcome (or a clone of
+    /// it) lives, so that the files written from it are written under the same lock.
+    pub lock: Arc<OutputLock>,
 }
 
 impl SweepOutcome {
@@ -380,12 +385,15 @@ fn open_journal(
 
 /// Runs the sweep (every job without a successful record in the journal) and returns its
 /// data. Failed trials do not stop it: they are journaled and listed in
-/// [`CellOutcome::failures`] (the caller decides the exit status). No file but the journal is
-/// written.
+/// [`CellOutcome::failures`] (the caller decides the exit status). No file but the journal
+/// (and the lock file) is written.
+///
+/// Once the parameters are checked, it locks the output folder ([`OutputLock`]; the lock
+/// stays in [`SweepOutcome::lock`]) before it opens the journal.
 ///
 /// # Errors
-/// Bad parameters, a journal that cannot be started or resumed, or an I/O error writing the
-/// journal.
+/// Bad parameters, an output folder locked by another sweep, a journal that cannot be started
+/// or resumed, or an I/O error writing the journal.
 pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;
@@ -409,6 +417,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    let lock = OutputLock::acquire(&cfg.out_dir)?;
     let (journal, previous, journal_use) = open_journal(cfg, &header)?;
 
     let slots = Slots {
@@ -448,35 +457,34 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     };
     let new_records = execute(&runner, &plans, &jobs, journal)?;
     let wall_s = start.elapsed().as_secs_f64();
-    Ok(collect(
+    let ran = new_records.len();
+    let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
+    let cells = collect(&slots, records, new_records);
+    Ok(SweepOutcome {
         header,
-        &slots,
-        records,
-        new_records,
-        journal_use,
+        reused: cells.iter().map(|c| c.reused).sum(),
+        cells,
+        journal: journal_use,
+        ran,
         wall_s,
+        trial_wall_sum_s,
         threads,
-    ))
+        lock: Arc::new(lock),
+    })
 }
 
 /// Sorts the journal's and this run's records into per-cell outcomes.
 fn collect(
-    header: SweepHeader,
     slots: &Slots,
     mut records: Vec<Option<TrialRecord>>,
     new_records: Vec<TrialRecord>,
-    journal: JournalUse,
-    wall_s: f64,
-    threads: usize,
-) -> SweepOutcome {
+) -> Vec<CellOutcome> {
     let mut cells = vec![CellOutcome::default(); slots.cells];
     for r in &records {
         if let Some(r) = r.as_ref().filter(|r| is_ok(Some(r))) {
             cells[r.cell].reused += 1;
         }
     }
-    let ran = new_records.len();
-    let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
     for r in new_records {
         let cell = &mut cells[r.cell];
         cell.ran += 1;
@@ -498,17 +506,7 @@ fn collect(
             }),
         }
     }
-    let reused = cells.iter().map(|c| c.reused).sum();
-    SweepOutcome {
-        header,
-        cells,
-        journal,
-        ran,
-        reused,
-        wall_s,
-        trial_wall_sum_s,
-        threads,
-    }
+    cells
 }
 
 /// Default output folder for a scenario: `results/<scenario name>/`.

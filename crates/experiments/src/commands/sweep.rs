@@ -53,7 +53,9 @@ tasks.hard.goal_m, radiation_zones[*].radius_m); values are RON (0.003, true, Ae
 (1.0, 2.0), Some(3), Grid(spacing_m: 2.0)), split on top-level commas. Every cell is validated like
 a scenario file before anything runs. The CSV files depend only on the scenario, grid,
 methods, trials, seed and duration (not on --threads or interruptions). Running the same
-command again continues its journal (like --resume) and rewrites the files.
+command again continues its journal (like --resume) and rewrites the files. One sweep at a time
+writes into a folder: it holds a lock on sweep.lock there (the file keeps the pid of the last
+holder; a killed sweep's lock ends with it).
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
@@ -93,7 +95,8 @@ pub struct SweepArgs {
     #[arg(long, value_name = "NAME,..", value_delimiter = ',', requires = "vary")]
     pub grid_metrics: Vec<String>,
 
-    /// Output folder; default `results/<scenario name>/`.
+    /// Output folder; default `results/<scenario name>/`. Locked while the sweep runs (a
+    /// second sweep into it is refused, naming the holder's pid).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 
