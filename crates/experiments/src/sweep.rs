@@ -17,6 +17,7 @@ use anyhow::{Context, Result, bail};
 use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::Scenario;
 
+use crate::atomic::remove_stale_temps;
 use crate::executor::{CellPlan, Job, Runner, execute};
 pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
 use crate::fingerprint::scenario_hash;
@@ -389,7 +390,8 @@ fn open_journal(
 /// (and the lock file) is written.
 ///
 /// Once the parameters are checked, it locks the output folder ([`OutputLock`]; the lock
-/// stays in [`SweepOutcome::lock`]) before it opens the journal.
+/// stays in [`SweepOutcome::lock`]) and removes the temporary files killed runs left there and
+/// in the cell folders ([`remove_stale_temps`]) before it opens the journal.
 ///
 /// # Errors
 /// Bad parameters, an output folder locked by another sweep, a journal that cannot be started
@@ -418,6 +420,12 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         })
         .collect::<Result<Vec<_>>>()?;
     let lock = OutputLock::acquire(&cfg.out_dir)?;
+    remove_stale_temps(&cfg.out_dir)?;
+    if let Some(g) = &cfg.grid {
+        for cell in &g.cells {
+            remove_stale_temps(&cfg.out_dir.join(&cell.dir))?;
+        }
+    }
     let (journal, previous, journal_use) = open_journal(cfg, &header)?;
 
     let slots = Slots {

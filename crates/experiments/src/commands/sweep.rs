@@ -96,7 +96,8 @@ pub struct SweepArgs {
     pub grid_metrics: Vec<String>,
 
     /// Output folder; default `results/<scenario name>/`. Locked while the sweep runs (a
-    /// second sweep into it is refused, naming the holder's pid).
+    /// second sweep into it is refused, naming the holder's pid). Output files that are
+    /// symlinks are followed and stay symlinks; a FIFO or character device is written directly.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 
