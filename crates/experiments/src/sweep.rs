@@ -26,8 +26,8 @@ use crate::lock::OutputLock;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 
 use crate::journal::{
-    CellHeader, GridHeader, JOURNAL_FORMAT, Journal, Outcome, SweepHeader, TrialRecord,
-    header_diff, read_header,
+    CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
+    SweepHeader, TrialRecord, header_diff, read_header,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -341,35 +341,54 @@ fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     Ok(())
 }
 
+/// A journal opened for a sweep, with what it already held.
+struct OpenJournal {
+    journal: Journal,
+    /// Records that verify, in file order.
+    records: Vec<TrialRecord>,
+    /// Record lines that do not verify.
+    rejected: Vec<RejectedRecord>,
+    how: JournalUse,
+}
+
+impl OpenJournal {
+    fn new(journal: Journal) -> Self {
+        Self {
+            journal,
+            records: Vec::new(),
+            rejected: Vec::new(),
+            how: JournalUse::Created,
+        }
+    }
+
+    fn continued((journal, contents): (Journal, JournalContents), how: JournalUse) -> Self {
+        Self {
+            journal,
+            records: contents.records,
+            rejected: contents.rejected,
+            how,
+        }
+    }
+}
+
 /// Creates, resumes or reuses the journal in `cfg.out_dir`, with the records it holds.
-fn open_journal(
-    cfg: &SweepConfig,
-    header: &SweepHeader,
-) -> Result<(Journal, Vec<TrialRecord>, JournalUse)> {
+fn open_journal(cfg: &SweepConfig, header: &SweepHeader) -> Result<OpenJournal> {
     let path = Journal::path_in(&cfg.out_dir);
     if !path.exists() {
-        return Ok((
-            Journal::create(&cfg.out_dir, header)?,
-            Vec::new(),
-            JournalUse::Created,
-        ));
+        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
     }
     if cfg.resume {
-        let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
-        return Ok((j, records, JournalUse::Resumed));
+        let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+        return Ok(OpenJournal::continued(resumed, JournalUse::Resumed));
     }
     if cfg.overwrite {
         std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
-        return Ok((
-            Journal::create(&cfg.out_dir, header)?,
-            Vec::new(),
-            JournalUse::Created,
-        ));
+        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
     }
     let why = match read_header(&path) {
         Ok(found) if &found == header => {
-            let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
-            return Ok((j, records, JournalUse::Reused));
+            let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+            return Ok(OpenJournal::continued(resumed, JournalUse::Reused));
         }
         Ok(found) => format!(
             "it was written with other parameters: {}",
@@ -426,7 +445,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             remove_stale_temps(&cfg.out_dir.join(&cell.dir))?;
         }
     }
-    let (journal, previous, journal_use) = open_journal(cfg, &header)?;
+    let opened = open_journal(cfg, &header)?;
 
     let slots = Slots {
         methods: header.methods.clone(),
@@ -435,10 +454,27 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     };
     // Last record per (cell, method, trial) wins.
     let mut records: Vec<Option<TrialRecord>> = vec![None; slots.len()];
-    for r in previous {
+    for r in opened.records {
         if let Some(i) = slots.of_record(&r) {
             records[i] = Some(r);
         }
+    }
+    // A rejected record that a later record of its trial (one that verifies) supersedes
+    // changes nothing: only the others are reported.
+    for r in &opened.rejected {
+        let fate = match slots.of(r.cell, &r.method, r.trial) {
+            Some(i) if is_ok(records[i].as_ref()) => continue,
+            Some(_) => "will run again",
+            None => "is not used (no such trial in this sweep)",
+        };
+        eprintln!(
+            "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
+            Journal::path_in(&cfg.out_dir).display(),
+            r.line,
+            r.method,
+            r.trial,
+            r.cell,
+        );
     }
     let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
         .into_iter()
@@ -463,7 +499,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         progress: cfg.progress,
         threads,
     };
-    let new_records = execute(&runner, &plans, &jobs, journal)?;
+    let new_records = execute(&runner, &plans, &jobs, opened.journal)?;
     let wall_s = start.elapsed().as_secs_f64();
     let ran = new_records.len();
     let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
@@ -472,7 +508,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         header,
         reused: cells.iter().map(|c| c.reused).sum(),
         cells,
-        journal: journal_use,
+        journal: opened.how,
         ran,
         wall_s,
         trial_wall_sum_s,

@@ -116,6 +116,7 @@ fn two_sweeps_into_one_folder_and_a_killed_holder() {
     );
     let journal = read_journal(&out.join("journal.jsonl")).unwrap();
     assert_eq!(journal.header.trials, 200);
+    assert!(journal.rejected.is_empty());
 
     // Killed, the first leaves its lock file with its pid; the next sweep is not blocked.
     first.0.kill().unwrap();

@@ -55,7 +55,8 @@ a scenario file before anything runs. The CSV files depend only on the scenario,
 methods, trials, seed and duration (not on --threads or interruptions). Running the same
 command again continues its journal (like --resume) and rewrites the files. One sweep at a time
 writes into a folder: it holds a lock on sweep.lock there (the file keeps the pid of the last
-holder; a killed sweep's lock ends with it).
+holder; a killed sweep's lock ends with it). Every journal line carries a checksum: an edited
+record is reported by line and its trial runs again; an edited header is refused.
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
