@@ -66,7 +66,8 @@ pub struct SweepConfig {
     /// Simulated length of each trial, seconds (> 0); `None`: each cell's
     /// `mission.duration_s`.
     pub duration_s: Option<f64>,
-    /// Worker threads (>= 1).
+    /// Worker threads (>= 1); a sweep uses at most [`max_threads`] and never more than it
+    /// has jobs to run ([`effective_threads`]).
     pub threads: usize,
     /// Output folder; the journal is at its top.
     pub out_dir: PathBuf,
@@ -180,7 +181,7 @@ pub struct SweepOutcome {
     pub wall_s: f64,
     /// Sum of the wall-clock times of this invocation's trials, seconds (CPU-ish time).
     pub trial_wall_sum_s: f64,
-    /// Threads used.
+    /// Threads used ([`effective_threads`]).
     pub threads: usize,
     /// The lock on the output folder ([`crate::lock`]), held while this outcome (or a clone of
     /// it) lives, so that the files written from it are written under the same lock.
@@ -206,6 +207,22 @@ impl SweepOutcome {
     pub fn expected_trials(&self) -> usize {
         self.header.grid.cells.len() * self.header.methods.len() * self.header.trials as usize
     }
+}
+
+/// Most worker threads per available core: a sweep never runs more than
+/// `MAX_THREADS_PER_CORE` x [`std::thread::available_parallelism`] threads ([`max_threads`]).
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// The most worker threads a sweep uses on this machine: [`MAX_THREADS_PER_CORE`] x the
+/// available parallelism (1 when that is unknown).
+pub fn max_threads() -> usize {
+    MAX_THREADS_PER_CORE * std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// The worker threads a sweep with `jobs` jobs to run uses when `requested` threads are asked
+/// for: at least 1, at most `max` (see [`max_threads`]) and at most `jobs`.
+pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
+    requested.min(max).min(jobs).max(1)
 }
 
 /// The sweep's header: its parameters and grid as recorded in the journal.
@@ -491,7 +508,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         })
         .collect();
 
-    let threads = cfg.threads.max(1);
+    let threads = effective_threads(cfg.threads, max_threads(), jobs.len());
     let start = Instant::now();
     let runner = Runner {
         factory: &cfg.method_factory,
@@ -556,4 +573,19 @@ fn collect(
 /// Default output folder for a scenario: `results/<scenario name>/`.
 pub fn default_out_dir(scenario: &Scenario) -> PathBuf {
     Path::new("results").join(&scenario.name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threads_are_capped_at_the_maximum_and_the_job_count() {
+        assert_eq!(effective_threads(100_000, 8, 1_000), 8);
+        assert_eq!(effective_threads(100_000, 8, 3), 3);
+        assert_eq!(effective_threads(2, 8, 1_000), 2);
+        assert_eq!(effective_threads(2, 8, 0), 1);
+        assert_eq!(effective_threads(0, 8, 5), 1);
+        assert!(max_threads() >= MAX_THREADS_PER_CORE);
+    }
 }

@@ -17,8 +17,8 @@ use crate::grid::Grid;
 use crate::metrics::{METRICS, Metric, find_metric};
 use crate::output::{DEFAULT_GRID_METRICS, write_outputs};
 use crate::sweep::{
-    MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method, default_out_dir,
-    run_sweep, trust_model,
+    MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method,
+    default_out_dir, max_threads, run_sweep, trust_model,
 };
 
 const EXAMPLES: &str = "\
@@ -102,7 +102,8 @@ pub struct SweepArgs {
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 
-    /// Worker threads; default all cores.
+    /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
+    /// cores; never more than there are trials to run.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 
@@ -189,6 +190,15 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
         .collect::<Result<Vec<_>>>()?;
     let threads = match args.threads {
         Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > max_threads() => {
+            eprintln!(
+                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
+                 cores: using {}",
+                max_threads() / MAX_THREADS_PER_CORE,
+                max_threads()
+            );
+            max_threads()
+        }
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
