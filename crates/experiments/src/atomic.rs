@@ -1,45 +1,247 @@
-//! Atomic file writes: nothing half-written is ever left under the final name.
+//! Writing output files (`usar run --json`, `usar render --out`, a sweep's files) without
+//! ever leaving something half-written under the final name, without replacing what the path
+//! names, and without leaving temporary files behind.
+//!
+//! What [`write_atomic`] does with the path it is given:
+//!
+//! | the path is | what happens |
+//! |---|---|
+//! | a regular file, or nothing yet | the bytes go to a temporary file next to it, flushed to disk, renamed over it (atomic on POSIX); parent folders are created; a replaced file keeps its permissions |
+//! | a symbolic link (to any of these) | the link is followed and stays: its target gets the new content, as above (a dangling link's target is created) |
+//! | a FIFO or a character device (`/dev/null`, `/dev/stdout` on a terminal or pipe) | written directly with a plain write, never replaced (a FIFO waits for its reader) |
+//! | a folder, a block device or a socket | refused with a one-line error; nothing is written |
+//!
+//! A temporary file is named `.<name>.tmp-<pid>-<n>` ([`is_temp_name`]) and is removed when the
+//! write fails (a full disk, a failed rename) or panics. Only a kill leaves one behind:
+//! [`remove_stale_temps`] clears a folder of them (a sweep does so in its output folder on
+//! every start and resume, under its lock).
 
-use std::fs;
+use std::fs::{self, File, OpenOptions};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 
-/// Writes `bytes` to `path` atomically: the data goes to a temporary file in the same folder,
-/// is flushed to disk, and is then renamed over `path` (a rename within one file system is
-/// atomic on POSIX). Parent folders are created.
+/// Symbolic links followed at most when resolving a link whose target does not exist yet
+/// (as the kernel's own limit, `ELOOP`).
+const MAX_LINKS: usize = 40;
+
+/// Writes `bytes` to `path`: atomically through a temporary file when `path` is (or links to)
+/// a regular file or nothing yet, directly when it is a FIFO or a character device. See the
+/// [module documentation](self) for every case.
 ///
 /// # Errors
-/// Any I/O error, with the path in its context.
+/// `path` is a folder, a block device or a socket, a link loop, or an I/O error (the path in
+/// its context). No temporary file is left behind on any error.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
+    match target_of(path)? {
+        Target::Replace(target) => replace_via_temp(&target, bytes),
+        Target::Stream => write_directly(path, bytes),
+    }
+}
+
+/// How `path` is written.
+enum Target {
+    /// A regular file (existing or not), at this path with every link resolved.
+    Replace(PathBuf),
+    /// A FIFO or character device: opened and written as it is.
+    Stream,
+}
+
+/// Decides how `path` is written, following symbolic links.
+fn target_of(path: &Path) -> Result<Target> {
+    match fs::metadata(path) {
+        Ok(m) if m.is_file() => fs::canonicalize(path)
+            .map(Target::Replace)
+            .with_context(|| format!("resolving {}", path.display())),
+        Ok(m) if m.is_dir() => bail!("{}: is a folder, not a file", path.display()),
+        Ok(m) => match special_kind(&m) {
+            None => Ok(Target::Stream),
+            Some(kind) => bail!(
+                "{}: is a {kind}; usar writes only regular files, FIFOs and character devices",
+                path.display()
+            ),
+        },
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            resolve_missing(path).map(Target::Replace)
+        }
+        Err(e) => Err(e).with_context(|| format!("cannot write {}", path.display())),
+    }
+}
+
+/// `None` for a file type written directly (a FIFO, a character device), otherwise the name
+/// of a kind that is refused.
+#[cfg(unix)]
+fn special_kind(m: &fs::Metadata) -> Option<&'static str> {
+    use std::os::unix::fs::FileTypeExt;
+    let t = m.file_type();
+    if t.is_fifo() || t.is_char_device() {
+        None
+    } else if t.is_block_device() {
+        Some("block device")
+    } else if t.is_socket() {
+        Some("socket")
+    } else {
+        Some("special file")
+    }
+}
+
+/// `None` for a file type written directly, otherwise the name of a kind that is refused.
+#[cfg(not(unix))]
+fn special_kind(_: &fs::Metadata) -> Option<&'static str> {
+    None
+}
+
+/// Where a path that does not resolve to an existing file is created: the path itself, or the
+/// end of its chain of (dangling) symbolic links.
+fn resolve_missing(path: &Path) -> Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let to = fs::read_link(&p)
+                    .with_context(|| format!("reading the link {}", p.display()))?;
+                // A relative link is relative to the folder holding it; `join` keeps an
+                // absolute one as it is.
+                p = p.parent().map_or_else(|| to.clone(), |dir| dir.join(&to));
+            }
+            _ => return Ok(p),
+        }
+    }
+    bail!("{}: too many levels of symbolic links", path.display())
+}
+
+/// Removes the temporary file it names when dropped, unless [`TempFile::keep`] was called:
+/// on an error path and on a panic alike.
+struct TempFile(Option<PathBuf>);
+
+impl TempFile {
+    /// The file was renamed into place: nothing to remove.
+    fn keep(mut self) {
+        self.0 = None;
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if let Some(p) = self.0.take() {
+            let _ = fs::remove_file(p);
+        }
+    }
+}
+
+/// Temporary files made by this process so far (the `<n>` of their names).
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Creates a new temporary file for `name` in `dir` (never opening an existing file or link).
+fn create_temp(dir: &Path, name: &str) -> Result<(PathBuf, File)> {
+    loop {
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let tmp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
+        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(f) => return Ok((tmp, f)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && n < 1_000_000 => {}
+            Err(e) => return Err(e).with_context(|| format!("creating {}", tmp.display())),
+        }
+    }
+}
+
+/// Writes `bytes` to a temporary file next to `target` and renames it over `target`; the
+/// temporary file is removed if anything fails.
+fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     fs::create_dir_all(dir).with_context(|| format!("creating folder {}", dir.display()))?;
-    let file_name = path
+    let name = target
         .file_name()
-        .with_context(|| format!("{} has no file name", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    {
-        let mut f =
-            fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        f.write_all(bytes)
-            .and_then(|()| f.sync_all())
-            .with_context(|| format!("writing {}", tmp.display()))?;
+        .with_context(|| format!("{} has no file name", target.display()))?
+        .to_string_lossy();
+    let (tmp, mut f) = create_temp(dir, &name)?;
+    let guard = TempFile(Some(tmp.clone()));
+    f.write_all(bytes)
+        .and_then(|()| f.sync_all())
+        .with_context(|| format!("writing {}", tmp.display()))?;
+    drop(f);
+    if let Ok(old) = fs::metadata(target) {
+        fs::set_permissions(&tmp, old.permissions())
+            .with_context(|| format!("setting the permissions of {}", tmp.display()))?;
     }
-    fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    fs::rename(&tmp, target)
+        .with_context(|| format!("renaming {} to {}", tmp.display(), target.display()))?;
+    guard.keep();
+    Ok(())
+}
+
+/// Writes `bytes` to an existing FIFO or device as it is (no temporary file, no rename).
+fn write_directly(path: &Path, bytes: &[u8]) -> Result<()> {
+    let mut f = OpenOptions::new()
+        .write(true)
+        .open(path)
+        .with_context(|| format!("opening {}", path.display()))?;
+    f.write_all(bytes)
+        .and_then(|()| f.flush())
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// Whether `name` is the name of a temporary file of [`write_atomic`]:
+/// `.<name>.tmp-<pid>-<n>`, or `.<name>.tmp-<pid>` as written by earlier versions.
+pub fn is_temp_name(name: &str) -> bool {
+    let Some((stem, tail)) = name.rsplit_once(".tmp-") else {
+        return false;
+    };
+    let mut parts = tail.split('-');
+    let digits =
+        |s: Option<&str>| s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
+    stem.len() > 1
+        && stem.starts_with('.')
+        && digits(parts.next())
+        && match parts.next() {
+            None => true,
+            n => digits(n) && parts.next().is_none(),
+        }
+}
+
+/// Removes from `dir` (not its subfolders) the regular files whose names are temporary-file
+/// names of [`write_atomic`] ([`is_temp_name`]): what killed runs left behind. A missing
+/// folder has none. Call it only while nothing else writes into `dir` (a sweep holds the
+/// lock on its output folder, [`crate::lock`]). Returns the files removed.
+///
+/// # Errors
+/// An I/O error listing `dir` or removing a file.
+pub fn remove_stale_temps(dir: &Path) -> Result<Vec<PathBuf>> {
+    let entries = match fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e).with_context(|| format!("listing {}", dir.display())),
+    };
+    let mut removed = Vec::new();
+    for entry in entries {
+        let entry = entry.with_context(|| format!("listing {}", dir.display()))?;
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && entry.file_name().to_str().is_some_and(is_temp_name) {
+            let p = entry.path();
+            fs::remove_file(&p).with_context(|| format!("removing {}", p.display()))?;
+            removed.push(p);
+        }
+    }
+    Ok(removed)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
 
     #[test]
     fn writes_and_replaces_without_leftovers() {
@@ -48,10 +250,188 @@ mod tests {
         write_atomic(&path, b"first").unwrap();
         write_atomic(&path, b"second").unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "second");
-        let names: Vec<_> = fs::read_dir(path.parent().unwrap())
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names, vec![std::ffi::OsString::from("out.txt")]);
+        assert_eq!(names(path.parent().unwrap()), ["out.txt"]);
+    }
+
+    #[test]
+    fn a_folder_is_refused_and_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out.svg");
+        fs::create_dir(&target).unwrap();
+        let e = write_atomic(&target, b"x").unwrap_err();
+        assert!(format!("{e:#}").contains("is a folder"), "{e:#}");
+        assert_eq!(names(dir.path()), ["out.svg"]);
+        assert!(target.is_dir());
+    }
+
+    #[test]
+    fn a_failed_rename_removes_the_temporary_file() {
+        // Past the checks of write_atomic (as when the target turns into a folder meanwhile):
+        // the rename fails and the temporary file must go.
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out.csv");
+        fs::create_dir(&target).unwrap();
+        fs::write(target.join("inside"), "x").unwrap();
+        assert!(replace_via_temp(&target, b"data").is_err());
+        assert_eq!(names(dir.path()), ["out.csv"]);
+    }
+
+    #[test]
+    fn temp_names_are_recognised() {
+        for yes in [
+            ".trials.csv.tmp-123",
+            ".trials.csv.tmp-123-0",
+            ".a.tmp-1-22",
+        ] {
+            assert!(is_temp_name(yes), "{yes}");
+        }
+        for no in [
+            "trials.csv.tmp-123",
+            ".trials.csv.tmp-",
+            ".trials.csv.tmp-12a",
+            ".trials.csv.tmp-1-2-3",
+            ".trials.csv.tmp-1-",
+            ".tmp-1",
+            "..tmp-1",
+            ".hidden",
+            "journal.jsonl",
+        ] {
+            assert!(!is_temp_name(no), "{no}");
+        }
+    }
+
+    #[test]
+    fn stale_temps_are_removed_and_nothing_else() {
+        let dir = tempfile::tempdir().unwrap();
+        for n in [
+            ".trials.csv.tmp-4242",
+            ".report.md.tmp-4242-7",
+            "trials.csv",
+            ".hidden",
+            "notes.tmp-1",
+        ] {
+            fs::write(dir.path().join(n), "x").unwrap();
+        }
+        fs::create_dir(dir.path().join(".cell.tmp-1")).unwrap();
+        let removed = remove_stale_temps(dir.path()).unwrap();
+        assert_eq!(removed.len(), 2);
+        assert_eq!(
+            names(dir.path()),
+            [".cell.tmp-1", ".hidden", "notes.tmp-1", "trials.csv"]
+        );
+        assert!(
+            remove_stale_temps(&dir.path().join("none"))
+                .unwrap()
+                .is_empty()
+        );
+    }
+
+    #[cfg(unix)]
+    mod unix {
+        use super::*;
+        use std::os::unix::fs::{FileTypeExt, symlink};
+        use std::time::Duration;
+
+        #[test]
+        fn a_symlink_is_followed_and_stays_a_symlink() {
+            let dir = tempfile::tempdir().unwrap();
+            let real_dir = dir.path().join("real");
+            fs::create_dir(&real_dir).unwrap();
+            let real = real_dir.join("data.json");
+            fs::write(&real, "old").unwrap();
+            let link = dir.path().join("out.json");
+            symlink("real/data.json", &link).unwrap();
+            // A link to the link: both stay.
+            let link2 = dir.path().join("out2.json");
+            symlink(&link, &link2).unwrap();
+            write_atomic(&link2, b"new").unwrap();
+            for l in [&link, &link2] {
+                assert!(fs::symlink_metadata(l).unwrap().file_type().is_symlink());
+            }
+            assert_eq!(fs::read_to_string(&real).unwrap(), "new");
+            assert_eq!(names(&real_dir), ["data.json"]);
+            assert_eq!(names(dir.path()), ["out.json", "out2.json", "real"]);
+        }
+
+        #[test]
+        fn a_dangling_symlink_creates_its_target() {
+            let dir = tempfile::tempdir().unwrap();
+            let link = dir.path().join("out.svg");
+            symlink("made/by/usar.svg", &link).unwrap();
+            write_atomic(&link, b"<svg/>").unwrap();
+            assert!(
+                fs::symlink_metadata(&link)
+                    .unwrap()
+                    .file_type()
+                    .is_symlink()
+            );
+            assert_eq!(
+                fs::read_to_string(dir.path().join("made/by/usar.svg")).unwrap(),
+                "<svg/>"
+            );
+            let looped = dir.path().join("loop");
+            symlink("loop", &looped).unwrap();
+            assert!(write_atomic(&looped, b"x").is_err());
+        }
+
+        #[test]
+        fn a_replaced_file_keeps_its_permissions() {
+            use std::os::unix::fs::PermissionsExt;
+            let dir = tempfile::tempdir().unwrap();
+            let p = dir.path().join("t.csv");
+            fs::write(&p, "a").unwrap();
+            fs::set_permissions(&p, fs::Permissions::from_mode(0o640)).unwrap();
+            write_atomic(&p, b"b").unwrap();
+            assert_eq!(
+                fs::metadata(&p).unwrap().permissions().mode() & 0o777,
+                0o640
+            );
+        }
+
+        #[test]
+        fn dev_null_through_a_link_is_written_not_replaced() {
+            // Through a link, so that a regression replaces the link, never /dev/null itself.
+            let dir = tempfile::tempdir().unwrap();
+            let link = dir.path().join("null.json");
+            symlink("/dev/null", &link).unwrap();
+            write_atomic(&link, b"{}").unwrap();
+            assert!(
+                fs::symlink_metadata(&link)
+                    .unwrap()
+                    .file_type()
+                    .is_symlink()
+            );
+            assert!(
+                fs::metadata("/dev/null")
+                    .unwrap()
+                    .file_type()
+                    .is_char_device()
+            );
+            assert_eq!(names(dir.path()), ["null.json"]);
+        }
+
+        #[test]
+        fn a_fifo_is_written_to_its_reader_not_replaced() {
+            let dir = tempfile::tempdir().unwrap();
+            let fifo = dir.path().join("pipe.svg");
+            let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+            if !made.is_ok_and(|s| s.success()) {
+                eprintln!("no mkfifo here: skipped");
+                return;
+            }
+            let (tx, rx) = std::sync::mpsc::channel();
+            let reader_path = fifo.clone();
+            std::thread::spawn(move || {
+                let _ = tx.send(fs::read(reader_path));
+            });
+            write_atomic(&fifo, b"through the pipe").unwrap();
+            let got = rx
+                .recv_timeout(Duration::from_secs(20))
+                .expect("the reader got nothing: the FIFO was not written")
+                .unwrap();
+            assert_eq!(got, b"through the pipe");
+            assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+            assert_eq!(names(dir.path()), ["pipe.svg"]);
+        }
     }
 }

@@ -6,6 +6,14 @@
 //! sweep without `--vary` is a grid of one cell with no fields). Every later line is one
 //! [`TrialRecord`], appended and flushed as soon as its trial ends, in completion order.
 //!
+//! Every line carries a checksum of its content, `{"header":{..},"sum":"<hex>"}` and
+//! `{"trial":{..},"sum":"<hex>"}`: [`header_sum`] of the header's JSON, and [`record_sum`] of
+//! the header's sum and the record's JSON (as written, compact, fields in declaration order),
+//! so a record verifies only in the journal of its own sweep. A header that does not verify
+//! makes the journal unusable; a record that does not verify is left out (listed in
+//! [`JournalContents::rejected`]) and its trial runs again. The sums are FNV-1a 64: they catch
+//! edits and damage, not a forger who recomputes them.
+//!
 //! A record is identified by its [`RecordKey`] `(cell, method, trial)`. A key may appear more
 //! than once (a failed trial retried by `--resume`); the last record wins. Nothing else about
 //! a record depends on the journal it is in, so a later feature can split the job list into
@@ -17,16 +25,19 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
 use usar_sim::mission::TrialResult;
+
+use crate::fingerprint::fnv1a64_hex;
 
 /// File name of the journal inside the output folder.
 pub const JOURNAL_FILE: &str = "journal.jsonl";
 
 /// Format version of the journal; bumped when its lines change shape. Format 2 added the
-/// grid to the header and the cell index to every record.
-pub const JOURNAL_FORMAT: u32 = 2;
+/// grid to the header and the cell index to every record; format 3 a checksum to every line.
+pub const JOURNAL_FORMAT: u32 = 3;
 
 /// The parameters that determine a sweep's results. `--resume` continues a journal only if
 /// its header equals the new sweep's header.
@@ -105,20 +116,48 @@ impl TrialRecord {
     }
 }
 
-/// One line of the journal, as read back.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-enum Line {
-    Header(SweepHeader),
-    Trial(TrialRecord),
+/// One line of the journal as read back: the header's or the record's JSON as written, and
+/// the line's checksum.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLine<'a> {
+    #[serde(borrow, default)]
+    header: Option<&'a RawValue>,
+    #[serde(borrow, default)]
+    trial: Option<&'a RawValue>,
+    #[serde(default)]
+    sum: Option<String>,
 }
 
-/// One line of the journal, as written: the same JSON as [`Line`], borrowing its content.
-#[derive(Serialize)]
-#[serde(rename_all = "snake_case")]
-enum LineRef<'a> {
-    Header(&'a SweepHeader),
-    Trial(&'a TrialRecord),
+/// The checksum of a header line: FNV-1a 64 ([`fnv1a64_hex`]) of the header's JSON as
+/// written. Every record's checksum includes it ([`record_sum`]).
+pub fn header_sum(header_json: &str) -> String {
+    fnv1a64_hex(header_json.as_bytes())
+}
+
+/// The checksum of a record line in the journal whose header has checksum `header_sum`:
+/// FNV-1a 64 of `<header_sum>:<record JSON as written>`.
+pub fn record_sum(header_sum: &str, record_json: &str) -> String {
+    fnv1a64_hex(format!("{header_sum}:{record_json}").as_bytes())
+}
+
+/// A journal line: `{"<kind>":<json>,"sum":"<sum>"}` and its newline.
+fn journal_line(kind: &str, json: &str, sum: &str) -> String {
+    format!("{{\"{kind}\":{json},\"sum\":\"{sum}\"}}\n")
+}
+
+/// A complete record line whose checksum does not verify (an edit, or damage that left valid
+/// JSON): it is not used, nor are earlier records of its trial.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RejectedRecord {
+    /// Line number in the journal, 1-based.
+    pub line: usize,
+    /// Grid cell index the line claims.
+    pub cell: usize,
+    /// Method the line claims.
+    pub method: String,
+    /// Trial index the line claims.
+    pub trial: u32,
 }
 
 /// A journal read from a file.
@@ -126,53 +165,114 @@ enum LineRef<'a> {
 pub struct JournalContents {
     /// Its header.
     pub header: SweepHeader,
-    /// Its complete records, in file order (a key may repeat: the last one wins).
+    /// The header's checksum ([`header_sum`]), which every record's checksum includes.
+    pub header_sum: String,
+    /// Its complete records that verify, in file order (a key may repeat: the last one wins).
+    /// A record that does not verify removes the earlier records of its key.
     pub records: Vec<TrialRecord>,
+    /// Complete record lines that do not verify, in file order.
+    pub rejected: Vec<RejectedRecord>,
     /// Length in bytes of the header and complete records: what is left of the file once a
     /// last line cut short by a kill is dropped.
     pub complete_bytes: u64,
 }
 
-/// Reads the journal at `path`: its header and every complete record. A last line without
-/// its newline was cut short by a kill, even when what was written of it parses: it is left
-/// out (and redone by a resume).
+/// The end of every message about a journal that cannot be used.
+const START_AFRESH: &str =
+    "start the sweep afresh with --overwrite (in place of --resume), or move the journal away";
+
+/// The error for a damaged line (`line` is 1-based).
+fn damaged(path: &Path, line: usize) -> anyhow::Error {
+    anyhow!(
+        "{}:{line}: not a valid journal line; the journal is damaged: {START_AFRESH}",
+        path.display()
+    )
+}
+
+/// Parses and verifies the header line (the first line) of the journal at `path`; returns
+/// the header and its checksum.
+fn parse_header_line(path: &Path, line: &str) -> Result<(SweepHeader, String)> {
+    check_format(path, line)?;
+    let not_a_header = || anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display());
+    if !line.ends_with('\n') {
+        bail!(
+            "{}:1: the header line is cut short; {START_AFRESH}",
+            path.display()
+        );
+    }
+    let Ok(RawLine {
+        header: Some(raw),
+        trial: None,
+        sum,
+    }) = serde_json::from_str::<RawLine<'_>>(line.trim_end())
+    else {
+        return Err(not_a_header());
+    };
+    let expected = header_sum(raw.get());
+    if sum.as_deref() != Some(expected.as_str()) {
+        bail!(
+            "{}:1: the header does not verify (edited?), so no record of the journal can be \
+             trusted; {START_AFRESH}",
+            path.display()
+        );
+    }
+    let header = serde_json::from_str::<SweepHeader>(raw.get()).map_err(|_| not_a_header())?;
+    Ok((header, expected))
+}
+
+/// Reads the journal at `path`: its header and every complete record, each verified against
+/// its checksum. A last line without its newline was cut short by a kill, even when what was
+/// written of it parses: it is left out (and redone by a resume). A complete record that does
+/// not verify is listed in [`JournalContents::rejected`] and left out, with the earlier records
+/// of its key.
 ///
 /// # Errors
-/// An unreadable file, a journal of another [`JOURNAL_FORMAT`], a missing header, or a
-/// damaged line other than the last (the message gives its line number).
+/// An unreadable file, a journal of another [`JOURNAL_FORMAT`], a missing header or one that
+/// does not verify, or a damaged line other than the last (the message gives its line number
+/// and names `--overwrite`).
 pub fn read_journal(path: &Path) -> Result<JournalContents> {
     let text =
         fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut records = Vec::new();
-    let mut header: Option<SweepHeader> = None;
-    let mut complete_bytes = 0usize;
-    let n_lines = text.split_inclusive('\n').count();
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        let complete = line.ends_with('\n');
-        if i == 0 {
-            check_format(path, line)?;
-        }
-        match serde_json::from_str::<Line>(line.trim_end()) {
-            _ if i > 0 && i + 1 == n_lines && !complete => break,
-            Ok(Line::Header(h)) if i == 0 => header = Some(h),
-            Ok(Line::Trial(r)) if i > 0 && complete => records.push(r),
-            Ok(_) | Err(_) => bail!(
-                "{}:{}: not a valid journal line; the journal is damaged (move it away and run \
-                 the sweep again)",
-                path.display(),
-                i + 1
-            ),
-        }
-        complete_bytes += line.len();
-    }
-    let Some(header) = header else {
+    let mut lines = text.split_inclusive('\n').enumerate().peekable();
+    let Some((_, first)) = lines.next() else {
         bail!("{}: empty journal (no header line)", path.display());
     };
-    Ok(JournalContents {
+    let (header, sum) = parse_header_line(path, first)?;
+    let mut contents = JournalContents {
         header,
-        records,
-        complete_bytes: complete_bytes as u64,
-    })
+        header_sum: sum,
+        records: Vec::new(),
+        rejected: Vec::new(),
+        complete_bytes: first.len() as u64,
+    };
+    while let Some((i, line)) = lines.next() {
+        if lines.peek().is_none() && !line.ends_with('\n') {
+            break;
+        }
+        let Ok(RawLine {
+            header: None,
+            trial: Some(raw),
+            sum,
+        }) = serde_json::from_str::<RawLine<'_>>(line.trim_end())
+        else {
+            return Err(damaged(path, i + 1));
+        };
+        let record: TrialRecord =
+            serde_json::from_str(raw.get()).map_err(|_| damaged(path, i + 1))?;
+        if sum.as_deref() == Some(record_sum(&contents.header_sum, raw.get()).as_str()) {
+            contents.records.push(record);
+        } else {
+            contents.records.retain(|r| r.key() != record.key());
+            contents.rejected.push(RejectedRecord {
+                line: i + 1,
+                cell: record.cell,
+                method: record.method,
+                trial: record.trial,
+            });
+        }
+        contents.complete_bytes += line.len() as u64;
+    }
+    Ok(contents)
 }
 
 /// Refuses a journal whose first line is the header of another format.
@@ -190,7 +290,7 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
     }
 }
 
-/// The header of the journal at `path` (its first line only).
+/// The header of the journal at `path` (its first line only), verified.
 ///
 /// # Errors
 /// As [`read_journal`] for the first line.
@@ -200,11 +300,7 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
     BufReader::new(file)
         .read_line(&mut first)
         .with_context(|| format!("reading {}", path.display()))?;
-    check_format(path, &first)?;
-    match serde_json::from_str::<Line>(first.trim_end()) {
-        Ok(Line::Header(h)) => Ok(h),
-        _ => bail!("{}:1: not a journal header", path.display()),
-    }
+    parse_header_line(path, &first).map(|(h, _)| h)
 }
 
 /// An open journal, appending one flushed line per record.
@@ -212,6 +308,8 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
 pub struct Journal {
     path: PathBuf,
     file: File,
+    /// The header's checksum, part of every record's.
+    header_sum: String,
 }
 
 impl Journal {
@@ -233,25 +331,33 @@ impl Journal {
             .create_new(true)
             .open(&path)
             .with_context(|| format!("creating {}", path.display()))?;
-        let mut j = Self { path, file };
-        j.append_line(&LineRef::Header(header))?;
+        let json = serde_json::to_string(header).context("serialising the journal header")?;
+        let header_sum = header_sum(&json);
+        let mut j = Self {
+            path,
+            file,
+            header_sum,
+        };
+        j.write_line(&journal_line("header", &json, &j.header_sum))?;
         Ok(j)
     }
 
-    /// Opens the journal in `dir` to continue it: checks that its header equals `header` and
-    /// returns the journal with the records it already holds. A last line cut short by a kill
-    /// is removed from the file.
+    /// Opens the journal in `dir` to continue it: checks that its header verifies and equals
+    /// `header` and returns the journal with what it already holds ([`read_journal`]: the
+    /// records that verify, and those that do not). A last line cut short by a kill is removed
+    /// from the file.
     ///
     /// # Errors
     /// No journal, a journal written with other parameters (the message lists the
-    /// differences), a corrupt line other than the last, or an I/O error.
-    pub fn open_resume(dir: &Path, header: &SweepHeader) -> Result<(Self, Vec<TrialRecord>)> {
+    /// differences), a header that does not verify, a damaged line other than the last, or an
+    /// I/O error.
+    pub fn open_resume(dir: &Path, header: &SweepHeader) -> Result<(Self, JournalContents)> {
         let path = Self::path_in(dir);
         let contents = read_journal(&path).context("--resume")?;
         if &contents.header != header {
             bail!(
                 "--resume: {} was written by a sweep with other parameters ({}); run with \
-                 another --out, or without --resume and --overwrite to start afresh",
+                 another --out, or with --overwrite (in place of --resume) to start afresh",
                 path.display(),
                 header_diff(&contents.header, header)
             );
@@ -266,20 +372,26 @@ impl Journal {
             .append(true)
             .open(&path)
             .with_context(|| format!("opening {}", path.display()))?;
-        Ok((Self { path, file }, contents.records))
+        let journal = Self {
+            path,
+            file,
+            header_sum: contents.header_sum.clone(),
+        };
+        Ok((journal, contents))
     }
 
-    /// Appends `record` as one line and flushes it to the operating system.
+    /// Appends `record` as one line with its checksum ([`record_sum`]) and flushes it to the
+    /// operating system.
     ///
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, record: &TrialRecord) -> Result<()> {
-        self.append_line(&LineRef::Trial(record))
+        let json = serde_json::to_string(record).context("serialising a journal record")?;
+        let sum = record_sum(&self.header_sum, &json);
+        self.write_line(&journal_line("trial", &json, &sum))
     }
 
-    fn append_line(&mut self, line: &LineRef<'_>) -> Result<()> {
-        let mut s = serde_json::to_string(line).context("serialising a journal line")?;
-        s.push('\n');
+    fn write_line(&mut self, s: &str) -> Result<()> {
         self.file
             .write_all(s.as_bytes())
             .and_then(|()| self.file.flush())
@@ -361,7 +473,6 @@ fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fingerprint::fnv1a64_hex;
 
     fn header() -> SweepHeader {
         SweepHeader {
@@ -422,7 +533,7 @@ mod tests {
         let text = fs::read_to_string(Journal::path_in(dir.path())).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert!(
-            lines[0].starts_with("{\"header\":{\"format\":2,"),
+            lines[0].starts_with("{\"header\":{\"format\":3,"),
             "{}",
             lines[0]
         );
@@ -456,23 +567,158 @@ mod tests {
         let mut f = OpenOptions::new().append(true).open(&path).unwrap();
         f.write_all(b"{\"trial\":{\"meth").unwrap();
         drop(f);
-        let (mut j, recs) = Journal::open_resume(dir.path(), &header()).unwrap();
-        assert_eq!(recs, vec![record(0, 0)]);
+        let (mut j, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0)]);
         j.append(&record(1, 1)).unwrap();
         drop(j);
-        let (_, recs) = Journal::open_resume(dir.path(), &header()).unwrap();
-        assert_eq!(recs, vec![record(0, 0), record(1, 1)]);
+        let (_, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(1, 1)]);
+        assert!(c.rejected.is_empty());
         // A kill after the record but before its newline: the record parses but is redone.
-        let whole = serde_json::to_string(&LineRef::Trial(&record(0, 2))).unwrap();
+        let json = serde_json::to_string(&record(0, 2)).unwrap();
+        let whole = journal_line("trial", &json, &record_sum(&c.header_sum, &json));
+        let whole = whole.trim_end();
         let mut f = OpenOptions::new().append(true).open(&path).unwrap();
         f.write_all(whole.as_bytes()).unwrap();
         drop(f);
         let read = read_journal(&path).unwrap();
         assert_eq!(read.records, vec![record(0, 0), record(1, 1)]);
         assert!(read.complete_bytes < fs::metadata(&path).unwrap().len());
-        let (_, recs) = Journal::open_resume(dir.path(), &header()).unwrap();
-        assert_eq!(recs, vec![record(0, 0), record(1, 1)]);
+        let (_, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(1, 1)]);
         assert!(fs::read_to_string(&path).unwrap().ends_with('\n'));
+    }
+
+    /// A journal of `header()` with records (0, 0) failed, (0, 0) ok... as `record` makes them,
+    /// then (1, 1); returns its path and lines.
+    fn journal_of_three(dir: &Path) -> (PathBuf, Vec<String>) {
+        let mut j = Journal::create(dir, &header()).unwrap();
+        for r in [record(0, 0), record(0, 1), record(1, 1)] {
+            j.append(&r).unwrap();
+        }
+        let path = Journal::path_in(dir);
+        let lines = fs::read_to_string(&path)
+            .unwrap()
+            .lines()
+            .map(String::from)
+            .collect();
+        (path, lines)
+    }
+
+    fn write_lines(path: &Path, lines: &[String]) {
+        fs::write(path, lines.join("\n") + "\n").unwrap();
+    }
+
+    #[test]
+    fn every_line_carries_a_checksum() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, lines) = journal_of_three(dir.path());
+        let c = read_journal(&path).unwrap();
+        let header_json = serde_json::to_string(&header()).unwrap();
+        assert_eq!(c.header_sum, header_sum(&header_json));
+        assert_eq!(
+            lines[0],
+            format!("{{\"header\":{header_json},\"sum\":\"{}\"}}", c.header_sum)
+        );
+        let rec_json = serde_json::to_string(&record(0, 1)).unwrap();
+        assert!(
+            lines[2].ends_with(&format!(
+                ",\"sum\":\"{}\"}}",
+                record_sum(&c.header_sum, &rec_json)
+            )),
+            "{}",
+            lines[2]
+        );
+        assert_eq!(c.records.len(), 3);
+        assert!(c.rejected.is_empty());
+    }
+
+    #[test]
+    fn an_edited_record_is_rejected_by_line_with_the_earlier_records_of_its_trial() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, mut lines) = journal_of_three(dir.path());
+        // A retry of trial (0, 0), then an edit of it that stays valid JSON.
+        let mut j = Journal::open_resume(dir.path(), &header()).unwrap().0;
+        j.append(&record(0, 0)).unwrap();
+        drop(j);
+        lines.push(
+            fs::read_to_string(&path)
+                .unwrap()
+                .lines()
+                .last()
+                .unwrap()
+                .into(),
+        );
+        lines[4] = lines[4].replace("\"wall_s\":0.5", "\"wall_s\":0.25");
+        write_lines(&path, &lines);
+        let c = read_journal(&path).unwrap();
+        assert_eq!(c.records, vec![record(0, 1), record(1, 1)]);
+        assert_eq!(
+            c.rejected,
+            vec![RejectedRecord {
+                line: 5,
+                cell: 0,
+                method: "RNE".into(),
+                trial: 0
+            }]
+        );
+        // A missing sum does not verify either, nor does a record from another sweep's journal.
+        let mut other = header();
+        other.base_seed = 2;
+        let other_dir = tempfile::tempdir().unwrap();
+        let mut j = Journal::create(other_dir.path(), &other).unwrap();
+        j.append(&record(1, 0)).unwrap();
+        drop(j);
+        let foreign = fs::read_to_string(Journal::path_in(other_dir.path())).unwrap();
+        lines[4] = foreign.lines().nth(1).unwrap().into();
+        lines[2] = lines[2][..lines[2].rfind(",\"sum\"").unwrap()].to_string() + "}";
+        write_lines(&path, &lines);
+        let c = read_journal(&path).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(1, 1)]);
+        let rejected: Vec<_> = c
+            .rejected
+            .iter()
+            .map(|r| (r.line, r.cell, r.trial))
+            .collect();
+        assert_eq!(rejected, [(3, 0, 1), (5, 1, 0)]);
+    }
+
+    #[test]
+    fn an_edited_header_is_refused_naming_overwrite() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, mut lines) = journal_of_three(dir.path());
+        lines[0] = lines[0].replace("\"trials\":2", "\"trials\":3");
+        write_lines(&path, &lines);
+        let mut edited = header();
+        edited.trials = 3;
+        for e in [
+            read_journal(&path).unwrap_err(),
+            read_header(&path).unwrap_err(),
+            Journal::open_resume(dir.path(), &edited).unwrap_err(),
+        ] {
+            let msg = format!("{e:#}");
+            assert!(
+                msg.contains(":1: the header does not verify (edited?)")
+                    && msg.contains("--overwrite"),
+                "{msg}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_damaged_line_names_overwrite() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, mut lines) = journal_of_three(dir.path());
+        lines[2] = lines[2][..40].to_string();
+        write_lines(&path, &lines);
+        let e = Journal::open_resume(dir.path(), &header()).unwrap_err();
+        let msg = format!("{e:#}");
+        assert!(
+            msg.contains("journal.jsonl:3: not a valid journal line")
+                && msg.contains("--overwrite (in place of --resume)"),
+            "{msg}"
+        );
+        assert!(!msg.contains("run the sweep again"), "{msg}");
     }
 
     #[test]
@@ -510,7 +756,7 @@ mod tests {
         ] {
             let msg = format!("{e:#}");
             assert!(
-                msg.contains("journal format 1, but this usar reads format 2"),
+                msg.contains("journal format 1, but this usar reads format 3"),
                 "{msg}"
             );
         }

@@ -8,7 +8,8 @@
 //! figures ([`figures`], [`grid_outputs::figures`]) and reports ([`report`],
 //! [`grid_outputs::report`]), and [`console`] the terminal summary, all from that analysis.
 //! Module dependencies go one way: vary, grid -> sweep (with executor, journal) -> analysis
-//! (with claims, metrics, stats) -> outputs.
+//! (with claims, metrics, stats) -> outputs. A sweep holds the [`lock`] on its output folder
+//! while it runs and writes; every output file goes through [`atomic`].
 
 pub mod analysis;
 pub mod atomic;
@@ -23,6 +24,7 @@ pub mod fingerprint;
 pub mod grid;
 pub mod grid_outputs;
 pub mod journal;
+pub mod lock;
 pub mod method_factory;
 pub mod metrics;
 pub mod output;

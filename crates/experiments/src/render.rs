@@ -64,7 +64,8 @@ pub fn kind_color(s: &Scenario, k: usize) -> RGBColor {
     RGBColor(dim(c.0), dim(c.1), dim(c.2))
 }
 
-/// Draws `scenario` top-down as SVG and writes it atomically to `out`.
+/// Draws `scenario` top-down as SVG and writes it to `out` with [`write_atomic`] (atomically
+/// for a regular file, through a symlink, directly to a FIFO or character device).
 ///
 /// Shows the walls, debris (brown), radiation zones (shaded by dose rate factor: the weakest
 /// yellow, the strongest orange, labelled `x<factor>` when the factors differ), both search

@@ -10,21 +10,24 @@
 //! not depend on thread count, completion order or interruptions.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::Scenario;
 
+use crate::atomic::remove_stale_temps;
 use crate::executor::{CellPlan, Job, Runner, execute};
 pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
 use crate::fingerprint::scenario_hash;
 use crate::grid::Grid;
+use crate::lock::OutputLock;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 
 use crate::journal::{
-    CellHeader, GridHeader, JOURNAL_FORMAT, Journal, Outcome, SweepHeader, TrialRecord,
-    header_diff, read_header,
+    CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
+    SweepHeader, TrialRecord, header_diff, read_header,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -63,7 +66,8 @@ pub struct SweepConfig {
     /// Simulated length of each trial, seconds (> 0); `None`: each cell's
     /// `mission.duration_s`.
     pub duration_s: Option<f64>,
-    /// Worker threads (>= 1).
+    /// Worker threads (>= 1); a sweep uses at most [`max_threads`] and never more than it
+    /// has jobs to run ([`effective_threads`]).
     pub threads: usize,
     /// Output folder; the journal is at its top.
     pub out_dir: PathBuf,
@@ -177,8 +181,11 @@ pub struct SweepOutcome {
     pub wall_s: f64,
     /// Sum of the wall-clock times of this invocation's trials, seconds (CPU-ish time).
     pub trial_wall_sum_s: f64,
-    /// Threads used.
+    /// Threads used ([`effective_threads`]).
     pub threads: usize,
+    /// The lock on the output folder ([`crate::lock`]), held while this outcome (or a clone of
+    /// it) lives, so that the files written from it are written under the same lock.
+    pub lock: Arc<OutputLock>,
 }
 
 impl SweepOutcome {
@@ -200,6 +207,22 @@ impl SweepOutcome {
     pub fn expected_trials(&self) -> usize {
         self.header.grid.cells.len() * self.header.methods.len() * self.header.trials as usize
     }
+}
+
+/// Most worker threads per available core: a sweep never runs more than
+/// `MAX_THREADS_PER_CORE` x [`std::thread::available_parallelism`] threads ([`max_threads`]).
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// The most worker threads a sweep uses on this machine: [`MAX_THREADS_PER_CORE`] x the
+/// available parallelism (1 when that is unknown).
+pub fn max_threads() -> usize {
+    MAX_THREADS_PER_CORE * std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// The worker threads a sweep with `jobs` jobs to run uses when `requested` threads are asked
+/// for: at least 1, at most `max` (see [`max_threads`]) and at most `jobs`.
+pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
+    requested.min(max).min(jobs).max(1)
 }
 
 /// The sweep's header: its parameters and grid as recorded in the journal.
@@ -335,35 +358,54 @@ fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     Ok(())
 }
 
+/// A journal opened for a sweep, with what it already held.
+struct OpenJournal {
+    journal: Journal,
+    /// Records that verify, in file order.
+    records: Vec<TrialRecord>,
+    /// Record lines that do not verify.
+    rejected: Vec<RejectedRecord>,
+    how: JournalUse,
+}
+
+impl OpenJournal {
+    fn new(journal: Journal) -> Self {
+        Self {
+            journal,
+            records: Vec::new(),
+            rejected: Vec::new(),
+            how: JournalUse::Created,
+        }
+    }
+
+    fn continued((journal, contents): (Journal, JournalContents), how: JournalUse) -> Self {
+        Self {
+            journal,
+            records: contents.records,
+            rejected: contents.rejected,
+            how,
+        }
+    }
+}
+
 /// Creates, resumes or reuses the journal in `cfg.out_dir`, with the records it holds.
-fn open_journal(
-    cfg: &SweepConfig,
-    header: &SweepHeader,
-) -> Result<(Journal, Vec<TrialRecord>, JournalUse)> {
+fn open_journal(cfg: &SweepConfig, header: &SweepHeader) -> Result<OpenJournal> {
     let path = Journal::path_in(&cfg.out_dir);
     if !path.exists() {
-        return Ok((
-            Journal::create(&cfg.out_dir, header)?,
-            Vec::new(),
-            JournalUse::Created,
-        ));
+        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
     }
     if cfg.resume {
-        let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
-        return Ok((j, records, JournalUse::Resumed));
+        let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+        return Ok(OpenJournal::continued(resumed, JournalUse::Resumed));
     }
     if cfg.overwrite {
         std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
-        return Ok((
-            Journal::create(&cfg.out_dir, header)?,
-            Vec::new(),
-            JournalUse::Created,
-        ));
+        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
     }
     let why = match read_header(&path) {
         Ok(found) if &found == header => {
-            let (j, records) = Journal::open_resume(&cfg.out_dir, header)?;
-            return Ok((j, records, JournalUse::Reused));
+            let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+            return Ok(OpenJournal::continued(resumed, JournalUse::Reused));
         }
         Ok(found) => format!(
             "it was written with other parameters: {}",
@@ -380,12 +422,16 @@ fn open_journal(
 
 /// Runs the sweep (every job without a successful record in the journal) and returns its
 /// data. Failed trials do not stop it: they are journaled and listed in
-/// [`CellOutcome::failures`] (the caller decides the exit status). No file but the journal is
-/// written.
+/// [`CellOutcome::failures`] (the caller decides the exit status). No file but the journal
+/// (and the lock file) is written.
+///
+/// Once the parameters are checked, it locks the output folder ([`OutputLock`]; the lock
+/// stays in [`SweepOutcome::lock`]) and removes the temporary files killed runs left there and
+/// in the cell folders ([`remove_stale_temps`]) before it opens the journal.
 ///
 /// # Errors
-/// Bad parameters, a journal that cannot be started or resumed, or an I/O error writing the
-/// journal.
+/// Bad parameters, an output folder locked by another sweep, a journal that cannot be started
+/// or resumed, or an I/O error writing the journal.
 pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;
@@ -409,7 +455,14 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let (journal, previous, journal_use) = open_journal(cfg, &header)?;
+    let lock = OutputLock::acquire(&cfg.out_dir)?;
+    remove_stale_temps(&cfg.out_dir)?;
+    if let Some(g) = &cfg.grid {
+        for cell in &g.cells {
+            remove_stale_temps(&cfg.out_dir.join(&cell.dir))?;
+        }
+    }
+    let opened = open_journal(cfg, &header)?;
 
     let slots = Slots {
         methods: header.methods.clone(),
@@ -418,10 +471,27 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     };
     // Last record per (cell, method, trial) wins.
     let mut records: Vec<Option<TrialRecord>> = vec![None; slots.len()];
-    for r in previous {
+    for r in opened.records {
         if let Some(i) = slots.of_record(&r) {
             records[i] = Some(r);
         }
+    }
+    // A rejected record that a later record of its trial (one that verifies) supersedes
+    // changes nothing: only the others are reported.
+    for r in &opened.rejected {
+        let fate = match slots.of(r.cell, &r.method, r.trial) {
+            Some(i) if is_ok(records[i].as_ref()) => continue,
+            Some(_) => "will run again",
+            None => "is not used (no such trial in this sweep)",
+        };
+        eprintln!(
+            "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
+            Journal::path_in(&cfg.out_dir).display(),
+            r.line,
+            r.method,
+            r.trial,
+            r.cell,
+        );
     }
     let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
         .into_iter()
@@ -438,7 +508,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         })
         .collect();
 
-    let threads = cfg.threads.max(1);
+    let threads = effective_threads(cfg.threads, max_threads(), jobs.len());
     let start = Instant::now();
     let runner = Runner {
         factory: &cfg.method_factory,
@@ -446,37 +516,36 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         progress: cfg.progress,
         threads,
     };
-    let new_records = execute(&runner, &plans, &jobs, journal)?;
+    let new_records = execute(&runner, &plans, &jobs, opened.journal)?;
     let wall_s = start.elapsed().as_secs_f64();
-    Ok(collect(
+    let ran = new_records.len();
+    let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
+    let cells = collect(&slots, records, new_records);
+    Ok(SweepOutcome {
         header,
-        &slots,
-        records,
-        new_records,
-        journal_use,
+        reused: cells.iter().map(|c| c.reused).sum(),
+        cells,
+        journal: opened.how,
+        ran,
         wall_s,
+        trial_wall_sum_s,
         threads,
-    ))
+        lock: Arc::new(lock),
+    })
 }
 
 /// Sorts the journal's and this run's records into per-cell outcomes.
 fn collect(
-    header: SweepHeader,
     slots: &Slots,
     mut records: Vec<Option<TrialRecord>>,
     new_records: Vec<TrialRecord>,
-    journal: JournalUse,
-    wall_s: f64,
-    threads: usize,
-) -> SweepOutcome {
+) -> Vec<CellOutcome> {
     let mut cells = vec![CellOutcome::default(); slots.cells];
     for r in &records {
         if let Some(r) = r.as_ref().filter(|r| is_ok(Some(r))) {
             cells[r.cell].reused += 1;
         }
     }
-    let ran = new_records.len();
-    let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
     for r in new_records {
         let cell = &mut cells[r.cell];
         cell.ran += 1;
@@ -498,20 +567,25 @@ fn collect(
             }),
         }
     }
-    let reused = cells.iter().map(|c| c.reused).sum();
-    SweepOutcome {
-        header,
-        cells,
-        journal,
-        ran,
-        reused,
-        wall_s,
-        trial_wall_sum_s,
-        threads,
-    }
+    cells
 }
 
 /// Default output folder for a scenario: `results/<scenario name>/`.
 pub fn default_out_dir(scenario: &Scenario) -> PathBuf {
     Path::new("results").join(&scenario.name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threads_are_capped_at_the_maximum_and_the_job_count() {
+        assert_eq!(effective_threads(100_000, 8, 1_000), 8);
+        assert_eq!(effective_threads(100_000, 8, 3), 3);
+        assert_eq!(effective_threads(2, 8, 1_000), 2);
+        assert_eq!(effective_threads(2, 8, 0), 1);
+        assert_eq!(effective_threads(0, 8, 5), 1);
+        assert!(max_threads() >= MAX_THREADS_PER_CORE);
+    }
 }

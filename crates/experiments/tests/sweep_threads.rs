@@ -1,4 +1,5 @@
-//! `usar sweep`: 1 and 2 threads write byte-identical trials.csv and summary.csv.
+//! `usar sweep`: 1 and 2 threads write byte-identical trials.csv and summary.csv; a thread
+//! count past the cap is capped with a warning.
 
 use std::path::Path;
 use std::process::Command;
@@ -49,4 +50,38 @@ fn one_and_two_threads_write_the_same_files() {
         .map(|k| usar_sim::mission::trial_seed(5, k))
         .collect();
     assert_eq!(seeds, [want[0], want[1], want[0], want[1]]);
+}
+
+#[test]
+fn too_many_threads_are_capped_with_a_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    // Just past the cap (4 x the cores), so that a regression starts few threads.
+    let asked = (4 * cores + 1).to_string();
+    let run = |methods: &str, trials: &str| {
+        Command::new(env!("CARGO_BIN_EXE_usar"))
+            .args(["sweep", PAPER, "--methods", methods, "--trials", trials])
+            .args(["--duration", "2", "--quiet", "--threads", &asked, "--out"])
+            .arg(tmp.path().join(format!("{methods}-{trials}")))
+            .output()
+            .expect("run usar")
+    };
+    // 4 x 2 = 8 jobs: the cap, or the job count if that is less.
+    let o = run("rne,dis,eng,hp_dis", "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let warning = format!(
+        "warning: --threads {asked} is more than 4 x the {cores} available cores: using {}",
+        4 * cores
+    );
+    assert!(err.contains(&warning), "{err}");
+    assert_eq!(err.lines().filter(|l| l.contains("--threads")).count(), 1);
+    let out = String::from_utf8_lossy(&o.stdout);
+    let used = (4 * cores).min(8);
+    assert!(out.contains(&format!("on {used} thread(s)")), "{out}");
+    // One job: one thread.
+    let o = run("rne", "1");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("ran 1 trials in"));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("on 1 thread(s)"));
 }

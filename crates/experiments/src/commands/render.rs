@@ -27,7 +27,10 @@ Examples:
   usar render scenarios/paper.ron --out trace-dis-3.svg --trace --method dis --trial 3
 
 Methods: rne, dis, eng, hp_dis. Paths are sampled every 0.5 s of simulated time. The picture
-is written atomically (a temporary file renamed over --out); parent folders are created.";
+is written atomically (a temporary file renamed over --out); parent folders are created. A
+symlink given as --out is followed and stays a symlink (its target gets the picture); a FIFO or
+character device (/dev/stdout) is written directly; a folder, block device or socket is
+refused.";
 
 /// Arguments of `usar render`.
 #[derive(Debug, Clone, Args)]
@@ -37,7 +40,8 @@ pub struct RenderArgs {
     #[arg(value_name = "SCENARIO")]
     pub scenario: PathBuf,
 
-    /// Where to write the SVG picture.
+    /// Where to write the SVG picture (a symlink is followed, a FIFO or character device is
+    /// written directly; see below).
     #[arg(long, value_name = "FILE.svg")]
     pub out: PathBuf,
 

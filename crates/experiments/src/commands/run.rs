@@ -53,7 +53,9 @@ pub struct RunArgs {
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub duration: Option<f64>,
 
-    /// Also write the full TrialResult as JSON to this file.
+    /// Also write the full TrialResult as JSON to this file: atomically (a temporary file
+    /// renamed over it); a symlink is followed and stays a symlink; a FIFO or character device
+    /// (/dev/stdout) is written directly; a folder, block device or socket is refused.
     #[arg(long, value_name = "FILE.json")]
     pub json: Option<PathBuf>,
 }

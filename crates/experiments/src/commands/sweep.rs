@@ -17,8 +17,8 @@ use crate::grid::Grid;
 use crate::metrics::{METRICS, Metric, find_metric};
 use crate::output::{DEFAULT_GRID_METRICS, write_outputs};
 use crate::sweep::{
-    MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method, default_out_dir,
-    run_sweep, trust_model,
+    MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method,
+    default_out_dir, max_threads, run_sweep, trust_model,
 };
 
 const EXAMPLES: &str = "\
@@ -53,7 +53,10 @@ tasks.hard.goal_m, radiation_zones[*].radius_m); values are RON (0.003, true, Ae
 (1.0, 2.0), Some(3), Grid(spacing_m: 2.0)), split on top-level commas. Every cell is validated like
 a scenario file before anything runs. The CSV files depend only on the scenario, grid,
 methods, trials, seed and duration (not on --threads or interruptions). Running the same
-command again continues its journal (like --resume) and rewrites the files.
+command again continues its journal (like --resume) and rewrites the files. One sweep at a time
+writes into a folder: it holds a lock on sweep.lock there (the file keeps the pid of the last
+holder; a killed sweep's lock ends with it). Every journal line carries a checksum: an edited
+record is reported by line and its trial runs again; an edited header is refused.
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
@@ -93,11 +96,14 @@ pub struct SweepArgs {
     #[arg(long, value_name = "NAME,..", value_delimiter = ',', requires = "vary")]
     pub grid_metrics: Vec<String>,
 
-    /// Output folder; default `results/<scenario name>/`.
+    /// Output folder; default `results/<scenario name>/`. Locked while the sweep runs (a
+    /// second sweep into it is refused, naming the holder's pid). Output files that are
+    /// symlinks are followed and stay symlinks; a FIFO or character device is written directly.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 
-    /// Worker threads; default all cores.
+    /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
+    /// cores; never more than there are trials to run.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 
@@ -184,6 +190,15 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
         .collect::<Result<Vec<_>>>()?;
     let threads = match args.threads {
         Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > max_threads() => {
+            eprintln!(
+                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
+                 cores: using {}",
+                max_threads() / MAX_THREADS_PER_CORE,
+                max_threads()
+            );
+            max_threads()
+        }
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };

@@ -1,0 +1,155 @@
+//! `usar sweep`: a journal record edited so that it stays valid JSON is reported by line and
+//! its trial runs again (the files equal an untampered run's); an edited header is refused;
+//! a damaged journal names the flag that helps, `--overwrite`.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
+const STOPPED: i32 = 75;
+
+/// rne,dis x `trials` trials x 20 s into `out`, then `extra`.
+fn sweep_of(trials: &str, out: &Path, extra: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["sweep", PAPER, "--methods", "rne,dis", "--trials", trials])
+        .args(["--duration", "20", "--quiet", "--out"])
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("run usar")
+}
+
+fn sweep(out: &Path, extra: &[&str]) -> Output {
+    sweep_of("2", out, extra)
+}
+
+fn ok(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn err(o: &Output) -> String {
+    assert!(
+        !o.status.success(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn read(p: &Path) -> Vec<u8> {
+    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+fn lines(p: &Path) -> Vec<String> {
+    String::from_utf8(read(p))
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect()
+}
+
+fn write_lines(p: &Path, lines: &[String]) {
+    std::fs::write(p, lines.join("\n") + "\n").unwrap();
+}
+
+/// The string or number after the first `pattern` (`"key":` with what precedes it) in a
+/// journal line.
+fn field<'a>(line: &'a str, pattern: &str) -> &'a str {
+    let rest = &line[line.find(pattern).unwrap() + pattern.len()..];
+    let end = rest.find([',', '}']).unwrap();
+    rest[..end].trim_matches('"')
+}
+
+#[test]
+fn an_edited_record_is_reported_and_run_again() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (whole, parts) = (tmp.path().join("whole"), tmp.path().join("parts"));
+    ok(&sweep(&whole, &["--threads", "2"]));
+
+    let o = sweep(&parts, &["--threads", "1", "--stop-after", "3"]);
+    assert_eq!(o.status.code(), Some(STOPPED));
+    // Line 3 (the second record): more easy rescuees than it had, still valid JSON.
+    let journal = parts.join("journal.jsonl");
+    let mut ls = lines(&journal);
+    assert_eq!(ls.len(), 4);
+    let easy: u32 = field(&ls[2], "\"rescued\":{\"easy\":").parse().unwrap();
+    let from = format!("\"rescued\":{{\"easy\":{easy},");
+    assert!(ls[2].contains(&from), "{}", ls[2]);
+    ls[2] = ls[2].replacen(&from, &format!("\"rescued\":{{\"easy\":{},", easy + 7), 1);
+    serde_json::from_str::<serde_json::Value>(&ls[2]).expect("still valid JSON");
+    let (method, trial) = (
+        field(&ls[2], ",\"method\":").to_string(),
+        field(&ls[2], ",\"trial\":").to_string(),
+    );
+    write_lines(&journal, &ls);
+
+    let o = sweep(&parts, &["--resume"]);
+    let stdout = ok(&o);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "journal.jsonl:3: record does not verify (edited?); trial {method} #{trial} of cell \
+             0 will run again"
+        )),
+        "{stderr}"
+    );
+    assert!(stdout.contains("ran 2 trials"), "{stdout}");
+    for name in ["trials.csv", "summary.csv"] {
+        assert!(
+            read(&whole.join(name)) == read(&parts.join(name)),
+            "{name} differs from the untampered run"
+        );
+    }
+    // The rerun's record verifies: nothing is reported or run the next time.
+    let o = sweep(&parts, &["--resume"]);
+    assert!(ok(&o).contains("all 4 trials came from the journal"));
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("does not verify"));
+}
+
+#[test]
+fn an_edited_header_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &[]));
+    let journal = dir.join("journal.jsonl");
+    let mut ls = lines(&journal);
+    // Claim the journal was a 3-trial sweep, so that `--trials 3 --resume` would reuse it.
+    assert!(ls[0].contains("\"trials\":2,"), "{}", ls[0]);
+    ls[0] = ls[0].replace("\"trials\":2,", "\"trials\":3,");
+    write_lines(&journal, &ls);
+    let before = read(&journal);
+    for extra in [&["--resume"][..], &[]] {
+        let e = err(&sweep_of("3", &dir, extra));
+        assert!(
+            e.contains("journal.jsonl:1: the header does not verify (edited?)")
+                && e.contains("--overwrite"),
+            "{extra:?}: {e}"
+        );
+    }
+    assert!(read(&journal) == before, "the journal was changed");
+}
+
+#[test]
+fn a_damaged_journal_names_overwrite_and_overwrite_helps() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &[]));
+    let journal = dir.join("journal.jsonl");
+    let mut ls = lines(&journal);
+    let half = ls[2].len() / 2;
+    ls[2].truncate(half);
+    write_lines(&journal, &ls);
+    for extra in [&["--resume"][..], &[]] {
+        let e = err(&sweep(&dir, extra));
+        assert!(
+            e.contains("journal.jsonl:3: not a valid journal line")
+                && e.contains("--overwrite (in place of --resume)"),
+            "{extra:?}: {e}"
+        );
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    }
+    ok(&sweep(&dir, &["--overwrite"]));
+    assert_eq!(lines(&journal).len(), 1 + 4);
+}
