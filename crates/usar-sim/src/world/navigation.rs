@@ -14,6 +14,7 @@ use pathfinding::prelude::astar;
 use super::bodies::StaticObstacle;
 use super::error::NavError;
 use crate::scenario::Arena;
+use crate::scenario::in_field;
 
 /// A* cost of a straight grid move (a diagonal costs [`DIAGONAL_COST`]).
 const STRAIGHT_COST: u32 = 1000;
@@ -210,7 +211,7 @@ impl PathPlanner {
         out: &mut Vec<Vec2>,
     ) -> Result<Vec2, NavError> {
         out.clear();
-        if !(to.is_finite() && to.x >= 0.0 && to.y >= 0.0 && to.x <= arena.0 && to.y <= arena.1) {
+        if !in_field(to.x, to.y, arena.0, arena.1) {
             return Err(NavError::GoalOutsideArena);
         }
         let snap_radius = inflation + 2.0 * grid.cell_m();

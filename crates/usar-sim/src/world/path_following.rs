@@ -6,6 +6,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
+use super::planning::PlanInto;
 use super::world::World;
 use crate::scenario::Locomotion;
 
@@ -58,6 +59,7 @@ impl World {
         let check_infl = self.check_inflation(id);
         let nav = &mut self.nav[id];
         let p = nav.pos;
+        let mut skipped = false;
         while nav.wp + 1 < nav.path.len()
             && (nav.path[nav.wp + 1] - p).length() < PATH_CHECK_MAX_M
             && self
@@ -65,27 +67,22 @@ impl World {
                 .line_of_sight(p, nav.path[nav.wp + 1], check_infl, f32::INFINITY)
         {
             nav.wp += 1;
+            skipped = true;
         }
-        let target = nav.waypoint();
-        if self
-            .grid
-            .line_of_sight(p, target, check_infl, PATH_CHECK_MAX_M)
+        // After a skip the new waypoint was just seen in full (it is nearer than
+        // PATH_CHECK_MAX_M), so only an unskipped waypoint needs its line of sight checked.
+        if skipped
+            || self
+                .grid
+                .line_of_sight(p, nav.waypoint(), check_infl, PATH_CHECK_MAX_M)
         {
             return;
         }
         let Some(requested) = nav.requested else {
             return;
         };
-        let infl = self.plan_inflation(id);
-        let nav = &mut self.nav[id];
-        if let Ok(eff) = self.planner.plan(
-            &self.grid,
-            self.arena,
-            p,
-            requested,
-            infl,
-            &mut self.scratch,
-        ) {
+        if let Ok(eff) = self.plan(id, requested, PlanInto::Scratch) {
+            let nav = &mut self.nav[id];
             std::mem::swap(&mut nav.path, &mut self.scratch);
             nav.goal = Some(eff);
             nav.wp = 0;

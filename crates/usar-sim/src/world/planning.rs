@@ -1,11 +1,21 @@
-//! Planning glue between a robot and the [`super::navigation`] planner: the inflations a robot
-//! plans and checks with, and planning from where it stands (into its path, or to check a goal).
+//! Planning glue between a robot and the [`super::navigation`] planner: the inflation a robot
+//! plans with, and one planning function for goals, goal checks and re-plans.
 
 use parry2d::math::Vector as Vec2;
 
 use super::error::NavError;
 use super::world::World;
-use crate::scenario::Locomotion;
+use crate::scenario::{Locomotion, in_field};
+
+/// Where [`World::plan`] writes the waypoints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum PlanInto {
+    /// Into the robot's path, from its first waypoint (the robot follows the plan).
+    Path,
+    /// Into the world's scratch buffer (a goal check, or a re-plan that replaces the path only
+    /// when it succeeds); the robot is not changed.
+    Scratch,
+}
 
 impl World {
     /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
@@ -16,55 +26,37 @@ impl World {
             + 0.5 * self.navigation.grid_cell_m as f32
     }
 
-    /// Plans from robot `id`'s position to `goal` into its path; returns the effective goal.
-    pub(super) fn plan_into_nav(&mut self, id: usize, goal: Vec2) -> Result<Vec2, NavError> {
+    /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
+    /// goal. Ground robots plan on the clearance grid ([`super::navigation::PathPlanner::plan`],
+    /// inflation [`World::plan_inflation`]); aerial robots fly straight, so their plan is the goal
+    /// itself. The waypoints go where `into` says.
+    ///
+    /// # Errors
+    /// [`NavError::GoalOutsideArena`] for a goal that is not a finite point in the arena; for
+    /// ground robots also the planner's other errors.
+    pub(super) fn plan(&mut self, id: usize, goal: Vec2, into: PlanInto) -> Result<Vec2, NavError> {
         let infl = self.plan_inflation(id);
         let nav = &mut self.nav[id];
-        nav.wp = 0;
+        let out = match into {
+            PlanInto::Path => {
+                nav.wp = 0;
+                &mut nav.path
+            }
+            PlanInto::Scratch => &mut self.scratch,
+        };
         match nav.layer {
             Locomotion::Aerial => {
                 let (w, h) = self.arena;
-                if !(goal.is_finite()
-                    && goal.x >= 0.0
-                    && goal.y >= 0.0
-                    && goal.x <= w
-                    && goal.y <= h)
-                {
+                if !in_field(goal.x, goal.y, w, h) {
                     return Err(NavError::GoalOutsideArena);
                 }
-                nav.path.clear();
-                nav.path.push(goal);
+                out.clear();
+                out.push(goal);
                 Ok(goal)
             }
-            Locomotion::Ground => {
-                self.planner
-                    .plan(&self.grid, self.arena, nav.pos, goal, infl, &mut nav.path)
-            }
-        }
-    }
-
-    /// Plans from robot `id`'s position to `goal` without changing the robot; returns the
-    /// effective goal.
-    pub(super) fn plan_check(&mut self, id: usize, g: Vec2) -> Result<Vec2, NavError> {
-        let infl = self.plan_inflation(id);
-        let mut scratch = Vec::new();
-        match self.nav[id].layer {
-            Locomotion::Aerial => {
-                let (w, h) = self.arena;
-                if g.is_finite() && g.x >= 0.0 && g.y >= 0.0 && g.x <= w && g.y <= h {
-                    Ok(g)
-                } else {
-                    Err(NavError::GoalOutsideArena)
-                }
-            }
-            Locomotion::Ground => self.planner.plan(
-                &self.grid,
-                self.arena,
-                self.nav[id].pos,
-                g,
-                infl,
-                &mut scratch,
-            ),
+            Locomotion::Ground => self
+                .planner
+                .plan(&self.grid, self.arena, nav.pos, goal, infl, out),
         }
     }
 }

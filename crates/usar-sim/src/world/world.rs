@@ -11,10 +11,12 @@ use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav::Nav;
 use super::navigation::{ClearanceGrid, PathPlanner};
+use super::planning::PlanInto;
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
 use super::robot::RobotState;
 use crate::scenario::{CollisionParams, NavigationParams, PointM, RadiationZone, Scenario};
+use crate::scenario::{in_field, in_span};
 
 /// World-level totals.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -119,7 +121,7 @@ impl World {
         self.check_id(id)?;
         let result = match goal {
             None => Ok(None),
-            Some(g) => self.plan_into_nav(id, to_vec2(&g)).map(Some),
+            Some(g) => self.plan(id, to_vec2(&g), PlanInto::Path).map(Some),
         };
         let nav = &mut self.nav[id];
         let state = &mut self.robots[id];
@@ -151,7 +153,8 @@ impl World {
         if id >= self.robots.len() {
             return Err(NavError::StartBlocked);
         }
-        self.plan_check(id, to_vec2(&goal)).map(to_point)
+        self.plan(id, to_vec2(&goal), PlanInto::Scratch)
+            .map(to_point)
     }
 
     /// Whether [`World::check_goal`] succeeds.
@@ -217,8 +220,8 @@ impl World {
         self.check_id(id)?;
         let p = to_vec2(&position);
         let (w, h) = self.arena;
-        if !(p.is_finite() && p.x >= 0.0 && p.y >= 0.0 && p.x <= w && p.y <= h) {
-            let (what, value) = if p.x.is_finite() && p.x >= 0.0 && p.x <= w {
+        if !in_field(p.x, p.y, w, h) {
+            let (what, value) = if in_span(p.x, w) {
                 ("teleport y", position.y)
             } else {
                 ("teleport x", position.x)
