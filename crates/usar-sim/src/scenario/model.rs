@@ -95,7 +95,8 @@ pub struct Arena {
 }
 
 impl Arena {
-    /// Whether `p` lies inside the field (boundary included); see [`in_field`].
+    /// Whether `p` lies inside the field (boundary included; NaN or infinite coordinates are
+    /// outside).
     pub fn contains(&self, p: &PointM) -> bool {
         in_field(p.x, p.y, self.width_m, self.height_m)
     }
