@@ -206,16 +206,13 @@ fn draw_header(area: &Area<'_>, s: &Scenario, description: &[String]) -> Result<
     Ok(())
 }
 
+/// `CIRCLE_VERTICES` points on a disc's rim ([`Disc::outline`]).
 fn disc_polygon(c: &Disc) -> Vec<(f64, f64)> {
-    (0..CIRCLE_VERTICES)
-        .map(|i| {
-            let t = i as f64 / CIRCLE_VERTICES as f64 * std::f64::consts::TAU;
-            (
-                c.center.x + c.radius_m * t.cos(),
-                c.center.y + c.radius_m * t.sin(),
-            )
-        })
-        .collect()
+    xy(c.outline(CIRCLE_VERTICES))
+}
+
+fn xy(points: Vec<PointM>) -> Vec<(f64, f64)> {
+    points.into_iter().map(|p| (p.x, p.y)).collect()
 }
 
 /// The closed outline of a disc (first vertex repeated at the end).
@@ -225,24 +222,10 @@ fn disc_outline(c: &Disc) -> Vec<(f64, f64)> {
     pts
 }
 
+/// A debris item's outline from its parry shape ([`Debris::shape`]): a rectangle's corners, or
+/// `CIRCLE_VERTICES` points of a disc.
 fn debris_polygon(d: &Debris) -> Vec<(f64, f64)> {
-    match d {
-        Debris::Circle(c) => disc_polygon(c),
-        Debris::Rect {
-            center,
-            half_extents_m: h,
-            rotation_rad,
-        } => {
-            let (s, c) = rotation_rad.sin_cos();
-            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                .iter()
-                .map(|(sx, sy)| {
-                    let (lx, ly) = (sx * h.x, sy * h.y);
-                    (center.x + c * lx - s * ly, center.y + s * lx + c * ly)
-                })
-                .collect()
-        }
-    }
+    xy(d.shape().outline(CIRCLE_VERTICES))
 }
 
 fn task_color(level: TaskLevel) -> RGBColor {

@@ -6,14 +6,16 @@
 //! file format is documented in `docs/scenario-format.md`.
 
 mod error;
-mod geometry;
 mod load;
 mod locate;
 mod model;
+mod shape;
 mod spec;
 mod validate;
 
 pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec};
 pub use model::*;
+pub use shape::DebrisShape;
+pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;

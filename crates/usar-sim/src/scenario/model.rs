@@ -95,10 +95,25 @@ pub struct Arena {
 }
 
 impl Arena {
-    /// Whether `p` lies inside the field (boundary included).
+    /// Whether `p` lies inside the field (boundary included; NaN or infinite coordinates are
+    /// outside).
     pub fn contains(&self, p: &PointM) -> bool {
-        p.x >= 0.0 && p.y >= 0.0 && p.x <= self.width_m && p.y <= self.height_m
+        in_field(p.x, p.y, self.width_m, self.height_m)
     }
+}
+
+/// Whether `v` lies in `[0, max]` (boundary included), at any float precision. NaN and
+/// infinite values are outside (for a finite `max`).
+pub(crate) fn in_span<T: PartialOrd + Default>(v: T, max: T) -> bool {
+    v >= T::default() && v <= max
+}
+
+/// Whether `(x, y)` lies in the field `[0, w] x [0, h]` (boundary included), at any float
+/// precision: the scenario checks `f64` points against the `f64` arena ([`Arena::contains`]),
+/// the world its `f32` points against the arena rounded to `f32`. NaN or infinite coordinates
+/// are outside (for a finite `w`, `h`).
+pub(crate) fn in_field<T: PartialOrd + Default>(x: T, y: T, w: T, h: T) -> bool {
+    in_span(x, w) && in_span(y, h)
 }
 
 /// A robot's role in the mission (paper, section IV).

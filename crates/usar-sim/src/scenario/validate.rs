@@ -13,13 +13,13 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::error::{ScenarioError, SourceLocation};
-use super::geometry::{aabb, distance_between, distance_to_point};
 use super::locate::SourceMap;
 use super::model::{
     Arena, Circle, ClampedNormal, CollisionParams, Debris, Locomotion, MissionParams, NEEDS_LEN,
     NavigationParams, PointM, RadiationZone, Rect, RobotKind, RobotStart, Scenario, SimParams,
     Task, TaskLevel,
 };
+use super::shape::DebrisShape;
 use super::spec::{
     CircleSpec, ClampedNormalSpec, DebrisFieldSpec, DebrisShapeSpec, DebrisSpec, KindSpec,
     RectSpec, RescueeLayoutSpec, ScenarioSpec, StartsSpec, TaskSpec, XyM,
@@ -242,22 +242,23 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         let drop_off = ctx.circle_in_arena(&format!("{base}.drop_off"), &t.drop_off, &arena)?;
         task_geo.push((search_area, goal, drop_off));
     }
-    let reachable = |field: String, p: &PointM, what: &str, debris: &[Debris], names: &[String]| {
-        for (d, name) in debris.iter().zip(names) {
-            let dist = distance_to_point(d, p);
-            if dist < reach || dist == 0.0 {
-                return Err(ctx.err(
-                    field,
-                    format!(
-                        "{what} {} is {dist:.3} m from {name}; it must be at least {reach} m \
+    let reachable =
+        |field: String, p: &PointM, what: &str, debris: &[DebrisShape], names: &[String]| {
+            for (d, name) in debris.iter().zip(names) {
+                let dist = d.distance_to_point(p);
+                if dist < reach || dist == 0.0 {
+                    return Err(ctx.err(
+                        field,
+                        format!(
+                            "{what} {} is {dist:.3} m from {name}; it must be at least {reach} m \
                          (the smallest ground body radius) away so ground robots can reach it",
-                        fmt_pt(p)
-                    ),
-                ));
+                            fmt_pt(p)
+                        ),
+                    ));
+                }
             }
-        }
-        Ok(())
-    };
+            Ok(())
+        };
     reachable(
         "rest_station.center_m".into(),
         &rest_station.center,
@@ -394,7 +395,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
             continue;
         }
         for (d, name) in debris.iter().zip(&debris_names) {
-            let dist = distance_to_point(d, &r.start_in_world);
+            let dist = d.distance_to_point(&r.start_in_world);
             if dist < kind.body_radius_m {
                 return Err(ctx.err(
                     path.clone(),
@@ -574,7 +575,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         robots,
         rest_station,
         tasks,
-        debris,
+        debris: debris.iter().map(|d| *d.debris()).collect(),
         radiation_zones,
         needs_weights,
         mission,
@@ -639,7 +640,7 @@ fn validate_kinds(ctx: &Ctx<'_>, specs: &[KindSpec]) -> R<Vec<RobotKind>> {
     Ok(kinds)
 }
 
-fn validate_debris(ctx: &Ctx<'_>, path: &str, d: &DebrisSpec, arena: &Arena) -> R<Debris> {
+fn validate_debris(ctx: &Ctx<'_>, path: &str, d: &DebrisSpec, arena: &Arena) -> R<DebrisShape> {
     let shape = match d {
         DebrisSpec::Rect {
             center_m,
@@ -669,7 +670,8 @@ fn validate_debris(ctx: &Ctx<'_>, path: &str, d: &DebrisSpec, arena: &Arena) -> 
             radius_m: ctx.positive(&format!("{path}.radius_m"), *radius_m)?,
         }),
     };
-    let (lo, hi) = aabb(&shape);
+    let shape = shape.shape();
+    let (lo, hi) = shape.aabb();
     if !(arena.contains(&lo) && arena.contains(&hi)) {
         return Err(ctx.err(
             path,
@@ -713,9 +715,9 @@ fn generate_debris_field(
     f: &DebrisFieldSpec,
     arena: &Arena,
     sim_seed: u64,
-    existing: &[Debris],
+    existing: &[DebrisShape],
     protected: &[Protected],
-) -> R<Vec<Debris>> {
+) -> R<Vec<DebrisShape>> {
     let base = format!("debris_fields[{j}]");
     let region = ctx.rect_in_arena(&format!("{base}.region"), &f.region, arena)?;
     if f.count == 0 {
@@ -765,7 +767,7 @@ fn generate_debris_field(
     };
     let seed = f.seed.unwrap_or(sim_seed.wrapping_add(j as u64));
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut placed: Vec<Debris> = Vec::with_capacity(f.count);
+    let mut placed: Vec<DebrisShape> = Vec::with_capacity(f.count);
     let max_attempts = ATTEMPTS_PER_SHAPE * f.count;
     let mut attempts = 0;
     while placed.len() < f.count && attempts < max_attempts {
@@ -794,7 +796,7 @@ fn generate_debris_field(
                     half_extents_m: Vector2::new(sx, sy) / 2.0,
                     rotation_rad: rot,
                 };
-                let (_, e) = aabb(&d);
+                let (_, e) = d.shape().aabb();
                 (d, e.coords)
             }
         };
@@ -808,13 +810,14 @@ fn generate_debris_field(
             Debris::Circle(circle) => circle.center = c,
             Debris::Rect { center, .. } => *center = c,
         }
+        let shape = shape.shape();
         let clear_of_debris = existing
             .iter()
             .chain(&placed)
-            .all(|d| distance_between(&shape, d) >= gap);
+            .all(|d| shape.distance(d) >= gap);
         let clear_of_places = protected
             .iter()
-            .all(|p| distance_to_point(&shape, &p.center) >= p.radius_m + gap);
+            .all(|p| shape.distance_to_point(&p.center) >= p.radius_m + gap);
         if clear_of_debris && clear_of_places {
             placed.push(shape);
         }
@@ -850,7 +853,7 @@ fn expand_rescuees(
     path: &str,
     layout: &RescueeLayoutSpec,
     area: &Rect,
-    debris: &[Debris],
+    debris: &[DebrisShape],
     debris_names: &[String],
     reach: f64,
 ) -> R<Vec<PointM>> {
@@ -859,7 +862,7 @@ fn expand_rescuees(
             .iter()
             .zip(debris_names)
             .find(|(d, _)| {
-                let dist = distance_to_point(d, p);
+                let dist = d.distance_to_point(p);
                 dist == 0.0 || dist < reach
             })
             .map(|(_, n)| n)
@@ -960,7 +963,7 @@ mod tests {
         assert_eq!(s.debris.len(), 24);
         for (i, a) in s.debris.iter().enumerate() {
             for b in &s.debris[i + 1..] {
-                let d = distance_between(a, b);
+                let d = a.shape().distance(&b.shape());
                 assert!(d >= 2.0, "gap {d} between {a:?} and {b:?}");
             }
         }
@@ -1006,7 +1009,8 @@ mod tests {
         let d = [Debris::Circle(Circle {
             center: Point2::new(1.25, 0.0),
             radius_m: 0.1,
-        })];
+        })
+        .shape()];
         let pts = expand_rescuees(
             &ctx,
             "r",

@@ -13,7 +13,7 @@ use rapier2d::prelude::{
     RigidBodyHandle,
 };
 
-use crate::scenario::{Debris, Locomotion, PointM, Scenario};
+use crate::scenario::{DebrisPrimitive, DebrisShape, Locomotion, PointM, Scenario};
 
 /// Collision group of the four boundary walls.
 pub const WALLS: Group = Group::GROUP_1;
@@ -89,6 +89,33 @@ impl StaticObstacle {
         self.as_shape().compute_aabb(&self.pose)
     }
 
+    /// Debris at physics precision: the `f32` twin of the parry2d-f64 shape `d` (see
+    /// [`crate::scenario::Debris::shape`]), its radius or half extents and its centre rounded to
+    /// `f32`, its pose rebuilt from the scenario's rotation angle rounded to `f32` (not from the
+    /// `f64` sine and cosine, so the collider is what `f32` parry makes of the scenario's
+    /// angle).
+    fn debris(d: &DebrisShape) -> Self {
+        let center = to_vec2(&d.center());
+        let (shape, pose) = match d.primitive() {
+            DebrisPrimitive::Cuboid(c) => (
+                StaticShape::Cuboid(Cuboid::new(Vec2::new(
+                    c.half_extents.x as f32,
+                    c.half_extents.y as f32,
+                ))),
+                Pose::new(center, d.rotation_rad() as f32),
+            ),
+            DebrisPrimitive::Ball(b) => (
+                StaticShape::Ball(Ball::new(b.radius as f32)),
+                Pose::from_translation(center),
+            ),
+        };
+        Self {
+            shape,
+            pose,
+            is_wall: false,
+        }
+    }
+
     fn collider(&self) -> ColliderBuilder {
         let b = match &self.shape {
             StaticShape::Ball(b) => ColliderBuilder::ball(b.radius),
@@ -107,7 +134,8 @@ impl StaticObstacle {
 }
 
 /// The four boundary walls (outside the field, `arena.wall_thickness_m` thick, overlapping at
-/// the corners) followed by the debris, in scenario order.
+/// the corners) followed by the debris, in scenario order (each the `f32` twin of
+/// [`crate::scenario::Debris::shape`]).
 pub fn static_obstacles(s: &Scenario) -> Vec<StaticObstacle> {
     let w = s.arena.width_m as f32;
     let h = s.arena.height_m as f32;
@@ -123,27 +151,7 @@ pub fn static_obstacles(s: &Scenario) -> Vec<StaticObstacle> {
         wall(w / 2.0, -t / 2.0, w / 2.0 + t, t / 2.0),
         wall(w / 2.0, h + t / 2.0, w / 2.0 + t, t / 2.0),
     ];
-    for d in &s.debris {
-        out.push(match d {
-            Debris::Rect {
-                center,
-                half_extents_m,
-                rotation_rad,
-            } => StaticObstacle {
-                shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(
-                    half_extents_m.x as f32,
-                    half_extents_m.y as f32,
-                ))),
-                pose: Pose::new(to_vec2(center), *rotation_rad as f32),
-                is_wall: false,
-            },
-            Debris::Circle(c) => StaticObstacle {
-                shape: StaticShape::Ball(Ball::new(c.radius_m as f32)),
-                pose: Pose::from_translation(to_vec2(&c.center)),
-                is_wall: false,
-            },
-        });
-    }
+    out.extend(s.debris.iter().map(|d| StaticObstacle::debris(&d.shape())));
     out
 }
 

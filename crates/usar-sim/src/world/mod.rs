@@ -1,26 +1,40 @@
 //! The physical world of the USAR mission (paper, sections IV-VI), stepped with Rapier 2D.
 //!
+//! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
-//! - `simulation`: [`World`], the API the mission layer drives.
+//! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
+//! - `nav`: the per-robot navigation state (path, current waypoint, intent).
+//! - `planning`: planning glue between a robot and the [`navigation`] planner (goals, goal
+//!   checks, re-plans).
+//! - `path_following`: a robot's intended velocity from its path (corner passing, the periodic
+//!   line-of-sight check and re-plan).
+//! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
 mod error;
+mod nav;
 pub mod navigation;
+mod path_following;
+mod planning;
 pub mod radiation;
 pub mod resolver;
 mod robot;
-mod simulation;
+mod step;
+#[expect(
+    clippy::module_inception,
+    reason = "the World type's own file, as in rapier; private, so no world::world path"
+)]
+mod world;
 
 pub use error::{NavError, WorldError};
+pub use path_following::{CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M};
 pub use robot::{Motion, RobotCounters, RobotState};
-pub use simulation::{
-    CORNER_PASS_M, MOVED_TOLERANCE_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, World,
-    WorldStats,
-};
+pub use step::MOVED_TOLERANCE_M;
+pub use world::{World, WorldStats};

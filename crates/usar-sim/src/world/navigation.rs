@@ -14,6 +14,7 @@ use pathfinding::prelude::astar;
 use super::bodies::StaticObstacle;
 use super::error::NavError;
 use crate::scenario::Arena;
+use crate::scenario::in_field;
 
 /// A* cost of a straight grid move (a diagonal costs [`DIAGONAL_COST`]).
 const STRAIGHT_COST: u32 = 1000;
@@ -210,7 +211,7 @@ impl PathPlanner {
         out: &mut Vec<Vec2>,
     ) -> Result<Vec2, NavError> {
         out.clear();
-        if !(to.is_finite() && to.x >= 0.0 && to.y >= 0.0 && to.x <= arena.0 && to.y <= arena.1) {
+        if !in_field(to.x, to.y, arena.0, arena.1) {
             return Err(NavError::GoalOutsideArena);
         }
         let snap_radius = inflation + 2.0 * grid.cell_m();
@@ -295,4 +296,229 @@ fn smooth(grid: &ClearanceGrid, raw: &[u32], inflation: f32) -> Vec<u32> {
         anchor = next;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use parry2d::math::Pose;
+    use parry2d::shape::{Ball, Cuboid};
+
+    use super::*;
+    use crate::world::bodies::StaticShape;
+
+    const CELL: f64 = 0.25;
+    /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
+    const INFL: f32 = 0.6;
+    const ARENA: (f32, f32) = (10.0, 10.0);
+
+    fn block(cx: f32, cy: f32, hx: f32, hy: f32) -> StaticObstacle {
+        StaticObstacle {
+            shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
+            pose: Pose::translation(cx, cy),
+            is_wall: false,
+        }
+    }
+
+    fn disc(cx: f32, cy: f32, r: f32) -> StaticObstacle {
+        StaticObstacle {
+            shape: StaticShape::Ball(Ball::new(r)),
+            pose: Pose::translation(cx, cy),
+            is_wall: false,
+        }
+    }
+
+    /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
+    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
+        let arena = Arena {
+            width_m: f64::from(ARENA.0),
+            height_m: f64::from(ARENA.1),
+            wall_thickness_m: 0.5,
+        };
+        ClearanceGrid::build(&arena, statics, CELL, 2.0)
+    }
+
+    /// Exact distance from `p` to the nearest of `statics`.
+    fn exact(statics: &[StaticObstacle], p: Vec2) -> f32 {
+        statics
+            .iter()
+            .map(|o| o.distance_to_point(p))
+            .fold(f32::INFINITY, f32::min)
+    }
+
+    /// Plans `from` -> `to`; returns the waypoints with `from` prepended, or the error.
+    fn plan(g: &ClearanceGrid, from: Vec2, to: Vec2) -> Result<Vec<Vec2>, NavError> {
+        let mut out = Vec::new();
+        let eff = PathPlanner::new().plan(g, ARENA, from, to, INFL, &mut out)?;
+        assert_eq!(
+            out.last(),
+            Some(&eff),
+            "the effective goal is the last waypoint"
+        );
+        Ok(std::iter::once(from).chain(out).collect())
+    }
+
+    /// Every point of every leg (sampled each centimetre) keeps at least `min` metres from
+    /// `statics`.
+    fn legs_clear(statics: &[StaticObstacle], path: &[Vec2], min: f32) {
+        for leg in path.windows(2) {
+            let n = ((leg[1] - leg[0]).length() / 0.01).ceil() as u32;
+            for k in 0..=n {
+                let p = leg[0] + (leg[1] - leg[0]) * (k as f32 / n.max(1) as f32);
+                let d = exact(statics, p);
+                assert!(d >= min, "{p:?} on leg {leg:?} is {d} m from debris");
+            }
+        }
+    }
+
+    #[test]
+    fn clearance_grid_holds_the_capped_exact_distance_at_cell_centres() {
+        let statics = [disc(5.0, 5.0, 1.0), block(2.0, 8.0, 1.0, 0.5)];
+        let g = grid(&statics);
+        assert_eq!(g.dims(), (40, 40));
+        for idx in 0..40 * 40 {
+            let c = g.cell_center(idx);
+            assert_eq!(
+                g.clearance_at(c),
+                exact(&statics, c).min(2.0),
+                "cell {idx} at {c:?}"
+            );
+        }
+        assert_eq!(g.clearance_at(Vec2::new(5.0, 5.0)), 0.0);
+        assert!(!g.is_free(g.cell_index(Vec2::new(5.0, 5.0)), 0.01));
+        assert!(g.is_free(g.cell_index(Vec2::new(9.0, 1.0)), 2.0));
+    }
+
+    #[test]
+    fn line_of_sight_respects_inflation_and_max_len() {
+        let statics = [disc(5.0, 5.0, 1.0)];
+        let g = grid(&statics);
+        let (a, b) = (Vec2::new(1.0, 5.0), Vec2::new(9.0, 5.0));
+        assert!(!g.line_of_sight(a, b, INFL, f32::INFINITY));
+        // Only the first 2 m are checked: they are clear.
+        assert!(g.line_of_sight(a, b, INFL, 2.0));
+        // Passing 1.5 m from the disc's edge is clear for 0.6 m, not for 2 m.
+        let (c, d) = (Vec2::new(1.0, 7.5), Vec2::new(9.0, 7.5));
+        assert!(g.line_of_sight(c, d, INFL, f32::INFINITY));
+        assert!(!g.line_of_sight(c, d, 2.0, f32::INFINITY));
+    }
+
+    #[test]
+    fn a_star_goes_around_a_wall_through_its_gap() {
+        // A wall across the arena at y = 5 from x = 0 to 7; the gap is east of it.
+        let statics = [block(3.5, 5.0, 3.5, 0.25)];
+        let g = grid(&statics);
+        let (from, to) = (Vec2::new(2.0, 2.0), Vec2::new(2.0, 8.0));
+        let path = plan(&g, from, to).expect("a path through the gap");
+        assert_eq!(*path.last().unwrap(), to);
+        assert!(
+            path.iter().any(|p| p.x > 7.0 + INFL),
+            "the path rounds the wall's end: {path:?}"
+        );
+        // Free cells are at least INFL from debris at their centre, so no point of a smoothed
+        // leg is nearer than INFL minus half a cell diagonal.
+        legs_clear(&statics, &path, INFL - CELL as f32 * 0.5f32.sqrt());
+        for leg in path.windows(2) {
+            assert!(
+                g.line_of_sight(leg[0], leg[1], INFL, f32::INFINITY),
+                "{leg:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_star_finds_no_path_through_a_closed_wall() {
+        let g = grid(&[block(5.0, 5.0, 5.5, 0.25)]);
+        assert_eq!(
+            plan(&g, Vec2::new(2.0, 2.0), Vec2::new(2.0, 8.0)),
+            Err(NavError::NoPath)
+        );
+        // The same goal on the start's side is reachable.
+        assert!(plan(&g, Vec2::new(2.0, 2.0), Vec2::new(8.0, 3.0)).is_ok());
+    }
+
+    #[test]
+    fn smoothing_keeps_corners_that_inflated_obstacles_hide() {
+        // A block in the middle; the raw path runs along its south side, then up its east side.
+        let statics = [block(5.0, 5.0, 2.0, 2.0)];
+        let g = grid(&statics);
+        let row = |iy: u32, xs: std::ops::RangeInclusive<u32>| xs.map(move |ix| iy * 40 + ix);
+        let col = |ix: u32, ys: std::ops::RangeInclusive<u32>| ys.map(move |iy| iy * 40 + ix);
+        // South of the block at y = 2.125, east of it at x = 7.875.
+        let raw: Vec<u32> = row(8, 8..=31).chain(col(31, 9..=31)).collect();
+        let (first, last) = (g.cell_center(raw[0]), g.cell_center(*raw.last().unwrap()));
+        assert!(!g.line_of_sight(first, last, INFL, f32::INFINITY));
+        let smoothed = smooth(&g, &raw, INFL);
+        assert_eq!(smoothed.first(), raw.first());
+        assert_eq!(smoothed.last(), raw.last());
+        assert!(smoothed.len() >= 3, "the corner is kept: {smoothed:?}");
+        let points: Vec<Vec2> = smoothed.iter().map(|&c| g.cell_center(c)).collect();
+        for leg in points.windows(2) {
+            assert!(
+                g.line_of_sight(leg[0], leg[1], INFL, f32::INFINITY),
+                "{leg:?}"
+            );
+        }
+        legs_clear(&statics, &points, INFL - CELL as f32 * 0.5f32.sqrt());
+        // With nothing in the way the same raw path smooths to one straight leg.
+        assert_eq!(
+            smooth(&grid(&[]), &raw, INFL),
+            [raw[0], *raw.last().unwrap()]
+        );
+    }
+
+    #[test]
+    fn a_goal_inside_an_obstacle_moves_to_the_nearest_free_cell() {
+        let statics = [disc(5.1, 5.1, 0.3)];
+        let g = grid(&statics);
+        let requested = Vec2::new(5.1, 5.1);
+        let path = plan(&g, Vec2::new(2.0, 2.0), requested).expect("snapped goal");
+        let eff = *path.last().unwrap();
+        assert_ne!(eff, requested);
+        let idx = g.cell_index(eff);
+        assert_eq!(
+            eff,
+            g.cell_center(idx),
+            "the effective goal is a cell centre"
+        );
+        assert!(g.is_free(idx, INFL));
+        let d = (eff - requested).length_squared();
+        for other in 0..40 * 40 {
+            if g.is_free(other, INFL) {
+                let o = (g.cell_center(other) - requested).length_squared();
+                assert!(d < o || (d == o && idx <= other), "cell {other} is nearer");
+            }
+        }
+        // Deep inside a large block no free cell is near enough.
+        let g = grid(&[block(5.0, 5.0, 2.0, 2.0)]);
+        assert_eq!(
+            plan(&g, Vec2::new(1.0, 1.0), Vec2::new(5.0, 5.0)),
+            Err(NavError::GoalBlocked)
+        );
+    }
+
+    #[test]
+    fn goals_outside_the_arena_are_rejected_and_plans_are_cached_exactly() {
+        let g = grid(&[block(5.0, 5.0, 1.0, 1.0)]);
+        let from = Vec2::new(1.0, 1.0);
+        for to in [
+            Vec2::new(10.5, 5.0),
+            Vec2::new(-0.1, 5.0),
+            Vec2::new(f32::NAN, 5.0),
+            Vec2::new(5.0, f32::INFINITY),
+        ] {
+            assert_eq!(
+                plan(&g, from, to),
+                Err(NavError::GoalOutsideArena),
+                "{to:?}"
+            );
+        }
+        let mut planner = PathPlanner::new();
+        let (mut first, mut second) = (Vec::new(), Vec::new());
+        let to = Vec2::new(9.0, 9.0);
+        let a = planner.plan(&g, ARENA, from, to, INFL, &mut first);
+        let b = planner.plan(&g, ARENA, from, to, INFL, &mut second);
+        assert_eq!(a, b);
+        assert_eq!(first, second);
+        assert_eq!(planner.cache.len(), 1);
+    }
 }

@@ -212,10 +212,18 @@ impl Resolver {
     }
 
     /// Builds the collision lists, detects deadlocks and decides who is held (rules 1-4 of the
-    /// module docs). `inputs` is indexed by robot id.
+    /// module docs). `inputs` is indexed by robot id; `dt` is the step, seconds.
     pub fn resolve(&mut self, inputs: &[ResolverInput], dt: f64) {
-        let n = inputs.len();
-        // Progress of last step's list members (rule 4's "moved").
+        self.track_progress(inputs, dt);
+        self.link_pairs(inputs);
+        self.join_followers(inputs);
+        self.decide(inputs);
+        self.forget_unlisted(inputs);
+    }
+
+    /// Rule 4's "moved": last step's list members that made no progress stall for `dt` more;
+    /// the others restart their stall timer from their current remaining length.
+    fn track_progress(&mut self, inputs: &[ResolverInput], dt: f64) {
         for (mem, input) in self.memory.iter_mut().zip(inputs) {
             if mem.in_list && input.remaining >= mem.best - DEADLOCK_PROGRESS_TOLERANCE_M {
                 mem.stall_s += dt;
@@ -224,12 +232,16 @@ impl Resolver {
                 mem.stall_s = 0.0;
             }
         }
+    }
+
+    /// Rule 1: unites the pairs about to collide (fresh union-find).
+    fn link_pairs(&mut self, inputs: &[ResolverInput]) {
+        let n = inputs.len();
         let horizon = self.params.lookahead_s as f32;
         for i in 0..n {
             self.parent[i] = i;
             self.size[i] = 1;
         }
-        // Rule 1: pairs about to collide.
         for i in 0..n {
             let a = &inputs[i];
             if !a.active {
@@ -249,7 +261,12 @@ impl Resolver {
                 }
             }
         }
-        // Rules 2-3: heads, then followers join held robots, until nobody joins.
+    }
+
+    /// Rules 2-3: heads, then followers join held robots, until nobody joins.
+    fn join_followers(&mut self, inputs: &[ResolverInput]) {
+        let n = inputs.len();
+        let horizon = self.params.lookahead_s as f32;
         self.assign_heads(inputs);
         for _ in 0..n {
             let mut changed = false;
@@ -275,7 +292,11 @@ impl Resolver {
             }
             self.assign_heads(inputs);
         }
-        // Rule 4: deadlocks, final heads, memory and decisions.
+    }
+
+    /// Rule 4: rotates deadlocked lists, then fixes each list's head, the members' memory and
+    /// the decisions.
+    fn decide(&mut self, inputs: &[ResolverInput]) {
         let after = self.params.deadlock_after_s;
         self.held.iter_mut().for_each(|h| *h = false);
         for d in &mut self.decisions {
@@ -283,7 +304,7 @@ impl Resolver {
         }
         self.deadlocked_lists = 0;
         self.largest_list = 0;
-        for i in 0..n {
+        for i in 0..inputs.len() {
             let root = find(&mut self.parent, i);
             if root != i || self.size[root] < 2 {
                 continue;
@@ -314,6 +335,11 @@ impl Resolver {
                 self.held[m] = m != head;
             }
         }
+    }
+
+    /// Robots in no list forget their rotation and stall (a deadlock they were part of is
+    /// resolved); every robot remembers whether it is in a list now.
+    fn forget_unlisted(&mut self, inputs: &[ResolverInput]) {
         for (i, input) in inputs.iter().enumerate() {
             let mem = &mut self.memory[i];
             let d = &mut self.decisions[i];
@@ -384,5 +410,216 @@ impl Resolver {
             }
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use parry2d::math::Pose;
+    use parry2d::shape::Cuboid;
+
+    use super::*;
+    use crate::scenario::Arena;
+    use crate::world::bodies::{StaticObstacle, StaticShape};
+
+    /// Look-ahead 1 s, margin 0.2 m, deadlock after 2 s.
+    fn params() -> CollisionParams {
+        CollisionParams {
+            enabled: true,
+            lookahead_s: 1.0,
+            safety_margin_m: 0.2,
+            deadlock_after_s: 2.0,
+        }
+    }
+
+    /// An active ground robot of radius 0.4 m and sensing 5 m with 10 m of path left.
+    fn robot(x: f32, y: f32, vx: f32, vy: f32, key: f64) -> ResolverInput {
+        ResolverInput {
+            pos: Vec2::new(x, y),
+            intent: Vec2::new(vx, vy),
+            radius: 0.4,
+            sensing: 5.0,
+            layer: Locomotion::Ground,
+            active: true,
+            key,
+            remaining: 10.0,
+        }
+    }
+
+    /// A standing (idle) robot.
+    fn idle(x: f32, y: f32) -> ResolverInput {
+        ResolverInput {
+            active: false,
+            ..robot(x, y, 0.0, 0.0, 0.0)
+        }
+    }
+
+    /// A 10 m x 10 m grid of 0.25 m cells (clearance capped at 2 m) around `statics`.
+    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
+        let arena = Arena {
+            width_m: 10.0,
+            height_m: 10.0,
+            wall_thickness_m: 0.5,
+        };
+        ClearanceGrid::build(&arena, statics, 0.25, 2.0)
+    }
+
+    /// Head-on pair: robots 0 and 1 drive at each other along the x axis, 1.5 m apart.
+    fn head_on(key0: f64, key1: f64) -> Vec<ResolverInput> {
+        vec![
+            robot(0.0, 0.0, 1.0, 0.0, key0),
+            robot(1.5, 0.0, -1.0, 0.0, key1),
+        ]
+    }
+
+    fn held(r: &Resolver) -> Vec<bool> {
+        r.decisions().iter().map(|d| d.held).collect()
+    }
+
+    #[test]
+    fn head_on_pair_forms_one_list_with_the_lower_key_first() {
+        let mut r = Resolver::new(params(), 2);
+        r.resolve(&head_on(2.0, 1.0), 0.02);
+        assert!(r.decisions().iter().all(|d| d.in_list && d.joined));
+        assert_eq!(r.largest_list(), 2);
+        // Robot 1 has the lower key: it moves, robot 0 is held.
+        assert_eq!(held(&r), [true, false]);
+        let mut r = Resolver::new(params(), 2);
+        r.resolve(&head_on(1.0, 2.0), 0.02);
+        assert_eq!(held(&r), [false, true]);
+        // Equal keys: the lower id goes first.
+        let mut r = Resolver::new(params(), 2);
+        r.resolve(&head_on(0.0, 0.0), 0.02);
+        assert_eq!(held(&r), [false, true]);
+        assert_eq!(r.deadlocked_lists(), 0);
+    }
+
+    #[test]
+    fn robots_that_part_or_fly_form_no_list() {
+        let mut r = Resolver::new(params(), 2);
+        // Receding: robot 1 drives away faster than robot 0 follows.
+        r.resolve(
+            &[
+                robot(0.0, 0.0, 1.0, 0.0, 0.0),
+                robot(1.5, 0.0, 2.0, 0.0, 0.0),
+            ],
+            0.02,
+        );
+        assert!(r.decisions().iter().all(|d| !d.in_list && !d.held));
+        // Head-on, but on different layers.
+        let mut inputs = head_on(0.0, 1.0);
+        inputs[1].layer = Locomotion::Aerial;
+        r.resolve(&inputs, 0.02);
+        assert!(r.decisions().iter().all(|d| !d.in_list));
+        assert_eq!(r.largest_list(), 0);
+    }
+
+    #[test]
+    fn a_follower_driving_into_a_held_robot_joins_its_list() {
+        // 0 and 1 head-on (0 goes first, 1 held); 2 follows 1 at its speed, so rule 1 alone
+        // never links 2, but it would drive into 1 standing still.
+        let inputs = [
+            robot(0.0, 0.0, 1.0, 0.0, 0.0),
+            robot(1.5, 0.0, -1.0, 0.0, 1.0),
+            robot(3.0, 0.0, -1.0, 0.0, 2.0),
+        ];
+        let mut r = Resolver::new(params(), 3);
+        r.resolve(&inputs, 0.02);
+        assert!(r.decisions().iter().all(|d| d.in_list));
+        assert_eq!(r.largest_list(), 3);
+        assert_eq!(held(&r), [false, true, true]);
+    }
+
+    #[test]
+    fn a_deadlocked_list_rotates_after_deadlock_after_s() {
+        // dt 0.25 s (exact in binary): the stall timer reaches 2 s at the 9th step.
+        let inputs = head_on(2.0, 1.0);
+        let mut r = Resolver::new(params(), 2);
+        for step in 1..=8 {
+            r.resolve(&inputs, 0.25);
+            assert_eq!(held(&r), [true, false], "step {step}");
+            assert_eq!(r.deadlocked_lists(), 0, "step {step}");
+        }
+        r.resolve(&inputs, 0.25);
+        assert_eq!(r.deadlocked_lists(), 1);
+        assert!(r.decisions().iter().all(|d| d.deadlock_detected));
+        // Algorithm 5's swap: the next robot in priority order moves.
+        assert_eq!(held(&r), [false, true]);
+        // The stall timers restarted: the next rotation comes 8 steps later.
+        for step in 10..=16 {
+            r.resolve(&inputs, 0.25);
+            assert_eq!(held(&r), [false, true], "step {step}");
+            assert_eq!(r.deadlocked_lists(), 0, "step {step}");
+        }
+        r.resolve(&inputs, 0.25);
+        assert_eq!(r.deadlocked_lists(), 1);
+        assert_eq!(held(&r), [true, false]);
+        // Leaving the rotated list resolves the deadlock for both.
+        let mut parted = inputs.clone();
+        parted[1].intent = Vec2::new(2.0, 0.0);
+        r.resolve(&parted, 0.25);
+        assert!(
+            r.decisions()
+                .iter()
+                .all(|d| !d.in_list && d.deadlock_resolved)
+        );
+    }
+
+    #[test]
+    fn progress_along_the_path_is_no_deadlock() {
+        let mut inputs = head_on(2.0, 1.0);
+        let mut r = Resolver::new(params(), 2);
+        for step in 0..40 {
+            // The head gains 0.1 m per step (more than the 0.05 m tolerance).
+            inputs[1].remaining = 10.0 - 0.1 * step as f32;
+            r.resolve(&inputs, 0.25);
+            assert_eq!(r.deadlocked_lists(), 0, "step {step}");
+            assert_eq!(held(&r), [true, false], "step {step}");
+        }
+    }
+
+    #[test]
+    fn a_robot_standing_still_is_steered_around_right_side_first() {
+        // Robot 1 stands 1.2 m ahead; clearance 0.4 + 0.4 + 0.2 = 1 m needs a deflection of
+        // asin(1 / 1.2) = 56.4 degrees: the first clear candidate is 60 degrees to the right.
+        let inputs = [robot(5.0, 5.0, 1.0, 0.0, 0.0), idle(6.2, 5.0)];
+        let mut r = Resolver::new(params(), 2);
+        r.resolve(&inputs, 0.02);
+        assert!(r.decisions().iter().all(|d| !d.in_list));
+        let g = grid(&[]);
+        let w = r.steer(&inputs, 0, &g, None).expect("a clear heading");
+        let right = Vec2::new(0.5, -(3f32.sqrt()) / 2.0);
+        assert!((w - right).length() < 1e-5, "{w:?}");
+        // Nothing in the way: the intent is kept.
+        let free = [robot(5.0, 5.0, 1.0, 0.0, 0.0), idle(5.0, 8.0)];
+        assert_eq!(r.steer(&free, 0, &g, None), Some(Vec2::new(1.0, 0.0)));
+    }
+
+    #[test]
+    fn steering_keeps_ground_robots_off_debris_and_stops_when_boxed_in() {
+        // Debris just below the robot (top edge at y = 4.45): the right-hand deflection would
+        // drive towards it, so the robot turns left instead.
+        let block = StaticObstacle {
+            shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(3.0, 0.4))),
+            pose: Pose::translation(5.0, 4.05),
+            is_wall: false,
+        };
+        let g = grid(&[block]);
+        let inputs = [robot(5.0, 4.95, 1.0, 0.0, 0.0), idle(6.2, 4.95)];
+        let r = Resolver::new(params(), 2);
+        let w = r
+            .steer(&inputs, 0, &g, Some(0.4 + STEER_STATIC_GAP_M))
+            .expect("a clear heading");
+        let left = Vec2::new(0.5, 3f32.sqrt() / 2.0);
+        assert!((w - left).length() < 1e-5, "{w:?}");
+        // Standing robots ahead, left and right: every heading up to 120 degrees collides.
+        let boxed = [
+            robot(5.0, 5.0, 1.0, 0.0, 0.0),
+            idle(6.0, 5.0),
+            idle(5.0, 6.0),
+            idle(5.0, 4.0),
+        ];
+        let r = Resolver::new(params(), 4);
+        assert_eq!(r.steer(&boxed, 0, &grid(&[]), None), None);
     }
 }

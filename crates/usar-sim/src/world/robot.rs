@@ -2,7 +2,7 @@
 
 use nalgebra::Vector2;
 
-use crate::scenario::{Locomotion, PointM};
+use crate::scenario::{Locomotion, PointM, RobotKind};
 
 /// Per-robot counters of the priority-based collision avoidance (paper, section V, Algorithm 5).
 ///
@@ -95,6 +95,31 @@ pub struct RobotState {
 }
 
 impl RobotState {
+    /// Robot `id` of kind `kind` (index `kind_index`) idle at `position` (already rounded to
+    /// physics precision): no goal, all factors 1, priority key 0, counters 0.
+    pub(super) fn idle(id: usize, kind_index: usize, kind: &RobotKind, position: PointM) -> Self {
+        Self {
+            id,
+            kind: kind_index,
+            locomotion: kind.locomotion,
+            radius_m: f64::from(kind.body_radius_m as f32),
+            position,
+            velocity: Vector2::zeros(),
+            goal: None,
+            goal_reached: false,
+            motion: Motion::Idle,
+            moved_this_step: false,
+            step_distance_m: 0.0,
+            distance_travelled_m: 0.0,
+            in_collision_list: false,
+            held: false,
+            speed_factor: 1.0,
+            sensing_factor: 1.0,
+            priority_key: 0.0,
+            counters: RobotCounters::default(),
+        }
+    }
+
     /// Whether the robot has a goal it has not reached yet (it takes part in collision lists).
     pub fn is_active(&self) -> bool {
         self.goal.is_some() && !self.goal_reached

@@ -1,0 +1,91 @@
+//! The per-robot navigation state the world keeps beside the public [`super::RobotState`]:
+//! body handle, kinematic limits, goal, path and current waypoint, intended velocity.
+
+use parry2d::math::Vector as Vec2;
+use rapier2d::prelude::RigidBodyHandle;
+
+use super::resolver::ResolverInput;
+use super::robot::RobotState;
+use crate::scenario::{Locomotion, RobotKind};
+
+/// Navigation state of one robot (physics precision, `f32`, world frame, metres).
+#[derive(Debug, Clone)]
+pub(super) struct Nav {
+    /// The robot's Rapier body.
+    pub(super) body: RigidBodyHandle,
+    /// Body radius, metres.
+    pub(super) radius: f32,
+    /// Top speed at speed factor 1, metres per second.
+    pub(super) max_speed: f32,
+    /// Sensing range at sensing factor 1, metres.
+    pub(super) sensing: f32,
+    /// Ground or aerial.
+    pub(super) layer: Locomotion,
+    /// The goal as requested (re-planning targets it).
+    pub(super) requested: Option<Vec2>,
+    /// The effective goal.
+    pub(super) goal: Option<Vec2>,
+    /// Waypoints (start excluded, effective goal last); non-empty while `goal` is set.
+    pub(super) path: Vec<Vec2>,
+    /// Index of the current waypoint in `path`.
+    pub(super) wp: usize,
+    /// Position after the last step.
+    pub(super) pos: Vec2,
+    /// Intended velocity (path following, before collision avoidance), metres per second.
+    pub(super) intent: Vec2,
+}
+
+impl Nav {
+    /// A robot of `kind` with body `body`, at rest at `pos` without a goal.
+    pub(super) fn new(body: RigidBodyHandle, kind: &RobotKind, pos: Vec2) -> Self {
+        Self {
+            body,
+            radius: kind.body_radius_m as f32,
+            max_speed: kind.max_speed_m_per_s as f32,
+            sensing: kind.sensing_range_m as f32,
+            layer: kind.locomotion,
+            requested: None,
+            goal: None,
+            path: Vec::with_capacity(64),
+            wp: 0,
+            pos,
+            intent: Vec2::ZERO,
+        }
+    }
+
+    /// The current waypoint (the last one if `wp` ran past the end).
+    ///
+    /// # Panics
+    /// If the path is empty (no goal).
+    pub(super) fn waypoint(&self) -> Vec2 {
+        self.path[self.wp.min(self.path.len() - 1)]
+    }
+
+    /// Remaining path length: to the current waypoint, then along the rest of the path.
+    pub(super) fn remaining(&self) -> f32 {
+        if self.goal.is_none() || self.wp >= self.path.len() {
+            return 0.0;
+        }
+        let mut total = (self.path[self.wp] - self.pos).length();
+        for k in self.wp + 1..self.path.len() {
+            total += (self.path[k] - self.path[k - 1]).length();
+        }
+        total
+    }
+
+    /// What the collision resolver needs to know about this robot, whose public state is
+    /// `state`: its sensing range scaled by the sensing factor, active while it has a goal it has
+    /// not reached, and its priority key.
+    pub(super) fn resolver_input(&self, state: &RobotState) -> ResolverInput {
+        ResolverInput {
+            pos: self.pos,
+            intent: self.intent,
+            radius: self.radius,
+            sensing: self.sensing * state.sensing_factor as f32,
+            layer: self.layer,
+            active: state.is_active(),
+            key: state.priority_key,
+            remaining: self.remaining(),
+        }
+    }
+}

@@ -1,0 +1,62 @@
+//! Planning glue between a robot and the [`super::navigation`] planner: the inflation a robot
+//! plans with, and one planning function for goals, goal checks and re-plans.
+
+use parry2d::math::Vector as Vec2;
+
+use super::error::NavError;
+use super::world::World;
+use crate::scenario::{Locomotion, in_field};
+
+/// Where [`World::plan`] writes the waypoints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum PlanInto {
+    /// Into the robot's path, from its first waypoint (the robot follows the plan).
+    Path,
+    /// Into the world's scratch buffer (a goal check, or a re-plan that replaces the path only
+    /// when it succeeds); the robot is not changed.
+    Scratch,
+}
+
+impl World {
+    /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
+    /// metres (see [`super::navigation`]).
+    pub(super) fn plan_inflation(&self, id: usize) -> f32 {
+        self.nav[id].radius
+            + self.navigation.clearance_m as f32
+            + 0.5 * self.navigation.grid_cell_m as f32
+    }
+
+    /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
+    /// goal. Ground robots plan on the clearance grid ([`super::navigation::PathPlanner::plan`],
+    /// inflation [`World::plan_inflation`]); aerial robots fly straight, so their plan is the goal
+    /// itself. The waypoints go where `into` says.
+    ///
+    /// # Errors
+    /// [`NavError::GoalOutsideArena`] for a goal that is not a finite point in the arena; for
+    /// ground robots also the planner's other errors.
+    pub(super) fn plan(&mut self, id: usize, goal: Vec2, into: PlanInto) -> Result<Vec2, NavError> {
+        let infl = self.plan_inflation(id);
+        let nav = &mut self.nav[id];
+        let out = match into {
+            PlanInto::Path => {
+                nav.wp = 0;
+                &mut nav.path
+            }
+            PlanInto::Scratch => &mut self.scratch,
+        };
+        match nav.layer {
+            Locomotion::Aerial => {
+                let (w, h) = self.arena;
+                if !in_field(goal.x, goal.y, w, h) {
+                    return Err(NavError::GoalOutsideArena);
+                }
+                out.clear();
+                out.push(goal);
+                Ok(goal)
+            }
+            Locomotion::Ground => self
+                .planner
+                .plan(&self.grid, self.arena, nav.pos, goal, infl, out),
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! [`World::step`]: one fixed step `dt` of path following, collision resolution and physics,
+//! in a deterministic order (robots by id; no wall-clock time, no threads, no hash-map
+//! iteration).
+
+use nalgebra::Vector2;
+use parry2d::math::Vector as Vec2;
+
+use super::bodies::to_point;
+use super::resolver::STEER_STATIC_GAP_M;
+use super::robot::Motion;
+use super::world::World;
+use crate::scenario::Locomotion;
+
+/// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
+/// metres.
+pub const MOVED_TOLERANCE_M: f64 = 1e-4;
+
+impl World {
+    /// Advances the world by one fixed step `dt`:
+    /// 1. every robot (by id) updates its intended velocity from its goal and path;
+    /// 2. if `collision.enabled`, the resolver builds collision lists, holds all but each
+    ///    list's head, rotates deadlocked lists, and the moving robots steer around robots
+    ///    standing still (see [`crate::world::resolver`]); otherwise the intents are commanded
+    ///    as they are;
+    /// 3. the commanded velocities are set on the bodies and Rapier steps once;
+    /// 4. positions, velocities, flags and counters are read back.
+    ///
+    /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
+    pub fn step(&mut self) {
+        let n = self.robots.len();
+        for id in 0..n {
+            self.update_intent(id);
+            self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
+        }
+        if self.collision.enabled {
+            self.resolver.resolve(&self.inputs, self.dt);
+        }
+        for id in 0..n {
+            let command = self.command(id);
+            self.scene.physics.bodies[self.nav[id].body].set_linvel(command, true);
+        }
+        if self.collision.enabled {
+            self.stats.deadlocks_detected += self.resolver.deadlocked_lists();
+            self.stats.max_list_len = self.stats.max_list_len.max(self.resolver.largest_list());
+        }
+        self.scene.step();
+        self.stats.steps += 1;
+        for id in 0..n {
+            self.read_back(id);
+        }
+    }
+
+    /// The velocity robot `id` commands this step: its intent, or with the resolver on, zero
+    /// when held or blocked and else its intent steered around robots standing still. Records
+    /// the robot's motion, list flags and resolver counters.
+    fn command(&mut self, id: usize) -> Vec2 {
+        let input = self.inputs[id];
+        let state = &mut self.robots[id];
+        let mut motion = if state.goal.is_none() {
+            Motion::Idle
+        } else if state.goal_reached {
+            Motion::Arrived
+        } else {
+            Motion::Moving
+        };
+        let command = if self.collision.enabled {
+            let d = self.resolver.decisions()[id];
+            state.in_collision_list = d.in_list;
+            state.held = d.held;
+            let c = &mut state.counters;
+            c.lists_joined += u64::from(d.joined);
+            c.deadlocks_detected += u64::from(d.deadlock_detected);
+            c.deadlocks_resolved += u64::from(d.deadlock_resolved);
+            if d.held {
+                c.steps_held += 1;
+                c.time_held_s = c.steps_held as f64 * self.dt;
+                motion = Motion::Held;
+                Vec2::ZERO
+            } else {
+                let infl = (input.layer == Locomotion::Ground)
+                    .then_some(input.radius + STEER_STATIC_GAP_M);
+                match self.resolver.steer(&self.inputs, id, &self.grid, infl) {
+                    Some(v) => v,
+                    None => {
+                        motion = Motion::Blocked;
+                        Vec2::ZERO
+                    }
+                }
+            }
+        } else {
+            input.intent
+        };
+        state.motion = motion;
+        command
+    }
+
+    /// Reads robot `id`'s body back after the physics step: position, velocity, whether it
+    /// moved (more than [`MOVED_TOLERANCE_M`]) and how far.
+    fn read_back(&mut self, id: usize) {
+        let nav = &mut self.nav[id];
+        let body = &self.scene.physics.bodies[nav.body];
+        let p = body.translation();
+        let v = body.linvel();
+        let disp = f64::from((p - nav.pos).length());
+        nav.pos = p;
+        let state = &mut self.robots[id];
+        state.position = to_point(p);
+        state.velocity = Vector2::new(f64::from(v.x), f64::from(v.y));
+        state.moved_this_step = disp > MOVED_TOLERANCE_M;
+        state.step_distance_m = if state.moved_this_step { disp } else { 0.0 };
+        state.distance_travelled_m += state.step_distance_m;
+    }
+}

@@ -1,0 +1,334 @@
+//! [`World`]: the physical world of one USAR trial and the API the mission layer drives
+//! (goals, speed, sensing and priority settings, teleports, read-only state and queries).
+//!
+//! The step itself is in `step.rs`, planning glue in `planning.rs`, path following in
+//! `path_following.rs`.
+
+use nalgebra::Vector2;
+use parry2d::math::Vector as Vec2;
+
+use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
+use super::error::{NavError, WorldError};
+use super::nav::Nav;
+use super::navigation::{ClearanceGrid, PathPlanner};
+use super::planning::PlanInto;
+use super::radiation::{self, DoseRule};
+use super::resolver::{Resolver, ResolverInput};
+use super::robot::RobotState;
+use crate::scenario::{CollisionParams, NavigationParams, PointM, RadiationZone, Scenario};
+use crate::scenario::{in_field, in_span};
+
+/// World-level totals.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WorldStats {
+    /// Steps taken.
+    pub steps: u64,
+    /// Deadlocks detected (one per list and rotation, not per member).
+    pub deadlocks_detected: u64,
+    /// Largest collision list seen (members).
+    pub max_list_len: usize,
+}
+
+/// The physical world of one USAR trial (paper, sections IV-VI): walls, debris, radiation zones
+/// and robots, stepped with Rapier 2D at `scenario.sim.dt_s`.
+///
+/// Robots start at rest at their start positions with no goal; ids are indices into
+/// `scenario.robots`. The mission layer sets goals, speed factors and priority keys, calls
+/// [`World::step`] and reads [`World::robots`].
+pub struct World {
+    pub(super) scene: PhysicsScene,
+    pub(super) grid: ClearanceGrid,
+    pub(super) planner: PathPlanner,
+    pub(super) resolver: Resolver,
+    pub(super) nav: Vec<Nav>,
+    pub(super) robots: Vec<RobotState>,
+    pub(super) inputs: Vec<ResolverInput>,
+    zones: Vec<RadiationZone>,
+    dose_rule: DoseRule,
+    /// Arena width and height at physics precision, metres.
+    pub(super) arena: (f32, f32),
+    pub(super) dt: f64,
+    pub(super) collision: CollisionParams,
+    pub(super) navigation: NavigationParams,
+    pub(super) stats: WorldStats,
+    /// Plans that may be discarded (goal checks, re-plans) are written here.
+    pub(super) scratch: Vec<Vec2>,
+}
+
+impl World {
+    /// Builds the world of a validated scenario: physics bodies, the clearance grid (cell
+    /// `navigation.grid_cell_m`) and an idle robot at each start position.
+    pub fn new(s: &Scenario) -> Self {
+        let scene = PhysicsScene::new(s);
+        let max_radius = s.kinds.iter().map(|k| k.body_radius_m).fold(0.0, f64::max);
+        let cap =
+            (max_radius + s.navigation.clearance_m + 2.0 * s.navigation.grid_cell_m + 1.0) as f32;
+        let grid = ClearanceGrid::build(&s.arena, &scene.statics, s.navigation.grid_cell_m, cap);
+        let mut nav = Vec::with_capacity(s.robots.len());
+        let mut robots = Vec::with_capacity(s.robots.len());
+        for (id, r) in s.robots.iter().enumerate() {
+            let kind = &s.kinds[r.kind];
+            let pos = to_vec2(&r.start_in_world);
+            nav.push(Nav::new(scene.robot_bodies[id], kind, pos));
+            robots.push(RobotState::idle(id, r.kind, kind, to_point(pos)));
+        }
+        let inputs = nav
+            .iter()
+            .zip(&robots)
+            .map(|(n, r)| n.resolver_input(r))
+            .collect();
+        Self {
+            scene,
+            grid,
+            planner: PathPlanner::new(),
+            resolver: Resolver::new(s.collision, nav.len()),
+            nav,
+            robots,
+            inputs,
+            zones: s.radiation_zones.clone(),
+            dose_rule: DoseRule {
+                overlap: s.mission.radiation_overlap,
+                falloff: s.mission.radiation_falloff,
+            },
+            arena: (s.arena.width_m as f32, s.arena.height_m as f32),
+            dt: s.sim.dt_s,
+            collision: s.collision,
+            navigation: s.navigation,
+            stats: WorldStats::default(),
+            scratch: Vec::with_capacity(64),
+        }
+    }
+
+    fn check_id(&self, id: usize) -> Result<(), WorldError> {
+        if id < self.robots.len() {
+            Ok(())
+        } else {
+            Err(WorldError::UnknownRobot(id))
+        }
+    }
+
+    /// Sets (or with `None` clears) robot `id`'s goal, world frame, metres.
+    ///
+    /// Ground robots plan a path at once (grid A* plus line-of-sight smoothing, cached by
+    /// (start cell, goal cell, inflation)); aerial robots fly straight. A goal inside the
+    /// inflated obstacles is moved to the nearest free cell centre within `inflation + 2 cells`
+    /// (see [`RobotState::goal`]). Resets `goal_reached`.
+    ///
+    /// # Errors
+    /// [`WorldError::UnknownRobot`]; [`WorldError::Unreachable`] when planning fails (goal
+    /// outside the arena, blocked, or no path): the robot's goal is then cleared (it stops).
+    pub fn set_goal(&mut self, id: usize, goal: Option<PointM>) -> Result<(), WorldError> {
+        self.check_id(id)?;
+        let result = match goal {
+            None => Ok(None),
+            Some(g) => self.plan(id, to_vec2(&g), PlanInto::Path).map(Some),
+        };
+        let nav = &mut self.nav[id];
+        let state = &mut self.robots[id];
+        state.goal_reached = false;
+        match result {
+            Ok(eff) => {
+                nav.requested = goal.map(|g| to_vec2(&g));
+                nav.goal = eff;
+                state.goal = eff.map(to_point);
+                Ok(())
+            }
+            Err(source) => {
+                nav.requested = None;
+                nav.goal = None;
+                nav.path.clear();
+                state.goal = None;
+                Err(WorldError::Unreachable { id, source })
+            }
+        }
+    }
+
+    /// Whether robot `id` could reach `goal` from where it stands now: `Ok(effective goal)` or
+    /// the planning error. Does not change the robot (fills the plan cache).
+    ///
+    /// # Errors
+    /// [`NavError`] as in [`World::set_goal`]; an unknown id is reported as
+    /// [`NavError::StartBlocked`].
+    pub fn check_goal(&mut self, id: usize, goal: PointM) -> Result<PointM, NavError> {
+        if id >= self.robots.len() {
+            return Err(NavError::StartBlocked);
+        }
+        self.plan(id, to_vec2(&goal), PlanInto::Scratch)
+            .map(to_point)
+    }
+
+    /// Whether [`World::check_goal`] succeeds.
+    pub fn is_goal_reachable(&mut self, id: usize, goal: PointM) -> bool {
+        self.check_goal(id, goal).is_ok()
+    }
+
+    fn check_factor(what: &'static str, value: f64) -> Result<(), WorldError> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(())
+        } else {
+            Err(WorldError::InvalidValue { what, value })
+        }
+    }
+
+    /// Sets the multiplier of robot `id`'s top speed (`kind.max_speed_m_per_s`), finite and
+    /// `>= 0`, default 1 (e.g. HP level times `mission.no_observer_speed_factor`; section VI.B).
+    ///
+    /// # Errors
+    /// Unknown id, or a NaN, infinite or negative factor.
+    pub fn set_speed_factor(&mut self, id: usize, factor: f64) -> Result<(), WorldError> {
+        self.check_id(id)?;
+        Self::check_factor("speed factor", factor)?;
+        self.robots[id].speed_factor = factor;
+        Ok(())
+    }
+
+    /// Sets the multiplier of robot `id`'s sensing range (`kind.sensing_range_m`), finite and
+    /// `>= 0`, default 1 (the paper lowers sensing with HP, section VI.B).
+    ///
+    /// # Errors
+    /// Unknown id, or a NaN, infinite or negative factor.
+    pub fn set_sensing_factor(&mut self, id: usize, factor: f64) -> Result<(), WorldError> {
+        self.check_id(id)?;
+        Self::check_factor("sensing factor", factor)?;
+        self.robots[id].sensing_factor = factor;
+        Ok(())
+    }
+
+    /// Sets robot `id`'s priority key for the collision resolver (lower goes first, ties by
+    /// id; default 0). Any non-NaN value (section V: the needs-based priority, e.g. energy).
+    ///
+    /// # Errors
+    /// Unknown id or NaN.
+    pub fn set_priority_key(&mut self, id: usize, key: f64) -> Result<(), WorldError> {
+        self.check_id(id)?;
+        if key.is_nan() {
+            return Err(WorldError::InvalidValue {
+                what: "priority key",
+                value: key,
+            });
+        }
+        self.robots[id].priority_key = key;
+        Ok(())
+    }
+
+    /// Moves robot `id` to `position` at rest and clears its goal (e.g. to park a robot at the
+    /// rest station). The caller keeps positions valid (inside the arena, free of obstacles).
+    ///
+    /// # Errors
+    /// Unknown id, or a position that is not finite or outside the arena.
+    pub fn teleport(&mut self, id: usize, position: PointM) -> Result<(), WorldError> {
+        self.check_id(id)?;
+        let p = to_vec2(&position);
+        let (w, h) = self.arena;
+        if !in_field(p.x, p.y, w, h) {
+            let (what, value) = if in_span(p.x, w) {
+                ("teleport y", position.y)
+            } else {
+                ("teleport x", position.x)
+            };
+            return Err(WorldError::InvalidValue { what, value });
+        }
+        self.set_goal(id, None)?;
+        let nav = &mut self.nav[id];
+        let body = &mut self.scene.physics.bodies[nav.body];
+        body.set_translation(p, true);
+        body.set_linvel(Vec2::ZERO, true);
+        nav.pos = p;
+        let state = &mut self.robots[id];
+        state.position = to_point(p);
+        state.velocity = Vector2::zeros();
+        Ok(())
+    }
+
+    /// Simulated time, seconds (`steps * dt`).
+    pub fn time_s(&self) -> f64 {
+        self.stats.steps as f64 * self.dt
+    }
+
+    /// The fixed step, seconds (`scenario.sim.dt_s`).
+    pub fn dt_s(&self) -> f64 {
+        self.dt
+    }
+
+    /// World-level totals.
+    pub fn stats(&self) -> &WorldStats {
+        &self.stats
+    }
+
+    /// State of robot `id`.
+    ///
+    /// # Panics
+    /// If `id` is not a robot id.
+    pub fn robot(&self, id: usize) -> &RobotState {
+        &self.robots[id]
+    }
+
+    /// All robots, indexed by id.
+    pub fn robots(&self) -> &[RobotState] {
+        &self.robots
+    }
+
+    /// Remaining waypoints of robot `id` (current one first, effective goal last); empty without
+    /// a goal.
+    ///
+    /// # Panics
+    /// If `id` is not a robot id.
+    pub fn waypoints(&self, id: usize) -> impl Iterator<Item = PointM> + '_ {
+        let nav = &self.nav[id];
+        let rest = if nav.goal.is_some() {
+            &nav.path[nav.wp.min(nav.path.len())..]
+        } else {
+            &[]
+        };
+        rest.iter().map(|&v| to_point(v))
+    }
+
+    /// The radiation dose factor at `p` under the scenario's dose rule
+    /// (`mission.radiation_overlap`, `mission.radiation_falloff`; see
+    /// [`radiation::radiation_factor_at`]): 0 outside all zones, dimensionless.
+    pub fn radiation_factor_at(&self, p: &PointM) -> f64 {
+        radiation::radiation_factor_at(&self.zones, p, self.dose_rule)
+    }
+
+    /// [`World::radiation_factor_at`] robot `id`'s position.
+    ///
+    /// # Panics
+    /// If `id` is not a robot id.
+    pub fn radiation_factor(&self, id: usize) -> f64 {
+        self.radiation_factor_at(&self.robots[id].position)
+    }
+
+    /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);
+    /// parry2d point queries, not the grid.
+    pub fn static_distance_at(&self, p: &PointM) -> f64 {
+        nearest(&self.scene.statics, to_vec2(p), true)
+    }
+
+    /// Largest penetration at the current state, metres, `>= 0`: over same-layer robot pairs
+    /// `r_i + r_j - distance`, over ground robots and walls/debris `r - distance`, over aerial
+    /// robots and walls `r - distance`. For safety checks (not used by stepping).
+    pub fn max_penetration_m(&self) -> f64 {
+        let mut worst = 0.0f64;
+        for (i, a) in self.nav.iter().enumerate() {
+            let ground = a.layer == crate::scenario::Locomotion::Ground;
+            let d = nearest(&self.scene.statics, a.pos, ground);
+            worst = worst.max(f64::from(a.radius) - d);
+            for b in &self.nav[i + 1..] {
+                if a.layer == b.layer {
+                    let d = (b.pos - a.pos).length();
+                    worst = worst.max(f64::from(a.radius + b.radius - d));
+                }
+            }
+        }
+        worst
+    }
+}
+
+/// Distance from `p` to the nearest static obstacle (walls and, if `with_debris`, debris).
+fn nearest(statics: &[StaticObstacle], p: Vec2, with_debris: bool) -> f64 {
+    statics
+        .iter()
+        .filter(|o| with_debris || o.is_wall)
+        .map(|o| f64::from(o.distance_to_point(p)))
+        .fold(f64::INFINITY, f64::min)
+}
