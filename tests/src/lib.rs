@@ -24,18 +24,18 @@ pub fn paper() -> Scenario {
 /// # Panics
 /// On an unknown name.
 pub fn method(name: &str, s: &Scenario) -> Box<dyn GroupingMethod> {
-    let model = TrustModel::with_weights(Weights::new(s.needs_weights.to_vec()).expect("weights"));
+    let model = TrustModel::with_weights(
+        Weights::new(s.needs_weights.to_array().to_vec()).expect("weights"),
+    );
     method_from_name(name, &model).expect("built-in method")
 }
 
 /// A "distribution" that always draws `level_pct` (no spread), for fixed starting levels.
+///
+/// # Panics
+/// If `level_pct` is not in `[0, 100]`.
 pub fn fixed(level_pct: f64) -> ClampedNormal {
-    ClampedNormal {
-        mean_pct: level_pct,
-        std_dev_pct: 0.0,
-        min_pct: 0.0,
-        max_pct: 100.0,
-    }
+    ClampedNormal::fixed(level_pct).expect("a level in [0, 100]")
 }
 
 /// `(method, trial, hard rescuees, easy rescuees)` of whole trials 0 and 1 of `s` for each
@@ -51,7 +51,8 @@ pub fn golden_counts(s: &Scenario) -> Vec<(&'static str, u32, u32, u32)> {
             let r = Simulation::for_trial(s, method(name, s), trial)
                 .run_to_end()
                 .expect("built-in methods do not fail");
-            out.push((name, trial, r.rescued.hard, r.rescued.easy));
+            let task = |n: &str| r.task_id(n).map_or(0, |t| r.rescued[t]);
+            out.push((name, trial, task("hard"), task("easy")));
         }
     }
     out

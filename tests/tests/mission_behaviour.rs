@@ -2,7 +2,7 @@
 
 use integration_tests::{fixed, method, paper};
 use usar_sim::mission::{Phase, Simulation, hp_factor};
-use usar_sim::scenario::{Circle, Locomotion, RadiationZone, Role, Scenario, TaskLevel};
+use usar_sim::scenario::{Circle, Locomotion, RadiationZone, Role, Scenario};
 
 /// Highest speed robot `id` reaches during the first `seconds` of the trial, m/s.
 fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
@@ -22,28 +22,24 @@ fn a_group_without_an_observer_is_30_percent_slower() {
         .iter()
         .position(|k| k.role == Role::Observer)
         .unwrap();
-    s.kinds[observer].quota = [0, 2]; // the easy group gets no observer
+    let easy = s.task_id("easy").unwrap();
+    s.kinds[observer].quota[easy] = 0; // the easy group gets no observer
+    s.kinds[observer].quota[1 - easy] = 2;
     s.mission.initial_hp = fixed(100.0);
     s.mission.initial_energy = fixed(100.0);
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
     sim.step().unwrap();
     let round = &sim.rounds()[0];
     assert!(
-        round
-            .groups
-            .easy
+        round.groups[s.task_id("easy").unwrap()]
             .iter()
             .all(|&id| s.kind_of(id).role != Role::Observer)
     );
-    let easy_carrier = *round
-        .groups
-        .easy
+    let easy_carrier = *round.groups[s.task_id("easy").unwrap()]
         .iter()
         .find(|&&id| s.kind_of(id).role == Role::Carrier)
         .unwrap();
-    let hard_carrier = *round
-        .groups
-        .hard
+    let hard_carrier = *round.groups[s.task_id("hard").unwrap()]
         .iter()
         .find(|&&id| s.kind_of(id).role == Role::Carrier)
         .unwrap();
@@ -76,7 +72,7 @@ fn lower_hp_means_lower_speed() {
     let (low, _) = run(60.0);
     assert!((full - v_max).abs() < 0.02 * v_max, "{full}");
     assert!(
-        (low - hp_factor(60.0, paper().mission.min_hp_factor) * v_max).abs() < 0.02 * v_max,
+        (low - hp_factor(60.0, paper().mission.min_hp_factor.get()) * v_max).abs() < 0.02 * v_max,
         "{low}"
     );
     assert!(low < full);
@@ -101,7 +97,9 @@ fn low_energy_scenario() -> Scenario {
 #[test]
 fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
     let s = low_energy_scenario();
-    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(200.0);
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(200.0)
+        .unwrap();
     let id = 0;
     let mut phases: Vec<Phase> = Vec::new();
     let mut recharge_steps = 0u32;
@@ -145,9 +143,9 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
         "energy after recharging {}",
         r.energy_pct
     );
-    let recharge_s = f64::from(recharge_steps) * s.sim.dt_s;
+    let recharge_s = f64::from(recharge_steps) * s.sim.dt_s.get();
     assert!(
-        (recharge_s - s.mission.recharge_s).abs() <= 2.0 * s.sim.dt_s,
+        (recharge_s - s.mission.recharge_s.get()).abs() <= 2.0 * s.sim.dt_s.get(),
         "{recharge_s}"
     );
 }
@@ -155,7 +153,9 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
 #[test]
 fn a_robot_standing_in_radiation_loses_hp_at_the_stated_rate() {
     let s = low_energy_scenario();
-    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(120.0);
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(120.0)
+        .unwrap();
     let mut checked = 0;
     while !sim.is_finished() {
         let before: Vec<(f64, Phase)> = sim.robots().iter().map(|r| (r.hp_pct, r.phase)).collect();
@@ -168,7 +168,7 @@ fn a_robot_standing_in_radiation_loses_hp_at_the_stated_rate() {
                 let factor = sim.world().radiation_factor(r.id);
                 assert!(factor >= 2.0, "robot {} recharges outside the zone", r.id);
                 let lost = hp0 - r.hp_pct;
-                let expected = s.mission.hp_pct_per_step_in_radiation * factor;
+                let expected = s.mission.hp_pct_per_step_in_radiation.get() * factor;
                 assert!(
                     (lost - expected).abs() < 1e-12,
                     "lost {lost}, expected {expected}"
@@ -203,8 +203,8 @@ fn regrouping_happens_every_round_with_the_current_state() {
                         .map(|&id| energy[id])
                         .collect()
                 };
-                let hard = of_kind(round.groups.get(TaskLevel::Hard));
-                let easy = of_kind(round.groups.get(TaskLevel::Easy));
+                let hard = of_kind(&round.groups[s.task_id("hard").unwrap()]);
+                let easy = of_kind(&round.groups[s.task_id("easy").unwrap()]);
                 let weakest_hard = hard.iter().copied().fold(f64::INFINITY, f64::min);
                 let strongest_easy = easy.iter().copied().fold(f64::NEG_INFINITY, f64::max);
                 assert!(
@@ -244,7 +244,9 @@ fn a_trial_run_twice_gives_identical_results() {
 fn ground_robots_never_enter_debris_during_a_trial() {
     // Aerial robots crossing debris is covered by usar-sim's world_debris test.
     let s = paper();
-    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(300.0);
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(300.0)
+        .unwrap();
     while !sim.is_finished() {
         sim.step().unwrap();
         for w in sim.world().robots() {
@@ -278,7 +280,8 @@ fn the_needs_vector_follows_the_robot_state() {
     assert!((v[entry::ENG] - kind.energy_needs_full * r.energy_pct / 100.0).abs() < 1e-12);
     assert!((v[entry::HP] - kind.hp_needs_full * r.hp_pct / 100.0).abs() < 1e-12);
     assert!(
-        (v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct, s.mission.min_hp_factor)).abs()
+        (v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct, s.mission.min_hp_factor.get()))
+            .abs()
             < 1e-12
     );
     assert_eq!(v[entry::CAP], f64::from(r.capacity_free));

@@ -3,7 +3,6 @@
 
 use integration_tests::{method, paper};
 use usar_sim::mission::{Phase, RescueeStatus, Simulation};
-use usar_sim::scenario::TaskLevel;
 
 const EPS: f64 = 1e-9;
 
@@ -48,8 +47,9 @@ fn check_method(name: &str) {
                     r.id
                 );
                 let m = &s.mission;
-                let expected =
-                    (m.energy_pct_per_moving_step + m.energy_pct_per_m * w.step_distance_m).min(e0);
+                let expected = (m.energy_pct_per_moving_step.get()
+                    + m.energy_pct_per_m.get() * w.step_distance_m)
+                    .min(e0);
                 assert!(
                     (e0 - r.energy_pct - expected).abs() < 1e-9,
                     "{name}: energy rate"
@@ -76,7 +76,7 @@ fn check_method(name: &str) {
                     "{name}: robot {} lost HP outside radiation",
                     r.id
                 );
-                let expected = (s.mission.hp_pct_per_step_in_radiation * factor).min(h0);
+                let expected = (s.mission.hp_pct_per_step_in_radiation.get() * factor).min(h0);
                 assert!((h0 - r.hp_pct - expected).abs() < 1e-9, "{name}: HP rate");
             }
             if r.hp_pct > h0 + EPS {
@@ -97,14 +97,14 @@ fn check_method(name: &str) {
                 .rev()
                 .find(|r| r.completed)
                 .expect("completed");
-            for level in TaskLevel::ALL {
-                for &id in closed.groups.get(level) {
+            for group in &closed.groups {
+                for &id in group {
                     let r = &sim.robots()[id];
                     let gap = (world.robot(id).position - s.robots[id].start_in_world).norm();
                     assert!(
                         r.is_resting()
                             || (r.phase == Phase::AtStart
-                                && gap <= s.navigation.waypoint_tolerance_m + 1e-6),
+                                && gap <= s.navigation.waypoint_tolerance_m.get() + 1e-6),
                         "{name}: a round closed with robot {id} away ({:?}, {gap} m)",
                         r.phase
                     );
@@ -119,8 +119,8 @@ fn check_method(name: &str) {
     }
     let result = sim.result();
     // Every delivered rescuee was picked up exactly once; nobody was picked up twice.
-    for level in TaskLevel::ALL {
-        let field = sim.rescuees(level);
+    for (t, task) in s.tasks.iter().enumerate() {
+        let field = sim.rescuees(t);
         let mut delivered = 0;
         for i in 0..field.len() {
             assert!(field.pickups(i) <= 1, "{name}: rescuee {i} picked up twice");
@@ -130,9 +130,9 @@ fn check_method(name: &str) {
             }
         }
         assert_eq!(
-            delivered,
-            *result.rescued.get(level),
-            "{name}: {level:?} count"
+            delivered, result.rescued[t],
+            "{name}: task {} count",
+            task.name
         );
     }
     let delivered: u32 = result.robots.iter().map(|m| m.delivered).sum();
@@ -140,7 +140,7 @@ fn check_method(name: &str) {
     let per_round: u32 = result
         .rounds
         .iter()
-        .map(|r| r.rescued.easy + r.rescued.hard)
+        .map(|r| r.rescued.iter().sum::<u32>())
         .sum();
     assert_eq!(per_round, result.rescued_total());
     assert!(

@@ -7,15 +7,17 @@ use usar_sim::mission::{
 };
 use usar_sim::scenario::{
     Circle, LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZone, Refresh, Role,
-    RoundStart, Scenario, TaskLevel,
+    RoundStart, Scenario,
 };
 
 #[test]
 fn energy_is_charged_per_moving_step_plus_per_metre() {
     let mut s = paper();
-    s.mission.energy_pct_per_moving_step = 0.001;
-    s.mission.energy_pct_per_m = 0.2;
-    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(60.0);
+    s.mission.energy_pct_per_moving_step = 0.001.try_into().unwrap();
+    s.mission.energy_pct_per_m = 0.2.try_into().unwrap();
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
+        .with_duration_s(60.0)
+        .unwrap();
     let mut charged = 0;
     while !sim.is_finished() {
         let before: Vec<f64> = sim.robots().iter().map(|r| r.energy_pct).collect();
@@ -48,7 +50,7 @@ fn resting_in_two_zones(overlap: RadiationOverlap, falloff: RadiationFalloff) ->
     s.mission.radiation_overlap = overlap;
     s.mission.radiation_falloff = falloff;
     // Low enough that nobody reaches 0 % HP (the loss is then clamped) within the test.
-    s.mission.hp_pct_per_step_in_radiation = 0.001;
+    s.mission.hp_pct_per_step_in_radiation = 0.001.try_into().unwrap();
     let c = s.rest_station.center;
     for (dx, factor) in [(0.0, 2.0), (1.0, 1.0)] {
         s.radiation_zones.push(RadiationZone {
@@ -69,7 +71,9 @@ fn overlapping_zones_sum_or_take_the_strongest_and_linear_dose_falls_off() {
     for (overlap, falloff) in [(Sum, Uniform), (Max, Uniform), (Sum, Linear), (Max, Linear)] {
         let s = resting_in_two_zones(overlap, falloff);
         let zones = &s.radiation_zones[s.radiation_zones.len() - 2..];
-        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(90.0);
+        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+            .with_duration_s(90.0)
+            .unwrap();
         let mut checked = 0;
         while !sim.is_finished() {
             let before: Vec<(f64, Phase)> =
@@ -96,7 +100,7 @@ fn overlapping_zones_sum_or_take_the_strongest_and_linear_dose_falls_off() {
                     Max => doses.fold(0.0, f64::max),
                 };
                 let lost = hp0 - r.hp_pct;
-                let expected = s.mission.hp_pct_per_step_in_radiation * dose;
+                let expected = s.mission.hp_pct_per_step_in_radiation.get() * dose;
                 assert!(
                     (lost - expected).abs() < 1e-9,
                     "{overlap:?}/{falloff:?}: lost {lost}, expected {expected}"
@@ -115,7 +119,7 @@ fn group_sizes(s: &Scenario) -> Vec<usize> {
         .unwrap();
     r.rounds
         .iter()
-        .map(|x| x.groups.easy.len() + x.groups.hard.len())
+        .map(|x| x.groups.iter().map(Vec::len).sum())
         .collect()
 }
 
@@ -141,7 +145,7 @@ fn all_back_rounds_group_the_whole_team_and_available_rounds_do_not() {
 struct LeaveWithLoad {
     id: usize,
     load: Vec<usize>,
-    task: TaskLevel,
+    task: usize,
     at_s: f64,
 }
 
@@ -157,7 +161,9 @@ fn leave_with_load(
     s.mission.initial_hp = fixed(100.0);
     s.mission.load_on_leave = rule;
     s.mission.search_time_budget_s = None;
-    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(200.0);
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
+        .with_duration_s(200.0)
+        .unwrap();
     let mut leaves = Vec::new();
     while !sim.is_finished() {
         let before: Vec<_> = sim
@@ -243,22 +249,26 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
     let budget = s
         .mission
         .search_time_budget_s
-        .expect("paper.ron has a budget");
-    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(300.0);
-    let mut first_in: [Option<f64>; 2] = [None; 2];
-    let mut ended = [false; 2];
+        .expect("paper.ron has a budget")
+        .get();
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(300.0)
+        .unwrap();
+    let k = s.tasks.len();
+    let mut first_in: Vec<Option<f64>> = vec![None; k];
+    let mut ended = vec![false; k];
     let mut rounds = 0;
     let mut cut_short = 0;
     while !sim.is_finished() {
         sim.step().unwrap();
         if sim.rounds().len() != rounds {
             rounds = sim.rounds().len();
-            first_in = [None; 2];
-            ended = [false; 2];
+            first_in = vec![None; k];
+            ended = vec![false; k];
         }
         let now = sim.time_s();
-        for level in TaskLevel::ALL {
-            let area = s.task(level).search_area;
+        for level in 0..s.tasks.len() {
+            let area = s.tasks[level].search_area;
             let s = &s;
             let sim = &sim;
             let members = move || {
@@ -266,28 +276,28 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
                     r.task == Some(level) && s.kind_of(r.id).role != Role::Observer
                 })
             };
-            if first_in[level.index()].is_none()
+            if first_in[level].is_none()
                 && members().any(|r| area.contains(&sim.world().robot(r.id).position))
             {
-                first_in[level.index()] = Some(now);
+                first_in[level] = Some(now);
             }
-            let Some(t0) = first_in[level.index()] else {
+            let Some(t0) = first_in[level] else {
                 continue;
             };
             let searching = members().any(|r| r.is_on_task());
-            if now > t0 + budget + 2.0 * s.sim.dt_s {
+            if now > t0 + budget + 2.0 * s.sim.dt_s.get() {
                 assert!(
                     !searching,
-                    "{level:?} group still searching at {now} s (in at {t0} s)"
+                    "task {level} group still searching at {now} s (in at {t0} s)"
                 );
             }
             // The budget, not capacity or resources, ended this trip: the group turned for
             // its drop-off just as the budget ran out, with room left.
             let turned = members().any(|r| r.phase == Phase::ToDropOff);
-            if !ended[level.index()] && turned {
-                ended[level.index()] = true;
+            if !ended[level] && turned {
+                ended[level] = true;
                 let free: u32 = members().map(|r| r.capacity_free).sum();
-                if now >= t0 + budget && now <= t0 + budget + 2.0 * s.sim.dt_s && free > 0 {
+                if now >= t0 + budget && now <= t0 + budget + 2.0 * s.sim.dt_s.get() && free > 0 {
                     cut_short += 1;
                 }
             }
@@ -303,7 +313,9 @@ fn low_only_refresh_restores_only_the_level_below_its_threshold() {
         s.mission.initial_energy = fixed(30.05);
         s.mission.initial_hp = fixed(60.0);
         s.mission.refresh = refresh;
-        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0).with_duration_s(120.0);
+        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+            .with_duration_s(120.0)
+            .unwrap();
         let id = 0;
         while sim.result().robots[id].recharges == 0 && !sim.is_finished() {
             sim.step().unwrap();
@@ -352,7 +364,7 @@ fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
     assert!((sweep_spacing_m(&s) - 0.9).abs() < 1e-12);
     assert_eq!(swept_fraction(&s), 1.0);
     let v0 = usar_sim::scenario::load(integration_tests::scenario_path("paper-v0.ron")).unwrap();
-    assert_eq!(v0.mission.sweep_spacing_m, Some(2.0));
+    assert_eq!(v0.mission.sweep_spacing_m.map(|x| x.get()), Some(2.0));
     let f = swept_fraction(&v0);
     assert!(f < 0.2, "2 m rows pass {f} of the rescuees");
 }
@@ -363,7 +375,7 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
         let mut s = paper();
         s.mission.initial_hp = fixed(5.0);
         s.mission.initial_energy = fixed(100.0);
-        s.mission.min_hp_factor = min_factor;
+        s.mission.min_hp_factor = min_factor.try_into().unwrap();
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
         let mut top: f64 = 0.0;
         while sim.time_s() < 8.0 {
@@ -390,9 +402,11 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
 #[test]
 fn a_rescue_takes_pickup_s_standing_still() {
     let s = paper();
-    let pickup_s = s.mission.pickup_s;
+    let pickup_s = s.mission.pickup_s.get();
     assert!(pickup_s > 0.0);
-    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0).with_duration_s(120.0);
+    let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
+        .with_duration_s(120.0)
+        .unwrap();
     let n = s.robots.len();
     let mut since: Vec<Option<f64>> = vec![None; n];
     let mut rescues = 0;
@@ -421,7 +435,7 @@ fn a_rescue_takes_pickup_s_standing_still() {
                 let start = since[r.id].take().expect("a rescue starts before it ends");
                 let took = now - start;
                 assert!(
-                    (took - pickup_s).abs() <= s.sim.dt_s + 1e-9,
+                    (took - pickup_s).abs() <= s.sim.dt_s.get() + 1e-9,
                     "robot {}: rescue took {took} s",
                     r.id
                 );

@@ -68,17 +68,26 @@ fn main() -> Result<()> {
         outcome.wall_s,
         cfg.out_dir.display()
     );
-    println!("method        rescued: hard    easy   total (means over trials)");
+    // Mean rescuees per task (in the scenario's task order) and in total, over trials.
+    let tasks = cfg.scenario.task_names();
+    let header: Vec<String> = tasks.iter().map(|t| format!("{t:>8}")).collect();
+    println!(
+        "method       {} {:>8}  (mean rescuees over trials)",
+        header.join(" "),
+        "total"
+    );
     for method in &outcome.header.methods {
         let runs: Vec<&TrialResult> = results.iter().filter(|r| &r.method == method).collect();
-        let mean = |f: fn(&TrialResult) -> u32| {
+        let mean = |f: &dyn Fn(&TrialResult) -> u32| {
             runs.iter().map(|r| f64::from(f(r))).sum::<f64>() / runs.len().max(1) as f64
         };
+        let per_task: Vec<String> = (0..tasks.len())
+            .map(|t| format!("{:>8.1}", mean(&|r| r.rescued[t])))
+            .collect();
         println!(
-            "{method:<12} {:>15.1} {:>7.1} {:>7.1}",
-            mean(|r| r.rescued.hard),
-            mean(|r| r.rescued.easy),
-            mean(TrialResult::rescued_total)
+            "{method:<12} {} {:>8.1}",
+            per_task.join(" "),
+            mean(&TrialResult::rescued_total)
         );
     }
     Ok(())

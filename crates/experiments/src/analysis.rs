@@ -8,7 +8,7 @@ use usar_sim::mission::TrialResult;
 
 use crate::calibration::{self, Target};
 use crate::claims::{CLAIMS, ClaimCheck, check_claim};
-use crate::metrics::{METRICS, rows_of, values};
+use crate::metrics::{Metric, values_of};
 use crate::stats::Summary;
 use crate::sweep::SweepOutcome;
 
@@ -26,7 +26,11 @@ impl Analysis {
             cells: outcome
                 .cells
                 .iter()
-                .map(|c| CellAnalysis::of(&c.results, &outcome.header.methods))
+                .zip(&outcome.header.grid.cells)
+                .map(|(c, h)| {
+                    CellAnalysis::of(&c.results, &outcome.header.methods, &h.tasks)
+                        .with_difficulty(h.hardest_first.clone())
+                })
                 .collect(),
         }
     }
@@ -35,6 +39,12 @@ impl Analysis {
 /// The analysis of one cell's results.
 #[derive(Debug, Clone)]
 pub struct CellAnalysis {
+    /// The cell's task names, by task id.
+    pub tasks: Vec<String>,
+    /// Task ids from the hardest to the easiest (the scenario's difficulty order).
+    pub hardest_first: Vec<usize>,
+    /// Every metric of a trial ([`Metric::all`]), in `trials.csv` column order.
+    pub metrics: Vec<Metric>,
     /// Per method, in sweep order.
     pub methods: Vec<MethodStats>,
     /// The paper's claims ([`CLAIMS`]) checked, in that order.
@@ -53,7 +63,8 @@ pub struct MethodStats {
     pub method: String,
     /// Successful trials.
     pub trials: usize,
-    /// Summary of each metric, in [`METRICS`] order (a metric undefined for a trial, such as
+    /// Summary of each metric, in [`CellAnalysis::metrics`] order (a metric undefined for a
+    /// trial, such as
     /// a cost per rescuee without rescuees, leaves that trial out).
     pub metrics: Vec<Summary>,
 }
@@ -78,25 +89,23 @@ pub struct RoundStats {
 
 impl CellAnalysis {
     /// Analyses `results` (the successful trials of one cell) for `methods` (upper case, in
-    /// sweep order).
-    pub fn of(results: &[TrialResult], methods: &[String]) -> Self {
+    /// sweep order) and the cell's `tasks`.
+    pub fn of(results: &[TrialResult], methods: &[String], tasks: &[String]) -> Self {
+        let metrics = Metric::all(tasks.len());
         let stats = methods
             .iter()
-            .map(|m| {
-                let rows = rows_of(results, m);
-                MethodStats {
-                    method: m.clone(),
-                    trials: rows.len(),
-                    metrics: METRICS
-                        .iter()
-                        .map(|metric| Summary::of(&values(&rows, *metric)))
-                        .collect(),
-                }
+            .map(|m| MethodStats {
+                method: m.clone(),
+                trials: results.iter().filter(|r| &r.method == m).count(),
+                metrics: metrics
+                    .iter()
+                    .map(|metric| Summary::of(&values_of(results, m, *metric)))
+                    .collect(),
             })
             .collect();
         let claims = CLAIMS
             .iter()
-            .map(|c| check_claim(*c, results, methods))
+            .map(|c| check_claim(*c, results, methods, tasks))
             .collect();
         let all = std::iter::once("all").chain(methods.iter().map(String::as_str));
         let rounds = all
@@ -109,6 +118,9 @@ impl CellAnalysis {
             })
             .collect();
         Self {
+            tasks: tasks.to_vec(),
+            hardest_first: (0..tasks.len()).collect(),
+            metrics,
             methods: stats,
             claims,
             rounds,
@@ -116,16 +128,20 @@ impl CellAnalysis {
         }
     }
 
-    /// The summary of metric `name` for the method at index `method`.
+    /// The same analysis with the tasks' difficulty order `hardest_first` (task ids, hardest
+    /// first; default: the tasks' order).
+    pub fn with_difficulty(mut self, hardest_first: Vec<usize>) -> Self {
+        self.hardest_first = hardest_first;
+        self
+    }
+
+    /// The summary of `metric` for the method at index `method`, if the cell has that metric.
     ///
     /// # Panics
-    /// If `method` is out of range or no metric has that name (programming errors).
-    pub fn summary(&self, method: usize, name: &str) -> Summary {
-        let i = METRICS
-            .iter()
-            .position(|m| m.name == name)
-            .unwrap_or_else(|| panic!("unknown metric {name}"));
-        self.methods[method].metrics[i]
+    /// If `method` is out of range (a programming error).
+    pub fn summary(&self, method: usize, metric: Metric) -> Option<Summary> {
+        let i = self.metrics.iter().position(|m| *m == metric)?;
+        Some(self.methods[method].metrics[i])
     }
 }
 

@@ -4,7 +4,8 @@
 //! methods x 10 trials x 600 s, pooled the same way). See `docs/calibration.md`.
 //!
 //! Every statistic is a ratio of means over the pooled trials (not a mean of per-trial
-//! ratios), as the targets were computed from the sheet.
+//! ratios), as the targets were computed from the sheet. They compare the tasks named `easy`
+//! and `hard`; for other scenarios they are undefined (NaN).
 
 use usar_sim::mission::TrialResult;
 
@@ -122,28 +123,41 @@ struct Means {
 }
 
 impl Means {
-    fn of(results: &[TrialResult]) -> Self {
+    /// The means over `results`, or `None` unless every result has tasks named `easy` and
+    /// `hard`.
+    fn of(results: &[TrialResult]) -> Option<Self> {
+        let ids: Vec<(usize, usize)> = results
+            .iter()
+            .map(|r| Some((r.task_id("easy")?, r.task_id("hard")?)))
+            .collect::<Option<_>>()?;
         let n = results.len() as f64;
-        let mean = |f: &dyn Fn(&TrialResult) -> f64| results.iter().map(f).sum::<f64>() / n;
-        Self {
-            rounds: mean(&|r| r.rounds.len() as f64),
-            easy: mean(&|r| f64::from(r.rescued.easy)),
-            hard: mean(&|r| f64::from(r.rescued.hard)),
-            energy_easy: mean(&|r| r.energy_spent_pct.easy),
-            energy_hard: mean(&|r| r.energy_spent_pct.hard),
-            hp_easy: mean(&|r| r.hp_lost_pct.easy),
-            hp_hard: mean(&|r| r.hp_lost_pct.hard),
-        }
+        let mean = |f: &dyn Fn(&TrialResult, usize, usize) -> f64| {
+            results
+                .iter()
+                .zip(&ids)
+                .map(|(r, &(e, h))| f(r, e, h))
+                .sum::<f64>()
+                / n
+        };
+        Some(Self {
+            rounds: mean(&|r, _, _| r.rounds.len() as f64),
+            easy: mean(&|r, e, _| f64::from(r.rescued[e])),
+            hard: mean(&|r, _, h| f64::from(r.rescued[h])),
+            energy_easy: mean(&|r, e, _| r.energy_spent_pct[e]),
+            energy_hard: mean(&|r, _, h| r.energy_spent_pct[h]),
+            hp_easy: mean(&|r, e, _| r.hp_lost_pct[e]),
+            hp_hard: mean(&|r, _, h| r.hp_lost_pct[h]),
+        })
     }
 }
 
 /// `statistic` pooled over `results` (every trial weighs the same, whatever its method). NaN
-/// for no results; a ratio with a zero denominator is infinite or NaN, as IEEE division gives.
+/// for no results or results without tasks named `easy` and `hard`; a ratio with a zero
+/// denominator is infinite or NaN, as IEEE division gives.
 pub fn pooled(statistic: Statistic, results: &[TrialResult]) -> f64 {
-    if results.is_empty() {
+    let Some(m) = Means::of(results).filter(|_| !results.is_empty()) else {
         return f64::NAN;
-    }
-    let m = Means::of(results);
+    };
     match statistic {
         Statistic::RoundsPerTrial => m.rounds,
         Statistic::EasyOverHardRescuees => m.easy / m.hard,
@@ -168,31 +182,26 @@ pub fn check(results: &[TrialResult]) -> Vec<(Target, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use usar_sim::mission::PerTask;
 
     fn trial(rounds: usize, easy: u32, hard: u32, e: (f64, f64), hp: (f64, f64)) -> TrialResult {
+        // Tasks listed hard first, as in paper.ron.
         TrialResult {
             scenario: "t".into(),
             method: "M".into(),
             trial: 0,
             seed: 0,
             duration_s: 600.0,
-            rescued: PerTask { easy, hard },
-            energy_spent_pct: PerTask {
-                easy: e.0,
-                hard: e.1,
-            },
-            hp_lost_pct: PerTask {
-                easy: hp.0,
-                hard: hp.1,
-            },
+            tasks: vec!["hard".into(), "easy".into()],
+            rescued: vec![hard, easy],
+            energy_spent_pct: vec![e.1, e.0],
+            hp_lost_pct: vec![hp.1, hp.0],
             rounds: vec![
                 usar_sim::mission::RoundRecord {
                     start_s: 0.0,
                     end_s: 1.0,
                     completed: true,
-                    groups: PerTask::default(),
-                    rescued: PerTask::default(),
+                    groups: vec![vec![], vec![]],
+                    rescued: vec![0, 0],
                 };
                 rounds
             ],
@@ -217,6 +226,9 @@ mod tests {
         assert!(close(Statistic::HardOverEasyEnergy, 450.0 / 350.0));
         assert!(close(Statistic::HardOverEasyHp, 250.0 / 30.0));
         assert!(pooled(Statistic::TotalRescuees, &[]).is_nan());
+        let mut other = r[0].clone();
+        other.tasks = vec!["a".into(), "b".into()];
+        assert!(pooled(Statistic::TotalRescuees, &[other]).is_nan());
         assert!(TARGETS[0].holds(6.8) && !TARGETS[0].holds(6.81));
     }
 }

@@ -1,10 +1,12 @@
 //! The paper's claims (section VI, Fig. 3) and how a sweep's results are judged against them:
 //! each claim says one method has the best mean of a metric; it is checked with one-sided
-//! Welch t-tests against every other method (plus Mann-Whitney U as a check).
+//! Welch t-tests against every other method (plus Mann-Whitney U as a check). The claims name
+//! the paper's tasks, `easy` and `hard`: a scenario without a task of that name skips the
+//! claims about it ([`Verdict::NotApplicable`]).
 
 use usar_sim::mission::TrialResult;
 
-use crate::metrics::{metric, rows_of, values};
+use crate::metrics::{Metric, Quantity, Scope, values_of};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
 
 /// Significance level of the claim checks (one-sided).
@@ -19,7 +21,8 @@ pub enum Direction {
     Lowest,
 }
 
-/// One claim of the paper: `subject` has the highest (or lowest) mean `metric` of all methods.
+/// One claim of the paper: `subject` has the highest (or lowest) mean of `quantity` in `task`
+/// (a task name, or `None` for all tasks together) of all methods.
 #[derive(Debug, Clone, Copy)]
 pub struct Claim {
     /// Short id, e.g. `1` or `4a`.
@@ -28,10 +31,23 @@ pub struct Claim {
     pub text: &'static str,
     /// Method the claim is about, upper case.
     pub subject: &'static str,
-    /// Metric name (see [`crate::metrics::METRICS`]).
-    pub metric: &'static str,
+    /// The quantity compared.
+    pub quantity: Quantity,
+    /// The task it is about, by name (`None`: all tasks together).
+    pub task: Option<&'static str>,
     /// Highest or lowest.
     pub direction: Direction,
+}
+
+impl Claim {
+    /// The claim's metric for tasks `tasks`, or `None` if it names a task they lack.
+    pub fn metric(&self, tasks: &[String]) -> Option<Metric> {
+        let scope = match self.task {
+            None => Scope::Total,
+            Some(name) => Scope::Task(tasks.iter().position(|t| t == name)?),
+        };
+        Some(Metric::new(self.quantity, scope))
+    }
 }
 
 /// The paper's claims from section VI (Fig. 3).
@@ -40,35 +56,40 @@ pub const CLAIMS: [Claim; 5] = [
         id: "1",
         text: "RNE rescues the most in total",
         subject: "RNE",
-        metric: "rescued_total",
+        quantity: Quantity::Rescued,
+        task: None,
         direction: Direction::Highest,
     },
     Claim {
         id: "2",
         text: "RNE rescues more in the hard task than every baseline",
         subject: "RNE",
-        metric: "rescued_hard",
+        quantity: Quantity::Rescued,
+        task: Some("hard"),
         direction: Direction::Highest,
     },
     Claim {
         id: "3",
         text: "DIS rescues the most in the easy task",
         subject: "DIS",
-        metric: "rescued_easy",
+        quantity: Quantity::Rescued,
+        task: Some("easy"),
         direction: Direction::Highest,
     },
     Claim {
         id: "4a",
         text: "RNE has the lowest energy cost per rescuee in the hard task",
         subject: "RNE",
-        metric: "energy_per_hard_rescuee_pct",
+        quantity: Quantity::EnergyPerRescuee,
+        task: Some("hard"),
         direction: Direction::Lowest,
     },
     Claim {
         id: "4b",
         text: "RNE has the lowest HP cost per rescuee in the hard task",
         subject: "RNE",
-        metric: "hp_per_hard_rescuee_pct",
+        quantity: Quantity::HpPerRescuee,
+        task: Some("hard"),
         direction: Direction::Lowest,
     },
 ];
@@ -86,6 +107,8 @@ pub enum Verdict {
     DoesNotHold,
     /// The subject or every other method is missing from the sweep.
     NotTested,
+    /// The scenario has no task of the name the claim is about.
+    NotApplicable,
 }
 
 impl Verdict {
@@ -96,6 +119,7 @@ impl Verdict {
             Verdict::NotSignificant => "not significant",
             Verdict::DoesNotHold => "does not hold",
             Verdict::NotTested => "not tested",
+            Verdict::NotApplicable => "not applicable",
         }
     }
 }
@@ -120,6 +144,8 @@ pub struct Comparison {
 pub struct ClaimCheck {
     /// The claim.
     pub claim: Claim,
+    /// Its metric for the sweep's tasks (`None`: [`Verdict::NotApplicable`]).
+    pub metric: Option<Metric>,
     /// Summary of the subject's values.
     pub subject_summary: Summary,
     /// Comparison with every other method, in sweep order.
@@ -128,10 +154,24 @@ pub struct ClaimCheck {
     pub verdict: Verdict,
 }
 
-/// Checks `claim` against `results` (methods in `methods` order).
-pub fn check_claim(claim: Claim, results: &[TrialResult], methods: &[String]) -> ClaimCheck {
-    let m = metric(claim.metric);
-    let vals = |method: &str| values(&rows_of(results, method), m);
+/// Checks `claim` against `results` (methods in `methods` order) of a scenario with tasks
+/// `tasks`.
+pub fn check_claim(
+    claim: Claim,
+    results: &[TrialResult],
+    methods: &[String],
+    tasks: &[String],
+) -> ClaimCheck {
+    let Some(m) = claim.metric(tasks) else {
+        return ClaimCheck {
+            claim,
+            metric: None,
+            subject_summary: Summary::of(&[]),
+            comparisons: Vec::new(),
+            verdict: Verdict::NotApplicable,
+        };
+    };
+    let vals = |method: &str| values_of(results, method, m);
     let subject_vals = vals(claim.subject);
     let subject_summary = Summary::of(&subject_vals);
     let present = methods.iter().any(|x| x == claim.subject) && subject_summary.n > 0;
@@ -175,6 +215,7 @@ pub fn check_claim(claim: Claim, results: &[TrialResult], methods: &[String]) ->
     };
     ClaimCheck {
         claim,
+        metric: Some(m),
         subject_summary,
         comparisons,
         verdict,

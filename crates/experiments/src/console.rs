@@ -8,18 +8,33 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
-use crate::metrics::{Metric, metric};
+use crate::metrics::{Metric, Quantity, Scope};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
 use crate::table::{mean_sd, pval};
 
-/// Columns of the one-cell table: metric name and heading.
-const COLUMNS: [(&str, &str); 5] = [
-    ("rescued_total", "total"),
-    ("rescued_hard", "hard"),
-    ("rescued_easy", "easy"),
-    ("energy_per_hard_rescuee_pct", "eng/hard"),
-    ("hp_per_hard_rescuee_pct", "hp/hard"),
-];
+/// Columns of the one-cell table: rescuees in total and per task, then the energy and HP cost
+/// per rescuee of the hardest task; each with its heading.
+fn columns(a: &CellAnalysis) -> Vec<(Metric, String)> {
+    let mut out = vec![(Metric::new(Quantity::Rescued, Scope::Total), "total".into())];
+    out.extend(
+        a.tasks
+            .iter()
+            .enumerate()
+            .map(|(t, name)| (Metric::new(Quantity::Rescued, Scope::Task(t)), name.clone())),
+    );
+    if let Some(&hardest) = a.hardest_first.first() {
+        let name = &a.tasks[hardest];
+        out.push((
+            Metric::new(Quantity::EnergyPerRescuee, Scope::Task(hardest)),
+            format!("eng/{name}"),
+        ));
+        out.push((
+            Metric::new(Quantity::HpPerRescuee, Scope::Task(hardest)),
+            format!("hp/{name}"),
+        ));
+    }
+    out
+}
 
 /// Writes the summary of a finished sweep to `out`.
 ///
@@ -122,15 +137,17 @@ fn ran_line(out: &mut dyn Write, o: &SweepOutcome) -> Result<()> {
 }
 
 fn method_table(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
+    let columns = columns(a);
     write!(out, "\n{:<8}", "method")?;
-    for (_, heading) in COLUMNS {
+    for (_, heading) in &columns {
         write!(out, " {heading:>16}")?;
     }
     writeln!(out)?;
     for (i, m) in a.methods.iter().enumerate() {
         write!(out, "{:<8}", m.method)?;
-        for (name, _) in COLUMNS {
-            write!(out, " {:>16}", mean_sd(&a.summary(i, name)))?;
+        for (metric, _) in &columns {
+            let s = a.summary(i, *metric).unwrap_or_default();
+            write!(out, " {:>16}", mean_sd(&s))?;
         }
         writeln!(out)?;
     }
@@ -140,14 +157,23 @@ fn method_table(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
 fn claims(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
     writeln!(out, "\nclaims (one-sided Welch, p < 0.05):")?;
     for chk in &a.claims {
-        writeln!(
-            out,
-            "  ({}) {}: {} (max p = {})",
-            chk.claim.id,
-            chk.claim.text,
-            chk.verdict.words(),
-            pval(chk.worst_p())
-        )?;
+        match chk.metric {
+            Some(_) => writeln!(
+                out,
+                "  ({}) {}: {} (max p = {})",
+                chk.claim.id,
+                chk.claim.text,
+                chk.verdict.words(),
+                pval(chk.worst_p())
+            )?,
+            None => writeln!(
+                out,
+                "  ({}) {}: not applicable (no task named {:?})",
+                chk.claim.id,
+                chk.claim.text,
+                chk.claim.task.unwrap_or_default()
+            )?,
+        }
     }
     Ok(())
 }
@@ -171,7 +197,8 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
         .map(|(i, c)| format!("c{i:0digits$} {}", c.values.join(", ")))
         .collect();
     let w = labels.iter().map(String::len).max().unwrap_or(4).max(4);
-    writeln!(out, "\n{} ({}), mean ± sd:", metric(m.name).label, m.name)?;
+    let tasks = analysis.cells.first().map_or(&[][..], |a| &a.tasks[..]);
+    writeln!(out, "\n{} ({}), mean ± sd:", m.label(tasks), m.name(tasks))?;
     write!(out, "{:<w$}", "cell")?;
     for method in &h.methods {
         write!(out, " {method:>16}")?;
@@ -180,7 +207,8 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
     for (label, a) in labels.iter().zip(&analysis.cells) {
         write!(out, "{label:<w$}")?;
         for i in 0..a.methods.len() {
-            write!(out, " {:>16}", mean_sd(&a.summary(i, m.name)))?;
+            let s = a.summary(i, m).unwrap_or_default();
+            write!(out, " {:>16}", mean_sd(&s))?;
         }
         writeln!(out)?;
     }

@@ -195,12 +195,15 @@ fn run_trial(
         let method = factory
             .build(&job.method_arg, &plan.model)
             .map_err(|e| e.to_string())?;
-        let mut sim =
-            Simulation::new(plan.scenario, method, job.seed).with_duration_s(plan.duration_s);
+        let mut sim = Simulation::builder(plan.scenario)
+            .method(method)
+            .trial(job.trial)
+            .seed(job.seed)
+            .duration_s(plan.duration_s)
+            .build()
+            .map_err(|e| e.to_string())?;
         let mut last = 0u64;
-        while !sim.is_finished() {
-            sim.step()
-                .map_err(|e| format!("at t = {:.2} s: {e}", sim.time_s()))?;
+        let mut observe = |sim: &Simulation| {
             let (done, total) = sim.progress();
             if fail && done * 2 >= total {
                 panic!(
@@ -212,10 +215,11 @@ fn run_trial(
                 tick(done - last);
                 last = done;
             }
-        }
+        };
+        let result = sim
+            .run_observed(&mut observe)
+            .map_err(|e| format!("at t = {:.2} s: {e}", sim.time_s()))?;
         tick(sim.progress().0 - last);
-        let mut result = sim.result();
-        result.trial = job.trial;
         Ok(result)
     };
     match catch_unwind(AssertUnwindSafe(body)) {

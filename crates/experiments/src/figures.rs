@@ -1,10 +1,14 @@
-//! The sweep's figures in the manner of the paper's Fig. 3: grouped bar charts (groups = hard,
-//! easy, total; one bar per method) of the mean over trials with 95 % confidence-interval error
-//! bars. SVG via plotters; text is plain SVG `<text>`, so no fonts are needed to write them.
+//! The sweep's figures in the manner of the paper's Fig. 3: grouped bar charts (one group per
+//! task, in the scenario's order, then the total; one bar per method) of the mean over trials
+//! with 95 % confidence-interval error bars. SVG via plotters; text is plain SVG `<text>`, so
+//! no fonts are needed to write them.
 
 use crate::analysis::CellAnalysis;
+use crate::metrics::{Metric, Quantity, Scope};
 use crate::stats::Summary;
 use anyhow::{Result, anyhow};
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -13,7 +17,8 @@ pub const FIGURE_SIZE: (u32, u32) = (820, 440);
 /// Width of the legend strip at the right of each figure, pixels.
 const LEGEND_W: u32 = 110;
 
-/// One figure: file name, title, y-axis label and the metric shown for hard, easy and total.
+/// One figure: file name, title, y-axis label and the quantity shown for each task and the
+/// total.
 #[derive(Debug, Clone, Copy)]
 pub struct FigureSpec {
     /// File name in the output folder.
@@ -22,8 +27,8 @@ pub struct FigureSpec {
     pub title: &'static str,
     /// Y-axis label.
     pub y_label: &'static str,
-    /// Metric names for the hard, easy and total groups.
-    pub metrics: [&'static str; 3],
+    /// The quantity drawn, per task and in total.
+    pub quantity: Quantity,
 }
 
 /// The three figures of a sweep: (a) rescuees, (b) energy cost per rescuee, (c) HP cost per
@@ -33,31 +38,21 @@ pub const FIGURES: [FigureSpec; 3] = [
         file: "fig3a_rescuees.svg",
         title: "(a) Rescuees per trial",
         y_label: "rescuees",
-        metrics: ["rescued_hard", "rescued_easy", "rescued_total"],
+        quantity: Quantity::Rescued,
     },
     FigureSpec {
         file: "fig3b_energy_per_rescuee.svg",
         title: "(b) Energy cost per rescuee",
         y_label: "energy per rescuee (% points)",
-        metrics: [
-            "energy_per_hard_rescuee_pct",
-            "energy_per_easy_rescuee_pct",
-            "energy_per_rescuee_pct",
-        ],
+        quantity: Quantity::EnergyPerRescuee,
     },
     FigureSpec {
         file: "fig3c_hp_per_rescuee.svg",
         title: "(c) HP cost per rescuee",
         y_label: "HP per rescuee (% points)",
-        metrics: [
-            "hp_per_hard_rescuee_pct",
-            "hp_per_easy_rescuee_pct",
-            "hp_per_rescuee_pct",
-        ],
+        quantity: Quantity::HpPerRescuee,
     },
 ];
-
-const GROUPS: [&str; 3] = ["hard task", "easy task", "total"];
 
 /// Colour of the `i`-th method's bars (colour-blind-safe palette, Okabe-Ito).
 pub fn method_color(i: usize) -> RGBColor {
@@ -78,16 +73,26 @@ pub(crate) fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow!("drawing a figure: {e:?}")
 }
 
-/// Draws `spec` from a cell's analysis (methods in sweep order) and returns the SVG text.
-///
-/// # Errors
-/// If plotters fails to draw.
-pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
-    let methods: Vec<&str> = cell.methods.iter().map(|m| m.method.as_str()).collect();
-    // stats[method][group]
-    let stats: Vec<[Summary; 3]> = (0..methods.len())
-        .map(|i| spec.metrics.map(|name| cell.summary(i, name)))
-        .collect();
+/// The groups of a figure for `tasks` (`<name> task` each, then `total`) and their metrics.
+fn groups(quantity: Quantity, tasks: &[String]) -> Vec<(String, Metric)> {
+    tasks
+        .iter()
+        .enumerate()
+        .map(|(t, name)| {
+            (
+                format!("{name} task"),
+                Metric::new(quantity, Scope::Task(t)),
+            )
+        })
+        .chain(std::iter::once((
+            "total".to_string(),
+            Metric::new(quantity, Scope::Total),
+        )))
+        .collect()
+}
+
+/// Top of the y axis: 12 % above the highest upper whisker (or mean), at least 1.
+fn y_max(stats: &[Vec<Summary>]) -> f64 {
     let top = stats
         .iter()
         .flatten()
@@ -100,11 +105,88 @@ pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
         })
         .filter(|x| x.is_finite())
         .fold(0.0f64, f64::max);
-    let y_max = if top > 0.0 { top * 1.12 } else { 1.0 };
+    if top > 0.0 { top * 1.12 } else { 1.0 }
+}
 
-    let n = methods.len().max(1) as f64;
-    let group_w = 0.8;
-    let bar_w = group_w / n;
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// One method's bars and whiskers, `offset` from each group's centre, `bar_w` wide.
+fn draw_method(
+    chart: &mut Chart<'_, '_>,
+    color: RGBColor,
+    per_group: &[Summary],
+    offset: f64,
+    bar_w: f64,
+) -> Result<()> {
+    let bars = per_group
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.mean.is_finite())
+        .map(|(g, s)| {
+            let x = g as f64 + offset;
+            Rectangle::new(
+                [(x - bar_w * 0.42, 0.0), (x + bar_w * 0.42, s.mean)],
+                color.filled(),
+            )
+        });
+    chart.draw_series(bars).map_err(draw_err)?;
+    let errors = per_group
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.mean.is_finite() && s.ci95.is_finite())
+        .flat_map(|(g, s)| {
+            let x = g as f64 + offset;
+            let (lo, hi) = (s.ci_low().max(0.0), s.ci_high());
+            let cap = bar_w * 0.18;
+            [
+                PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(1)),
+                PathElement::new(vec![(x - cap, lo), (x + cap, lo)], BLACK.stroke_width(1)),
+                PathElement::new(vec![(x - cap, hi), (x + cap, hi)], BLACK.stroke_width(1)),
+            ]
+        });
+    chart.draw_series(errors).map_err(draw_err)?;
+    Ok(())
+}
+
+/// The `i`-th legend entry (top left of `area`, one line each): a `color` swatch and `name`.
+pub(crate) fn legend_entry(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    i: usize,
+    name: &str,
+    color: RGBColor,
+) -> Result<()> {
+    let y = 60 + 26 * i as i32;
+    area.draw(&Rectangle::new([(8, y - 7), (24, y + 7)], color.filled()))
+        .map_err(draw_err)?;
+    area.draw(&Text::new(
+        name,
+        (32, y),
+        ("sans-serif", 15)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Center)),
+    ))
+    .map_err(draw_err)
+}
+
+/// Draws `spec` from a cell's analysis (methods in sweep order; a group per task of the cell,
+/// then the total) and returns the SVG text.
+///
+/// # Errors
+/// If plotters fails to draw.
+pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
+    let groups = groups(spec.quantity, &cell.tasks);
+    // stats[method][group]
+    let stats: Vec<Vec<Summary>> = (0..cell.methods.len())
+        .map(|i| {
+            groups
+                .iter()
+                .map(|(_, m)| cell.summary(i, *m).unwrap_or_else(|| Summary::of(&[])))
+                .collect()
+        })
+        .collect();
+    let n = cell.methods.len().max(1) as f64;
+    let (group_w, bar_w) = (0.8, 0.8 / n);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, FIGURE_SIZE).into_drawing_area();
@@ -115,7 +197,7 @@ pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
             .margin(12)
             .x_label_area_size(36)
             .y_label_area_size(64)
-            .build_cartesian_2d(-0.5f64..2.5f64, 0.0..y_max)
+            .build_cartesian_2d(-0.5f64..(groups.len() as f64 - 0.5), 0.0..y_max(&stats))
             .map_err(draw_err)?;
         chart
             .configure_mesh()
@@ -128,59 +210,18 @@ pub fn figure_svg(spec: &FigureSpec, cell: &CellAnalysis) -> Result<String> {
             .y_max_light_lines(1)
             .draw()
             .map_err(draw_err)?;
-
-        for (i, (name, per_group)) in methods.iter().zip(&stats).enumerate() {
-            let color = method_color(i);
+        for (i, (m, per_group)) in cell.methods.iter().zip(&stats).enumerate() {
             let offset = -group_w / 2.0 + bar_w * (i as f64 + 0.5);
-            let bars = per_group
-                .iter()
-                .enumerate()
-                .filter(|(_, s)| s.mean.is_finite())
-                .map(|(g, s)| {
-                    let x = g as f64 + offset;
-                    Rectangle::new(
-                        [(x - bar_w * 0.42, 0.0), (x + bar_w * 0.42, s.mean)],
-                        color.filled(),
-                    )
-                });
-            chart.draw_series(bars).map_err(draw_err)?;
-            let y = 60 + 26 * i as i32;
-            legend_area
-                .draw(&Rectangle::new([(8, y - 7), (24, y + 7)], color.filled()))
-                .map_err(draw_err)?;
-            legend_area
-                .draw(&Text::new(
-                    *name,
-                    (32, y),
-                    ("sans-serif", 15)
-                        .into_font()
-                        .color(&BLACK)
-                        .pos(Pos::new(HPos::Left, VPos::Center)),
-                ))
-                .map_err(draw_err)?;
-            let errors = per_group
-                .iter()
-                .enumerate()
-                .filter(|(_, s)| s.mean.is_finite() && s.ci95.is_finite())
-                .flat_map(|(g, s)| {
-                    let x = g as f64 + offset;
-                    let (lo, hi) = (s.ci_low().max(0.0), s.ci_high());
-                    let cap = bar_w * 0.18;
-                    [
-                        PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(1)),
-                        PathElement::new(vec![(x - cap, lo), (x + cap, lo)], BLACK.stroke_width(1)),
-                        PathElement::new(vec![(x - cap, hi), (x + cap, hi)], BLACK.stroke_width(1)),
-                    ]
-                });
-            chart.draw_series(errors).map_err(draw_err)?;
+            draw_method(&mut chart, method_color(i), per_group, offset, bar_w)?;
+            legend_entry(&legend_area, i, &m.method, method_color(i))?;
         }
         let label_style = ("sans-serif", 15)
             .into_font()
             .color(&BLACK)
             .pos(Pos::new(HPos::Center, VPos::Top));
-        for (g, name) in GROUPS.iter().enumerate() {
+        for (g, (name, _)) in groups.iter().enumerate() {
             let (px, py) = chart.backend_coord(&(g as f64, 0.0));
-            root.draw(&Text::new(*name, (px, py + 8), label_style.clone()))
+            root.draw(&Text::new(name.as_str(), (px, py + 8), label_style.clone()))
                 .map_err(draw_err)?;
         }
         root.draw(&Text::new(

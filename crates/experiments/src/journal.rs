@@ -37,7 +37,7 @@ pub const JOURNAL_FILE: &str = "journal.jsonl";
 
 /// Format version of the journal; bumped when its lines change shape. Format 2 added the
 /// grid to the header and the cell index to every record; format 3 a checksum to every line.
-pub const JOURNAL_FORMAT: u32 = 3;
+pub const JOURNAL_FORMAT: u32 = 4;
 
 /// The parameters that determine a sweep's results. `--resume` continues a journal only if
 /// its header equals the new sweep's header.
@@ -77,6 +77,10 @@ pub struct CellHeader {
     pub scenario_hash: String,
     /// Simulated length of each trial of the cell, seconds.
     pub duration_s: f64,
+    /// The cell's task names, by task id (the outputs' per-task columns).
+    pub tasks: Vec<String>,
+    /// The cell's task ids from the hardest to the easiest.
+    pub hardest_first: Vec<usize>,
 }
 
 /// How one trial ended.
@@ -489,11 +493,15 @@ mod tests {
                         values: vec!["10".into()],
                         scenario_hash: fnv1a64_hex(b"s"),
                         duration_s: 10.0,
+                        tasks: vec!["hard".into(), "easy".into()],
+                        hardest_first: vec![0, 1],
                     },
                     CellHeader {
                         values: vec!["20".into()],
                         scenario_hash: fnv1a64_hex(b"t"),
                         duration_s: 20.0,
+                        tasks: vec!["hard".into(), "easy".into()],
+                        hardest_first: vec![0, 1],
                     },
                 ],
             },
@@ -533,7 +541,7 @@ mod tests {
         let text = fs::read_to_string(Journal::path_in(dir.path())).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert!(
-            lines[0].starts_with("{\"header\":{\"format\":3,"),
+            lines[0].starts_with(&format!("{{\"header\":{{\"format\":{JOURNAL_FORMAT},")),
             "{}",
             lines[0]
         );
@@ -756,7 +764,9 @@ mod tests {
         ] {
             let msg = format!("{e:#}");
             assert!(
-                msg.contains("journal format 1, but this usar reads format 3"),
+                msg.contains(&format!(
+                    "journal format 1, but this usar reads format {JOURNAL_FORMAT}"
+                )),
                 "{msg}"
             );
         }

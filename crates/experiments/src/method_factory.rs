@@ -4,8 +4,8 @@
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
+use rne_core::TrustModel;
 use rne_core::grouping::{GroupingMethod, method_from_name};
-use rne_core::{TrustModel, Weights};
 use usar_sim::scenario::Scenario;
 
 /// Builds a grouping method from its name, once per trial (methods need not be `Clone` and
@@ -85,12 +85,11 @@ pub fn canonical_method(name: &str, factory: &MethodFactory, model: &TrustModel)
     Ok(m.name().to_ascii_uppercase())
 }
 
-/// The RNE trust model of `scenario` (its `needs_weights`).
+/// The RNE trust model of `scenario` (its `needs_weights`; see
+/// [`usar_sim::mission::trust_model`]).
 ///
 /// # Errors
 /// Weights rne-core rejects.
 pub fn trust_model(scenario: &Scenario) -> Result<TrustModel> {
-    let weights =
-        Weights::new(scenario.needs_weights.to_vec()).context("scenario needs_weights")?;
-    Ok(TrustModel::with_weights(weights))
+    usar_sim::mission::trust_model(scenario).context("scenario needs_weights")
 }

@@ -22,11 +22,8 @@ use crate::grid_outputs::report::{GridReportInput, grid_md};
 use crate::metrics::Metric;
 use crate::report::{ReportInput, report_md};
 use crate::spec_ron::spec_to_ron;
-use crate::summary::{summary_csv, trials_csv};
+use crate::summary::{summary_csv, trials_csv, trials_long_csv};
 use crate::sweep::{SweepConfig, SweepOutcome};
-
-/// Metrics of `grid.md` and its figures when `--grid-metrics` is not given.
-pub const DEFAULT_GRID_METRICS: [&str; 3] = ["rescued_total", "rescued_hard", "rescued_easy"];
 
 /// Writes every output file of the sweep into `cfg.out_dir`; returns their paths in the order
 /// written. `grid_metrics` chooses the metrics of `grid.md` and its figures (ignored without
@@ -81,10 +78,12 @@ fn write_cell(
     files: &mut Vec<PathBuf>,
 ) -> Result<()> {
     let a = &analysis.cells[cell];
+    let results = &outcome.cells[cell].results;
+    put(dir, "trials.csv", &trials_csv(results, &a.tasks)?, files)?;
     put(
         dir,
-        "trials.csv",
-        &trials_csv(&outcome.cells[cell].results)?,
+        "trials_long.csv",
+        &trials_long_csv(results, &a.tasks)?,
         files,
     )?;
     put(dir, "summary.csv", &summary_csv(a)?, files)?;
@@ -148,7 +147,8 @@ fn write_grid(
     let mut figures = Vec::new();
     for m in metrics {
         if let Some(svg) = grid_figure_svg(&outcome.header, analysis, *m)? {
-            let name = figure_file(*m);
+            let tasks = analysis.cells.first().map_or(&[][..], |c| &c.tasks[..]);
+            let name = figure_file(*m, tasks);
             put(dir, &name, svg.as_bytes(), files)?;
             figures.push(name);
         }

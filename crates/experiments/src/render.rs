@@ -7,9 +7,7 @@ use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use usar_sim::scenario::{
-    Circle as Disc, Debris, Locomotion, PointM, Rect, Role, Scenario, TaskLevel,
-};
+use usar_sim::scenario::{Circle as Disc, Debris, Locomotion, PointM, Rect, Role, Scenario};
 
 use crate::atomic::write_atomic;
 
@@ -95,10 +93,10 @@ struct Layout {
 
 impl Layout {
     fn new(s: &Scenario) -> Self {
-        let a = s.arena;
-        let pad = a.wall_thickness_m + 1.0;
-        let (x0, x1) = (-pad, a.width_m + pad);
-        let (y0, y1) = (-pad, a.height_m + pad);
+        let (w, h) = (s.arena.width(), s.arena.height());
+        let pad = s.arena.wall_thickness_m.get() + 1.0;
+        let (x0, x1) = (-pad, w + pad);
+        let (y0, y1) = (-pad, h + pad);
         let px_per_m = (MAP_TARGET_PX / (x1 - x0).max(y1 - y0)).clamp(MIN_PX_PER_M, MAX_PX_PER_M);
         Self {
             x0,
@@ -228,10 +226,25 @@ fn debris_polygon(d: &Debris) -> Vec<(f64, f64)> {
     xy(d.shape().outline(CIRCLE_VERTICES))
 }
 
-fn task_color(level: TaskLevel) -> RGBColor {
-    match level {
-        TaskLevel::Easy => EASY,
-        TaskLevel::Hard => HARD,
+/// Pastel colours of tasks between the hardest ([`HARD`]) and the easiest ([`EASY`]).
+const MIDDLE_TASKS: [RGBColor; 4] = [
+    RGBColor(199, 233, 192),
+    RGBColor(218, 218, 235),
+    RGBColor(252, 197, 192),
+    RGBColor(255, 247, 188),
+];
+
+/// Colour of task `t` of `s` by its difficulty: the hardest orange, the easiest blue, the ones
+/// between in other pastel colours (a single task is orange).
+fn task_color(s: &Scenario, t: usize) -> RGBColor {
+    let order = s.hardest_first();
+    let rank = order.iter().position(|&x| x == t).unwrap_or(0);
+    if rank == 0 {
+        HARD
+    } else if rank + 1 == order.len() {
+        EASY
+    } else {
+        MIDDLE_TASKS[(rank - 1) % MIDDLE_TASKS.len()]
     }
 }
 
@@ -264,26 +277,25 @@ fn label_at(text: String, x: f64, y: f64, size: u32, v: VPos) -> Text<'static, (
 }
 
 fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
-    let a = s.arena;
-    let t = a.wall_thickness_m;
+    let (w, h) = (s.arena.width(), s.arena.height());
+    let t = s.arena.wall_thickness_m.get();
     let walls = [
-        [(-t, -t), (a.width_m + t, 0.0)],
-        [(-t, a.height_m), (a.width_m + t, a.height_m + t)],
-        [(-t, 0.0), (0.0, a.height_m)],
-        [(a.width_m, 0.0), (a.width_m + t, a.height_m)],
+        [(-t, -t), (w + t, 0.0)],
+        [(-t, h), (w + t, h + t)],
+        [(-t, 0.0), (0.0, h)],
+        [(w, 0.0), (w + t, h)],
     ];
     chart
         .draw_series(walls.iter().map(|r| Rectangle::new(*r, WALL.filled())))
         .map_err(draw_err)?;
 
     // Search areas and rescuees first: radiation, debris and labels go on top.
-    for level in TaskLevel::ALL {
-        let task = s.task(level);
+    for (t, task) in s.tasks.iter().enumerate() {
         let r = task.search_area;
         chart
             .draw_series([Rectangle::new(
                 [(r.min.x, r.min.y), (r.max.x, r.max.y)],
-                task_color(level).filled(),
+                task_color(s, t).filled(),
             )])
             .map_err(draw_err)?;
         chart
@@ -296,13 +308,13 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
         chart
             .draw_series([Polygon::new(
                 disc_polygon(&task.drop_off),
-                task_color(level).filled(),
+                task_color(s, t).filled(),
             )])
             .map_err(draw_err)?;
         chart
             .draw_series([PathElement::new(
                 disc_outline(&task.drop_off),
-                task_color(level).mix(1.0).stroke_width(1),
+                task_color(s, t).mix(1.0).stroke_width(1),
             )])
             .map_err(draw_err)?;
     }
@@ -352,19 +364,18 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
         .map_err(draw_err)?;
 
     // Labels last so nothing covers them.
-    for level in TaskLevel::ALL {
-        let task = s.task(level);
+    for task in &s.tasks {
         let r = task.search_area;
         let text = format!(
             "{} search area ({} rescuees)",
-            level.name(),
+            task.name,
             task.rescuees.len()
         );
         draw_area_label(chart, s, &r, text)?;
         let d = task.drop_off;
         chart
             .draw_series([label_at(
-                format!("{} drop-off", level.name()),
+                format!("{} drop-off", task.name),
                 d.center.x,
                 d.center.y - d.radius_m,
                 11,
@@ -398,15 +409,14 @@ fn draw_area_label(chart: &mut Chart<'_, '_>, s: &Scenario, r: &Rect, text: Stri
     let px_per_m = Layout::new(s).px_per_m;
     let w_m = text.len() as f64 * DESCRIPTION_CHAR_PX / px_per_m;
     let h_m = 10.0 / px_per_m;
-    let a = s.arena;
-    let (y, v, inside) = if r.max.y + h_m <= a.height_m {
+    let (y, v, inside) = if r.max.y + h_m <= s.arena.height() {
         (r.max.y, VPos::Bottom, false)
     } else if r.min.y - h_m >= 0.0 {
         (r.min.y, VPos::Top, false)
     } else {
         (r.max.y, VPos::Top, true)
     };
-    let (x, h) = if r.min.x + w_m > a.width_m {
+    let (x, h) = if r.min.x + w_m > s.arena.width() {
         (r.max.x, HPos::Right)
     } else {
         (r.min.x, HPos::Left)
@@ -556,8 +566,12 @@ fn legend_entries(s: &Scenario, traced: bool) -> Vec<(Swatch, String)> {
             format!("radiation, dose x{f}"),
         ));
     }
-    v.push((Swatch::Square(EASY), "easy task: area, drop-off".into()));
-    v.push((Swatch::Square(HARD), "hard task: area, drop-off".into()));
+    for (t, task) in s.tasks.iter().enumerate() {
+        v.push((
+            Swatch::Square(task_color(s, t)),
+            format!("{} task: area, drop-off", task.name),
+        ));
+    }
     v.push((Swatch::Dot(RESCUEE), "rescuee".into()));
     v.push((Swatch::Cross, "task goal point".into()));
     v.push((Swatch::Square(REST), "rest station".into()));

@@ -12,7 +12,6 @@ use crate::analysis::CellAnalysis;
 use crate::claims::{ALPHA, Verdict};
 use crate::figures::FIGURES;
 use crate::grid::GridCell;
-use crate::metrics::{METRICS, metric};
 use crate::sweep::SweepOutcome;
 use crate::table::{mean_sd, num, pval};
 
@@ -158,8 +157,8 @@ fn results(r: &mut String, a: &CellAnalysis) {
         let _ = write!(r, "---|");
     }
     r.push('\n');
-    for (i, metric) in METRICS.iter().enumerate() {
-        let _ = write!(r, "| {} |", metric.label);
+    for (i, metric) in a.metrics.iter().enumerate() {
+        let _ = write!(r, "| {} |", metric.label(&a.tasks));
         for m in &a.methods {
             let sm = m.metrics[i];
             let mut cell = mean_sd(&sm);
@@ -266,6 +265,15 @@ fn claims(r: &mut String, a: &CellAnalysis) {
             c.claim.text,
             c.verdict.words()
         );
+        if c.verdict == Verdict::NotApplicable {
+            let _ = writeln!(
+                r,
+                "Not applicable: the scenario has no task named {:?}; the paper's claims are \
+                 about its tasks named \"easy\" and \"hard\".\n",
+                c.claim.task.unwrap_or_default()
+            );
+            continue;
+        }
         if c.verdict == Verdict::NotTested {
             let _ = writeln!(
                 r,
@@ -274,11 +282,12 @@ fn claims(r: &mut String, a: &CellAnalysis) {
             );
             continue;
         }
+        let label = c.metric.map_or_else(String::new, |m| m.label(&a.tasks));
         let _ = writeln!(
             r,
             "{} {}: {} (n = {}).\n",
             c.claim.subject,
-            metric(c.claim.metric).label,
+            label,
             mean_sd(&c.subject_summary),
             c.subject_summary.n
         );

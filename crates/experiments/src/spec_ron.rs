@@ -72,9 +72,9 @@ mod tests {
     #[test]
     fn awkward_floats_survive() {
         let mut spec = parse_spec(PAPER, "paper.ron").unwrap();
-        spec.mission.hp_pct_per_step_in_radiation = 0.1 + 0.2;
-        spec.mission.energy_pct_per_moving_step = 1e-300;
-        spec.arena.width_m = 1.0 / 3.0;
+        spec.mission.hp_pct_per_step_in_radiation = (0.1 + 0.2).try_into().unwrap();
+        spec.mission.energy_pct_per_moving_step = 1e-300.try_into().unwrap();
+        spec.arena.width_m = (1.0 / 3.0).try_into().unwrap();
         let back = parse_spec(&spec_to_ron(&spec, &[]).unwrap(), "x").unwrap();
         assert_eq!(back, spec);
     }

@@ -29,6 +29,13 @@ pub struct Summary {
     pub ci95: f64,
 }
 
+impl Default for Summary {
+    /// The summary of no values: `n = 0`, every statistic NaN.
+    fn default() -> Self {
+        Self::of(&[])
+    }
+}
+
 impl Summary {
     /// Summarises `xs`.
     pub fn of(xs: &[f64]) -> Self {

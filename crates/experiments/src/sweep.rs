@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use usar_sim::mission::{TrialResult, trial_seed};
-use usar_sim::scenario::Scenario;
+use usar_sim::scenario::{Scenario, trial_steps};
 
 use crate::atomic::remove_stale_temps;
 use crate::executor::{CellPlan, Job, Runner, execute};
@@ -118,7 +118,7 @@ impl SweepConfig {
 
     /// The trial length of a cell with `scenario`: `duration_s` or its `mission.duration_s`.
     pub fn duration_of(&self, scenario: &Scenario) -> f64 {
-        self.duration_s.unwrap_or(scenario.mission.duration_s)
+        self.duration_s.unwrap_or(scenario.mission.duration_s.get())
     }
 }
 
@@ -244,6 +244,8 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
                 values,
                 scenario_hash: scenario_hash(s)?,
                 duration_s: cfg.duration_of(s),
+                tasks: s.task_names(),
+                hardest_first: s.hardest_first(),
             })
         })
         .collect::<Result<_>>()?;
@@ -336,10 +338,10 @@ fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     if cfg.methods.is_empty() {
         bail!("--methods needs at least one method");
     }
-    if let Some(d) = cfg.duration_s
-        && !(d.is_finite() && d > 0.0)
-    {
-        bail!("--duration: expected a number of seconds > 0, found {d}");
+    for s in cfg.cell_scenarios() {
+        if let Err(e) = trial_steps(cfg.duration_of(s), s.sim.dt_s.get()) {
+            bail!("--duration: {e}");
+        }
     }
     let mut seen = header.methods.clone();
     seen.sort();
@@ -441,7 +443,8 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         .zip(&header.grid.cells)
         .enumerate()
         .map(|(i, (scenario, h))| {
-            let steps = (h.duration_s / scenario.sim.dt_s).ceil().max(0.0) as u64;
+            let steps = trial_steps(h.duration_s, scenario.sim.dt_s.get())
+                .map_err(|e| anyhow::anyhow!("--duration: {e}"))?;
             Ok(CellPlan {
                 label: match &cfg.grid {
                     Some(g) => format!(" in cell {}", g.cells[i].dir),
@@ -450,7 +453,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
                 scenario,
                 model: trust_model(scenario)?,
                 duration_s: h.duration_s,
-                step_us: (scenario.sim.dt_s * 1e6).round().max(1.0) as u64,
+                step_us: (scenario.sim.dt_s.get() * 1e6).round().max(1.0) as u64,
                 steps_per_trial: steps,
             })
         })

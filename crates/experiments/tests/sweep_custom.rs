@@ -70,8 +70,9 @@ fn a_custom_method_is_swept_like_the_built_ins() {
         .collect();
     assert_eq!(by_id.len(), 2);
     // The custom method's groups are what it says: the lowest ids of each kind go easy.
+    let easy = cfg.scenario.task_id("easy").unwrap();
     for r in by_id {
-        assert_eq!(r.rounds[0].groups.easy, [0, 1, 2, 6, 7, 10]);
+        assert_eq!(r.rounds[0].groups[easy], [0, 1, 2, 6, 7, 10]);
     }
     let trials = std::fs::read_to_string(tmp.path().join("s/trials.csv")).unwrap();
     assert_eq!(trials.lines().filter(|l| l.contains(",BY_ID,")).count(), 2);

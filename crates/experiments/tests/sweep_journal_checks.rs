@@ -70,14 +70,15 @@ fn an_edited_record_is_reported_and_run_again() {
 
     let o = sweep(&parts, &["--threads", "1", "--stop-after", "3"]);
     assert_eq!(o.status.code(), Some(STOPPED));
-    // Line 3 (the second record): more easy rescuees than it had, still valid JSON.
+    // Line 3 (the second record): more rescuees in the first task than it had, still valid
+    // JSON.
     let journal = parts.join("journal.jsonl");
     let mut ls = lines(&journal);
     assert_eq!(ls.len(), 4);
-    let easy: u32 = field(&ls[2], "\"rescued\":{\"easy\":").parse().unwrap();
-    let from = format!("\"rescued\":{{\"easy\":{easy},");
+    let first: u32 = field(&ls[2], "\"rescued\":[").parse().unwrap();
+    let from = format!("\"rescued\":[{first},");
     assert!(ls[2].contains(&from), "{}", ls[2]);
-    ls[2] = ls[2].replacen(&from, &format!("\"rescued\":{{\"easy\":{},", easy + 7), 1);
+    ls[2] = ls[2].replacen(&from, &format!("\"rescued\":[{},", first + 7), 1);
     serde_json::from_str::<serde_json::Value>(&ls[2]).expect("still valid JSON");
     let (method, trial) = (
         field(&ls[2], ",\"method\":").to_string(),

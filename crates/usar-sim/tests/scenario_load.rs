@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use usar_sim::scenario::{self, Locomotion, Role, ScenarioError, TaskLevel};
+use usar_sim::scenario::{self, Locomotion, Role, ScenarioError};
 
 fn scenarios_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
@@ -63,20 +63,23 @@ const BASE: &str = r#"Scenario(
         ),
     ],
     rest_station: (center_m: (25.0, 2.0), radius_m: 1.0),
-    tasks: (
-        easy: (
-            search_area: (min_m: (20.0, 14.0), max_m: (28.0, 18.0)),
-            goal_m: (24.0, 16.0),
-            drop_off: (center_m: (27.0, 5.0), radius_m: 1.0),
-            rescuees: Grid(spacing_m: 1.0),
-        ),
-        hard: (
+    tasks: [
+        (
+            name: "hard",
+            difficulty: 1,
             search_area: (min_m: (2.0, 14.0), max_m: (10.0, 18.0)),
             goal_m: (6.0, 16.0),
             drop_off: (center_m: (3.0, 5.0), radius_m: 1.0),
             rescuees: List([(3.0, 15.0), (4.0, 15.0)]),
         ),
-    ),
+        (
+            name: "easy",
+            search_area: (min_m: (20.0, 14.0), max_m: (28.0, 18.0)),
+            goal_m: (24.0, 16.0),
+            drop_off: (center_m: (27.0, 5.0), radius_m: 1.0),
+            rescuees: Grid(spacing_m: 1.0),
+        ),
+    ],
     debris: [
         Circle(center_m: (15.0, 10.0), radius_m: 1.0),
     ],
@@ -115,10 +118,15 @@ fn base_is_valid_and_defaults_apply() {
     assert_eq!(s.collision.safety_margin_m, 0.2);
     assert_eq!(s.collision.deadlock_after_s, 2.0);
     assert_eq!(s.arena.wall_thickness_m, 0.5);
-    assert_eq!(s.needs_weights, [1.0; 7]);
+    assert_eq!(s.needs_weights.to_array(), [1.0; 7]);
+    // Tasks in the file's order; the hard one first by difficulty, the easy one's default 0.
+    assert_eq!(s.task_names(), ["hard", "easy"]);
+    assert_eq!((s.tasks[0].difficulty, s.tasks[1].difficulty), (1, 0));
+    assert_eq!(s.hardest_first(), [0, 1]);
+    assert_eq!(s.kinds[0].quota, [1, 1]);
     // 8 x 4 m area, spacing 1: 9 x 5 grid.
-    assert_eq!(s.task(TaskLevel::Easy).rescuees.len(), 45);
-    assert_eq!(s.task(TaskLevel::Hard).rescuees.len(), 2);
+    assert_eq!(s.tasks[1].rescuees.len(), 45);
+    assert_eq!(s.tasks[0].rescuees.len(), 2);
     assert_eq!(s.steps_per_trial(), 30_000);
 }
 
@@ -138,7 +146,7 @@ fn inline_cases() -> Vec<Case> {
             broken("quota: (easy: 1, hard: 1)", "quota: (easy: 1, hard: 2)"),
             "kinds[0].quota",
             Some("quota: (easy: 1, hard: 2)"),
-            "easy 1 + hard 2 = 3 but count is 2",
+            "hard 2 + easy 1 = 3 but count is 2",
         ),
         (
             "start count",
@@ -186,14 +194,14 @@ fn inline_cases() -> Vec<Case> {
         (
             "search area outside arena",
             broken("max_m: (10.0, 18.0)", "max_m: (10.0, 21.0)"),
-            "tasks.hard.search_area",
+            "tasks[0].search_area",
             Some("search_area: (min_m: (2.0, 14.0), max_m: (10.0, 21.0))"),
             "not inside the arena",
         ),
         (
             "rescuee outside search area",
             broken("List([(3.0, 15.0), (4.0, 15.0)])", "List([(3.0, 15.0),\n (11.0, 15.0)])"),
-            "tasks.hard.rescuees[1]",
+            "tasks[0].rescuees[1]",
             Some(" (11.0, 15.0)])"),
             "outside the search area",
         ),
@@ -228,7 +236,7 @@ fn inline_cases() -> Vec<Case> {
         (
             "goal inside debris",
             broken("goal_m: (6.0, 16.0)", "goal_m: (15.0, 10.0)"),
-            "tasks.hard.goal_m",
+            "tasks[0].goal_m",
             Some("goal_m: (15.0, 10.0)"),
             "debris[0]",
         ),
@@ -247,7 +255,7 @@ fn inline_cases() -> Vec<Case> {
             )
             .replace(
                 "    ],\n    rest_station",
-                "        (name: \"rover\", role: Observer, locomotion: Aerial, count: 1, quota: (easy: 1, hard: 0), body_radius_m: 0.3, max_speed_m_per_s: 1.0, sensing_range_m: 12.0, observing_range_m: 50.0, carrying_capacity: 0, rescuing_resources: 0, hp_needs_full: 1.0, energy_needs_full: 1.0, starts: List([(15.0, 2.0)])),\n    ],\n    rest_station",
+                "        (name: \"rover\", role: Observer, locomotion: Aerial, count: 1, quota: (easy: 1), body_radius_m: 0.3, max_speed_m_per_s: 1.0, sensing_range_m: 12.0, observing_range_m: 50.0, carrying_capacity: 0, rescuing_resources: 0, hp_needs_full: 1.0, energy_needs_full: 1.0, starts: List([(15.0, 2.0)])),\n    ],\n    rest_station",
             ),
             "kinds[1].name",
             Some("(name: \"rover\", role: Observer"),
@@ -315,17 +323,17 @@ const FIXTURES: &[(&str, &str, usize, &str)] = &[
         "quota_mismatch.ron",
         "kinds[1].quota",
         0,
-        "easy 2 + hard 2 = 4 but count is 3",
+        "hard 2 + easy 2 = 4 but count is 3",
     ),
     (
         "unknown_field.ron",
-        "tasks.easy.goal",
+        "tasks[1].goal",
         0,
         "Unexpected field named `goal`",
     ),
     (
         "rescuee_outside.ron",
-        "tasks.easy.rescuees[2]",
+        "tasks[1].rescuees[2]",
         0,
         "outside the search area",
     ),
@@ -437,7 +445,7 @@ fn validate_spec_without_source_has_field_but_no_position() {
     assert_eq!(err.line_col(), None);
     assert_eq!(
         err.to_string(),
-        "edited: kinds[0].quota: easy 1 + hard 1 = 2 but count is 3"
+        "edited: kinds[0].quota: hard 1 + easy 1 = 2 but count is 3"
     );
 }
 
@@ -451,7 +459,10 @@ fn paper_scenario_matches_the_paper() {
         by_role(Role::Observer),
     );
     assert_eq!((c.count, sup.count, o.count), (6, 4, 2));
-    assert_eq!((c.quota, sup.quota, o.quota), ([3, 3], [2, 2], [1, 1]));
+    assert_eq!(
+        (c.quota.clone(), sup.quota.clone(), o.quota.clone()),
+        (vec![3, 3], vec![2, 2], vec![1, 1])
+    );
     assert_eq!(o.locomotion, Locomotion::Aerial);
     // Section VI.B ratios.
     let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * b.abs().max(1.0);
@@ -475,11 +486,12 @@ fn paper_scenario_matches_the_paper() {
     let centroid = s.robots.iter().fold(nalgebra::Vector2::zeros(), |acc, r| {
         acc + r.start_in_world.coords
     }) / n;
-    let d = |l: TaskLevel| (s.task(l).goal.coords - centroid).norm();
-    let ratio = d(TaskLevel::Hard) / d(TaskLevel::Easy);
+    let task = |name: &str| &s.tasks[s.task_id(name).expect("paper.ron has easy and hard")];
+    let d = |name: &str| (task(name).goal.coords - centroid).norm();
+    let ratio = d("hard") / d("easy");
     assert!((1.2..=1.3).contains(&ratio), "ratio {ratio}");
-    assert!(s.task(TaskLevel::Hard).goal.x < s.arena.width_m / 2.0);
-    assert!(s.task(TaskLevel::Easy).goal.x > s.arena.width_m / 2.0);
+    assert!(task("hard").goal.x < s.arena.width_m.get() / 2.0);
+    assert!(task("easy").goal.x > s.arena.width_m.get() / 2.0);
     // Dense grids: hundreds of rescuees per task.
     for t in &s.tasks {
         assert!(t.rescuees.len() >= 200, "{} rescuees", t.rescuees.len());
@@ -514,9 +526,9 @@ fn corridor_scales_to_2_4_8_robots() {
     for per_end in [1usize, 2, 4] {
         let mut spec = scenario::parse_spec(&src, "corridor.ron").expect("parses");
         spec.kinds[0].count = per_end;
-        spec.kinds[0].quota.easy = per_end;
+        spec.kinds[0].quota.0.insert("easy".into(), per_end);
         spec.kinds[1].count = per_end;
-        spec.kinds[1].quota.hard = per_end;
+        spec.kinds[1].quota.0.insert("hard".into(), per_end);
         let s = spec
             .validate("corridor.ron")
             .unwrap_or_else(|e| panic!("{e}"));
@@ -546,22 +558,23 @@ fn corridor_scales_to_2_4_8_robots() {
     // (two radii plus the safety margin) plus the planner's inflation (radius, clearance and
     // half a grid cell) fits in each half of the corridor.
     let r = s.kinds[0].body_radius_m;
-    let pass_offset = 2.0 * r + s.collision.safety_margin_m;
-    let inflation = r + s.navigation.clearance_m + s.navigation.grid_cell_m / 2.0;
+    let pass_offset = 2.0 * r + s.collision.safety_margin_m.get();
+    let inflation = r + s.navigation.clearance_m.get() + s.navigation.grid_cell_m.get() / 2.0;
     assert!(
-        s.arena.height_m / 2.0 >= pass_offset + inflation,
+        s.arena.height_m.get() / 2.0 >= pass_offset + inflation,
         "width {}",
-        s.arena.height_m
+        s.arena.height_m.get()
     );
     // Head-on robots on the centre line still collide: one must yield.
     assert!(
         s.robots
             .iter()
-            .all(|r| r.start_in_world.y == s.arena.height_m / 2.0)
+            .all(|r| r.start_in_world.y == s.arena.height_m.get() / 2.0)
     );
     // Each group's task is at the far end.
-    assert!(s.task(TaskLevel::Easy).goal.x > 20.0);
-    assert!(s.task(TaskLevel::Hard).goal.x < 4.0);
+    let task = |name: &str| &s.tasks[s.task_id(name).expect("corridor has easy and hard")];
+    assert!(task("easy").goal.x > 20.0);
+    assert!(task("hard").goal.x < 4.0);
 }
 
 #[test]

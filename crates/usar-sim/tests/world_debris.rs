@@ -38,7 +38,7 @@ fn aerial_flies_over_debris_ground_goes_around() {
     assert!(path.iter().all(|p| !inside_block(p, r)), "{path:?}");
     let mut aerial_over_block = false;
     let mut max_aerial_dev = 0.0f64;
-    let steps = (BOUND_S / s.sim.dt_s) as usize;
+    let steps = (BOUND_S / s.sim.dt_s.get()) as usize;
     for _ in 0..steps {
         w.step();
         let g = w.robot(0);

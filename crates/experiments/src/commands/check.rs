@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
-use usar_sim::scenario::{self, Debris, Locomotion, Scenario, TaskLevel};
+use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
 
 use crate::fingerprint::scenario_hash;
 use crate::spec_ron::spec_to_ron;
@@ -102,7 +102,9 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// Prints a summary of a valid scenario.
+/// Prints a summary of a valid scenario: arena and timing, the kinds with their quota per
+/// task, the tasks (hardest first marked by their difficulty), every robot's start and its
+/// distance to each task's goal, debris, radiation and the rest station.
 ///
 /// # Errors
 /// An I/O error writing to `out`.
@@ -119,35 +121,45 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         s.steps_per_trial(),
         s.sim.seed
     )?;
+    kinds_table(s, out)?;
+    tasks_table(s, out)?;
+    robots_table(s, out)?;
+    adversaries(s, out)
+}
+
+fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+    write!(
+        out,
+        "\n{:<10} {:<9} {:<7} {:>5}",
+        "kind", "role", "moves", "count"
+    )?;
+    for t in &s.tasks {
+        write!(out, " {:>6}", t.name)?;
+    }
     writeln!(
         out,
-        "\n{:<10} {:<9} {:<7} {:>5} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
-        "kind",
-        "role",
-        "moves",
-        "count",
-        "easy",
-        "hard",
-        "speed",
-        "sense",
-        "observe",
-        "radius",
-        "cap",
-        "res"
+        " {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
+        "speed", "sense", "observe", "radius", "cap", "res"
     )?;
     for k in &s.kinds {
-        writeln!(
+        let moves = match k.locomotion {
+            Locomotion::Ground => "ground",
+            Locomotion::Aerial => "aerial",
+        };
+        write!(
             out,
-            "{:<10} {:<9} {:<7} {:>5} {:>6} {:>6} {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
+            "{:<10} {:<9} {:<7} {:>5}",
             k.name,
             format!("{:?}", k.role),
-            match k.locomotion {
-                Locomotion::Ground => "ground",
-                Locomotion::Aerial => "aerial",
-            },
-            k.count,
-            k.quota[TaskLevel::Easy.index()],
-            k.quota[TaskLevel::Hard.index()],
+            moves,
+            k.count
+        )?;
+        for q in &k.quota {
+            write!(out, " {q:>6}")?;
+        }
+        writeln!(
+            out,
+            " {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
             k.max_speed_m_per_s,
             k.sensing_range_m,
             k.observing_range_m,
@@ -158,16 +170,19 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     }
     writeln!(
         out,
-        "(easy, hard = quota per task; speed m/s; ranges and radius m)"
+        "(task columns = quota per task; speed m/s; ranges and radius m)"
     )?;
+    Ok(())
+}
 
+fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     writeln!(out)?;
-    for level in TaskLevel::ALL {
-        let t = s.task(level);
+    let order = s.hardest_first();
+    for (t, task) in s.tasks.iter().enumerate() {
         let d: Vec<f64> = s
             .robots
             .iter()
-            .map(|r| nalgebra_dist(r.start_in_world, t.goal))
+            .map(|r| nalgebra_dist(r.start_in_world, task.goal))
             .collect();
         let (lo, hi) = d
             .iter()
@@ -175,42 +190,56 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
                 (a.min(*x), b.max(*x))
             });
         let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
+        let rank = order.iter().position(|&x| x == t).unwrap_or(0) + 1;
         writeln!(
             out,
-            "task {:<4}: {:>3} rescuees in [{:.1}, {:.1}]-[{:.1}, {:.1}] m, goal ({:.1}, {:.1}), \
-             drop-off ({:.1}, {:.1}) r {} m; start->goal {:.1}-{:.1} m (mean {:.1})",
-            level.name(),
-            t.rescuees.len(),
-            t.search_area.min.x,
-            t.search_area.min.y,
-            t.search_area.max.x,
-            t.search_area.max.y,
-            t.goal.x,
-            t.goal.y,
-            t.drop_off.center.x,
-            t.drop_off.center.y,
-            t.drop_off.radius_m,
+            "task {} (difficulty {}, #{rank} of {} from the hardest): {} rescuees in \
+             [{:.1}, {:.1}]-[{:.1}, {:.1}] m, goal ({:.1}, {:.1}), drop-off ({:.1}, {:.1}) r {} m; \
+             start->goal {:.1}-{:.1} m (mean {:.1})",
+            task.name,
+            task.difficulty,
+            s.tasks.len(),
+            task.rescuees.len(),
+            task.search_area.min.x,
+            task.search_area.min.y,
+            task.search_area.max.x,
+            task.search_area.max.y,
+            task.goal.x,
+            task.goal.y,
+            task.drop_off.center.x,
+            task.drop_off.center.y,
+            task.drop_off.radius_m,
             lo,
             hi,
             mean
         )?;
     }
-    writeln!(
-        out,
-        "\n{:>3} {:<10} {:>14} {:>12} {:>12}",
-        "id", "kind", "start (m)", "->easy m", "->hard m"
-    )?;
+    Ok(())
+}
+
+fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+    write!(out, "\n{:>3} {:<10} {:>14}", "id", "kind", "start (m)")?;
+    for t in &s.tasks {
+        write!(out, " {:>12}", format!("->{} m", t.name))?;
+    }
+    writeln!(out)?;
     for (id, r) in s.robots.iter().enumerate() {
-        writeln!(
+        write!(
             out,
-            "{:>3} {:<10} {:>14} {:>12.1} {:>12.1}",
+            "{:>3} {:<10} {:>14}",
             id,
             s.kind_of(id).name,
-            format!("({:.1}, {:.1})", r.start_in_world.x, r.start_in_world.y),
-            nalgebra_dist(r.start_in_world, s.task(TaskLevel::Easy).goal),
-            nalgebra_dist(r.start_in_world, s.task(TaskLevel::Hard).goal)
+            format!("({:.1}, {:.1})", r.start_in_world.x, r.start_in_world.y)
         )?;
+        for t in &s.tasks {
+            write!(out, " {:>12.1}", nalgebra_dist(r.start_in_world, t.goal))?;
+        }
+        writeln!(out)?;
     }
+    Ok(())
+}
+
+fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     let rects = s
         .debris
         .iter()
@@ -242,7 +271,7 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     writeln!(
         out,
         "needs weights (hp, v, sen, eng, res, cap, obs): {:?}",
-        s.needs_weights
+        s.needs_weights.to_array()
     )?;
     Ok(())
 }

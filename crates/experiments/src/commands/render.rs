@@ -4,9 +4,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, anyhow};
 use clap::Args;
-use rne_core::grouping::method_from_name;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario};
 
@@ -73,33 +72,30 @@ pub fn trace_trial(
     trial: u32,
     duration_s: Option<f64>,
 ) -> Result<Vec<Trace>> {
-    let model = crate::sweep::trust_model(scenario)?;
-    let method = method_from_name(method, &model).context("--method")?;
-    let mut sim = Simulation::for_trial(scenario, method, trial);
+    let mut builder = Simulation::builder(scenario)
+        .method_named(method)
+        .trial(trial);
     if let Some(d) = duration_s {
-        if !(d.is_finite() && d > 0.0) {
-            bail!("--duration: expected a number of seconds > 0, found {d}");
-        }
-        sim = sim.with_duration_s(d);
+        builder = builder.duration_s(d);
     }
-    let every = ((TRACE_SAMPLE_S / scenario.sim.dt_s).round() as u64).max(1);
-    let n = scenario.robots.len();
+    let mut sim = builder.build().context("--method, --duration")?;
+    crate::commands::run::warn_if_rounded(duration_s, &sim);
+    let every = ((TRACE_SAMPLE_S / scenario.sim.dt_s.get()).round() as u64).max(1);
     let sample = |sim: &Simulation, traces: &mut [Trace]| {
         for (id, t) in traces.iter_mut().enumerate() {
             t.push(sim.world().robot(id).position);
         }
     };
-    let mut traces: Vec<Trace> = vec![Vec::new(); n];
+    let mut traces: Vec<Trace> = vec![Vec::new(); scenario.robots.len()];
     sample(&sim, &mut traces);
-    let mut steps = 0u64;
-    while !sim.is_finished() {
-        sim.step()
-            .with_context(|| format!("trial {trial} at t = {:.2} s", sim.time_s()))?;
-        steps += 1;
+    let mut observe = |sim: &Simulation| {
+        let (steps, _) = sim.progress();
         if steps.is_multiple_of(every) || sim.is_finished() {
-            sample(&sim, &mut traces);
+            sample(sim, &mut traces);
         }
-    }
+    };
+    sim.run_observed(&mut observe)
+        .with_context(|| format!("trial {trial}"))?;
     Ok(traces)
 }
 
@@ -133,7 +129,7 @@ pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
             scenario.robots.len(),
             args.trial,
             args.method,
-            args.duration.unwrap_or(scenario.mission.duration_s),
+            args.duration.unwrap_or(scenario.mission.duration_s.get()),
             t.first().map_or(0, Vec::len)
         )?,
         None => writeln!(

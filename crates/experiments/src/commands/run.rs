@@ -5,14 +5,13 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
-use rne_core::grouping::method_from_name;
 use usar_sim::mission::{Simulation, TrialResult};
-use usar_sim::scenario::{self, TaskLevel};
+use usar_sim::scenario;
 
 use crate::atomic::write_atomic;
-use crate::sweep::trust_model;
+use crate::metrics::{Metric, Quantity, Scope};
 use crate::table::num;
 
 const EXAMPLES: &str = "\
@@ -66,18 +65,17 @@ pub struct RunArgs {
 /// A bad scenario or option, a failing trial, or an I/O error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let scenario = scenario::load(&args.scenario)?;
-    let model = trust_model(&scenario)?;
-    let method = method_from_name(&args.method, &model).context("--method")?;
-    let mut sim = match (args.seed, args.trial) {
-        (Some(seed), _) => Simulation::new(&scenario, method, seed),
-        (None, trial) => Simulation::for_trial(&scenario, method, trial.unwrap_or(0)),
-    };
-    if let Some(d) = args.duration {
-        if !(d.is_finite() && d > 0.0) {
-            bail!("--duration: expected a number of seconds > 0, found {d}");
-        }
-        sim = sim.with_duration_s(d);
+    let mut builder = Simulation::builder(&scenario)
+        .method_named(&args.method)
+        .trial(args.trial.unwrap_or(0));
+    if let Some(seed) = args.seed {
+        builder = builder.seed(seed);
     }
+    if let Some(d) = args.duration {
+        builder = builder.duration_s(d);
+    }
+    let mut sim = builder.build().context("--method, --duration")?;
+    warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;
     let wall = t0.elapsed().as_secs_f64();
@@ -97,59 +95,69 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// Prints a trial's metrics: rescuees, costs, rounds and the per-robot table.
+/// Warns on stderr when the trial does not run the `requested` length exactly: a length that
+/// is not a whole number of steps is rounded up to one (shorter than one step: one step).
+pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
+    if let Some(d) = requested {
+        let actual = sim.duration_s();
+        if (actual - d).abs() > 1e-9 * d.abs().max(1.0) {
+            eprintln!(
+                "warning: --duration {d} s is not a whole number of steps of {} s: the trial \
+                 runs {actual} s",
+                sim.scenario().sim.dt_s
+            );
+        }
+    }
+}
+
+/// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the
+/// per-robot table.
 ///
 /// # Errors
 /// An I/O error writing to `out`.
 pub fn print_result(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
-    let row = r.row();
-    let opt = |x: Option<f64>| x.map_or_else(|| "n/a".to_string(), num);
     writeln!(
         out,
         "{} trial {} with {} (seed {}), {} s",
         r.scenario, r.trial, r.method, r.seed, r.duration_s
     )?;
+    print_tasks(r, out)?;
+    print_rounds(r, out)?;
+    print_robots(r, out)
+}
+
+fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+    let width = r.tasks.iter().map(String::len).max().unwrap_or(0).max(7);
     writeln!(
         out,
-        "\n{:<7} {:>9} {:>13} {:>13} {:>15} {:>15}",
+        "\n{:<width$} {:>9} {:>13} {:>13} {:>15} {:>15}",
         "task", "rescuees", "energy (%)", "HP (%)", "energy/rescuee", "HP/rescuee"
     )?;
-    let lines = [
-        (
-            "hard",
-            row.rescued_hard,
-            row.energy_hard_pct,
-            row.hp_hard_pct,
-            row.energy_per_hard_rescuee_pct,
-            row.hp_per_hard_rescuee_pct,
-        ),
-        (
-            "easy",
-            row.rescued_easy,
-            row.energy_easy_pct,
-            row.hp_easy_pct,
-            row.energy_per_easy_rescuee_pct,
-            row.hp_per_easy_rescuee_pct,
-        ),
-        (
-            "total",
-            row.rescued_total,
-            row.energy_total_pct,
-            row.hp_total_pct,
-            row.energy_per_rescuee_pct,
-            row.hp_per_rescuee_pct,
-        ),
-    ];
-    for (name, n, e, h, epr, hpr) in lines {
+    let cell = |q: Quantity, scope: Scope| {
+        Metric::new(q, scope)
+            .value(r)
+            .map_or_else(|| "n/a".to_string(), num)
+    };
+    let scopes = (0..r.tasks.len())
+        .map(|t| (r.tasks[t].as_str(), Scope::Task(t)))
+        .chain(std::iter::once(("total", Scope::Total)));
+    for (name, scope) in scopes {
+        let rescued = Metric::new(Quantity::Rescued, scope)
+            .value(r)
+            .unwrap_or(0.0);
         writeln!(
             out,
-            "{name:<7} {n:>9} {:>13} {:>13} {:>15} {:>15}",
-            num(e),
-            num(h),
-            opt(epr),
-            opt(hpr)
+            "{name:<width$} {rescued:>9} {:>13} {:>13} {:>15} {:>15}",
+            cell(Quantity::Energy, scope),
+            cell(Quantity::Hp, scope),
+            cell(Quantity::EnergyPerRescuee, scope),
+            cell(Quantity::HpPerRescuee, scope)
         )?;
     }
+    Ok(())
+}
+
+fn print_rounds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
     writeln!(
         out,
         "\nrounds: {} ({})",
@@ -159,27 +167,39 @@ pub fn print_result(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
             |m| format!("mean completed round {} s", num(m))
         )
     )?;
-    writeln!(
+    write!(
         out,
-        "{:>5} {:>9} {:>9} {:>9} {:>10} {:>5} {:>5}  groups (easy | hard)",
-        "round", "start s", "end s", "length s", "completed", "easy", "hard"
+        "{:>5} {:>9} {:>9} {:>9} {:>10}",
+        "round", "start s", "end s", "length s", "completed"
     )?;
+    for t in &r.tasks {
+        write!(out, " {t:>5}")?;
+    }
+    writeln!(out, "  groups ({})", r.tasks.join(" | "))?;
     for (i, rd) in r.rounds.iter().enumerate() {
-        let ids = |v: &[usize]| v.iter().map(usize::to_string).collect::<Vec<_>>().join(",");
-        writeln!(
+        write!(
             out,
-            "{:>5} {:>9.2} {:>9.2} {:>9.2} {:>10} {:>5} {:>5}  {} | {}",
+            "{:>5} {:>9.2} {:>9.2} {:>9.2} {:>10}",
             i,
             rd.start_s,
             rd.end_s,
             rd.end_s - rd.start_s,
             if rd.completed { "yes" } else { "no" },
-            rd.rescued.get(TaskLevel::Easy),
-            rd.rescued.get(TaskLevel::Hard),
-            ids(&rd.groups.easy),
-            ids(&rd.groups.hard)
         )?;
+        for n in &rd.rescued {
+            write!(out, " {n:>5}")?;
+        }
+        let groups: Vec<String> = rd
+            .groups
+            .iter()
+            .map(|g| g.iter().map(usize::to_string).collect::<Vec<_>>().join(","))
+            .collect();
+        writeln!(out, "  {}", groups.join(" | "))?;
     }
+    Ok(())
+}
+
+fn print_robots(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
     writeln!(
         out,
         "\n{:>3} {:<10} {:>8} {:>8} {:>8} {:>8} {:>7} {:>6} {:>8} {:>7} {:>6} {:>6} {:>6}",

@@ -14,8 +14,8 @@ use usar_sim::scenario;
 use crate::analysis::Analysis;
 use crate::console::print_sweep;
 use crate::grid::Grid;
-use crate::metrics::{METRICS, Metric, find_metric};
-use crate::output::{DEFAULT_GRID_METRICS, write_outputs};
+use crate::metrics::{Metric, Quantity, Scope};
+use crate::output::write_outputs;
 use crate::sweep::{
     MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method,
     default_out_dir, max_threads, run_sweep, trust_model,
@@ -141,22 +141,25 @@ fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)>
     Ok((canonical_method(m, &MethodFactory::builtin(), model)?, k))
 }
 
-/// The metrics named by `--grid-metrics`, or the default ones.
+/// The metrics named by `--grid-metrics` for a scenario with tasks `tasks`, or the default
+/// ones (rescuees in total and per task).
 ///
 /// # Errors
 /// An unknown name (the message lists the valid ones).
-pub fn grid_metrics(names: &[String]) -> Result<Vec<Metric>> {
+pub fn grid_metrics(names: &[String], tasks: &[String]) -> Result<Vec<Metric>> {
     if names.is_empty() {
-        return Ok(DEFAULT_GRID_METRICS
-            .iter()
-            .filter_map(|n| find_metric(n))
-            .collect());
+        let mut out = vec![Metric::new(Quantity::Rescued, Scope::Total)];
+        out.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
+        return Ok(out);
     }
     names
         .iter()
         .map(|n| {
-            find_metric(n.trim()).with_context(|| {
-                let valid: Vec<&str> = METRICS.iter().map(|m| m.name).collect();
+            Metric::parse(n.trim(), tasks).with_context(|| {
+                let valid: Vec<String> = Metric::all(tasks.len())
+                    .iter()
+                    .map(|m| m.name(tasks))
+                    .collect();
                 format!(
                     "--grid-metrics: unknown metric {:?} (metrics: {})",
                     n.trim(),
@@ -232,8 +235,20 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
 /// A bad scenario, `--vary` or option, a journal that cannot be resumed, an I/O error, or
 /// failed trials (after every other trial has run and the files are written).
 pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
-    let metrics = grid_metrics(&args.grid_metrics)?;
     let cfg = config(args)?;
+    let tasks = cfg.scenario.task_names();
+    if let Some(cell) = cfg
+        .cell_scenarios()
+        .iter()
+        .find(|s| s.task_names() != tasks)
+    {
+        bail!(
+            "--vary: every cell must have the scenario's tasks ({}); a cell has {}",
+            tasks.join(", "),
+            cell.task_names().join(", ")
+        );
+    }
+    let metrics = grid_metrics(&args.grid_metrics, &tasks)?;
     let o = run_sweep(&cfg)?;
     let analysis = Analysis::of(&o);
     let files = write_outputs(&cfg, &o, &analysis, &metrics)?;

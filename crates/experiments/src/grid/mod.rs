@@ -226,7 +226,7 @@ mod tests {
         // The rule's field belongs to one varied field: that one is named.
         assert_eq!(
             err(&["kinds[0].count=6,4", "kinds[0].quota.easy=3,1"]),
-            "--vary kinds[0].quota.easy=1: kinds[0].quota: easy 1 + hard 3 = 4 but count is 6"
+            "--vary kinds[0].quota.easy=1: kinds[0].quota: hard 3 + easy 1 = 4 but count is 6"
         );
         // The rule is about no varied field: every value of the cell is named.
         let e = err(&[
@@ -236,7 +236,7 @@ mod tests {
         assert!(
             e.starts_with(
                 "--vary debris[0].center_m=(58.0, 44.0) --vary mission.recharge_s=10: \
-                 tasks.easy.goal_m: goal (58, 44) is 0.000 m from debris[0]"
+                 tasks[1].goal_m: task \"easy\": goal (58, 44) is 0.000 m from debris[0]"
             ),
             "{e}"
         );

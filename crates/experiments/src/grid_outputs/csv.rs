@@ -4,13 +4,12 @@ use anyhow::{Context, Result};
 
 use crate::analysis::Analysis;
 use crate::journal::SweepHeader;
-use crate::metrics::METRICS;
 use crate::summary::stat_cell;
 
 /// `grid.csv`: one column per varied field (named by its path, holding the cell's value as
 /// written), then `method, metric, n, mean, sd, ci95_low, ci95_high`; one row per cell (in
-/// cell order) x method (in sweep order) x metric (every metric of [`METRICS`], in that
-/// order). Undefined statistics are empty cells, as in `summary.csv`.
+/// cell order) x method (in sweep order) x metric (every metric of the cell's tasks,
+/// [`crate::metrics::Metric::all`], in that order). Undefined statistics are empty cells, as in `summary.csv`.
 ///
 /// # Errors
 /// A CSV serialisation error (not expected).
@@ -30,11 +29,11 @@ pub fn grid_csv(header: &SweepHeader, analysis: &Analysis) -> Result<Vec<u8>> {
         .context("writing the grid.csv header")?;
     for (cell, a) in header.grid.cells.iter().zip(&analysis.cells) {
         for m in &a.methods {
-            for (metric, s) in METRICS.iter().zip(&m.metrics) {
+            for (metric, s) in a.metrics.iter().zip(&m.metrics) {
                 let mut row = cell.values.clone();
                 row.extend([
                     m.method.clone(),
-                    metric.name.to_string(),
+                    metric.name(&a.tasks),
                     s.n.to_string(),
                     stat_cell(s.mean),
                     stat_cell(s.sd),

@@ -15,7 +15,7 @@ use plotters::style::colors::colormaps::ViridisRGB;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::analysis::Analysis;
-use crate::figures::{FIGURE_SIZE, draw_err, method_color};
+use crate::figures::{FIGURE_SIZE, draw_err, legend_entry, method_color};
 use crate::journal::SweepHeader;
 use crate::metrics::Metric;
 use crate::stats::Summary;
@@ -31,9 +31,9 @@ const PANEL_W: u32 = 380;
 /// Width of the colour bar strip at the right of the heat maps, pixels.
 const COLORBAR_W: u32 = 100;
 
-/// File name of the grid figure of `metric`: `grid_<metric name>.svg`.
-pub fn figure_file(metric: Metric) -> String {
-    format!("grid_{}.svg", metric.name)
+/// File name of the grid figure of `metric` (for tasks `tasks`): `grid_<metric name>.svg`.
+pub fn figure_file(metric: Metric, tasks: &[String]) -> String {
+    format!("grid_{}.svg", metric.name(tasks))
 }
 
 /// The grid figure of `metric`, or `None` when more than two fields are varied.
@@ -46,11 +46,13 @@ pub fn grid_figure_svg(
     metric: Metric,
 ) -> Result<Option<String>> {
     let fields = &header.grid.fields;
+    let tasks = analysis.cells.first().map_or(&[][..], |c| &c.tasks[..]);
+    let label = metric.label(tasks);
     let stats = |method: usize| -> Vec<Summary> {
         analysis
             .cells
             .iter()
-            .map(|c| c.summary(method, metric.name))
+            .map(|c| c.summary(method, metric).unwrap_or_default())
             .collect()
     };
     let per_method: Vec<Vec<Summary>> = (0..header.methods.len()).map(stats).collect();
@@ -63,10 +65,10 @@ pub fn grid_figure_svg(
             .collect()
     };
     match fields.len() {
-        1 => line_chart(&fields[0], &values(0), &header.methods, &per_method, metric).map(Some),
+        1 => line_chart(&fields[0], &values(0), &header.methods, &per_method, &label).map(Some),
         2 => {
             let (xs, ys) = (distinct(&values(0)), distinct(&values(1)));
-            heat_maps(&fields[..2], &xs, &ys, &header.methods, &per_method, metric).map(Some)
+            heat_maps(&fields[..2], &xs, &ys, &header.methods, &per_method, &label).map(Some)
         }
         _ => Ok(None),
     }
@@ -127,7 +129,7 @@ fn line_chart(
     values: &[String],
     methods: &[String],
     per_method: &[Vec<Summary>],
-    metric: Metric,
+    label: &str,
 ) -> Result<String> {
     let categorical = numeric(values).is_none();
     let log_x = numeric(values).is_some_and(|v| spans_a_decade(&v));
@@ -158,7 +160,7 @@ fn line_chart(
         root.fill(&WHITE).map_err(draw_err)?;
         let (plot_area, legend_area) = root.split_horizontally(FIGURE_SIZE.0 - LEGEND_W);
         let mut chart = ChartBuilder::on(&plot_area)
-            .caption(format!("{} vs {field}", metric.label), ("sans-serif", 18))
+            .caption(format!("{label} vs {field}"), ("sans-serif", 18))
             .margin(12)
             .margin_bottom(30)
             .x_label_area_size(44)
@@ -175,7 +177,7 @@ fn line_chart(
             // Categorical and log axes are labelled at the varied values (below).
             .x_labels(if categorical || log_x { 0 } else { 8 })
             .x_desc(x_desc)
-            .y_desc(metric.label)
+            .y_desc(label)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 15))
             .light_line_style(RGBColor(238, 238, 238))
@@ -258,26 +260,6 @@ fn band_runs(order: &[usize], stats: &[Summary]) -> Vec<Vec<usize>> {
     runs
 }
 
-fn legend_entry(
-    area: &DrawingArea<SVGBackend<'_>, Shift>,
-    i: usize,
-    name: &str,
-    color: RGBColor,
-) -> Result<()> {
-    let y = 60 + 26 * i as i32;
-    area.draw(&Rectangle::new([(8, y - 7), (24, y + 7)], color.filled()))
-        .map_err(draw_err)?;
-    area.draw(&Text::new(
-        name,
-        (32, y),
-        ("sans-serif", 15)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Left, VPos::Center)),
-    ))
-    .map_err(draw_err)
-}
-
 fn footnote(root: &DrawingArea<SVGBackend<'_>, Shift>, text: &str) -> Result<()> {
     let (_, h) = root.dim_in_pixel();
     root.draw(&Text::new(
@@ -294,7 +276,7 @@ fn heat_maps(
     ys: &[String],
     methods: &[String],
     per_method: &[Vec<Summary>],
-    metric: Metric,
+    label: &str,
 ) -> Result<String> {
     let means = per_method
         .iter()
@@ -318,10 +300,7 @@ fn heat_maps(
         let base = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         base.fill(&WHITE).map_err(draw_err)?;
         let root = base
-            .titled(
-                &format!("{}: mean over trials", metric.label),
-                ("sans-serif", 18),
-            )
+            .titled(&format!("{label}: mean over trials"), ("sans-serif", 18))
             .map_err(draw_err)?;
         let (panels, bar) = root.split_horizontally(size.0 - COLORBAR_W);
         for (area, (name, stats)) in panels

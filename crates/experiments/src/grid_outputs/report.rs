@@ -9,7 +9,7 @@ use crate::analysis::Analysis;
 use crate::calibration;
 use crate::claims::CLAIMS;
 use crate::grid::Grid;
-use crate::metrics::{METRICS, Metric};
+use crate::metrics::Metric;
 use crate::report::software_version;
 use crate::sweep::SweepOutcome;
 use crate::table::num;
@@ -185,11 +185,13 @@ fn metric_section(
     figure: Option<&String>,
 ) {
     let h = &input.outcome.header;
-    let i = METRICS
-        .iter()
-        .position(|m| m.name == metric.name)
-        .unwrap_or_default();
-    let _ = writeln!(r, "## {} (`{}`)\n", metric.label, metric.name);
+    let tasks = input
+        .analysis
+        .cells
+        .first()
+        .map_or(&[][..], |c| &c.tasks[..]);
+    let label = metric.label(tasks);
+    let _ = writeln!(r, "## {label} (`{}`)\n", metric.name(tasks));
     let _ = writeln!(
         r,
         "Mean over trials [95 % confidence interval of the mean]; n shown when fewer trials \
@@ -198,8 +200,8 @@ fn metric_section(
     table_head(r, &h.grid.fields, &h.methods);
     for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {
         cell_start(r, index, &c.values);
-        for m in &a.methods {
-            let s = m.metrics[i];
+        for (i, m) in a.methods.iter().enumerate() {
+            let s = a.summary(i, metric).unwrap_or_default();
             let mut text = num(s.mean);
             if s.ci95.is_finite() {
                 let _ = write!(text, " [{}, {}]", num(s.ci_low()), num(s.ci_high()));
@@ -214,7 +216,7 @@ fn metric_section(
     r.push('\n');
     match figure {
         Some(f) => {
-            let _ = writeln!(r, "![{} across the grid]({f})\n", metric.label);
+            let _ = writeln!(r, "![{label} across the grid]({f})\n");
         }
         None => {
             let _ = writeln!(

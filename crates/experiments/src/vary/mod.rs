@@ -244,7 +244,7 @@ mod tests {
         assert_eq!(s.mission.hp_pct_per_step_in_radiation, 0.003);
         assert_eq!(s.kinds[0].max_speed_m_per_s, 2.0);
         assert!(s.radiation_zones.iter().all(|z| z.dose_rate_factor == 2.5));
-        assert_eq!(s.tasks.hard.goal_m, [10.0, 50.0]);
+        assert_eq!(s.tasks[0].goal_m, [10.0, 50.0]);
         assert!(matches!(
             s.kinds[0].starts,
             StartsSpec::Row {

@@ -8,7 +8,9 @@
 //! single-key objects `{"Variant": content}` and `None` null. A path walks through a variant
 //! object transparently (its key is not part of the path), so `kinds[0].starts.first_m`
 //! names the `first_m` of a `Row(first_m: .., step_m: ..)` and `tasks.easy.rescuees[2]` the
-//! third point of a `List([...])`, as in the loader's messages.
+//! third point of a `List([...])`, as in the loader's messages. A name step into a list picks
+//! the element whose `name` field is that name, so `tasks.hard.goal_m` is the `goal_m` of the
+//! task named `hard` wherever it stands in `tasks` (`tasks[1].goal_m` names it by position).
 
 use std::fmt;
 
@@ -17,7 +19,8 @@ use serde_json::Value;
 /// One step of a [`FieldPath`].
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum Step {
-    /// A struct field, `.name` (or the first name of the path).
+    /// A struct field, `.name` (or the first name of the path); applied to a list, the
+    /// element whose `name` field is `name`.
     Field(String),
     /// A list element, `[i]` (0-based).
     Index(usize),
@@ -81,7 +84,8 @@ impl FieldPath {
     }
 
     /// Whether two paths can name the same value: one is a prefix of the other, with `[*]`
-    /// matching any index (`mission` and `mission.duration_s`; `zones[*].r` and `zones[2].r`).
+    /// matching any index (`mission` and `mission.duration_s`; `zones[*].r` and `zones[2].r`)
+    /// and a name matching any index (`tasks.hard` may be `tasks[0]`).
     pub fn overlaps(&self, other: &FieldPath) -> bool {
         self.steps
             .iter()
@@ -89,8 +93,8 @@ impl FieldPath {
             .all(|(a, b)| match (a, b) {
                 (Step::Field(x), Step::Field(y)) => x == y,
                 (Step::Index(i), Step::Index(j)) => i == j,
-                (Step::All, Step::Index(_) | Step::All) | (Step::Index(_), Step::All) => true,
-                _ => false,
+                // `[*]`, or a name against an index: may be the same element.
+                _ => true,
             })
     }
 
@@ -203,6 +207,25 @@ fn set_at(
                 ))
             }
         },
+        (Step::Field(name), Value::Array(items)) => {
+            let names: Vec<String> = items.iter().filter_map(element_name).collect();
+            match items
+                .iter_mut()
+                .find(|item| element_name(item).as_deref() == Some(name.as_str()))
+            {
+                Some(child) => {
+                    push_field(here, name);
+                    set_at(child, &steps[1..], here, make)
+                }
+                None if names.is_empty() => Err(format!(
+                    "{shown} is a list or tuple, which has no field {name:?}"
+                )),
+                None => Err(format!(
+                    "no element named {name:?} in {shown} (names: {})",
+                    names.join(", ")
+                )),
+            }
+        }
         (Step::Index(i), Value::Array(items)) => {
             let n = items.len();
             match items.get_mut(*i) {
@@ -235,6 +258,11 @@ fn set_at(
     };
     here.truncate(len);
     result
+}
+
+/// The `name` field of a list element that is a struct with one.
+fn element_name(item: &Value) -> Option<String> {
+    item.get("name")?.as_str().map(str::to_string)
 }
 
 fn push_field(here: &mut String, name: &str) {
@@ -355,6 +383,24 @@ mod tests {
             .set(&mut doc(), &mut |_| Err("bad".into()))
             .unwrap_err();
         assert_eq!(e, "zones[*].r: bad");
+    }
+
+    #[test]
+    fn a_name_picks_the_list_element_of_that_name() {
+        let mut v = json!({"tasks": [{"name": "hard", "d": 1.0}, {"name": "easy", "d": 2.0}]});
+        set(&mut v, "tasks.easy.d", json!(5.0)).unwrap();
+        assert_eq!(v["tasks"][1]["d"], json!(5.0));
+        assert_eq!(v["tasks"][0]["d"], json!(1.0));
+        let e = set(&mut v, "tasks.medium.d", json!(0)).unwrap_err();
+        assert_eq!(
+            e,
+            "no element named \"medium\" in tasks (names: hard, easy)"
+        );
+        let e = set(&mut doc(), "zones.x", json!(0)).unwrap_err();
+        assert_eq!(e, "zones is a list or tuple, which has no field \"x\"");
+        // A name may be any index: such axes overlap.
+        assert!(p("tasks.easy.d").overlaps(&p("tasks[1]")));
+        assert!(!p("tasks.easy.d").overlaps(&p("tasks.hard.d")));
     }
 
     #[test]

@@ -1,62 +1,78 @@
 //! Regrouping at a round's start: robot snapshots, quotas adapted to who is available, and the
-//! grouping method's assignment (paper, sections V and VI.B-C).
+//! grouping method's assignment (paper, sections V and VI.B-C), over the scenario's tasks.
 
 use rne_core::grouping::{GroupingMethod, GroupingRequest, RobotSnapshot};
 
 use super::error::MissionError;
-use super::metrics::PerTask;
 use super::needs::needs_vector;
 use super::robot::MissionRobot;
-use crate::scenario::{AwayQuotas, Scenario, TaskLevel};
+use crate::scenario::{AwayQuotas, Scenario};
 
-/// Quotas for the robots available this round, one `[easy, hard]` pair per kind (indexed by
-/// [`TaskLevel::index`]). Per kind with `n` robots available
-/// and scenario quotas `(q_easy, q_hard)` (`n <= q_easy + q_hard = count`), the shortfall
-/// `q_easy + q_hard - n` is taken from the quotas by `mission.away_quotas`:
-/// - `HardestFirst`: `hard = min(q_hard, n)`, `easy = min(q_easy, n - hard)`;
-/// - `EasiestFirst`: `easy = min(q_easy, n)`, `hard = min(q_hard, n - easy)`;
-/// - `Even`: one robot at a time from the task whose quota is currently larger (ties: easy).
+/// One kind's task quotas (by task id) shrunk to `n` robots (`n <= ` their sum) by `rule`,
+/// with tasks `hardest_first`:
+/// - `HardestFirst`: tasks are filled from the hardest down, each with `min(quota, left)`;
+/// - `EasiestFirst`: the same from the easiest up;
+/// - `Even`: one robot at a time is taken from the task whose quota is currently largest
+///   (ties: the easiest of them).
 ///
-/// See `docs/mission-model.md`.
-pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<[usize; 2]> {
-    let rule = scenario.mission.away_quotas;
+/// For two tasks `(q_easy, q_hard)` these are `hard = min(q_hard, n)`, `easy = min(q_easy,
+/// n - hard)` and its mirror, and "take from the larger, easy on a tie".
+pub fn shrink_quotas(
+    quota: &[usize],
+    n: usize,
+    rule: AwayQuotas,
+    hardest_first: &[usize],
+) -> Vec<usize> {
+    let fill = |order: &mut dyn Iterator<Item = &usize>| {
+        let mut out = vec![0; quota.len()];
+        let mut left = n;
+        for &t in order {
+            out[t] = quota[t].min(left);
+            left -= out[t];
+        }
+        out
+    };
+    match rule {
+        AwayQuotas::HardestFirst => fill(&mut hardest_first.iter()),
+        AwayQuotas::EasiestFirst => fill(&mut hardest_first.iter().rev()),
+        AwayQuotas::Even => {
+            let mut out = quota.to_vec();
+            let mut total: usize = out.iter().sum();
+            while total > n {
+                // Largest quota; among equals the easiest (last in the hardest-first order).
+                let &t = hardest_first
+                    .iter()
+                    .max_by_key(|&&t| (out[t], position(hardest_first, t)))
+                    .expect("at least one task");
+                out[t] -= 1;
+                total -= 1;
+            }
+            out
+        }
+    }
+}
+
+fn position(order: &[usize], t: usize) -> usize {
+    order.iter().position(|&x| x == t).unwrap_or(usize::MAX)
+}
+
+/// Quotas for the robots available this round: one list per kind, by task id, the scenario's
+/// quotas shrunk by `mission.away_quotas` ([`shrink_quotas`]) to the `available_per_kind`
+/// robots of each kind. See `docs/mission-model.md`.
+pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<Vec<usize>> {
+    let order = scenario.hardest_first();
     scenario
         .kinds
         .iter()
         .zip(available_per_kind)
-        .map(|(kind, &n)| {
-            let (q_easy, q_hard) = (
-                kind.quota[TaskLevel::Easy.index()],
-                kind.quota[TaskLevel::Hard.index()],
-            );
-            match rule {
-                AwayQuotas::HardestFirst => {
-                    let hard = q_hard.min(n);
-                    [q_easy.min(n - hard), hard]
-                }
-                AwayQuotas::EasiestFirst => {
-                    let easy = q_easy.min(n);
-                    [easy, q_hard.min(n - easy)]
-                }
-                AwayQuotas::Even => {
-                    let (mut easy, mut hard) = (q_easy, q_hard);
-                    while easy + hard > n {
-                        if easy >= hard {
-                            easy -= 1;
-                        } else {
-                            hard -= 1;
-                        }
-                    }
-                    [easy, hard]
-                }
-            }
-        })
+        .map(|(kind, &n)| shrink_quotas(&kind.quota, n, scenario.mission.away_quotas, &order))
         .collect()
 }
 
 /// The snapshot of robot `r` standing at its start position, as grouping methods see it: its
 /// needs vector (Eqs. 19-21 with full capacity and resources, refilled each round), energy,
-/// HP, and the straight-line distance from its start position to each task's goal point.
+/// HP, and the straight-line distance from its start position to each task's goal point (by
+/// task id).
 pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
     let start = scenario.robots[r.id].start_in_world;
     let kind = scenario.kind_of(r.id);
@@ -65,7 +81,7 @@ pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
         kind: scenario.robots[r.id].kind,
         needs: needs_vector(
             kind,
-            scenario.mission.min_hp_factor,
+            scenario.mission.min_hp_factor.get(),
             r.hp_pct,
             r.energy_pct,
             kind.rescuing_resources,
@@ -73,16 +89,18 @@ pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
         ),
         energy_pct: r.energy_pct,
         hp_pct: r.hp_pct,
-        distance_to_goal_m: TaskLevel::ALL
-            .map(|l| (scenario.task(l).goal - start).norm())
-            .to_vec(),
+        distance_to_goal_m: scenario
+            .tasks
+            .iter()
+            .map(|t| (t.goal - start).norm())
+            .collect(),
     }
 }
 
 /// Groups the robots with ids `available` (at their start positions, not resting) with
-/// `method`: a two-task grouping request (tasks indexed by [`TaskLevel::index`], the hard task
-/// the harder) with the adapted quotas, and the method's groups as easy and hard ids. A task
-/// whose adapted quotas are all zero gets an empty group.
+/// `method`: a grouping request over the scenario's tasks (in its difficulty order) with the
+/// adapted quotas; returns one sorted id list per task id (a task whose adapted quotas are all
+/// zero gets an empty group).
 ///
 /// # Errors
 /// [`MissionError::Grouping`] when the method fails or returns an invalid assignment.
@@ -91,49 +109,34 @@ pub fn group_available(
     method: &dyn GroupingMethod,
     robots: &[MissionRobot],
     available: &[usize],
-) -> Result<PerTask<Vec<usize>>, MissionError> {
+) -> Result<Vec<Vec<usize>>, MissionError> {
     let mut per_kind = vec![0usize; scenario.kinds.len()];
     for &id in available {
         per_kind[scenario.robots[id].kind] += 1;
     }
-    let quotas = adapted_quotas(scenario, &per_kind)
-        .into_iter()
-        .map(Vec::from)
-        .collect();
+    let quotas = adapted_quotas(scenario, &per_kind);
     let snapshots = available
         .iter()
         .map(|&id| snapshot(scenario, &robots[id]))
         .collect();
-    let hardest_first = vec![TaskLevel::Hard.index(), TaskLevel::Easy.index()];
     let failed = |source| MissionError::Grouping {
         method: method.name().to_string(),
         source,
     };
-    let request = GroupingRequest::new(snapshots, quotas, hardest_first).map_err(failed)?;
-    let mut groups = method.group(&request).map_err(failed)?.groups;
-    Ok(PerTask {
-        hard: std::mem::take(&mut groups[TaskLevel::Hard.index()]),
-        easy: std::mem::take(&mut groups[TaskLevel::Easy.index()]),
-    })
+    let request =
+        GroupingRequest::new(snapshots, quotas, scenario.hardest_first()).map_err(failed)?;
+    Ok(method.group(&request).map_err(failed)?.groups)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::load;
 
-    fn paper_with(rule: AwayQuotas) -> Scenario {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-        let mut s = load(path).expect("paper.ron loads");
-        s.mission.away_quotas = rule;
-        s
-    }
-
-    /// (easy, hard) per kind for carriers (quota 3 + 3) with `n` available.
+    /// Carriers (quota 3 + 3, task 0 the harder) with `n` available: `(task 1, task 0)`, i.e.
+    /// `(easy, hard)`.
     fn carriers(rule: AwayQuotas, n: usize) -> (usize, usize) {
-        let s = paper_with(rule);
-        let [easy, hard] = adapted_quotas(&s, &[n, 4, 2])[0];
-        (easy, hard)
+        let q = shrink_quotas(&[3, 3], n, rule, &[0, 1]);
+        (q[1], q[0])
     }
 
     #[test]
@@ -152,11 +155,36 @@ mod tests {
             all(Even),
             [(0, 0), (0, 1), (1, 1), (1, 2), (2, 2), (2, 3), (3, 3)]
         );
-        // Everyone available: the scenario's quotas under every rule.
-        for rule in [HardestFirst, EasiestFirst, Even] {
-            let s = paper_with(rule);
-            let q = adapted_quotas(&s, &[6, 4, 2]);
-            assert_eq!(q, [[3, 3], [2, 2], [1, 1]]);
+    }
+
+    #[test]
+    fn three_tasks_shrink_by_difficulty() {
+        // Task 2 hardest, then 0, then 1; quotas 2 each, 3 robots left.
+        let order = [2, 0, 1];
+        assert_eq!(
+            shrink_quotas(&[2, 2, 2], 3, AwayQuotas::HardestFirst, &order),
+            [1, 0, 2]
+        );
+        assert_eq!(
+            shrink_quotas(&[2, 2, 2], 3, AwayQuotas::EasiestFirst, &order),
+            [1, 2, 0]
+        );
+        // Even: take from the easiest of the largest first: task 1, then 0, then 2.
+        assert_eq!(
+            shrink_quotas(&[2, 2, 2], 3, AwayQuotas::Even, &order),
+            [1, 1, 1]
+        );
+        assert_eq!(
+            shrink_quotas(&[2, 2, 2], 4, AwayQuotas::Even, &order),
+            [1, 1, 2]
+        );
+        // Everyone available: the quotas unchanged under every rule.
+        for rule in [
+            AwayQuotas::HardestFirst,
+            AwayQuotas::EasiestFirst,
+            AwayQuotas::Even,
+        ] {
+            assert_eq!(shrink_quotas(&[3, 1, 2], 6, rule, &order), [3, 1, 2]);
         }
     }
 }

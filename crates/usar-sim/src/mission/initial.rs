@@ -40,8 +40,11 @@ pub fn draw_initial_levels(scenario: &Scenario, seed: u64) -> Vec<InitialLevels>
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut draw = |d: &ClampedNormal| {
         // std_dev >= 0 and finite were validated, so Normal::new cannot fail.
-        let normal = Normal::new(d.mean_pct, d.std_dev_pct).expect("validated normal");
-        normal.sample(&mut rng).clamp(d.min_pct, d.max_pct)
+        // mean finite and std_dev >= 0 by their types, so Normal::new cannot fail; were it to,
+        // the mean is drawn.
+        let (mean, sd) = (d.mean_pct.get(), d.std_dev_pct.get());
+        let x = Normal::new(mean, sd).map_or(mean, |n| n.sample(&mut rng));
+        x.clamp(d.min_pct.get(), d.max_pct.get())
     };
     (0..scenario.robots.len())
         .map(|_| {

@@ -1,25 +1,42 @@
 //! The persistent USAR mission on top of the world: needs, rounds, rescuing, regrouping and
 //! metrics (paper, sections IV-VI). The rules are in `docs/mission-model.md`.
 //!
+//! Data apart from the systems that update it: [`MissionState`] holds the team, the rescuees,
+//! the rounds and the [`Recorder`] of metrics; each step runs the round system (`rounds`), the
+//! decision system (`decide`), the world's physics step, and the accounting system
+//! (`account`), each a function over the scenario, the world and the state.
+//!
 //! - [`needs`](needs_vector): a robot's 7-entry needs vector (Eqs. 19-21).
 //! - [`draw_initial_levels`]: the trial's starting energy and HP (common random numbers).
 //! - [`group_available`]: regrouping at each round's start with adapted quotas.
-//! - [`Simulation`]: one trial; [`TrialResult`]: its metrics.
+//! - [`Simulation`]: one trial, set up by [`Simulation::builder`], watched by a
+//!   [`StepObserver`]; [`TrialResult`]: its metrics.
 
+mod account;
+mod decide;
 mod error;
+mod goals;
 mod grouping;
 mod initial;
 mod metrics;
 mod needs;
+mod recorder;
 mod rescuees;
 mod robot;
+mod rounds;
 mod simulation;
+mod state;
+mod sweep;
 
+pub use decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 pub use error::MissionError;
-pub use grouping::{adapted_quotas, group_available, snapshot};
+pub use grouping::{adapted_quotas, group_available, shrink_quotas, snapshot};
 pub use initial::{InitialLevels, draw_initial_levels, trial_seed};
-pub use metrics::{PerTask, RobotMetrics, RoundRecord, TrialResult, TrialRow};
+pub use metrics::{RobotMetrics, RoundRecord, TrialResult, per};
 pub use needs::{entry, hp_factor, needs_vector};
+pub use recorder::{Recorder, TrialInfo};
 pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
-pub use simulation::{Simulation, sweep_spacing_m, sweep_waypoints};
+pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};
+pub use state::MissionState;
+pub use sweep::{sweep_spacing_m, sweep_waypoints};

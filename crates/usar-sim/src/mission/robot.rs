@@ -2,8 +2,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::scenario::TaskLevel;
-
 /// What a robot is doing in the mission.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Phase {
@@ -42,8 +40,9 @@ pub struct MissionRobot {
     pub hp_pct: f64,
     /// What it is doing.
     pub phase: Phase,
-    /// The task whose group it belongs to this round, if any.
-    pub task: Option<TaskLevel>,
+    /// The task (its id, an index into `Scenario::tasks`) whose group the robot belongs to
+    /// this round, if any.
+    pub task: Option<usize>,
     /// Free carrying capacity, rescuees.
     pub capacity_free: u32,
     /// Rescuing resources it still holds.

@@ -1,14 +1,19 @@
 //! Scenarios: RON spec types, validation into [`Scenario`], and loading.
 //!
 //! Load a file with [`load`] (or text with [`from_str`]); both parse the raw [`ScenarioSpec`]
-//! (serde + ron, unknown fields rejected) and validate it once into the [`Scenario`] the
-//! simulator takes. Errors ([`ScenarioError`]) name the file, line, column and field path. The
-//! file format is documented in `docs/scenario-format.md`.
+//! (serde + ron, unknown fields rejected; the leaf parameter blocks of [`params`] check their
+//! numbers as they are read) and validate it once into the [`Scenario`] the simulator takes,
+//! expanding start rows, rescuee grids and debris fields. Errors ([`ScenarioError`]) name the
+//! file, line, column and field path. The file format is documented in
+//! `docs/scenario-format.md`.
 
 mod error;
+mod generate;
 mod load;
 mod locate;
 mod model;
+pub mod numbers;
+pub mod params;
 mod shape;
 mod spec;
 mod validate;
@@ -16,6 +21,8 @@ mod validate;
 pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec};
 pub use model::*;
+pub use numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
+pub use params::*;
 pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;

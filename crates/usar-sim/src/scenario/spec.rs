@@ -1,18 +1,24 @@
-//! Raw scenario spec: exactly what a RON scenario file holds, before validation.
+//! Raw scenario spec: exactly what a RON scenario file holds, before expansion and validation.
 //!
 //! These types mirror the file format (documented field by field in `docs/scenario-format.md`).
-//! Every struct rejects unknown fields. Values here are *not* checked: turn a spec into the
-//! validated [`Scenario`](super::Scenario) with [`ScenarioSpec::validate`] (or load a file with
-//! [`load`](super::load) / [`from_str`](super::from_str), which do both).
+//! Every struct rejects unknown fields. The leaf parameter blocks are the simulator's own types
+//! ([`super::params`]) and check their numbers while they are read; the types here are the
+//! parts whose shape changes on the way to the [`Scenario`](super::Scenario) (start rows, task
+//! quotas by name, rescuee layouts, generated debris) and are expanded and checked by
+//! [`ScenarioSpec::validate`] (or by [`load`](super::load) / [`from_str`](super::from_str), which
+//! do both).
 //!
 //! Points and vectors are written as RON tuples `(x, y)` in metres, world frame (origin at the
 //! arena's bottom-left inner corner, x right, y up). Fields marked *default* may be omitted.
 
-use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
-use super::model::{
-    AwayQuotas, LoadOnLeave, Locomotion, RadiationFalloff, RadiationOverlap, Refresh, Role,
-    RoundStart,
+use serde::{Deserialize, Deserializer, Serialize};
+
+use super::model::{Locomotion, Role};
+use super::numbers::Positive;
+use super::params::{
+    Arena, CollisionParams, MissionParams, NavigationParams, NeedsWeights, SimParams,
 };
 
 /// A point or vector `(x, y)` in metres, world frame.
@@ -22,6 +28,10 @@ pub type XyM = [f64; 2];
 pub type RangeSpec = (f64, f64);
 
 /// The whole scenario file. In RON: `Scenario( name: ..., ... )` (the struct name is optional).
+///
+/// The leaf blocks (`arena`, `mission`, `navigation`, `collision`, `sim`, `needs_weights`) are
+/// the simulator's own parameter types, checked while they are read ([`super::params`]); the
+/// rest is expanded and checked by [`ScenarioSpec::validate`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename = "Scenario", deny_unknown_fields)]
 pub struct ScenarioSpec {
@@ -31,13 +41,14 @@ pub struct ScenarioSpec {
     #[serde(default)]
     pub description: String,
     /// The walled field.
-    pub arena: ArenaSpec,
+    pub arena: Arena,
     /// Robot kinds in grouping merge order (paper: carrier, supplier, observer); at least one.
     pub kinds: Vec<KindSpec>,
     /// Rest (recharge) station.
     pub rest_station: CircleSpec,
-    /// The easy and the hard task.
-    pub tasks: TasksSpec,
+    /// The tasks, at least one, in the order the outputs list them (columns, figures); their
+    /// `difficulty` orders them for grouping.
+    pub tasks: Vec<TaskSpec>,
     /// Listed static obstacles; default none.
     #[serde(default)]
     pub debris: Vec<DebrisSpec>,
@@ -49,37 +60,19 @@ pub struct ScenarioSpec {
     pub radiation_zones: Vec<RadiationZoneSpec>,
     /// Weights of the needs vector; default all 1.
     #[serde(default)]
-    pub needs_weights: NeedsWeightsSpec,
-    /// Mission rules; default the paper's values.
+    pub needs_weights: NeedsWeights,
+    /// Mission rules; defaults in [`MissionParams`].
     #[serde(default)]
-    pub mission: MissionSpec,
-    /// Path planning; default `grid_cell_m: 0.25, clearance_m: 0.1, waypoint_tolerance_m: 0.3`.
+    pub mission: MissionParams,
+    /// Path planning; defaults in [`NavigationParams`].
     #[serde(default)]
-    pub navigation: NavigationSpec,
-    /// Collision avoidance; default `enabled: true, lookahead_s: 1.0, safety_margin_m: 0.2,
-    /// deadlock_after_s: 2.0`.
+    pub navigation: NavigationParams,
+    /// Collision avoidance; defaults in [`CollisionParams`].
     #[serde(default)]
-    pub collision: CollisionSpec,
-    /// Time step and seed; default `dt_s: 0.02, seed: 0`.
+    pub collision: CollisionParams,
+    /// Time step and seed; defaults in [`SimParams`].
     #[serde(default)]
-    pub sim: SimSpec,
-}
-
-/// The walled rectangular field `[0, width_m] x [0, height_m]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArenaSpec {
-    /// Inner width, metres, finite, > 0.
-    pub width_m: f64,
-    /// Inner height, metres, finite, > 0.
-    pub height_m: f64,
-    /// Boundary wall thickness (outside the field), metres, finite, > 0; default 0.5.
-    #[serde(default = "default_wall_thickness_m")]
-    pub wall_thickness_m: f64,
-}
-
-fn default_wall_thickness_m() -> f64 {
-    0.5
+    pub sim: SimParams,
 }
 
 /// A circle.
@@ -88,8 +81,8 @@ fn default_wall_thickness_m() -> f64 {
 pub struct CircleSpec {
     /// Centre, metres.
     pub center_m: XyM,
-    /// Radius, metres, finite, > 0.
-    pub radius_m: f64,
+    /// Radius, metres, > 0.
+    pub radius_m: Positive,
 }
 
 /// An axis-aligned rectangle given by two corners.
@@ -102,14 +95,40 @@ pub struct RectSpec {
     pub max_m: XyM,
 }
 
-/// Robots of one kind per task, `(easy: n, hard: m)`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct QuotaSpec {
-    /// Robots of this kind in the easy task's group, >= 0.
-    pub easy: usize,
-    /// Robots of this kind in the hard task's group, >= 0.
-    pub hard: usize,
+/// Robots of one kind per task, by task name: `quota: (hard: 3, easy: 3)` (struct syntax) or
+/// `quota: {"hard": 3, "easy": 3}` (map syntax). Every task of the scenario is named exactly
+/// once (validation checks the names and that the counts add up to the kind's `count`).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+#[serde(transparent)]
+pub struct TaskQuotas(pub BTreeMap<String, usize>);
+
+impl<'de> Deserialize<'de> for TaskQuotas {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Quotas;
+        impl<'de> serde::de::Visitor<'de> for Quotas {
+            type Value = TaskQuotas;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("robots per task by task name, e.g. (hard: 3, easy: 3)")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<TaskQuotas, A::Error> {
+                let mut out = BTreeMap::new();
+                while let Some((task, n)) = map.next_entry::<String, usize>()? {
+                    if out.contains_key(&task) {
+                        return Err(serde::de::Error::custom(format!(
+                            "task {task:?} is given twice"
+                        )));
+                    }
+                    out.insert(task, n);
+                }
+                Ok(TaskQuotas(out))
+            }
+        }
+        // `deserialize_any` lets ron read `(hard: 3)` as a map, as well as `{"hard": 3}`.
+        d.deserialize_any(Quotas)
+    }
 }
 
 /// One kind of robot (paper, section VI.B).
@@ -122,26 +141,26 @@ pub struct KindSpec {
     pub role: Role,
     /// `Ground` or `Aerial`.
     pub locomotion: Locomotion,
-    /// Number of robots, >= 1; must equal `quota.easy + quota.hard`.
+    /// Number of robots, >= 1; must equal the sum of `quota`.
     pub count: usize,
-    /// Robots per task group.
-    pub quota: QuotaSpec,
-    /// Body (disc) radius, metres, finite, > 0.
-    pub body_radius_m: f64,
-    /// Top speed at full HP, m/s, finite, > 0.
-    pub max_speed_m_per_s: f64,
-    /// Range to sense robots and obstacles, metres, finite, > 0.
-    pub sensing_range_m: f64,
-    /// Range to detect rescuees, metres, finite, > 0.
-    pub observing_range_m: f64,
+    /// Robots of this kind in each task's group, by task name.
+    pub quota: TaskQuotas,
+    /// Body (disc) radius, metres, > 0.
+    pub body_radius_m: Positive,
+    /// Top speed at full HP, m/s, > 0.
+    pub max_speed_m_per_s: Positive,
+    /// Range to sense robots and obstacles, metres, > 0.
+    pub sensing_range_m: Positive,
+    /// Range to detect rescuees, metres, > 0.
+    pub observing_range_m: Positive,
     /// Rescuees carried at once, >= 0.
     pub carrying_capacity: u32,
     /// Rescuing resources brought per round, >= 0.
     pub rescuing_resources: u32,
-    /// Health needs level at 100 % HP, finite, > 0.
-    pub hp_needs_full: f64,
-    /// Energy needs level at 100 % energy, finite, > 0.
-    pub energy_needs_full: f64,
+    /// Health needs level at 100 % HP, > 0.
+    pub hp_needs_full: Positive,
+    /// Energy needs level at 100 % energy, > 0.
+    pub energy_needs_full: Positive,
     /// Start positions of the `count` robots.
     pub starts: StartsSpec,
 }
@@ -162,20 +181,19 @@ pub enum StartsSpec {
     },
 }
 
-/// The two tasks.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TasksSpec {
-    /// The easy task (paper: near, few adversaries).
-    pub easy: TaskSpec,
-    /// The hard task (paper: far, more debris and radiation).
-    pub hard: TaskSpec,
-}
-
-/// One task: search area with rescuees, goal point and drop-off.
+/// One task: a name, a difficulty, a search area with rescuees, a goal point and a drop-off
+/// (paper, sections IV-V: an easy and a hard task; any number here).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskSpec {
+    /// Unique, non-empty name (e.g. `"hard"`); kinds' quotas and the outputs name the task by
+    /// it. The paper's claims are checked for scenarios with tasks named `easy` and `hard`.
+    pub name: String,
+    /// Difficulty rank, >= 0, higher is harder; default 0. Grouping methods fill tasks from the
+    /// hardest down (paper: the hard task); on equal ranks the task listed first counts as the
+    /// harder.
+    #[serde(default)]
+    pub difficulty: u32,
     /// Where rescuees lie; inside the arena.
     pub search_area: RectSpec,
     /// Goal point (distance-based grouping measures to it), metres; inside the arena, not
@@ -196,8 +214,8 @@ pub enum RescueeLayoutSpec {
     /// are left out. Row by row from the bottom-left.
     /// `Grid(spacing_m: 1.0, margin_m: 0.5)`.
     Grid {
-        /// Distance between neighbours, metres, finite, > 0.
-        spacing_m: f64,
+        /// Distance between neighbours, metres, > 0.
+        spacing_m: Positive,
         /// Minimum distance from the search area's edges, metres, finite, >= 0; default 0.
         #[serde(default)]
         margin_m: f64,
@@ -225,8 +243,8 @@ pub enum DebrisSpec {
     Circle {
         /// Centre, metres.
         center_m: XyM,
-        /// Radius, metres, finite, > 0.
-        radius_m: f64,
+        /// Radius, metres, > 0.
+        radius_m: Positive,
     },
 }
 
@@ -286,227 +304,13 @@ fn default_min_gap_m() -> f64 {
 pub struct RadiationZoneSpec {
     /// Centre, metres.
     pub center_m: XyM,
-    /// Radius, metres, finite, > 0; the disc lies inside the arena.
-    pub radius_m: f64,
-    /// Relative dose rate, finite, > 0; default 1.
+    /// Radius, metres, > 0; the disc lies inside the arena.
+    pub radius_m: Positive,
+    /// Relative dose rate, > 0; default 1.
     #[serde(default = "one")]
-    pub dose_rate_factor: f64,
+    pub dose_rate_factor: Positive,
 }
 
-fn one() -> f64 {
-    1.0
-}
-
-/// Weights of the needs vector `(hp, v, sen, eng, res, cap, obs)`, each finite and > 0,
-/// default 1.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct NeedsWeightsSpec {
-    /// Health points.
-    pub hp: f64,
-    /// Speed.
-    pub v: f64,
-    /// Sensing range.
-    pub sen: f64,
-    /// Energy.
-    pub eng: f64,
-    /// Rescuing resources.
-    pub res: f64,
-    /// Carrying capacity.
-    pub cap: f64,
-    /// Observing range.
-    pub obs: f64,
-}
-
-impl Default for NeedsWeightsSpec {
-    fn default() -> Self {
-        Self {
-            hp: 1.0,
-            v: 1.0,
-            sen: 1.0,
-            eng: 1.0,
-            res: 1.0,
-            cap: 1.0,
-            obs: 1.0,
-        }
-    }
-}
-
-/// A normal distribution `N(mean_pct, std_dev_pct)` clamped to `[min_pct, max_pct]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ClampedNormalSpec {
-    /// Mean, percent, finite.
-    pub mean_pct: f64,
-    /// Standard deviation, percent, finite, >= 0.
-    pub std_dev_pct: f64,
-    /// Lower clamp, percent, in `[0, 100]`; default 0.
-    #[serde(default)]
-    pub min_pct: f64,
-    /// Upper clamp, percent, in `[min_pct, 100]`; default 100.
-    #[serde(default = "hundred")]
-    pub max_pct: f64,
-}
-
-fn hundred() -> f64 {
-    100.0
-}
-
-/// Mission rules (paper, section VI.B). Every field defaults to the paper's value.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct MissionSpec {
-    /// Trial length, seconds, finite, > 0; default 600.
-    pub duration_s: f64,
-    /// Energy spent per moving step, percent, finite, >= 0; default 0.0045.
-    pub energy_pct_per_moving_step: f64,
-    /// Energy spent per metre moved, percent per metre, finite, >= 0; default 0 (adds to
-    /// `energy_pct_per_moving_step`).
-    pub energy_pct_per_m: f64,
-    /// HP lost per step in a radiation zone of factor 1, percent, finite, >= 0; default 0.0003.
-    pub hp_pct_per_step_in_radiation: f64,
-    /// How overlapping radiation zones combine: `Sum` (default) or `Max`.
-    pub radiation_overlap: RadiationOverlap,
-    /// How a zone's dose varies inside it: `Uniform` (default) or `Linear`.
-    pub radiation_falloff: RadiationFalloff,
-    /// When a new round may start: `Available` (default; robots away sit it out) or `AllBack`
-    /// (the whole team must be back at its start positions).
-    pub round_start: RoundStart,
-    /// Which quota shrinks first when robots are away at a round's start: `HardestFirst`
-    /// (default), `EasiestFirst` or `Even`.
-    pub away_quotas: AwayQuotas,
-    /// What becomes of a leaving robot's load: `Abandon` (default), `ReturnToArea` or
-    /// `DeliverFirst`.
-    pub load_on_leave: LoadOnLeave,
-    /// Longest search per group and round, seconds, finite, > 0, written `Some(40.0)`; default
-    /// `None` (no limit).
-    pub search_time_budget_s: Option<f64>,
-    /// What a stay at the rest station restores: `Both` (default) or `LowOnly`.
-    pub refresh: Refresh,
-    /// Row spacing of a blind group's lawn-mower search, metres, finite, > 0, written
-    /// `Some(2.0)`; default `None`: the narrowest ground detection width
-    /// `2 * (body_radius_m + observing_range_m)`, so a sweep covers the whole area.
-    pub sweep_spacing_m: Option<f64>,
-    /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]`; default 0
-    /// (the factor is `hp_pct / 100`, so a robot at 0 % HP stops).
-    pub min_hp_factor: f64,
-    /// Time a ground robot stands at a rescuee to rescue it (secure and load it), seconds,
-    /// finite, >= 0; default 0 (at once).
-    pub pickup_s: f64,
-    /// Recharge threshold, percent, in `[0, 100]`; default 30.
-    pub low_energy_pct: f64,
-    /// Refresh threshold, percent, in `[0, 100]`; default 30.
-    pub low_hp_pct: f64,
-    /// Time at the rest station, seconds, finite, >= 0; default 30.
-    pub recharge_s: f64,
-    /// Speed factor of a group without an observer, in `(0, 1]`; default 0.7.
-    pub no_observer_speed_factor: f64,
-    /// Initial energy; default `N(80, 20)` clamped to `[0, 100]`.
-    pub initial_energy: ClampedNormalSpec,
-    /// Initial HP; default `N(90, 10)` clamped to `[0, 100]`.
-    pub initial_hp: ClampedNormalSpec,
-}
-
-impl Default for MissionSpec {
-    fn default() -> Self {
-        Self {
-            duration_s: 600.0,
-            energy_pct_per_moving_step: 0.0045,
-            energy_pct_per_m: 0.0,
-            hp_pct_per_step_in_radiation: 0.0003,
-            radiation_overlap: RadiationOverlap::default(),
-            radiation_falloff: RadiationFalloff::default(),
-            round_start: RoundStart::default(),
-            away_quotas: AwayQuotas::default(),
-            load_on_leave: LoadOnLeave::default(),
-            search_time_budget_s: None,
-            refresh: Refresh::default(),
-            sweep_spacing_m: None,
-            min_hp_factor: 0.0,
-            pickup_s: 0.0,
-            low_energy_pct: 30.0,
-            low_hp_pct: 30.0,
-            recharge_s: 30.0,
-            no_observer_speed_factor: 0.7,
-            initial_energy: ClampedNormalSpec {
-                mean_pct: 80.0,
-                std_dev_pct: 20.0,
-                min_pct: 0.0,
-                max_pct: 100.0,
-            },
-            initial_hp: ClampedNormalSpec {
-                mean_pct: 90.0,
-                std_dev_pct: 10.0,
-                min_pct: 0.0,
-                max_pct: 100.0,
-            },
-        }
-    }
-}
-
-/// Path planning of ground robots.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct NavigationSpec {
-    /// Occupancy-grid cell side, metres, finite, > 0; default 0.25.
-    pub grid_cell_m: f64,
-    /// Clearance beyond the body radius, metres, finite, >= 0; default 0.1.
-    pub clearance_m: f64,
-    /// Waypoint reached distance, metres, finite, > 0; default 0.3.
-    pub waypoint_tolerance_m: f64,
-}
-
-impl Default for NavigationSpec {
-    fn default() -> Self {
-        Self {
-            grid_cell_m: 0.25,
-            clearance_m: 0.1,
-            waypoint_tolerance_m: 0.3,
-        }
-    }
-}
-
-/// Priority-based collision avoidance (paper, section V, Algorithm 5).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct CollisionSpec {
-    /// Whether the resolver runs; default `true`.
-    pub enabled: bool,
-    /// Look-ahead, seconds, finite, > 0; default 1.0.
-    pub lookahead_s: f64,
-    /// Gap kept between bodies, metres, finite, >= 0; default 0.2.
-    pub safety_margin_m: f64,
-    /// Time without progress along their paths (see `docs/world-model.md`) that makes a
-    /// collision list a deadlock, seconds, finite, > 0; default 2.0.
-    pub deadlock_after_s: f64,
-}
-
-impl Default for CollisionSpec {
-    fn default() -> Self {
-        Self {
-            enabled: true,
-            lookahead_s: 1.0,
-            safety_margin_m: 0.2,
-            deadlock_after_s: 2.0,
-        }
-    }
-}
-
-/// Time stepping and seed.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct SimSpec {
-    /// Fixed step, seconds, finite, in `(0, mission.duration_s]`; default 0.02 (1/50 s).
-    pub dt_s: f64,
-    /// Base seed of trials and default seed of debris fields; default 0.
-    pub seed: u64,
-}
-
-impl Default for SimSpec {
-    fn default() -> Self {
-        Self {
-            dt_s: 1.0 / 50.0,
-            seed: 0,
-        }
-    }
+fn one() -> Positive {
+    Positive::known(1.0)
 }

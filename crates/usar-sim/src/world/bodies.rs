@@ -137,9 +137,9 @@ impl StaticObstacle {
 /// the corners) followed by the debris, in scenario order (each the `f32` twin of
 /// [`crate::scenario::Debris::shape`]).
 pub fn static_obstacles(s: &Scenario) -> Vec<StaticObstacle> {
-    let w = s.arena.width_m as f32;
-    let h = s.arena.height_m as f32;
-    let t = s.arena.wall_thickness_m as f32;
+    let w = s.arena.width_m.get() as f32;
+    let h = s.arena.height_m.get() as f32;
+    let t = s.arena.wall_thickness_m.get() as f32;
     let wall = |cx: f32, cy: f32, hx: f32, hy: f32| StaticObstacle {
         shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
         pose: Pose::translation(cx, cy),
@@ -172,7 +172,7 @@ impl PhysicsScene {
     pub fn new(s: &Scenario) -> Self {
         let mut physics = PhysicsWorld::new();
         physics.gravity = Vec2::ZERO;
-        physics.integration_parameters.dt = s.sim.dt_s as f32;
+        physics.integration_parameters.dt = s.sim.dt_s.get() as f32;
         let statics = static_obstacles(s);
         for o in &statics {
             physics.insert_collider(o.collider(), None);

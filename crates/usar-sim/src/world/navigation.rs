@@ -39,8 +39,8 @@ impl ClearanceGrid {
     /// obstacle's bounding box are queried, so building costs O(cells near obstacles).
     pub fn build(arena: &Arena, statics: &[StaticObstacle], cell_m: f64, cap_m: f32) -> Self {
         let cell = cell_m as f32;
-        let nx = ((arena.width_m / cell_m).ceil() as u32).max(1);
-        let ny = ((arena.height_m / cell_m).ceil() as u32).max(1);
+        let nx = ((arena.width_m.get() / cell_m).ceil() as u32).max(1);
+        let ny = ((arena.height_m.get() / cell_m).ceil() as u32).max(1);
         let mut dist = vec![cap_m; (nx * ny) as usize];
         for o in statics {
             let bb = o.aabb();
@@ -304,6 +304,7 @@ mod tests {
     use parry2d::shape::{Ball, Cuboid};
 
     use super::*;
+    use crate::scenario::Positive;
     use crate::world::bodies::StaticShape;
 
     const CELL: f64 = 0.25;
@@ -330,9 +331,9 @@ mod tests {
     /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
     fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
         let arena = Arena {
-            width_m: f64::from(ARENA.0),
-            height_m: f64::from(ARENA.1),
-            wall_thickness_m: 0.5,
+            width_m: Positive::new(f64::from(ARENA.0)).unwrap(),
+            height_m: Positive::new(f64::from(ARENA.1)).unwrap(),
+            wall_thickness_m: Positive::new(0.5).unwrap(),
         };
         ClearanceGrid::build(&arena, statics, CELL, 2.0)
     }

@@ -24,7 +24,7 @@ impl World {
     /// Inflation of robot `id`'s line-of-sight checks while following its path: body radius +
     /// half of `navigation.clearance_m`, metres.
     fn check_inflation(&self, id: usize) -> f32 {
-        self.nav[id].radius + 0.5 * self.navigation.clearance_m as f32
+        self.nav[id].radius + 0.5 * self.navigation.clearance_m.get() as f32
     }
 
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
@@ -38,7 +38,7 @@ impl World {
         if self.robots[id].goal_reached {
             return;
         }
-        if (goal - nav.pos).length() <= self.navigation.waypoint_tolerance_m as f32 {
+        if (goal - nav.pos).length() <= self.navigation.waypoint_tolerance_m.get() as f32 {
             self.robots[id].goal_reached = true;
             return;
         }
@@ -98,7 +98,7 @@ impl World {
     /// leg, and sees the next waypoint. Without the second rule robots queueing at a corner all
     /// aim at the same point, which their own bodies cover: a jam no priority order resolves.
     fn pass_corners(&mut self, id: usize) {
-        let tol = self.navigation.waypoint_tolerance_m as f32;
+        let tol = self.navigation.waypoint_tolerance_m.get() as f32;
         let check_infl = self.check_inflation(id);
         let nav = &mut self.nav[id];
         let p = nav.pos;

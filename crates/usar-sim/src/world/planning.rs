@@ -22,8 +22,8 @@ impl World {
     /// metres (see [`super::navigation`]).
     pub(super) fn plan_inflation(&self, id: usize) -> f32 {
         self.nav[id].radius
-            + self.navigation.clearance_m as f32
-            + 0.5 * self.navigation.grid_cell_m as f32
+            + self.navigation.clearance_m.get() as f32
+            + 0.5 * self.navigation.grid_cell_m.get() as f32
     }
 
     /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective

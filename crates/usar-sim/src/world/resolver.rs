@@ -175,7 +175,7 @@ impl Resolver {
     }
 
     fn clearance(&self, a: &ResolverInput, b: &ResolverInput) -> f32 {
-        a.radius + b.radius + self.params.safety_margin_m as f32
+        a.radius + b.radius + self.params.safety_margin_m.get() as f32
     }
 
     /// Head of the list rooted at `root`: collects its members (ascending id), sorts them by
@@ -237,7 +237,7 @@ impl Resolver {
     /// Rule 1: unites the pairs about to collide (fresh union-find).
     fn link_pairs(&mut self, inputs: &[ResolverInput]) {
         let n = inputs.len();
-        let horizon = self.params.lookahead_s as f32;
+        let horizon = self.params.lookahead_s.get() as f32;
         for i in 0..n {
             self.parent[i] = i;
             self.size[i] = 1;
@@ -266,7 +266,7 @@ impl Resolver {
     /// Rules 2-3: heads, then followers join held robots, until nobody joins.
     fn join_followers(&mut self, inputs: &[ResolverInput]) {
         let n = inputs.len();
-        let horizon = self.params.lookahead_s as f32;
+        let horizon = self.params.lookahead_s.get() as f32;
         self.assign_heads(inputs);
         for _ in 0..n {
             let mut changed = false;
@@ -297,7 +297,7 @@ impl Resolver {
     /// Rule 4: rotates deadlocked lists, then fixes each list's head, the members' memory and
     /// the decisions.
     fn decide(&mut self, inputs: &[ResolverInput]) {
-        let after = self.params.deadlock_after_s;
+        let after = self.params.deadlock_after_s.get();
         self.held.iter_mut().for_each(|h| *h = false);
         for d in &mut self.decisions {
             *d = Decision::default();
@@ -368,7 +368,7 @@ impl Resolver {
         if a.intent == Vec2::ZERO {
             return Some(Vec2::ZERO);
         }
-        let horizon = self.params.lookahead_s as f32;
+        let horizon = self.params.lookahead_s.get() as f32;
         let speed = a.intent.length();
         let here = grid.clearance_at(a.pos);
         let clear_of_robots = |w: Vec2| {
@@ -419,16 +419,16 @@ mod tests {
     use parry2d::shape::Cuboid;
 
     use super::*;
-    use crate::scenario::Arena;
+    use crate::scenario::{Arena, NonNegative, Positive};
     use crate::world::bodies::{StaticObstacle, StaticShape};
 
     /// Look-ahead 1 s, margin 0.2 m, deadlock after 2 s.
     fn params() -> CollisionParams {
         CollisionParams {
             enabled: true,
-            lookahead_s: 1.0,
-            safety_margin_m: 0.2,
-            deadlock_after_s: 2.0,
+            lookahead_s: Positive::new(1.0).unwrap(),
+            safety_margin_m: NonNegative::new(0.2).unwrap(),
+            deadlock_after_s: Positive::new(2.0).unwrap(),
         }
     }
 
@@ -457,9 +457,9 @@ mod tests {
     /// A 10 m x 10 m grid of 0.25 m cells (clearance capped at 2 m) around `statics`.
     fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
         let arena = Arena {
-            width_m: 10.0,
-            height_m: 10.0,
-            wall_thickness_m: 0.5,
+            width_m: Positive::new(10.0).unwrap(),
+            height_m: Positive::new(10.0).unwrap(),
+            wall_thickness_m: Positive::new(0.5).unwrap(),
         };
         ClearanceGrid::build(&arena, statics, 0.25, 2.0)
     }

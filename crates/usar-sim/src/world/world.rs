@@ -61,9 +61,16 @@ impl World {
     pub fn new(s: &Scenario) -> Self {
         let scene = PhysicsScene::new(s);
         let max_radius = s.kinds.iter().map(|k| k.body_radius_m).fold(0.0, f64::max);
-        let cap =
-            (max_radius + s.navigation.clearance_m + 2.0 * s.navigation.grid_cell_m + 1.0) as f32;
-        let grid = ClearanceGrid::build(&s.arena, &scene.statics, s.navigation.grid_cell_m, cap);
+        let cap = (max_radius
+            + s.navigation.clearance_m.get()
+            + 2.0 * s.navigation.grid_cell_m.get()
+            + 1.0) as f32;
+        let grid = ClearanceGrid::build(
+            &s.arena,
+            &scene.statics,
+            s.navigation.grid_cell_m.get(),
+            cap,
+        );
         let mut nav = Vec::with_capacity(s.robots.len());
         let mut robots = Vec::with_capacity(s.robots.len());
         for (id, r) in s.robots.iter().enumerate() {
@@ -90,8 +97,8 @@ impl World {
                 overlap: s.mission.radiation_overlap,
                 falloff: s.mission.radiation_falloff,
             },
-            arena: (s.arena.width_m as f32, s.arena.height_m as f32),
-            dt: s.sim.dt_s,
+            arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
+            dt: s.sim.dt_s.get(),
             collision: s.collision,
             navigation: s.navigation,
             stats: WorldStats::default(),

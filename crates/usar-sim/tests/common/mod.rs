@@ -2,7 +2,7 @@
 
 #![allow(dead_code)] // each test file uses a subset
 
-use usar_sim::scenario::{self, PointM, Scenario, TaskLevel};
+use usar_sim::scenario::{self, PointM, Scenario};
 
 /// `scenarios/corridor.ron`.
 pub const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
@@ -20,9 +20,9 @@ pub fn corridor(per_side: usize) -> Scenario {
     let src = std::fs::read_to_string(CORRIDOR).expect("scenarios/corridor.ron");
     let mut spec = scenario::parse_spec(&src, CORRIDOR).unwrap_or_else(|e| panic!("{e}"));
     spec.kinds[0].count = per_side;
-    spec.kinds[0].quota.easy = per_side;
+    spec.kinds[0].quota.0.insert("easy".into(), per_side);
     spec.kinds[1].count = per_side;
-    spec.kinds[1].quota.hard = per_side;
+    spec.kinds[1].quota.0.insert("hard".into(), per_side);
     spec.validate(&format!("corridor.ron ({per_side} per end)"))
         .unwrap_or_else(|e| panic!("{e}"))
 }
@@ -32,8 +32,8 @@ pub fn corridor(per_side: usize) -> Scenario {
 /// likewise to the hard goal, so the front robot of a row takes the deepest slot and arrivals
 /// never block later ones.
 pub fn swap_goals(s: &Scenario) -> Vec<PointM> {
-    let easy = s.task(TaskLevel::Easy).goal;
-    let hard = s.task(TaskLevel::Hard).goal;
+    let task = |name: &str| &s.tasks[s.task_id(name).expect("corridor has easy and hard")];
+    let (easy, hard) = (task("easy").goal, task("hard").goal);
     let mut seen = [0usize; 2];
     s.robots
         .iter()

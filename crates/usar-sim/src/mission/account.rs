@@ -1,0 +1,263 @@
+//! The accounting system, run after each physics step (paper, section VI.B): energy and HP
+//! costs, rescuee detection, and each robot's phase (pick-ups, deliveries, arrivals, the rest
+//! station). The rules: `docs/mission-model.md`.
+
+use super::decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
+use super::error::MissionError;
+use super::goals::{send, stop};
+use super::needs::hp_factor;
+use super::rescuees::RescueeStatus;
+use super::robot::Phase;
+use super::state::MissionState;
+use crate::scenario::{LoadOnLeave, Locomotion, PointM, Refresh, Scenario};
+use crate::world::World;
+
+/// Accounts the step just taken for every robot, in id order: energy (per moving step and per
+/// metre moved), HP (per step in radiation), detections of its group, its phase, and a leave
+/// for the rest station when energy or HP fell below its threshold.
+///
+/// # Errors
+/// [`MissionError::World`] if the world refuses a command (a bug).
+pub(crate) fn account(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+) -> Result<(), MissionError> {
+    let m = &scenario.mission;
+    let dt = scenario.sim.dt_s.get();
+    let now = world.time_s();
+    for id in 0..st.robots.len() {
+        let w = world.robot(id);
+        let (moved, step_m, pos, reached, radius) = (
+            w.moved_this_step,
+            w.step_distance_m,
+            w.position,
+            w.goal_reached,
+            w.radius_m,
+        );
+        let rad = world.radiation_factor(id);
+        let r = &mut st.robots[id];
+        if moved {
+            let cost = m.energy_pct_per_moving_step.get() + m.energy_pct_per_m.get() * step_m;
+            let spent = cost.min(r.energy_pct);
+            r.energy_pct -= spent;
+            st.recorder.energy(id, r.task, spent);
+        }
+        if rad > 0.0 {
+            let lost = (m.hp_pct_per_step_in_radiation.get() * rad).min(r.hp_pct);
+            r.hp_pct -= lost;
+            st.recorder.hp(id, r.task, lost, dt);
+        }
+        if let Some(t) = r.task
+            && r.is_on_task()
+        {
+            let f = hp_factor(r.hp_pct, m.min_hp_factor.get());
+            let range = radius + scenario.kind_of(id).observing_range_m * f;
+            st.fields[t].detect(&pos, range);
+        }
+        advance_phase(scenario, world, st, id, pos, reached, now)?;
+        let r = &st.robots[id];
+        if !r.is_resting()
+            && (r.energy_pct < m.low_energy_pct.get() || r.hp_pct < m.low_hp_pct.get())
+        {
+            go_rest(scenario, world, st, id)?;
+        }
+    }
+    Ok(())
+}
+
+/// Moves robot `id` on in its phase after a step that left it at `pos` (`reached`: at its
+/// goal).
+fn advance_phase(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+    pos: PointM,
+    reached: bool,
+    now: f64,
+) -> Result<(), MissionError> {
+    let r = &st.robots[id];
+    match (r.phase, r.task) {
+        (Phase::ToSearchArea | Phase::Searching | Phase::Waiting, Some(t)) => {
+            if r.claim.is_some() {
+                try_pick_up(scenario, world, st, id, t, pos, reached)?;
+            }
+            let in_area = scenario.tasks[t].search_area.contains(&pos);
+            if in_area && scenario.kind_of(id).locomotion == Locomotion::Ground {
+                st.search_started_s[t].get_or_insert(now);
+            }
+            let r = &mut st.robots[id];
+            if r.phase == Phase::ToSearchArea && (reached || in_area) {
+                r.phase = Phase::Searching;
+                if r.claim.is_none() {
+                    // In the area now: the approach goal (the task's goal point, where others
+                    // may stand) is dropped; the next decision picks a rescuee, a sweep
+                    // waypoint, or waiting.
+                    stop(world, id)?;
+                }
+            }
+        }
+        (Phase::ToDropOff, Some(t)) if (reached || scenario.tasks[t].drop_off.contains(&pos)) => {
+            deliver(st, id, t);
+            if st.robots[id].leaving {
+                go_rest(scenario, world, st, id)?;
+            } else {
+                st.robots[id].phase = Phase::ToStart;
+                let start = scenario.robots[id].start_in_world;
+                send(world, &mut st.recorder, id, start)?;
+            }
+        }
+        (Phase::ToStart | Phase::RestToStart, _) if reached => {
+            st.robots[id].phase = Phase::AtStart;
+            stop(world, id)?;
+        }
+        (Phase::ToRest, _) if (reached || scenario.rest_station.contains(&pos)) => {
+            st.robots[id].phase = Phase::Recharging {
+                until_s: now + scenario.mission.recharge_s.get(),
+            };
+            stop(world, id)?;
+        }
+        (Phase::Recharging { until_s }, _) if now + 1e-9 >= until_s => {
+            refresh(scenario, st, id);
+            let start = scenario.robots[id].start_in_world;
+            send(world, &mut st.recorder, id, start)?;
+        }
+        // At the start, or (never in a valid state) on a task's work without a task.
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Ends robot `id`'s stay at the rest station: restores what `mission.refresh` says and sends
+/// it back towards its start.
+fn refresh(scenario: &Scenario, st: &mut MissionState, id: usize) {
+    let m = &scenario.mission;
+    let r = &mut st.robots[id];
+    let both = m.refresh == Refresh::Both;
+    if both || r.energy_pct < m.low_energy_pct.get() {
+        r.energy_pct = 100.0;
+    }
+    if both || r.hp_pct < m.low_hp_pct.get() {
+        r.hp_pct = 100.0;
+    }
+    r.phase = Phase::RestToStart;
+    st.recorder.recharged(id);
+}
+
+/// Robot `id` with a claim on a rescuee of task `t`: gives the claim up when the rescuee is out
+/// of reach at the goal (inside inflated debris) or the robot stalls; within reach it rescues
+/// it (after `mission.pickup_s` standing still), using one unit of its capacity and one
+/// resource of its group's pool (from the first member in id order that holds one).
+fn try_pick_up(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+    t: usize,
+    pos: PointM,
+    reached: bool,
+) -> Result<(), MissionError> {
+    let Some(i) = st.robots[id].claim else {
+        return Ok(());
+    };
+    let field = &mut st.fields[t];
+    let reach = scenario.kind_of(id).body_radius_m + scenario.navigation.waypoint_tolerance_m.get();
+    let d = (field.position(i) - pos).norm();
+    if d > reach + 1e-9 {
+        let now = world.time_s();
+        let r = &mut st.robots[id];
+        if reached {
+            // Arrived at the effective goal but the rescuee is out of reach (it lies inside
+            // inflated debris): nobody will get it.
+            field.settle(i, RescueeStatus::Unreachable);
+            r.claim = None;
+        } else if d < r.target_best_m - CLAIM_PROGRESS_M {
+            r.target_best_m = d;
+            r.target_progress_s = now;
+        } else if now - r.target_progress_s > CLAIM_STALL_S {
+            field.settle(i, RescueeStatus::Skipped);
+            r.claim = None;
+        }
+        return Ok(());
+    }
+    // Within reach: the rescue takes `pickup_s` of standing still (0: at once).
+    let pickup_s = scenario.mission.pickup_s.get();
+    if pickup_s > 0.0 {
+        let now = world.time_s();
+        match st.robots[id].picking_until_s {
+            None => {
+                st.robots[id].picking_until_s = Some(now + pickup_s);
+                return stop(world, id);
+            }
+            Some(until_s) if now + 1e-9 < until_s => return Ok(()),
+            Some(_) => st.robots[id].picking_until_s = None,
+        }
+    }
+    let Some(donor) = st
+        .robots
+        .iter()
+        .position(|r| r.task == Some(t) && !r.is_resting() && r.resources > 0)
+    else {
+        st.fields[t].release(i);
+        st.robots[id].claim = None;
+        return Ok(());
+    };
+    st.robots[donor].resources -= 1;
+    st.fields[t].pick_up(i, id);
+    let r = &mut st.robots[id];
+    r.claim = None;
+    r.capacity_free -= 1;
+    r.load.push(i);
+    st.recorder.picked_up(id);
+    stop(world, id)
+}
+
+/// Robot `id` delivers its load at task `t`'s drop-off: each rescuee counts for the task once.
+fn deliver(st: &mut MissionState, id: usize, t: usize) {
+    let load = std::mem::take(&mut st.robots[id].load);
+    let n = load.len() as u32;
+    for i in load {
+        st.fields[t].settle(i, RescueeStatus::Delivered);
+    }
+    st.recorder.delivered(id, t, n);
+}
+
+/// Robot `id` leaves its task and group for the rest station (energy or HP below its
+/// threshold). Its claim is released; its load is abandoned, put back, or first delivered
+/// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
+/// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
+fn go_rest(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+) -> Result<(), MissionError> {
+    let rule = scenario.mission.load_on_leave;
+    let r = &mut st.robots[id];
+    if let Some(t) = r.task {
+        let field = &mut st.fields[t];
+        if let Some(i) = r.claim.take() {
+            field.release(i);
+        }
+        r.picking_until_s = None;
+        if rule == LoadOnLeave::DeliverFirst && !r.leaving && !r.load.is_empty() {
+            r.leaving = true;
+            r.phase = Phase::ToDropOff;
+            let drop_off = scenario.tasks[t].drop_off.center;
+            return send(world, &mut st.recorder, id, drop_off);
+        }
+        for i in r.load.drain(..) {
+            match rule {
+                LoadOnLeave::ReturnToArea => field.put_back(i),
+                LoadOnLeave::Abandon | LoadOnLeave::DeliverFirst => {
+                    field.settle(i, RescueeStatus::Abandoned);
+                }
+            }
+        }
+    }
+    r.leaving = false;
+    r.task = None;
+    r.phase = Phase::ToRest;
+    send(world, &mut st.recorder, id, scenario.rest_station.center)
+}

@@ -1,0 +1,242 @@
+//! The decision system, run before each physics step (paper, sections IV and VI.B): groups
+//! leave their search areas when their trip is over; every robot's speed, sensing and
+//! collision priority follow its state; ground members claim rescuees or sweep.
+
+use super::error::MissionError;
+use super::goals::{send, stop};
+use super::needs::hp_factor;
+use super::rescuees::RescueeStatus;
+use super::robot::{MissionRobot, Phase};
+use super::state::MissionState;
+use crate::scenario::{Locomotion, PointM, Role, Scenario};
+use crate::world::{World, WorldError};
+
+/// A claim on a rescuee is given up when the robot has not come `CLAIM_PROGRESS_M` closer to
+/// it for `CLAIM_STALL_S` seconds (other robots stand in the way, or it is wedged): the
+/// rescuee is then `Skipped` until the next round. Seconds.
+pub const CLAIM_STALL_S: f64 = 10.0;
+/// See [`CLAIM_STALL_S`]. Metres.
+pub const CLAIM_PROGRESS_M: f64 = 0.5;
+
+/// Runs the decisions of one step (see the module docs).
+///
+/// # Errors
+/// [`MissionError::World`] if the world refuses a command (a bug).
+pub(crate) fn decide(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+) -> Result<(), MissionError> {
+    for t in 0..scenario.tasks.len() {
+        if group_should_leave(scenario, world, st, t) {
+            leave_search_area(scenario, world, st, t)?;
+        }
+    }
+    let min_factor = scenario.mission.min_hp_factor.get();
+    let observer: Vec<bool> = (0..scenario.tasks.len())
+        .map(|t| has_observer(scenario, st, t))
+        .collect();
+    for id in 0..st.robots.len() {
+        let kind = scenario.kind_of(id);
+        let r = &st.robots[id];
+        let f = hp_factor(r.hp_pct, min_factor);
+        let blind = r.task.is_some_and(|t| !observer[t]);
+        let penalty = if blind {
+            scenario.mission.no_observer_speed_factor.get()
+        } else {
+            1.0
+        };
+        world.set_speed_factor(id, f * penalty)?;
+        world.set_sensing_factor(id, f)?;
+        world.set_priority_key(id, r.energy_pct)?;
+        if kind.locomotion == Locomotion::Ground && r.is_on_task() {
+            decide_ground_on_task(scenario, world, st, id, blind)?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether task `t`'s group has an observer still in it.
+fn has_observer(scenario: &Scenario, st: &MissionState, t: usize) -> bool {
+    st.members(t)
+        .any(|r| scenario.kind_of(r.id).role == Role::Observer)
+}
+
+/// Whether task `t`'s group must leave its search area (see `docs/mission-model.md`): its
+/// pool of resources or its ground members' free capacity is used up, nothing more is to be
+/// had (every ground member waits and no observer is still flying in), or its search time
+/// budget (`mission.search_time_budget_s`) is spent. Allocates nothing.
+fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: usize) -> bool {
+    let on_task = || {
+        st.robots
+            .iter()
+            .filter(move |r| r.task == Some(t) && r.is_on_task())
+    };
+    let ground = |r: &&MissionRobot| scenario.kind_of(r.id).locomotion == Locomotion::Ground;
+    if on_task().next().is_none() {
+        return false;
+    }
+    let (pool, _) = st.group_pool(t);
+    let free_capacity: u32 = on_task().filter(ground).map(|r| r.capacity_free).sum();
+    let observer_arriving = on_task()
+        .any(|r| scenario.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea);
+    let nothing_more =
+        on_task().filter(ground).all(|r| r.phase == Phase::Waiting) && !observer_arriving;
+    let out_of_time = match (
+        scenario.mission.search_time_budget_s,
+        st.search_started_s[t],
+    ) {
+        (Some(budget_s), Some(start_s)) => world.time_s() - start_s >= budget_s.get(),
+        _ => false,
+    };
+    pool == 0 || free_capacity == 0 || nothing_more || out_of_time
+}
+
+/// Sends every member of task `t`'s group still searching to the task's drop-off, releasing
+/// their claims.
+fn leave_search_area(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    t: usize,
+) -> Result<(), MissionError> {
+    let drop_off = scenario.tasks[t].drop_off.center;
+    for id in 0..st.robots.len() {
+        let r = &mut st.robots[id];
+        if r.task != Some(t) || !r.is_on_task() {
+            continue;
+        }
+        if let Some(i) = r.claim.take() {
+            st.fields[t].release(i);
+        }
+        r.picking_until_s = None;
+        r.phase = Phase::ToDropOff;
+        send(world, &mut st.recorder, id, drop_off)?;
+    }
+    Ok(())
+}
+
+/// A ground member of a group without a claim: claims the nearest known rescuee it can reach
+/// (while it has capacity and its group unpromised resources), else sweeps (blind groups) or
+/// waits.
+fn decide_ground_on_task(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+    blind: bool,
+) -> Result<(), MissionError> {
+    let Some(t) = st.robots[id].task else {
+        return Ok(());
+    };
+    if st.robots[id].claim.is_some() {
+        return Ok(());
+    }
+    let can_rescue = st.robots[id].capacity_free > 0 && st.unclaimed_pool(t) > 0;
+    if can_rescue && claim_nearest(scenario, world, st, id, t)? {
+        return Ok(());
+    }
+    let r = &st.robots[id];
+    match r.phase {
+        Phase::ToSearchArea => {}
+        _ if blind && can_rescue && r.sweep_visited < st.sweeps[t].len() => {
+            let w = world.robot(id);
+            let stalled = match w.goal {
+                None => true,
+                Some(g) => {
+                    let d = (g - w.position).norm();
+                    w.goal_reached || sweep_stalled(world.time_s(), &mut st.robots[id], d)
+                }
+            };
+            if stalled {
+                next_sweep_waypoint(world, st, id, t)?;
+            }
+        }
+        Phase::Waiting => {}
+        _ => {
+            st.robots[id].phase = Phase::Waiting;
+            stop(world, id)?;
+        }
+    }
+    Ok(())
+}
+
+/// Claims for robot `id` the nearest known, waiting rescuee of task `t` whose spot is free (no
+/// other ground robot's body plus the safety margin covers it) and that the planner can reach;
+/// marks unreachable ones on the way. Returns whether it claimed one.
+fn claim_nearest(
+    scenario: &Scenario,
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+    t: usize,
+) -> Result<bool, MissionError> {
+    let pos = world.robot(id).position;
+    let reach = world.robot(id).radius_m + scenario.collision.safety_margin_m.get();
+    loop {
+        let free = |p: &PointM| {
+            world
+                .robots()
+                .iter()
+                .filter(|o| o.id != id && o.locomotion == Locomotion::Ground)
+                .all(|o| (o.position - p).norm() > o.radius_m + reach)
+        };
+        let Some(i) = st.fields[t].nearest_known_waiting(&pos, free) else {
+            return Ok(false);
+        };
+        let target = st.fields[t].position(i);
+        match world.set_goal(id, Some(target)) {
+            Ok(()) => {
+                st.fields[t].claim(i, id);
+                let r = &mut st.robots[id];
+                r.claim = Some(i);
+                r.target_best_m = (target - pos).norm();
+                r.target_progress_s = world.time_s();
+                r.phase = Phase::Searching;
+                return Ok(true);
+            }
+            Err(WorldError::Unreachable { .. }) => {
+                st.fields[t].settle(i, RescueeStatus::Unreachable);
+            }
+            Err(e) => return Err(e.into()),
+        }
+    }
+}
+
+/// Whether a sweeping robot, `d` metres from its waypoint, has stalled (no `CLAIM_PROGRESS_M`
+/// of progress for `CLAIM_STALL_S`, e.g. a robot parked on the waypoint); records progress
+/// otherwise.
+fn sweep_stalled(now: f64, r: &mut MissionRobot, d: f64) -> bool {
+    if d < r.target_best_m - CLAIM_PROGRESS_M {
+        r.target_best_m = d;
+        r.target_progress_s = now;
+    }
+    now - r.target_progress_s > CLAIM_STALL_S
+}
+
+/// Sends robot `id` to its next reachable waypoint of task `t`'s sweep, if any is left.
+fn next_sweep_waypoint(
+    world: &mut World,
+    st: &mut MissionState,
+    id: usize,
+    t: usize,
+) -> Result<(), MissionError> {
+    let sweep = &st.sweeps[t];
+    let pos = world.robot(id).position;
+    let now = world.time_s();
+    while st.robots[id].sweep_visited < sweep.len() {
+        let r = &mut st.robots[id];
+        let p = sweep[r.sweep_next % sweep.len()];
+        r.sweep_next = (r.sweep_next + 1) % sweep.len();
+        r.sweep_visited += 1;
+        r.phase = Phase::Searching;
+        r.target_best_m = (p - pos).norm();
+        r.target_progress_s = now;
+        match world.set_goal(id, Some(p)) {
+            Ok(()) => return Ok(()),
+            Err(WorldError::Unreachable { .. }) => {}
+            Err(e) => return Err(e.into()),
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,153 @@
+//! The metrics recorder: the one place a trial's figures are counted (paper, section VI.A).
+//! The systems report events to it; [`Recorder::result`] turns the counts into a
+//! [`TrialResult`].
+
+use super::metrics::{RobotMetrics, RoundRecord, TrialResult};
+use super::robot::MissionRobot;
+use crate::scenario::Scenario;
+use crate::world::World;
+
+/// Running counts of one trial: per robot, per task (by task id) and per round.
+#[derive(Debug, Clone)]
+pub struct Recorder {
+    robots: Vec<RobotMetrics>,
+    energy_by_task: Vec<f64>,
+    hp_by_task: Vec<f64>,
+    rescued: Vec<u32>,
+    rounds: Vec<RoundRecord>,
+}
+
+impl Recorder {
+    /// Nothing counted yet, for `scenario`'s team and tasks.
+    pub fn new(scenario: &Scenario) -> Self {
+        let k = scenario.tasks.len();
+        Self {
+            robots: (0..scenario.robots.len())
+                .map(|id| RobotMetrics {
+                    id,
+                    kind: scenario.kind_of(id).name.clone(),
+                    ..RobotMetrics::default()
+                })
+                .collect(),
+            energy_by_task: vec![0.0; k],
+            hp_by_task: vec![0.0; k],
+            rescued: vec![0; k],
+            rounds: Vec::new(),
+        }
+    }
+
+    /// The rounds so far (the last may be open).
+    pub fn rounds(&self) -> &[RoundRecord] {
+        &self.rounds
+    }
+
+    /// Robot `id` spent `pct` energy, as a member of task `task`'s group if any.
+    pub fn energy(&mut self, id: usize, task: Option<usize>, pct: f64) {
+        self.robots[id].energy_spent_pct += pct;
+        if let Some(t) = task {
+            self.energy_by_task[t] += pct;
+        }
+    }
+
+    /// Robot `id` lost `pct` HP over a step of `dt_s` in radiation, as a member of task
+    /// `task`'s group if any.
+    pub fn hp(&mut self, id: usize, task: Option<usize>, pct: f64, dt_s: f64) {
+        let m = &mut self.robots[id];
+        m.hp_lost_pct += pct;
+        m.time_in_radiation_s += dt_s;
+        if let Some(t) = task {
+            self.hp_by_task[t] += pct;
+        }
+    }
+
+    /// Robot `id` picked a rescuee up.
+    pub fn picked_up(&mut self, id: usize) {
+        self.robots[id].picked_up += 1;
+    }
+
+    /// Robot `id` delivered `n` rescuees of task `t` (in the current round).
+    pub fn delivered(&mut self, id: usize, t: usize, n: u32) {
+        self.rescued[t] += n;
+        self.robots[id].delivered += n;
+        if let Some(round) = self.rounds.last_mut() {
+            round.rescued[t] += n;
+        }
+    }
+
+    /// Robot `id` ended a stay at the rest station.
+    pub fn recharged(&mut self, id: usize) {
+        self.robots[id].recharges += 1;
+    }
+
+    /// The planner could not reach a goal of robot `id`.
+    pub fn unreachable_goal(&mut self, id: usize) {
+        self.robots[id].unreachable_goals += 1;
+    }
+
+    /// A round started at `time_s` with `groups` (robot ids by task id).
+    pub fn round_started(&mut self, time_s: f64, groups: Vec<Vec<usize>>) {
+        let k = groups.len();
+        self.rounds.push(RoundRecord {
+            start_s: time_s,
+            end_s: time_s,
+            completed: false,
+            groups,
+            rescued: vec![0; k],
+        });
+    }
+
+    /// The open round ended at `time_s`, with every grouped robot back (`completed`) or cut by
+    /// the time limit.
+    pub fn round_closed(&mut self, time_s: f64, completed: bool) {
+        if let Some(round) = self.rounds.last_mut() {
+            round.end_s = time_s;
+            round.completed = completed;
+        }
+    }
+
+    /// The trial's metrics: the counts so far with each robot's final levels and the world's
+    /// distances and resolver counters.
+    pub fn result(
+        &self,
+        scenario: &Scenario,
+        robots: &[MissionRobot],
+        world: &World,
+        run: TrialInfo<'_>,
+    ) -> TrialResult {
+        let mut metrics = self.robots.clone();
+        for (m, (r, w)) in metrics.iter_mut().zip(robots.iter().zip(world.robots())) {
+            m.distance_m = w.distance_travelled_m;
+            m.final_energy_pct = r.energy_pct;
+            m.final_hp_pct = r.hp_pct;
+            m.time_held_s = w.counters.time_held_s;
+            m.collision_lists = w.counters.lists_joined as u32;
+            m.deadlocks_resolved = w.counters.deadlocks_resolved as u32;
+        }
+        TrialResult {
+            scenario: scenario.name.clone(),
+            method: run.method.to_ascii_uppercase(),
+            trial: run.trial,
+            seed: run.seed,
+            duration_s: run.duration_s,
+            tasks: scenario.task_names(),
+            rescued: self.rescued.clone(),
+            energy_spent_pct: self.energy_by_task.clone(),
+            hp_lost_pct: self.hp_by_task.clone(),
+            rounds: self.rounds.clone(),
+            robots: metrics,
+        }
+    }
+}
+
+/// What identifies a trial in its result.
+#[derive(Debug, Clone, Copy)]
+pub struct TrialInfo<'a> {
+    /// The grouping method's name.
+    pub method: &'a str,
+    /// Trial index.
+    pub trial: u32,
+    /// Seed of the starting team.
+    pub seed: u64,
+    /// Simulated length, seconds.
+    pub duration_s: f64,
+}

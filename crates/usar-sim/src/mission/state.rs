@@ -1,0 +1,98 @@
+//! The mission's state: plain data that the systems ([`super::rounds`], [`super::decide`],
+//! [`super::account`]) update and [`super::Simulation`] owns, apart from the physical world.
+
+use super::initial::InitialLevels;
+use super::recorder::Recorder;
+use super::rescuees::RescueeField;
+use super::robot::{MissionRobot, Phase};
+use super::sweep::{sweep_spacing_m, sweep_waypoints};
+use crate::scenario::{PointM, Scenario};
+
+/// Everything the mission layer knows about a trial besides the world: the team, the rescuees
+/// of each task, the blind-search patterns, the rounds and the metrics so far. Per-task vectors
+/// are indexed by task id.
+#[derive(Debug, Clone)]
+pub struct MissionState {
+    /// The team, indexed by robot id.
+    pub robots: Vec<MissionRobot>,
+    /// The rescuees of each task.
+    pub fields: Vec<RescueeField>,
+    /// The blind-search waypoints of each task's search area.
+    pub sweeps: Vec<Vec<PointM>>,
+    /// Whether a round is under way.
+    pub round_open: bool,
+    /// When the first ground member of each task's group entered its search area this round,
+    /// seconds (for `mission.search_time_budget_s`).
+    pub search_started_s: Vec<Option<f64>>,
+    /// The metrics being recorded, rounds included.
+    pub recorder: Recorder,
+}
+
+impl MissionState {
+    /// The state at a trial's start: every robot at its start with the given levels, full
+    /// capacity and resources and no task; every rescuee waiting and unknown; no round yet.
+    pub fn new(scenario: &Scenario, levels: &[InitialLevels]) -> Self {
+        let robots = levels
+            .iter()
+            .enumerate()
+            .map(|(id, l)| {
+                let kind = scenario.kind_of(id);
+                MissionRobot {
+                    id,
+                    energy_pct: l.energy_pct,
+                    hp_pct: l.hp_pct,
+                    phase: Phase::AtStart,
+                    task: None,
+                    capacity_free: kind.carrying_capacity,
+                    resources: kind.rescuing_resources,
+                    load: Vec::new(),
+                    claim: None,
+                    target_best_m: 0.0,
+                    target_progress_s: 0.0,
+                    sweep_next: 0,
+                    sweep_visited: 0,
+                    leaving: false,
+                    picking_until_s: None,
+                }
+            })
+            .collect();
+        let spacing = sweep_spacing_m(scenario);
+        Self {
+            robots,
+            fields: scenario
+                .tasks
+                .iter()
+                .map(|t| RescueeField::new(t.rescuees.clone(), t.search_area))
+                .collect(),
+            sweeps: scenario
+                .tasks
+                .iter()
+                .map(|t| sweep_waypoints(&t.search_area, spacing))
+                .collect(),
+            round_open: false,
+            search_started_s: vec![None; scenario.tasks.len()],
+            recorder: Recorder::new(scenario),
+        }
+    }
+
+    /// The members of task `t`'s group still in it (not away for their needs).
+    pub fn members(&self, t: usize) -> impl Iterator<Item = &MissionRobot> {
+        self.robots
+            .iter()
+            .filter(move |r| r.task == Some(t) && !r.is_resting())
+    }
+
+    /// Rescuing resources held by task `t`'s group (members not away) and how many of those
+    /// members hold a claim.
+    pub fn group_pool(&self, t: usize) -> (u32, u32) {
+        self.members(t).fold((0, 0), |(p, c), r| {
+            (p + r.resources, c + u32::from(r.claim.is_some()))
+        })
+    }
+
+    /// Resources of task `t`'s group not yet promised to a claim.
+    pub fn unclaimed_pool(&self, t: usize) -> u32 {
+        let (pool, claims) = self.group_pool(t);
+        pool.saturating_sub(claims)
+    }
+}

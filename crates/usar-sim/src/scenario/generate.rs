@@ -1,0 +1,434 @@
+//! Expansion of the spec's compact forms into the scenario's lists: start rows into start
+//! positions, rescuee grids into rescuee positions, debris fields into seeded, placed debris.
+//! Each step checks what only it can (a row's step, a grid's size, whether a field fits) and
+//! reports with the field path, through the validation context.
+
+use nalgebra::{Point2, Vector2};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::model::{Circle, Debris, PointM, Rect, RobotKind};
+use super::params::Arena;
+use super::shape::DebrisShape;
+use super::spec::{DebrisFieldSpec, DebrisShapeSpec, RescueeLayoutSpec, StartsSpec};
+use super::validate::{Ctx, R, fmt_pt};
+
+/// Most rescuees one grid layout may expand to.
+pub(crate) const MAX_GRID_POINTS: usize = 1_000_000;
+/// Placement attempts per generated shape before a debris field gives up.
+pub(crate) const ATTEMPTS_PER_SHAPE: usize = 2_000;
+
+/// A start position with the field path it came from and a label for messages
+/// (`carrier robot 3`).
+pub(crate) struct Start {
+    pub(crate) path: String,
+    pub(crate) label: String,
+    pub(crate) position: PointM,
+}
+
+/// The start positions of kind `k` (`spec` its starts, `kind` the validated kind): a listed
+/// position per robot, or `count` positions along a row.
+pub(crate) fn start_positions(
+    ctx: &Ctx<'_>,
+    k: usize,
+    spec: &StartsSpec,
+    kind: &RobotKind,
+) -> R<Vec<Start>> {
+    let base = format!("kinds[{k}].starts");
+    let label = |i: usize| format!("{} robot {i}", kind.name);
+    match spec {
+        StartsSpec::List(list) => {
+            if list.len() != kind.count {
+                return Err(ctx.err(
+                    base,
+                    format!(
+                        "{} start position(s) listed but count is {}",
+                        list.len(),
+                        kind.count
+                    ),
+                ));
+            }
+            list.iter()
+                .enumerate()
+                .map(|(i, xy)| {
+                    let path = format!("{base}[{i}]");
+                    let position = ctx.point(&path, xy)?;
+                    Ok(Start {
+                        path,
+                        label: label(i),
+                        position,
+                    })
+                })
+                .collect()
+        }
+        StartsSpec::Row { first_m, step_m } => {
+            let first = ctx.point(&format!("{base}.first_m"), first_m)?;
+            let step_path = format!("{base}.step_m");
+            let step = ctx.point(&step_path, step_m)?.coords;
+            if kind.count > 1 && step.norm() == 0.0 {
+                return Err(ctx.err(
+                    step_path,
+                    "expected a non-zero step: robots of a row cannot share one position",
+                ));
+            }
+            Ok((0..kind.count)
+                .map(|i| Start {
+                    path: base.clone(),
+                    label: label(i),
+                    position: first + step * i as f64,
+                })
+                .collect())
+        }
+    }
+}
+
+/// A place generated debris must keep away from (a start, the rest station, a drop-off, a
+/// goal), with how to name it in messages.
+pub(crate) struct Protected {
+    pub(crate) center: PointM,
+    pub(crate) radius_m: f64,
+    pub(crate) what: String,
+}
+
+fn size_range(ctx: &Ctx<'_>, path: &str, (lo, hi): (f64, f64)) -> R<(f64, f64)> {
+    if lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= hi {
+        Ok((lo, hi))
+    } else {
+        Err(ctx.err(
+            path,
+            format!("expected (min, max) with 0 < min <= max, both finite, found ({lo}, {hi})"),
+        ))
+    }
+}
+
+/// What a debris field draws: disc radii `(lo, hi)` or rectangle sides `(lo, hi)` and the
+/// largest rotation, radians.
+#[derive(Clone, Copy)]
+enum Draw {
+    Circles(f64, f64),
+    Rects(f64, f64, f64),
+}
+
+/// The checked shape family of field `base` (its region is `w x h` metres).
+fn draw_of(ctx: &Ctx<'_>, base: &str, shape: &DebrisShapeSpec, w: f64, h: f64) -> R<Draw> {
+    match shape {
+        DebrisShapeSpec::Circles { radius_m } => {
+            let (lo, hi) = size_range(ctx, &format!("{base}.shape.radius_m"), *radius_m)?;
+            if 2.0 * lo > w.min(h) {
+                return Err(ctx.err(
+                    format!("{base}.shape.radius_m"),
+                    format!(
+                        "the smallest disc (radius {lo} m) does not fit in the region ({w} x {h} m)"
+                    ),
+                ));
+            }
+            Ok(Draw::Circles(lo, hi))
+        }
+        DebrisShapeSpec::Rects {
+            side_m,
+            max_rotation_deg,
+        } => {
+            let (lo, hi) = size_range(ctx, &format!("{base}.shape.side_m"), *side_m)?;
+            let rot = ctx.in_range(
+                &format!("{base}.shape.max_rotation_deg"),
+                *max_rotation_deg,
+                0.0,
+                180.0,
+            )?;
+            if lo > w.min(h) {
+                return Err(ctx.err(
+                    format!("{base}.shape.side_m"),
+                    format!(
+                        "the smallest rectangle (side {lo} m) does not fit in the region \
+                         ({w} x {h} m)"
+                    ),
+                ));
+            }
+            Ok(Draw::Rects(lo, hi, rot.to_radians()))
+        }
+    }
+}
+
+/// One random shape at the origin and the half extents of its bounding box.
+fn draw_shape(rng: &mut ChaCha8Rng, draw: Draw) -> (Debris, Vector2<f64>) {
+    match draw {
+        Draw::Circles(lo, hi) => {
+            let r = rng.random_range(lo..=hi);
+            (
+                Debris::Circle(Circle {
+                    center: Point2::origin(),
+                    radius_m: r,
+                }),
+                Vector2::new(r, r),
+            )
+        }
+        Draw::Rects(lo, hi, rot) => {
+            let sx = rng.random_range(lo..=hi);
+            let sy = rng.random_range(lo..=hi);
+            let rot = if rot > 0.0 {
+                rng.random_range(-rot..=rot)
+            } else {
+                0.0
+            };
+            let d = Debris::Rect {
+                center: Point2::origin(),
+                half_extents_m: Vector2::new(sx, sy) / 2.0,
+                rotation_rad: rot,
+            };
+            let (_, e) = d.shape().aabb();
+            (d, e.coords)
+        }
+    }
+}
+
+/// Expands debris field `j` (see [`DebrisFieldSpec`]): shapes drawn from the field's seeded
+/// generator and kept when at least `min_gap_m` from `existing` debris, from the shapes placed
+/// before them and from every `protected` place.
+///
+/// # Errors
+/// A bad region, count, size range, rotation or gap, or a field that cannot place all its
+/// shapes within `ATTEMPTS_PER_SHAPE * count` attempts (naming the protected places that lie in
+/// its region).
+pub(crate) fn generate_debris_field(
+    ctx: &Ctx<'_>,
+    j: usize,
+    f: &DebrisFieldSpec,
+    arena: &Arena,
+    sim_seed: u64,
+    existing: &[DebrisShape],
+    protected: &[Protected],
+) -> R<Vec<DebrisShape>> {
+    let base = format!("debris_fields[{j}]");
+    let region = ctx.rect_in_arena(&format!("{base}.region"), &f.region, arena)?;
+    if f.count == 0 {
+        return Err(ctx.err(
+            format!("{base}.count"),
+            "expected at least 1 shape, found 0",
+        ));
+    }
+    let gap = ctx.non_negative(&format!("{base}.min_gap_m"), f.min_gap_m)?;
+    let (w, h) = (region.max.x - region.min.x, region.max.y - region.min.y);
+    let draw = draw_of(ctx, &base, &f.shape, w, h)?;
+    let seed = f.seed.unwrap_or(sim_seed.wrapping_add(j as u64));
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut placed: Vec<DebrisShape> = Vec::with_capacity(f.count);
+    let max_attempts = ATTEMPTS_PER_SHAPE * f.count;
+    let mut attempts = 0;
+    while placed.len() < f.count && attempts < max_attempts {
+        attempts += 1;
+        let (mut shape, half) = draw_shape(&mut rng, draw);
+        let (x_lo, x_hi) = (region.min.x + half.x, region.max.x - half.x);
+        let (y_lo, y_hi) = (region.min.y + half.y, region.max.y - half.y);
+        if x_lo > x_hi || y_lo > y_hi {
+            continue;
+        }
+        let c = Point2::new(rng.random_range(x_lo..=x_hi), rng.random_range(y_lo..=y_hi));
+        match &mut shape {
+            Debris::Circle(circle) => circle.center = c,
+            Debris::Rect { center, .. } => *center = c,
+        }
+        let shape = shape.shape();
+        let clear_of_debris = existing
+            .iter()
+            .chain(&placed)
+            .all(|d| shape.distance(d) >= gap);
+        let clear_of_places = protected
+            .iter()
+            .all(|p| shape.distance_to_point(&p.center) >= p.radius_m + gap);
+        if clear_of_debris && clear_of_places {
+            placed.push(shape);
+        }
+    }
+    if placed.len() < f.count {
+        return Err(field_full(
+            ctx,
+            &base,
+            f.count,
+            placed.len(),
+            attempts,
+            &region,
+            protected,
+        ));
+    }
+    Ok(placed)
+}
+
+/// The error of a debris field that could not place all its shapes, naming the most likely
+/// culprit: protected places inside its region.
+fn field_full(
+    ctx: &Ctx<'_>,
+    base: &str,
+    count: usize,
+    placed: usize,
+    attempts: usize,
+    region: &Rect,
+    protected: &[Protected],
+) -> super::ScenarioError {
+    let inside: Vec<&str> = protected
+        .iter()
+        .filter(|p| region.contains(&p.center))
+        .map(|p| p.what.as_str())
+        .take(3)
+        .collect();
+    let hint = if inside.is_empty() {
+        String::new()
+    } else {
+        format!(" (the region holds {})", inside.join(", "))
+    };
+    ctx.err(
+        format!("{base}.count"),
+        format!(
+            "placed only {placed} of {count} shapes in {attempts} attempts{hint}; enlarge the \
+             region or reduce count, sizes or min_gap_m"
+        ),
+    )
+}
+
+/// The rescuee positions of one task (`path` its `rescuees` field, `area` its search area):
+/// a grid's points not covered by debris, or a checked list. A point is covered when it lies
+/// inside debris or closer to it than `reach` (the smallest ground body radius).
+///
+/// # Errors
+/// A bad spacing or margin, a grid of more than [`MAX_GRID_POINTS`] points or with every point
+/// covered, an empty list, or a listed rescuee outside the area or covered by debris.
+pub(crate) fn expand_rescuees(
+    ctx: &Ctx<'_>,
+    path: &str,
+    layout: &RescueeLayoutSpec,
+    area: &Rect,
+    debris: &[(DebrisShape, String)],
+    reach: f64,
+) -> R<Vec<PointM>> {
+    let near_debris = |p: &PointM| {
+        debris
+            .iter()
+            .find(|(d, _)| {
+                let dist = d.distance_to_point(p);
+                dist == 0.0 || dist < reach
+            })
+            .map(|(_, n)| n)
+    };
+    match layout {
+        RescueeLayoutSpec::Grid {
+            spacing_m,
+            margin_m,
+        } => {
+            let pts: Vec<PointM> = grid_points(ctx, path, spacing_m.get(), *margin_m, area)?
+                .into_iter()
+                .filter(|p| near_debris(p).is_none())
+                .collect();
+            if pts.is_empty() {
+                return Err(ctx.err(
+                    path,
+                    "every grid point is covered by debris; expected at least one rescuee",
+                ));
+            }
+            Ok(pts)
+        }
+        RescueeLayoutSpec::List(list) => {
+            if list.is_empty() {
+                return Err(ctx.err(path, "expected at least one rescuee"));
+            }
+            let mut pts = Vec::with_capacity(list.len());
+            for (i, xy) in list.iter().enumerate() {
+                let p_path = format!("{path}[{i}]");
+                let p = ctx.point(&p_path, xy)?;
+                if !area.contains(&p) {
+                    return Err(ctx.err(
+                        p_path,
+                        format!(
+                            "rescuee {} is outside the search area {} - {}",
+                            fmt_pt(&p),
+                            fmt_pt(&area.min),
+                            fmt_pt(&area.max)
+                        ),
+                    ));
+                }
+                if let Some(name) = near_debris(&p) {
+                    return Err(ctx.err(
+                        p_path,
+                        format!(
+                            "rescuee {} is covered by {name} (closer than {reach} m, the \
+                             smallest ground body radius)",
+                            fmt_pt(&p)
+                        ),
+                    ));
+                }
+                pts.push(p);
+            }
+            Ok(pts)
+        }
+    }
+}
+
+/// A square grid of spacing `s` filling `area`, centred in it, at least `margin` from its
+/// edges, row by row from the bottom-left.
+fn grid_points(ctx: &Ctx<'_>, path: &str, s: f64, margin: f64, area: &Rect) -> R<Vec<PointM>> {
+    let m = ctx.non_negative(&format!("{path}.margin_m"), margin)?;
+    let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
+    let (uw, uh) = (w - 2.0 * m, h - 2.0 * m);
+    if uw < 0.0 || uh < 0.0 {
+        return Err(ctx.err(
+            format!("{path}.margin_m"),
+            format!("margin {m} m leaves no room in a {w} x {h} m search area"),
+        ));
+    }
+    let nx = (uw / s + 1e-9).floor() as usize + 1;
+    let ny = (uh / s + 1e-9).floor() as usize + 1;
+    if nx.saturating_mul(ny) > MAX_GRID_POINTS {
+        return Err(ctx.err(
+            format!("{path}.spacing_m"),
+            format!("spacing {s} m gives {nx} x {ny} rescuees, more than {MAX_GRID_POINTS}"),
+        ));
+    }
+    let x0 = area.min.x + (w - (nx - 1) as f64 * s) / 2.0;
+    let y0 = area.min.y + (h - (ny - 1) as f64 * s) / 2.0;
+    Ok((0..ny)
+        .flat_map(|iy| (0..nx).map(move |ix| Point2::new(x0 + ix as f64 * s, y0 + iy as f64 * s)))
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::numbers::Positive;
+
+    #[test]
+    fn grid_is_centred_and_row_major_from_bottom_left() {
+        let ctx = Ctx {
+            origin: "t",
+            map: None,
+        };
+        let area = Rect {
+            min: Point2::new(0.0, 0.0),
+            max: Point2::new(2.5, 1.0),
+        };
+        let grid = RescueeLayoutSpec::Grid {
+            spacing_m: Positive::known(1.0),
+            margin_m: 0.0,
+        };
+        let pts = expand_rescuees(&ctx, "r", &grid, &area, &[], 0.4).expect("grid");
+        // 3 x 2 points, centred: x = 0.25, 1.25, 2.25; y = 0, 1.
+        let xy: Vec<(f64, f64)> = pts.iter().map(|p| (p.x, p.y)).collect();
+        assert_eq!(
+            xy,
+            vec![
+                (0.25, 0.0),
+                (1.25, 0.0),
+                (2.25, 0.0),
+                (0.25, 1.0),
+                (1.25, 1.0),
+                (2.25, 1.0)
+            ]
+        );
+        // Debris removes covered points.
+        let d = Debris::Circle(Circle {
+            center: Point2::new(1.25, 0.0),
+            radius_m: 0.1,
+        })
+        .shape();
+        let pts = expand_rescuees(&ctx, "r", &grid, &area, &[(d, "debris[0]".into())], 0.4)
+            .expect("grid");
+        assert_eq!(pts.len(), 5);
+    }
+}

@@ -1,0 +1,370 @@
+//! The scenario's leaf parameter blocks (arena, mission, navigation, collision, sim, needs
+//! weights): one type each, read from the file as they are and used by the simulator as they
+//! are. Every number is a validated type ([`super::numbers`]), so a block is checked while it
+//! is deserialised (an error names the field's line and column), and every default is written
+//! once, here. Cross-field rules (e.g. `sim.dt_s <= mission.duration_s`) are checked by
+//! validation. Field meanings and the paper's values: `docs/scenario-format.md`,
+//! `docs/mission-model.md`.
+
+use serde::{Deserialize, Serialize};
+
+use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
+
+/// The walled rectangular field `[0, width_m] x [0, height_m]` (world frame: origin at the
+/// bottom-left inner corner, x right, y up).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Arena {
+    /// Inner width, metres, > 0.
+    pub width_m: Positive,
+    /// Inner height, metres, > 0.
+    pub height_m: Positive,
+    /// Boundary wall thickness (outside the field), metres, > 0; default 0.5.
+    #[serde(default = "Arena::default_wall_thickness_m")]
+    pub wall_thickness_m: Positive,
+}
+
+impl Arena {
+    fn default_wall_thickness_m() -> Positive {
+        Positive::known(0.5)
+    }
+
+    /// Width, metres.
+    pub fn width(&self) -> f64 {
+        self.width_m.get()
+    }
+
+    /// Height, metres.
+    pub fn height(&self) -> f64 {
+        self.height_m.get()
+    }
+}
+
+/// How the doses of overlapping radiation zones combine at a point (paper silent; see
+/// `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RadiationOverlap {
+    /// The doses of all zones containing the point add (default: the authors' Unity scene
+    /// applies damage once per overlapping radiation trigger per physics step).
+    #[default]
+    Sum,
+    /// Only the strongest zone counts.
+    Max,
+}
+
+/// How a radiation zone's dose varies with the distance `d` from its centre, inside its radius
+/// `r` (paper silent; see `docs/mission-model.md`). Outside the disc the dose is 0.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RadiationFalloff {
+    /// The full `dose_rate_factor` everywhere inside the disc (default).
+    #[default]
+    Uniform,
+    /// `dose_rate_factor * (1 - d / r)`: the full factor at the source, 0 at the rim (a third
+    /// of the uniform dose on average over the disc).
+    Linear,
+}
+
+/// When a new round may start (paper, section VI.B: "After each round, when all agents are
+/// back to the initial position, the whole group members will regroup").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RoundStart {
+    /// As soon as the previous round's groups are back; robots away at the rest station (or on
+    /// their way back from it) sit the round out and quotas shrink by `away_quotas` (default).
+    #[default]
+    Available,
+    /// Only when every robot of the team is back at its start position: every round groups the
+    /// whole team with the full quotas (`away_quotas` never applies).
+    AllBack,
+}
+
+/// Which tasks' quotas shrink when robots of a kind are away at a round's start (paper silent;
+/// see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum AwayQuotas {
+    /// The tasks are filled from the hardest down; the easiest take what is left (default).
+    #[default]
+    HardestFirst,
+    /// The tasks are filled from the easiest up; the hardest take what is left.
+    EasiestFirst,
+    /// The shortfall is shared: one robot at a time is taken from the task whose quota is
+    /// currently largest (ties: from the easiest of them).
+    Even,
+}
+
+/// What becomes of the rescuees a robot carries when it leaves its task for the rest station
+/// (paper silent; see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LoadOnLeave {
+    /// They are dropped and lost for the trial (default).
+    #[default]
+    Abandon,
+    /// They are put back where they were found and wait again (known to nobody).
+    ReturnToArea,
+    /// The robot first drives to its task's drop-off and delivers them (they count for the
+    /// task), then goes to the rest station.
+    DeliverFirst,
+}
+
+/// What a stay at the rest station restores (paper: "recharging its energy (or for refreshing
+/// its health HP)"; see `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Refresh {
+    /// Energy and HP both to 100 % (default).
+    #[default]
+    Both,
+    /// Only the level(s) below their threshold (`low_energy_pct`, `low_hp_pct`) when the robot
+    /// arrived, to 100 %.
+    LowOnly,
+}
+
+/// A normal distribution `N(mean_pct, std_dev_pct)` clamped to `[min_pct, max_pct]`, for the
+/// initial energy and HP levels (validation also checks `min_pct <= max_pct`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClampedNormal {
+    /// Mean, percent, finite.
+    pub mean_pct: Finite,
+    /// Standard deviation, percent, >= 0.
+    pub std_dev_pct: NonNegative,
+    /// Lowest value a draw is clamped to, percent, in `[0, 100]`; default 0.
+    #[serde(default = "ClampedNormal::zero")]
+    pub min_pct: Percent,
+    /// Highest value a draw is clamped to, percent, in `[min_pct, 100]`; default 100.
+    #[serde(default = "ClampedNormal::hundred")]
+    pub max_pct: Percent,
+}
+
+impl ClampedNormal {
+    fn zero() -> Percent {
+        Percent::known(0.0)
+    }
+
+    fn hundred() -> Percent {
+        Percent::known(100.0)
+    }
+
+    /// A "distribution" that always draws `level_pct` (no spread), for fixed starting levels
+    /// in tests and experiments.
+    ///
+    /// # Errors
+    /// [`RangeError`] when `level_pct` is not in `[0, 100]`.
+    pub fn fixed(level_pct: f64) -> Result<Self, RangeError> {
+        Percent::new(level_pct)?;
+        Ok(Self {
+            mean_pct: Finite::new(level_pct)?,
+            std_dev_pct: NonNegative::known(0.0),
+            min_pct: Percent::known(0.0),
+            max_pct: Percent::known(100.0),
+        })
+    }
+
+    /// `N(mean_pct, std_dev_pct)` clamped to `[0, 100]`.
+    pub(crate) const fn known(mean_pct: f64, std_dev_pct: f64) -> Self {
+        Self {
+            mean_pct: Finite::known(mean_pct),
+            std_dev_pct: NonNegative::known(std_dev_pct),
+            min_pct: Percent::known(0.0),
+            max_pct: Percent::known(100.0),
+        }
+    }
+}
+
+/// Mission rules (paper, section VI.B). Every field has a default: the paper's value where it
+/// gives one, otherwise the model as it was before calibration (`scenarios/paper-v0.ron`);
+/// `scenarios/paper.ron` writes every field out.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MissionParams {
+    /// Trial length, seconds, > 0; default 600 (paper).
+    pub duration_s: Positive,
+    /// Energy spent on each step the robot moves, percent, >= 0; default 0.0045 (paper).
+    pub energy_pct_per_moving_step: NonNegative,
+    /// Energy spent per metre moved, percent per metre, >= 0; default 0 (adds to
+    /// `energy_pct_per_moving_step`; the authors' Unity code charges `energy -= distance * k`).
+    pub energy_pct_per_m: NonNegative,
+    /// HP lost per step inside a radiation zone of dose factor 1, percent, >= 0; default 0.0003
+    /// (paper).
+    pub hp_pct_per_step_in_radiation: NonNegative,
+    /// How overlapping zones combine; default `Sum`.
+    pub radiation_overlap: RadiationOverlap,
+    /// How a zone's dose varies inside it; default `Uniform`.
+    pub radiation_falloff: RadiationFalloff,
+    /// When a new round may start; default `Available`.
+    pub round_start: RoundStart,
+    /// Which quotas shrink when robots are away at a round's start; default `HardestFirst`.
+    pub away_quotas: AwayQuotas,
+    /// What becomes of a leaving robot's load; default `Abandon`.
+    pub load_on_leave: LoadOnLeave,
+    /// Longest time a group searches its area per round, seconds from the moment its first
+    /// ground member entered it, > 0, written `Some(14.0)`; default `None` (no limit: the group
+    /// leaves only when full, out of resources, or when nothing more is to be found).
+    pub search_time_budget_s: Option<Positive>,
+    /// What a stay at the rest station restores; default `Both`.
+    pub refresh: Refresh,
+    /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
+    /// default `None`: the narrowest ground detection width `2 * (body_radius_m +
+    /// observing_range_m)` (see `mission::sweep_spacing_m`), so a sweep covers the area.
+    pub sweep_spacing_m: Option<Positive>,
+    /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]`; default 0
+    /// (the factor is `hp_pct / 100`, so a robot at 0 % HP stops; see `mission::hp_factor`).
+    pub min_hp_factor: Fraction,
+    /// Time a ground robot stands at a rescuee to rescue it (secure and load it), seconds,
+    /// >= 0; default 0 (at once).
+    pub pickup_s: NonNegative,
+    /// Below this energy a robot leaves its task to recharge, percent; default 30 (paper).
+    pub low_energy_pct: Percent,
+    /// Below this HP a robot leaves its task to refresh, percent; default 30 (paper).
+    pub low_hp_pct: Percent,
+    /// Time spent at the rest station, seconds, >= 0; default 30 (paper).
+    pub recharge_s: NonNegative,
+    /// Speed factor of a group without an observer, in `(0, 1]`; default 0.7 (paper: "decrease
+    /// by 30 %").
+    pub no_observer_speed_factor: Factor,
+    /// Initial energy levels; default `N(80, 20)` clamped to `[0, 100]` (paper).
+    pub initial_energy: ClampedNormal,
+    /// Initial HP levels; default `N(90, 10)` clamped to `[0, 100]` (paper).
+    pub initial_hp: ClampedNormal,
+}
+
+impl Default for MissionParams {
+    fn default() -> Self {
+        Self {
+            duration_s: Positive::known(600.0),
+            energy_pct_per_moving_step: NonNegative::known(0.0045),
+            energy_pct_per_m: NonNegative::known(0.0),
+            hp_pct_per_step_in_radiation: NonNegative::known(0.0003),
+            radiation_overlap: RadiationOverlap::default(),
+            radiation_falloff: RadiationFalloff::default(),
+            round_start: RoundStart::default(),
+            away_quotas: AwayQuotas::default(),
+            load_on_leave: LoadOnLeave::default(),
+            search_time_budget_s: None,
+            refresh: Refresh::default(),
+            sweep_spacing_m: None,
+            min_hp_factor: Fraction::known(0.0),
+            pickup_s: NonNegative::known(0.0),
+            low_energy_pct: Percent::known(30.0),
+            low_hp_pct: Percent::known(30.0),
+            recharge_s: NonNegative::known(30.0),
+            no_observer_speed_factor: Factor::known(0.7),
+            initial_energy: ClampedNormal::known(80.0, 20.0),
+            initial_hp: ClampedNormal::known(90.0, 10.0),
+        }
+    }
+}
+
+/// Path planning of ground robots over an occupancy grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NavigationParams {
+    /// Side of an occupancy-grid cell, metres, > 0; default 0.25.
+    pub grid_cell_m: Positive,
+    /// Clearance kept from debris and walls beyond the body radius, metres, >= 0; default 0.1.
+    pub clearance_m: NonNegative,
+    /// Distance at which a waypoint counts as reached, metres, > 0; default 0.3.
+    pub waypoint_tolerance_m: Positive,
+}
+
+impl Default for NavigationParams {
+    fn default() -> Self {
+        Self {
+            grid_cell_m: Positive::known(0.25),
+            clearance_m: NonNegative::known(0.1),
+            waypoint_tolerance_m: Positive::known(0.3),
+        }
+    }
+}
+
+/// Priority-based collision avoidance and deadlock solving (paper, section V, Algorithm 5).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CollisionParams {
+    /// Whether the resolver runs (switch off to show what it solves); default `true`.
+    pub enabled: bool,
+    /// Look-ahead: robots that would come closer than `safety_margin_m` within this time are
+    /// "about to collide", seconds, > 0; default 1.0.
+    pub lookahead_s: Positive,
+    /// Gap kept between bodies, metres, >= 0; default 0.2.
+    pub safety_margin_m: NonNegative,
+    /// A collision list none of whose members has made progress along its path (remaining path
+    /// length down by more than 0.05 m) for this long is a deadlock, seconds, > 0; default 2.0.
+    pub deadlock_after_s: Positive,
+}
+
+impl Default for CollisionParams {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            lookahead_s: Positive::known(1.0),
+            safety_margin_m: NonNegative::known(0.2),
+            deadlock_after_s: Positive::known(2.0),
+        }
+    }
+}
+
+/// Time stepping and seeds.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SimParams {
+    /// Fixed step, seconds, > 0 and at most `mission.duration_s`; default 1/50 s (Unity's fixed
+    /// step, against which the paper quotes its per-step costs).
+    pub dt_s: Positive,
+    /// Base seed of trials (trial `k` uses a seed derived from it and `k`) and default seed of
+    /// debris fields; default 0.
+    pub seed: u64,
+}
+
+impl Default for SimParams {
+    fn default() -> Self {
+        Self {
+            dt_s: Positive::known(1.0 / 50.0),
+            seed: 0,
+        }
+    }
+}
+
+/// Weights of the 7-entry needs vector `(hp, v, sen, eng, res, cap, obs)` (paper, Eqs. 19-21,
+/// Alg. 4: `V = N x W`), each > 0, each defaulting to 1.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NeedsWeights {
+    /// Health points.
+    pub hp: Positive,
+    /// Speed.
+    pub v: Positive,
+    /// Sensing range.
+    pub sen: Positive,
+    /// Energy.
+    pub eng: Positive,
+    /// Rescuing resources.
+    pub res: Positive,
+    /// Carrying capacity.
+    pub cap: Positive,
+    /// Observing range.
+    pub obs: Positive,
+}
+
+impl Default for NeedsWeights {
+    fn default() -> Self {
+        let one = Positive::known(1.0);
+        Self {
+            hp: one,
+            v: one,
+            sen: one,
+            eng: one,
+            res: one,
+            cap: one,
+            obs: one,
+        }
+    }
+}
+
+impl NeedsWeights {
+    /// The weights in the needs vector's order `[hp, v, sen, eng, res, cap, obs]`.
+    pub fn to_array(&self) -> [f64; 7] {
+        [
+            self.hp, self.v, self.sen, self.eng, self.res, self.cap, self.obs,
+        ]
+        .map(Positive::get)
+    }
+}
