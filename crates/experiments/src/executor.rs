@@ -1,41 +1,78 @@
 //! Running a sweep's jobs: one thread pool for every job of every cell, a journal line per
 //! finished trial, failures and panics isolated to their trial, a progress bar over the whole
-//! sweep's simulated time with an ETA, and the `--fail-trial` / `--stop-after` test hooks.
+//! sweep's simulated time with an ETA, and the [`SweepHooks`] extension points.
 
+use std::fmt;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 use rayon::prelude::*;
 use rne_core::TrustModel;
-use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::mission::{Simulation, StepObserver, TrialResult};
 use usar_sim::scenario::Scenario;
 
 use crate::journal::{Journal, Outcome, TrialRecord};
 use crate::method_factory::MethodFactory;
 
-/// Exit status of a sweep stopped on purpose by [`TestHooks::stop_after`].
-pub const STOP_EXIT_CODE: i32 = 75;
+/// Which trial of a sweep a hook is called for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TrialKey {
+    /// Grid cell index (0 without a grid).
+    pub cell: usize,
+    /// The method's canonical (upper-case) name, e.g. `RNE`.
+    pub method: String,
+    /// Trial index, `0..trials`.
+    pub trial: u32,
+    /// The trial's seed.
+    pub seed: u64,
+}
 
-/// Hooks for tests: make trials fail and simulate a kill.
-#[derive(Debug, Clone, Default)]
-pub struct TestHooks {
-    /// Trials that panic on purpose: (method, upper case; trial index).
-    pub fail: Vec<(String, u32)>,
-    /// Exit the process abruptly (status [`STOP_EXIT_CODE`], no output files) once this many
-    /// trials have been journaled by this run; trials still running are lost, as in a kill.
-    pub stop_after: Option<usize>,
+/// Makes a [`StepObserver`] for a trial about to run, or `None` to leave it unobserved.
+pub type TrialObserverFactory =
+    Arc<dyn Fn(&TrialKey) -> Option<Box<dyn StepObserver>> + Send + Sync>;
+
+/// Called after a trial's record is in the journal, with the record and how many records this
+/// run has journaled so far (1, 2, ...).
+pub type JournaledHook = Arc<dyn Fn(&TrialRecord, usize) + Send + Sync>;
+
+/// Extension points of a sweep; none by default.
+///
+/// Both are called on the worker thread of the trial. A panic inside `trial_observer` or the
+/// observer it makes fails that trial only (its record says "panicked: ..."), as a panicking
+/// grouping method does. `on_journaled` is called with the journal locked, so its calls come
+/// in journal order and never overlap.
+///
+/// Uses: record the robot paths of chosen trials during a sweep (`trial_observer`), report
+/// progress to a scheduler or stop a process at a checkpoint (`on_journaled`). The `usar`
+/// binary's hidden `--fail-trial` and `--stop-after` options, which its tests use to make a
+/// trial fail and to simulate a killed sweep, are built on them.
+#[derive(Clone, Default)]
+pub struct SweepHooks {
+    /// Makes each trial's step observer.
+    pub trial_observer: Option<TrialObserverFactory>,
+    /// Sees each journaled record.
+    pub on_journaled: Option<JournaledHook>,
+}
+
+impl fmt::Debug for SweepHooks {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SweepHooks")
+            .field("trial_observer", &self.trial_observer.is_some())
+            .field("on_journaled", &self.on_journaled.is_some())
+            .finish()
+    }
 }
 
 /// How to run a sweep's jobs.
 pub(crate) struct Runner<'a> {
     /// Builds each trial's method.
     pub(crate) factory: &'a MethodFactory,
-    /// Test hooks.
-    pub(crate) hooks: &'a TestHooks,
+    /// Extension points.
+    pub(crate) hooks: &'a SweepHooks,
     /// Show a progress bar (on a terminal).
     pub(crate) progress: bool,
     /// Worker threads (>= 1).
@@ -132,9 +169,8 @@ pub(crate) fn execute(
                 });
             }
             pb.set_message(format!("{n}/{} trials{over}", jobs.len()));
-            if runner.hooks.stop_after.is_some_and(|s| n >= s) {
-                pb.suspend(|| eprintln!("--stop-after {n}: stopping abruptly"));
-                std::process::exit(STOP_EXIT_CODE);
+            if let Some(hook) = &runner.hooks.on_journaled {
+                pb.suspend(|| hook(&record, n));
             }
             drop(j);
             new_records
@@ -162,13 +198,8 @@ fn run_job(
     job: &Job,
     tick: &(dyn Fn(u64) + Sync),
 ) -> TrialRecord {
-    let fail = runner
-        .hooks
-        .fail
-        .iter()
-        .any(|(m, k)| *m == job.method && *k == job.trial);
     let t0 = Instant::now();
-    let outcome = run_trial(plan, runner.factory, job, fail, tick);
+    let outcome = run_trial(plan, runner, job, tick);
     TrialRecord {
         cell: job.cell,
         method: job.method.clone(),
@@ -186,13 +217,21 @@ fn run_job(
 /// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken.
 fn run_trial(
     plan: &CellPlan<'_>,
-    factory: &MethodFactory,
+    runner: &Runner<'_>,
     job: &Job,
-    fail: bool,
     tick: &(dyn Fn(u64) + Sync),
 ) -> Result<TrialResult, String> {
     let body = || -> Result<TrialResult, String> {
-        let method = factory
+        let mut hook = runner.hooks.trial_observer.as_ref().and_then(|make| {
+            make(&TrialKey {
+                cell: job.cell,
+                method: job.method.clone(),
+                trial: job.trial,
+                seed: job.seed,
+            })
+        });
+        let method = runner
+            .factory
             .build(&job.method_arg, &plan.model)
             .map_err(|e| e.to_string())?;
         let mut sim = Simulation::builder(plan.scenario)
@@ -204,13 +243,10 @@ fn run_trial(
             .map_err(|e| e.to_string())?;
         let mut last = 0u64;
         let mut observe = |sim: &Simulation| {
-            let (done, total) = sim.progress();
-            if fail && done * 2 >= total {
-                panic!(
-                    "failing on purpose (--fail-trial {}:{})",
-                    job.method, job.trial
-                );
+            if let Some(h) = hook.as_mut() {
+                h.on_step(sim);
             }
+            let (done, _) = sim.progress();
             if done - last >= PROGRESS_EVERY_STEPS {
                 tick(done - last);
                 last = done;

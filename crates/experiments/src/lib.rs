@@ -1,5 +1,7 @@
-//! Library side of the `usar` command line: argument parsing ([`cli`]) and the commands
-//! ([`commands`]). The binary `src/bin/usar.rs` only parses and dispatches.
+//! Experiments on the USAR mission: parallel, resumable sweeps of grouping methods over trials
+//! (and over grids of scenario values), their analysis and their outputs (tables, figures,
+//! reports). The `usar` command line (`src/bin/usar/`: `cli.rs` and one file per subcommand in
+//! `commands/`) is a thin layer over this library.
 //!
 //! A sweep runs, analysis judges, outputs write: [`sweep::run_sweep`] runs the trials (of
 //! every cell of a [`grid`] built from `--vary` overrides, [`vary`]) into the [`journal`] and
@@ -15,8 +17,6 @@ pub mod analysis;
 pub mod atomic;
 pub mod calibration;
 pub mod claims;
-pub mod cli;
-pub mod commands;
 pub mod console;
 mod executor;
 pub mod figures;

@@ -19,7 +19,7 @@ use usar_sim::scenario::{Scenario, trial_steps};
 
 use crate::atomic::remove_stale_temps;
 use crate::executor::{CellPlan, Job, Runner, execute};
-pub use crate::executor::{STOP_EXIT_CODE, TestHooks};
+pub use crate::executor::{JournaledHook, SweepHooks, TrialKey, TrialObserverFactory};
 use crate::fingerprint::scenario_hash;
 use crate::grid::Grid;
 use crate::lock::OutputLock;
@@ -77,15 +77,16 @@ pub struct SweepConfig {
     pub overwrite: bool,
     /// Show a progress bar (only drawn on a terminal).
     pub progress: bool,
-    /// Test hooks.
-    pub hooks: TestHooks,
+    /// Extension points: a step observer per trial, a call per journaled record (default
+    /// none).
+    pub hooks: SweepHooks,
 }
 
 impl SweepConfig {
     /// The defaults of `usar sweep` for `scenario`: no grid, the four built-in methods, 10
     /// trials, the scenario's `sim.seed` as base seed, each cell's `mission.duration_s`, all
     /// cores, output folder `results/<scenario name>/`, no resume or overwrite, a progress
-    /// bar, no test hooks.
+    /// bar, no hooks.
     pub fn new(scenario: Scenario, scenario_path: impl Into<PathBuf>) -> Self {
         Self {
             scenario_path: scenario_path.into(),
@@ -103,7 +104,7 @@ impl SweepConfig {
             resume: false,
             overwrite: false,
             progress: true,
-            hooks: TestHooks::default(),
+            hooks: SweepHooks::default(),
             scenario,
         }
     }
@@ -338,7 +339,15 @@ fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     if cfg.methods.is_empty() {
         bail!("--methods needs at least one method");
     }
+    let tasks = cfg.scenario.task_names();
     for s in cfg.cell_scenarios() {
+        if s.task_names() != tasks {
+            bail!(
+                "--vary: every cell must have the scenario's tasks ({}); a cell has {}",
+                tasks.join(", "),
+                s.task_names().join(", ")
+            );
+        }
         if let Err(e) = trial_steps(cfg.duration_of(s), s.sim.dt_s.get()) {
             bail!("--duration: {e}");
         }
@@ -351,11 +360,6 @@ fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
             "--methods lists a method twice: {}",
             header.methods.join(",")
         );
-    }
-    for (m, k) in &cfg.hooks.fail {
-        if !header.methods.contains(m) || *k >= cfg.trials {
-            bail!("--fail-trial {m}:{k} names no trial of this sweep");
-        }
     }
     Ok(())
 }

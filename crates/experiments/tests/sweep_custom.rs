@@ -88,3 +88,63 @@ fn an_unknown_name_is_refused_before_anything_runs() {
     );
     assert!(!tmp.path().join("s/journal.jsonl").exists());
 }
+
+#[test]
+fn hooks_observe_trials_and_journaled_records() {
+    use std::sync::{Arc, Mutex};
+
+    use experiments::sweep::{SweepHooks, TrialKey};
+    use usar_sim::mission::{Simulation, StepObserver};
+
+    /// Counts steps; panics at the 100th step of trial 1 of DIS.
+    struct Probe(TrialKey, Arc<Mutex<Vec<(String, u32, u64)>>>, u64);
+    impl StepObserver for Probe {
+        fn on_step(&mut self, sim: &Simulation) {
+            self.2 += 1;
+            if self.0.method == "DIS" && self.0.trial == 1 && self.2 == 100 {
+                panic!("probe stops here");
+            }
+            if sim.is_finished() {
+                let k = &self.0;
+                self.1
+                    .lock()
+                    .unwrap()
+                    .push((k.method.clone(), k.trial, self.2));
+            }
+        }
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let steps = Arc::new(Mutex::new(Vec::new()));
+    let journaled = Arc::new(Mutex::new(Vec::new()));
+    let (s2, j2) = (steps.clone(), journaled.clone());
+    let mut cfg = config(tmp.path().join("s"), &["rne", "dis"]);
+    cfg.hooks = SweepHooks {
+        trial_observer: Some(Arc::new(move |key: &TrialKey| {
+            Some(Box::new(Probe(key.clone(), s2.clone(), 0)) as Box<dyn StepObserver>)
+        })),
+        on_journaled: Some(Arc::new(move |r, n| {
+            j2.lock().unwrap().push((r.method.clone(), r.trial, n));
+        })),
+    };
+    let outcome = run_sweep(&cfg).unwrap();
+    // The panicking observer failed its trial only.
+    let failed: Vec<_> = outcome
+        .failures()
+        .map(|f| (f.method.clone(), f.trial))
+        .collect();
+    assert_eq!(failed, [("DIS".to_string(), 1)]);
+    // Every other trial was observed at each of its 40 s / 0.02 s = 2000 steps.
+    let mut seen = steps.lock().unwrap().clone();
+    seen.sort();
+    assert_eq!(
+        seen,
+        [
+            ("DIS".into(), 0, 2000),
+            ("RNE".into(), 0, 2000),
+            ("RNE".into(), 1, 2000)
+        ]
+    );
+    // Every record, the failed one too, was reported once, numbered in journal order.
+    let j = journaled.lock().unwrap();
+    assert_eq!(j.iter().map(|x| x.2).collect::<Vec<_>>(), [1, 2, 3, 4]);
+}

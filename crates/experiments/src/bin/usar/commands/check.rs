@@ -9,9 +9,9 @@ use anyhow::{Context, Result, anyhow};
 use clap::Args;
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
 
-use crate::fingerprint::scenario_hash;
-use crate::spec_ron::spec_to_ron;
-use crate::vary::{Override, apply_overrides, rule_error};
+use experiments::fingerprint::scenario_hash;
+use experiments::spec_ron::spec_to_ron;
+use experiments::vary::{Override, apply_overrides, rule_error};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -160,10 +160,10 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         writeln!(
             out,
             " {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
-            k.max_speed_m_per_s,
-            k.sensing_range_m,
-            k.observing_range_m,
-            k.body_radius_m,
+            short(k.max_speed_m_per_s),
+            short(k.sensing_range_m),
+            short(k.observing_range_m),
+            short(k.body_radius_m),
             k.carrying_capacity,
             k.rescuing_resources
         )?;
@@ -278,4 +278,9 @@ fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 
 fn nalgebra_dist(a: scenario::PointM, b: scenario::PointM) -> f64 {
     (a - b).norm()
+}
+
+/// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.
+fn short(x: f64) -> String {
+    ((x * 1e4).round() / 1e4).to_string()
 }

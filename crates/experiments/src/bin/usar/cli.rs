@@ -1,7 +1,7 @@
 //! The top-level `usar` command line: [`Cli`] and the [`Command`] enum.
 //!
-//! To add a subcommand: write `src/commands/<name>.rs` with an `Args` struct and a `run`
-//! function, declare it in `src/commands/mod.rs`, add one variant to [`Command`] and one arm
+//! To add a subcommand: write `src/bin/usar/commands/<name>.rs` with an `Args` struct and a `run`
+//! function, declare it in `commands/mod.rs`, add one variant to [`Command`] and one arm
 //! to [`run`]. Existing subcommands need no change.
 
 use std::io::Write;

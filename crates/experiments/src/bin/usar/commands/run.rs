@@ -10,9 +10,9 @@ use clap::Args;
 use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario;
 
-use crate::atomic::write_atomic;
-use crate::metrics::{Metric, Quantity, Scope};
-use crate::table::num;
+use experiments::atomic::write_atomic;
+use experiments::metrics::{Metric, Quantity, Scope};
+use experiments::table::num;
 
 const EXAMPLES: &str = "\
 Examples:

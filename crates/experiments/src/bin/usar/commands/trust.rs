@@ -9,7 +9,7 @@ use rne_core::{
     RneOptions, Smoothing, TrustModel, Weights,
 };
 
-use crate::table::{matrix, row_minima, sig6};
+use experiments::table::{matrix, row_minima, sig6};
 
 const EXAMPLES: &str = "\
 Examples:

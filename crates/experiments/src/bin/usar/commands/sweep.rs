@@ -11,13 +11,15 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario;
 
-use crate::analysis::Analysis;
-use crate::console::print_sweep;
-use crate::grid::Grid;
-use crate::metrics::{Metric, Quantity, Scope};
-use crate::output::write_outputs;
-use crate::sweep::{
-    MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, TestHooks, canonical_method,
+use experiments::analysis::Analysis;
+
+use super::test_hooks::test_hooks;
+use experiments::console::print_sweep;
+use experiments::grid::Grid;
+use experiments::metrics::{Metric, Quantity, Scope};
+use experiments::output::write_outputs;
+use experiments::sweep::{
+    MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, canonical_method,
     default_out_dir, max_threads, run_sweep, trust_model,
 };
 
@@ -191,6 +193,16 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
         .iter()
         .map(|s| parse_fail(s, &model))
         .collect::<Result<Vec<_>>>()?;
+    for (m, k) in &fail {
+        let methods = args
+            .methods
+            .iter()
+            .map(|x| canonical_method(x.trim(), &MethodFactory::builtin(), &model))
+            .collect::<Result<Vec<_>>>()?;
+        if !methods.contains(m) || *k >= args.trials {
+            bail!("--fail-trial {m}:{k} names no trial of this sweep");
+        }
+    }
     let threads = match args.threads {
         Some(0) => bail!("--threads must be at least 1"),
         Some(n) if n > max_threads() => {
@@ -221,10 +233,7 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
         resume: args.resume,
         overwrite: args.overwrite,
         progress: !args.quiet,
-        hooks: TestHooks {
-            fail,
-            stop_after: args.stop_after,
-        },
+        hooks: test_hooks(fail, args.stop_after),
         scenario,
     })
 }
@@ -237,17 +246,6 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
 pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let cfg = config(args)?;
     let tasks = cfg.scenario.task_names();
-    if let Some(cell) = cfg
-        .cell_scenarios()
-        .iter()
-        .find(|s| s.task_names() != tasks)
-    {
-        bail!(
-            "--vary: every cell must have the scenario's tasks ({}); a cell has {}",
-            tasks.join(", "),
-            cell.task_names().join(", ")
-        );
-    }
     let metrics = grid_metrics(&args.grid_metrics, &tasks)?;
     let o = run_sweep(&cfg)?;
     let analysis = Analysis::of(&o);

@@ -3,7 +3,10 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use experiments::cli::{Cli, run};
+mod cli;
+mod commands;
+
+use cli::{Cli, run};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

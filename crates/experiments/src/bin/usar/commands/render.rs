@@ -9,7 +9,7 @@ use clap::Args;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario};
 
-use crate::render::{Trace, render_svg};
+use experiments::render::{Trace, render_svg};
 
 /// Simulated time between two samples of a robot's path, seconds.
 pub const TRACE_SAMPLE_S: f64 = 0.5;

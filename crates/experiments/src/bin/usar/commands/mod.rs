@@ -4,4 +4,5 @@ pub mod check;
 pub mod render;
 pub mod run;
 pub mod sweep;
+pub mod test_hooks;
 pub mod trust;
