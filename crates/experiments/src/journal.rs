@@ -36,7 +36,9 @@ use crate::fingerprint::fnv1a64_hex;
 pub const JOURNAL_FILE: &str = "journal.jsonl";
 
 /// Format version of the journal; bumped when its lines change shape. Format 2 added the
-/// grid to the header and the cell index to every record; format 3 a checksum to every line.
+/// grid to the header and the cell index to every record; format 3 a checksum to every line;
+/// format 4 the cell's task names and difficulty order to the header, and per-task results
+/// (one entry per task, in the scenario's order) to every record.
 pub const JOURNAL_FORMAT: u32 = 4;
 
 /// The parameters that determine a sweep's results. `--resume` continues a journal only if
