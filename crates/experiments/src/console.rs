@@ -113,6 +113,20 @@ pub fn print_sweep(
     Ok(())
 }
 
+/// A speed (simulated seconds per wall-clock second) for the terminal: whole numbers from 10
+/// up (`1153`), three significant digits below (`2.47`, `0.442`), so a run slower than real
+/// time does not print as `0`.
+pub fn speed(sim_s_per_wall_s: f64) -> String {
+    let x = sim_s_per_wall_s;
+    if !x.is_finite() || x >= 10.0 {
+        format!("{x:.0}")
+    } else if x >= 1.0 {
+        format!("{x:.2}")
+    } else {
+        format!("{x:.3}")
+    }
+}
+
 fn ran_line(out: &mut dyn Write, o: &SweepOutcome) -> Result<()> {
     if o.ran == 0 {
         writeln!(out, "all {} trials came from the journal", o.reused)?;
@@ -121,12 +135,12 @@ fn ran_line(out: &mut dyn Write, o: &SweepOutcome) -> Result<()> {
     let rate = o.simulated_s() / o.wall_s.max(1e-9);
     writeln!(
         out,
-        "ran {} trials in {:.2} s on {} thread(s): {:.0} sim-s per wall-s ({:.0} per thread){}",
+        "ran {} trials in {:.2} s on {} thread(s): {} sim-s per wall-s ({} per thread){}",
         o.ran,
         o.wall_s,
         o.threads,
-        rate,
-        rate / o.threads as f64,
+        speed(rate),
+        speed(rate / o.threads as f64),
         if o.reused > 0 {
             format!("; {} from the journal", o.reused)
         } else {
@@ -213,4 +227,14 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
         writeln!(out)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn speeds_below_one_are_not_zero() {
+        assert_eq!(super::speed(1153.4), "1153");
+        assert_eq!(super::speed(2.4661), "2.47");
+        assert_eq!(super::speed(0.44166), "0.442");
+    }
 }

@@ -68,10 +68,10 @@ pub fn kind_color(s: &Scenario, k: usize) -> RGBColor {
 /// Shows the walls, debris (brown), radiation zones (shaded by dose rate factor: the weakest
 /// yellow, the strongest orange, labelled `x<factor>` when the factors differ), both search
 /// areas with their rescuees, goal points (crosses), drop-offs, the rest station, robots at
-/// their start positions by kind (colour by role, see [`kind_color`]; aerial robots with a ring;
-/// labelled by id), a
-/// legend and a scale bar, and, when `traces` is given (indexed by robot id), the path each
-/// robot took with a hollow disc where it ended.
+/// their start positions by kind (colour by role, see [`kind_color`]; aerial robots with a
+/// ring; labelled by id in teams of up to [`MAX_LABELLED_ROBOTS`]), a legend and a scale bar,
+/// and, when `traces` is given (indexed by robot id), the path each robot took with a hollow
+/// disc where it ended.
 ///
 /// # Errors
 /// If drawing or writing the file fails.
@@ -496,18 +496,23 @@ fn draw_robots(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
                 .draw_series([PathElement::new(disc_outline(&ring), color.stroke_width(1))])
                 .map_err(draw_err)?;
         }
-        chart
-            .draw_series([label_at(
-                id.to_string(),
-                body.center.x,
-                body.center.y - reach,
-                9,
-                VPos::Top,
-            )])
-            .map_err(draw_err)?;
+        if s.robots.len() <= MAX_LABELLED_ROBOTS {
+            chart
+                .draw_series([label_at(
+                    id.to_string(),
+                    body.center.x,
+                    body.center.y - reach,
+                    9,
+                    VPos::Top,
+                )])
+                .map_err(draw_err)?;
+        }
     }
     Ok(())
 }
+
+/// Teams of more robots than this are drawn without id labels (they would cover each other).
+pub const MAX_LABELLED_ROBOTS: usize = 100;
 
 /// What a legend entry shows left of its text.
 enum Swatch {

@@ -1,5 +1,5 @@
-//! Expansion of the spec's compact forms into the scenario's lists: start rows into start
-//! positions, rescuee grids into rescuee positions, debris fields into seeded, placed debris.
+//! Expansion of the spec's compact forms into the scenario's lists: start rows and grids into
+//! start positions, rescuee grids into rescuee positions, debris fields into seeded, placed debris.
 //! Each step checks what only it can (a row's step, a grid's size, whether a field fits) and
 //! reports with the field path, through the validation context.
 
@@ -10,7 +10,7 @@ use rand_chacha::ChaCha8Rng;
 use super::model::{Circle, Debris, PointM, Rect, RobotKind};
 use super::params::Arena;
 use super::shape::DebrisShape;
-use super::spec::{DebrisFieldSpec, DebrisShapeSpec, RescueeLayoutSpec, StartsSpec};
+use super::spec::{DebrisFieldSpec, DebrisShapeSpec, RescueeLayoutSpec, StartsSpec, XyM};
 use super::validate::{Ctx, R, fmt_pt};
 
 /// Most rescuees one grid layout may expand to.
@@ -79,7 +79,61 @@ pub(crate) fn start_positions(
                 })
                 .collect())
         }
+        StartsSpec::Grid {
+            first_m,
+            columns,
+            spacing_m,
+        } => grid_starts(
+            ctx,
+            &base,
+            (first_m, *columns, spacing_m),
+            kind.count,
+            label,
+        ),
     }
+}
+
+/// The `count` positions of a `Grid` start layout `(first_m, columns, spacing_m)` (see
+/// [`StartsSpec::Grid`]), all labelled by `label` and attributed to the field path `base`.
+fn grid_starts(
+    ctx: &Ctx<'_>,
+    base: &str,
+    (first_m, columns, spacing_m): (&XyM, u32, &XyM),
+    count: usize,
+    label: impl Fn(usize) -> String,
+) -> R<Vec<Start>> {
+    let first = ctx.point(&format!("{base}.first_m"), first_m)?;
+    let spacing_path = format!("{base}.spacing_m");
+    let spacing = ctx.point(&spacing_path, spacing_m)?.coords;
+    if columns == 0 {
+        return Err(ctx.err(format!("{base}.columns"), "expected at least 1 column"));
+    }
+    let columns = columns as usize;
+    if count > 1 && columns > 1 && spacing.x == 0.0 {
+        return Err(ctx.err(
+            spacing_path,
+            "expected a non-zero x spacing: robots of a grid row cannot share one position",
+        ));
+    }
+    if count > columns && spacing.y == 0.0 {
+        return Err(ctx.err(
+            spacing_path,
+            "expected a non-zero y spacing: grid rows cannot share one position",
+        ));
+    }
+    Ok((0..count)
+        .map(|i| {
+            let offset = Vector2::new(
+                spacing.x * (i % columns) as f64,
+                spacing.y * (i / columns) as f64,
+            );
+            Start {
+                path: base.to_string(),
+                label: label(i),
+                position: first + offset,
+            }
+        })
+        .collect())
 }
 
 /// A place generated debris must keep away from (a start, the rest station, a drop-off, a

@@ -179,6 +179,19 @@ pub enum StartsSpec {
         /// Offset between consecutive robots, metres (non-zero when `count > 1`).
         step_m: XyM,
     },
+    /// `count` positions on a grid of `columns` columns, filled row by row: robot `i` starts
+    /// at `first_m + (i mod columns) * spacing_m.x` across and `(i div columns) *
+    /// spacing_m.y` up (negative spacings go left or down). `Grid(first_m: (x, y), columns:
+    /// 20, spacing_m: (dx, dy))`. For large teams: changing `count` needs no other edit.
+    Grid {
+        /// Position of the kind's first robot, metres.
+        first_m: XyM,
+        /// Robots per row, >= 1.
+        columns: u32,
+        /// Distance between neighbouring columns (x) and rows (y), metres; `x` non-zero when
+        /// a row holds more than one robot, `y` non-zero when there is more than one row.
+        spacing_m: XyM,
+    },
 }
 
 /// One task: a name, a difficulty, a search area with rescuees, a goal point and a drop-off

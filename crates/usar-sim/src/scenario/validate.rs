@@ -726,4 +726,64 @@ mod tests {
         assert_eq!(err.field(), Some("kinds[0].starts.step_m"));
         assert!(err.line_col().is_some());
     }
+
+    /// paper.ron with its carriers' row replaced by `grid`.
+    fn paper_with_carrier_starts(grid: &str) -> String {
+        let src = std::fs::read_to_string(scenario_file("paper.ron")).expect("paper.ron");
+        let row = "Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0))";
+        assert!(src.contains(row));
+        src.replacen(row, grid, 1)
+    }
+
+    #[test]
+    fn grids_fill_row_by_row() {
+        let src = paper_with_carrier_starts(
+            "Grid(first_m: (32.5, 3.0), columns: 4, spacing_m: (3.0, -1.5))",
+        );
+        let s = from_str(&src, "p.ron").expect("loads");
+        let starts: Vec<(f64, f64)> = s.robots[..6]
+            .iter()
+            .map(|r| (r.start_in_world.x, r.start_in_world.y))
+            .collect();
+        let want = [
+            (32.5, 3.0),
+            (35.5, 3.0),
+            (38.5, 3.0),
+            (41.5, 3.0),
+            (32.5, 1.5),
+            (35.5, 1.5),
+        ];
+        for (got, want) in starts.iter().zip(want) {
+            assert!((got.0 - want.0).abs() < 1e-12 && (got.1 - want.1).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn degenerate_grids_are_rejected_with_their_field() {
+        for (grid, field) in [
+            (
+                "Grid(first_m: (32.5, 3.0), columns: 0, spacing_m: (3.0, 1.5))",
+                "kinds[0].starts.columns",
+            ),
+            (
+                "Grid(first_m: (32.5, 3.0), columns: 3, spacing_m: (0.0, 1.5))",
+                "kinds[0].starts.spacing_m",
+            ),
+            (
+                "Grid(first_m: (32.5, 3.0), columns: 3, spacing_m: (3.0, 0.0))",
+                "kinds[0].starts.spacing_m",
+            ),
+        ] {
+            let err = from_str(&paper_with_carrier_starts(grid), "p.ron").expect_err(grid);
+            assert_eq!(err.field(), Some(field), "{grid}: {err}");
+            assert!(err.line_col().is_some(), "{grid}: {err}");
+        }
+        // One row needs no y spacing, one column no x spacing.
+        for ok in [
+            "Grid(first_m: (32.5, 3.0), columns: 6, spacing_m: (3.0, 0.0))",
+            "Grid(first_m: (20.0, 3.0), columns: 1, spacing_m: (0.0, 0.9))",
+        ] {
+            from_str(&paper_with_carrier_starts(ok), "p.ron").expect(ok);
+        }
+    }
 }

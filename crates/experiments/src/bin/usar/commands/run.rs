@@ -82,10 +82,10 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     print_result(&result, out)?;
     writeln!(
         out,
-        "\n{} s simulated in {:.2} s wall-clock ({:.0} sim-s per wall-s)",
+        "\n{} s simulated in {:.2} s wall-clock ({} sim-s per wall-s)",
         result.duration_s,
         wall,
-        result.duration_s / wall.max(1e-9)
+        experiments::console::speed(result.duration_s / wall.max(1e-9))
     )?;
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&result).context("serialising the result")?;

@@ -1,0 +1,61 @@
+//! `scenarios/swarm-1000.ron` end to end, short: 1,000 robots, four tasks, every method. The
+//! full-length runs are the scaling bench's (`docs/scaling.md`).
+
+use integration_tests::{load, method, scenario_path};
+use usar_sim::mission::Simulation;
+use usar_sim::scenario::Locomotion;
+
+/// Seconds simulated per method: long enough for grouping and for the start grid to clear
+/// (robots in the back rows wait for those in front).
+const SHORT_S: f64 = 10.0;
+
+#[test]
+fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
+    let s = load(&scenario_path("swarm-1000.ron"));
+    assert_eq!(s.robots.len(), 1000);
+    assert_eq!(s.tasks.len(), 4);
+    for name in ["rne", "dis", "eng", "hp_dis"] {
+        let mut sim = Simulation::builder(&s)
+            .method(method(name, &s))
+            .duration_s(SHORT_S)
+            .build()
+            .unwrap();
+        let r = sim.run_to_end().unwrap();
+        assert_eq!(r.rescued.len(), 4, "{name}");
+        let first = &r.rounds[0];
+        let mut seen = vec![false; s.robots.len()];
+        for (t, group) in first.groups.iter().enumerate() {
+            for (kind, spec) in s.kinds.iter().enumerate() {
+                let n = group
+                    .iter()
+                    .filter(|&&id| s.robots[id].kind == kind)
+                    .count();
+                assert_eq!(n, spec.quota[t], "{name}: task {t}, kind {kind}");
+            }
+            for &id in group {
+                assert!(!seen[id], "{name}: robot {id} in two groups");
+                seen[id] = true;
+            }
+        }
+        assert!(seen.iter().all(|&s| s), "{name}: a robot without a group");
+        // The team has set off: at most one ground robot in ten still waits in the start grid.
+        let ground = s
+            .robots
+            .iter()
+            .filter(|r| s.kinds[r.kind].locomotion == Locomotion::Ground)
+            .count();
+        let stuck: Vec<usize> = sim
+            .world()
+            .robots()
+            .iter()
+            .filter(|r| r.locomotion == Locomotion::Ground && r.distance_travelled_m < 0.5)
+            .map(|r| r.id)
+            .collect();
+        assert!(
+            stuck.len() * 10 <= ground,
+            "{name}: {} ground robots moved less than 0.5 m in {SHORT_S} s: {:?}",
+            stuck.len(),
+            &stuck[..stuck.len().min(20)]
+        );
+    }
+}
