@@ -43,7 +43,7 @@ fi
 for p in slurmctld slurmd sbatch squeue sinfo scontrol munged mungekey; do
     command -v "$p" >/dev/null || fail "$p is not installed (packages slurm-wlm, munge)"
 done
-echo "slurm: $(sbatch --version), munge: $(munged --version 2>&1 | head -n1)"
+echo "slurm: $(slurmctld -V), munge: $(munged --version 2>&1 | head -n1)"
 
 # --- 2. a one-node cluster ------------------------------------------------------------------
 tmp="$(mktemp -d /tmp/usar-slurm-test.XXXXXX)"
@@ -65,12 +65,14 @@ cleanup() {
 }
 trap cleanup EXIT
 mkdir -p "$tmp/munge" "$tmp/state" "$tmp/spool" "$tmp/log"
-chmod 700 "$tmp/munge"
+chmod 755 "$tmp"
+chmod 755 "$tmp/munge"   # clients need to reach the socket; the key file itself is 0600
 
 mungekey --create --keyfile="$tmp/munge/munge.key"
 munged --foreground --force --socket="$tmp/munge/munge.socket" \
     --key-file="$tmp/munge/munge.key" --pid-file="$tmp/munge/munged.pid" \
-    --log-file="$tmp/log/munged.log" --seed-file="$tmp/munge/munged.seed" &
+    --log-file="$tmp/log/munged.log" --seed-file="$tmp/munge/munged.seed" \
+    >"$tmp/log/munged.out" 2>&1 &
 pids+=("$!")
 for _ in $(seq 50); do [ -S "$tmp/munge/munge.socket" ] && break; sleep 0.2; done
 [ -S "$tmp/munge/munge.socket" ] || { cat "$tmp/log/munged.log" >&2 || true; fail "munged did not start"; }

@@ -103,6 +103,17 @@ pub fn check_options(o: &SlurmOptions) -> Result<()> {
     Ok(())
 }
 
+/// A path as the value of an `#SBATCH` line: in double quotes when it holds a space (sbatch
+/// reads quoted values there).
+fn directive_value(p: &Path) -> String {
+    let s = p.display().to_string();
+    if s.chars().any(char::is_whitespace) {
+        format!("\"{s}\"")
+    } else {
+        s
+    }
+}
+
 fn q(p: &Path) -> String {
     shell_join(&[p.display().to_string()])
 }
@@ -165,11 +176,8 @@ pub fn array_script(job: &SlurmJob<'_>) -> String {
         }
     }
     resource_lines(&mut s, o);
-    let _ = writeln!(
-        s,
-        "#SBATCH --output={}/sweep-%A_%a.out",
-        files.logs.display()
-    );
+    let log = files.logs.join("sweep-%A_%a.out");
+    let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
     let mut words = vec![
         job.usar.display().to_string(),
         "sweep".to_string(),
@@ -209,7 +217,8 @@ pub fn merge_script(job: &SlurmJob<'_>) -> String {
     let _ = writeln!(s, "#SBATCH --job-name={}-merge", job_name(job.plan));
     s.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n");
     resource_lines(&mut s, job.options);
-    let _ = writeln!(s, "#SBATCH --output={}/merge-%j.out", files.logs.display());
+    let log = files.logs.join("merge-%j.out");
+    let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
     let _ = write!(
         s,
         "\nset -euo pipefail\ncd {workdir}\n{usar} merge {out}\n",
@@ -291,4 +300,83 @@ fn make_executable(path: &Path) -> Result<()> {
 #[cfg(not(unix))]
 fn make_executable(_path: &Path) -> Result<()> {
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options() -> SlurmOptions {
+        SlurmOptions {
+            shards: 4,
+            partition: None,
+            time: Some("10".into()),
+            cpus_per_task: 2,
+            mem: None,
+            account: None,
+        }
+    }
+
+    fn plan() -> SweepPlan {
+        SweepPlan {
+            scenario_path: "scenarios/my paper.ron".into(),
+            scenario_text: String::new(),
+            vary: vec!["kinds[0].count=2,3".into()],
+            methods: vec!["rne".into()],
+            trials: 2,
+            seed: None,
+            duration_s: Some(60.0),
+            grid_metrics: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_array_script_quotes_what_the_shell_would_split() {
+        let (plan, options) = (plan(), options());
+        let job = SlurmJob {
+            plan: &plan,
+            out_dir: Path::new("/data/out dir"),
+            workdir: Path::new("/home/me/rne"),
+            usar: Path::new("/home/me/rne/target/release/usar"),
+            options: &options,
+        };
+        let s = array_script(&job);
+        assert!(s.contains("#SBATCH --job-name=usar-my_paper\n"), "{s}");
+        assert!(s.contains("#SBATCH --time=10\n"));
+        assert!(s.contains("'scenarios/my paper.ron'"), "{s}");
+        assert!(s.contains("'kinds[0].count=2,3'"), "{s}");
+        assert!(s.contains("--out '/data/out dir'"), "{s}");
+        assert!(s.contains("#SBATCH --output=\"/data/out dir/slurm/logs/sweep-%A_%a.out\"\n"));
+        assert!(merge_script(&job).contains("merge '/data/out dir'\n"));
+    }
+
+    #[test]
+    fn options_that_would_break_a_line_are_refused() {
+        assert!(check_options(&options()).is_ok());
+        let bad = [
+            SlurmOptions {
+                shards: 0,
+                ..options()
+            },
+            SlurmOptions {
+                cpus_per_task: 0,
+                ..options()
+            },
+            SlurmOptions {
+                mem: Some("4 G".into()),
+                ..options()
+            },
+            SlurmOptions {
+                account: Some("a\nb".into()),
+                ..options()
+            },
+            SlurmOptions {
+                partition: Some(String::new()),
+                ..options()
+            },
+        ];
+        for o in bad {
+            assert!(check_options(&o).is_err(), "{o:?}");
+        }
+    }
 }
