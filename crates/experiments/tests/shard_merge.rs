@@ -15,8 +15,8 @@ const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.
 /// Exit status of `--stop-after`.
 const STOPPED: i32 = 75;
 const CELLS: [&str; 2] = [
-    "c0_hp_pct_per_step_in_radiation=0.0003",
-    "c1_hp_pct_per_step_in_radiation=0.003",
+    "c00_hp_pct_per_step_in_radiation=0.0003",
+    "c01_hp_pct_per_step_in_radiation=0.003",
 ];
 
 /// `usar sweep` of a 2-cell grid, rne,dis x 3 trials x 8 s, into `out`, then `extra`.
