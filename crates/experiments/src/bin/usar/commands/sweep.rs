@@ -133,7 +133,7 @@ pub struct SweepArgs {
     pub quiet: bool,
 
     /// Run only shard I of N of the sweep (I from 0): a fixed, balanced share of its trials,
-    /// journaled in OUT/shards/<I>-of-<N>/. No tables are written; once every shard is done,
+    /// journaled in `OUT/shards/<I>-of-<N>/`. No tables are written; once every shard is done,
     /// `usar merge OUT` writes them (the same as one sweep would). For job arrays:
     /// `--shard $SLURM_ARRAY_TASK_ID/N` (see `usar slurm`).
     #[arg(long, value_name = "I/N")]
