@@ -16,8 +16,8 @@
 //!
 //! A record is identified by its [`RecordKey`] `(cell, method, trial)`. A key may appear more
 //! than once (a failed trial retried by `--resume`); the last record wins. Nothing else about
-//! a record depends on the journal it is in, so a later feature can split the job list into
-//! shards that write journals of their own, and merge them by reading each with
+//! a record depends on the journal it is in, so [`crate::shard`] splits the job list into
+//! shards that write journals of their own, and merges them by reading each with
 //! [`read_journal`], checking their headers agree and keeping the last record per key. A kill
 //! can leave a last line cut short; [`Journal::open_resume`] drops it.
 

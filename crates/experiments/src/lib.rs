@@ -30,6 +30,8 @@ pub mod metrics;
 pub mod output;
 pub mod render;
 pub mod report;
+pub mod shard;
+pub mod slurm;
 pub mod spec_ron;
 pub mod stats;
 pub mod summary;

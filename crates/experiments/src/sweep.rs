@@ -9,6 +9,7 @@
 //! go through one thread pool; results are sorted by cell, method order and trial, so they do
 //! not depend on thread count, completion order or interruptions.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -24,6 +25,7 @@ use crate::fingerprint::scenario_hash;
 use crate::grid::Grid;
 use crate::lock::OutputLock;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
+use crate::shard::{ShardRun, shard_dir};
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
@@ -80,6 +82,10 @@ pub struct SweepConfig {
     /// Extension points: a step observer per trial, a call per journaled record (default
     /// none).
     pub hooks: SweepHooks,
+    /// Run one shard of the sweep only (`--shard I/N`, default `None`): its jobs
+    /// ([`crate::shard::Shard::jobs`]), into the journal of its folder under `out_dir`
+    /// ([`shard_dir`]), with the plan beside it.
+    pub shard: Option<ShardRun>,
 }
 
 impl SweepConfig {
@@ -105,6 +111,7 @@ impl SweepConfig {
             overwrite: false,
             progress: true,
             hooks: SweepHooks::default(),
+            shard: None,
             scenario,
         }
     }
@@ -120,6 +127,14 @@ impl SweepConfig {
     /// The trial length of a cell with `scenario`: `duration_s` or its `mission.duration_s`.
     pub fn duration_of(&self, scenario: &Scenario) -> f64 {
         self.duration_s.unwrap_or(scenario.mission.duration_s.get())
+    }
+
+    /// The folder of the journal (and the lock): `out_dir`, or the shard's folder under it.
+    pub fn journal_dir(&self) -> PathBuf {
+        match &self.shard {
+            Some(s) => shard_dir(&self.out_dir, s.shard),
+            None => self.out_dir.clone(),
+        }
     }
 }
 
@@ -163,6 +178,9 @@ pub enum JournalUse {
     /// A journal with the same parameters was there and was continued as with `--resume`
     /// (running the same command twice).
     Reused,
+    /// The records come from the journals of the sweep's shards (`usar merge`,
+    /// [`crate::shard::merge_shards`]).
+    Merged,
 }
 
 /// What a sweep produced: data only (see [`crate::analysis`] and [`crate::output`]).
@@ -269,7 +287,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
 }
 
 /// One job of the sweep: indices of its cell and method, and its trial.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct JobId {
     /// Grid cell index.
     pub cell: usize,
@@ -281,7 +299,7 @@ pub struct JobId {
 
 /// Every job of a sweep of `cells` x `methods` x `trials`, in the canonical order jobs are
 /// started in: trial-major, then cell, then method, so a partial sweep has every cell and
-/// method on its first trials. A split of the sweep into shards would split this list.
+/// method on its first trials. [`crate::shard::Shard::jobs`] splits this list into shards.
 pub fn job_list(cells: usize, methods: usize, trials: u32) -> Vec<JobId> {
     let mut jobs = Vec::with_capacity(cells * methods * trials as usize);
     for trial in 0..trials {
@@ -394,23 +412,23 @@ impl OpenJournal {
     }
 }
 
-/// Creates, resumes or reuses the journal in `cfg.out_dir`, with the records it holds.
-fn open_journal(cfg: &SweepConfig, header: &SweepHeader) -> Result<OpenJournal> {
-    let path = Journal::path_in(&cfg.out_dir);
+/// Creates, resumes or reuses the journal in `dir`, with the records it holds.
+fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<OpenJournal> {
+    let path = Journal::path_in(dir);
     if !path.exists() {
-        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
+        return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     if cfg.resume {
-        let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+        let resumed = Journal::open_resume(dir, header)?;
         return Ok(OpenJournal::continued(resumed, JournalUse::Resumed));
     }
     if cfg.overwrite {
         std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
-        return Ok(OpenJournal::new(Journal::create(&cfg.out_dir, header)?));
+        return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     let why = match read_header(&path) {
         Ok(found) if &found == header => {
-            let resumed = Journal::open_resume(&cfg.out_dir, header)?;
+            let resumed = Journal::open_resume(dir, header)?;
             return Ok(OpenJournal::continued(resumed, JournalUse::Reused));
         }
         Ok(found) => format!(
@@ -434,6 +452,11 @@ fn open_journal(cfg: &SweepConfig, header: &SweepHeader) -> Result<OpenJournal> 
 /// Once the parameters are checked, it locks the output folder ([`OutputLock`]; the lock
 /// stays in [`SweepOutcome::lock`]) and removes the temporary files killed runs left there and
 /// in the cell folders ([`remove_stale_temps`]) before it opens the journal.
+///
+/// With [`SweepConfig::shard`] it runs only the shard's jobs, and the folder it locks, cleans
+/// and journals into is the shard's ([`SweepConfig::journal_dir`]), where it also writes the
+/// plan ([`crate::shard::SweepPlan`]) once the journal is open; the outcome holds the shard's
+/// records only.
 ///
 /// # Errors
 /// Bad parameters, an output folder locked by another sweep, a journal that cannot be started
@@ -462,14 +485,22 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
-    let lock = OutputLock::acquire(&cfg.out_dir)?;
-    remove_stale_temps(&cfg.out_dir)?;
-    if let Some(g) = &cfg.grid {
+    let dir = cfg.journal_dir();
+    let lock = OutputLock::acquire(&dir)?;
+    remove_stale_temps(&dir)?;
+    if let (Some(g), None) = (&cfg.grid, &cfg.shard) {
         for cell in &g.cells {
             remove_stale_temps(&cfg.out_dir.join(&cell.dir))?;
         }
     }
-    let opened = open_journal(cfg, &header)?;
+    let opened = open_journal(cfg, &dir, &header)?;
+    if let Some(s) = &cfg.shard {
+        s.plan.write(&dir)?;
+    }
+    let in_shard: Option<HashSet<JobId>> = cfg
+        .shard
+        .as_ref()
+        .map(|s| s.shard.jobs(&header).into_iter().collect());
 
     let slots = Slots {
         methods: header.methods.clone(),
@@ -493,7 +524,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         };
         eprintln!(
             "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
-            Journal::path_in(&cfg.out_dir).display(),
+            Journal::path_in(&dir).display(),
             r.line,
             r.method,
             r.trial,
@@ -502,6 +533,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     }
     let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
         .into_iter()
+        .filter(|id| in_shard.as_ref().is_none_or(|own| own.contains(id)))
         .filter(|id| {
             let i = slots.of(id.cell, &header.methods[id.method], id.trial);
             !is_ok(i.and_then(|i| records[i].as_ref()))
@@ -539,6 +571,27 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         threads,
         lock: Arc::new(lock),
     })
+}
+
+/// The per-cell outcomes of the sweep with `header` from journal `records` (in journal
+/// order: the last record per `(cell, method, trial)` wins; records of no job of the sweep are
+/// left out). Every successful record counts as reused ([`CellOutcome::reused`]).
+pub(crate) fn cells_from_records(
+    header: &SweepHeader,
+    records: Vec<TrialRecord>,
+) -> Vec<CellOutcome> {
+    let slots = Slots {
+        methods: header.methods.clone(),
+        cells: header.grid.cells.len(),
+        trials: header.trials,
+    };
+    let mut by_slot: Vec<Option<TrialRecord>> = vec![None; slots.len()];
+    for r in records {
+        if let Some(i) = slots.of_record(&r) {
+            by_slot[i] = Some(r);
+        }
+    }
+    collect(&slots, by_slot, Vec::new())
 }
 
 /// Sorts the journal's and this run's records into per-cell outcomes.

@@ -29,7 +29,10 @@ Examples:
   usar sweep scenarios/paper.ron --trials 10 --out results/paper
 
   # A parameter sweep: the comparison once per value of a scenario field (see docs/sweeps.md)
-  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003";
+  usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003
+
+  # On a Slurm cluster: a job array of 8 shards and a merge job (see docs/cluster.md)
+  usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 8 --submit";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]
@@ -53,6 +56,10 @@ pub enum Command {
     Run(commands::run::RunArgs),
     /// Every grouping method x every trial in parallel: CSV tables, statistics, figures, report.
     Sweep(commands::sweep::SweepArgs),
+    /// Combine the journals of a sweep's shards (`sweep --shard I/N`) into its files.
+    Merge(commands::merge::MergeArgs),
+    /// Run a sweep on a Slurm cluster: a job array of shards and a chained merge job.
+    Slurm(commands::slurm::SlurmArgs),
 }
 
 /// Runs the parsed command, writing its report to `out`.
@@ -66,5 +73,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
         Command::Check(args) => commands::check::run(&args, out),
         Command::Run(args) => commands::run::run(&args, out),
         Command::Sweep(args) => commands::sweep::run(&args, out),
+        Command::Merge(args) => commands::merge::run(&args, out),
+        Command::Slurm(args) => commands::slurm::run(&args, out),
     }
 }

@@ -1,8 +1,10 @@
 //! The `usar` subcommands, one module each.
 
 pub mod check;
+pub mod merge;
 pub mod render;
 pub mod run;
+pub mod slurm;
 pub mod sweep;
 pub mod test_hooks;
 pub mod trust;

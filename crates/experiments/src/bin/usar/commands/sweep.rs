@@ -18,6 +18,7 @@ use experiments::console::print_sweep;
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
+use experiments::shard::{Shard, ShardRun, SweepPlan};
 use experiments::sweep::{
     MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, canonical_method,
     default_out_dir, max_threads, run_sweep, trust_model,
@@ -63,10 +64,9 @@ Trial k of every method starts from the same team, seed trial_seed(SEED, k); rep
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
 
-/// Arguments of `usar sweep`.
+/// The arguments of `usar sweep` that decide what the sweep runs (shared with `usar slurm`).
 #[derive(Debug, Clone, Args)]
-#[command(after_help = EXAMPLES)]
-pub struct SweepArgs {
+pub struct SweepSpecArgs {
     /// The scenario file (RON), e.g. scenarios/paper.ron.
     #[arg(value_name = "SCENARIO")]
     pub scenario: PathBuf,
@@ -103,6 +103,15 @@ pub struct SweepArgs {
     /// symlinks are followed and stay symlinks; a FIFO or character device is written directly.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+}
+
+/// Arguments of `usar sweep`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = EXAMPLES)]
+pub struct SweepArgs {
+    /// What to sweep.
+    #[command(flatten)]
+    pub spec: SweepSpecArgs,
 
     /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
     /// cores; never more than there are trials to run.
@@ -122,6 +131,13 @@ pub struct SweepArgs {
     /// No progress bar (it is only drawn on a terminal anyway).
     #[arg(long, short)]
     pub quiet: bool,
+
+    /// Run only shard I of N of the sweep (I from 0): a fixed, balanced share of its trials,
+    /// journaled in `OUT/shards/<I>-of-<N>/`. No tables are written; once every shard is done,
+    /// `usar merge OUT` writes them (the same as one sweep would). For job arrays:
+    /// `--shard $SLURM_ARRAY_TASK_ID/N` (see `usar slurm`).
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
 
     /// Test hook: make trial K of METHOD panic half-way (repeatable).
     #[arg(long, value_name = "METHOD:K", hide = true)]
@@ -173,7 +189,7 @@ pub fn grid_metrics(names: &[String], tasks: &[String]) -> Result<Vec<Metric>> {
 }
 
 /// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`.
-fn grid_of(args: &SweepArgs) -> Result<Option<Grid>> {
+fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     if args.vary.is_empty() {
         return Ok(None);
     }
@@ -185,10 +201,11 @@ fn grid_of(args: &SweepArgs) -> Result<Option<Grid>> {
 }
 
 /// The sweep's configuration from the arguments.
-fn config(args: &SweepArgs) -> Result<SweepConfig> {
+fn config(all: &SweepArgs) -> Result<SweepConfig> {
+    let args = &all.spec;
     let scenario = scenario::load(&args.scenario)?;
     let model = trust_model(&scenario)?;
-    let fail = args
+    let fail = all
         .fail_trial
         .iter()
         .map(|s| parse_fail(s, &model))
@@ -203,7 +220,7 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
             bail!("--fail-trial {m}:{k} names no trial of this sweep");
         }
     }
-    let threads = match args.threads {
+    let threads = match all.threads {
         Some(0) => bail!("--threads must be at least 1"),
         Some(n) if n > max_threads() => {
             eprintln!(
@@ -230,10 +247,11 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
             .out
             .clone()
             .unwrap_or_else(|| default_out_dir(&scenario)),
-        resume: args.resume,
-        overwrite: args.overwrite,
-        progress: !args.quiet,
-        hooks: test_hooks(fail, args.stop_after),
+        resume: all.resume,
+        overwrite: all.overwrite,
+        progress: !all.quiet,
+        hooks: test_hooks(fail, all.stop_after),
+        shard: shard_run(all)?,
         scenario,
     })
 }
@@ -246,12 +264,85 @@ fn config(args: &SweepArgs) -> Result<SweepConfig> {
 pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let cfg = config(args)?;
     let tasks = cfg.scenario.task_names();
-    let metrics = grid_metrics(&args.grid_metrics, &tasks)?;
+    let metrics = grid_metrics(&args.spec.grid_metrics, &tasks)?;
     let o = run_sweep(&cfg)?;
+    if let Some(s) = &cfg.shard {
+        print_shard(out, &cfg, s.shard, &o)?;
+        return failed_trials(&cfg, &o);
+    }
     let analysis = Analysis::of(&o);
     let files = write_outputs(&cfg, &o, &analysis, &metrics)?;
     print_sweep(out, &cfg, &o, &analysis, &metrics, &files)?;
     failed_trials(&cfg, &o)
+}
+
+/// The shard and plan of `--shard`, if given.
+fn shard_run(args: &SweepArgs) -> Result<Option<ShardRun>> {
+    let Some(text) = &args.shard else {
+        return Ok(None);
+    };
+    Ok(Some(ShardRun {
+        shard: text.parse()?,
+        plan: args.spec.plan()?,
+    }))
+}
+
+impl SweepSpecArgs {
+    /// The sweep's plan: the scenario file's text and these options.
+    ///
+    /// # Errors
+    /// The scenario file cannot be read.
+    pub fn plan(&self) -> Result<SweepPlan> {
+        let scenario_text = std::fs::read_to_string(&self.scenario)
+            .with_context(|| format!("{}: cannot read scenario file", self.scenario.display()))?;
+        Ok(SweepPlan {
+            scenario_path: self.scenario.clone(),
+            scenario_text,
+            vary: self.vary.clone(),
+            methods: self.methods.iter().map(|m| m.trim().to_string()).collect(),
+            trials: self.trials,
+            seed: self.seed,
+            duration_s: self.duration,
+            grid_metrics: self.grid_metrics.clone(),
+        })
+    }
+}
+
+/// What a shard did, and what to do next.
+fn print_shard(
+    out: &mut dyn Write,
+    cfg: &SweepConfig,
+    shard: Shard,
+    o: &SweepOutcome,
+) -> Result<()> {
+    let done: usize = o
+        .cells
+        .iter()
+        .map(|c| c.results.len() + c.failures.len())
+        .sum();
+    writeln!(
+        out,
+        "shard {shard} of sweep {}: {done} of the sweep's {} trials ({} run now on {} \
+         thread(s) in {:.2} s, {} from the shard's journal)",
+        o.header.scenario,
+        o.expected_trials(),
+        o.ran,
+        o.threads,
+        o.wall_s,
+        o.reused
+    )?;
+    writeln!(
+        out,
+        "journal: {}",
+        experiments::journal::Journal::path_in(&cfg.journal_dir()).display()
+    )?;
+    writeln!(
+        out,
+        "when every shard of {} is done: usar merge {}",
+        shard.count,
+        cfg.out_dir.display()
+    )?;
+    Ok(())
 }
 
 /// The error listing failed trials, if any.

@@ -1,0 +1,86 @@
+//! `usar merge DIR`: combines the journals of a sharded sweep's shards (`usar sweep ...
+//! --shard I/N --out DIR`) into the files one sweep on one machine writes.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use clap::Args;
+
+use experiments::analysis::Analysis;
+use experiments::console::print_sweep;
+use experiments::output::write_outputs;
+use experiments::shard::merge_shards;
+
+use super::sweep::grid_metrics;
+
+const EXAMPLES: &str = "\
+Examples:
+  # Four shards of a sweep, on four machines (or one after another), then the merge
+  usar sweep scenarios/paper.ron --trials 20 --shard 0/4 --out results/big
+  usar sweep scenarios/paper.ron --trials 20 --shard 1/4 --out results/big
+  usar sweep scenarios/paper.ron --trials 20 --shard 2/4 --out results/big
+  usar sweep scenarios/paper.ron --trials 20 --shard 3/4 --out results/big
+  usar merge results/big
+
+Reads DIR/shards/<I>-of-<N>/journal.jsonl of every shard and writes into DIR what `usar sweep`
+writes there (trials.csv, summary.csv, the figures and report.md; with --vary the cell folders,
+grid.csv and grid.md); the CSV files are byte-identical to those of the same sweep run on one
+machine. A shard with no journal, or with trials it has not run, stops the merge: the message
+names it and gives the `usar sweep ... --shard I/N` command that runs it (again). Failed trials
+are reported the same way after the files are written (non-zero exit status). See
+docs/cluster.md.";
+
+/// Arguments of `usar merge`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = EXAMPLES)]
+pub struct MergeArgs {
+    /// The sweep's output folder (the --out of its shards).
+    #[arg(value_name = "DIR")]
+    pub dir: PathBuf,
+}
+
+/// Runs `usar merge`: merge, analyse, write, summarise.
+///
+/// # Errors
+/// Missing or unfinished shards (named, with the commands to run them), journals of
+/// different sweeps, an I/O error, or failed trials (after the files are written).
+pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
+    let m = merge_shards(&args.dir)?;
+    for (path, r) in &m.rejected {
+        eprintln!(
+            "warning: {}:{}: record does not verify (edited?); left out (trial {} #{} of cell {})",
+            path.display(),
+            r.line,
+            r.method,
+            r.trial,
+            r.cell
+        );
+    }
+    let tasks = m.config.scenario.task_names();
+    let metrics = grid_metrics(&m.plan.grid_metrics, &tasks)?;
+    let analysis = Analysis::of(&m.outcome);
+    let files = write_outputs(&m.config, &m.outcome, &analysis, &metrics)?;
+    writeln!(
+        out,
+        "merged {} shards of {}: {} trials",
+        m.count,
+        args.dir.display(),
+        m.outcome.reused + m.outcome.failures().count()
+    )?;
+    print_sweep(out, &m.config, &m.outcome, &analysis, &metrics, &files)?;
+    if m.failed_shards.is_empty() {
+        return Ok(());
+    }
+    let commands: Vec<String> = m
+        .failed_shards
+        .iter()
+        .map(|s| format!("  {}", m.plan.shard_command(*s, &args.dir)))
+        .collect();
+    bail!(
+        "{} trials failed (listed in report.md); the files above leave them out. Run their \
+         shards again (a shard's command retries its failed trials), then merge again:\n{}",
+        m.outcome.failures().count(),
+        commands.join("\n")
+    )
+}

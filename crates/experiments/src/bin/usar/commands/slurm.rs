@@ -1,0 +1,143 @@
+//! `usar slurm`: writes the sbatch scripts that run a sweep on a Slurm cluster as a job array
+//! of shards plus a chained merge job, prints how to submit them, and with `--submit` submits
+//! them.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+use experiments::shard::shell_join;
+use experiments::slurm::{SlurmJob, SlurmOptions, submit, write_scripts};
+use experiments::sweep::default_out_dir;
+use usar_sim::scenario;
+
+use super::sweep::SweepSpecArgs;
+
+const EXAMPLES: &str = "\
+Examples:
+  # 3,000 trials (5 x 5 cells x 4 methods x 30 trials) as 100 array tasks of 4 CPUs each,
+  # then a merge job; writes results/big/slurm/{sweep.sbatch,merge.sbatch,submit.sh}
+  usar slurm scenarios/paper.ron --trials 30 \\
+      --vary mission.hp_pct_per_step_in_radiation=0.001,0.002,0.003,0.005,0.01 \\
+      --vary 'kinds[0].max_speed_m_per_s=1.0,1.25,1.5,1.75,2.0' \\
+      --out results/big --shards 100 --cpus-per-task 4 --time 02:00:00 --mem 4G \\
+      --partition batch --account my-lab
+
+  # The same, submitted at once (sbatch must be on the PATH)
+  usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 100 --submit
+
+Task I of the array runs `usar sweep SCENARIO <options> --shard I/N --threads
+$SLURM_CPUS_PER_TASK`; the merge job runs `usar merge OUT` once every task has succeeded
+(--dependency=afterok). Logs go to OUT/slurm/logs/. The scripts are plain and commented: edit
+them as your cluster needs (modules, QOS), then run OUT/slurm/submit.sh. A failed task: submit
+it again with `sbatch --array=I OUT/slurm/sweep.sbatch` (it continues its journal), then
+`sbatch OUT/slurm/merge.sbatch`. Without Slurm, run the same shards with GNU parallel or by
+hand: see docs/cluster.md.";
+
+/// Arguments of `usar slurm`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = EXAMPLES)]
+pub struct SlurmArgs {
+    /// What to sweep: the options of `usar sweep`.
+    #[command(flatten)]
+    pub spec: SweepSpecArgs,
+
+    /// Array tasks: the sweep is split into this many shards, one per task.
+    #[arg(long, value_name = "N")]
+    pub shards: usize,
+
+    /// Slurm partition (sbatch --partition); default the cluster's.
+    #[arg(long, value_name = "P")]
+    pub partition: Option<String>,
+
+    /// Time limit per task (sbatch --time: MM, HH:MM:SS, D-HH:MM); default the cluster's.
+    #[arg(long, value_name = "T")]
+    pub time: Option<String>,
+
+    /// CPUs per task; each shard runs that many trials at once.
+    #[arg(long, value_name = "C", default_value_t = 1)]
+    pub cpus_per_task: usize,
+
+    /// Memory per task (sbatch --mem: 4G, 500M); default the cluster's.
+    #[arg(long, value_name = "M")]
+    pub mem: Option<String>,
+
+    /// Account to charge (sbatch --account); default yours.
+    #[arg(long, value_name = "A")]
+    pub account: Option<String>,
+
+    /// Submit the array and the merge with sbatch (which must be on the PATH).
+    #[arg(long)]
+    pub submit: bool,
+}
+
+/// `path` made absolute against the current folder (not resolved: links stay).
+fn absolute(path: &Path) -> Result<PathBuf> {
+    std::path::absolute(path)
+        .with_context(|| format!("{}: cannot make it absolute", path.display()))
+}
+
+/// Runs `usar slurm`: checks the sweep, writes the scripts, prints (or runs) the submission.
+///
+/// # Errors
+/// A sweep that would not run (bad scenario, `--vary`, methods), bad Slurm options, an I/O
+/// error, or with `--submit` an `sbatch` that is missing or refuses a script.
+pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
+    let plan = args.spec.plan()?;
+    let out_dir = match &args.spec.out {
+        Some(o) => o.clone(),
+        None => default_out_dir(&scenario::load(&args.spec.scenario)?),
+    };
+    let out_dir = absolute(&out_dir)?;
+    // The sweep must be one `usar sweep` accepts: build it (and its header) now.
+    let cfg = plan.config(&out_dir)?;
+    experiments::sweep::header_of(&cfg)?;
+    let workdir = std::env::current_dir().context("reading the current folder")?;
+    let usar = std::env::current_exe().context("finding the usar executable")?;
+    let options = SlurmOptions {
+        shards: args.shards,
+        partition: args.partition.clone(),
+        time: args.time.clone(),
+        cpus_per_task: args.cpus_per_task,
+        mem: args.mem.clone(),
+        account: args.account.clone(),
+    };
+    let job = SlurmJob {
+        plan: &plan,
+        out_dir: &out_dir,
+        workdir: &workdir,
+        usar: &usar,
+        options: &options,
+    };
+    let files = write_scripts(&job)?;
+    writeln!(
+        out,
+        "wrote {} (an array of {} tasks, one shard each), {} and {}",
+        files.array.display(),
+        args.shards,
+        files.merge.display(),
+        files.submit.display()
+    )?;
+    if !args.submit {
+        writeln!(out, "submit both (the merge waits for the whole array):")?;
+        writeln!(
+            out,
+            "  {}",
+            shell_join(&[files.submit.display().to_string()])
+        )?;
+        return Ok(());
+    }
+    let s = submit(&files, Path::new("sbatch")).context("--submit")?;
+    writeln!(
+        out,
+        "submitted the array as job {} and the merge as job {} (afterok:{}); logs in {}",
+        s.array_job,
+        s.merge_job,
+        s.array_job,
+        files.logs.display()
+    )?;
+    writeln!(out, "watch: squeue -j {},{}", s.array_job, s.merge_job)?;
+    Ok(())
+}

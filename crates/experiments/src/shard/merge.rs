@@ -1,0 +1,346 @@
+//! `usar merge DIR`: the journals of a sweep's shards (`DIR/shards/<I>-of-<N>/`) combined into
+//! one [`SweepOutcome`], from which [`crate::output::write_outputs`] writes the same CSV
+//! files as the sweep run on one machine (the records are the same, and every output is
+//! built from records sorted by cell, method order and trial).
+//!
+//! Before anything is combined, every shard of the split must be there, all journals must
+//! have the same header (the sweep's, equal to the one the plan's configuration gives) and
+//! every job must have a record: a shard with no journal, or with jobs it has not finished, is
+//! named with the command that runs it again ([`MergeError::Incomplete`]). Failed trials do
+//! not stop a merge (as they do not stop a sweep); [`Merged::failed_shards`] names the shards
+//! to run again.
+
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result, bail};
+
+use crate::atomic::remove_stale_temps;
+use crate::journal::{
+    Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, read_journal,
+};
+use crate::lock::OutputLock;
+use crate::shard::plan::plan_mismatch;
+use crate::shard::spec::{job_costs_ms, sweep_jobs};
+use crate::shard::{SHARDS_DIR, Shard, SweepPlan, shard_dir, split};
+use crate::sweep::{JournalUse, SweepConfig, SweepOutcome, cells_from_records, header_of};
+
+/// A shard that is not done.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UnfinishedShard {
+    /// The shard.
+    pub shard: Shard,
+    /// What is missing, e.g. `no journal (DIR/shards/1-of-4/journal.jsonl)` or `2 of its 3
+    /// trials have no record (RNE #1 of cell 0, ...)`.
+    pub why: String,
+}
+
+/// Why shards cannot be merged.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum MergeError {
+    /// No folder `shards/<I>-of-<N>` under the output folder.
+    #[error(
+        "{}: no shards to merge (no folder {SHARDS_DIR}/<I>-of-<N>); run the shards first with \
+         `usar sweep SCENARIO ... --shard I/N --out {}`",
+        dir.display(),
+        dir.display()
+    )]
+    NoShards {
+        /// The output folder.
+        dir: PathBuf,
+    },
+    /// Shard folders of different splits (`0-of-4` next to `0-of-8`).
+    #[error(
+        "{}: shards of different splits ({}); a merge takes the shards of one split: move the \
+         other folders away",
+        dir.display(),
+        counts.iter().map(|n| format!("N = {n}")).collect::<Vec<_>>().join(", ")
+    )]
+    MixedSplits {
+        /// The output folder.
+        dir: PathBuf,
+        /// The shard counts found, ascending.
+        counts: Vec<usize>,
+    },
+    /// Shards with no journal or with jobs that have no record.
+    #[error("{}", incomplete_message(.count, .unfinished, .commands))]
+    Incomplete {
+        /// The shard count of the split.
+        count: usize,
+        /// The shards that are not done, by index.
+        unfinished: Vec<UnfinishedShard>,
+        /// The command that runs each of them (again), in the same order.
+        commands: Vec<String>,
+    },
+}
+
+fn incomplete_message(
+    count: &usize,
+    unfinished: &[UnfinishedShard],
+    commands: &[String],
+) -> String {
+    let mut m = format!(
+        "{} of {count} shards are not done, so nothing was merged:",
+        unfinished.len()
+    );
+    for u in unfinished {
+        let _ = write!(m, "\n  shard {}: {}", u.shard, u.why);
+    }
+    m.push_str("\nrun them (a shard's command continues its journal), then merge again:");
+    for c in commands {
+        let _ = write!(m, "\n  {c}");
+    }
+    m
+}
+
+/// The merged sweep.
+#[derive(Debug, Clone)]
+pub struct Merged {
+    /// The sweep's configuration, rebuilt from the plan, with the merge's output folder.
+    pub config: SweepConfig,
+    /// The plan (of the lowest shard that has one).
+    pub plan: SweepPlan,
+    /// The outcome: the sweep's header, every record of every shard; it holds the lock on
+    /// the output folder. Every trial counts as reused ([`SweepOutcome::ran`] is 0).
+    pub outcome: SweepOutcome,
+    /// The shard count of the split.
+    pub count: usize,
+    /// Record lines that do not verify, with their journal (they were left out).
+    pub rejected: Vec<(PathBuf, RejectedRecord)>,
+    /// Shards with failed trials, by index: their command ([`SweepPlan::shard_command`])
+    /// retries them.
+    pub failed_shards: Vec<Shard>,
+}
+
+/// The shards under `dir/shards/`, of one split; a folder with another name is ignored.
+fn find_split(dir: &Path) -> Result<usize> {
+    let root = dir.join(SHARDS_DIR);
+    let mut counts = BTreeSet::new();
+    if root.is_dir() {
+        let entries =
+            std::fs::read_dir(&root).with_context(|| format!("reading {}", root.display()))?;
+        for e in entries {
+            let e = e.with_context(|| format!("reading {}", root.display()))?;
+            if let Some(s) = e.file_name().to_str().and_then(Shard::from_dir_name) {
+                counts.insert(s.count);
+            }
+        }
+    }
+    match counts.len() {
+        0 => Err(MergeError::NoShards {
+            dir: dir.to_path_buf(),
+        }
+        .into()),
+        1 => Ok(counts.into_iter().next().unwrap_or(1)),
+        _ => Err(MergeError::MixedSplits {
+            dir: dir.to_path_buf(),
+            counts: counts.into_iter().collect(),
+        }
+        .into()),
+    }
+}
+
+/// One shard's journal as found: `None` when the shard has none.
+struct ShardJournal {
+    shard: Shard,
+    dir: PathBuf,
+    contents: Option<crate::journal::JournalContents>,
+}
+
+fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
+    (0..count)
+        .map(|i| {
+            let shard = Shard::new(i, count)?;
+            let sdir = shard_dir(dir, shard);
+            let path = Journal::path_in(&sdir);
+            let contents = if path.exists() {
+                Some(read_journal(&path)?)
+            } else {
+                None
+            };
+            Ok(ShardJournal {
+                shard,
+                dir: sdir,
+                contents,
+            })
+        })
+        .collect()
+}
+
+/// The plan of the lowest shard that has one, its configuration and the sweep's header, which
+/// every shard's journal must have.
+fn plan_and_header(
+    dir: &Path,
+    shards: &[ShardJournal],
+) -> Result<(SweepPlan, SweepConfig, SweepHeader)> {
+    let Some(first) = shards
+        .iter()
+        .find(|s| s.contents.is_some() && SweepPlan::path_in(&s.dir).exists())
+    else {
+        bail!(
+            "{}: no shard has both a journal and a {} (run the shards with `usar sweep ... \
+             --shard I/N`)",
+            dir.join(SHARDS_DIR).display(),
+            crate::shard::plan::PLAN_FILE
+        );
+    };
+    let plan = SweepPlan::read(&first.dir)?;
+    let config = plan
+        .config(dir)
+        .with_context(|| format!("{}", SweepPlan::path_in(&first.dir).display()))?;
+    let header = header_of(&config)?;
+    for s in shards {
+        if let Some(c) = &s.contents
+            && c.header != header
+        {
+            return Err(plan_mismatch(&first.dir, &header_diff(&c.header, &header))
+                .context(format!("shard {} ({})", s.shard, s.dir.display())));
+        }
+    }
+    Ok((plan, config, header))
+}
+
+/// What each shard lacks: no journal, or jobs with no record.
+fn unfinished(
+    header: &SweepHeader,
+    shards: &[ShardJournal],
+    records: &[TrialRecord],
+) -> Vec<UnfinishedShard> {
+    let count = shards.len();
+    let jobs = sweep_jobs(header);
+    let owners = split(&job_costs_ms(header, &jobs), count);
+    let has = |cell: usize, method: &str, trial: u32| {
+        records.iter().any(|r| r.key() == (cell, method, trial))
+    };
+    let mut out = Vec::new();
+    for s in shards {
+        if s.contents.is_none() {
+            out.push(UnfinishedShard {
+                shard: s.shard,
+                why: format!("no journal ({})", Journal::path_in(&s.dir).display()),
+            });
+            continue;
+        }
+        let own: Vec<_> = jobs
+            .iter()
+            .zip(&owners)
+            .filter(|&(_, &o)| o == s.shard.index)
+            .map(|(j, _)| j)
+            .collect();
+        let lacking: Vec<String> = own
+            .iter()
+            .filter(|j| !has(j.cell, &header.methods[j.method], j.trial))
+            .map(|j| {
+                format!(
+                    "{} #{} of cell {}",
+                    header.methods[j.method], j.trial, j.cell
+                )
+            })
+            .collect();
+        if !lacking.is_empty() {
+            let shown: Vec<&str> = lacking.iter().take(5).map(String::as_str).collect();
+            let more = if lacking.len() > 5 { ", ..." } else { "" };
+            out.push(UnfinishedShard {
+                shard: s.shard,
+                why: format!(
+                    "{} of its {} trials have no record ({}{more})",
+                    lacking.len(),
+                    own.len(),
+                    shown.join(", ")
+                ),
+            });
+        }
+    }
+    out
+}
+
+/// Merges the shards of the sweep whose output folder is `dir`: reads every shard's journal,
+/// checks it, and returns the sweep's configuration and outcome for the analysis and the
+/// output files. It locks `dir` ([`OutputLock`], held by the outcome) and removes the
+/// temporary files killed writers left there and in the cell folders.
+///
+/// # Errors
+/// [`MergeError`] (no shards, shards of two splits, unfinished shards: nothing is merged
+/// then), journals whose headers differ from the plan's sweep (the differences are listed), a
+/// damaged journal or plan, a locked `dir`, or an I/O error.
+pub fn merge_shards(dir: &Path) -> Result<Merged> {
+    let count = find_split(dir)?;
+    let shards = read_shards(dir, count)?;
+    let (plan, config, header) = plan_and_header(dir, &shards)?;
+    let mut records = Vec::new();
+    let mut rejected = Vec::new();
+    for s in &shards {
+        if let Some(c) = &s.contents {
+            records.extend(c.records.iter().cloned());
+            let path = Journal::path_in(&s.dir);
+            rejected.extend(c.rejected.iter().map(|r| (path.clone(), r.clone())));
+        }
+    }
+    let unfinished = unfinished(&header, &shards, &records);
+    if !unfinished.is_empty() {
+        let commands = unfinished
+            .iter()
+            .map(|u| plan.shard_command(u.shard, dir))
+            .collect();
+        return Err(MergeError::Incomplete {
+            count,
+            unfinished,
+            commands,
+        }
+        .into());
+    }
+    let lock = OutputLock::acquire(dir)?;
+    remove_stale_temps(dir)?;
+    if let Some(g) = &config.grid {
+        for cell in &g.cells {
+            remove_stale_temps(&dir.join(&cell.dir))?;
+        }
+    }
+    let failed_shards = failed_shards(&header, count, &records);
+    let cells = cells_from_records(&header, records);
+    let outcome = SweepOutcome {
+        header,
+        reused: cells.iter().map(|c| c.reused).sum(),
+        cells,
+        journal: JournalUse::Merged,
+        ran: 0,
+        wall_s: 0.0,
+        trial_wall_sum_s: 0.0,
+        threads: 1,
+        lock: Arc::new(lock),
+    };
+    Ok(Merged {
+        config,
+        plan,
+        outcome,
+        count,
+        rejected,
+        failed_shards,
+    })
+}
+
+/// The shards (by index) whose jobs' last records include a failure.
+fn failed_shards(header: &SweepHeader, count: usize, records: &[TrialRecord]) -> Vec<Shard> {
+    let jobs = sweep_jobs(header);
+    let owners = split(&job_costs_ms(header, &jobs), count);
+    let mut failed = BTreeSet::new();
+    for (j, owner) in jobs.iter().zip(owners) {
+        let last = records
+            .iter()
+            .rev()
+            .find(|r| r.key() == (j.cell, header.methods[j.method].as_str(), j.trial));
+        if let Some(TrialRecord {
+            outcome: Outcome::Failed(_),
+            ..
+        }) = last
+        {
+            failed.insert(owner);
+        }
+    }
+    failed
+        .into_iter()
+        .filter_map(|i| Shard::new(i, count).ok())
+        .collect()
+}

@@ -1,0 +1,161 @@
+//! The plan of a sharded sweep: what `usar sweep` was asked to run (the scenario file's text
+//! and the sweep options), kept as `plan.json` in every shard's folder so that `usar merge`
+//! can rebuild the sweep's configuration, and so that messages can give the exact command
+//! that runs a shard again.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow};
+use serde::{Deserialize, Serialize};
+use usar_sim::scenario;
+
+use crate::atomic::write_atomic;
+use crate::grid::Grid;
+use crate::shard::Shard;
+use crate::sweep::{MethodFactory, SweepConfig};
+
+/// File name of the plan in a shard's folder.
+pub const PLAN_FILE: &str = "plan.json";
+
+/// The options of `usar sweep` that decide what a sweep runs (not how: threads, resume and
+/// progress are left out), with the scenario file's text.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepPlan {
+    /// The scenario file as it was named on the command line (relative to the folder the
+    /// command ran in); used in reports and in the commands messages suggest.
+    pub scenario_path: PathBuf,
+    /// The scenario file's text when the shard ran (what `usar merge` loads, so that a later
+    /// edit of the file cannot change a merge; the journal's scenario hashes guard the rest).
+    pub scenario_text: String,
+    /// The `--vary` arguments, in order (empty: no grid).
+    pub vary: Vec<String>,
+    /// The `--methods` names, in order, as given.
+    pub methods: Vec<String>,
+    /// `--trials` (>= 1).
+    pub trials: u32,
+    /// `--seed`; `None`: the scenario's `sim.seed`.
+    pub seed: Option<u64>,
+    /// `--duration`, seconds; `None`: each cell's `mission.duration_s`.
+    pub duration_s: Option<f64>,
+    /// `--grid-metrics` (empty: the default metrics).
+    pub grid_metrics: Vec<String>,
+}
+
+impl SweepPlan {
+    /// Path of the plan in the folder `dir`.
+    pub fn path_in(dir: &Path) -> PathBuf {
+        dir.join(PLAN_FILE)
+    }
+
+    /// Writes the plan as `dir/plan.json` (pretty JSON, atomically).
+    ///
+    /// # Errors
+    /// An I/O error.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        let json = serde_json::to_string_pretty(self).context("serialising the sweep plan")?;
+        write_atomic(&Self::path_in(dir), format!("{json}\n").as_bytes())
+    }
+
+    /// Reads `dir/plan.json`.
+    ///
+    /// # Errors
+    /// A missing or unreadable file, or one that is not a plan.
+    pub fn read(dir: &Path) -> Result<Self> {
+        let path = Self::path_in(dir);
+        let text = std::fs::read_to_string(&path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        serde_json::from_str(&text).with_context(|| format!("{}: not a sweep plan", path.display()))
+    }
+
+    /// The sweep's configuration: the scenario from [`SweepPlan::scenario_text`], the grid
+    /// of [`SweepPlan::vary`], the built-in methods, output folder `out_dir`, one thread, no
+    /// progress bar, no resume or overwrite, no hooks, no shard.
+    ///
+    /// # Errors
+    /// A scenario or `--vary` that does not load (the messages of `usar sweep`).
+    pub fn config(&self, out_dir: &Path) -> Result<SweepConfig> {
+        let origin = self.scenario_path.display().to_string();
+        let scenario = scenario::from_str(&self.scenario_text, &origin)?;
+        let grid = if self.vary.is_empty() {
+            None
+        } else {
+            let spec = scenario::parse_spec(&self.scenario_text, &origin)?;
+            Some(Grid::build(&spec, &self.vary)?)
+        };
+        Ok(SweepConfig {
+            grid,
+            methods: self.methods.clone(),
+            method_factory: MethodFactory::builtin(),
+            trials: self.trials,
+            base_seed: self.seed.unwrap_or(scenario.sim.seed),
+            duration_s: self.duration_s,
+            threads: 1,
+            out_dir: out_dir.to_path_buf(),
+            progress: false,
+            ..SweepConfig::new(scenario, &self.scenario_path)
+        })
+    }
+
+    /// The options after `SCENARIO` that repeat this sweep: `--methods`, `--trials`, then
+    /// `--seed`, `--duration`, each `--vary` and `--grid-metrics` when given. Numbers are
+    /// written so that they parse back to the same value.
+    pub fn sweep_options(&self) -> Vec<String> {
+        let mut a = vec![
+            "--methods".to_string(),
+            self.methods.join(","),
+            "--trials".to_string(),
+            self.trials.to_string(),
+        ];
+        if let Some(seed) = self.seed {
+            a.extend(["--seed".to_string(), seed.to_string()]);
+        }
+        if let Some(d) = self.duration_s {
+            a.extend(["--duration".to_string(), d.to_string()]);
+        }
+        for v in &self.vary {
+            a.extend(["--vary".to_string(), v.clone()]);
+        }
+        if !self.grid_metrics.is_empty() {
+            a.extend(["--grid-metrics".to_string(), self.grid_metrics.join(",")]);
+        }
+        a
+    }
+
+    /// The shell command that runs (or continues) `shard` of this sweep into `out_dir`:
+    /// `usar sweep SCENARIO <options> --shard I/N --out DIR`, every word quoted for a POSIX
+    /// shell where it needs it.
+    pub fn shard_command(&self, shard: Shard, out_dir: &Path) -> String {
+        let mut words = vec![
+            "usar".to_string(),
+            "sweep".to_string(),
+            self.scenario_path.display().to_string(),
+        ];
+        words.extend(self.sweep_options());
+        words.extend([
+            "--shard".to_string(),
+            shard.to_string(),
+            "--out".to_string(),
+            out_dir.display().to_string(),
+        ]);
+        shell_join(&words)
+    }
+}
+
+/// `words` joined by spaces, each quoted for a POSIX shell where it needs it
+/// (`shlex::try_quote`; a word with a NUL byte, which no shell can pass, is written as is).
+pub fn shell_join(words: &[String]) -> String {
+    words
+        .iter()
+        .map(|w| shlex::try_quote(w).map_or_else(|_| w.clone(), |q| q.into_owned()))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The error for a plan that a shard's journal does not match.
+pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
+    anyhow!(
+        "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
+         mixes two sweeps",
+        SweepPlan::path_in(dir).display()
+    )
+}

@@ -1,0 +1,382 @@
+//! The files `usar slurm` writes into `<out>/slurm/`: an sbatch script for a job array (one
+//! task per shard of the sweep), an sbatch script for the merge, and `submit.sh`, which submits
+//! both with the merge chained to the array by `--dependency=afterok`.
+//!
+//! The scripts are plain and commented so that a user can edit them (a module to load, a
+//! quality of service, another time limit). Reference: Slurm's `sbatch(1)` (job arrays,
+//! `SLURM_ARRAY_TASK_ID`, `SLURM_CPUS_PER_TASK`, `--parsable`, `--dependency=afterok:<id>`).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+
+use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
+
+/// Name of the folder, under the sweep's output folder, that holds the Slurm files.
+pub const SLURM_DIR: &str = "slurm";
+
+/// The Slurm resources of the array's tasks (and of the merge job, which takes one CPU).
+/// Each value is passed to `#SBATCH` as written; `None` leaves the cluster's default.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SlurmOptions {
+    /// Array tasks, one shard each, `1..=MAX_SHARDS`.
+    pub shards: usize,
+    /// `--partition`.
+    pub partition: Option<String>,
+    /// `--time`, the limit per task (Slurm's formats: `MM`, `HH:MM:SS`, `D-HH:MM`).
+    pub time: Option<String>,
+    /// `--cpus-per-task` (>= 1): each shard runs its trials on this many threads.
+    pub cpus_per_task: usize,
+    /// `--mem`, memory per task (`4G`, `500M`).
+    pub mem: Option<String>,
+    /// `--account`.
+    pub account: Option<String>,
+}
+
+/// Everything the scripts are made from.
+#[derive(Debug, Clone)]
+pub struct SlurmJob<'a> {
+    /// The sweep (scenario and options).
+    pub plan: &'a SweepPlan,
+    /// The sweep's output folder, as the jobs should name it (absolute is safest).
+    pub out_dir: &'a Path,
+    /// The folder the jobs `cd` into first: where the scenario path of the plan is valid.
+    pub workdir: &'a Path,
+    /// The `usar` executable the jobs run.
+    pub usar: &'a Path,
+    /// Resources.
+    pub options: &'a SlurmOptions,
+}
+
+/// The paths of the written files.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SlurmFiles {
+    /// `<out>/slurm/sweep.sbatch`: the job array.
+    pub array: PathBuf,
+    /// `<out>/slurm/merge.sbatch`: the merge.
+    pub merge: PathBuf,
+    /// `<out>/slurm/submit.sh`: submits both, chained.
+    pub submit: PathBuf,
+    /// `<out>/slurm/logs/`: the jobs' output files.
+    pub logs: PathBuf,
+}
+
+impl SlurmFiles {
+    /// The paths under `out_dir/slurm/`.
+    pub fn under(out_dir: &Path) -> Self {
+        let d = out_dir.join(SLURM_DIR);
+        Self {
+            array: d.join("sweep.sbatch"),
+            merge: d.join("merge.sbatch"),
+            submit: d.join("submit.sh"),
+            logs: d.join("logs"),
+        }
+    }
+}
+
+/// Refuses options that would make a broken script.
+///
+/// # Errors
+/// A shard count of 0 or above [`MAX_SHARDS`], `--cpus-per-task 0`, or a value that is empty
+/// or holds a line break or a space (it would end the `#SBATCH` line).
+pub fn check_options(o: &SlurmOptions) -> Result<()> {
+    if o.shards == 0 || o.shards > MAX_SHARDS {
+        bail!("--shards must be from 1 to {MAX_SHARDS}");
+    }
+    if o.cpus_per_task == 0 {
+        bail!("--cpus-per-task must be at least 1");
+    }
+    let named = [
+        ("--partition", &o.partition),
+        ("--time", &o.time),
+        ("--mem", &o.mem),
+        ("--account", &o.account),
+    ];
+    for (name, v) in named {
+        if let Some(v) = v
+            && (v.is_empty() || v.chars().any(char::is_whitespace))
+        {
+            bail!("{name} {v:?}: expected one word (no spaces or line breaks)");
+        }
+    }
+    Ok(())
+}
+
+/// A path as the value of an `#SBATCH` line: in double quotes when it holds a space (sbatch
+/// reads quoted values there).
+fn directive_value(p: &Path) -> String {
+    let s = p.display().to_string();
+    if s.chars().any(char::is_whitespace) {
+        format!("\"{s}\"")
+    } else {
+        s
+    }
+}
+
+fn q(p: &Path) -> String {
+    shell_join(&[p.display().to_string()])
+}
+
+/// The `#SBATCH` lines for the resources shared by both scripts.
+fn resource_lines(s: &mut String, o: &SlurmOptions) {
+    let named = [
+        ("partition", &o.partition),
+        ("time", &o.time),
+        ("account", &o.account),
+    ];
+    for (name, v) in named {
+        match v {
+            Some(v) => {
+                let _ = writeln!(s, "#SBATCH --{name}={v}");
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "##SBATCH --{name}=...    (the cluster's default; remove one # to set it)"
+                );
+            }
+        }
+    }
+}
+
+/// The job array's script: one task per shard, each running
+/// `usar sweep SCENARIO <options> --shard $SLURM_ARRAY_TASK_ID/N --threads $SLURM_CPUS_PER_TASK`.
+pub fn array_script(job: &SlurmJob<'_>) -> String {
+    let o = job.options;
+    let n = o.shards;
+    let files = SlurmFiles::under(job.out_dir);
+    let name = job_name(job.plan);
+    let mut s = String::from("#!/bin/bash\n");
+    let _ = write!(
+        s,
+        "# The sweep of {scenario} as a Slurm job array of {n} tasks, written by `usar slurm`.\n\
+         # Task I runs shard I/{n} of the sweep (a fixed, balanced share of its trials) into\n\
+         # {out}/shards/; when every task has succeeded, merge.sbatch (chained to this array\n\
+         # by submit.sh with --dependency=afterok) writes the tables, figures and report.\n\
+         # A task that failed or ran out of time: submit that task again with\n\
+         #   sbatch --array=I {array}\n\
+         # (it continues its journal), then the merge: sbatch {merge}\n\
+         # Edit freely: the #SBATCH lines are sbatch options (man sbatch).\n",
+        scenario = job.plan.scenario_path.display(),
+        out = job.out_dir.display(),
+        array = files.array.display(),
+        merge = files.merge.display(),
+    );
+    let _ = writeln!(s, "#SBATCH --job-name={name}");
+    let _ = writeln!(s, "#SBATCH --array=0-{}", n - 1);
+    let _ = writeln!(s, "#SBATCH --ntasks=1");
+    let _ = writeln!(s, "#SBATCH --cpus-per-task={}", o.cpus_per_task);
+    match &o.mem {
+        Some(m) => {
+            let _ = writeln!(s, "#SBATCH --mem={m}");
+        }
+        None => {
+            s.push_str("##SBATCH --mem=...    (the cluster's default; remove one # to set it)\n")
+        }
+    }
+    resource_lines(&mut s, o);
+    let log = files.logs.join("sweep-%A_%a.out");
+    let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
+    let mut words = vec![
+        job.usar.display().to_string(),
+        "sweep".to_string(),
+        job.plan.scenario_path.display().to_string(),
+    ];
+    words.extend(job.plan.sweep_options());
+    words.extend(["--out".to_string(), job.out_dir.display().to_string()]);
+    let _ = write!(
+        s,
+        "\nset -euo pipefail\n\
+         # The scenario path is relative to the folder `usar slurm` ran in.\n\
+         cd {workdir}\n\n\
+         # This task's shard; its trials run on the task's CPUs.\n\
+         # (--quiet: no progress bar in the log.)\n\
+         {cmd} \\\n    --shard \"${{SLURM_ARRAY_TASK_ID}}/{n}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\" --quiet\n",
+        workdir = q(job.workdir),
+        cmd = shell_join(&words),
+    );
+    s
+}
+
+/// The merge job's script: `usar merge <out>` on one CPU.
+pub fn merge_script(job: &SlurmJob<'_>) -> String {
+    let files = SlurmFiles::under(job.out_dir);
+    let mut s = String::from("#!/bin/bash\n");
+    let _ = write!(
+        s,
+        "# Merges the {n} shards of the sweep of {scenario} into {out}: trials.csv,\n\
+         # summary.csv, the figures and report.md, the same as the sweep on one machine.\n\
+         # submit.sh submits it with --dependency=afterok:<array job id>, so it starts once\n\
+         # every task of the array has succeeded. By hand: sbatch {merge}\n",
+        n = job.options.shards,
+        scenario = job.plan.scenario_path.display(),
+        out = job.out_dir.display(),
+        merge = files.merge.display(),
+    );
+    let _ = writeln!(s, "#SBATCH --job-name={}-merge", job_name(job.plan));
+    s.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n");
+    resource_lines(&mut s, job.options);
+    let log = files.logs.join("merge-%j.out");
+    let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
+    let _ = write!(
+        s,
+        "\nset -euo pipefail\ncd {workdir}\n{usar} merge {out}\n",
+        workdir = q(job.workdir),
+        usar = q(job.usar),
+        out = q(job.out_dir),
+    );
+    s
+}
+
+/// `submit.sh`: submits the array, then the merge chained to it with
+/// `--dependency=afterok:<array job id>`, and prints both job ids.
+pub fn submit_script(job: &SlurmJob<'_>) -> String {
+    let files = SlurmFiles::under(job.out_dir);
+    format!(
+        "#!/bin/sh\n\
+         # Submits the job array of the sweep's shards, then the merge, which waits until every\n\
+         # task of the array has succeeded (afterok). Written by `usar slurm`.\n\
+         set -eu\n\
+         array=$(sbatch --parsable {array})\n\
+         array=${{array%%;*}}    # --parsable prints <id> or <id>;<cluster>\n\
+         merge=$(sbatch --parsable --dependency=afterok:\"$array\" {merge})\n\
+         echo \"submitted the array as job $array and the merge as job ${{merge%%;*}}\"\n",
+        array = q(&files.array),
+        merge = q(&files.merge),
+    )
+}
+
+/// `usar-<scenario name>`, with characters other than ASCII letters, digits, `-`, `_` and `.`
+/// replaced by `_`.
+fn job_name(plan: &SweepPlan) -> String {
+    let stem = plan
+        .scenario_path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "sweep".into());
+    let clean: String = stem
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_.".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("usar-{clean}")
+}
+
+/// Writes the three files and creates the logs folder under `job.out_dir/slurm/`; the scripts
+/// are made executable.
+///
+/// # Errors
+/// Bad options ([`check_options`]) or an I/O error.
+pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
+    check_options(job.options)?;
+    let files = SlurmFiles::under(job.out_dir);
+    std::fs::create_dir_all(&files.logs)
+        .with_context(|| format!("creating folder {}", files.logs.display()))?;
+    let scripts = [
+        (&files.array, array_script(job)),
+        (&files.merge, merge_script(job)),
+        (&files.submit, submit_script(job)),
+    ];
+    for (path, text) in scripts {
+        crate::atomic::write_atomic(path, text.as_bytes())?;
+        make_executable(path)?;
+    }
+    Ok(files)
+}
+
+#[cfg(unix)]
+fn make_executable(path: &Path) -> Result<()> {
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755))
+        .with_context(|| format!("making {} executable", path.display()))
+}
+
+#[cfg(not(unix))]
+fn make_executable(_path: &Path) -> Result<()> {
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options() -> SlurmOptions {
+        SlurmOptions {
+            shards: 4,
+            partition: None,
+            time: Some("10".into()),
+            cpus_per_task: 2,
+            mem: None,
+            account: None,
+        }
+    }
+
+    fn plan() -> SweepPlan {
+        SweepPlan {
+            scenario_path: "scenarios/my paper.ron".into(),
+            scenario_text: String::new(),
+            vary: vec!["kinds[0].count=2,3".into()],
+            methods: vec!["rne".into()],
+            trials: 2,
+            seed: None,
+            duration_s: Some(60.0),
+            grid_metrics: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_array_script_quotes_what_the_shell_would_split() {
+        let (plan, options) = (plan(), options());
+        let job = SlurmJob {
+            plan: &plan,
+            out_dir: Path::new("/data/out dir"),
+            workdir: Path::new("/home/me/rne"),
+            usar: Path::new("/home/me/rne/target/release/usar"),
+            options: &options,
+        };
+        let s = array_script(&job);
+        assert!(s.contains("#SBATCH --job-name=usar-my_paper\n"), "{s}");
+        assert!(s.contains("#SBATCH --time=10\n"));
+        assert!(s.contains("'scenarios/my paper.ron'"), "{s}");
+        assert!(s.contains("'kinds[0].count=2,3'"), "{s}");
+        assert!(s.contains("--out '/data/out dir'"), "{s}");
+        assert!(s.contains("#SBATCH --output=\"/data/out dir/slurm/logs/sweep-%A_%a.out\"\n"));
+        assert!(merge_script(&job).contains("merge '/data/out dir'\n"));
+    }
+
+    #[test]
+    fn options_that_would_break_a_line_are_refused() {
+        assert!(check_options(&options()).is_ok());
+        let bad = [
+            SlurmOptions {
+                shards: 0,
+                ..options()
+            },
+            SlurmOptions {
+                cpus_per_task: 0,
+                ..options()
+            },
+            SlurmOptions {
+                mem: Some("4 G".into()),
+                ..options()
+            },
+            SlurmOptions {
+                account: Some("a\nb".into()),
+                ..options()
+            },
+            SlurmOptions {
+                partition: Some(String::new()),
+                ..options()
+            },
+        ];
+        for o in bad {
+            assert!(check_options(&o).is_err(), "{o:?}");
+        }
+    }
+}

@@ -1,0 +1,91 @@
+//! Submitting the scripts of [`crate::slurm::script`] with `sbatch`: the job array, then the
+//! merge with `--dependency=afterok:<array job id>` (what `submit.sh` does, for `usar slurm
+//! --submit`).
+
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::{Context, Result, bail};
+
+use crate::slurm::SlurmFiles;
+
+/// The job ids Slurm gave.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Submitted {
+    /// The job array's id (its tasks are `<id>_0`, `<id>_1`, ...).
+    pub array_job: String,
+    /// The merge job's id.
+    pub merge_job: String,
+}
+
+/// The job id in the output of `sbatch --parsable`: `<id>` or `<id>;<cluster>` on one line.
+///
+/// # Errors
+/// Output that does not start with a job id (digits).
+pub fn parse_job_id(stdout: &str) -> Result<String> {
+    let line = stdout.lines().map(str::trim).find(|l| !l.is_empty());
+    let id = line.map(|l| l.split(';').next().unwrap_or(l).trim());
+    match id {
+        Some(id) if !id.is_empty() && id.chars().all(|c| c.is_ascii_digit()) => Ok(id.to_string()),
+        _ => bail!("sbatch --parsable printed {stdout:?}, not a job id"),
+    }
+}
+
+/// Runs `sbatch --parsable [extra] script` and returns the job id.
+fn sbatch(sbatch: &Path, extra: &[String], script: &Path) -> Result<String> {
+    let out = Command::new(sbatch)
+        .arg("--parsable")
+        .args(extra)
+        .arg(script)
+        .output()
+        .with_context(|| format!("running {}", sbatch.display()))?;
+    if !out.status.success() {
+        bail!(
+            "sbatch {} failed ({}): {}",
+            script.display(),
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        );
+    }
+    parse_job_id(&String::from_utf8_lossy(&out.stdout))
+}
+
+/// Submits the array of `files`, then its merge chained with `--dependency=afterok`, with the
+/// `sbatch` program `sbatch_program` (usually `sbatch`, found on the `PATH`).
+///
+/// # Errors
+/// `sbatch` cannot be run (not on the `PATH`), refuses a script (its message is given), or
+/// prints no job id. When the merge is refused, the message names the array job that was
+/// submitted.
+pub fn submit(files: &SlurmFiles, sbatch_program: &Path) -> Result<Submitted> {
+    let array_job = sbatch(sbatch_program, &[], &files.array)?;
+    let merge_job = sbatch(
+        sbatch_program,
+        &[format!("--dependency=afterok:{array_job}")],
+        &files.merge,
+    )
+    .with_context(|| {
+        format!(
+            "the array was submitted as job {array_job}, but not the merge; submit it by \
+             hand once the array is done: sbatch {}",
+            files.merge.display()
+        )
+    })?;
+    Ok(Submitted {
+        array_job,
+        merge_job,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn job_ids_are_read_with_or_without_a_cluster() {
+        assert_eq!(parse_job_id("1234\n").ok(), Some("1234".into()));
+        assert_eq!(parse_job_id("77;cluster-a\n").ok(), Some("77".into()));
+        assert!(parse_job_id("Submitted batch job 12\n").is_err());
+        assert!(parse_job_id("").is_err());
+    }
+}

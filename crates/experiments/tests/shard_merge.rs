@@ -1,0 +1,193 @@
+//! Sharded sweeps: any split of a sweep covers every job once; shards run in any order (one of
+//! them killed and resumed) merge into the same CSV files as the sweep on one machine; a
+//! missing shard and a failed trial are named with the command that runs the shard again.
+
+use std::collections::HashSet;
+use std::path::Path;
+use std::process::{Command, Output};
+
+use experiments::grid::Grid;
+use experiments::shard::Shard;
+use experiments::sweep::{SweepConfig, header_of, job_list};
+use usar_sim::scenario;
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+/// Exit status of `--stop-after`.
+const STOPPED: i32 = 75;
+const CELLS: [&str; 2] = [
+    "c00_hp_pct_per_step_in_radiation=0.0003",
+    "c01_hp_pct_per_step_in_radiation=0.003",
+];
+
+/// `usar sweep` of a 2-cell grid, rne,dis x 3 trials x 8 s, into `out`, then `extra`.
+fn sweep(out: &Path, extra: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["sweep", PAPER, "--methods", "rne,dis", "--trials", "3"])
+        .args(["--duration", "8", "--quiet", "--threads", "2"])
+        .args([
+            "--vary",
+            "mission.hp_pct_per_step_in_radiation=0.0003,0.003",
+        ])
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("run usar")
+}
+
+fn usar(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(args)
+        .arg(dir)
+        .output()
+        .expect("run usar")
+}
+
+fn ok(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn read(path: &Path) -> Vec<u8> {
+    std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn assert_same_csv(a: &Path, b: &Path) {
+    assert!(
+        read(&a.join("grid.csv")) == read(&b.join("grid.csv")),
+        "grid.csv differs"
+    );
+    for cell in CELLS {
+        for name in [
+            "trials.csv",
+            "trials_long.csv",
+            "summary.csv",
+            "scenario.ron",
+        ] {
+            let (x, y) = (a.join(cell).join(name), b.join(cell).join(name));
+            assert!(read(&x) == read(&y), "{cell}/{name} differs");
+        }
+    }
+}
+
+#[test]
+fn every_split_covers_every_job_exactly_once() {
+    let spec = scenario::parse_spec(&std::fs::read_to_string(PAPER).unwrap(), PAPER).unwrap();
+    let scenario = scenario::load(PAPER).unwrap();
+    // Cells of different trial lengths: the split balances simulated time.
+    let grid = Grid::build(&spec, &["mission.duration_s=30,60,90".to_string()]).unwrap();
+    let cfg = SweepConfig {
+        grid: Some(grid),
+        methods: vec!["rne".into(), "dis".into(), "eng".into()],
+        trials: 7,
+        ..SweepConfig::new(scenario, PAPER)
+    };
+    let header = header_of(&cfg).unwrap();
+    let all = job_list(3, 3, 7);
+    for count in 1..=12 {
+        let mut seen = HashSet::new();
+        let mut sizes = Vec::new();
+        for index in 0..count {
+            let jobs = Shard::new(index, count).unwrap().jobs(&header);
+            sizes.push(jobs.len());
+            for j in jobs {
+                assert!(seen.insert(j), "{j:?} is in two shards of {count}");
+            }
+        }
+        assert_eq!(seen.len(), all.len(), "a split into {count} misses jobs");
+        assert!(all.iter().all(|j| seen.contains(j)));
+        assert!(sizes.iter().all(|&s| s > 0 || count > all.len()));
+    }
+}
+
+#[test]
+fn shards_in_any_order_merge_into_the_files_of_one_sweep() {
+    let tmp = tempfile::tempdir().unwrap();
+    let local = tmp.path().join("local");
+    ok(&sweep(&local, &[]));
+
+    // Three shards, out of order; shard 0 is killed after one trial and run again.
+    let three = tmp.path().join("three");
+    ok(&sweep(&three, &["--shard", "2/3"]));
+    let killed = sweep(&three, &["--shard", "0/3", "--stop-after", "1"]);
+    assert_eq!(killed.status.code(), Some(STOPPED));
+    let out = ok(&sweep(&three, &["--shard", "0/3"]));
+    assert!(out.contains("1 from the shard's journal"), "{out}");
+    ok(&sweep(&three, &["--shard", "1/3"]));
+    // A shard writes no tables: only its journal and plan.
+    assert!(!three.join("grid.csv").exists());
+    assert!(three.join("shards/0-of-3/plan.json").exists());
+    let merged = ok(&usar(&["merge"], &three));
+    assert!(merged.contains("merged 3 shards"), "{merged}");
+    assert_same_csv(&local, &three);
+
+    // Two shards, in reverse order.
+    let two = tmp.path().join("two");
+    ok(&sweep(&two, &["--shard", "1/2"]));
+    ok(&sweep(&two, &["--shard", "0/2"]));
+    ok(&usar(&["merge"], &two));
+    assert_same_csv(&local, &two);
+}
+
+#[test]
+fn a_missing_shard_is_named_with_its_command_and_nothing_is_merged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/3"]));
+    ok(&sweep(&dir, &["--shard", "2/3"]));
+    let o = usar(&["merge"], &dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("1 of 3 shards are not done"), "{err}");
+    assert!(err.contains("shard 1/3: no journal"), "{err}");
+    assert!(err.contains("--shard 1/3 --out"), "{err}");
+    assert!(!dir.join("grid.csv").exists());
+
+    // A folder with no shard at all.
+    let o = usar(&["merge"], &tmp.path().join("empty"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no shards to merge"));
+}
+
+#[test]
+fn a_failed_trial_names_its_shard_and_rerunning_the_shard_fixes_the_merge() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    // Trial 0 of DIS is job 1 of the job list: shard 1 of 2.
+    let failed = sweep(&dir, &["--shard", "1/2", "--fail-trial", "dis:0"]);
+    assert!(!failed.status.success());
+    let o = usar(&["merge"], &dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("trials failed"), "{err}");
+    assert!(err.contains("--shard 1/2 --out"), "{err}");
+    assert!(!err.contains("--shard 0/2"), "{err}");
+    // The files are written without the failed trials, as a sweep writes them.
+    assert!(dir.join("grid.csv").exists());
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    ok(&usar(&["merge"], &dir));
+}
+
+#[test]
+fn shards_of_a_different_sweep_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    // Shard 1 of the same folder with another seed: its header differs.
+    ok(&sweep(&dir, &["--shard", "1/2", "--seed", "7"]));
+    let o = usar(&["merge"], &dir);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("shard 1/2") && err.contains("seed"), "{err}");
+}
+
+#[test]
+fn a_bad_shard_argument_is_one_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = sweep(&tmp.path().join("s"), &["--shard", "3/3"]);
+    assert!(!o.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim(),
+        "error: --shard 3/3: the shard index must be from 0 to 2"
+    );
+}
