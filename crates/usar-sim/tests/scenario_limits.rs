@@ -174,7 +174,9 @@ fn starts_exactly_one_body_apart_are_accepted() {
         "starts: Row(first_m: (20.1, 3.0), step_m: (0.8, 0.0)),",
     );
     let s = scenario::from_str(&src, "t.ron").expect("touching starts are accepted");
-    let d = (s.robots[1].start_in_world - s.robots[0].start_in_world).norm();
+    let d = (1..6)
+        .map(|i| (s.robots[i].start_in_world - s.robots[i - 1].start_in_world).norm())
+        .fold(f64::INFINITY, f64::min);
     assert!(d < 0.8 && 0.8 - d < 1e-12, "{d}");
     // Clearly overlapping starts are still refused.
     let src = paper_with(
@@ -195,4 +197,25 @@ fn a_huge_speed_is_reported_at_its_field_once() {
     let text = e.to_string();
     assert!(text.contains("limit of 100 m/s"), "{text}");
     assert!(!text.contains("weighted needs"), "{text}");
+}
+
+#[test]
+fn a_sweep_spacing_that_makes_endless_waypoints_is_an_error() {
+    rejected(
+        &paper_with("sweep_spacing_m: None", "sweep_spacing_m: Some(1e-300)"),
+        "mission.sweep_spacing_m",
+    );
+}
+
+#[test]
+fn a_step_that_makes_the_default_trial_too_long_is_blamed_on_the_step() {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/corridor.ron");
+    let src = std::fs::read_to_string(p).expect("corridor.ron");
+    assert!(!src.contains("duration_s"));
+    assert!(
+        src.contains("sim: (dt_s: 0.02"),
+        "corridor.ron sets its step"
+    );
+    let src = src.replacen("sim: (dt_s: 0.02", "sim: (dt_s: 1e-9", 1);
+    rejected(&src, "sim.dt_s");
 }

@@ -7,7 +7,7 @@
 //! Source: issue 11 (hardening), classes 1-3; the numbers are engineering choices well above
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
-use super::model::RobotKind;
+use super::model::{Locomotion, RobotKind, Scenario, short};
 use super::params::{Arena, NavigationParams, NeedsWeights, SimParams};
 use super::spec::KindSpec;
 use super::validate::{Ctx, R};
@@ -20,6 +20,9 @@ pub const MAX_TASKS: usize = 64;
 pub const MAX_ROBOTS: usize = 10_000;
 /// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).
 pub const MAX_RESCUEES: usize = 1_000_000;
+/// Most waypoints of a blind group's lawn-mower sweep over one search area
+/// (`mission::sweep_waypoints`: `ceil(width / spacing) * ceil(height / spacing)`).
+pub const MAX_SWEEP_POINTS: f64 = 1_000_000.0;
 /// Most debris shapes, listed and generated together.
 pub const MAX_DEBRIS: usize = 10_000;
 /// Most cells of the navigation grid, `ceil(width_m / grid_cell_m) * ceil(height_m /
@@ -75,7 +78,7 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
             format!("kinds[{k}].max_speed_m_per_s"),
             format!(
                 "{} m/s is faster than the limit of {MAX_SPEED_M_PER_S} m/s",
-                kind.max_speed_m_per_s
+                short(kind.max_speed_m_per_s)
             ),
         ));
     }
@@ -90,7 +93,10 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
         if !(lo..=hi).contains(&v) {
             return Err(ctx.err(
                 format!("kinds[{k}].{name}"),
-                format!("expected a number in [{lo:e}, {hi:e}] (a needs level), found {v}"),
+                format!(
+                    "expected a number in [{lo:e}, {hi:e}] (a needs level), found {}",
+                    short(v)
+                ),
             ));
         }
     }
@@ -114,7 +120,10 @@ pub(crate) fn check_derived(
         if v > MAX_ARENA_SIDE_M {
             return Err(ctx.err(
                 format!("arena.{name}"),
-                format!("{v} m is longer than the limit of {MAX_ARENA_SIDE_M} m"),
+                format!(
+                    "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
+                    short(v)
+                ),
             ));
         }
     }
@@ -138,7 +147,7 @@ pub(crate) fn check_derived(
         if !(lo..=hi).contains(&w) {
             return Err(ctx.err(
                 format!("needs_weights.{name}"),
-                format!("expected a number in [{lo:e}, {hi:e}], found {w}"),
+                format!("expected a number in [{lo:e}, {hi:e}], found {}", short(w)),
             ));
         }
     }
@@ -152,6 +161,47 @@ pub(crate) fn check_derived(
                     "at {} m/s a {} robot moves {step_m} m per step of {dt_s} s (sim.dt_s), \
                      more than its body radius {} m; lower the speed or the step",
                     kind.max_speed_m_per_s, kind.name, kind.body_radius_m
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Every task's blind-search sweep (`mission::sweep_waypoints` at `mission::sweep_spacing_m`)
+/// against [`MAX_SWEEP_POINTS`]; blamed on `mission.sweep_spacing_m` when the file sets it,
+/// else on the `observing_range_m` of the ground kind whose detection width sets the default.
+pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
+    let spacing_m = crate::mission::sweep_spacing_m(s);
+    for t in &s.tasks {
+        let (w, h) = (
+            t.search_area.max.x - t.search_area.min.x,
+            t.search_area.max.y - t.search_area.min.y,
+        );
+        let points = (w / spacing_m).ceil().max(1.0) * (h / spacing_m).ceil().max(1.0);
+        if points > MAX_SWEEP_POINTS {
+            let field = match s.mission.sweep_spacing_m {
+                Some(_) => "mission.sweep_spacing_m".to_owned(),
+                None => {
+                    let k = (0..s.kinds.len())
+                        .filter(|&k| s.kinds[k].locomotion == Locomotion::Ground)
+                        .min_by(|&a, &b| {
+                            let width =
+                                |k: usize| s.kinds[k].body_radius_m + s.kinds[k].observing_range_m;
+                            width(a).total_cmp(&width(b))
+                        })
+                        .unwrap_or(0);
+                    format!("kinds[{k}].observing_range_m")
+                }
+            };
+            return Err(ctx.err(
+                field,
+                format!(
+                    "sweep rows {} m apart make {} waypoints over the search area of task {:?}, \
+                     more than the limit of {MAX_SWEEP_POINTS}",
+                    short(spacing_m),
+                    short(points),
+                    t.name
                 ),
             ));
         }

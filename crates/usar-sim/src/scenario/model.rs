@@ -302,7 +302,7 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
 
 /// `v` as a message writes it: plainly, or in scientific notation when plain digits would run
 /// long (`1e300`, not 301 digits; `1e-12`, not twelve zeros).
-fn short(v: f64) -> String {
+pub(crate) fn short(v: f64) -> String {
     if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
         format!("{v:e}")
     } else {

@@ -15,7 +15,9 @@ use super::error::{ScenarioError, SourceLocation};
 use super::generate::{
     Protected, Start, debris_index, expand_rescuees, generate_debris_field, start_positions,
 };
-use super::limits::{MAX_DEBRIS, MAX_RESCUEES, check_derived, check_kind, check_lists};
+use super::limits::{
+    MAX_DEBRIS, MAX_RESCUEES, check_derived, check_kind, check_lists, check_sweeps,
+};
 use super::locate::SourceMap;
 use super::model::{
     Circle, Debris, Locomotion, PointM, RadiationZone, Rect, RobotKind, RobotStart, Scenario, Task,
@@ -230,7 +232,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         &kinds,
         &spec.sim,
     )?;
-    Ok(Scenario {
+    let scenario = Scenario {
         name: spec.name.clone(),
         description: spec.description.clone(),
         arena,
@@ -245,7 +247,9 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         navigation: spec.navigation,
         collision: spec.collision,
         sim: spec.sim,
-    })
+    };
+    check_sweeps(ctx, &scenario)?;
+    Ok(scenario)
 }
 
 /// Task names (non-empty, unique, at least one task) and each task's search area, goal and
@@ -700,7 +704,15 @@ fn check_params(ctx: &Ctx<'_>, spec: &ScenarioSpec) -> R<()> {
     }
     let dt_s = spec.sim.dt_s.get();
     if let Err(e) = super::model::trial_steps(m.duration_s.get(), dt_s) {
-        return Err(ctx.err("mission.duration_s", e));
+        // Blame the length where the file writes it, else the step (the default length of
+        // 600 s is too many steps only of a step the file sets).
+        let written = |f: &str| ctx.map.is_some_and(|map| map.contains(f));
+        let field = if !written("mission.duration_s") && written("sim.dt_s") {
+            "sim.dt_s"
+        } else {
+            "mission.duration_s"
+        };
+        return Err(ctx.err(field, e));
     }
     if dt_s > m.duration_s.get() {
         return Err(ctx.err(
