@@ -10,12 +10,13 @@ use crate::world::WorldError;
 #[derive(Debug, Clone, Error)]
 pub enum MissionError {
     /// The grouping method failed or returned an assignment that is not a valid partition.
-    #[error("grouping method {method}: {source}")]
+    #[error("grouping method {method}: {error}")]
     Grouping {
         /// The method's name.
         method: String,
-        /// What rne-core reported.
-        source: rne_core::RneError,
+        /// What rne-core reported (part of the one-line message, not also a `source()`, so a
+        /// chain-printing caller does not repeat it).
+        error: rne_core::RneError,
     },
     /// No grouping method, or an unknown method name.
     #[error("grouping method: {0}")]

@@ -119,9 +119,9 @@ pub fn group_available(
         .iter()
         .map(|&id| snapshot(scenario, &robots[id]))
         .collect();
-    let failed = |source| MissionError::Grouping {
+    let failed = |error| MissionError::Grouping {
         method: method.name().to_string(),
-        source,
+        error,
     };
     let request =
         GroupingRequest::new(snapshots, quotas, scenario.hardest_first()).map_err(failed)?;

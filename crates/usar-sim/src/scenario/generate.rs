@@ -7,6 +7,8 @@ use nalgebra::{Point2, Vector2};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::index::BoxIndex;
+use super::limits::MAX_DEBRIS;
 use super::model::{Circle, Debris, PointM, Rect, RobotKind};
 use super::params::Arena;
 use super::shape::DebrisShape;
@@ -17,6 +19,9 @@ use super::validate::{Ctx, R, fmt_pt};
 pub(crate) const MAX_GRID_POINTS: usize = 1_000_000;
 /// Placement attempts per generated shape before a debris field gives up.
 pub(crate) const ATTEMPTS_PER_SHAPE: usize = 2_000;
+/// Failed placement attempts in a row after which a debris field gives up (a field that is
+/// full fails in this many attempts, not in `ATTEMPTS_PER_SHAPE * count`).
+pub(crate) const FAILED_IN_A_ROW: usize = 10 * ATTEMPTS_PER_SHAPE;
 
 /// A start position with the field path it came from and a label for messages
 /// (`carrier robot 3`).
@@ -240,9 +245,10 @@ fn draw_shape(rng: &mut ChaCha8Rng, draw: Draw) -> (Debris, Vector2<f64>) {
 /// before them and from every `protected` place.
 ///
 /// # Errors
-/// A bad region, count, size range, rotation or gap, or a field that cannot place all its
-/// shapes within `ATTEMPTS_PER_SHAPE * count` attempts (naming the protected places that lie in
-/// its region).
+/// A bad region, count (more than [`MAX_DEBRIS`] shapes with those before it), size range,
+/// rotation or gap, or a field that cannot place all its shapes within `ATTEMPTS_PER_SHAPE *
+/// count` attempts or gives up after `FAILED_IN_A_ROW` failed attempts in a row (naming the
+/// protected places that lie in its region).
 pub(crate) fn generate_debris_field(
     ctx: &Ctx<'_>,
     j: usize,
@@ -260,16 +266,42 @@ pub(crate) fn generate_debris_field(
             "expected at least 1 shape, found 0",
         ));
     }
+    if f.count > MAX_DEBRIS.saturating_sub(existing.len()) {
+        return Err(ctx.err(
+            format!("{base}.count"),
+            format!(
+                "{} shapes after the {} before them make more than the limit of {MAX_DEBRIS} \
+                 debris shapes",
+                f.count,
+                existing.len()
+            ),
+        ));
+    }
     let gap = ctx.non_negative(&format!("{base}.min_gap_m"), f.min_gap_m)?;
     let (w, h) = (region.max.x - region.min.x, region.max.y - region.min.y);
     let draw = draw_of(ctx, &base, &f.shape, w, h)?;
     let seed = f.seed.unwrap_or(sim_seed.wrapping_add(j as u64));
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut placed: Vec<DebrisShape> = Vec::with_capacity(f.count);
+    // Every shape the new ones keep clear of (the existing ones, then those placed), and the
+    // index of their boxes and of the protected discs' boxes.
+    let mut all: Vec<DebrisShape> = Vec::with_capacity(existing.len() + f.count);
+    let mut shapes = BoxIndex::new();
+    for d in existing {
+        push_shape(&mut all, &mut shapes, *d);
+    }
+    let mut places = BoxIndex::new();
+    for p in protected {
+        let r = Vector2::new(p.radius_m, p.radius_m);
+        places.push(&(p.center - r), &(p.center + r));
+    }
     let max_attempts = ATTEMPTS_PER_SHAPE * f.count;
-    let mut attempts = 0;
-    while placed.len() < f.count && attempts < max_attempts {
+    let (mut attempts, mut failed_in_a_row) = (0, 0);
+    while all.len() - existing.len() < f.count
+        && attempts < max_attempts
+        && failed_in_a_row < FAILED_IN_A_ROW
+    {
         attempts += 1;
+        failed_in_a_row += 1;
         let (mut shape, half) = draw_shape(&mut rng, draw);
         let (x_lo, x_hi) = (region.min.x + half.x, region.max.x - half.x);
         let (y_lo, y_hi) = (region.min.y + half.y, region.max.y - half.y);
@@ -282,17 +314,21 @@ pub(crate) fn generate_debris_field(
             Debris::Rect { center, .. } => *center = c,
         }
         let shape = shape.shape();
-        let clear_of_debris = existing
-            .iter()
-            .chain(&placed)
-            .all(|d| shape.distance(d) >= gap);
-        let clear_of_places = protected
-            .iter()
-            .all(|p| shape.distance_to_point(&p.center) >= p.radius_m + gap);
+        let (lo, hi) = shape.aabb();
+        let clear_of_debris = shapes
+            .near(&lo, &hi, gap)
+            .into_iter()
+            .all(|i| shape.distance(&all[i]) >= gap);
+        let clear_of_places = places.near(&lo, &hi, gap).into_iter().all(|i| {
+            let p = &protected[i];
+            shape.distance_to_point(&p.center) >= p.radius_m + gap
+        });
         if clear_of_debris && clear_of_places {
-            placed.push(shape);
+            push_shape(&mut all, &mut shapes, shape);
+            failed_in_a_row = 0;
         }
     }
+    let placed = all.split_off(existing.len());
     if placed.len() < f.count {
         return Err(field_full(
             ctx,
@@ -305,6 +341,13 @@ pub(crate) fn generate_debris_field(
         ));
     }
     Ok(placed)
+}
+
+/// Appends `shape` to `all` and its bounding box to `index` (same number).
+fn push_shape(all: &mut Vec<DebrisShape>, index: &mut BoxIndex, shape: DebrisShape) {
+    let (lo, hi) = shape.aabb();
+    index.push(&lo, &hi);
+    all.push(shape);
 }
 
 /// The error of a debris field that could not place all its shapes, naming the most likely
@@ -353,14 +396,13 @@ pub(crate) fn expand_rescuees(
     debris: &[(DebrisShape, String)],
     reach: f64,
 ) -> R<Vec<PointM>> {
+    let index = debris_index(debris);
     let near_debris = |p: &PointM| {
-        debris
-            .iter()
-            .find(|(d, _)| {
-                let dist = d.distance_to_point(p);
-                dist == 0.0 || dist < reach
-            })
-            .map(|(_, n)| n)
+        index.near(p, p, reach).into_iter().find_map(|i| {
+            let (d, name) = &debris[i];
+            let dist = d.distance_to_point(p);
+            (dist == 0.0 || dist < reach).then_some(name)
+        })
     };
     match layout {
         RescueeLayoutSpec::Grid {
@@ -413,6 +455,16 @@ pub(crate) fn expand_rescuees(
             Ok(pts)
         }
     }
+}
+
+/// The boxes of `debris`, numbered as listed.
+pub(crate) fn debris_index(debris: &[(DebrisShape, String)]) -> BoxIndex {
+    let mut index = BoxIndex::new();
+    for (d, _) in debris {
+        let (lo, hi) = d.aabb();
+        index.push(&lo, &hi);
+    }
+    index
 }
 
 /// A square grid of spacing `s` filling `area`, centred in it, at least `margin` from its

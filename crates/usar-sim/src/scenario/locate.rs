@@ -71,7 +71,6 @@ impl SourceMap {
     }
 
     /// Whether `path` itself appears in the source.
-    #[cfg(test)]
     pub(crate) fn contains(&self, path: &str) -> bool {
         self.by_path.contains_key(path)
     }

@@ -9,6 +9,8 @@
 
 mod error;
 mod generate;
+mod index;
+pub mod limits;
 mod load;
 mod locate;
 mod model;
@@ -26,3 +28,4 @@ pub use params::*;
 pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;
+pub use validate::START_TOLERANCE;

@@ -290,9 +290,22 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
     };
     if steps.is_nan() || steps > MAX_TRIAL_STEPS as f64 {
         return Err(format!(
-            "trial length {duration_s} s is {steps} steps of {dt_s} s, more than the limit of \
-             {MAX_TRIAL_STEPS} steps"
+            "trial length {} s is {} steps of {} s, more than the limit of {MAX_TRIAL_STEPS} \
+             steps",
+            short(duration_s),
+            short(steps),
+            short(dt_s)
         ));
     }
     Ok(steps.max(1.0) as u64)
+}
+
+/// `v` as a message writes it: plainly, or in scientific notation when plain digits would run
+/// long (`1e300`, not 301 digits; `1e-12`, not twelve zeros).
+pub(crate) fn short(v: f64) -> String {
+    if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }

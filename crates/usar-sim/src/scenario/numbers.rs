@@ -42,7 +42,10 @@ macro_rules! bounded {
                 if $v.is_finite() && $ok {
                     Ok(Self(value))
                 } else {
-                    Err(RangeError(format!(concat!("expected ", $expect, ", found {}"), value)))
+                    Err(RangeError(format!(
+                        concat!("expected ", $expect, ", found {}"),
+                        super::model::short(value)
+                    )))
                 }
             }
 

@@ -12,7 +12,12 @@
 use nalgebra::{Point2, Vector2};
 
 use super::error::{ScenarioError, SourceLocation};
-use super::generate::{Protected, Start, expand_rescuees, generate_debris_field, start_positions};
+use super::generate::{
+    Protected, Start, debris_index, expand_rescuees, generate_debris_field, start_positions,
+};
+use super::limits::{
+    MAX_DEBRIS, MAX_RESCUEES, check_derived, check_kind, check_lists, check_sweeps,
+};
 use super::locate::SourceMap;
 use super::model::{
     Circle, Debris, Locomotion, PointM, RadiationZone, Rect, RobotKind, RobotStart, Scenario, Task,
@@ -189,6 +194,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         return Err(ctx.err("name", "expected a non-empty name"));
     }
     let arena = spec.arena;
+    check_lists(ctx, &spec.kinds, spec.tasks.len())?;
     let geometry = task_geometry(ctx, &spec.tasks, &arena)?;
     let kinds = validate_kinds(ctx, &spec.kinds, &spec.tasks)?;
     // Reach: how close to debris a point may be for a ground robot to get to it.
@@ -218,7 +224,15 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
     let tasks = expand_tasks(ctx, &spec.tasks, geometry, &debris, reach)?;
     let radiation_zones = radiation_zones(ctx, spec, &arena)?;
     check_params(ctx, spec)?;
-    Ok(Scenario {
+    check_derived(
+        ctx,
+        &arena,
+        &spec.navigation,
+        &spec.needs_weights,
+        &kinds,
+        &spec.sim,
+    )?;
+    let scenario = Scenario {
         name: spec.name.clone(),
         description: spec.description.clone(),
         arena,
@@ -233,7 +247,9 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         navigation: spec.navigation,
         collision: spec.collision,
         sim: spec.sim,
-    })
+    };
+    check_sweeps(ctx, &scenario)?;
+    Ok(scenario)
 }
 
 /// Task names (non-empty, unique, at least one task) and each task's search area, goal and
@@ -303,7 +319,7 @@ fn validate_kinds(ctx: &Ctx<'_>, specs: &[KindSpec], tasks: &[TaskSpec]) -> R<Ve
             return Err(ctx.err(f("count"), "expected at least 1 robot, found 0"));
         }
         let quota = quotas_by_task(ctx, &f("quota"), s, tasks)?;
-        kinds.push(RobotKind {
+        let kind = RobotKind {
             name: s.name.clone(),
             role: s.role,
             locomotion: s.locomotion,
@@ -317,7 +333,9 @@ fn validate_kinds(ctx: &Ctx<'_>, specs: &[KindSpec], tasks: &[TaskSpec]) -> R<Ve
             rescuing_resources: s.rescuing_resources,
             hp_needs_full: s.hp_needs_full.get(),
             energy_needs_full: s.energy_needs_full.get(),
-        });
+        };
+        check_kind(ctx, k, &kind)?;
+        kinds.push(kind);
     }
     Ok(kinds)
 }
@@ -368,6 +386,15 @@ fn quotas_by_task(ctx: &Ctx<'_>, path: &str, s: &KindSpec, tasks: &[TaskSpec]) -
 
 /// The listed debris, each inside the arena, named `debris[i]`.
 fn listed_debris(ctx: &Ctx<'_>, specs: &[DebrisSpec], arena: &Arena) -> R<NamedDebris> {
+    if specs.len() > MAX_DEBRIS {
+        return Err(ctx.err(
+            "debris",
+            format!(
+                "{} shapes, more than the limit of {MAX_DEBRIS} debris shapes",
+                specs.len()
+            ),
+        ));
+    }
     specs
         .iter()
         .enumerate()
@@ -541,20 +568,29 @@ fn protected_places(
     out
 }
 
+/// Relative tolerance of the start spacing rule: two starts at least `(1 - START_TOLERANCE)`
+/// times the sum of their body radii apart are accepted, so starts placed exactly one body
+/// apart (`0.8` m for two 0.4 m radii, which float rounding of the positions may turn into
+/// 0.79999999999999716 m) pass.
+pub const START_TOLERANCE: f64 = 1e-9;
+
 /// Ground robots' starts clear of all debris by their body radius; starts of robots on the
-/// same layer at least the sum of their radii apart.
+/// same layer at least the sum of their radii apart (within [`START_TOLERANCE`]).
 fn check_starts(
     ctx: &Ctx<'_>,
     starts: &[(Start, RobotStart)],
     kinds: &[RobotKind],
     debris: &NamedDebris,
 ) -> R<()> {
+    let index = debris_index(debris);
     for (s, r) in starts {
         let kind = &kinds[r.kind];
         if kind.locomotion != Locomotion::Ground {
             continue;
         }
-        for (d, name) in debris {
+        let p = &r.start_in_world;
+        for i in index.near(p, p, kind.body_radius_m) {
+            let (d, name) = &debris[i];
             let dist = d.distance_to_point(&r.start_in_world);
             if dist < kind.body_radius_m {
                 return Err(ctx.err(
@@ -578,7 +614,7 @@ fn check_starts(
             }
             let need = ka.body_radius_m + kb.body_radius_m;
             let dist = (a.start_in_world - b.start_in_world).norm();
-            if dist < need {
+            if dist < need * (1.0 - START_TOLERANCE) {
                 return Err(ctx.err(
                     sb.path.clone(),
                     format!(
@@ -604,6 +640,7 @@ fn expand_tasks(
     debris: &NamedDebris,
     reach: f64,
 ) -> R<Vec<Task>> {
+    let mut total = 0usize;
     specs
         .iter()
         .zip(geometry)
@@ -611,6 +648,17 @@ fn expand_tasks(
         .map(|(i, (t, g))| {
             let path = format!("tasks[{i}].rescuees");
             let rescuees = expand_rescuees(ctx, &path, &t.rescuees, &g.search_area, debris, reach)?;
+            total += rescuees.len();
+            if total > MAX_RESCUEES {
+                return Err(ctx.err(
+                    path,
+                    format!(
+                        "{} rescuees bring the tasks to {total}, more than the limit of \
+                         {MAX_RESCUEES}",
+                        rescuees.len()
+                    ),
+                ));
+            }
             Ok(Task {
                 name: t.name.clone(),
                 difficulty: t.difficulty,
@@ -656,7 +704,15 @@ fn check_params(ctx: &Ctx<'_>, spec: &ScenarioSpec) -> R<()> {
     }
     let dt_s = spec.sim.dt_s.get();
     if let Err(e) = super::model::trial_steps(m.duration_s.get(), dt_s) {
-        return Err(ctx.err("mission.duration_s", e));
+        // Blame the length where the file writes it, else the step (the default length of
+        // 600 s is too many steps only of a step the file sets).
+        let written = |f: &str| ctx.map.is_some_and(|map| map.contains(f));
+        let field = if !written("mission.duration_s") && written("sim.dt_s") {
+            "sim.dt_s"
+        } else {
+            "mission.duration_s"
+        };
+        return Err(ctx.err(field, e));
     }
     if dt_s > m.duration_s.get() {
         return Err(ctx.err(

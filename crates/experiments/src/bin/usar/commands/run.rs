@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::mission::{Simulation, TrialResult, trial_steps};
 use usar_sim::scenario;
 
 use experiments::atomic::write_atomic;
@@ -98,16 +98,33 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
 /// Warns on stderr when the trial does not run the `requested` length exactly: a length that
 /// is not a whole number of steps is rounded up to one (shorter than one step: one step).
 pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
-    if let Some(d) = requested {
-        let actual = sim.duration_s();
-        if (actual - d).abs() > 1e-9 * d.abs().max(1.0) {
-            eprintln!(
-                "warning: --duration {d} s is not a whole number of steps of {} s: the trial \
-                 runs {actual} s",
-                sim.scenario().sim.dt_s
-            );
-        }
+    if let Some(d) = requested
+        && let Some(w) = rounding_warning(d, sim.scenario().sim.dt_s.get())
+    {
+        eprintln!("{w}");
     }
+}
+
+/// The warning for a `--duration` of `requested_s` seconds at step `dt_s` when the trial runs
+/// another length (its steps times `dt_s`, see `usar_sim::mission::trial_steps`), naming the
+/// length actually run; `None` when it runs `requested_s` (within 1e-9 relative) or when the
+/// length is refused anyway (the caller reports that error).
+pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
+    let steps = trial_steps(requested_s, dt_s).ok()?;
+    let actual_s = steps as f64 * dt_s;
+    if (actual_s - requested_s).abs() <= 1e-9 * requested_s.abs().max(1.0) {
+        return None;
+    }
+    let why = if requested_s < dt_s {
+        "is shorter than one step"
+    } else {
+        "is not a whole number of steps"
+    };
+    Some(format!(
+        "warning: --duration {requested_s} s {why} of {dt_s} s (sim.dt_s): the trial runs \
+         {actual_s} s ({steps} step{})",
+        if steps == 1 { "" } else { "s" }
+    ))
 }
 
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the

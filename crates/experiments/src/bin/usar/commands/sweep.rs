@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
-use usar_sim::scenario;
+use usar_sim::scenario::{self, Scenario};
 
 use experiments::analysis::Analysis;
 
@@ -234,9 +234,13 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
+    let grid = grid_of(args)?;
+    if let Some(d) = args.duration {
+        warn_if_rounded(d, &scenario, grid.as_ref());
+    }
     Ok(SweepConfig {
         scenario_path: args.scenario.clone(),
-        grid: grid_of(args)?,
+        grid,
         methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
         method_factory: MethodFactory::builtin(),
         trials: args.trials,
@@ -254,6 +258,22 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         shard: shard_run(all)?,
         scenario,
     })
+}
+
+/// Warns once per distinct step (`sim.dt_s` of the scenario or of a grid's cells) when the
+/// `--duration` of `requested_s` seconds is not a whole number of steps of it.
+fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
+    let mut steps: Vec<f64> = match grid {
+        Some(g) => g.cells.iter().map(|c| c.scenario.sim.dt_s.get()).collect(),
+        None => vec![scenario.sim.dt_s.get()],
+    };
+    steps.sort_by(f64::total_cmp);
+    steps.dedup();
+    for dt_s in steps {
+        if let Some(w) = super::run::rounding_warning(requested_s, dt_s) {
+            eprintln!("{w}");
+        }
+    }
 }
 
 /// Runs `usar sweep`: run, analyse, write, summarise.

@@ -1,0 +1,210 @@
+//! The scenario's limits: the largest team, debris list, navigation grid and number range the
+//! simulator runs, checked by validation so that whatever `check` accepts, `run` can run (no
+//! allocation abort, no overflowing index, no infinite derived quantity, no endless trial).
+//! Each limit is documented in `docs/scenario-format.md` ("Limits"); a value beyond one is a
+//! [`super::ScenarioError::Invalid`] at the field that sets it.
+//!
+//! Source: issue 11 (hardening), classes 1-3; the numbers are engineering choices well above
+//! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
+
+use super::model::{Locomotion, RobotKind, Scenario, short};
+use super::params::{Arena, NavigationParams, NeedsWeights, SimParams};
+use super::spec::KindSpec;
+use super::validate::{Ctx, R};
+
+/// Most robot kinds a scenario may list (grouping merges kind by kind).
+pub const MAX_KINDS: usize = 256;
+/// Most tasks a scenario may list.
+pub const MAX_TASKS: usize = 64;
+/// Most robots of a team, over all kinds (the `count`s add up to at most this).
+pub const MAX_ROBOTS: usize = 10_000;
+/// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).
+pub const MAX_RESCUEES: usize = 1_000_000;
+/// Most waypoints of a blind group's lawn-mower sweep over one search area
+/// (`mission::sweep_waypoints`: `ceil(width / spacing) * ceil(height / spacing)`).
+pub const MAX_SWEEP_POINTS: f64 = 1_000_000.0;
+/// Most debris shapes, listed and generated together.
+pub const MAX_DEBRIS: usize = 10_000;
+/// Most cells of the navigation grid, `ceil(width_m / grid_cell_m) * ceil(height_m /
+/// grid_cell_m)`: 2^24 cells (64 MiB of `f32` clearances), well inside a 32-bit cell index.
+pub const MAX_NAV_CELLS: u64 = 1 << 24;
+/// Longest arena side, metres: the world simulates in `f32`, whose spacing at 10 km is about
+/// 1 mm.
+pub const MAX_ARENA_SIDE_M: f64 = 10_000.0;
+/// Highest top speed of a kind, metres per second.
+pub const MAX_SPEED_M_PER_S: f64 = 100.0;
+/// Range `[min, max]` of every needs level at full HP/energy (`hp_needs_full`,
+/// `energy_needs_full`, `sensing_range_m`, `observing_range_m`, `max_speed_m_per_s`) and of
+/// every needs weight: products of a weight and a level stay normal `f64` numbers and the
+/// sums over a team of [`MAX_ROBOTS`] stay finite (paper, Eqs. 8, 11 and 16).
+pub const NEEDS_RANGE: (f64, f64) = (1e-9, 1e9);
+
+/// Kind and task list lengths and each kind's count against [`MAX_KINDS`], [`MAX_TASKS`] and
+/// the running total against [`MAX_ROBOTS`]; checked before any start is expanded.
+pub(crate) fn check_lists(ctx: &Ctx<'_>, kinds: &[KindSpec], tasks: usize) -> R<()> {
+    if kinds.len() > MAX_KINDS {
+        return Err(ctx.err(
+            "kinds",
+            format!("{} kinds, more than the limit of {MAX_KINDS}", kinds.len()),
+        ));
+    }
+    if tasks > MAX_TASKS {
+        return Err(ctx.err(
+            "tasks",
+            format!("{tasks} tasks, more than the limit of {MAX_TASKS}"),
+        ));
+    }
+    let mut total: usize = 0;
+    for (k, s) in kinds.iter().enumerate() {
+        total = total.saturating_add(s.count);
+        if total > MAX_ROBOTS {
+            return Err(ctx.err(
+                format!("kinds[{k}].count"),
+                format!(
+                    "count {} brings the team to {total} robots, more than the limit of \
+                     {MAX_ROBOTS}",
+                    s.count
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A kind's needs levels against [`NEEDS_RANGE`] and its speed against [`MAX_SPEED_M_PER_S`].
+pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
+    if kind.max_speed_m_per_s > MAX_SPEED_M_PER_S {
+        return Err(ctx.err(
+            format!("kinds[{k}].max_speed_m_per_s"),
+            format!(
+                "{} m/s is faster than the limit of {MAX_SPEED_M_PER_S} m/s",
+                short(kind.max_speed_m_per_s)
+            ),
+        ));
+    }
+    let (lo, hi) = NEEDS_RANGE;
+    for (name, v) in [
+        ("max_speed_m_per_s", kind.max_speed_m_per_s),
+        ("sensing_range_m", kind.sensing_range_m),
+        ("observing_range_m", kind.observing_range_m),
+        ("hp_needs_full", kind.hp_needs_full),
+        ("energy_needs_full", kind.energy_needs_full),
+    ] {
+        if !(lo..=hi).contains(&v) {
+            return Err(ctx.err(
+                format!("kinds[{k}].{name}"),
+                format!(
+                    "expected a number in [{lo:e}, {hi:e}] (a needs level), found {}",
+                    short(v)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The arena against [`MAX_ARENA_SIDE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
+/// needs weights against [`NEEDS_RANGE`], and every kind's distance per step: a robot at top
+/// speed moves at most its body radius per step (`max_speed_m_per_s * dt_s <=
+/// body_radius_m`), so it cannot pass through a wall, debris or another robot between two
+/// steps.
+pub(crate) fn check_derived(
+    ctx: &Ctx<'_>,
+    arena: &Arena,
+    navigation: &NavigationParams,
+    weights: &NeedsWeights,
+    kinds: &[RobotKind],
+    sim: &SimParams,
+) -> R<()> {
+    for (name, v) in [("width_m", arena.width()), ("height_m", arena.height())] {
+        if v > MAX_ARENA_SIDE_M {
+            return Err(ctx.err(
+                format!("arena.{name}"),
+                format!(
+                    "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
+                    short(v)
+                ),
+            ));
+        }
+    }
+    let cell_m = navigation.grid_cell_m.get();
+    let (nx, ny) = (
+        (arena.width() / cell_m).ceil().max(1.0),
+        (arena.height() / cell_m).ceil().max(1.0),
+    );
+    if nx * ny > MAX_NAV_CELLS as f64 {
+        return Err(ctx.err(
+            "navigation.grid_cell_m",
+            format!(
+                "cells of {cell_m} m make a {nx:.0} x {ny:.0} navigation grid, more than the \
+                 limit of {MAX_NAV_CELLS} cells; use larger cells"
+            ),
+        ));
+    }
+    let (lo, hi) = NEEDS_RANGE;
+    let names = ["hp", "v", "sen", "eng", "res", "cap", "obs"];
+    for (name, w) in names.iter().zip(weights.to_array()) {
+        if !(lo..=hi).contains(&w) {
+            return Err(ctx.err(
+                format!("needs_weights.{name}"),
+                format!("expected a number in [{lo:e}, {hi:e}], found {}", short(w)),
+            ));
+        }
+    }
+    let dt_s = sim.dt_s.get();
+    for (k, kind) in kinds.iter().enumerate() {
+        let step_m = kind.max_speed_m_per_s * dt_s;
+        if step_m > kind.body_radius_m {
+            return Err(ctx.err(
+                format!("kinds[{k}].max_speed_m_per_s"),
+                format!(
+                    "at {} m/s a {} robot moves {step_m} m per step of {dt_s} s (sim.dt_s), \
+                     more than its body radius {} m; lower the speed or the step",
+                    kind.max_speed_m_per_s, kind.name, kind.body_radius_m
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Every task's blind-search sweep (`mission::sweep_waypoints` at `mission::sweep_spacing_m`)
+/// against [`MAX_SWEEP_POINTS`]; blamed on `mission.sweep_spacing_m` when the file sets it,
+/// else on the `observing_range_m` of the ground kind whose detection width sets the default.
+pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
+    let spacing_m = crate::mission::sweep_spacing_m(s);
+    for t in &s.tasks {
+        let (w, h) = (
+            t.search_area.max.x - t.search_area.min.x,
+            t.search_area.max.y - t.search_area.min.y,
+        );
+        let points = (w / spacing_m).ceil().max(1.0) * (h / spacing_m).ceil().max(1.0);
+        if points > MAX_SWEEP_POINTS {
+            let field = match s.mission.sweep_spacing_m {
+                Some(_) => "mission.sweep_spacing_m".to_owned(),
+                None => {
+                    let k = (0..s.kinds.len())
+                        .filter(|&k| s.kinds[k].locomotion == Locomotion::Ground)
+                        .min_by(|&a, &b| {
+                            let width =
+                                |k: usize| s.kinds[k].body_radius_m + s.kinds[k].observing_range_m;
+                            width(a).total_cmp(&width(b))
+                        })
+                        .unwrap_or(0);
+                    format!("kinds[{k}].observing_range_m")
+                }
+            };
+            return Err(ctx.err(
+                field,
+                format!(
+                    "sweep rows {} m apart make {} waypoints over the search area of task {:?}, \
+                     more than the limit of {MAX_SWEEP_POINTS}",
+                    short(spacing_m),
+                    short(points),
+                    t.name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,221 @@
+//! Regression tests of issue 11 (hardening), one or more per class: what `check` accepts a
+//! trial can run, and what it refuses gets one positioned line naming the field that breaks a
+//! documented limit (`docs/scenario-format.md`, "Limits").
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use usar_sim::mission::Simulation;
+use usar_sim::scenario::{self, Scenario, ScenarioError, limits};
+
+fn paper() -> String {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper.ron");
+    std::fs::read_to_string(p).expect("paper.ron")
+}
+
+/// paper.ron with the first occurrence of `from` replaced by `to` (which must occur).
+fn paper_with(from: &str, to: &str) -> String {
+    let src = paper();
+    assert!(src.contains(from), "paper.ron has no {from:?}");
+    src.replacen(from, to, 1)
+}
+
+/// The error of loading `src`, checked to be one positioned line about `field`.
+fn rejected(src: &str, field: &str) -> ScenarioError {
+    let e = scenario::from_str(src, "t.ron").expect_err("must be rejected");
+    let text = e.to_string();
+    assert_eq!(e.field(), Some(field), "{text}");
+    assert!(e.line_col().is_some(), "no position: {text}");
+    assert!(!text.contains('\n'), "not one line: {text}");
+    e
+}
+
+/// Five steps of `s` with the `rne` method.
+fn short_run(s: &Scenario) {
+    let mut sim = Simulation::builder(s)
+        .method_named("rne")
+        .duration_s(5.0 * s.sim.dt_s.get())
+        .build()
+        .expect("trial builds");
+    sim.run_to_end().expect("trial runs");
+}
+
+// Class 1: counts near u32::MAX are positioned errors, not allocation aborts.
+
+#[test]
+fn a_robot_count_near_u32_max_is_an_error_at_the_count() {
+    let src = paper_with("count: 6,", "count: 4294967290,").replacen(
+        "quota: (easy: 3, hard: 3)",
+        "quota: (easy: 4294967287, hard: 3)",
+        1,
+    );
+    let e = rejected(&src, "kinds[0].count");
+    assert!(e.to_string().contains("limit of 10000"), "{e}");
+}
+
+#[test]
+fn a_debris_field_count_near_u32_max_is_an_error_at_the_count() {
+    let e = rejected(
+        &paper_with("count: 8,", "count: 4294967295,"),
+        "debris_fields[0].count",
+    );
+    assert!(e.to_string().contains("limit of 10000"), "{e}");
+}
+
+// Class 2: derived quantities are validated.
+
+#[test]
+fn a_navigation_grid_beyond_the_cell_limit_is_an_error() {
+    let e = rejected(
+        &paper_with("grid_cell_m: 0.25", "grid_cell_m: 0.0001"),
+        "navigation.grid_cell_m",
+    );
+    assert!(e.to_string().contains("navigation grid"), "{e}");
+    // A huge arena: too long a side for the f32 world.
+    rejected(
+        &paper_with("width_m: 80.0", "width_m: 8000000.0"),
+        "arena.width_m",
+    );
+}
+
+#[test]
+fn a_needs_level_that_would_make_a_need_infinite_is_an_error() {
+    rejected(
+        &paper_with("hp_needs_full: 2.0", "hp_needs_full: 1e308"),
+        "kinds[0].hp_needs_full",
+    );
+    rejected(
+        &paper_with("needs_weights: (hp: 1.0", "needs_weights: (hp: 1e300"),
+        "needs_weights.hp",
+    );
+    // The largest accepted level runs.
+    let (_, hi) = limits::NEEDS_RANGE;
+    let src = paper_with("hp_needs_full: 2.0", &format!("hp_needs_full: {hi:e}"));
+    short_run(&scenario::from_str(&src, "t.ron").expect("at the limit"));
+}
+
+#[test]
+fn a_robot_faster_than_its_body_per_step_is_an_error() {
+    let e = rejected(
+        &paper_with("dt_s: 0.02", "dt_s: 0.5"),
+        "kinds[0].max_speed_m_per_s",
+    );
+    assert!(e.to_string().contains("per step"), "{e}");
+}
+
+// Class 3: no endless trial, no endless validation.
+
+#[test]
+fn ten_thousand_kinds_are_an_error_at_the_kind_list() {
+    let src = paper();
+    let start = src.find("    kinds: [\n").expect("kinds") + "    kinds: [\n".len();
+    let end = src.find("    rest_station").expect("rest_station");
+    let kinds: String = (0..10_000)
+        .map(|i| {
+            format!(
+                "(name: \"k{i}\", role: Observer, locomotion: Aerial, count: 1, \
+                 quota: (hard: 1), body_radius_m: 0.01, max_speed_m_per_s: 0.1, \
+                 sensing_range_m: 1.0, observing_range_m: 1.0, carrying_capacity: 0, \
+                 rescuing_resources: 0, hp_needs_full: 1.0, energy_needs_full: 1.0, \
+                 starts: List([({}.0, 1.0)])),\n",
+                1 + i % 70
+            )
+        })
+        .collect();
+    let src = format!("{}{kinds}    ],\n{}", &src[..start], &src[end..]);
+    let e = rejected(&src, "kinds");
+    assert!(e.to_string().contains("limit of 256"), "{e}");
+}
+
+#[test]
+fn a_trial_of_too_many_steps_is_an_error_with_a_short_message() {
+    let e = rejected(
+        &paper_with("duration_s: 600.0", "duration_s: 1e300"),
+        "mission.duration_s",
+    );
+    assert!(e.to_string().contains("1e300 s"), "{e}");
+    assert!(e.to_string().len() < 300, "{e}");
+}
+
+#[test]
+fn two_thousand_generated_slabs_are_placed_quickly() {
+    // One field of 2,000 small slabs over the whole arena, gap 0.3 m (the second field goes).
+    let src = paper_with(
+        "region: (min_m: (9.0, 26.0), max_m: (28.0, 37.0)),\n            count: 8,",
+        "region: (min_m: (0.0, 0.0), max_m: (80.0, 60.0)),\n            count: 2000,",
+    )
+    .replacen("min_gap_m: 2.0,", "min_gap_m: 0.3,", 1)
+    .replacen(
+        "shape: Rects(side_m: (0.6, 1.6)",
+        "shape: Rects(side_m: (0.2, 0.4)",
+        1,
+    );
+    let start = src
+        .find("        (\n            region: (min_m: (33.0")
+        .expect("field 1");
+    let end = start + src[start..].find("        ),\n").expect("its end") + "        ),\n".len();
+    let src = format!("{}{}", &src[..start], &src[end..]);
+    let t0 = Instant::now();
+    let s = scenario::from_str(&src, "slabs.ron").expect("2,000 slabs fit");
+    let took = t0.elapsed().as_secs_f64();
+    assert_eq!(s.debris.len(), 11 + 2000);
+    // Pairwise tests took 18 s in a release build; the index makes it well under a second.
+    assert!(took < 6.0, "placing 2,000 slabs took {took} s");
+}
+
+// Class 4: starts exactly one body apart are accepted.
+
+#[test]
+fn starts_exactly_one_body_apart_are_accepted() {
+    // 20.1 + 0.8 i: the float distances between neighbours are 0.79999999999999716 and the
+    // like, one ulp-ish under the 0.8 m the two 0.4 m radii need.
+    let src = paper_with(
+        "starts: Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0)),",
+        "starts: Row(first_m: (20.1, 3.0), step_m: (0.8, 0.0)),",
+    );
+    let s = scenario::from_str(&src, "t.ron").expect("touching starts are accepted");
+    let d = (1..6)
+        .map(|i| (s.robots[i].start_in_world - s.robots[i - 1].start_in_world).norm())
+        .fold(f64::INFINITY, f64::min);
+    assert!(d < 0.8 && 0.8 - d < 1e-12, "{d}");
+    // Clearly overlapping starts are still refused.
+    let src = paper_with(
+        "starts: Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0)),",
+        "starts: Row(first_m: (20.1, 3.0), step_m: (0.79, 0.0)),",
+    );
+    rejected(&src, "kinds[0].starts");
+}
+
+// Class 5: a huge speed names its field, once.
+
+#[test]
+fn a_huge_speed_is_reported_at_its_field_once() {
+    let e = rejected(
+        &paper_with("max_speed_m_per_s: 2.5", "max_speed_m_per_s: 1e308"),
+        "kinds[0].max_speed_m_per_s",
+    );
+    let text = e.to_string();
+    assert!(text.contains("limit of 100 m/s"), "{text}");
+    assert!(!text.contains("weighted needs"), "{text}");
+}
+
+#[test]
+fn a_sweep_spacing_that_makes_endless_waypoints_is_an_error() {
+    rejected(
+        &paper_with("sweep_spacing_m: None", "sweep_spacing_m: Some(1e-300)"),
+        "mission.sweep_spacing_m",
+    );
+}
+
+#[test]
+fn a_step_that_makes_the_default_trial_too_long_is_blamed_on_the_step() {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/corridor.ron");
+    let src = std::fs::read_to_string(p).expect("corridor.ron");
+    assert!(!src.contains("duration_s"));
+    assert!(
+        src.contains("sim: (dt_s: 0.02"),
+        "corridor.ron sets its step"
+    );
+    let src = src.replacen("sim: (dt_s: 0.02", "sim: (dt_s: 1e-9", 1);
+    rejected(&src, "sim.dt_s");
+}
