@@ -6,7 +6,9 @@
 //! resident memory (`VmHWM` of `/proc/self/status`, after each team; teams run smallest first).
 //!
 //! A team of `n` is [`BASE`] with its kinds' counts (and per-task quotas) scaled to `n`; 12
-//! robots is `scenarios/paper.ron` itself. Prints one table in one run.
+//! robots is `scenarios/paper.ron` itself. Prints one table in one run. Rates are per CPU
+//! second of the stepping thread (`/proc/thread-self/schedstat`), so other load on a shared
+//! machine does not count.
 //!
 //! Run in release: `cargo bench -p usar-sim --bench scale` (about a minute), or
 //! `cargo bench -p usar-sim --bench scale -- --quick` (teams of 12 and 100, a few steps: a
@@ -180,9 +182,21 @@ fn peak_rss_mib() -> f64 {
         .map_or(0.0, |kb| kb / 1024.0)
 }
 
-/// Runs `step` up to `steps` times or until `budget_s` of wall time; returns (steps, seconds).
+/// CPU time of this thread so far, seconds: the first field of `/proc/thread-self/schedstat`
+/// (nanoseconds on a CPU), so other load on a shared machine does not count; wall time where
+/// that file is missing.
+fn cpu_s(wall0: Instant) -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or_else(|| wall0.elapsed().as_secs_f64(), |ns| ns * 1e-9)
+}
+
+/// Runs `step` up to `steps` times or until `budget_s` of wall time; returns (steps, CPU
+/// seconds of this thread spent).
 fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
     let t0 = Instant::now();
+    let c0 = cpu_s(t0);
     let mut done = 0;
     while done < steps {
         step();
@@ -191,7 +205,7 @@ fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
             break;
         }
     }
-    (done, t0.elapsed().as_secs_f64())
+    (done, cpu_s(t0) - c0)
 }
 
 /// Steps per second of the full simulation of `s`.
@@ -199,7 +213,7 @@ fn with_logic(s: &Scenario, o: &Options) -> (u64, f64) {
     let mut sim = Simulation::builder(s)
         .method_named(&o.method)
         .trial(0)
-        .duration_s(1e6)
+        .duration_s(1e5)
         .build()
         .expect("simulation builds");
     time_steps(o.steps, o.budget_s, || {
@@ -233,7 +247,7 @@ fn main() {
         &[12, 100, 300, 1000]
     };
     println!(
-        "scaling bench: {} scaled, method {}, up to {} steps or {} s per measurement, one thread",
+        "scaling bench: {} scaled, method {}, up to {} steps or {} s per measurement, one thread, rates per CPU second of the thread",
         o.base, o.method, o.steps, o.budget_s
     );
     println!(

@@ -10,12 +10,13 @@
 //! ([`interaction_distance_m`]): the farthest two robots of the layer can be apart and still
 //! take part in one resolver rule. A query of that radius then visits at most 3 x 3 cells; a
 //! larger radius (speed or sensing factors above 1) visits more cells and stays exact. A
-//! sparse layer gets larger cells (at most about two cells per robot; see
+//! sparse layer gets larger cells (at most about eight cells per robot; see
 //! [`NeighbourIndex::new`]), so small teams pay almost nothing for the index.
 //!
 //! Cost: a rebuild is a counting sort, `O(n + cells)`; a query is `O(cells visited + robots in
-//! them)`. Candidates come out in ascending id, so callers process them in the order of the
-//! all-pairs loops they replace and ties resolve the same way.
+//! them)`. The resolver's loops over candidates do not depend on their order (union-find
+//! merges give the same components in any order; the steering test is an `all`), so they decide
+//! exactly as the all-pairs loops they replace (tested against [`AllRobots`]).
 
 use parry2d::math::Vector as Vec2;
 
@@ -200,14 +201,17 @@ impl NeighbourGrid {
 /// The answer to "which robots of `layer` may lie within `radius_m` of `p`?": the resolver asks
 /// it through this trait so that tests can compare the grid with a scan of all robots.
 pub trait NeighbourQuery {
-    /// Writes to `out` (cleared first), in ascending order, the ids of robots on `layer` whose
-    /// centre lies within `radius_m` (metres, world frame) of `p`, and possibly of some other
-    /// robots; callers apply their exact tests to each candidate.
+    /// Writes to `out` (cleared first), in no particular order (deterministic: the same for the
+    /// same robots), the ids of robots on `layer` whose centre lies within `radius_m` (metres,
+    /// world frame) of `p`, and possibly of some other robots; callers apply their exact tests
+    /// to each candidate. Callers must not depend on the order (the resolver's unions and
+    /// all-tests do not).
     fn candidates(&self, layer: Locomotion, p: Vec2, radius_m: f32, out: &mut Vec<usize>);
 }
 
 /// The brute-force [`NeighbourQuery`] of the all-pairs loops: every id below `.0` (all
-/// robots, any layer), in ascending order. The reference the index is tested against.
+/// robots, any layer), in ascending order (the order of the all-pairs scans). The reference
+/// the index is tested against.
 #[derive(Debug, Clone, Copy)]
 pub struct AllRobots(pub usize);
 
@@ -228,8 +232,8 @@ pub struct NeighbourIndex {
 
 impl NeighbourIndex {
     /// An empty index for `s`'s arena and kinds: each layer's cell side is the larger of its
-    /// [`interaction_distance_m`] and `sqrt(area / (2 n))` for the layer's `n` robots (at most
-    /// about two cells per robot: a small team needs few cells, and a rebuild costs
+    /// [`interaction_distance_m`] and `sqrt(area / (8 n))` for the layer's `n` robots (at most
+    /// about eight cells per robot: a small team needs few cells, and a rebuild costs
     /// `O(n + cells)`), and at least 1 m.
     pub fn new(s: &Scenario) -> Self {
         let (w, h) = (s.arena.width_m.get(), s.arena.height_m.get());
@@ -240,7 +244,7 @@ impl NeighbourIndex {
                 .filter(|r| s.kinds[r.kind].locomotion == layer)
                 .count()
                 .max(1);
-            let sparse = (w * h / (2.0 * n as f64)).sqrt();
+            let sparse = (w * h / (8.0 * n as f64)).sqrt();
             let near = interaction_distance_m(s, layer).unwrap_or(1.0);
             near.max(sparse).max(1.0) as f32
         };
@@ -289,7 +293,6 @@ impl NeighbourQuery for NeighbourIndex {
         out.clear();
         self.grid(layer)
             .for_each_candidate(p, radius_m, |id, _| out.push(id));
-        out.sort_unstable();
     }
 }
 
@@ -357,7 +360,7 @@ mod tests {
         }
 
         /// The index's candidates of a layer include every robot of that layer within the
-        /// radius, ascending, and no robot of the other layer.
+        /// radius, each once, and no robot of the other layer.
         #[test]
         fn index_candidates_cover_the_layer(
             robots in prop::collection::vec((point(), any::<bool>()), 0..80),
@@ -370,7 +373,10 @@ mod tests {
             let mut out = Vec::new();
             for &(p, r, g) in &queries {
                 index.candidates(layer(g), p, r, &mut out);
-                prop_assert!(out.windows(2).all(|w| w[0] < w[1]));
+                let mut sorted = out.clone();
+                sorted.sort_unstable();
+                sorted.dedup();
+                prop_assert_eq!(sorted.len(), out.len(), "no id twice");
                 for (id, &(q, qg)) in robots.iter().enumerate() {
                     let near = (q - p).length_squared() <= r * r;
                     prop_assert!(!(near && qg == g) || out.contains(&id), "missed {}", id);
@@ -389,10 +395,10 @@ mod tests {
         // Aerial: 2 * 0.3 + 0.2 + 2 * (5/3) * 1 = 4.133 m < sensing 18 m.
         let a = interaction_distance_m(s, Locomotion::Aerial).unwrap();
         assert!((a - (0.8 + 10.0 / 3.0)).abs() < 1e-9, "{a}");
-        // 10 ground robots on 80 m x 60 m: sqrt(4800 / 20) = 15.5 m cells (sparse team).
+        // 10 ground robots on 80 m x 60 m: sqrt(4800 / 80) = 7.75 m cells (sparse team).
         let index = NeighbourIndex::new(s);
         let cell = index.grid(Locomotion::Ground).cell_m();
-        assert!((cell - 240f32.sqrt()).abs() < 1e-4, "{cell}");
+        assert!((cell - 60f32.sqrt()).abs() < 1e-4, "{cell}");
     }
 
     #[test]

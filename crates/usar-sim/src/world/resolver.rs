@@ -115,8 +115,10 @@ pub struct Resolver {
     members: Vec<usize>,
     /// (root, id) of every list member, sorted: the lists, each in ascending id.
     lists: Vec<(usize, usize)>,
-    /// Candidates of the current neighbour query (ascending id).
+    /// Candidates of the current neighbour query (any order).
     near: Vec<usize>,
+    /// Rule 3's (follower, robot it would hit) pairs of this step.
+    follow: Vec<(usize, usize)>,
     /// Ground and aerial bounds of this step (see [`Resolver::reach`]).
     bounds: [LayerBounds; 2],
     memory: Vec<Memory>,
@@ -176,6 +178,7 @@ impl Resolver {
             members: Vec::with_capacity(n),
             lists: Vec::with_capacity(n),
             near: Vec::with_capacity(64),
+            follow: Vec::with_capacity(n),
             bounds: [LayerBounds::default(); 2],
             memory,
             decisions: vec![Decision::default(); n],
@@ -234,8 +237,8 @@ impl Resolver {
         }
     }
 
-    /// Robots of `a`'s layer that may take part in a rule with robot `a` (a superset, ascending
-    /// id) into `self.near`.
+    /// Robots of `a`'s layer that may take part in a rule with robot `a` (a superset, any
+    /// order) into `self.near`.
     fn query_near(&mut self, near: &impl NeighbourQuery, a: &ResolverInput) {
         let reach = self.reach(a);
         near.candidates(a.layer, a.pos, reach, &mut self.near);
@@ -322,8 +325,9 @@ impl Resolver {
         }
     }
 
-    /// Rule 1: unites the pairs about to collide (fresh union-find). Each robot meets its
-    /// neighbours of higher id in ascending id, as in a scan of all pairs.
+    /// Rule 1: unites the pairs about to collide (fresh union-find): each robot with its
+    /// neighbours of higher id. The components (and their roots, the smallest ids) do not
+    /// depend on the order of the unions, so this equals the scan of all pairs.
     fn link_pairs(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
         let horizon = self.params.lookahead_s.get() as f32;
@@ -331,16 +335,13 @@ impl Resolver {
             self.parent[i] = i;
             self.size[i] = 1;
         }
-        let mut cands = std::mem::take(&mut self.near);
         for i in 0..n {
             let a = &inputs[i];
             if !a.active {
                 continue;
             }
-            self.near = cands;
             self.query_near(near, a);
-            cands = std::mem::take(&mut self.near);
-            for &j in cands.iter().filter(|&&j| j > i) {
+            for &j in self.near.iter().filter(|&&j| j > i) {
                 let b = &inputs[j];
                 if !b.active || a.layer != b.layer || !Self::sensed(a, b) {
                     continue;
@@ -355,49 +356,60 @@ impl Resolver {
                 }
             }
         }
-        self.near = cands;
     }
 
-    /// Rules 2-3: heads, then followers join held robots, until nobody joins. (A union's
-    /// outcome does not depend on the order of the unions, and each round meets the
-    /// candidates in ascending id as a scan of all pairs does.)
+    /// Rules 2-3: heads, then followers join held robots, until nobody joins. Which robot
+    /// would hit which robot standing still does not change within a step, so those pairs are
+    /// found once ([`Resolver::find_followers`]) and each round only checks who is held. (Within
+    /// a round the held robots are fixed and the unions' outcome does not depend on their
+    /// order: this equals the rounds of all-pairs scans.)
     fn join_followers(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
-        let horizon = self.params.lookahead_s.get() as f32;
         self.assign_heads(inputs);
-        let mut cands = std::mem::take(&mut self.near);
+        if !self.held.contains(&true) {
+            return;
+        }
+        self.find_followers(inputs, near);
         for _ in 0..n {
-            if !self.held.contains(&true) {
-                break;
-            }
             let mut changed = false;
-            for i in 0..n {
-                let a = &inputs[i];
-                if !a.active || self.held[i] || a.intent == Vec2::ZERO {
+            for &(i, j) in &self.follow {
+                if self.held[i] || !self.held[j] {
                     continue;
                 }
-                self.near = cands;
-                self.query_near(near, a);
-                cands = std::mem::take(&mut self.near);
-                for &j in &cands {
-                    let b = &inputs[j];
-                    if !self.held[j] || a.layer != b.layer || !Self::sensed(a, b) {
-                        continue;
-                    }
-                    if find(&mut self.parent, i) == find(&mut self.parent, j) {
-                        continue;
-                    }
-                    if about_to_collide(b.pos - a.pos, -a.intent, self.clearance(a, b), horizon) {
-                        changed |= union(&mut self.parent, &mut self.size, i, j);
-                    }
+                if find(&mut self.parent, i) == find(&mut self.parent, j) {
+                    continue;
                 }
+                changed |= union(&mut self.parent, &mut self.size, i, j);
             }
             if !changed {
                 break;
             }
             self.assign_heads(inputs);
         }
-        self.near = cands;
+    }
+
+    /// Rule 3's test without "held": the pairs `(i, j)` where active robot `i`, moving with its
+    /// intent, would hit robot `j` of its layer within sensing range if `j` stood still, into
+    /// `self.follow`.
+    fn find_followers(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
+        let horizon = self.params.lookahead_s.get() as f32;
+        self.follow.clear();
+        for (i, a) in inputs.iter().enumerate() {
+            if !a.active || a.intent == Vec2::ZERO {
+                continue;
+            }
+            self.query_near(near, a);
+            for &j in &self.near {
+                let b = &inputs[j];
+                if j != i
+                    && a.layer == b.layer
+                    && Self::sensed(a, b)
+                    && about_to_collide(b.pos - a.pos, -a.intent, self.clearance(a, b), horizon)
+                {
+                    self.follow.push((i, j));
+                }
+            }
+        }
     }
 
     /// Rule 4: rotates deadlocked lists, then fixes each list's head, the members' memory and
