@@ -33,14 +33,12 @@ pub(crate) fn decide(
         }
     }
     let min_factor = scenario.mission.min_hp_factor.get();
-    let observer: Vec<bool> = (0..scenario.tasks.len())
-        .map(|t| has_observer(scenario, st, t))
-        .collect();
+    tally_tasks(scenario, st);
     for id in 0..st.robots.len() {
         let kind = scenario.kind_of(id);
         let r = &st.robots[id];
         let f = hp_factor(r.hp_pct, min_factor);
-        let blind = r.task.is_some_and(|t| !observer[t]);
+        let blind = r.task.is_some_and(|t| !st.tally.observer[t]);
         let penalty = if blind {
             scenario.mission.no_observer_speed_factor.get()
         } else {
@@ -54,6 +52,20 @@ pub(crate) fn decide(
         }
     }
     Ok(())
+}
+
+/// Fills `st.tally` for this step: each task's observer flag and unclaimed pool, `O(K n)`
+/// without allocation once the buffers exist.
+fn tally_tasks(scenario: &Scenario, st: &mut MissionState) {
+    let k = scenario.tasks.len();
+    let mut tally = std::mem::take(&mut st.tally);
+    tally.observer.clear();
+    tally
+        .observer
+        .extend((0..k).map(|t| has_observer(scenario, st, t)));
+    tally.unclaimed.clear();
+    tally.unclaimed.extend((0..k).map(|t| st.unclaimed_pool(t)));
+    st.tally = tally;
 }
 
 /// Whether task `t`'s group has an observer still in it.
@@ -132,7 +144,7 @@ fn decide_ground_on_task(
     if st.robots[id].claim.is_some() {
         return Ok(());
     }
-    let can_rescue = st.robots[id].capacity_free > 0 && st.unclaimed_pool(t) > 0;
+    let can_rescue = st.robots[id].capacity_free > 0 && st.tally.unclaimed[t] > 0;
     if can_rescue && claim_nearest(scenario, world, st, id, t)? {
         return Ok(());
     }
@@ -162,8 +174,9 @@ fn decide_ground_on_task(
 }
 
 /// Claims for robot `id` the nearest known, waiting rescuee of task `t` whose spot is free (no
-/// other ground robot's body plus the safety margin covers it) and that the planner can reach;
-/// marks unreachable ones on the way. Returns whether it claimed one.
+/// other ground robot's body plus the safety margin covers it: [`World::is_spot_clear`]) and
+/// that the planner can reach; marks unreachable ones on the way. Returns whether it claimed
+/// one (and then counts the claim in `st.tally`).
 fn claim_nearest(
     scenario: &Scenario,
     world: &mut World,
@@ -174,13 +187,7 @@ fn claim_nearest(
     let pos = world.robot(id).position;
     let reach = world.robot(id).radius_m + scenario.collision.safety_margin_m.get();
     loop {
-        let free = |p: &PointM| {
-            world
-                .robots()
-                .iter()
-                .filter(|o| o.id != id && o.locomotion == Locomotion::Ground)
-                .all(|o| (o.position - p).norm() > o.radius_m + reach)
-        };
+        let free = |p: &PointM| world.is_spot_clear(p, id, reach);
         let Some(i) = st.fields[t].nearest_known_waiting(&pos, free) else {
             return Ok(false);
         };
@@ -188,6 +195,7 @@ fn claim_nearest(
         match world.set_goal(id, Some(target)) {
             Ok(()) => {
                 st.fields[t].claim(i, id);
+                st.tally.unclaimed[t] = st.tally.unclaimed[t].saturating_sub(1);
                 let r = &mut st.robots[id];
                 r.claim = Some(i);
                 r.target_best_m = (target - pos).norm();

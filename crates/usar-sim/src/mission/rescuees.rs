@@ -118,7 +118,8 @@ impl RescueeField {
     }
 
     /// The known, waiting rescuee nearest to `from` (ties: lowest index) for which `free`
-    /// holds, if any (the caller excludes rescuees under other robots' bodies).
+    /// holds, if any (the caller excludes rescuees under other robots' bodies). `free` is only
+    /// asked about rescuees nearer than the best so far (the answer is the same).
     pub fn nearest_known_waiting(
         &self,
         from: &PointM,
@@ -126,10 +127,9 @@ impl RescueeField {
     ) -> Option<usize> {
         let mut best: Option<(f64, usize)> = None;
         for i in 0..self.positions.len() {
-            if self.known[i] && self.status[i] == RescueeStatus::Waiting && free(&self.positions[i])
-            {
+            if self.known[i] && self.status[i] == RescueeStatus::Waiting {
                 let d = (self.positions[i] - from).norm_squared();
-                if best.is_none_or(|(bd, _)| d < bd) {
+                if best.is_none_or(|(bd, _)| d < bd) && free(&self.positions[i]) {
                     best = Some((d, i));
                 }
             }

@@ -25,18 +25,22 @@ pub(crate) fn start_round(
     st: &mut MissionState,
     method: &dyn GroupingMethod,
 ) -> Result<(), MissionError> {
+    // Counted first: no allocation on the steps where no round starts.
+    let at_start = st
+        .robots
+        .iter()
+        .filter(|r| r.phase == Phase::AtStart)
+        .count();
+    let everyone_back = at_start == st.robots.len();
+    if at_start == 0 || (scenario.mission.round_start == RoundStart::AllBack && !everyone_back) {
+        return Ok(());
+    }
     let available: Vec<usize> = st
         .robots
         .iter()
         .filter(|r| r.phase == Phase::AtStart)
         .map(|r| r.id)
         .collect();
-    let everyone_back = available.len() == st.robots.len();
-    if available.is_empty()
-        || (scenario.mission.round_start == RoundStart::AllBack && !everyone_back)
-    {
-        return Ok(());
-    }
     let groups = group_available(scenario, method, &st.robots, &available)?;
     for field in &mut st.fields {
         field.forget();

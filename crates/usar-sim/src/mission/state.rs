@@ -26,6 +26,18 @@ pub struct MissionState {
     pub search_started_s: Vec<Option<f64>>,
     /// The metrics being recorded, rounds included.
     pub recorder: Recorder,
+    /// Per-task figures of the decision system, recomputed each step in reused buffers.
+    pub(crate) tally: TaskTally,
+}
+
+/// Per-task figures the decision system computes once per step instead of once per robot
+/// (buffers reused: no allocation per step).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct TaskTally {
+    /// Whether each task's group has an observer still in it.
+    pub(crate) observer: Vec<bool>,
+    /// Each task's [`MissionState::unclaimed_pool`], kept up to date as robots claim.
+    pub(crate) unclaimed: Vec<u32>,
 }
 
 impl MissionState {
@@ -72,6 +84,7 @@ impl MissionState {
             round_open: false,
             search_started_s: vec![None; scenario.tasks.len()],
             recorder: Recorder::new(scenario),
+            tally: TaskTally::default(),
         }
     }
 

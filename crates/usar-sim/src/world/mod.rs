@@ -3,6 +3,8 @@
 //! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
+//! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
+//!   query.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
@@ -21,6 +23,7 @@ pub mod bodies;
 mod error;
 mod nav;
 pub mod navigation;
+pub mod neighbours;
 mod path_following;
 mod planning;
 pub mod radiation;

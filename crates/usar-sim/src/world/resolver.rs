@@ -31,6 +31,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::navigation::ClearanceGrid;
+use super::neighbours::NeighbourQuery;
 use crate::scenario::{CollisionParams, Locomotion};
 
 /// Progress (decrease of the remaining path length below its best value since the stall timer
@@ -83,6 +84,18 @@ pub struct Decision {
     pub deadlock_resolved: bool,
 }
 
+/// Relative and absolute slack (dimensionless, metres) added to a robot's query radius so that
+/// `f32` rounding in the exact tests never puts a pair beyond the radius it was searched in.
+const REACH_SLACK: f32 = 1e-4;
+
+/// The largest sensing range, body radius and intended speed of one layer's robots this step.
+#[derive(Debug, Clone, Copy, Default)]
+struct LayerBounds {
+    sensing: f32,
+    radius: f32,
+    speed: f32,
+}
+
 #[derive(Debug, Clone, Copy, Default)]
 struct Memory {
     best: f32,
@@ -100,6 +113,14 @@ pub struct Resolver {
     size: Vec<usize>,
     held: Vec<bool>,
     members: Vec<usize>,
+    /// (root, id) of every list member, sorted: the lists, each in ascending id.
+    lists: Vec<(usize, usize)>,
+    /// Candidates of the current neighbour query (any order).
+    near: Vec<usize>,
+    /// Rule 3's (follower, robot it would hit) pairs of this step.
+    follow: Vec<(usize, usize)>,
+    /// Ground and aerial bounds of this step (see [`Resolver::reach`]).
+    bounds: [LayerBounds; 2],
     memory: Vec<Memory>,
     decisions: Vec<Decision>,
     deadlocked_lists: u64,
@@ -115,6 +136,14 @@ pub fn about_to_collide(r: Vec2, v: Vec2, clear: f32, horizon: f32) -> bool {
     }
     let t = (-rv / v.length_squared()).min(horizon);
     (r + v * t).length_squared() < clear * clear
+}
+
+/// Index of a layer in per-layer arrays.
+fn layer_slot(layer: Locomotion) -> usize {
+    match layer {
+        Locomotion::Ground => 0,
+        Locomotion::Aerial => 1,
+    }
 }
 
 fn find(parent: &mut [usize], mut i: usize) -> usize {
@@ -147,6 +176,10 @@ impl Resolver {
             size: vec![1; n],
             held: vec![false; n],
             members: Vec::with_capacity(n),
+            lists: Vec::with_capacity(n),
+            near: Vec::with_capacity(64),
+            follow: Vec::with_capacity(n),
+            bounds: [LayerBounds::default(); 2],
             memory,
             decisions: vec![Decision::default(); n],
             deadlocked_lists: 0,
@@ -178,16 +211,70 @@ impl Resolver {
         a.radius + b.radius + self.params.safety_margin_m.get() as f32
     }
 
-    /// Head of the list rooted at `root`: collects its members (ascending id), sorts them by
-    /// (key, id) and picks `sorted[rotation mod len]`. Returns the rotation used.
-    fn list_members(&mut self, inputs: &[ResolverInput], root: usize) -> u32 {
+    /// The radius around robot `a` beyond which no robot of its layer can take part in one of
+    /// the rules with it this step, metres: `min(S, r_a + R + m + (|v_a| + V) h)` with `S` the
+    /// larger of its and the layer's largest sensing range, `R` and `V` the layer's largest
+    /// body radius and intended speed this step, `m` the margin and `h` the look-ahead (two
+    /// discs closer than `c` within `h` were at most `c + |v| h` apart), plus [`REACH_SLACK`].
+    fn reach(&self, a: &ResolverInput) -> f32 {
+        let b = self.bounds[layer_slot(a.layer)];
+        let sensed = a.sensing.max(b.sensing);
+        let closing = a.radius
+            + b.radius
+            + self.params.safety_margin_m.get() as f32
+            + (a.intent.length() + b.speed) * self.params.lookahead_s.get() as f32;
+        sensed.min(closing) * (1.0 + REACH_SLACK) + REACH_SLACK
+    }
+
+    /// The layers' largest sensing range, body radius and intended speed among `inputs`.
+    fn measure_bounds(&mut self, inputs: &[ResolverInput]) {
+        self.bounds = [LayerBounds::default(); 2];
+        for a in inputs {
+            let b = &mut self.bounds[layer_slot(a.layer)];
+            b.sensing = b.sensing.max(a.sensing);
+            b.radius = b.radius.max(a.radius);
+            b.speed = b.speed.max(a.intent.length());
+        }
+    }
+
+    /// Robots of `a`'s layer that may take part in a rule with robot `a` (a superset, any
+    /// order) into `self.near`.
+    fn query_near(&mut self, near: &impl NeighbourQuery, a: &ResolverInput) {
+        let reach = self.reach(a);
+        near.candidates(a.layer, a.pos, reach, &mut self.near);
+    }
+
+    /// Sorts the members of every list (component of two or more) into `self.lists` as
+    /// (root, id), lists by root and members by ascending id. `O(n log n)` at worst.
+    fn collect_lists(&mut self, n: usize) {
+        self.lists.clear();
+        for i in 0..n {
+            let root = find(&mut self.parent, i);
+            if self.size[root] >= 2 {
+                self.lists.push((root, i));
+            }
+        }
+        self.lists.sort_unstable();
+    }
+
+    /// The end of the list starting at `self.lists[start]`.
+    fn list_end(&self, start: usize) -> usize {
+        let root = self.lists[start].0;
+        self.lists[start..]
+            .iter()
+            .position(|&(r, _)| r != root)
+            .map_or(self.lists.len(), |k| start + k)
+    }
+
+    /// Loads the list `self.lists[start..end]` into `self.members` sorted by (key, id), and
+    /// returns its rotation (the largest of its members'). The head is
+    /// `members[rotation mod len]`.
+    fn load_list(&mut self, inputs: &[ResolverInput], start: usize, end: usize) -> u32 {
         self.members.clear();
         let mut rotation = 0;
-        for i in 0..inputs.len() {
-            if find(&mut self.parent, i) == root {
-                self.members.push(i);
-                rotation = rotation.max(self.memory[i].rotation);
-            }
+        for &(_, i) in &self.lists[start..end] {
+            self.members.push(i);
+            rotation = rotation.max(self.memory[i].rotation);
         }
         self.members
             .sort_unstable_by(|&a, &b| inputs[a].key.total_cmp(&inputs[b].key).then(a.cmp(&b)));
@@ -196,27 +283,31 @@ impl Resolver {
 
     /// Marks every list member held except its head (no side effects on memory).
     fn assign_heads(&mut self, inputs: &[ResolverInput]) {
-        let n = inputs.len();
         self.held.iter_mut().for_each(|h| *h = false);
-        for i in 0..n {
-            let root = find(&mut self.parent, i);
-            if root != i || self.size[root] < 2 {
-                continue;
-            }
-            let rotation = self.list_members(inputs, root);
+        self.collect_lists(inputs.len());
+        let mut start = 0;
+        while start < self.lists.len() {
+            let end = self.list_end(start);
+            let rotation = self.load_list(inputs, start, end);
             let head = self.members[rotation as usize % self.members.len()];
             for &m in &self.members {
                 self.held[m] = m != head;
             }
+            start = end;
         }
     }
 
     /// Builds the collision lists, detects deadlocks and decides who is held (rules 1-4 of the
-    /// module docs). `inputs` is indexed by robot id; `dt` is the step, seconds.
-    pub fn resolve(&mut self, inputs: &[ResolverInput], dt: f64) {
+    /// module docs). `inputs` is indexed by robot id; `near` answers neighbour queries over
+    /// the robots at `inputs[..].pos` (the world's [`super::neighbours::NeighbourIndex`], or
+    /// [`super::neighbours::AllRobots`] for the all-pairs scan: same result); `dt` is the step,
+    /// seconds. `O(n k)` for `k` robots within a robot's interaction distance, plus the
+    /// follower rounds (rule 3).
+    pub fn resolve(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery, dt: f64) {
+        self.measure_bounds(inputs);
         self.track_progress(inputs, dt);
-        self.link_pairs(inputs);
-        self.join_followers(inputs);
+        self.link_pairs(inputs, near);
+        self.join_followers(inputs, near);
         self.decide(inputs);
         self.forget_unlisted(inputs);
     }
@@ -234,8 +325,10 @@ impl Resolver {
         }
     }
 
-    /// Rule 1: unites the pairs about to collide (fresh union-find).
-    fn link_pairs(&mut self, inputs: &[ResolverInput]) {
+    /// Rule 1: unites the pairs about to collide (fresh union-find): each robot with its
+    /// neighbours of higher id. The components (and their roots, the smallest ids) do not
+    /// depend on the order of the unions, so this equals the scan of all pairs.
+    fn link_pairs(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
         let horizon = self.params.lookahead_s.get() as f32;
         for i in 0..n {
@@ -247,7 +340,9 @@ impl Resolver {
             if !a.active {
                 continue;
             }
-            for (j, b) in inputs.iter().enumerate().skip(i + 1) {
+            self.query_near(near, a);
+            for &j in self.near.iter().filter(|&&j| j > i) {
+                let b = &inputs[j];
                 if !b.active || a.layer != b.layer || !Self::sensed(a, b) {
                     continue;
                 }
@@ -263,34 +358,57 @@ impl Resolver {
         }
     }
 
-    /// Rules 2-3: heads, then followers join held robots, until nobody joins.
-    fn join_followers(&mut self, inputs: &[ResolverInput]) {
+    /// Rules 2-3: heads, then followers join held robots, until nobody joins. Which robot
+    /// would hit which robot standing still does not change within a step, so those pairs are
+    /// found once ([`Resolver::find_followers`]) and each round only checks who is held. (Within
+    /// a round the held robots are fixed and the unions' outcome does not depend on their
+    /// order: this equals the rounds of all-pairs scans.)
+    fn join_followers(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
-        let horizon = self.params.lookahead_s.get() as f32;
         self.assign_heads(inputs);
+        if !self.held.contains(&true) {
+            return;
+        }
+        self.find_followers(inputs, near);
         for _ in 0..n {
             let mut changed = false;
-            for i in 0..n {
-                let a = &inputs[i];
-                if !a.active || self.held[i] || a.intent == Vec2::ZERO {
+            for &(i, j) in &self.follow {
+                if self.held[i] || !self.held[j] {
                     continue;
                 }
-                for (j, b) in inputs.iter().enumerate() {
-                    if !self.held[j] || a.layer != b.layer || !Self::sensed(a, b) {
-                        continue;
-                    }
-                    if find(&mut self.parent, i) == find(&mut self.parent, j) {
-                        continue;
-                    }
-                    if about_to_collide(b.pos - a.pos, -a.intent, self.clearance(a, b), horizon) {
-                        changed |= union(&mut self.parent, &mut self.size, i, j);
-                    }
+                if find(&mut self.parent, i) == find(&mut self.parent, j) {
+                    continue;
                 }
+                changed |= union(&mut self.parent, &mut self.size, i, j);
             }
             if !changed {
                 break;
             }
             self.assign_heads(inputs);
+        }
+    }
+
+    /// Rule 3's test without "held": the pairs `(i, j)` where active robot `i`, moving with its
+    /// intent, would hit robot `j` of its layer within sensing range if `j` stood still, into
+    /// `self.follow`.
+    fn find_followers(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
+        let horizon = self.params.lookahead_s.get() as f32;
+        self.follow.clear();
+        for (i, a) in inputs.iter().enumerate() {
+            if !a.active || a.intent == Vec2::ZERO {
+                continue;
+            }
+            self.query_near(near, a);
+            for &j in &self.near {
+                let b = &inputs[j];
+                if j != i
+                    && a.layer == b.layer
+                    && Self::sensed(a, b)
+                    && about_to_collide(b.pos - a.pos, -a.intent, self.clearance(a, b), horizon)
+                {
+                    self.follow.push((i, j));
+                }
+            }
         }
     }
 
@@ -304,12 +422,12 @@ impl Resolver {
         }
         self.deadlocked_lists = 0;
         self.largest_list = 0;
-        for i in 0..inputs.len() {
-            let root = find(&mut self.parent, i);
-            if root != i || self.size[root] < 2 {
-                continue;
-            }
-            let mut rotation = self.list_members(inputs, root);
+        self.collect_lists(inputs.len());
+        let mut start = 0;
+        while start < self.lists.len() {
+            let end = self.list_end(start);
+            let mut rotation = self.load_list(inputs, start, end);
+            start = end;
             let deadlocked = self
                 .members
                 .iter()
@@ -356,11 +474,14 @@ impl Resolver {
     /// Rule 5: the velocity robot `i` (not held) commands, its intent deflected around robots
     /// standing still; `None` when every candidate heading is blocked. `static_inflation` is
     /// the body radius plus [`STEER_STATIC_GAP_M`] (ground robots), or `None` for aerial robots
-    /// (no static check).
+    /// (no static check). Call after [`Resolver::resolve`] with the same `inputs` and `near`
+    /// (it uses that step's held robots and bounds). The robots standing still near `i` are
+    /// looked up once, not per candidate heading.
     pub fn steer(
-        &self,
+        &mut self,
         inputs: &[ResolverInput],
         i: usize,
+        near: &impl NeighbourQuery,
         grid: &ClearanceGrid,
         static_inflation: Option<f32>,
     ) -> Option<Vec2> {
@@ -371,14 +492,18 @@ impl Resolver {
         let horizon = self.params.lookahead_s.get() as f32;
         let speed = a.intent.length();
         let here = grid.clearance_at(a.pos);
+        self.query_near(near, a);
+        let held = &self.held;
+        self.near.retain(|&j| {
+            let b = &inputs[j];
+            let still = held[j] || !b.active || b.intent == Vec2::ZERO;
+            j != i && still && b.layer == a.layer && Self::sensed(a, b)
+        });
+        let obstacles = &self.near;
         let clear_of_robots = |w: Vec2| {
-            inputs.iter().enumerate().all(|(j, b)| {
-                let still = self.held[j] || !b.active || b.intent == Vec2::ZERO;
-                j == i
-                    || !still
-                    || b.layer != a.layer
-                    || !Self::sensed(a, b)
-                    || !about_to_collide(b.pos - a.pos, -w, self.clearance(a, b), horizon)
+            obstacles.iter().all(|&j| {
+                let b = &inputs[j];
+                !about_to_collide(b.pos - a.pos, -w, self.clearance(a, b), horizon)
             })
         };
         let clear_of_statics = |w: Vec2| {
@@ -421,6 +546,31 @@ mod tests {
     use super::*;
     use crate::scenario::{Arena, NonNegative, Positive};
     use crate::world::bodies::{StaticObstacle, StaticShape};
+    use crate::world::neighbours::{AllRobots, NeighbourIndex};
+    use proptest::strategy::Strategy;
+
+    /// The neighbour index (3 m cells over the 10 m x 10 m test field) of `inputs`.
+    fn index(inputs: &[ResolverInput]) -> NeighbourIndex {
+        let mut ix = NeighbourIndex::with_cells(10.0, 10.0, 3.0, 3.0);
+        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+        ix
+    }
+
+    /// One resolver step over `inputs` with their neighbour index.
+    fn resolve(r: &mut Resolver, inputs: &[ResolverInput], dt: f64) {
+        r.resolve(inputs, &index(inputs), dt);
+    }
+
+    /// Steers robot `i` after a [`resolve`] of the same inputs.
+    fn steer(
+        r: &mut Resolver,
+        inputs: &[ResolverInput],
+        i: usize,
+        g: &ClearanceGrid,
+        infl: Option<f32>,
+    ) -> Option<Vec2> {
+        r.steer(inputs, i, &index(inputs), g, infl)
+    }
 
     /// Look-ahead 1 s, margin 0.2 m, deadlock after 2 s.
     fn params() -> CollisionParams {
@@ -479,17 +629,17 @@ mod tests {
     #[test]
     fn head_on_pair_forms_one_list_with_the_lower_key_first() {
         let mut r = Resolver::new(params(), 2);
-        r.resolve(&head_on(2.0, 1.0), 0.02);
+        resolve(&mut r, &head_on(2.0, 1.0), 0.02);
         assert!(r.decisions().iter().all(|d| d.in_list && d.joined));
         assert_eq!(r.largest_list(), 2);
         // Robot 1 has the lower key: it moves, robot 0 is held.
         assert_eq!(held(&r), [true, false]);
         let mut r = Resolver::new(params(), 2);
-        r.resolve(&head_on(1.0, 2.0), 0.02);
+        resolve(&mut r, &head_on(1.0, 2.0), 0.02);
         assert_eq!(held(&r), [false, true]);
         // Equal keys: the lower id goes first.
         let mut r = Resolver::new(params(), 2);
-        r.resolve(&head_on(0.0, 0.0), 0.02);
+        resolve(&mut r, &head_on(0.0, 0.0), 0.02);
         assert_eq!(held(&r), [false, true]);
         assert_eq!(r.deadlocked_lists(), 0);
     }
@@ -498,7 +648,8 @@ mod tests {
     fn robots_that_part_or_fly_form_no_list() {
         let mut r = Resolver::new(params(), 2);
         // Receding: robot 1 drives away faster than robot 0 follows.
-        r.resolve(
+        resolve(
+            &mut r,
             &[
                 robot(0.0, 0.0, 1.0, 0.0, 0.0),
                 robot(1.5, 0.0, 2.0, 0.0, 0.0),
@@ -509,7 +660,7 @@ mod tests {
         // Head-on, but on different layers.
         let mut inputs = head_on(0.0, 1.0);
         inputs[1].layer = Locomotion::Aerial;
-        r.resolve(&inputs, 0.02);
+        resolve(&mut r, &inputs, 0.02);
         assert!(r.decisions().iter().all(|d| !d.in_list));
         assert_eq!(r.largest_list(), 0);
     }
@@ -524,7 +675,7 @@ mod tests {
             robot(3.0, 0.0, -1.0, 0.0, 2.0),
         ];
         let mut r = Resolver::new(params(), 3);
-        r.resolve(&inputs, 0.02);
+        resolve(&mut r, &inputs, 0.02);
         assert!(r.decisions().iter().all(|d| d.in_list));
         assert_eq!(r.largest_list(), 3);
         assert_eq!(held(&r), [false, true, true]);
@@ -536,28 +687,28 @@ mod tests {
         let inputs = head_on(2.0, 1.0);
         let mut r = Resolver::new(params(), 2);
         for step in 1..=8 {
-            r.resolve(&inputs, 0.25);
+            resolve(&mut r, &inputs, 0.25);
             assert_eq!(held(&r), [true, false], "step {step}");
             assert_eq!(r.deadlocked_lists(), 0, "step {step}");
         }
-        r.resolve(&inputs, 0.25);
+        resolve(&mut r, &inputs, 0.25);
         assert_eq!(r.deadlocked_lists(), 1);
         assert!(r.decisions().iter().all(|d| d.deadlock_detected));
         // Algorithm 5's swap: the next robot in priority order moves.
         assert_eq!(held(&r), [false, true]);
         // The stall timers restarted: the next rotation comes 8 steps later.
         for step in 10..=16 {
-            r.resolve(&inputs, 0.25);
+            resolve(&mut r, &inputs, 0.25);
             assert_eq!(held(&r), [false, true], "step {step}");
             assert_eq!(r.deadlocked_lists(), 0, "step {step}");
         }
-        r.resolve(&inputs, 0.25);
+        resolve(&mut r, &inputs, 0.25);
         assert_eq!(r.deadlocked_lists(), 1);
         assert_eq!(held(&r), [true, false]);
         // Leaving the rotated list resolves the deadlock for both.
         let mut parted = inputs.clone();
         parted[1].intent = Vec2::new(2.0, 0.0);
-        r.resolve(&parted, 0.25);
+        resolve(&mut r, &parted, 0.25);
         assert!(
             r.decisions()
                 .iter()
@@ -572,7 +723,7 @@ mod tests {
         for step in 0..40 {
             // The head gains 0.1 m per step (more than the 0.05 m tolerance).
             inputs[1].remaining = 10.0 - 0.1 * step as f32;
-            r.resolve(&inputs, 0.25);
+            resolve(&mut r, &inputs, 0.25);
             assert_eq!(r.deadlocked_lists(), 0, "step {step}");
             assert_eq!(held(&r), [true, false], "step {step}");
         }
@@ -584,15 +735,16 @@ mod tests {
         // asin(1 / 1.2) = 56.4 degrees: the first clear candidate is 60 degrees to the right.
         let inputs = [robot(5.0, 5.0, 1.0, 0.0, 0.0), idle(6.2, 5.0)];
         let mut r = Resolver::new(params(), 2);
-        r.resolve(&inputs, 0.02);
+        resolve(&mut r, &inputs, 0.02);
         assert!(r.decisions().iter().all(|d| !d.in_list));
         let g = grid(&[]);
-        let w = r.steer(&inputs, 0, &g, None).expect("a clear heading");
+        let w = steer(&mut r, &inputs, 0, &g, None).expect("a clear heading");
         let right = Vec2::new(0.5, -(3f32.sqrt()) / 2.0);
         assert!((w - right).length() < 1e-5, "{w:?}");
         // Nothing in the way: the intent is kept.
         let free = [robot(5.0, 5.0, 1.0, 0.0, 0.0), idle(5.0, 8.0)];
-        assert_eq!(r.steer(&free, 0, &g, None), Some(Vec2::new(1.0, 0.0)));
+        resolve(&mut r, &free, 0.02);
+        assert_eq!(steer(&mut r, &free, 0, &g, None), Some(Vec2::new(1.0, 0.0)));
     }
 
     #[test]
@@ -606,10 +758,10 @@ mod tests {
         };
         let g = grid(&[block]);
         let inputs = [robot(5.0, 4.95, 1.0, 0.0, 0.0), idle(6.2, 4.95)];
-        let r = Resolver::new(params(), 2);
-        let w = r
-            .steer(&inputs, 0, &g, Some(0.4 + STEER_STATIC_GAP_M))
-            .expect("a clear heading");
+        let mut r = Resolver::new(params(), 2);
+        resolve(&mut r, &inputs, 0.02);
+        let w =
+            steer(&mut r, &inputs, 0, &g, Some(0.4 + STEER_STATIC_GAP_M)).expect("a clear heading");
         let left = Vec2::new(0.5, 3f32.sqrt() / 2.0);
         assert!((w - left).length() < 1e-5, "{w:?}");
         // Standing robots ahead, left and right: every heading up to 120 degrees collides.
@@ -619,7 +771,92 @@ mod tests {
             idle(5.0, 6.0),
             idle(5.0, 4.0),
         ];
-        let r = Resolver::new(params(), 4);
-        assert_eq!(r.steer(&boxed, 0, &grid(&[]), None), None);
+        let mut r = Resolver::new(params(), 4);
+        resolve(&mut r, &boxed, 0.02);
+        assert_eq!(steer(&mut r, &boxed, 0, &grid(&[]), None), None);
+    }
+
+    /// A random robot in and around a 30 m x 30 m field: radius 0.2-0.5 m, sensing 1-6 m,
+    /// speed up to 3 m/s, a third aerial, four in five active, keys with ties.
+    fn random_robot() -> impl Strategy<Value = ResolverInput> {
+        (
+            (-3.0f32..33.0, -3.0f32..33.0),
+            (-3.0f32..3.0, -3.0f32..3.0),
+            (0.2f32..0.5, 1.0f32..6.0),
+            (0u8..3, 0u8..5, 0u8..4),
+        )
+            .prop_map(
+                |((x, y), (vx, vy), (radius, sensing), (layer, active, key))| ResolverInput {
+                    pos: Vec2::new(x, y),
+                    intent: if active == 0 {
+                        Vec2::ZERO
+                    } else {
+                        Vec2::new(vx, vy)
+                    },
+                    radius,
+                    sensing,
+                    layer: if layer == 0 {
+                        Locomotion::Aerial
+                    } else {
+                        Locomotion::Ground
+                    },
+                    active: active != 0,
+                    key: f64::from(key),
+                    remaining: 10.0,
+                },
+            )
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// On random crowds the resolver with the neighbour index decides exactly as with the
+        /// all-pairs scan ([`AllRobots`]): the same lists, heads, deadlocks and steered
+        /// velocities, step after step (robots drift by their commands between steps).
+        #[test]
+        fn the_index_decides_as_the_all_pairs_scan(
+            crowd in proptest::collection::vec(random_robot(), 2..150),
+        ) {
+            let n = crowd.len();
+            let mut inputs = crowd;
+            let mut with_index = Resolver::new(params(), n);
+            let mut all_pairs = Resolver::new(params(), n);
+            let g = ClearanceGrid::build(
+                &Arena {
+                    width_m: Positive::new(30.0).unwrap(),
+                    height_m: Positive::new(30.0).unwrap(),
+                    wall_thickness_m: Positive::new(0.5).unwrap(),
+                },
+                &[],
+                0.5,
+                2.0,
+            );
+            for step in 0..12 {
+                let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                with_index.resolve(&inputs, &ix, 0.25);
+                all_pairs.resolve(&inputs, &AllRobots(n), 0.25);
+                proptest::prop_assert_eq!(with_index.decisions(), all_pairs.decisions());
+                proptest::prop_assert_eq!(with_index.largest_list(), all_pairs.largest_list());
+                proptest::prop_assert_eq!(
+                    with_index.deadlocked_lists(),
+                    all_pairs.deadlocked_lists()
+                );
+                let mut commands = vec![Vec2::ZERO; n];
+                for i in 0..n {
+                    if with_index.decisions()[i].held {
+                        continue;
+                    }
+                    let infl = (inputs[i].layer == Locomotion::Ground).then_some(0.45);
+                    let a = with_index.steer(&inputs, i, &ix, &g, infl);
+                    let b = all_pairs.steer(&inputs, i, &AllRobots(n), &g, infl);
+                    proptest::prop_assert_eq!(a, b, "step {} robot {}", step, i);
+                    commands[i] = a.unwrap_or(Vec2::ZERO);
+                }
+                for (a, v) in inputs.iter_mut().zip(&commands) {
+                    a.pos += *v * 0.25;
+                }
+            }
+        }
     }
 }

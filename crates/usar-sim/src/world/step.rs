@@ -23,7 +23,8 @@ impl World {
     ///    standing still (see [`crate::world::resolver`]); otherwise the intents are commanded
     ///    as they are;
     /// 3. the commanded velocities are set on the bodies and Rapier steps once;
-    /// 4. positions, velocities, flags and counters are read back.
+    /// 4. positions, velocities, flags and counters are read back, and the neighbour index is
+    ///    rebuilt (the next step's resolver and the mission's queries use it).
     ///
     /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
     pub fn step(&mut self) {
@@ -33,7 +34,8 @@ impl World {
             self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
         if self.collision.enabled {
-            self.resolver.resolve(&self.inputs, self.dt);
+            self.resolver
+                .resolve(&self.inputs, &self.neighbours, self.dt);
         }
         for id in 0..n {
             let command = self.command(id);
@@ -48,6 +50,7 @@ impl World {
         for id in 0..n {
             self.read_back(id);
         }
+        self.reindex();
     }
 
     /// The velocity robot `id` commands this step: its intent, or with the resolver on, zero
@@ -79,7 +82,10 @@ impl World {
             } else {
                 let infl = (input.layer == Locomotion::Ground)
                     .then_some(input.radius + STEER_STATIC_GAP_M);
-                match self.resolver.steer(&self.inputs, id, &self.grid, infl) {
+                match self
+                    .resolver
+                    .steer(&self.inputs, id, &self.neighbours, &self.grid, infl)
+                {
                     Some(v) => v,
                     None => {
                         motion = Motion::Blocked;

@@ -11,11 +11,14 @@ use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav::Nav;
 use super::navigation::{ClearanceGrid, PathPlanner};
+use super::neighbours::NeighbourIndex;
 use super::planning::PlanInto;
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
 use super::robot::RobotState;
-use crate::scenario::{CollisionParams, NavigationParams, PointM, RadiationZone, Scenario};
+use crate::scenario::{
+    CollisionParams, Locomotion, NavigationParams, PointM, RadiationZone, Scenario,
+};
 use crate::scenario::{in_field, in_span};
 
 /// World-level totals.
@@ -40,6 +43,9 @@ pub struct World {
     pub(super) grid: ClearanceGrid,
     pub(super) planner: PathPlanner,
     pub(super) resolver: Resolver,
+    /// Robot centres by layer (`nav[..].pos`), rebuilt after every step and teleport: every
+    /// robot-robot query goes through it.
+    pub(super) neighbours: NeighbourIndex,
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
     pub(super) inputs: Vec<ResolverInput>,
@@ -51,6 +57,8 @@ pub struct World {
     pub(super) collision: CollisionParams,
     pub(super) navigation: NavigationParams,
     pub(super) stats: WorldStats,
+    /// Largest body radius of the ground and the aerial robots, metres (0 without robots).
+    max_radius_m: [f64; 2],
     /// Plans that may be discarded (goal checks, re-plans) are written here.
     pub(super) scratch: Vec<Vec2>,
 }
@@ -84,11 +92,14 @@ impl World {
             .zip(&robots)
             .map(|(n, r)| n.resolver_input(r))
             .collect();
+        let mut neighbours = NeighbourIndex::new(s);
+        neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
         Self {
             scene,
             grid,
             planner: PathPlanner::new(),
             resolver: Resolver::new(s.collision, nav.len()),
+            neighbours,
             nav,
             robots,
             inputs,
@@ -102,6 +113,13 @@ impl World {
             collision: s.collision,
             navigation: s.navigation,
             stats: WorldStats::default(),
+            max_radius_m: [Locomotion::Ground, Locomotion::Aerial].map(|layer| {
+                s.kinds
+                    .iter()
+                    .filter(|k| k.locomotion == layer)
+                    .map(|k| f64::from(k.body_radius_m as f32))
+                    .fold(0.0, f64::max)
+            }),
             scratch: Vec::with_capacity(64),
         }
     }
@@ -244,7 +262,32 @@ impl World {
         let state = &mut self.robots[id];
         state.position = to_point(p);
         state.velocity = Vector2::zeros();
+        self.reindex();
         Ok(())
+    }
+
+    /// Rebuilds the neighbour index from the robots' current positions, `O(n + cells)`.
+    pub(super) fn reindex(&mut self) {
+        self.neighbours
+            .rebuild(self.nav.iter().map(|n| (n.layer, n.pos)));
+    }
+
+    /// Whether the spot `p` is clear of ground robots: no ground robot other than `except` has
+    /// its centre within its own body radius plus `gap_m` (metres, `>= 0`) of `p`, i.e. a robot
+    /// of radius `gap_m` could stand there untouched (the mission's claim rule). Uses the
+    /// neighbour index: `O(robots nearby)`.
+    pub fn is_spot_clear(&self, p: &PointM, except: usize, gap_m: f64) -> bool {
+        let radius = self.max_radius_m[0] + gap_m.max(0.0);
+        let mut clear = true;
+        self.neighbours.grid(Locomotion::Ground).for_each_candidate(
+            to_vec2(p),
+            radius as f32,
+            |j, _| {
+                let o = &self.robots[j];
+                clear &= j == except || (o.position - p).norm() > o.radius_m + gap_m;
+            },
+        );
+        clear
     }
 
     /// Simulated time, seconds (`steps * dt`).
@@ -317,15 +360,20 @@ impl World {
     pub fn max_penetration_m(&self) -> f64 {
         let mut worst = 0.0f64;
         for (i, a) in self.nav.iter().enumerate() {
-            let ground = a.layer == crate::scenario::Locomotion::Ground;
+            let ground = a.layer == Locomotion::Ground;
             let d = nearest(&self.scene.statics, a.pos, ground);
             worst = worst.max(f64::from(a.radius) - d);
-            for b in &self.nav[i + 1..] {
-                if a.layer == b.layer {
-                    let d = (b.pos - a.pos).length();
-                    worst = worst.max(f64::from(a.radius + b.radius - d));
-                }
-            }
+            let slot = usize::from(!ground);
+            let reach = a.radius + self.max_radius_m[slot] as f32;
+            self.neighbours
+                .grid(a.layer)
+                .for_each_candidate(a.pos, reach, |j, _| {
+                    let b = &self.nav[j];
+                    if j > i {
+                        let d = (b.pos - a.pos).length();
+                        worst = worst.max(f64::from(a.radius + b.radius - d));
+                    }
+                });
         }
         worst
     }

@@ -1,0 +1,270 @@
+//! Scaling bench (issue 10): for teams of 12, 100, 300 and 1,000 robots, world steps per second
+//! with all logic (`Simulation::step`: rounds, decisions, navigation, resolver, Rapier,
+//! accounting), the same bodies stepped by bare Rapier (same colliders, integration parameters
+//! and static obstacles, each robot driven at its top speed towards its first goal, no logic),
+//! their ratio, simulated seconds per wall second with all logic, and the process's peak
+//! resident memory (`VmHWM` of `/proc/self/status`, after each team; teams run smallest first).
+//!
+//! A team of `n` is [`BASE`] with its kinds' counts (and per-task quotas) scaled to `n`; 12
+//! robots is `scenarios/paper.ron` itself. Prints one table in one run. Rates are per CPU
+//! second of the stepping thread (`/proc/thread-self/schedstat`), so other load on a shared
+//! machine does not count.
+//!
+//! Run in release: `cargo bench -p usar-sim --bench scale` (about a minute), or
+//! `cargo bench -p usar-sim --bench scale -- --quick` (teams of 12 and 100, a few steps: a
+//! smoke test). Options: `--base FILE` (the scenario to scale, default [`BASE`]),
+//! `--method NAME` (default `dis`: the grouping is not what is measured
+//! here), `--steps N` (steps per measurement, default 1,500 = 30 simulated seconds),
+//! `--budget-s S` (wall-clock cap per measurement, default 20 s).
+
+use std::time::Instant;
+
+use usar_sim::mission::Simulation;
+use usar_sim::scenario::{self, DebrisSpec, Locomotion, Scenario, ScenarioSpec, StartsSpec, XyM};
+use usar_sim::world::bodies::{PhysicsScene, to_vec2};
+
+/// The scenario whose kind counts are scaled (switch to `scenarios/swarm-1000.ron` when it is
+/// in the tree: its `Grid` start layouts follow the counts, so [`spread_starts`] is then not
+/// needed and is skipped for it).
+const BASE: &str = "scenarios/paper.ron";
+
+/// The 12-robot team.
+const PAPER: &str = "scenarios/paper.ron";
+
+fn path(rel: &str) -> String {
+    format!("{}/../../{rel}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Command-line options (after `--`).
+struct Options {
+    quick: bool,
+    base: String,
+    method: String,
+    steps: u64,
+    budget_s: f64,
+}
+
+fn options() -> Options {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let value = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1).cloned())
+    };
+    let quick = args.iter().any(|a| a == "--quick");
+    Options {
+        quick,
+        base: value("--base").unwrap_or_else(|| path(BASE)),
+        method: value("--method").unwrap_or_else(|| "dis".into()),
+        steps: value("--steps")
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(if quick { 20 } else { 1500 }),
+        budget_s: value("--budget-s")
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(if quick { 5.0 } else { 20.0 }),
+    }
+}
+
+/// Scales `counts` to sum to `n` (largest remainders; ties to the earlier kind), each >= 1.
+fn scale_counts(counts: &[usize], n: usize) -> Vec<usize> {
+    let total: usize = counts.iter().sum();
+    let exact: Vec<f64> = counts
+        .iter()
+        .map(|&c| c as f64 * n as f64 / total as f64)
+        .collect();
+    let mut out: Vec<usize> = exact.iter().map(|&x| (x.floor() as usize).max(1)).collect();
+    let mut order: Vec<usize> = (0..counts.len()).collect();
+    order.sort_by(|&a, &b| (exact[b] - exact[b].floor()).total_cmp(&(exact[a] - exact[a].floor())));
+    let mut k = 0;
+    while out.iter().sum::<usize>() < n {
+        out[order[k % order.len()]] += 1;
+        k += 1;
+    }
+    while out.iter().sum::<usize>() > n {
+        let big = (0..out.len()).max_by_key(|&i| out[i]).unwrap_or(0);
+        out[big] -= 1;
+    }
+    out
+}
+
+/// Sets every kind's count to its share of `n` robots and its quotas to the same shares of the
+/// new count; a kind's `List` of starts longer than its new count keeps its first positions.
+fn scale_team(spec: &mut ScenarioSpec, n: usize) {
+    let counts: Vec<usize> = spec.kinds.iter().map(|k| k.count).collect();
+    for (kind, count) in spec.kinds.iter_mut().zip(scale_counts(&counts, n)) {
+        let names: Vec<String> = kind.quota.0.keys().cloned().collect();
+        let shares: Vec<usize> = kind.quota.0.values().copied().collect();
+        for (name, q) in names.into_iter().zip(scale_counts(&shares, count)) {
+            kind.quota.0.insert(name, q);
+        }
+        kind.count = count;
+        if let StartsSpec::List(starts) = &mut kind.starts {
+            starts.truncate(count);
+        }
+    }
+}
+
+/// Distance from `p` to a listed debris item's bounding circle, metres (negative inside).
+fn debris_gap(d: &DebrisSpec, p: XyM) -> f64 {
+    let (c, r) = match d {
+        DebrisSpec::Circle {
+            center_m, radius_m, ..
+        } => (*center_m, radius_m.get()),
+        DebrisSpec::Rect {
+            center_m, size_m, ..
+        } => (*center_m, 0.5 * size_m[0].hypot(size_m[1])),
+    };
+    (p[0] - c[0]).hypot(p[1] - c[1]) - r
+}
+
+/// Starts for a scaled `paper.ron`: ground robots on a 1 m lattice in the bottom band (y 1.5 to
+/// 12.5 m, clear of listed debris), aerial robots on a 1 m lattice at y 22 to 25 m. Kinds take
+/// their lattice points in order.
+fn spread_starts(spec: &mut ScenarioSpec) {
+    let width = spec.arena.width_m.get();
+    let lattice = |y0: f64, y1: f64| {
+        let mut pts = Vec::new();
+        let mut y = y0;
+        while y <= y1 {
+            let mut x = 1.5;
+            while x <= width - 1.5 {
+                pts.push([x, y]);
+                x += 1.0;
+            }
+            y += 1.0;
+        }
+        pts
+    };
+    let debris = spec.debris.clone();
+    let clear = |p: &XyM| debris.iter().all(|d| debris_gap(d, *p) > 1.0);
+    let mut ground = lattice(1.5, 12.5).into_iter().filter(clear);
+    let mut aerial = lattice(22.0, 25.0).into_iter();
+    for kind in &mut spec.kinds {
+        let pts: &mut dyn Iterator<Item = XyM> = match kind.locomotion {
+            Locomotion::Ground => &mut ground,
+            Locomotion::Aerial => &mut aerial,
+        };
+        kind.starts = StartsSpec::List(pts.take(kind.count).collect());
+    }
+}
+
+/// The team of `n` robots (see the module docs): `paper.ron` for 12, else `base` scaled.
+fn team(n: usize, base: &str) -> Scenario {
+    let paper = path(PAPER);
+    let base = if n == 12 { paper.as_str() } else { base };
+    let src = std::fs::read_to_string(base).expect("base scenario reads");
+    let mut spec = scenario::parse_spec(&src, base).expect("base scenario parses");
+    let count = spec.kinds.iter().map(|k| k.count).sum::<usize>();
+    if count != n {
+        scale_team(&mut spec, n);
+        let short = spec
+            .kinds
+            .iter()
+            .any(|k| matches!(&k.starts, StartsSpec::List(l) if l.len() < k.count));
+        if base == paper || short {
+            spread_starts(&mut spec);
+        }
+    }
+    spec.validate(&format!("{base} x {n}"))
+        .unwrap_or_else(|e| panic!("team of {n}: {e}"))
+}
+
+/// Peak resident set size of this process so far, MiB (`VmHWM`; 0 where unavailable).
+fn peak_rss_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+/// CPU time of this thread so far, seconds: the first field of `/proc/thread-self/schedstat`
+/// (nanoseconds on a CPU), so other load on a shared machine does not count; wall time where
+/// that file is missing.
+fn cpu_s(wall0: Instant) -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or_else(|| wall0.elapsed().as_secs_f64(), |ns| ns * 1e-9)
+}
+
+/// Runs `step` up to `steps` times or until `budget_s` of wall time; returns (steps, CPU
+/// seconds of this thread spent).
+fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
+    let t0 = Instant::now();
+    let c0 = cpu_s(t0);
+    let mut done = 0;
+    while done < steps {
+        step();
+        done += 1;
+        if t0.elapsed().as_secs_f64() > budget_s {
+            break;
+        }
+    }
+    (done, cpu_s(t0) - c0)
+}
+
+/// Steps per second of the full simulation of `s`.
+fn with_logic(s: &Scenario, o: &Options) -> (u64, f64) {
+    let mut sim = Simulation::builder(s)
+        .method_named(&o.method)
+        .trial(0)
+        .duration_s(1e5)
+        .build()
+        .expect("simulation builds");
+    time_steps(o.steps, o.budget_s, || {
+        sim.step().expect("step runs");
+    })
+}
+
+/// Steps per second of the same bodies in bare Rapier, each robot moving at its top speed
+/// towards its first task's goal (ground) or search-area centre (aerial).
+fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
+    let mut scene = PhysicsScene::new(s);
+    for (id, r) in s.robots.iter().enumerate() {
+        let kind = &s.kinds[r.kind];
+        let task = &s.tasks[id % s.tasks.len()];
+        let goal = match kind.locomotion {
+            Locomotion::Ground => task.goal,
+            Locomotion::Aerial => task.search_area.center(),
+        };
+        let v = to_vec2(&goal) - to_vec2(&r.start_in_world);
+        let body = &mut scene.physics.bodies[scene.robot_bodies[id]];
+        body.set_linvel(v.normalize_or_zero() * kind.max_speed_m_per_s as f32, true);
+    }
+    time_steps(o.steps, o.budget_s, || scene.step())
+}
+
+fn main() {
+    let o = options();
+    let teams: &[usize] = if o.quick {
+        &[12, 100]
+    } else {
+        &[12, 100, 300, 1000]
+    };
+    println!(
+        "scaling bench: {} scaled, method {}, up to {} steps or {} s per measurement, one thread, rates per CPU second of the thread",
+        o.base, o.method, o.steps, o.budget_s
+    );
+    println!(
+        "| robots | logic steps/s | bare Rapier steps/s | step cost logic/bare | sim-s per wall-s | peak RSS MiB |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for &n in teams {
+        let s = team(n, &o.base);
+        let dt = s.sim.dt_s.get();
+        let (ls, lw) = with_logic(&s, &o);
+        let (bs, bw) = bare(&s, &o);
+        let (logic, raw) = (ls as f64 / lw, bs as f64 / bw);
+        println!(
+            "| {n} | {logic:.0} | {raw:.0} | {:.2} | {:.1} | {:.0} |",
+            raw / logic,
+            logic * dt,
+            peak_rss_mib()
+        );
+    }
+}
