@@ -3,6 +3,7 @@
 //! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
+//! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
@@ -18,6 +19,7 @@
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
+pub mod distance_field;
 mod error;
 mod nav;
 pub mod navigation;
@@ -34,7 +36,9 @@ mod step;
 mod world;
 
 pub use error::{NavError, WorldError};
-pub use path_following::{CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M};
+pub use path_following::{
+    CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, STALL_PROGRESS_M, STALL_REPLAN_S,
+};
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use step::MOVED_TOLERANCE_M;
 pub use world::{World, WorldStats};
