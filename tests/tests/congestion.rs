@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 /// The bound, seconds. A robot that makes no progress re-plans around the robots standing in
 /// its way after `usar_sim::world::STALL_REPLAN_S` (3 s); over the trials below the longest
-/// stretch after the fix is 8.6 s.
+/// stretch after the fix is 8.9 s.
 const NO_PROGRESS_BOUND_S: f64 = 15.0;
 
 fn assert_bounded(file: &str, name: &str, trial: u32) -> LongestStall {
