@@ -77,9 +77,7 @@ impl DistanceField {
     pub fn cost_from(&mut self, grid: &ClearanceGrid, from: u32) -> Option<u32> {
         let inflation = f32::from_bits(self.inflation_bits);
         while !self.settled[from as usize] {
-            let Some(Reverse((c, u))) = self.open.pop() else {
-                return None;
-            };
+            let Reverse((c, u)) = self.open.pop()?;
             if self.settled[u as usize] {
                 continue;
             }

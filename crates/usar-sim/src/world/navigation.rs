@@ -243,6 +243,18 @@ impl StandingDisc {
     }
 }
 
+/// One planning query of a ground robot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanQuery {
+    /// Where the robot stands, world frame, metres.
+    pub from: Vec2,
+    /// The requested goal, world frame, metres (inside the arena, or the plan fails).
+    pub to: Vec2,
+    /// Planning inflation: a cell is free when its clearance is at least this, metres (> 0;
+    /// the world uses body radius + `navigation.clearance_m` + half a cell).
+    pub inflation_m: f32,
+}
+
 /// Start and goal of a plan after snapping (see [`PathPlanner::plan`]).
 struct Endpoints {
     start_raw: u32,
@@ -252,14 +264,13 @@ struct Endpoints {
 }
 
 impl Endpoints {
-    /// Snaps `from` and `to` to free cells for `inflation`.
-    fn snap(
-        grid: &ClearanceGrid,
-        arena: (f32, f32),
-        from: Vec2,
-        to: Vec2,
-        inflation: f32,
-    ) -> Result<Self, NavError> {
+    /// Snaps the query's start and goal to free cells for its inflation.
+    fn snap(grid: &ClearanceGrid, arena: (f32, f32), query: PlanQuery) -> Result<Self, NavError> {
+        let PlanQuery {
+            from,
+            to,
+            inflation_m: inflation,
+        } = query;
         if !in_field(to.x, to.y, arena.0, arena.1) {
             return Err(NavError::GoalOutsideArena);
         }
@@ -313,30 +324,25 @@ impl PathPlanner {
         Self::default()
     }
 
-    /// Plans from `from` to `to` for `inflation` metres (A* or a shared field, as `kind`
-    /// says); writes the waypoints (the start excluded, the effective goal last) into `out`
-    /// and returns the effective goal: `to` if its cell is free, else the nearest free cell
-    /// centre within `inflation + 2 cells`.
+    /// Plans `query` (A* or a shared field, as `kind` says); writes the waypoints (the start
+    /// excluded, the effective goal last) into `out` and returns the effective goal: `query.to`
+    /// if its cell is free, else the nearest free cell centre within `inflation + 2 cells`. A
+    /// start in a blocked cell is moved the same way (its cell centre is the first waypoint).
     ///
     /// # Errors
     /// [`NavError`] when the goal is outside `[0, w] x [0, h]`, start or goal are blocked with no
     /// free cell near, or no path exists.
-    #[expect(
-        clippy::too_many_arguments,
-        reason = "the grid, the arena, the query and the output buffer; no natural grouping"
-    )]
     pub fn plan(
         &mut self,
         grid: &ClearanceGrid,
         arena: (f32, f32),
-        from: Vec2,
-        to: Vec2,
-        inflation: f32,
+        query: PlanQuery,
         kind: GoalKind,
         out: &mut Vec<Vec2>,
     ) -> Result<Vec2, NavError> {
         out.clear();
-        let ends = Endpoints::snap(grid, arena, from, to, inflation)?;
+        let inflation = query.inflation_m;
+        let ends = Endpoints::snap(grid, arena, query)?;
         let (start, goal) = (ends.start, ends.goal);
         let key = (inflation.to_bits(), start, goal, kind == GoalKind::Shared);
         // Failures are cached too: the grid never changes, so a search that found no path
@@ -363,23 +369,18 @@ impl PathPlanner {
     /// # Errors
     /// As [`PathPlanner::plan`]; [`NavError::NoPath`] also when the standing robots close
     /// every way.
-    #[expect(
-        clippy::too_many_arguments,
-        reason = "plan's arguments plus the standing robots"
-    )]
     pub fn plan_around(
         &mut self,
         grid: &ClearanceGrid,
         arena: (f32, f32),
-        from: Vec2,
-        to: Vec2,
-        inflation: f32,
+        query: PlanQuery,
         standing: &[StandingDisc],
         out: &mut Vec<Vec2>,
     ) -> Result<Vec2, NavError> {
         out.clear();
-        let ends = Endpoints::snap(grid, arena, from, to, inflation)?;
-        let ends_at = [grid.cell_center(ends.start), ends.goal_point, from];
+        let inflation = query.inflation_m;
+        let ends = Endpoints::snap(grid, arena, query)?;
+        let ends_at = [grid.cell_center(ends.start), ends.goal_point, query.from];
         self.discs.clear();
         self.discs.extend(
             standing
@@ -518,7 +519,12 @@ mod tests {
     /// Plans `from` -> `to`; returns the waypoints with `from` prepended, or the error.
     fn plan(g: &ClearanceGrid, from: Vec2, to: Vec2) -> Result<Vec<Vec2>, NavError> {
         let mut out = Vec::new();
-        let eff = PathPlanner::new().plan(g, ARENA, from, to, INFL, GoalKind::Own, &mut out)?;
+        let q = PlanQuery {
+            from,
+            to,
+            inflation_m: INFL,
+        };
+        let eff = PathPlanner::new().plan(g, ARENA, q, GoalKind::Own, &mut out)?;
         assert_eq!(
             out.last(),
             Some(&eff),
@@ -685,8 +691,13 @@ mod tests {
         let mut planner = PathPlanner::new();
         let (mut first, mut second) = (Vec::new(), Vec::new());
         let to = Vec2::new(9.0, 9.0);
-        let a = planner.plan(&g, ARENA, from, to, INFL, GoalKind::Own, &mut first);
-        let b = planner.plan(&g, ARENA, from, to, INFL, GoalKind::Own, &mut second);
+        let q = PlanQuery {
+            from,
+            to,
+            inflation_m: INFL,
+        };
+        let a = planner.plan(&g, ARENA, q, GoalKind::Own, &mut first);
+        let b = planner.plan(&g, ARENA, q, GoalKind::Own, &mut second);
         assert_eq!(a, b);
         assert_eq!(first, second);
         assert_eq!(planner.cache.len(), 1);

@@ -8,7 +8,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
-use super::navigation::StandingDisc;
+use super::navigation::{PlanQuery, StandingDisc};
 use super::planning::PlanInto;
 use super::world::World;
 use crate::scenario::Locomotion;
@@ -160,12 +160,15 @@ impl World {
         if self.standing.is_empty() {
             return;
         }
+        let query = PlanQuery {
+            from: me.pos,
+            to: requested,
+            inflation_m: infl,
+        };
         let found = self.planner.plan_around(
             &self.grid,
             self.arena,
-            me.pos,
-            requested,
-            infl,
+            query,
             &self.standing,
             &mut self.scratch,
         );

@@ -4,7 +4,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::error::NavError;
-use super::navigation::GoalKind;
+use super::navigation::{GoalKind, PlanQuery};
 use super::world::World;
 use crate::scenario::{Locomotion, in_field};
 
@@ -64,8 +64,12 @@ impl World {
                 } else {
                     GoalKind::Own
                 };
-                self.planner
-                    .plan(&self.grid, self.arena, nav.pos, goal, infl, kind, out)
+                let query = PlanQuery {
+                    from: nav.pos,
+                    to: goal,
+                    inflation_m: infl,
+                };
+                self.planner.plan(&self.grid, self.arena, query, kind, out)
             }
         }
     }
