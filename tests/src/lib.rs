@@ -93,3 +93,107 @@ pub fn per_task_counts(
     }
     out
 }
+
+/// The longest stretch without progress of one trial, found by [`NoProgressMonitor`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LongestStall {
+    /// Length of the stretch, seconds.
+    pub duration_s: f64,
+    /// The robot's id.
+    pub robot: usize,
+    /// Simulated time at which the stretch ended (or the trial did), seconds.
+    pub end_s: f64,
+    /// Where the robot stood then, metres.
+    pub at: (f64, f64),
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Track {
+    goal: Option<(f64, f64)>,
+    best_m: f64,
+    since_s: f64,
+    replans: u64,
+}
+
+/// Measures the bound on congestion stalls that `docs/world-model.md` states: for each ground
+/// robot with a goal it has not reached and outside every collision list, the time without
+/// progress, i.e. without its remaining path length (to its current waypoint, then along the
+/// rest of its path) falling [`NoProgressMonitor::PROGRESS_M`] below its best value. The clock
+/// restarts when the robot gets a new goal, reaches it, or is in a collision list (the
+/// resolver's deadlock rotation bounds those stretches); a re-plan keeps the clock but takes
+/// the new path's remaining length as the best value. Use it as a
+/// [`usar_sim::mission::StepObserver`].
+#[derive(Debug, Clone, Default)]
+pub struct NoProgressMonitor {
+    tracks: Vec<Track>,
+    /// The longest stretch so far.
+    pub longest: LongestStall,
+}
+
+impl NoProgressMonitor {
+    /// Progress that restarts the clock, metres.
+    pub const PROGRESS_M: f64 = 0.05;
+
+    /// Updates every ground robot's clock after a step of `sim`.
+    pub fn observe(&mut self, sim: &Simulation) {
+        let world = sim.world();
+        let now = world.time_s();
+        self.tracks.resize(world.robots().len(), Track::default());
+        for (id, r) in world.robots().iter().enumerate() {
+            if r.locomotion != usar_sim::scenario::Locomotion::Ground {
+                continue;
+            }
+            let mut prev = r.position;
+            let remaining: f64 = world
+                .waypoints(id)
+                .map(|w| {
+                    let d = (w - prev).norm();
+                    prev = w;
+                    d
+                })
+                .sum();
+            let goal = r.goal.map(|g| (g.x, g.y));
+            let t = &mut self.tracks[id];
+            let watched = r.is_active() && !r.in_collision_list;
+            if !watched || goal != t.goal {
+                *t = Track {
+                    goal,
+                    best_m: remaining,
+                    since_s: now,
+                    replans: r.counters.replans,
+                };
+                continue;
+            }
+            if r.counters.replans != t.replans {
+                t.replans = r.counters.replans;
+                t.best_m = remaining;
+            }
+            if remaining < t.best_m - Self::PROGRESS_M {
+                t.best_m = remaining;
+                t.since_s = now;
+            }
+            if now - t.since_s > self.longest.duration_s {
+                self.longest = LongestStall {
+                    duration_s: now - t.since_s,
+                    robot: id,
+                    end_s: now,
+                    at: (r.position.x, r.position.y),
+                };
+            }
+        }
+    }
+}
+
+/// Runs whole trial `trial` of `s` with the built-in method `name` and returns its longest
+/// stall without progress ([`NoProgressMonitor`]) and its round lengths, seconds.
+///
+/// # Panics
+/// If the trial fails (built-in methods do not).
+pub fn longest_stall(s: &Scenario, name: &str, trial: u32) -> (LongestStall, Vec<f64>) {
+    let mut monitor = NoProgressMonitor::default();
+    let result = Simulation::for_trial(s, method(name, s), trial)
+        .run_observed(&mut |sim: &Simulation| monitor.observe(sim))
+        .expect("built-in methods do not fail");
+    let rounds = result.rounds.iter().map(|r| r.end_s - r.start_s).collect();
+    (monitor.longest, rounds)
+}

@@ -5,6 +5,7 @@
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
+//! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
@@ -20,6 +21,7 @@
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
+pub mod distance_field;
 mod error;
 mod nav;
 pub mod navigation;
@@ -37,7 +39,9 @@ mod step;
 mod world;
 
 pub use error::{NavError, WorldError};
-pub use path_following::{CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M};
+pub use path_following::{
+    CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, STALL_PROGRESS_M, STALL_REPLAN_S,
+};
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use step::MOVED_TOLERANCE_M;
 pub use world::{World, WorldStats};

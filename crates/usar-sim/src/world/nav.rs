@@ -33,6 +33,11 @@ pub(super) struct Nav {
     pub(super) pos: Vec2,
     /// Intended velocity (path following, before collision avoidance), metres per second.
     pub(super) intent: Vec2,
+    /// Shortest remaining path length since the no-progress clock last restarted, metres
+    /// (infinite right after a goal is set); see `path_following.rs`.
+    pub(super) best_remaining: f32,
+    /// Step at which the no-progress clock last restarted.
+    pub(super) progress_step: u64,
 }
 
 impl Nav {
@@ -50,6 +55,8 @@ impl Nav {
             wp: 0,
             pos,
             intent: Vec2::ZERO,
+            best_remaining: f32::INFINITY,
+            progress_step: 0,
         }
     }
 

@@ -1,5 +1,6 @@
 //! Path planning of ground robots: a clearance grid built with parry2d distance queries, grid A*
-//! (the `pathfinding` crate) and line-of-sight path smoothing.
+//! (the `pathfinding` crate) for a robot's own goals, shared distance fields
+//! ([`super::distance_field`]) for goals many robots share, and line-of-sight path smoothing.
 //!
 //! The grid stores, per cell, the distance from the cell centre to the nearest wall or debris
 //! surface (capped). A cell is *free* for inflation `i` when that distance is `>= i`; the world
@@ -12,14 +13,15 @@ use parry2d::math::Vector as Vec2;
 use pathfinding::prelude::astar;
 
 use super::bodies::StaticObstacle;
+use super::distance_field::DistanceField;
 use super::error::NavError;
 use crate::scenario::Arena;
 use crate::scenario::in_field;
 
 /// A* cost of a straight grid move (a diagonal costs [`DIAGONAL_COST`]).
-const STRAIGHT_COST: u32 = 1000;
+pub const STRAIGHT_COST: u32 = 1000;
 /// A* cost of a diagonal grid move (~ sqrt(2) * [`STRAIGHT_COST`]).
-const DIAGONAL_COST: u32 = 1414;
+pub const DIAGONAL_COST: u32 = 1414;
 /// Most entries the plan cache holds before it is cleared (bounded memory).
 const PLAN_CACHE_CAPACITY: usize = 4096;
 
@@ -136,7 +138,15 @@ impl ClearanceGrid {
         best.map(|(_, idx)| idx)
     }
 
-    fn successors(&self, idx: u32, inflation: f32) -> impl Iterator<Item = (u32, u32)> + use<> {
+    /// The grid moves out of cell `idx` for `inflation` metres, as (cell, cost) in a fixed
+    /// order: east, west, north, south, then the diagonals north-east, north-west, south-east,
+    /// south-west; a diagonal only when both cells beside it are free too (no corner cutting).
+    /// Symmetric: `b` is a successor of `a` with cost `w` if and only if `a` is one of `b`'s.
+    pub(super) fn successors(
+        &self,
+        idx: u32,
+        inflation: f32,
+    ) -> impl Iterator<Item = (u32, u32)> + use<> {
         let mut out = [(0u32, 0u32); 8];
         let mut k = 0;
         let ix = (idx % self.nx) as i64;
@@ -170,7 +180,8 @@ impl ClearanceGrid {
         out.into_iter().take(k)
     }
 
-    fn octile(&self, a: u32, b: u32) -> u32 {
+    /// Octile distance between cells `a` and `b` in planner cost units (A*'s heuristic).
+    pub(super) fn octile(&self, a: u32, b: u32) -> u32 {
         let dx = (a % self.nx).abs_diff(b % self.nx);
         let dy = (a / self.nx).abs_diff(b / self.nx);
         let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
@@ -178,39 +189,88 @@ impl ClearanceGrid {
     }
 }
 
-/// Cache key: inflation (f32 bits), start cell, goal cell.
-type PlanKey = (u32, u32, u32);
+/// Cache key: inflation (f32 bits), start cell, goal cell, whether the goal is shared.
+type PlanKey = (u32, u32, u32, bool);
 
-/// Grid A* with line-of-sight smoothing and a plan cache keyed by (inflation, start cell, goal
-/// cell). Deterministic: a cache hit returns exactly what planning would.
+/// How the planner finds a path to a goal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GoalKind {
+    /// A goal of one robot (its start, a rescuee, a sweep waypoint): grid A*.
+    Own,
+    /// A goal many robots share (a task's goal point, a drop-off, the rest station): descent
+    /// of the goal's [`DistanceField`] for the robot's inflation, computed once and reused.
+    Shared,
+}
+
+/// Grid planning with line-of-sight smoothing and a plan cache keyed by (inflation, start cell,
+/// goal cell, goal kind): A* for a robot's own goals, descent of a shared [`DistanceField`]
+/// (one per goal cell and inflation, kept for the planner's life) for shared goals.
+/// Deterministic: a cache hit returns exactly what planning would.
 #[derive(Debug, Clone, Default)]
 pub struct PathPlanner {
     cache: HashMap<PlanKey, Result<Vec<u32>, NavError>>,
+    fields: Vec<DistanceField>,
+    raw: Vec<u32>,
+    discs: Vec<StandingDisc>,
 }
 
-impl PathPlanner {
-    /// An empty planner.
-    pub fn new() -> Self {
-        Self::default()
+/// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
+/// no smoothed leg may come nearer to `center` than `radius_m`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StandingDisc {
+    /// Centre of the standing robot, metres.
+    pub center: Vec2,
+    /// Keep-out radius around it (its body radius plus the planning inflation), metres.
+    pub radius_m: f32,
+}
+
+impl StandingDisc {
+    /// Whether point `p` lies inside the disc.
+    fn contains(&self, p: Vec2) -> bool {
+        (p - self.center).length_squared() < self.radius_m * self.radius_m
     }
 
-    /// Plans from `from` to `to` for `inflation` metres; writes the waypoints (the start
-    /// excluded, the effective goal last) into `out` and returns the effective goal: `to` if its
-    /// cell is free, else the nearest free cell centre within `inflation + 2 cells`.
-    ///
-    /// # Errors
-    /// [`NavError`] when the goal is outside `[0, w] x [0, h]`, start or goal are blocked with no
-    /// free cell near, or no path exists.
-    pub fn plan(
-        &mut self,
-        grid: &ClearanceGrid,
-        arena: (f32, f32),
-        from: Vec2,
-        to: Vec2,
-        inflation: f32,
-        out: &mut Vec<Vec2>,
-    ) -> Result<Vec2, NavError> {
-        out.clear();
+    /// Whether segment `a`-`b` passes through the disc.
+    fn crosses(&self, a: Vec2, b: Vec2) -> bool {
+        let d = b - a;
+        let len2 = d.length_squared();
+        let t = if len2 > 0.0 {
+            ((self.center - a).dot(d) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        self.contains(a + d * t)
+    }
+}
+
+/// One planning query of a ground robot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanQuery {
+    /// Where the robot stands, world frame, metres.
+    pub from: Vec2,
+    /// The requested goal, world frame, metres (inside the arena, or the plan fails).
+    pub to: Vec2,
+    /// Planning inflation: a cell is free when its clearance is at least this, metres (> 0;
+    /// the world uses body radius + `navigation.clearance_m` + half a cell).
+    pub inflation_m: f32,
+}
+
+/// Start and goal of a plan after snapping (see [`PathPlanner::plan`]).
+struct Endpoints {
+    start_raw: u32,
+    start: u32,
+    goal: u32,
+    goal_point: Vec2,
+}
+
+impl Endpoints {
+    /// Snaps the query's start and goal to free cells for its inflation.
+    fn snap(grid: &ClearanceGrid, arena: (f32, f32), query: PlanQuery) -> Result<Self, NavError> {
+        let PlanQuery {
+            from,
+            to,
+            inflation_m: inflation,
+        } = query;
         if !in_field(to.x, to.y, arena.0, arena.1) {
             return Err(NavError::GoalOutsideArena);
         }
@@ -231,21 +291,21 @@ impl PathPlanner {
                 .ok_or(NavError::GoalBlocked)?;
             (g, grid.cell_center(g))
         };
-        let key = (inflation.to_bits(), start, goal);
-        // Failures are cached too: the grid never changes, so a search that found no path
-        // finds none again (it would otherwise scan the whole reachable grid on every retry).
-        if !self.cache.contains_key(&key) {
-            let cells = self.search(grid, start, goal, inflation);
-            if self.cache.len() >= PLAN_CACHE_CAPACITY {
-                self.cache.clear();
-            }
-            self.cache.insert(key, cells);
+        Ok(Self {
+            start_raw,
+            start,
+            goal,
+            goal_point,
+        })
+    }
+
+    /// Writes the waypoints of the smoothed `cells` (start to goal) into `out`: the snapped
+    /// start's centre if the start moved, the interior cells' centres, the effective goal.
+    fn write(&self, grid: &ClearanceGrid, cells: &[u32], out: &mut Vec<Vec2>) -> Vec2 {
+        out.clear();
+        if self.start != self.start_raw {
+            out.push(grid.cell_center(self.start));
         }
-        let cells = self.cache[&key].as_ref().map_err(|e| *e)?;
-        if start != start_raw {
-            out.push(grid.cell_center(start));
-        }
-        // Interior waypoints: the smoothed cells without the start and goal cells.
         if cells.len() > 2 {
             out.extend(
                 cells[1..cells.len() - 1]
@@ -253,43 +313,153 @@ impl PathPlanner {
                     .map(|&c| grid.cell_center(c)),
             );
         }
-        out.push(goal_point);
-        Ok(goal_point)
+        out.push(self.goal_point);
+        self.goal_point
+    }
+}
+
+impl PathPlanner {
+    /// An empty planner.
+    pub fn new() -> Self {
+        Self::default()
     }
 
-    /// A* plus smoothing; returns smoothed cell indices from `start` to `goal` (both included).
-    fn search(
+    /// Plans `query` (A* or a shared field, as `kind` says); writes the waypoints (the start
+    /// excluded, the effective goal last) into `out` and returns the effective goal: `query.to`
+    /// if its cell is free, else the nearest free cell centre within `inflation + 2 cells`. A
+    /// start in a blocked cell is moved the same way (its cell centre is the first waypoint).
+    ///
+    /// # Errors
+    /// [`NavError`] when the goal is outside `[0, w] x [0, h]`, start or goal are blocked with no
+    /// free cell near, or no path exists.
+    pub fn plan(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        query: PlanQuery,
+        kind: GoalKind,
+        out: &mut Vec<Vec2>,
+    ) -> Result<Vec2, NavError> {
+        out.clear();
+        let inflation = query.inflation_m;
+        let ends = Endpoints::snap(grid, arena, query)?;
+        let (start, goal) = (ends.start, ends.goal);
+        let key = (inflation.to_bits(), start, goal, kind == GoalKind::Shared);
+        // Failures are cached too: the grid never changes, so a search that found no path
+        // finds none again (it would otherwise scan the whole reachable grid on every retry).
+        if !self.cache.contains_key(&key) {
+            let cells = match kind {
+                GoalKind::Own => search(grid, start, goal, inflation, &[]),
+                GoalKind::Shared => self.descend(grid, start, goal, inflation),
+            };
+            if self.cache.len() >= PLAN_CACHE_CAPACITY {
+                self.cache.clear();
+            }
+            self.cache.insert(key, cells);
+        }
+        let cells = self.cache[&key].as_ref().map_err(|e| *e)?;
+        Ok(ends.write(grid, cells, out))
+    }
+
+    /// A detour: plans like [`PathPlanner::plan`] with A* (never cached, never a shared field)
+    /// but also keeps every cell centre and smoothed leg out of the `standing` discs (robots
+    /// standing in the way), except discs that hold the start or the goal (a robot touching
+    /// the planner's robot, or one parked on the goal, is left to steering and the mission).
+    ///
+    /// # Errors
+    /// As [`PathPlanner::plan`]; [`NavError::NoPath`] also when the standing robots close
+    /// every way.
+    pub fn plan_around(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        query: PlanQuery,
+        standing: &[StandingDisc],
+        out: &mut Vec<Vec2>,
+    ) -> Result<Vec2, NavError> {
+        out.clear();
+        let inflation = query.inflation_m;
+        let ends = Endpoints::snap(grid, arena, query)?;
+        let ends_at = [grid.cell_center(ends.start), ends.goal_point, query.from];
+        self.discs.clear();
+        self.discs.extend(
+            standing
+                .iter()
+                .filter(|d| !ends_at.iter().any(|&p| d.contains(p))),
+        );
+        let cells = search(grid, ends.start, ends.goal, inflation, &self.discs)?;
+        Ok(ends.write(grid, &cells, out))
+    }
+
+    /// Descent of the shared field towards `goal` for `inflation` (created on first use) plus
+    /// smoothing; returns smoothed cell indices from `start` to `goal` (both included).
+    fn descend(
         &mut self,
         grid: &ClearanceGrid,
         start: u32,
         goal: u32,
         inflation: f32,
     ) -> Result<Vec<u32>, NavError> {
-        if start == goal {
+        let k = match self.fields.iter().position(|f| f.is_for(goal, inflation)) {
+            Some(k) => k,
+            None => {
+                self.fields.push(DistanceField::new(grid, goal, inflation));
+                self.fields.len() - 1
+            }
+        };
+        if !self.fields[k].descend(grid, start, &mut self.raw) {
+            return Err(NavError::NoPath);
+        }
+        if self.raw.len() < 2 {
             return Ok(vec![start, goal]);
         }
-        let (raw, _) = astar(
-            &start,
-            |&n| grid.successors(n, inflation),
-            |&n| grid.octile(n, goal),
-            |&n| n == goal,
-        )
-        .ok_or(NavError::NoPath)?;
-        Ok(smooth(grid, &raw, inflation))
+        Ok(smooth(grid, &self.raw, inflation, &[]))
+    }
+
+    /// The shared fields built so far (one per goal cell and inflation).
+    pub fn fields(&self) -> &[DistanceField] {
+        &self.fields
     }
 }
 
+/// A* (outside the `discs`) plus smoothing; returns smoothed cell indices from `start` to
+/// `goal` (both included).
+fn search(
+    grid: &ClearanceGrid,
+    start: u32,
+    goal: u32,
+    inflation: f32,
+    discs: &[StandingDisc],
+) -> Result<Vec<u32>, NavError> {
+    if start == goal {
+        return Ok(vec![start, goal]);
+    }
+    let (raw, _) = astar(
+        &start,
+        |&n| {
+            grid.successors(n, inflation).filter(|&(c, _)| {
+                discs.is_empty() || !discs.iter().any(|d| d.contains(grid.cell_center(c)))
+            })
+        },
+        |&n| grid.octile(n, goal),
+        |&n| n == goal,
+    )
+    .ok_or(NavError::NoPath)?;
+    Ok(smooth(grid, &raw, inflation, discs))
+}
+
 /// Greedy line-of-sight smoothing: from each anchor, jump to the farthest following cell still
-/// visible (checked on cell centres).
-fn smooth(grid: &ClearanceGrid, raw: &[u32], inflation: f32) -> Vec<u32> {
+/// visible (checked on cell centres, against the grid and the `discs`).
+fn smooth(grid: &ClearanceGrid, raw: &[u32], inflation: f32, discs: &[StandingDisc]) -> Vec<u32> {
+    let visible = |a: Vec2, b: Vec2| {
+        grid.line_of_sight(a, b, inflation, f32::INFINITY) && !discs.iter().any(|d| d.crosses(a, b))
+    };
     let mut out = vec![raw[0]];
     let mut anchor = 0;
     while anchor < raw.len() - 1 {
         let a = grid.cell_center(raw[anchor]);
         let mut next = anchor + 1;
-        while next + 1 < raw.len()
-            && grid.line_of_sight(a, grid.cell_center(raw[next + 1]), inflation, f32::INFINITY)
-        {
+        while next + 1 < raw.len() && visible(a, grid.cell_center(raw[next + 1])) {
             next += 1;
         }
         out.push(raw[next]);
@@ -349,7 +519,12 @@ mod tests {
     /// Plans `from` -> `to`; returns the waypoints with `from` prepended, or the error.
     fn plan(g: &ClearanceGrid, from: Vec2, to: Vec2) -> Result<Vec<Vec2>, NavError> {
         let mut out = Vec::new();
-        let eff = PathPlanner::new().plan(g, ARENA, from, to, INFL, &mut out)?;
+        let q = PlanQuery {
+            from,
+            to,
+            inflation_m: INFL,
+        };
+        let eff = PathPlanner::new().plan(g, ARENA, q, GoalKind::Own, &mut out)?;
         assert_eq!(
             out.last(),
             Some(&eff),
@@ -448,7 +623,7 @@ mod tests {
         let raw: Vec<u32> = row(8, 8..=31).chain(col(31, 9..=31)).collect();
         let (first, last) = (g.cell_center(raw[0]), g.cell_center(*raw.last().unwrap()));
         assert!(!g.line_of_sight(first, last, INFL, f32::INFINITY));
-        let smoothed = smooth(&g, &raw, INFL);
+        let smoothed = smooth(&g, &raw, INFL, &[]);
         assert_eq!(smoothed.first(), raw.first());
         assert_eq!(smoothed.last(), raw.last());
         assert!(smoothed.len() >= 3, "the corner is kept: {smoothed:?}");
@@ -462,7 +637,7 @@ mod tests {
         legs_clear(&statics, &points, INFL - CELL as f32 * 0.5f32.sqrt());
         // With nothing in the way the same raw path smooths to one straight leg.
         assert_eq!(
-            smooth(&grid(&[]), &raw, INFL),
+            smooth(&grid(&[]), &raw, INFL, &[]),
             [raw[0], *raw.last().unwrap()]
         );
     }
@@ -516,8 +691,13 @@ mod tests {
         let mut planner = PathPlanner::new();
         let (mut first, mut second) = (Vec::new(), Vec::new());
         let to = Vec2::new(9.0, 9.0);
-        let a = planner.plan(&g, ARENA, from, to, INFL, &mut first);
-        let b = planner.plan(&g, ARENA, from, to, INFL, &mut second);
+        let q = PlanQuery {
+            from,
+            to,
+            inflation_m: INFL,
+        };
+        let a = planner.plan(&g, ARENA, q, GoalKind::Own, &mut first);
+        let b = planner.plan(&g, ARENA, q, GoalKind::Own, &mut second);
         assert_eq!(a, b);
         assert_eq!(first, second);
         assert_eq!(planner.cache.len(), 1);

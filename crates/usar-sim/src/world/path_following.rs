@@ -1,11 +1,14 @@
 //! Path following: a robot's intended velocity from its goal and path (rule: follow waypoints
 //! at top speed times the speed factor, slowing only to stop on the goal), with corner passing
 //! and, for ground robots, the periodic line-of-sight check that skips visible waypoints and
-//! re-plans when the current one is hidden.
+//! re-plans when the current one is hidden, and the detour: a ground robot outside collision
+//! lists that makes no progress along its path for [`STALL_REPLAN_S`] re-plans around the
+//! robots standing near it.
 
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
+use super::navigation::{PlanQuery, StandingDisc};
 use super::planning::PlanInto;
 use super::world::World;
 use crate::scenario::Locomotion;
@@ -19,6 +22,13 @@ pub const PATH_CHECK_MAX_M: f32 = 4.0;
 /// perpendicular to the next leg and in sight of the next waypoint, counts the corner as
 /// passed, metres.
 pub const CORNER_PASS_M: f32 = 2.0;
+/// A ground robot with a goal, outside every collision list, whose remaining path length has
+/// not fallen [`STALL_PROGRESS_M`] below its best value for this long re-plans around the
+/// robots standing within its sensing range (a detour), seconds. (Robots in a list are left to
+/// the resolver's deadlock rotation.)
+pub const STALL_REPLAN_S: f64 = 3.0;
+/// Progress that restarts a ground robot's no-progress clock (see [`STALL_REPLAN_S`]), metres.
+pub const STALL_PROGRESS_M: f32 = 0.05;
 
 impl World {
     /// Inflation of robot `id`'s line-of-sight checks while following its path: body radius +
@@ -42,10 +52,11 @@ impl World {
             self.robots[id].goal_reached = true;
             return;
         }
-        if nav.layer == Locomotion::Ground
-            && (self.stats.steps + id as u64).is_multiple_of(PATH_CHECK_INTERVAL_STEPS)
-        {
-            self.check_path(id);
+        if nav.layer == Locomotion::Ground {
+            self.watch_progress(id);
+            if (self.stats.steps + id as u64).is_multiple_of(PATH_CHECK_INTERVAL_STEPS) {
+                self.check_path(id);
+            }
         }
         self.pass_corners(id);
         self.nav[id].intent = self.intent_to_waypoint(id);
@@ -82,13 +93,87 @@ impl World {
             return;
         };
         if let Ok(eff) = self.plan(id, requested, PlanInto::Scratch) {
-            let nav = &mut self.nav[id];
-            std::mem::swap(&mut nav.path, &mut self.scratch);
-            nav.goal = Some(eff);
-            nav.wp = 0;
-            let state = &mut self.robots[id];
-            state.goal = Some(to_point(eff));
-            state.counters.replans += 1;
+            self.take_scratch_path(id, eff);
+        }
+    }
+
+    /// Makes the plan in the scratch buffer (effective goal `eff`) robot `id`'s path; counts a
+    /// re-plan. The no-progress clock keeps running, measured against the new path.
+    fn take_scratch_path(&mut self, id: usize, eff: Vec2) {
+        let nav = &mut self.nav[id];
+        std::mem::swap(&mut nav.path, &mut self.scratch);
+        nav.goal = Some(eff);
+        nav.wp = 0;
+        nav.best_remaining = nav.remaining();
+        let state = &mut self.robots[id];
+        state.goal = Some(to_point(eff));
+        state.counters.replans += 1;
+    }
+
+    /// The no-progress clock of ground robot `id` (see [`STALL_REPLAN_S`]): restarts on
+    /// progress or while the robot was in a collision list at the last step; when it runs out,
+    /// the robot takes a detour ([`World::detour`]) and the clock restarts.
+    fn watch_progress(&mut self, id: usize) {
+        let steps = self.stats.steps;
+        let nav = &mut self.nav[id];
+        let remaining = nav.remaining();
+        if self.robots[id].in_collision_list || remaining < nav.best_remaining - STALL_PROGRESS_M {
+            nav.best_remaining = remaining;
+            nav.progress_step = steps;
+            return;
+        }
+        if (steps - nav.progress_step) as f64 * self.dt < STALL_REPLAN_S {
+            return;
+        }
+        self.detour(id);
+        let nav = &mut self.nav[id];
+        nav.best_remaining = nav.best_remaining.min(nav.remaining());
+        nav.progress_step = steps;
+    }
+
+    /// Re-plans ground robot `id` from where it stands to its requested goal around the
+    /// robots of its layer standing still within its sensing range (no goal, goal reached, or
+    /// no intended motion), each kept out to its body radius plus the robot's planning
+    /// inflation ([`super::navigation::PathPlanner::plan_around`]). On failure the path is
+    /// kept. Allocates nothing once the scratch buffers have grown.
+    fn detour(&mut self, id: usize) {
+        let Some(requested) = self.nav[id].requested else {
+            return;
+        };
+        let infl = self.plan_inflation(id);
+        let me = &self.nav[id];
+        let range = me.sensing * self.robots[id].sensing_factor as f32;
+        self.standing.clear();
+        for (j, other) in self.nav.iter().enumerate() {
+            let still = !self.robots[j].is_active() || other.intent == Vec2::ZERO;
+            if j != id
+                && still
+                && other.layer == me.layer
+                && (other.pos - me.pos).length_squared() <= range * range
+            {
+                self.standing.push(StandingDisc {
+                    center: other.pos,
+                    radius_m: other.radius + infl,
+                });
+            }
+        }
+        if self.standing.is_empty() {
+            return;
+        }
+        let query = PlanQuery {
+            from: me.pos,
+            to: requested,
+            inflation_m: infl,
+        };
+        let found = self.planner.plan_around(
+            &self.grid,
+            self.arena,
+            query,
+            &self.standing,
+            &mut self.scratch,
+        );
+        if let Ok(eff) = found {
+            self.take_scratch_path(id, eff);
         }
     }
 

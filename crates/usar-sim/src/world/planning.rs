@@ -4,6 +4,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::error::NavError;
+use super::navigation::{GoalKind, PlanQuery};
 use super::world::World;
 use crate::scenario::{Locomotion, in_field};
 
@@ -28,8 +29,11 @@ impl World {
 
     /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
     /// goal. Ground robots plan on the clearance grid ([`super::navigation::PathPlanner::plan`],
-    /// inflation [`World::plan_inflation`]); aerial robots fly straight, so their plan is the goal
-    /// itself. The waypoints go where `into` says.
+    /// inflation [`World::plan_inflation`]): a goal that is one of the scenario's shared goal
+    /// points (a task's goal point or drop-off centre, the rest-station centre, compared
+    /// exactly at physics precision) by descent of its shared distance field, any other goal by
+    /// A*. Aerial robots fly straight, so their plan is the goal itself. The waypoints go where
+    /// `into` says.
     ///
     /// # Errors
     /// [`NavError::GoalOutsideArena`] for a goal that is not a finite point in the arena; for
@@ -54,9 +58,19 @@ impl World {
                 out.push(goal);
                 Ok(goal)
             }
-            Locomotion::Ground => self
-                .planner
-                .plan(&self.grid, self.arena, nav.pos, goal, infl, out),
+            Locomotion::Ground => {
+                let kind = if self.shared_goals.contains(&goal) {
+                    GoalKind::Shared
+                } else {
+                    GoalKind::Own
+                };
+                let query = PlanQuery {
+                    from: nav.pos,
+                    to: goal,
+                    inflation_m: infl,
+                };
+                self.planner.plan(&self.grid, self.arena, query, kind, out)
+            }
         }
     }
 }

@@ -10,8 +10,9 @@ use parry2d::math::Vector as Vec2;
 use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav::Nav;
-use super::navigation::{ClearanceGrid, PathPlanner};
+
 use super::neighbours::NeighbourIndex;
+use super::navigation::{ClearanceGrid, PathPlanner, StandingDisc};
 use super::planning::PlanInto;
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
@@ -61,6 +62,11 @@ pub struct World {
     max_radius_m: [f64; 2],
     /// Plans that may be discarded (goal checks, re-plans) are written here.
     pub(super) scratch: Vec<Vec2>,
+    /// The goals many robots share, at physics precision: each task's goal point and drop-off
+    /// centre, then the rest-station centre. Ground robots reach them by shared distance fields.
+    pub(super) shared_goals: Vec<Vec2>,
+    /// Robots standing in the way of a detour (scratch of `path_following.rs`).
+    pub(super) standing: Vec<StandingDisc>,
 }
 
 impl World {
@@ -121,6 +127,8 @@ impl World {
                     .fold(0.0, f64::max)
             }),
             scratch: Vec::with_capacity(64),
+            shared_goals: shared_goals(s),
+            standing: Vec::new(),
         }
     }
 
@@ -149,6 +157,8 @@ impl World {
             Some(g) => self.plan(id, to_vec2(&g), PlanInto::Path).map(Some),
         };
         let nav = &mut self.nav[id];
+        nav.best_remaining = f32::INFINITY;
+        nav.progress_step = self.stats.steps;
         let state = &mut self.robots[id];
         state.goal_reached = false;
         match result {
@@ -377,6 +387,16 @@ impl World {
         }
         worst
     }
+}
+
+/// The goals many robots of `s` share, at physics precision: each task's goal point and
+/// drop-off centre (in task order), then the rest-station centre.
+fn shared_goals(s: &Scenario) -> Vec<Vec2> {
+    s.tasks
+        .iter()
+        .flat_map(|t| [to_vec2(&t.goal), to_vec2(&t.drop_off.center)])
+        .chain(std::iter::once(to_vec2(&s.rest_station.center)))
+        .collect()
 }
 
 /// Distance from `p` to the nearest static obstacle (walls and, if `with_debris`, debris).

@@ -1,0 +1,84 @@
+//! Shared navigation: paths a ground robot takes from a shared distance field (to a task's
+//! goal point, a drop-off or the rest station) keep the body clear of every wall and debris
+//! block, from random starts in the shipped scenarios.
+
+use std::sync::LazyLock;
+
+use proptest::prelude::*;
+use usar_sim::scenario::{Locomotion, PointM, Scenario};
+use usar_sim::world::World;
+
+fn scenario(file: &str) -> Scenario {
+    let path = format!("{}/../../scenarios/{file}", env!("CARGO_MANIFEST_DIR"));
+    usar_sim::scenario::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+static PAPER: LazyLock<Scenario> = LazyLock::new(|| scenario("paper.ron"));
+static THREE_TASKS: LazyLock<Scenario> = LazyLock::new(|| scenario("three-tasks.ron"));
+
+/// The shared goals of `s`: each task's goal point and drop-off centre, the rest station.
+fn shared_goals(s: &Scenario) -> Vec<PointM> {
+    s.tasks
+        .iter()
+        .flat_map(|t| [t.goal, t.drop_off.center])
+        .chain([s.rest_station.center])
+        .collect()
+}
+
+/// Teleports each ground robot of `s` (one per kind) to `(fx * W, fy * H)` if that point's
+/// grid cell is free for its planning inflation, sends it to every shared goal and checks every
+/// leg of the path, sampled each centimetre, against the exact distance to the statics.
+fn check_paths_from(s: &Scenario, fx: f64, fy: f64) -> Result<(), TestCaseError> {
+    let mut w = World::new(s);
+    let start = PointM::new(fx * s.arena.width_m.get(), fy * s.arena.height_m.get());
+    let cell = s.navigation.grid_cell_m.get();
+    for kind in 0..s.kinds.len() {
+        let Some(id) = s.robots.iter().position(|r| r.kind == kind) else {
+            continue;
+        };
+        if s.kinds[kind].locomotion != Locomotion::Ground {
+            continue;
+        }
+        let radius = w.robot(id).radius_m;
+        // A start whose cell is free: the planner does not snap it.
+        let inflation = radius + s.navigation.clearance_m.get() + cell;
+        if w.static_distance_at(&start) < inflation {
+            continue;
+        }
+        for goal in shared_goals(s) {
+            w.teleport(id, start).unwrap();
+            if w.set_goal(id, Some(goal)).is_err() {
+                continue;
+            }
+            let path: Vec<PointM> = std::iter::once(start).chain(w.waypoints(id)).collect();
+            for leg in path.windows(2) {
+                let n = ((leg[1] - leg[0]).norm() / 0.01).ceil().max(1.0) as u32;
+                for k in 0..=n {
+                    let p = leg[0] + (leg[1] - leg[0]) * (f64::from(k) / f64::from(n));
+                    let d = w.static_distance_at(&p);
+                    prop_assert!(
+                        d >= radius,
+                        "{}: kind {kind} from {start:?} to {goal:?}: {p:?} is {d} m from a \
+                         static obstacle (body radius {radius} m); path {path:?}",
+                        s.name
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn shared_paths_clear_the_debris_of_paper(fx in 0.01f64..0.99, fy in 0.01f64..0.99) {
+        check_paths_from(&PAPER, fx, fy)?;
+    }
+
+    #[test]
+    fn shared_paths_clear_the_debris_of_three_tasks(fx in 0.01f64..0.99, fy in 0.01f64..0.99) {
+        check_paths_from(&THREE_TASKS, fx, fy)?;
+    }
+}
