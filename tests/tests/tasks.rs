@@ -9,14 +9,14 @@ use usar_sim::scenario::Scenario;
 
 /// (method, trial, rescuees per task: hard, medium, easy) of three-tasks.ron.
 const THREE_TASKS: &[(&str, u32, [u32; 3])] = &[
-    ("rne", 0, [56, 74, 77]),
+    ("rne", 0, [57, 73, 76]),
     ("rne", 1, [32, 42, 51]),
-    ("dis", 0, [51, 69, 73]),
-    ("dis", 1, [58, 66, 60]),
+    ("dis", 0, [52, 67, 67]),
+    ("dis", 1, [52, 66, 60]),
     ("eng", 0, [73, 79, 58]),
     ("eng", 1, [54, 45, 40]),
-    ("hp_dis", 0, [50, 73, 70]),
-    ("hp_dis", 1, [63, 64, 73]),
+    ("hp_dis", 0, [55, 57, 60]),
+    ("hp_dis", 1, [63, 58, 75]),
 ];
 
 /// Runs trial 0 of `s` with every built-in method and checks what holds for any K: one

@@ -263,6 +263,18 @@ pub struct NavigationParams {
     pub clearance_m: NonNegative,
     /// Distance at which a waypoint counts as reached, metres, > 0; default 0.3.
     pub waypoint_tolerance_m: Positive,
+    /// Whether ground robots reach the goals many of them share (task goal points, drop-off
+    /// centres, the rest station) by descending one distance field per goal and clearance
+    /// class, computed once and reused by every robot (`true`, the default: what large teams
+    /// need), or each by its own A* search (`false`: the model `paper.ron` was calibrated
+    /// with). Both give shortest paths on the grid; they differ only in how ties between
+    /// equally short paths are broken. See `docs/world-model.md`.
+    pub shared_goal_fields: bool,
+    /// A ground robot outside every collision list whose remaining path has not shortened for
+    /// this long re-plans around the robots standing near it (a detour), seconds, > 0;
+    /// `None` switches detours off (the model `paper.ron` was calibrated with); default
+    /// `Some(3.0)` ([`crate::world::STALL_REPLAN_S`]).
+    pub stall_replan_s: Option<Positive>,
 }
 
 impl Default for NavigationParams {
@@ -271,6 +283,8 @@ impl Default for NavigationParams {
             grid_cell_m: Positive::known(0.25),
             clearance_m: NonNegative::known(0.1),
             waypoint_tolerance_m: Positive::known(0.3),
+            shared_goal_fields: true,
+            stall_replan_s: Some(Positive::known(crate::world::STALL_REPLAN_S)),
         }
     }
 }

@@ -22,10 +22,10 @@ pub const PATH_CHECK_MAX_M: f32 = 4.0;
 /// perpendicular to the next leg and in sight of the next waypoint, counts the corner as
 /// passed, metres.
 pub const CORNER_PASS_M: f32 = 2.0;
-/// A ground robot with a goal, outside every collision list, whose remaining path length has
-/// not fallen [`STALL_PROGRESS_M`] below its best value for this long re-plans around the
-/// robots standing within its sensing range (a detour), seconds. (Robots in a list are left to
-/// the resolver's deadlock rotation.)
+/// Default of `navigation.stall_replan_s`: a ground robot with a goal, outside every collision
+/// list, whose remaining path length has not fallen [`STALL_PROGRESS_M`] below its best value
+/// for this long re-plans around the robots standing within its sensing range (a detour),
+/// seconds. (Robots in a list are left to the resolver's deadlock rotation.)
 pub const STALL_REPLAN_S: f64 = 3.0;
 /// Progress that restarts a ground robot's no-progress clock (see [`STALL_REPLAN_S`]), metres.
 pub const STALL_PROGRESS_M: f32 = 0.05;
@@ -110,7 +110,8 @@ impl World {
         state.counters.replans += 1;
     }
 
-    /// The no-progress clock of ground robot `id` (see [`STALL_REPLAN_S`]): restarts on
+    /// The no-progress clock of ground robot `id` (`navigation.stall_replan_s`, default
+    /// [`STALL_REPLAN_S`]): restarts on
     /// progress or while the robot was in a collision list at the last step; when it runs out,
     /// the robot takes a detour ([`World::detour`]) and the clock restarts.
     fn watch_progress(&mut self, id: usize) {
@@ -122,7 +123,10 @@ impl World {
             nav.progress_step = steps;
             return;
         }
-        if (steps - nav.progress_step) as f64 * self.dt < STALL_REPLAN_S {
+        let Some(stall_s) = self.navigation.stall_replan_s else {
+            return;
+        };
+        if (steps - nav.progress_step) as f64 * self.dt < stall_s.get() {
             return;
         }
         self.detour(id);

@@ -11,8 +11,8 @@ use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav::Nav;
 
-use super::neighbours::NeighbourIndex;
 use super::navigation::{ClearanceGrid, PathPlanner, StandingDisc};
+use super::neighbours::NeighbourIndex;
 use super::planning::PlanInto;
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
@@ -64,6 +64,7 @@ pub struct World {
     pub(super) scratch: Vec<Vec2>,
     /// The goals many robots share, at physics precision: each task's goal point and drop-off
     /// centre, then the rest-station centre. Ground robots reach them by shared distance fields.
+    /// Empty when `navigation.shared_goal_fields` is off (every goal by A*).
     pub(super) shared_goals: Vec<Vec2>,
     /// Robots standing in the way of a detour (scratch of `path_following.rs`).
     pub(super) standing: Vec<StandingDisc>,
@@ -127,7 +128,11 @@ impl World {
                     .fold(0.0, f64::max)
             }),
             scratch: Vec::with_capacity(64),
-            shared_goals: shared_goals(s),
+            shared_goals: if s.navigation.shared_goal_fields {
+                shared_goals(s)
+            } else {
+                Vec::new()
+            },
             standing: Vec::new(),
         }
     }
