@@ -23,10 +23,9 @@ use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, DebrisSpec, Locomotion, Scenario, ScenarioSpec, StartsSpec, XyM};
 use usar_sim::world::bodies::{PhysicsScene, to_vec2};
 
-/// The scenario whose kind counts are scaled (switch to `scenarios/swarm-1000.ron` when it is
-/// in the tree: its `Grid` start layouts follow the counts, so [`spread_starts`] is then not
-/// needed and is skipped for it).
-const BASE: &str = "scenarios/paper.ron";
+/// The scenario whose kind counts are scaled: its `Grid` start layouts follow the counts (a
+/// base with `List` starts too short for a team gets [`spread_starts`]).
+const BASE: &str = "scenarios/swarm-1000.ron";
 
 /// The 12-robot team.
 const PAPER: &str = "scenarios/paper.ron";

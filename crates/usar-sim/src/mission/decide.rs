@@ -89,7 +89,9 @@ fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: 
         return false;
     }
     let (pool, _) = st.group_pool(t);
-    let free_capacity: u32 = on_task().filter(ground).map(|r| r.capacity_free).sum();
+    let free_capacity = on_task()
+        .filter(ground)
+        .fold(0u32, |sum, r| sum.saturating_add(r.capacity_free));
     let observer_arriving = on_task()
         .any(|r| scenario.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea);
     let nothing_more =

@@ -95,11 +95,14 @@ impl MissionState {
             .filter(move |r| r.task == Some(t) && !r.is_resting())
     }
 
-    /// Rescuing resources held by task `t`'s group (members not away) and how many of those
-    /// members hold a claim.
+    /// Rescuing resources held by task `t`'s group (members not away; saturating at
+    /// `u32::MAX`) and how many of those members hold a claim.
     pub fn group_pool(&self, t: usize) -> (u32, u32) {
         self.members(t).fold((0, 0), |(p, c), r| {
-            (p + r.resources, c + u32::from(r.claim.is_some()))
+            (
+                p.saturating_add(r.resources),
+                c + u32::from(r.claim.is_some()),
+            )
         })
     }
 
