@@ -97,12 +97,19 @@ fn two_sweeps_into_one_folder_and_a_killed_holder() {
     let pid = first.0.id();
     let lock = out.join(LOCK_FILE);
     let t0 = Instant::now();
-    while std::fs::read_to_string(&lock).ok().as_deref() != Some(&format!("{pid}\n")) {
+    // The lock is taken before the journal's header is written: wait for both.
+    let journal_path = out.join("journal.jsonl");
+    while std::fs::read_to_string(&lock).ok().as_deref() != Some(&format!("{pid}\n"))
+        || read_journal(&journal_path).is_err()
+    {
         assert!(
             first.0.try_wait().unwrap().is_none(),
             "the first sweep ended early"
         );
-        assert!(t0.elapsed() < Duration::from_secs(60), "no lock taken");
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "no lock or no journal"
+        );
         std::thread::sleep(Duration::from_millis(20));
     }
 
@@ -114,7 +121,7 @@ fn two_sweeps_into_one_folder_and_a_killed_holder() {
         first.0.try_wait().unwrap().is_none(),
         "the first sweep ended before the check: test inconclusive"
     );
-    let journal = read_journal(&out.join("journal.jsonl")).unwrap();
+    let journal = read_journal(&journal_path).unwrap();
     assert_eq!(journal.header.trials, 200);
     assert!(journal.rejected.is_empty());
 
