@@ -219,3 +219,27 @@ fn a_step_that_makes_the_default_trial_too_long_is_blamed_on_the_step() {
     let src = src.replacen("sim: (dt_s: 0.02", "sim: (dt_s: 1e-9", 1);
     rejected(&src, "sim.dt_s");
 }
+
+#[test]
+fn resources_that_would_overflow_a_group_sum_are_an_error() {
+    rejected(
+        &paper_with("rescuing_resources: 10,", "rescuing_resources: 4294967295,"),
+        "kinds[1].rescuing_resources",
+    );
+    rejected(
+        &paper_with("carrying_capacity: 6,", "carrying_capacity: 4294967295,"),
+        "kinds[0].carrying_capacity",
+    );
+}
+
+#[test]
+fn a_huge_clearance_or_rescuee_grid_ratio_is_an_error_not_an_overflow() {
+    rejected(
+        &paper_with("clearance_m: 0.1", "clearance_m: 1e308"),
+        "navigation.clearance_m",
+    );
+    rejected(
+        &paper_with("spacing_m: 1.0", "spacing_m: 5e-324"),
+        "tasks[0].rescuees.spacing_m",
+    );
+}

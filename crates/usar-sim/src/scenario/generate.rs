@@ -479,14 +479,16 @@ fn grid_points(ctx: &Ctx<'_>, path: &str, s: f64, margin: f64, area: &Rect) -> R
             format!("margin {m} m leaves no room in a {w} x {h} m search area"),
         ));
     }
-    let nx = (uw / s + 1e-9).floor() as usize + 1;
-    let ny = (uh / s + 1e-9).floor() as usize + 1;
-    if nx.saturating_mul(ny) > MAX_GRID_POINTS {
+    // Counted in f64 (a huge ratio cannot overflow), cast once known to be small.
+    let nx = (uw / s + 1e-9).floor() + 1.0;
+    let ny = (uh / s + 1e-9).floor() + 1.0;
+    if nx * ny > MAX_GRID_POINTS as f64 {
         return Err(ctx.err(
             format!("{path}.spacing_m"),
             format!("spacing {s} m gives {nx} x {ny} rescuees, more than {MAX_GRID_POINTS}"),
         ));
     }
+    let (nx, ny) = (nx as usize, ny as usize);
     let x0 = area.min.x + (w - (nx - 1) as f64 * s) / 2.0;
     let y0 = area.min.y + (h - (ny - 1) as f64 * s) / 2.0;
     Ok((0..ny)

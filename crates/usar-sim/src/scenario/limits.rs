@@ -8,7 +8,7 @@
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
 use super::model::{Locomotion, RobotKind, Scenario, short};
-use super::params::{Arena, NavigationParams, NeedsWeights, SimParams};
+use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimParams};
 use super::spec::KindSpec;
 use super::validate::{Ctx, R};
 
@@ -31,6 +31,10 @@ pub const MAX_NAV_CELLS: u64 = 1 << 24;
 /// Longest arena side, metres: the world simulates in `f32`, whose spacing at 10 km is about
 /// 1 mm.
 pub const MAX_ARENA_SIDE_M: f64 = 10_000.0;
+/// Most rescuees a robot carries at once and most rescuing resources it brings
+/// (`carrying_capacity`, `rescuing_resources`): a group's sums over [`MAX_ROBOTS`] robots stay
+/// within a 32-bit count.
+pub const MAX_UNITS_PER_ROBOT: u32 = 100_000;
 /// Highest top speed of a kind, metres per second.
 pub const MAX_SPEED_M_PER_S: f64 = 100.0;
 /// Range `[min, max]` of every needs level at full HP/energy (`hp_needs_full`,
@@ -71,7 +75,8 @@ pub(crate) fn check_lists(ctx: &Ctx<'_>, kinds: &[KindSpec], tasks: usize) -> R<
     Ok(())
 }
 
-/// A kind's needs levels against [`NEEDS_RANGE`] and its speed against [`MAX_SPEED_M_PER_S`].
+/// A kind's needs levels against [`NEEDS_RANGE`], its speed against [`MAX_SPEED_M_PER_S`] and
+/// its capacity and resources against [`MAX_UNITS_PER_ROBOT`].
 pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
     if kind.max_speed_m_per_s > MAX_SPEED_M_PER_S {
         return Err(ctx.err(
@@ -81,6 +86,17 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
                 short(kind.max_speed_m_per_s)
             ),
         ));
+    }
+    for (name, n) in [
+        ("carrying_capacity", kind.carrying_capacity),
+        ("rescuing_resources", kind.rescuing_resources),
+    ] {
+        if n > MAX_UNITS_PER_ROBOT {
+            return Err(ctx.err(
+                format!("kinds[{k}].{name}"),
+                format!("{n} is more than the limit of {MAX_UNITS_PER_ROBOT} per robot"),
+            ));
+        }
     }
     let (lo, hi) = NEEDS_RANGE;
     for (name, v) in [
@@ -103,7 +119,8 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
     Ok(())
 }
 
-/// The arena against [`MAX_ARENA_SIDE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
+/// The arena, `navigation.clearance_m`, `navigation.waypoint_tolerance_m` and
+/// `collision.safety_margin_m` against [`MAX_ARENA_SIDE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
 /// needs weights against [`NEEDS_RANGE`], and every kind's distance per step: a robot at top
 /// speed moves at most its body radius per step (`max_speed_m_per_s * dt_s <=
 /// body_radius_m`), so it cannot pass through a wall, debris or another robot between two
@@ -112,6 +129,7 @@ pub(crate) fn check_derived(
     ctx: &Ctx<'_>,
     arena: &Arena,
     navigation: &NavigationParams,
+    collision: &CollisionParams,
     weights: &NeedsWeights,
     kinds: &[RobotKind],
     sim: &SimParams,
@@ -120,6 +138,24 @@ pub(crate) fn check_derived(
         if v > MAX_ARENA_SIDE_M {
             return Err(ctx.err(
                 format!("arena.{name}"),
+                format!(
+                    "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
+                    short(v)
+                ),
+            ));
+        }
+    }
+    for (name, v) in [
+        ("navigation.clearance_m", navigation.clearance_m.get()),
+        (
+            "navigation.waypoint_tolerance_m",
+            navigation.waypoint_tolerance_m.get(),
+        ),
+        ("collision.safety_margin_m", collision.safety_margin_m.get()),
+    ] {
+        if v > MAX_ARENA_SIDE_M {
+            return Err(ctx.err(
+                name,
                 format!(
                     "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
                     short(v)

@@ -228,6 +228,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         ctx,
         &arena,
         &spec.navigation,
+        &spec.collision,
         &spec.needs_weights,
         &kinds,
         &spec.sim,
