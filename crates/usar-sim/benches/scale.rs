@@ -15,7 +15,8 @@
 //! smoke test). Options: `--base FILE` (the scenario to scale, default [`BASE`]),
 //! `--method NAME` (default `dis`: the grouping is not what is measured
 //! here), `--steps N` (steps per measurement, default 1,500 = 30 simulated seconds),
-//! `--budget-s S` (wall-clock cap per measurement, default 20 s).
+//! `--budget-s S` (wall-clock cap per measurement, default 20 s), `--teams 12,100,...` (team
+//! sizes, default 12, 100, 300, 1,000).
 
 use std::time::Instant;
 
@@ -36,11 +37,12 @@ fn path(rel: &str) -> String {
 
 /// Command-line options (after `--`).
 struct Options {
-    quick: bool,
     base: String,
     method: String,
     steps: u64,
     budget_s: f64,
+    /// Team sizes to measure.
+    teams: Vec<usize>,
 }
 
 fn options() -> Options {
@@ -52,7 +54,6 @@ fn options() -> Options {
     };
     let quick = args.iter().any(|a| a == "--quick");
     Options {
-        quick,
         base: value("--base").unwrap_or_else(|| path(BASE)),
         method: value("--method").unwrap_or_else(|| "dis".into()),
         steps: value("--steps")
@@ -61,6 +62,15 @@ fn options() -> Options {
         budget_s: value("--budget-s")
             .and_then(|v| v.parse().ok())
             .unwrap_or(if quick { 5.0 } else { 20.0 }),
+        teams: value("--teams")
+            .map(|v| v.split(',').filter_map(|t| t.trim().parse().ok()).collect())
+            .unwrap_or_else(|| {
+                if quick {
+                    vec![12, 100]
+                } else {
+                    vec![12, 100, 300, 1000]
+                }
+            }),
     }
 }
 
@@ -240,11 +250,6 @@ fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
 
 fn main() {
     let o = options();
-    let teams: &[usize] = if o.quick {
-        &[12, 100]
-    } else {
-        &[12, 100, 300, 1000]
-    };
     println!(
         "scaling bench: {} scaled, method {}, up to {} steps or {} s per measurement, one thread, rates per CPU second of the thread",
         o.base, o.method, o.steps, o.budget_s
@@ -253,7 +258,7 @@ fn main() {
         "| robots | logic steps/s | bare Rapier steps/s | step cost logic/bare | sim-s per wall-s | peak RSS MiB |"
     );
     println!("|---:|---:|---:|---:|---:|---:|");
-    for &n in teams {
+    for &n in &o.teams {
         let s = team(n, &o.base);
         let dt = s.sim.dt_s.get();
         let (ls, lw) = with_logic(&s, &o);

@@ -34,7 +34,16 @@ pub struct RescueeField {
     pickups: Vec<u32>,
     unknown_waiting: usize,
     area: Rect,
+    /// The rescuees that are known and waiting (any order): what
+    /// [`RescueeField::nearest_known_waiting`] scans, so a claim costs the known waiting
+    /// rescuees, not the task's whole list.
+    known_waiting: Vec<u32>,
+    /// Position of rescuee `i` in `known_waiting`, or [`NOT_LISTED`].
+    slot: Vec<u32>,
 }
+
+/// `slot` of a rescuee that is not in the known-waiting list.
+const NOT_LISTED: u32 = u32::MAX;
 
 impl RescueeField {
     /// All rescuees of a task, waiting and unknown to everyone.
@@ -47,6 +56,26 @@ impl RescueeField {
             pickups: vec![0; n],
             unknown_waiting: n,
             area,
+            known_waiting: Vec::new(),
+            slot: vec![NOT_LISTED; n],
+        }
+    }
+
+    /// Puts rescuee `i` into the known-waiting list or takes it out, as its `known` flag and
+    /// status now say (call after every change of either).
+    fn sync(&mut self, i: usize) {
+        let listed = self.slot[i] != NOT_LISTED;
+        let should = self.known[i] && self.status[i] == RescueeStatus::Waiting;
+        if should && !listed {
+            self.slot[i] = self.known_waiting.len() as u32;
+            self.known_waiting.push(i as u32);
+        } else if !should && listed {
+            let k = self.slot[i] as usize;
+            self.known_waiting.swap_remove(k);
+            if let Some(&moved) = self.known_waiting.get(k) {
+                self.slot[moved as usize] = k as u32;
+            }
+            self.slot[i] = NOT_LISTED;
         }
     }
 
@@ -80,6 +109,10 @@ impl RescueeField {
     /// and puts skipped rescuees back to waiting.
     pub fn forget(&mut self) {
         self.known.iter_mut().for_each(|k| *k = false);
+        for &i in &self.known_waiting {
+            self.slot[i as usize] = NOT_LISTED;
+        }
+        self.known_waiting.clear();
         for s in &mut self.status {
             if *s == RescueeStatus::Skipped {
                 *s = RescueeStatus::Waiting;
@@ -113,25 +146,27 @@ impl RescueeField {
             {
                 self.known[i] = true;
                 self.unknown_waiting -= 1;
+                self.sync(i);
             }
         }
     }
 
     /// The known, waiting rescuee nearest to `from` (ties: lowest index) for which `free`
     /// holds, if any (the caller excludes rescuees under other robots' bodies). `free` is only
-    /// asked about rescuees nearer than the best so far (the answer is the same).
+    /// asked about rescuees that beat the best so far in (squared distance, index) order, so
+    /// it must not depend on the order it is asked in. `O(k)` for `k` known waiting rescuees.
     pub fn nearest_known_waiting(
         &self,
         from: &PointM,
         free: impl Fn(&PointM) -> bool,
     ) -> Option<usize> {
         let mut best: Option<(f64, usize)> = None;
-        for i in 0..self.positions.len() {
-            if self.known[i] && self.status[i] == RescueeStatus::Waiting {
-                let d = (self.positions[i] - from).norm_squared();
-                if best.is_none_or(|(bd, _)| d < bd) && free(&self.positions[i]) {
-                    best = Some((d, i));
-                }
+        for &i in &self.known_waiting {
+            let i = i as usize;
+            let d = (self.positions[i] - from).norm_squared();
+            let beats = best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi));
+            if beats && free(&self.positions[i]) {
+                best = Some((d, i));
             }
         }
         best.map(|(_, i)| i)
@@ -141,6 +176,7 @@ impl RescueeField {
     pub fn claim(&mut self, i: usize, robot: usize) {
         debug_assert_eq!(self.status[i], RescueeStatus::Waiting);
         self.status[i] = RescueeStatus::Claimed(robot);
+        self.sync(i);
     }
 
     /// Releases a claim: the rescuee waits again (and stays known).
@@ -148,12 +184,14 @@ impl RescueeField {
         if matches!(self.status[i], RescueeStatus::Claimed(_)) {
             self.status[i] = RescueeStatus::Waiting;
         }
+        self.sync(i);
     }
 
     /// Robot `robot` picks up rescuee `i`.
     pub fn pick_up(&mut self, i: usize, robot: usize) {
         self.status[i] = RescueeStatus::Carried(robot);
         self.pickups[i] += 1;
+        self.sync(i);
     }
 
     /// Puts carried rescuee `i` back where it was found: it waits again, unknown to everyone
@@ -163,11 +201,77 @@ impl RescueeField {
         self.status[i] = RescueeStatus::Waiting;
         self.known[i] = false;
         self.unknown_waiting += 1;
+        self.sync(i);
     }
 
     /// Sets the final status of a carried or claimed rescuee (`Delivered`, `Abandoned` or
     /// `Unreachable`).
     pub fn settle(&mut self, i: usize, status: RescueeStatus) {
         self.status[i] = status;
+        self.sync(i);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Point2;
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// The scan of every rescuee in index order that the known-waiting list replaces.
+    fn nearest_by_scan(
+        f: &RescueeField,
+        from: &PointM,
+        free: impl Fn(&PointM) -> bool,
+    ) -> Option<usize> {
+        let mut best: Option<(f64, usize)> = None;
+        for i in 0..f.len() {
+            if f.known[i] && f.status[i] == RescueeStatus::Waiting {
+                let d = (f.positions[i] - from).norm_squared();
+                if best.is_none_or(|(bd, _)| d < bd) && free(&f.positions[i]) {
+                    best = Some((d, i));
+                }
+            }
+        }
+        best.map(|(_, i)| i)
+    }
+
+    /// One mutation of a field: (operation, rescuee or robot, x, y).
+    fn op() -> impl Strategy<Value = (u8, usize, f64, f64)> {
+        (0u8..8, 0usize..12, 0.0f64..10.0, 0.0f64..10.0)
+    }
+
+    proptest! {
+        #[test]
+        fn the_known_waiting_list_answers_as_the_full_scan(
+            // Integer positions so that equal distances (ties by index) are common.
+            cells in prop::collection::vec((0u8..5, 0u8..5), 1..12),
+            ops in prop::collection::vec(op(), 0..60),
+        ) {
+            let positions: Vec<PointM> =
+                cells.iter().map(|&(x, y)| Point2::new(f64::from(x) * 2.0, f64::from(y) * 2.0)).collect();
+            let area = Rect { min: Point2::new(0.0, 0.0), max: Point2::new(10.0, 10.0) };
+            let n = positions.len();
+            let mut f = RescueeField::new(positions, area);
+            for (kind, k, x, y) in ops {
+                let i = k % n;
+                let p = Point2::new(x, y);
+                match kind {
+                    0 | 1 => f.detect(&p, 3.0),
+                    2 if f.status(i) == RescueeStatus::Waiting => f.claim(i, k),
+                    3 => f.release(i),
+                    4 if matches!(f.status(i), RescueeStatus::Claimed(_)) => f.pick_up(i, k),
+                    5 if matches!(f.status(i), RescueeStatus::Carried(_)) => f.put_back(i),
+                    6 => f.settle(i, [RescueeStatus::Skipped, RescueeStatus::Unreachable][k % 2]),
+                    7 => f.forget(),
+                    _ => {}
+                }
+                // `free` excludes one spot, so the lazy test matters.
+                let blocked = Point2::new(2.0 * (k % 5) as f64, 2.0 * (k % 3) as f64);
+                let free = |q: &PointM| *q != blocked;
+                prop_assert_eq!(f.nearest_known_waiting(&p, free), nearest_by_scan(&f, &p, free));
+            }
+        }
     }
 }

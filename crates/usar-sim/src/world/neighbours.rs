@@ -289,10 +289,20 @@ impl NeighbourIndex {
 }
 
 impl NeighbourQuery for NeighbourIndex {
+    /// The robots of the cells the query's square meets, less those farther than `radius_m`
+    /// plus the query slack from `p` (a disc covers about a third of the square's cells'
+    /// area, so the callers' exact tests run on fewer robots; none within `radius_m` is
+    /// dropped).
     fn candidates(&self, layer: Locomotion, p: Vec2, radius_m: f32, out: &mut Vec<usize>) {
         out.clear();
-        self.grid(layer)
-            .for_each_candidate(p, radius_m, |id, _| out.push(id));
+        let r = radius_m.max(0.0);
+        let r = r + (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
+        let r2 = r * r;
+        self.grid(layer).for_each_candidate(p, radius_m, |id, q| {
+            if (q - p).length_squared() <= r2 {
+                out.push(id);
+            }
+        });
     }
 }
 

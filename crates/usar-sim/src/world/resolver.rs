@@ -115,6 +115,10 @@ pub struct Resolver {
     members: Vec<usize>,
     /// (root, id) of every list member, sorted: the lists, each in ascending id.
     lists: Vec<(usize, usize)>,
+    /// Scratch of [`Resolver::collect_lists`]: each robot's root, then each root's next slot
+    /// in `lists`.
+    roots: Vec<usize>,
+    next_slot: Vec<usize>,
     /// Candidates of the current neighbour query (any order).
     near: Vec<usize>,
     /// Rule 3's (follower, robot it would hit) pairs of this step.
@@ -177,6 +181,8 @@ impl Resolver {
             held: vec![false; n],
             members: Vec::with_capacity(n),
             lists: Vec::with_capacity(n),
+            roots: vec![0; n],
+            next_slot: vec![0; n],
             near: Vec::with_capacity(64),
             follow: Vec::with_capacity(n),
             bounds: [LayerBounds::default(); 2],
@@ -245,16 +251,35 @@ impl Resolver {
     }
 
     /// Sorts the members of every list (component of two or more) into `self.lists` as
-    /// (root, id), lists by root and members by ascending id. `O(n log n)` at worst.
+    /// (root, id), lists by root and members by ascending id: a counting sort by root (the
+    /// ids come in ascending order), `O(n)`.
     fn collect_lists(&mut self, n: usize) {
         self.lists.clear();
+        self.next_slot[..n].iter_mut().for_each(|c| *c = 0);
+        let mut members = 0;
         for i in 0..n {
             let root = find(&mut self.parent, i);
+            self.roots[i] = root;
             if self.size[root] >= 2 {
-                self.lists.push((root, i));
+                self.next_slot[root] += 1;
+                members += 1;
             }
         }
-        self.lists.sort_unstable();
+        // Each root's first slot: the members of all smaller roots come before it.
+        let mut at = 0;
+        for slot in &mut self.next_slot[..n] {
+            let count = *slot;
+            *slot = at;
+            at += count;
+        }
+        self.lists.resize(members, (0, 0));
+        for i in 0..n {
+            let root = self.roots[i];
+            if self.size[root] >= 2 {
+                self.lists[self.next_slot[root]] = (root, i);
+                self.next_slot[root] += 1;
+            }
+        }
     }
 
     /// The end of the list starting at `self.lists[start]`.
@@ -809,6 +834,26 @@ mod tests {
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// The counting sort of the lists equals sorting every (root, id) of a component of two
+        /// or more, on random unions.
+        #[test]
+        fn lists_are_sorted_by_root_then_id(
+            n in 1usize..60,
+            pairs in proptest::collection::vec((0usize..60, 0usize..60), 0..80),
+        ) {
+            let mut r = Resolver::new(params(), n);
+            for &(a, b) in &pairs {
+                union(&mut r.parent, &mut r.size, a % n, b % n);
+            }
+            let mut expected: Vec<(usize, usize)> = (0..n)
+                .map(|i| (find(&mut r.parent, i), i))
+                .filter(|&(root, _)| r.size[root] >= 2)
+                .collect();
+            expected.sort_unstable();
+            r.collect_lists(n);
+            proptest::prop_assert_eq!(&r.lists, &expected);
+        }
 
         /// On random crowds the resolver with the neighbour index decides exactly as with the
         /// all-pairs scan ([`AllRobots`]): the same lists, heads, deadlocks and steered
