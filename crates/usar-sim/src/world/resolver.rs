@@ -88,6 +88,9 @@ pub struct Decision {
 /// `f32` rounding in the exact tests never puts a pair beyond the radius it was searched in.
 const REACH_SLACK: f32 = 1e-4;
 
+/// `spans` entry of a robot whose candidates were not queried yet this step.
+const NO_SPAN: (u32, u32) = (u32::MAX, 0);
+
 /// The largest sensing range, body radius and intended speed of one layer's robots this step.
 #[derive(Debug, Clone, Copy, Default)]
 struct LayerBounds {
@@ -111,6 +114,10 @@ pub struct Resolver {
     params: CollisionParams,
     parent: Vec<usize>,
     size: Vec<usize>,
+    /// The members of each component as a cycle: `next[i]` is the member after `i`.
+    next: Vec<usize>,
+    /// Robots whose component grew in the current follower round (rule 3).
+    grown: Vec<usize>,
     held: Vec<bool>,
     members: Vec<usize>,
     /// (root, id) of every list member, sorted: the lists, each in ascending id.
@@ -121,6 +128,12 @@ pub struct Resolver {
     next_slot: Vec<usize>,
     /// Candidates of the current neighbour query (any order).
     near: Vec<usize>,
+    /// This step's neighbour candidates of each robot queried so far:
+    /// `cached[span.0..span.1]` for `span = spans[i]` ([`NO_SPAN`] until queried). Rules 1, 3
+    /// and 5 ask for the same robots (same position and reach within a step), so each robot's
+    /// query runs once per step.
+    spans: Vec<(u32, u32)>,
+    cached: Vec<usize>,
     /// Rule 3's (follower, robot it would hit) pairs of this step.
     follow: Vec<(usize, usize)>,
     /// Ground and aerial bounds of this step (see [`Resolver::reach`]).
@@ -158,7 +171,9 @@ fn find(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-fn union(parent: &mut [usize], size: &mut [usize], a: usize, b: usize) -> bool {
+/// Unites the components of `a` and `b`; `next` links each component's members in a cycle
+/// (spliced here), so a component's members can be listed without a scan of all robots.
+fn union(parent: &mut [usize], size: &mut [usize], next: &mut [usize], a: usize, b: usize) -> bool {
     let (ra, rb) = (find(parent, a), find(parent, b));
     if ra == rb {
         return false;
@@ -167,6 +182,7 @@ fn union(parent: &mut [usize], size: &mut [usize], a: usize, b: usize) -> bool {
     let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
     parent[hi] = lo;
     size[lo] += size[hi];
+    next.swap(lo, hi);
     true
 }
 
@@ -178,12 +194,16 @@ impl Resolver {
             params,
             parent: (0..n).collect(),
             size: vec![1; n],
+            next: (0..n).collect(),
+            grown: Vec::with_capacity(n),
             held: vec![false; n],
             members: Vec::with_capacity(n),
             lists: Vec::with_capacity(n),
             roots: vec![0; n],
             next_slot: vec![0; n],
             near: Vec::with_capacity(64),
+            spans: vec![NO_SPAN; n],
+            cached: Vec::new(),
             follow: Vec::with_capacity(n),
             bounds: [LayerBounds::default(); 2],
             memory,
@@ -243,11 +263,24 @@ impl Resolver {
         }
     }
 
-    /// Robots of `a`'s layer that may take part in a rule with robot `a` (a superset, any
-    /// order) into `self.near`.
-    fn query_near(&mut self, near: &impl NeighbourQuery, a: &ResolverInput) {
-        let reach = self.reach(a);
-        near.candidates(a.layer, a.pos, reach, &mut self.near);
+    /// Robots of robot `i`'s layer that may take part in a rule with it (a superset, any
+    /// order): the range of `self.cached` holding them, queried on first use in a step.
+    fn near_span(
+        &mut self,
+        near: &impl NeighbourQuery,
+        inputs: &[ResolverInput],
+        i: usize,
+    ) -> std::ops::Range<usize> {
+        if self.spans[i] == NO_SPAN {
+            let a = &inputs[i];
+            let reach = self.reach(a);
+            near.candidates(a.layer, a.pos, reach, &mut self.near);
+            let start = self.cached.len();
+            self.cached.extend_from_slice(&self.near);
+            self.spans[i] = (start as u32, self.cached.len() as u32);
+        }
+        let (a, b) = self.spans[i];
+        a as usize..b as usize
     }
 
     /// Sorts the members of every list (component of two or more) into `self.lists` as
@@ -330,6 +363,9 @@ impl Resolver {
     /// follower rounds (rule 3).
     pub fn resolve(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery, dt: f64) {
         self.measure_bounds(inputs);
+        self.spans.clear();
+        self.spans.resize(inputs.len(), NO_SPAN);
+        self.cached.clear();
         self.track_progress(inputs, dt);
         self.link_pairs(inputs, near);
         self.join_followers(inputs, near);
@@ -359,14 +395,18 @@ impl Resolver {
         for i in 0..n {
             self.parent[i] = i;
             self.size[i] = 1;
+            self.next[i] = i;
         }
         for i in 0..n {
             let a = &inputs[i];
             if !a.active {
                 continue;
             }
-            self.query_near(near, a);
-            for &j in self.near.iter().filter(|&&j| j > i) {
+            for k in self.near_span(near, inputs, i) {
+                let j = self.cached[k];
+                if j <= i {
+                    continue;
+                }
                 let b = &inputs[j];
                 if !b.active || a.layer != b.layer || !Self::sensed(a, b) {
                     continue;
@@ -377,7 +417,7 @@ impl Resolver {
                     self.clearance(a, b),
                     horizon,
                 ) {
-                    union(&mut self.parent, &mut self.size, i, j);
+                    union(&mut self.parent, &mut self.size, &mut self.next, i, j);
                 }
             }
         }
@@ -387,7 +427,9 @@ impl Resolver {
     /// would hit which robot standing still does not change within a step, so those pairs are
     /// found once ([`Resolver::find_followers`]) and each round only checks who is held. (Within
     /// a round the held robots are fixed and the unions' outcome does not depend on their
-    /// order: this equals the rounds of all-pairs scans.)
+    /// order: this equals the rounds of all-pairs scans.) After a round only the lists that
+    /// grew get new heads (the others keep their members, rotation and head), so a round costs
+    /// the follower pairs plus the grown lists, not the team.
     fn join_followers(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
         self.assign_heads(inputs);
@@ -396,20 +438,48 @@ impl Resolver {
         }
         self.find_followers(inputs, near);
         for _ in 0..n {
-            let mut changed = false;
+            self.grown.clear();
             for &(i, j) in &self.follow {
                 if self.held[i] || !self.held[j] {
                     continue;
                 }
-                if find(&mut self.parent, i) == find(&mut self.parent, j) {
-                    continue;
+                if union(&mut self.parent, &mut self.size, &mut self.next, i, j) {
+                    self.grown.push(i);
                 }
-                changed |= union(&mut self.parent, &mut self.size, i, j);
             }
-            if !changed {
+            if self.grown.is_empty() {
                 break;
             }
-            self.assign_heads(inputs);
+            self.reassign_grown_heads(inputs);
+        }
+    }
+
+    /// [`Resolver::assign_heads`] for the lists of the robots in `self.grown` only.
+    fn reassign_grown_heads(&mut self, inputs: &[ResolverInput]) {
+        // Each grown list once, by its root.
+        for k in 0..self.grown.len() {
+            self.grown[k] = find(&mut self.parent, self.grown[k]);
+        }
+        self.grown.sort_unstable();
+        self.grown.dedup();
+        for k in 0..self.grown.len() {
+            let root = self.grown[k];
+            self.members.clear();
+            let (mut m, mut rotation) = (root, 0);
+            loop {
+                self.members.push(m);
+                rotation = rotation.max(self.memory[m].rotation);
+                m = self.next[m];
+                if m == root {
+                    break;
+                }
+            }
+            self.members
+                .sort_unstable_by(|&a, &b| inputs[a].key.total_cmp(&inputs[b].key).then(a.cmp(&b)));
+            let head = self.members[rotation as usize % self.members.len()];
+            for &m in &self.members {
+                self.held[m] = m != head;
+            }
         }
     }
 
@@ -423,8 +493,8 @@ impl Resolver {
             if !a.active || a.intent == Vec2::ZERO {
                 continue;
             }
-            self.query_near(near, a);
-            for &j in &self.near {
+            for k in self.near_span(near, inputs, i) {
+                let j = self.cached[k];
                 let b = &inputs[j];
                 if j != i
                     && a.layer == b.layer
@@ -517,13 +587,15 @@ impl Resolver {
         let horizon = self.params.lookahead_s.get() as f32;
         let speed = a.intent.length();
         let here = grid.clearance_at(a.pos);
-        self.query_near(near, a);
+        let span = self.near_span(near, inputs, i);
         let held = &self.held;
-        self.near.retain(|&j| {
-            let b = &inputs[j];
-            let still = held[j] || !b.active || b.intent == Vec2::ZERO;
-            j != i && still && b.layer == a.layer && Self::sensed(a, b)
-        });
+        self.near.clear();
+        self.near
+            .extend(self.cached[span].iter().copied().filter(|&j| {
+                let b = &inputs[j];
+                let still = held[j] || !b.active || b.intent == Vec2::ZERO;
+                j != i && still && b.layer == a.layer && Self::sensed(a, b)
+            }));
         let obstacles = &self.near;
         let clear_of_robots = |w: Vec2| {
             obstacles.iter().all(|&j| {
@@ -832,8 +904,77 @@ mod tests {
             )
     }
 
+    /// Rules 2-3 as first written: every list's head recomputed after every follower round
+    /// (the reference for the incremental rounds of [`Resolver::join_followers`]).
+    fn join_by_full_rounds(r: &mut Resolver, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
+        r.assign_heads(inputs);
+        if !r.held.contains(&true) {
+            return;
+        }
+        r.find_followers(inputs, near);
+        for _ in 0..inputs.len() {
+            let mut changed = false;
+            for k in 0..r.follow.len() {
+                let (i, j) = r.follow[k];
+                if !r.held[i] && r.held[j] {
+                    changed |= union(&mut r.parent, &mut r.size, &mut r.next, i, j);
+                }
+            }
+            if !changed {
+                break;
+            }
+            r.assign_heads(inputs);
+        }
+    }
+
+    /// [`Resolver::resolve`] with the incremental or the reference follower rounds.
+    fn resolve_with(
+        r: &mut Resolver,
+        inputs: &[ResolverInput],
+        near: &impl NeighbourQuery,
+        full: bool,
+    ) {
+        r.measure_bounds(inputs);
+        r.spans.clear();
+        r.spans.resize(inputs.len(), NO_SPAN);
+        r.cached.clear();
+        r.track_progress(inputs, 0.25);
+        r.link_pairs(inputs, near);
+        if full {
+            join_by_full_rounds(r, inputs, near);
+        } else {
+            r.join_followers(inputs, near);
+        }
+        r.decide(inputs);
+        r.forget_unlisted(inputs);
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// Reassigning heads only in the lists that grew decides as recomputing every list
+        /// after every follower round, on random dense crowds over several steps.
+        #[test]
+        fn incremental_follower_rounds_equal_full_rounds(
+            crowd in proptest::collection::vec(random_robot(), 2..300),
+        ) {
+            let n = crowd.len();
+            let mut inputs = crowd;
+            let (mut fast, mut full) = (Resolver::new(params(), n), Resolver::new(params(), n));
+            for _ in 0..8 {
+                let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                resolve_with(&mut fast, &inputs, &ix, false);
+                resolve_with(&mut full, &inputs, &ix, true);
+                proptest::prop_assert_eq!(fast.decisions(), full.decisions());
+                proptest::prop_assert_eq!(&fast.lists, &full.lists);
+                for (i, a) in inputs.iter_mut().enumerate() {
+                    if !fast.decisions()[i].held {
+                        a.pos += a.intent * 0.1;
+                    }
+                }
+            }
+        }
 
         /// The counting sort of the lists equals sorting every (root, id) of a component of two
         /// or more, on random unions.
@@ -844,7 +985,7 @@ mod tests {
         ) {
             let mut r = Resolver::new(params(), n);
             for &(a, b) in &pairs {
-                union(&mut r.parent, &mut r.size, a % n, b % n);
+                union(&mut r.parent, &mut r.size, &mut r.next, a % n, b % n);
             }
             let mut expected: Vec<(usize, usize)> = (0..n)
                 .map(|i| (find(&mut r.parent, i), i))
