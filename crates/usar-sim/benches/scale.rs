@@ -16,7 +16,10 @@
 //! `--method NAME` (default `dis`: the grouping is not what is measured
 //! here), `--steps N` (steps per measurement, default 1,500 = 30 simulated seconds),
 //! `--budget-s S` (wall-clock cap per measurement, default 20 s), `--teams 12,100,...` (team
-//! sizes, default 12, 100, 300, 1,000).
+//! sizes, default 12, 100, 300, 1,000), `--svg FILE` (relative to the workspace root; also
+//! draw the measured curve: steps per
+//! CPU second with all logic and with bare Rapier against team size, log-log, with the
+//! 25x-real-time line; `docs/img/scaling.svg` is made this way).
 
 use std::time::Instant;
 
@@ -43,6 +46,8 @@ struct Options {
     budget_s: f64,
     /// Team sizes to measure.
     teams: Vec<usize>,
+    /// Where to draw the measured curve (SVG), if anywhere.
+    svg: Option<String>,
 }
 
 fn options() -> Options {
@@ -62,6 +67,14 @@ fn options() -> Options {
         budget_s: value("--budget-s")
             .and_then(|v| v.parse().ok())
             .unwrap_or(if quick { 5.0 } else { 20.0 }),
+        // Relative to the workspace root (cargo runs benches in the crate's folder).
+        svg: value("--svg").map(|f| {
+            if std::path::Path::new(&f).is_absolute() {
+                f
+            } else {
+                path(&f)
+            }
+        }),
         teams: value("--teams")
             .map(|v| v.split(',').filter_map(|t| t.trim().parse().ok()).collect())
             .unwrap_or_else(|| {
@@ -214,7 +227,17 @@ fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
             break;
         }
     }
-    (done, cpu_s(t0) - c0)
+    let cpu = cpu_s(t0) - c0;
+    // The kernel adds a running thread's CPU time at scheduler ticks: a measurement shorter
+    // than a tick can read 0, then the wall time stands in.
+    (
+        done,
+        if cpu > 0.0 {
+            cpu
+        } else {
+            t0.elapsed().as_secs_f64()
+        },
+    )
 }
 
 /// Steps per second of the full simulation of `s`.
@@ -248,6 +271,78 @@ fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
     time_steps(o.steps, o.budget_s, || scene.step())
 }
 
+/// One measured team: robots, steps per CPU second with all logic and with bare Rapier, step
+/// length in seconds.
+struct Row {
+    robots: usize,
+    logic: f64,
+    bare: f64,
+    dt_s: f64,
+}
+
+/// Draws `rows` as a log-log plot into the SVG file `path`.
+fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    let root = SVGBackend::new(path, (720, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let x_max = rows.iter().map(|r| r.robots).max().unwrap_or(1000) as f64 * 1.3;
+    let y_max = rows.iter().map(|r| r.bare.max(r.logic)).fold(1.0, f64::max) * 1.5;
+    let y_min = rows
+        .iter()
+        .map(|r| r.logic.min(r.bare))
+        .fold(f64::MAX, f64::min)
+        * 0.5;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Steps per CPU second against team size", ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(64)
+        .build_cartesian_2d((8.0..x_max).log_scale(), (y_min..y_max).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("robots")
+        .y_desc("world steps per CPU second")
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    let series = [
+        ("all logic (Simulation::step)", RGBColor(31, 119, 180), true),
+        ("bare Rapier, same bodies", RGBColor(127, 127, 127), false),
+    ];
+    for (label, colour, logic) in series {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|r| (r.robots as f64, if logic { r.logic } else { r.bare }))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+            });
+        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+    }
+    if let Some(dt) = rows.first().map(|r| r.dt_s) {
+        let target = 25.0 / dt;
+        let red = RGBColor(214, 39, 40);
+        chart
+            .draw_series(LineSeries::new(
+                [(8.0, target), (x_max, target)],
+                red.stroke_width(1),
+            ))?
+            .label("25x real time")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], red.stroke_width(1)));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
 fn main() {
     let o = options();
     println!(
@@ -258,6 +353,7 @@ fn main() {
         "| robots | logic steps/s | bare Rapier steps/s | step cost logic/bare | sim-s per wall-s | peak RSS MiB |"
     );
     println!("|---:|---:|---:|---:|---:|---:|");
+    let mut rows = Vec::new();
     for &n in &o.teams {
         let s = team(n, &o.base);
         let dt = s.sim.dt_s.get();
@@ -270,5 +366,21 @@ fn main() {
             logic * dt,
             peak_rss_mib()
         );
+        rows.push(Row {
+            robots: n,
+            logic,
+            bare: raw,
+            dt_s: dt,
+        });
+    }
+    rows.retain(|r| r.logic.is_finite() && r.bare.is_finite() && r.logic > 0.0 && r.bare > 0.0);
+    if let Some(path) = &o.svg {
+        match draw(&rows, path) {
+            Ok(()) => println!("figure: {path}"),
+            Err(e) => {
+                eprintln!("error: cannot draw {path}: {e}");
+                std::process::exit(1);
+            }
+        }
     }
 }
