@@ -333,3 +333,99 @@ pub fn write_replay(scenario: &Scenario, rec: &Recording, out: &Path) -> Result<
     })?;
     Ok(html.len() as u64)
 }
+
+#[cfg(test)]
+mod tests {
+    use usar_sim::mission::Simulation;
+    use usar_sim::scenario;
+
+    use super::*;
+    use crate::replay::{decode_recording, decompress, record_trial};
+
+    fn paper() -> Scenario {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+        scenario::load(path).expect("paper.ron loads")
+    }
+
+    fn recorded(s: &Scenario, duration_s: f64) -> Recording {
+        let sim = Simulation::builder(s)
+            .method_named("rne")
+            .duration_s(duration_s)
+            .build()
+            .expect("trial builds");
+        record_trial(sim, 10.0, None).expect("records").recording
+    }
+
+    /// The text between `<script ... id="ID">` and `</script>`.
+    fn script<'a>(html: &'a str, id: &str) -> &'a str {
+        let open = format!("id=\"{id}\">");
+        let start = html.find(&open).expect("script element") + open.len();
+        &html[start..start + html[start..].find("</script>").expect("end")]
+    }
+
+    /// The page holds everything (no placeholder left, nothing fetched from elsewhere), its
+    /// metadata parses, and its data decode back to the recording.
+    #[test]
+    fn the_page_is_self_contained_and_its_data_decode_to_the_recording() {
+        let s = paper();
+        let rec = recorded(&s, 30.0);
+        let html = replay_html(&s, &rec).expect("page");
+        assert!(!html.contains("{{"), "a placeholder is left");
+        for remote in ["src=\"http", "href=\"http", "<link", "fetch(", "import("] {
+            assert!(!html.contains(remote), "the page refers to {remote}");
+        }
+        let meta: serde_json::Value =
+            serde_json::from_str(script(&html, "meta")).expect("metadata is JSON");
+        assert_eq!(meta["samples"], 301);
+        assert_eq!(meta["robots"].as_array().map(Vec::len), Some(12));
+        assert_eq!(meta["seed"], rec.seed.to_string());
+        assert_eq!(
+            meta["marks"].as_array().map(Vec::len),
+            Some(rec.marks.len())
+        );
+        let packed = BASE64.decode(script(&html, "data").trim()).expect("base64");
+        let back =
+            decode_recording(&decompress(&packed).expect("inflates"), 301, 12).expect("decodes");
+        assert_eq!(back.channels, rec.channels);
+        assert_eq!(back.rescuee_changes, rec.rescuee_changes);
+        let svg = BASE64
+            .decode(
+                html.split("base64,")
+                    .nth(1)
+                    .and_then(|t| t.split('"').next())
+                    .expect("map"),
+            )
+            .expect("map base64");
+        assert!(
+            String::from_utf8(svg)
+                .expect("svg text")
+                .contains("hard drop-off")
+        );
+    }
+
+    /// The paper's whole 600 s trial at 10 Hz stays far under the 5 MB budget.
+    #[test]
+    fn the_papers_whole_trial_fits_in_well_under_five_megabytes() {
+        let s = paper();
+        let rec = recorded(&s, 600.0);
+        assert_eq!(rec.samples, 6_001);
+        let dir = tempfile::tempdir().expect("temp dir");
+        let out = dir.path().join("replay.html");
+        let bytes = write_replay(&s, &rec, &out).expect("writes");
+        assert_eq!(std::fs::metadata(&out).expect("file").len(), bytes);
+        let per_robot_sample = bytes as f64 / (6_001.0 * 12.0);
+        assert!(bytes < 5_000_000, "{bytes} bytes");
+        assert!(
+            per_robot_sample < 4.0,
+            "{per_robot_sample:.2} bytes per robot and sample"
+        );
+    }
+
+    #[test]
+    fn titles_are_escaped() {
+        assert_eq!(
+            escape_html("a<b & \"c\">"),
+            "a&lt;b &amp; &quot;c&quot;&gt;"
+        );
+    }
+}
