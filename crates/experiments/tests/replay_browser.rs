@@ -5,7 +5,7 @@
 //!
 //! Without chromium these tests fail, saying how to install it (`apt-get install -y
 //! chromium`), unless `USAR_SKIP_BROWSER_TESTS=1`. `USAR_WRITE_SCREENSHOT=PATH` makes
-//! `readme_screenshot` write the README's picture (the paper's trial 0 at 150 s) to PATH.
+//! `readme_screenshot` write the README's picture (the paper's trial 0 at 118 s) to PATH.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -73,9 +73,13 @@ fn run_browser(chromium: &Path, args: &[String], url: &str) -> Output {
     ])
     .arg(format!("--user-data-dir={}", profile.path().display()))
     .args(args)
-    .arg(url)
-    .stdout(Stdio::piped())
-    .stderr(Stdio::piped());
+    .arg(url);
+    // Output goes to files: a pipe nobody reads while waiting would fill up (the DOM holds the
+    // page's data) and block the browser.
+    let out_path = profile.path().join("stdout.txt");
+    let err_path = profile.path().join("stderr.txt");
+    let file = |p: &Path| Stdio::from(std::fs::File::create(p).expect("output file"));
+    cmd.stdout(file(&out_path)).stderr(file(&err_path));
     let mut child = cmd.spawn().expect("start chromium");
     let start = Instant::now();
     loop {
@@ -89,7 +93,12 @@ fn run_browser(chromium: &Path, args: &[String], url: &str) -> Output {
             None => std::thread::sleep(Duration::from_millis(50)),
         }
     }
-    child.wait_with_output().expect("chromium output")
+    let status = child.wait().expect("chromium status");
+    Output {
+        status,
+        stdout: std::fs::read(&out_path).expect("chromium stdout"),
+        stderr: std::fs::read(&err_path).expect("chromium stderr"),
+    }
 }
 
 fn file_url(path: &Path, hash: &str) -> String {
@@ -304,7 +313,7 @@ fn pages_of_three_tasks_and_a_thousand_robots_load_cleanly() {
 }
 
 /// Writes the README's picture when `USAR_WRITE_SCREENSHOT=PATH` is set (`just
-/// replay-screenshot`): trial 0 of the paper's mission with RNE, at 150 s, robot 3 selected.
+/// replay-screenshot`): trial 0 of the paper's mission with RNE, at 118 s, robot 3 selected.
 #[test]
 fn readme_screenshot() {
     let Some(target) = std::env::var_os("USAR_WRITE_SCREENSHOT") else {
@@ -315,7 +324,7 @@ fn readme_screenshot() {
     let page = dir.path().join("paper.html");
     usar_replay("paper.ron", &["--method", "rne", "--trial", "0"], &page);
     let png = PathBuf::from(target);
-    screenshot(&chromium, &page, "t=150&robot=3", &png, (1440, 1120));
+    screenshot(&chromium, &page, "t=118&robot=3", &png, (1440, 1120));
     let (_, _, rgba) = decode_png(&png);
     assert!(colour_stats(&rgba).0 > 200);
     eprintln!("wrote {}", png.display());

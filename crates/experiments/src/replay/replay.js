@@ -191,7 +191,7 @@
 
   function robotRadiusPx(r) {
     const k = meta.kinds[meta.robots[r]];
-    const min = meta.labels ? 5.5 : 2.2;
+    const min = meta.labels ? 6 : 2.2;
     return Math.max(k.radius_m * scale.sx, min);
   }
 
