@@ -26,14 +26,19 @@ mod sampling;
 mod sweep;
 mod trial;
 
-pub use channels::{Channel, RescueeCode, StateFlags, phase_code};
+pub use channels::{
+    Channel, NEEDS_ENTRIES, PHASE_NAMES, RescueeCode, StateFlags, phase_code, quantise,
+};
 pub use encoding::{
     DecodedRecording, compress, decode_recording, decompress, encode_recording, read_varint,
     unzigzag, write_varint, zigzag,
 };
 pub use error::ReplayError;
 pub use marks::{Mark, MarkKind};
-pub use page::{PageMeta, replay_html, write_replay};
+pub use page::{
+    ChannelMeta, KindMeta, MarkKindMeta, MarkMeta, PAGE_FORMAT, PageMeta, RoundMeta, TaskMeta,
+    replay_html, write_replay,
+};
 pub use recorder::ReplayRecorder;
 pub use recording::{Recording, RescueeChange};
 pub use sampling::{DEFAULT_HZ, SampleClock};

@@ -28,35 +28,23 @@ pub fn record_trial(
     also: Option<&mut dyn StepObserver>,
 ) -> Result<ReplayTrial, ReplayError> {
     let mut recorder = ReplayRecorder::new(hz)?;
-    let result = match also {
-        Some(other) => {
-            let mut both = Both(&mut recorder, other);
-            sim.run_observed(&mut both)?
+    let mut also = also;
+    // Both see the start here; the closure below forwards every step.
+    recorder.on_start(&sim);
+    if let Some(o) = also.as_mut() {
+        o.on_start(&sim);
+    }
+    let mut observe = |sim: &Simulation| {
+        recorder.on_step(sim);
+        if let Some(o) = also.as_mut() {
+            o.on_step(sim);
         }
-        None => sim.run_observed(&mut recorder)?,
     };
+    let result = sim.run_observed(&mut observe)?;
     let recording = recorder
         .take()
         .ok_or_else(|| ReplayError::Spec("the trial recorded nothing".into()))?;
     Ok(ReplayTrial { recording, result })
-}
-
-/// Two observers, called in order.
-pub(crate) struct Both<'a>(
-    pub(crate) &'a mut dyn StepObserver,
-    pub(crate) &'a mut dyn StepObserver,
-);
-
-impl StepObserver for Both<'_> {
-    fn on_start(&mut self, sim: &Simulation) {
-        self.0.on_start(sim);
-        self.1.on_start(sim);
-    }
-
-    fn on_step(&mut self, sim: &Simulation) {
-        self.0.on_step(sim);
-        self.1.on_step(sim);
-    }
 }
 
 #[cfg(test)]
