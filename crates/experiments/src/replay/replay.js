@@ -165,10 +165,28 @@
   }
 
   // ---- drawing --------------------------------------------------------------------------------
-  const X = (x) => (x - meta.map.x0_m) * scale.sx;
-  const Y = (y) => (meta.map.y1_m - y) * scale.sy;
+  // Zoom: the canvas draws at `zoom` around the pan offset; the map picture follows by a CSS
+  // transform.
+  let zoom = 1;
+  let pan = { x: 0, y: 0 };
+  const X = (x) => (x - meta.map.x0_m) * scale.sx * zoom + pan.x;
+  const Y = (y) => (meta.map.y1_m - y) * scale.sy * zoom + pan.y;
+  function setZoom(z, cx, cy) {
+    const nz = Math.min(Math.max(z, 1), 24);
+    pan.x = cx - ((cx - pan.x) * nz) / zoom;
+    pan.y = cy - ((cy - pan.y) * nz) / zoom;
+    zoom = nz;
+    clampPan();
+  }
+  function clampPan() {
+    pan.x = Math.min(0, Math.max(pan.x, scale.w - scale.w * zoom));
+    pan.y = Math.min(0, Math.max(pan.y, scale.h - scale.h * zoom));
+    mapImg.style.transform = zoom === 1 ? '' : 'translate(' + pan.x + 'px,' + pan.y + 'px) scale(' + zoom + ')';
+    render();
+  }
 
   function resize() {
+    const oldW = scale.w;
     const w = mapImg.clientWidth;
     const h = mapImg.clientHeight || (w * meta.map.height_px) / meta.map.width_px;
     const dpr = window.devicePixelRatio || 1;
@@ -177,6 +195,10 @@
       sy: h / (meta.map.y1_m - meta.map.y0_m),
       w, h, dpr,
     };
+    // Keep the zoomed view on the same place when the page is resized.
+    const ratio = oldW > 0 ? w / oldW : 1;
+    pan = { x: pan.x * ratio, y: pan.y * ratio };
+    mapImg.style.transform = zoom === 1 ? '' : 'translate(' + pan.x + 'px,' + pan.y + 'px) scale(' + zoom + ')';
     layer.style.width = w + 'px';
     layer.style.height = h + 'px';
     layer.width = Math.round(w * dpr);
@@ -192,7 +214,7 @@
   function robotRadiusPx(r) {
     const k = meta.kinds[meta.robots[r]];
     const min = meta.labels ? 6 : 2.2;
-    return Math.max(k.radius_m * scale.sx, min);
+    return Math.max(k.radius_m * scale.sx * zoom, min);
   }
 
   function shapePath(c, role, x, y, rad) {
@@ -210,7 +232,7 @@
 
   function drawRescuees(at) {
     rescueesAt(at.i0);
-    const rad = Math.max(0.25 * scale.sx, meta.labels ? 2.2 : 1.4);
+    const rad = Math.max(0.25 * scale.sx * zoom, meta.labels ? 2.2 : 1.4);
     for (let k = 0; k < K; k++) {
       const task = meta.tasks[k];
       for (let i = 0; i < task.rescuees.length; i++) {
@@ -291,7 +313,8 @@
     if (selected >= 0) drawTrail(at, selected);
     const placed = new Array(R);
     for (let r = 0; r < R; r++) placed[r] = drawRobot(at, r);
-    const showBars = meta.labels;
+    // Ids and bars for small teams, or once robots are drawn large enough (zoomed in).
+    const showBars = meta.labels || 0.3 * scale.sx * zoom >= 5;
     ctx.font = '600 10px system-ui, sans-serif';
     ctx.textAlign = 'center';
     for (let r = 0; r < R; r++) {
@@ -366,11 +389,12 @@
     let roundText = 'before the first round';
     if (k >= 0) {
       const rd = meta.rounds[k];
-      const open = t <= rd.end_s + 1e-9 && !(rd.completed && t > rd.end_s);
-      roundText = open || k === meta.rounds.length - 1 && !rd.completed
-        ? 'Round ' + (k + 1) + ' of ' + meta.rounds.length + ' · started at ' + fmt(rd.start_s, 1) + ' s'
-        : 'Round ' + (k + 1) + ' ended at ' + fmt(rd.end_s, 1) + ' s · waiting for the next';
-      if (t > rd.end_s + 1e-9 && rd.completed) roundText = 'Round ' + (k + 1) + ' ended at ' + fmt(rd.end_s, 1) + ' s';
+      const n = meta.rounds.length;
+      if (t <= rd.end_s + 1e-9 || (k === n - 1 && !rd.completed)) {
+        roundText = 'Round ' + (k + 1) + ' of ' + n + ' · started at ' + fmt(rd.start_s, 1) + ' s';
+      } else {
+        roundText = 'Round ' + (k + 1) + ' ended at ' + fmt(rd.end_s, 1) + ' s · waiting for the team';
+      }
     }
     $('round').textContent = roundText;
     const total = rescuedAt(t);
@@ -530,6 +554,16 @@
       const r = parseInt(h.get('robot'), 10);
       selected = r >= 0 && r < R ? r : -1;
     }
+    if (h.has('zoom')) {
+      // zoom=Z&at=X,Y: Z times closer, centred on the world point (X, Y) metres.
+      const z = Math.min(Math.max(parseFloat(h.get('zoom')) || 1, 1), 24);
+      const [ax, ay] = (h.get('at') || '').split(',').map(parseFloat);
+      const cx = Number.isFinite(ax) ? (ax - meta.map.x0_m) * scale.sx : scale.w / 2;
+      const cy = Number.isFinite(ay) ? (meta.map.y1_m - ay) * scale.sy : scale.h / 2;
+      zoom = z;
+      pan = { x: scale.w / 2 - cx * z, y: scale.h / 2 - cy * z };
+      clampPan();
+    }
     if (h.has('t')) seek(parseFloat(h.get('t'))); else render();
   }
 
@@ -570,11 +604,25 @@
       markTip.style.top = (e.offsetY - markTip.offsetHeight - 6) + 'px';
     });
     timeline.addEventListener('mouseleave', () => { markTip.hidden = true; });
+    let drag = null;
+    layer.addEventListener('mousedown', (e) => { drag = { x: e.clientX, y: e.clientY, px: pan.x, py: pan.y, moved: false }; });
+    window.addEventListener('mousemove', (e) => {
+      if (!drag) return;
+      const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      if (Math.abs(dx) + Math.abs(dy) > 3) drag.moved = true;
+      if (drag.moved && zoom > 1) { pan.x = drag.px + dx; pan.y = drag.py + dy; clampPan(); }
+    });
+    window.addEventListener('mouseup', () => { setTimeout(() => { drag = null; }, 0); });
     layer.addEventListener('click', (e) => {
-      const r = robotNear(e.offsetX, e.offsetY);
-      selected = r;
+      if (drag && drag.moved) return;
+      selected = robotNear(e.offsetX, e.offsetY);
       render();
     });
+    layer.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      setZoom(zoom * Math.exp(-e.deltaY * 0.0015), e.offsetX, e.offsetY);
+    }, { passive: false });
+    layer.addEventListener('dblclick', () => { zoom = 1; pan = { x: 0, y: 0 }; clampPan(); });
     layer.addEventListener('mousemove', (e) => {
       const r = robotNear(e.offsetX, e.offsetY);
       if (r < 0) { hoverTip.hidden = true; return; }
@@ -619,6 +667,9 @@
       case 'Home': seek(0); break;
       case 'End': seek(duration); break;
       case 'Escape': selected = -1; render(); break;
+      case 'z': setZoom(zoom * 1.5, scale.w / 2, scale.h / 2); break;
+      case 'x': setZoom(zoom / 1.5, scale.w / 2, scale.h / 2); break;
+      case '0': zoom = 1; pan = { x: 0, y: 0 }; clampPan(); break;
       default: handled = false;
     }
     if (handled) e.preventDefault();
