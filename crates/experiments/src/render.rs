@@ -290,15 +290,7 @@ const MIDDLE_TASKS: [RGBColor; 4] = [
 /// between in other pastel colours (a single task is orange). Search areas and drop-offs are
 /// filled with it.
 pub fn task_color(s: &Scenario, t: usize) -> RGBColor {
-    let order = s.hardest_first();
-    let rank = order.iter().position(|&x| x == t).unwrap_or(0);
-    if rank == 0 {
-        HARD
-    } else if rank + 1 == order.len() {
-        EASY
-    } else {
-        MIDDLE_TASKS[(rank - 1) % MIDDLE_TASKS.len()]
-    }
+    by_difficulty(s, t, (HARD, EASY, &MIDDLE_TASKS))
 }
 
 /// Saturated colours of the tasks between the hardest and the easiest, in the order of
@@ -314,14 +306,24 @@ const MIDDLE_TASKS_STRONG: [RGBColor; 4] = [
 /// ([`task_color`]): the hardest dark orange, the easiest dark blue. Drawn on the task's own
 /// pastel area it stays visible (the replay fills robots with their group's colour).
 pub fn task_strong_color(s: &Scenario, t: usize) -> RGBColor {
+    let (hard, easy) = (RGBColor(230, 85, 13), RGBColor(49, 130, 189));
+    by_difficulty(s, t, (hard, easy, &MIDDLE_TASKS_STRONG))
+}
+
+/// The colour of task `t` of `s` from a palette of (hardest, easiest, the ones between).
+fn by_difficulty(
+    s: &Scenario,
+    t: usize,
+    (hardest, easiest, middle): (RGBColor, RGBColor, &[RGBColor; 4]),
+) -> RGBColor {
     let order = s.hardest_first();
     let rank = order.iter().position(|&x| x == t).unwrap_or(0);
     if rank == 0 {
-        RGBColor(230, 85, 13)
+        hardest
     } else if rank + 1 == order.len() {
-        RGBColor(49, 130, 189)
+        easiest
     } else {
-        MIDDLE_TASKS_STRONG[(rank - 1) % MIDDLE_TASKS_STRONG.len()]
+        middle[(rank - 1) % middle.len()]
     }
 }
 

@@ -165,6 +165,34 @@ pub struct PageMeta {
     pub rounds: Vec<RoundMeta>,
 }
 
+impl KindMeta {
+    /// Kind `i` of `s`.
+    fn of(s: &Scenario, i: usize) -> Self {
+        let k = &s.kinds[i];
+        Self {
+            name: k.name.clone(),
+            role: format!("{:?}", k.role),
+            aerial: k.locomotion == Locomotion::Aerial,
+            radius_m: k.body_radius_m,
+            color: hex(kind_color(s, i)),
+        }
+    }
+}
+
+impl TaskMeta {
+    /// Task `t` of `s`, rescuee positions to the centimetre.
+    fn of(s: &Scenario, t: usize) -> Self {
+        let task = &s.tasks[t];
+        let cm = |v: f64| (v * 100.0).round() / 100.0;
+        Self {
+            name: task.name.clone(),
+            area_color: hex(task_color(s, t)),
+            color: hex(task_strong_color(s, t)),
+            rescuees: task.rescuees.iter().map(|p| [cm(p.x), cm(p.y)]).collect(),
+        }
+    }
+}
+
 fn hex(c: RGBColor) -> String {
     format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
 }
@@ -173,7 +201,6 @@ impl PageMeta {
     /// The page's metadata for `rec`, a recording of a trial of `scenario`, drawn in `map`.
     pub fn new(scenario: &Scenario, rec: &Recording, map: MapFrame) -> Self {
         let s = scenario;
-        let cm = |v: f64| (v * 100.0).round() / 100.0;
         Self {
             format: PAGE_FORMAT,
             scenario: s.name.clone(),
@@ -187,30 +214,9 @@ impl PageMeta {
             samples: rec.samples,
             hz: rec.clock.actual_hz(rec.dt_s),
             map,
-            kinds: s
-                .kinds
-                .iter()
-                .enumerate()
-                .map(|(i, k)| KindMeta {
-                    name: k.name.clone(),
-                    role: format!("{:?}", k.role),
-                    aerial: k.locomotion == Locomotion::Aerial,
-                    radius_m: k.body_radius_m,
-                    color: hex(kind_color(s, i)),
-                })
-                .collect(),
+            kinds: (0..s.kinds.len()).map(|i| KindMeta::of(s, i)).collect(),
             robots: s.robots.iter().map(|r| r.kind).collect(),
-            tasks: s
-                .tasks
-                .iter()
-                .enumerate()
-                .map(|(t, task)| TaskMeta {
-                    name: task.name.clone(),
-                    area_color: hex(task_color(s, t)),
-                    color: hex(task_strong_color(s, t)),
-                    rescuees: task.rescuees.iter().map(|p| [cm(p.x), cm(p.y)]).collect(),
-                })
-                .collect(),
+            tasks: (0..s.tasks.len()).map(|t| TaskMeta::of(s, t)).collect(),
             no_group_color: "#9e9e9e".into(),
             rescuee_color: hex(RESCUEE_COLOR),
             labels: s.robots.len() <= MAX_LABELLED_ROBOTS,
