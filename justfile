@@ -31,6 +31,14 @@ render:
     {{usar}} render scenarios/paper.ron --out docs/img/paper-arena.svg
     {{usar}} render scenarios/paper.ron --out docs/img/paper-trace.svg --trace --duration 200
 
+# Watch trial 0 of paper.ron (RNE) in a browser: writes replay.html.
+replay METHOD="rne" TRIAL="0":
+    {{usar}} replay scenarios/paper.ron --method {{METHOD}} --trial {{TRIAL}} --out replay.html
+
+# The README's replay screenshot (docs/img/replay.png), taken by the browser test in chromium.
+replay-screenshot:
+    USAR_WRITE_SCREENSHOT="$PWD/docs/img/replay.png" cargo test -p experiments --test replay_browser readme_screenshot -- --nocapture
+
 # RNE trust values of the paper's Example 1.
 trust:
     {{usar}} trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25

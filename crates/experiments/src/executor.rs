@@ -241,6 +241,9 @@ fn run_trial(
             .duration_s(plan.duration_s)
             .build()
             .map_err(|e| e.to_string())?;
+        if let Some(h) = hook.as_mut() {
+            h.on_start(&sim);
+        }
         let mut last = 0u64;
         let mut observe = |sim: &Simulation| {
             if let Some(h) = hook.as_mut() {

@@ -11,7 +11,8 @@
 //! [`grid_outputs::report`]), and [`console`] the terminal summary, all from that analysis.
 //! Module dependencies go one way: vary, grid -> sweep (with executor, journal) -> analysis
 //! (with claims, metrics, stats) -> outputs. A sweep holds the [`lock`] on its output folder
-//! while it runs and writes; every output file goes through [`atomic`].
+//! while it runs and writes; every output file goes through [`atomic`]. A [`replay`] records
+//! one trial while it runs and writes it as a page that plays it in a browser.
 
 pub mod analysis;
 pub mod atomic;
@@ -29,6 +30,7 @@ pub mod method_factory;
 pub mod metrics;
 pub mod output;
 pub mod render;
+pub mod replay;
 pub mod report;
 pub mod shard;
 pub mod slurm;

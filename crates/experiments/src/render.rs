@@ -155,7 +155,7 @@ pub fn render_svg_string(scenario: &Scenario, traces: Option<&[Trace]>) -> Resul
         let mut chart = ChartBuilder::on(&map_area)
             .build_cartesian_2d(l.x0..l.x1, l.y0..l.y1)
             .map_err(draw_err)?;
-        draw_static(&mut chart, scenario)?;
+        draw_static(&mut chart, scenario, true)?;
         if let Some(traces) = traces {
             draw_paths(&mut chart, scenario, traces)?;
         }
@@ -167,6 +167,58 @@ pub fn render_svg_string(scenario: &Scenario, traces: Option<&[Trace]>) -> Resul
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
+}
+
+/// Where the map of [`render_map_svg`] lies: pixel `(0, 0)` is the field's top-left corner
+/// `(x0_m, y1_m)` and one metre is `px_per_m` pixels on both axes (y grows upwards in the
+/// world, downwards in the picture).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct MapFrame {
+    /// World x of the picture's left edge, metres (the wall's outer side minus a 1 m margin).
+    pub x0_m: f64,
+    /// World x of the right edge, metres.
+    pub x1_m: f64,
+    /// World y of the bottom edge, metres.
+    pub y0_m: f64,
+    /// World y of the top edge, metres.
+    pub y1_m: f64,
+    /// Scale, pixels per metre, in `[4, 40]` (the longer side about 960 px where that fits).
+    pub px_per_m: f64,
+    /// Picture width, pixels.
+    pub width_px: u32,
+    /// Picture height, pixels.
+    pub height_px: u32,
+}
+
+/// The map alone, as `usar render` draws it (walls, search areas, drop-offs, radiation by dose,
+/// debris, the rest station, goal points and labels) but without rescuees, robots, header or
+/// legend, as SVG text, with the frame that maps world metres to its pixels. The replay page
+/// draws rescuees and robots over it.
+///
+/// # Errors
+/// If plotters fails to draw (it should not for a valid scenario).
+pub fn render_map_svg(scenario: &Scenario) -> Result<(String, MapFrame)> {
+    let l = Layout::new(scenario);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (l.map_w, l.map_h)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let mut chart = ChartBuilder::on(&root)
+            .build_cartesian_2d(l.x0..l.x1, l.y0..l.y1)
+            .map_err(draw_err)?;
+        draw_static(&mut chart, scenario, false)?;
+        root.present().map_err(draw_err)?;
+    }
+    let frame = MapFrame {
+        x0_m: l.x0,
+        x1_m: l.x1,
+        y0_m: l.y0,
+        y1_m: l.y1,
+        px_per_m: l.px_per_m,
+        width_px: l.map_w,
+        height_px: l.map_h,
+    };
+    Ok((svg, frame))
 }
 
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
@@ -235,18 +287,48 @@ const MIDDLE_TASKS: [RGBColor; 4] = [
 ];
 
 /// Colour of task `t` of `s` by its difficulty: the hardest orange, the easiest blue, the ones
-/// between in other pastel colours (a single task is orange).
-fn task_color(s: &Scenario, t: usize) -> RGBColor {
+/// between in other pastel colours (a single task is orange). Search areas and drop-offs are
+/// filled with it.
+pub fn task_color(s: &Scenario, t: usize) -> RGBColor {
+    by_difficulty(s, t, (HARD, EASY, &MIDDLE_TASKS))
+}
+
+/// Saturated colours of the tasks between the hardest and the easiest, in the order of
+/// [`MIDDLE_TASKS`].
+const MIDDLE_TASKS_STRONG: [RGBColor; 4] = [
+    RGBColor(49, 163, 84),
+    RGBColor(117, 107, 177),
+    RGBColor(203, 24, 29),
+    RGBColor(191, 150, 0),
+];
+
+/// A saturated colour of task `t` of `s`, of the same hue as its area colour
+/// ([`task_color`]): the hardest dark orange, the easiest dark blue. Drawn on the task's own
+/// pastel area it stays visible (the replay fills robots with their group's colour).
+pub fn task_strong_color(s: &Scenario, t: usize) -> RGBColor {
+    let (hard, easy) = (RGBColor(230, 85, 13), RGBColor(49, 130, 189));
+    by_difficulty(s, t, (hard, easy, &MIDDLE_TASKS_STRONG))
+}
+
+/// The colour of task `t` of `s` from a palette of (hardest, easiest, the ones between).
+fn by_difficulty(
+    s: &Scenario,
+    t: usize,
+    (hardest, easiest, middle): (RGBColor, RGBColor, &[RGBColor; 4]),
+) -> RGBColor {
     let order = s.hardest_first();
     let rank = order.iter().position(|&x| x == t).unwrap_or(0);
     if rank == 0 {
-        HARD
+        hardest
     } else if rank + 1 == order.len() {
-        EASY
+        easiest
     } else {
-        MIDDLE_TASKS[(rank - 1) % MIDDLE_TASKS.len()]
+        middle[(rank - 1) % middle.len()]
     }
 }
+
+/// Colour of the rescuees' dots.
+pub const RESCUEE_COLOR: RGBColor = RESCUEE;
 
 /// Colour of a radiation zone of dose rate factor `f` among factors in `[lo, hi]`.
 fn radiation_color(f: f64, lo: f64, hi: f64) -> RGBColor {
@@ -276,7 +358,9 @@ fn label_at(text: String, x: f64, y: f64, size: u32, v: VPos) -> Text<'static, (
     Text::new(text, (x, y), font(size).pos(Pos::new(HPos::Center, v)))
 }
 
-fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
+/// Draws everything that does not move: walls, search areas (with their rescuees when
+/// `rescuees`), drop-offs, radiation zones, debris, the rest station, goal points and labels.
+fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Result<()> {
     let (w, h) = (s.arena.width(), s.arena.height());
     let t = s.arena.wall_thickness_m.get();
     let walls = [
@@ -298,13 +382,15 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
                 task_color(s, t).filled(),
             )])
             .map_err(draw_err)?;
-        chart
-            .draw_series(
-                task.rescuees
-                    .iter()
-                    .map(|p| Circle::new((p.x, p.y), 1, RESCUEE.filled())),
-            )
-            .map_err(draw_err)?;
+        if rescuees {
+            chart
+                .draw_series(
+                    task.rescuees
+                        .iter()
+                        .map(|p| Circle::new((p.x, p.y), 1, RESCUEE.filled())),
+                )
+                .map_err(draw_err)?;
+        }
         chart
             .draw_series([Polygon::new(
                 disc_polygon(&task.drop_off),

@@ -4,6 +4,7 @@
 
 use super::decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 use super::error::MissionError;
+use super::events::{MissionEvent, MissionEventKind};
 use super::goals::{send, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
@@ -57,9 +58,14 @@ pub(crate) fn account(
         }
         advance_phase(scenario, world, st, id, pos, reached, now)?;
         let r = &st.robots[id];
-        if !r.is_resting()
-            && (r.energy_pct < m.low_energy_pct.get() || r.hp_pct < m.low_hp_pct.get())
-        {
+        let (low_energy, low_hp) = (
+            r.energy_pct < m.low_energy_pct.get(),
+            r.hp_pct < m.low_hp_pct.get(),
+        );
+        if !r.is_resting() && (low_energy || low_hp) {
+            let kind = MissionEventKind::LeftForRest { low_energy, low_hp };
+            st.events
+                .push(MissionEvent::of_robot(now, id, r.task, kind));
             go_rest(scenario, world, st, id)?;
         }
     }
@@ -99,7 +105,7 @@ fn advance_phase(
             }
         }
         (Phase::ToDropOff, Some(t)) if (reached || scenario.tasks[t].drop_off.contains(&pos)) => {
-            deliver(st, id, t);
+            deliver(st, id, t, now);
             if st.robots[id].leaving {
                 go_rest(scenario, world, st, id)?;
             } else {
@@ -120,6 +126,8 @@ fn advance_phase(
         }
         (Phase::Recharging { until_s }, _) if now + 1e-9 >= until_s => {
             refresh(scenario, st, id);
+            let kind = MissionEventKind::Recharged;
+            st.events.push(MissionEvent::of_robot(now, id, None, kind));
             let start = scenario.robots[id].start_in_world;
             send(world, &mut st.recorder, id, start)?;
         }
@@ -210,17 +218,24 @@ fn try_pick_up(
     r.capacity_free -= 1;
     r.load.push(i);
     st.recorder.picked_up(id);
+    let kind = MissionEventKind::PickedUp { rescuee: i };
+    st.events
+        .push(MissionEvent::of_robot(world.time_s(), id, Some(t), kind));
     stop(world, id)
 }
 
-/// Robot `id` delivers its load at task `t`'s drop-off: each rescuee counts for the task once.
-fn deliver(st: &mut MissionState, id: usize, t: usize) {
+/// Robot `id` delivers its load at task `t`'s drop-off at `now` (seconds): each rescuee counts
+/// for the task once.
+fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
     let load = std::mem::take(&mut st.robots[id].load);
     let n = load.len() as u32;
     for i in load {
         st.fields[t].settle(i, RescueeStatus::Delivered);
     }
     st.recorder.delivered(id, t, n);
+    let kind = MissionEventKind::Delivered { rescuees: n };
+    st.events
+        .push(MissionEvent::of_robot(now, id, Some(t), kind));
 }
 
 /// Robot `id` leaves its task and group for the rest station (energy or HP below its

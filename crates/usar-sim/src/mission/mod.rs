@@ -10,11 +10,13 @@
 //! - [`draw_initial_levels`]: the trial's starting energy and HP (common random numbers).
 //! - [`group_available`]: regrouping at each round's start with adapted quotas.
 //! - [`Simulation`]: one trial, set up by [`Simulation::builder`], watched by a
-//!   [`StepObserver`]; [`TrialResult`]: its metrics.
+//!   [`StepObserver`]; [`TrialResult`]: its metrics; [`MissionEvent`]: what happened in the
+//!   last step ([`Simulation::events`]).
 
 mod account;
 mod decide;
 mod error;
+mod events;
 mod goals;
 mod grouping;
 mod initial;
@@ -30,6 +32,7 @@ mod sweep;
 
 pub use decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 pub use error::MissionError;
+pub use events::{MissionEvent, MissionEventKind};
 pub use grouping::{adapted_quotas, group_available, shrink_quotas, snapshot};
 pub use initial::{InitialLevels, draw_initial_levels, trial_seed};
 pub use metrics::{RobotMetrics, RoundRecord, TrialResult, per};

@@ -4,6 +4,7 @@
 use rne_core::grouping::GroupingMethod;
 
 use super::error::MissionError;
+use super::events::{MissionEvent, MissionEventKind};
 use super::goals::send;
 use super::grouping::group_available;
 use super::robot::Phase;
@@ -67,6 +68,11 @@ pub(crate) fn start_round(
         }
     }
     st.recorder.round_started(world.time_s(), groups);
+    let round = st.recorder.rounds().len() - 1;
+    st.events.push(MissionEvent::of_round(
+        world.time_s(),
+        MissionEventKind::RoundStarted { round },
+    ));
     st.round_open = true;
     Ok(())
 }
@@ -83,6 +89,11 @@ pub(crate) fn round_complete(st: &MissionState) -> bool {
 /// groups dissolve.
 pub(crate) fn close_round(world: &World, st: &mut MissionState, completed: bool) {
     st.recorder.round_closed(world.time_s(), completed);
+    let round = st.recorder.rounds().len().saturating_sub(1);
+    st.events.push(MissionEvent::of_round(
+        world.time_s(),
+        MissionEventKind::RoundEnded { round, completed },
+    ));
     for r in &mut st.robots {
         r.task = None;
     }

@@ -8,6 +8,7 @@ use rne_core::{NeedsVector, TrustModel, Weights};
 use super::account::account;
 use super::decide::decide;
 use super::error::MissionError;
+use super::events::MissionEvent;
 use super::initial::{draw_initial_levels, trial_seed};
 use super::metrics::{RoundRecord, TrialResult};
 use super::needs::needs_vector;
@@ -24,6 +25,12 @@ use crate::world::World;
 pub trait StepObserver {
     /// Called after each step with the simulation as it is then.
     fn on_step(&mut self, sim: &Simulation);
+
+    /// Called once by [`Simulation::run_observed`] before the first step, with the trial at
+    /// its start (time 0 for a fresh trial); does nothing by default (a closure's is a no-op).
+    fn on_start(&mut self, sim: &Simulation) {
+        let _ = sim;
+    }
 }
 
 impl<F: FnMut(&Simulation)> StepObserver for F {
@@ -168,6 +175,13 @@ impl Simulation {
         &self.state.fields[t]
     }
 
+    /// What happened in the mission during the last step, in order (empty before the first
+    /// step): rounds, pick-ups, deliveries, leaves for and returns from the rest station.
+    /// Deadlocks are counted per robot in [`crate::world::RobotState::counters`].
+    pub fn events(&self) -> &[MissionEvent] {
+        &self.state.events
+    }
+
     /// The rounds so far (the last may be open).
     pub fn rounds(&self) -> &[RoundRecord] {
         self.state.recorder.rounds()
@@ -215,6 +229,7 @@ impl Simulation {
             return Ok(());
         }
         let (sc, world, st) = (&self.scenario, &mut self.world, &mut self.state);
+        st.events.clear();
         if !st.round_open {
             start_round(sc, world, st, self.method.as_ref())?;
         }
@@ -239,8 +254,8 @@ impl Simulation {
         self.run_observed(&mut |_: &Simulation| {})
     }
 
-    /// Runs the trial to its time limit, calling `observer` after every step, and returns its
-    /// metrics.
+    /// Runs the trial to its time limit, calling `observer` once before the first step
+    /// ([`StepObserver::on_start`]) and after every step, and returns its metrics.
     ///
     /// # Errors
     /// As [`Simulation::step`].
@@ -248,6 +263,7 @@ impl Simulation {
         &mut self,
         observer: &mut dyn StepObserver,
     ) -> Result<TrialResult, MissionError> {
+        observer.on_start(self);
         while !self.is_finished() {
             self.step()?;
             observer.on_step(self);

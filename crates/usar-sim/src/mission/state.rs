@@ -1,6 +1,7 @@
 //! The mission's state: plain data that the systems ([`super::rounds`], [`super::decide`],
 //! [`super::account`]) update and [`super::Simulation`] owns, apart from the physical world.
 
+use super::events::MissionEvent;
 use super::initial::InitialLevels;
 use super::recorder::Recorder;
 use super::rescuees::RescueeField;
@@ -26,6 +27,10 @@ pub struct MissionState {
     pub search_started_s: Vec<Option<f64>>,
     /// The metrics being recorded, rounds included.
     pub recorder: Recorder,
+    /// What happened in the mission during the last step, in order (cleared at each step's
+    /// start; the buffer is reused, so recording allocates only when a step has more events
+    /// than any before it).
+    pub events: Vec<MissionEvent>,
     /// Per-task figures of the decision system, recomputed each step in reused buffers.
     pub(crate) tally: TaskTally,
 }
@@ -84,6 +89,7 @@ impl MissionState {
             round_open: false,
             search_started_s: vec![None; scenario.tasks.len()],
             recorder: Recorder::new(scenario),
+            events: Vec::new(),
             tally: TaskTally::default(),
         }
     }

@@ -23,6 +23,9 @@ Examples:
   usar render scenarios/paper.ron --out arena.svg
   usar render scenarios/paper.ron --out trace.svg --trace --duration 200
 
+  # Watch trial 0 with RNE grouping in a browser: one self-contained HTML file
+  usar replay scenarios/paper.ron --method rne --trial 0 --out replay.html
+
   # Validate a scenario; run one trial; run the paper's whole comparison
   usar check scenarios/paper.ron
   usar run scenarios/paper.ron --method rne --trial 0
@@ -50,6 +53,8 @@ pub enum Command {
     Trust(commands::trust::TrustArgs),
     /// Top-down SVG picture of a scenario, optionally with the robots' paths in one trial.
     Render(commands::render::RenderArgs),
+    /// Record one trial and write a self-contained HTML page that plays it in a browser.
+    Replay(commands::replay::ReplayArgs),
     /// Validate a scenario file and print what it holds (or the loader's error).
     Check(commands::check::CheckArgs),
     /// One mission trial: rescuees, costs, rounds and per-robot figures.
@@ -70,6 +75,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
     match cli.command {
         Command::Trust(args) => commands::trust::run(&args, out),
         Command::Render(args) => commands::render::run(&args, out),
+        Command::Replay(args) => commands::replay::run(&args, out),
         Command::Check(args) => commands::check::run(&args, out),
         Command::Run(args) => commands::run::run(&args, out),
         Command::Sweep(args) => commands::sweep::run(&args, out),

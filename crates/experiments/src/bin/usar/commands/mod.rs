@@ -3,6 +3,7 @@
 pub mod check;
 pub mod merge;
 pub mod render;
+pub mod replay;
 pub mod run;
 pub mod slurm;
 pub mod sweep;

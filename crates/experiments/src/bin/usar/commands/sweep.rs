@@ -18,6 +18,7 @@ use experiments::console::print_sweep;
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
+use experiments::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
 use experiments::shard::{Shard, ShardRun, SweepPlan};
 use experiments::sweep::{
     MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, canonical_method,
@@ -42,6 +43,9 @@ Examples:
   # Two fields (2 x 3 cells, heat maps), a wildcard over a list, chosen metrics
   usar sweep scenarios/paper.ron --vary 'radiation_zones[*].dose_rate_factor=1,2' \\
       --vary 'kinds[0].max_speed_m_per_s=1.0,1.5,2.0' --grid-metrics rescued_total,rounds
+
+  # Also write replays of two trials (replay-rne-0.html, replay-dis-3.html) beside the outputs
+  usar sweep scenarios/paper.ron --replay rne:0,dis:3
 
   # Reproduce one cell as a file (each cell folder also holds its scenario.ron)
   usar check scenarios/paper.ron --set mission.hp_pct_per_step_in_radiation=0.003 --print
@@ -138,6 +142,17 @@ pub struct SweepArgs {
     /// `--shard $SLURM_ARRAY_TASK_ID/N` (see `usar slurm`).
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+
+    /// Also write replays of these trials (`METHOD:TRIAL`, comma-separated, repeatable) as
+    /// `replay-<method>-<trial>.html` beside the outputs (in every cell of a grid): recorded
+    /// while the sweep runs them; a trial already in the journal is run once more, alone, for
+    /// its replay. See `usar replay --help` and docs/replay.md.
+    #[arg(long, value_name = "METHOD:TRIAL,..", conflicts_with = "shard")]
+    pub replay: Vec<String>,
+
+    /// Samples per simulated second of the replays (--replay).
+    #[arg(long, value_name = "HZ", default_value_t = DEFAULT_HZ, requires = "replay")]
+    pub replay_hz: f64,
 
     /// Test hook: make trial K of METHOD panic half-way (repeatable).
     #[arg(long, value_name = "METHOD:K", hide = true)]
@@ -282,9 +297,13 @@ fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
 /// A bad scenario, `--vary` or option, a journal that cannot be resumed, an I/O error, or
 /// failed trials (after every other trial has run and the files are written).
 pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
-    let cfg = config(args)?;
+    let mut cfg = config(args)?;
     let tasks = cfg.scenario.task_names();
     let metrics = grid_metrics(&args.spec.grid_metrics, &tasks)?;
+    let replays = replays_of(args, &cfg)?;
+    if let Some(r) = &replays {
+        cfg.hooks.trial_observer = Some(r.observer_factory(cfg.hooks.trial_observer.take()));
+    }
     let o = run_sweep(&cfg)?;
     if let Some(s) = &cfg.shard {
         print_shard(out, &cfg, s.shard, &o)?;
@@ -293,7 +312,35 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let analysis = Analysis::of(&o);
     let files = write_outputs(&cfg, &o, &analysis, &metrics)?;
     print_sweep(out, &cfg, &o, &analysis, &metrics, &files)?;
+    if let Some(r) = &replays {
+        for w in r.finish(&cfg, &o)? {
+            writeln!(
+                out,
+                "replay: {} ({:.2} MB{})",
+                w.path.display(),
+                w.bytes as f64 / 1e6,
+                if w.rerun {
+                    ", trial run again for it: it was in the journal"
+                } else {
+                    ""
+                }
+            )?;
+        }
+    }
     failed_trials(&cfg, &o)
+}
+
+/// The replays `--replay` asks for, checked against the sweep's methods and trials before
+/// any trial runs; `None` without `--replay`.
+fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays>> {
+    if args.replay.is_empty() {
+        return Ok(None);
+    }
+    let model = trust_model(&cfg.scenario)?;
+    let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model).ok();
+    let methods: Vec<String> = cfg.methods.iter().filter_map(|m| canonical(m)).collect();
+    let requests = parse_replay_list(&args.replay, &methods, cfg.trials, &canonical)?;
+    Ok(Some(SweepReplays::new(cfg, requests, args.replay_hz)?))
 }
 
 /// The shard and plan of `--shard`, if given.

@@ -1,0 +1,34 @@
+//! [`ReplayError`]: why a replay could not be recorded or written.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+use usar_sim::mission::MissionError;
+
+/// Why a replay could not be recorded, encoded or written.
+#[derive(Debug, Error)]
+pub enum ReplayError {
+    /// A bad sampling rate, method, trial or `--replay` list (the message names it).
+    #[error("{0}")]
+    Spec(String),
+    /// The trial failed (as the simulation reports it).
+    #[error("trial: {0}")]
+    Trial(#[from] MissionError),
+    /// Drawing the arena failed.
+    #[error("drawing the arena: {0}")]
+    Draw(String),
+    /// The recording's data do not decode (a truncated or corrupt stream).
+    #[error("decoding the recording: {0}")]
+    Decode(String),
+    /// Compressing or serialising the page's data failed.
+    #[error("encoding the page: {0}")]
+    Encode(String),
+    /// Writing the page failed.
+    #[error("writing {}: {message}", path.display())]
+    Write {
+        /// The page's path.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}

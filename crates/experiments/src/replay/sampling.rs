@@ -1,0 +1,116 @@
+//! [`SampleClock`]: which steps of a trial a replay samples.
+
+use super::error::ReplayError;
+
+/// The default sampling rate of a replay, samples per simulated second (`--hz`).
+pub const DEFAULT_HZ: f64 = 10.0;
+
+/// Which steps are sampled: the trial's start (step 0), every `every_steps`-th step, and the
+/// last step. `every_steps = max(1, round(1 / (hz * dt_s)))`, so the rate actually used is
+/// `1 / (every_steps * dt_s)` ([`SampleClock::actual_hz`]): 10 Hz at the paper's 0.02 s step
+/// is every 5th step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SampleClock {
+    /// Steps between two samples, `>= 1`.
+    pub every_steps: u64,
+    /// Steps in the whole trial.
+    pub total_steps: u64,
+}
+
+impl SampleClock {
+    /// The clock of a trial of `total_steps` steps of `dt_s` seconds sampled at about `hz`
+    /// samples per simulated second.
+    ///
+    /// # Errors
+    /// [`ReplayError::Spec`] unless `hz` is finite and `> 0` and `dt_s > 0`.
+    pub fn new(hz: f64, dt_s: f64, total_steps: u64) -> Result<Self, ReplayError> {
+        if !(hz.is_finite() && hz > 0.0) {
+            return Err(ReplayError::Spec(format!(
+                "--hz {hz}: the sampling rate must be a positive number of samples per second"
+            )));
+        }
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(ReplayError::Spec(format!("step {dt_s} s is not positive")));
+        }
+        let every = (1.0 / (hz * dt_s)).round();
+        let every_steps = if every.is_finite() && every >= 1.0 {
+            every.min(u64::MAX as f64) as u64
+        } else {
+            1
+        };
+        Ok(Self {
+            every_steps,
+            total_steps,
+        })
+    }
+
+    /// Whether the state after step `step` (1-based; 0 is the start) is sampled.
+    pub fn is_sampled(&self, step: u64) -> bool {
+        step.is_multiple_of(self.every_steps) || step == self.total_steps
+    }
+
+    /// How many samples the whole trial has: the start, every `every_steps`-th step and the
+    /// last step.
+    pub fn samples(&self) -> usize {
+        let regular = self.total_steps / self.every_steps;
+        let tail = u64::from(!self.total_steps.is_multiple_of(self.every_steps));
+        (1 + regular + tail) as usize
+    }
+
+    /// The step of sample `i`: `min(i * every_steps, total_steps)`.
+    pub fn step_of(&self, i: usize) -> u64 {
+        (i as u64)
+            .saturating_mul(self.every_steps)
+            .min(self.total_steps)
+    }
+
+    /// The rate used, samples per simulated second, for steps of `dt_s` seconds.
+    pub fn actual_hz(&self, dt_s: f64) -> f64 {
+        1.0 / (self.every_steps as f64 * dt_s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ten_hz_at_the_papers_step_is_every_fifth_step() {
+        let c = SampleClock::new(10.0, 0.02, 30_000).unwrap();
+        assert_eq!(c.every_steps, 5);
+        assert_eq!(c.samples(), 6_001);
+        assert!((c.actual_hz(0.02) - 10.0).abs() < 1e-9);
+        assert!(c.is_sampled(5) && !c.is_sampled(6) && c.is_sampled(30_000));
+        assert_eq!(c.step_of(6_000), 30_000);
+    }
+
+    #[test]
+    fn a_trial_that_is_not_a_whole_number_of_samples_ends_with_its_last_step() {
+        let c = SampleClock::new(10.0, 0.02, 12).unwrap();
+        assert_eq!(c.samples(), 4, "steps 0, 5, 10, 12");
+        assert_eq!(
+            (0..c.samples()).map(|i| c.step_of(i)).collect::<Vec<_>>(),
+            [0, 5, 10, 12]
+        );
+        assert!(c.is_sampled(12) && !c.is_sampled(11));
+    }
+
+    #[test]
+    fn rates_above_the_step_rate_sample_every_step_and_bad_rates_are_refused() {
+        let c = SampleClock::new(1_000.0, 0.02, 10).unwrap();
+        assert_eq!(c.every_steps, 1);
+        assert_eq!(c.samples(), 11);
+        for hz in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(SampleClock::new(hz, 0.02, 10).is_err(), "{hz}");
+        }
+    }
+
+    #[test]
+    fn sampled_steps_counted_while_running_match_the_count() {
+        for (hz, total) in [(10.0, 30_000), (3.0, 1_001), (0.5, 7), (50.0, 99)] {
+            let c = SampleClock::new(hz, 0.02, total).unwrap();
+            let counted = 1 + (1..=total).filter(|&s| c.is_sampled(s)).count();
+            assert_eq!(counted, c.samples(), "{hz} Hz, {total} steps");
+        }
+    }
+}
