@@ -656,60 +656,47 @@ mod tests {
     }
 
     #[test]
-    fn galloping_smoothing_keeps_clear_legs_and_straightens_open_paths() {
-        let statics = [block(5.0, 5.0, 2.0, 2.0)];
-        let g = grid(&statics);
-        let row = |iy: u32, xs: std::ops::RangeInclusive<u32>| xs.map(move |ix| iy * 40 + ix);
-        let col = |ix: u32, ys: std::ops::RangeInclusive<u32>| ys.map(move |iy| iy * 40 + ix);
-        let raw: Vec<u32> = row(8, 8..=31).chain(col(31, 9..=31)).collect();
-        let smoothed = smooth_galloping(&g, &raw, INFL);
-        assert_eq!(smoothed.first(), raw.first());
-        assert_eq!(smoothed.last(), raw.last());
-        assert!(smoothed.len() >= 3, "the corner is kept: {smoothed:?}");
-        let points: Vec<Vec2> = smoothed.iter().map(|&c| g.cell_center(c)).collect();
-        for leg in points.windows(2) {
-            assert!(
-                g.line_of_sight(leg[0], leg[1], INFL, f32::INFINITY),
-                "{leg:?}"
-            );
-        }
-        legs_clear(&statics, &points, INFL - CELL as f32 * 0.5f32.sqrt());
-        assert_eq!(
-            smooth_galloping(&grid(&[]), &raw, INFL),
-            [raw[0], *raw.last().unwrap()]
-        );
-        // Two cells: one leg.
-        assert_eq!(smooth_galloping(&g, &raw[..2], INFL), raw[..2]);
-    }
-
-    #[test]
-    fn smoothing_keeps_corners_that_inflated_obstacles_hide() {
+    fn both_smoothings_keep_corners_that_inflated_obstacles_hide() {
         // A block in the middle; the raw path runs along its south side, then up its east side.
         let statics = [block(5.0, 5.0, 2.0, 2.0)];
         let g = grid(&statics);
+        let open = grid(&[]);
         let row = |iy: u32, xs: std::ops::RangeInclusive<u32>| xs.map(move |ix| iy * 40 + ix);
         let col = |ix: u32, ys: std::ops::RangeInclusive<u32>| ys.map(move |iy| iy * 40 + ix);
         // South of the block at y = 2.125, east of it at x = 7.875.
         let raw: Vec<u32> = row(8, 8..=31).chain(col(31, 9..=31)).collect();
         let (first, last) = (g.cell_center(raw[0]), g.cell_center(*raw.last().unwrap()));
         assert!(!g.line_of_sight(first, last, INFL, f32::INFINITY));
-        let smoothed = smooth(&g, &raw, INFL, &[]);
-        assert_eq!(smoothed.first(), raw.first());
-        assert_eq!(smoothed.last(), raw.last());
-        assert!(smoothed.len() >= 3, "the corner is kept: {smoothed:?}");
-        let points: Vec<Vec2> = smoothed.iter().map(|&c| g.cell_center(c)).collect();
-        for leg in points.windows(2) {
+        type Smoother<'a> = &'a dyn Fn(&ClearanceGrid, &[u32]) -> Vec<u32>;
+        let smoothers: [(&str, Smoother); 2] = [
+            ("greedy", &|g, raw| smooth(g, raw, INFL, &[])),
+            ("galloping", &|g, raw| smooth_galloping(g, raw, INFL)),
+        ];
+        for (name, smoother) in smoothers {
+            let smoothed = smoother(&g, &raw);
+            assert_eq!(smoothed.first(), raw.first(), "{name}");
+            assert_eq!(smoothed.last(), raw.last(), "{name}");
             assert!(
-                g.line_of_sight(leg[0], leg[1], INFL, f32::INFINITY),
-                "{leg:?}"
+                smoothed.len() >= 3,
+                "{name}: the corner is kept: {smoothed:?}"
             );
+            let points: Vec<Vec2> = smoothed.iter().map(|&c| g.cell_center(c)).collect();
+            for leg in points.windows(2) {
+                assert!(
+                    g.line_of_sight(leg[0], leg[1], INFL, f32::INFINITY),
+                    "{name}: {leg:?}"
+                );
+            }
+            legs_clear(&statics, &points, INFL - CELL as f32 * 0.5f32.sqrt());
+            // With nothing in the way the same raw path smooths to one straight leg.
+            assert_eq!(
+                smoother(&open, &raw),
+                [raw[0], *raw.last().unwrap()],
+                "{name}"
+            );
+            // Two cells: one leg.
+            assert_eq!(smoother(&g, &raw[..2]), raw[..2], "{name}");
         }
-        legs_clear(&statics, &points, INFL - CELL as f32 * 0.5f32.sqrt());
-        // With nothing in the way the same raw path smooths to one straight leg.
-        assert_eq!(
-            smooth(&grid(&[]), &raw, INFL, &[]),
-            [raw[0], *raw.last().unwrap()]
-        );
     }
 
     #[test]

@@ -329,14 +329,20 @@ impl Resolver {
     /// `members[rotation mod len]`.
     fn load_list(&mut self, inputs: &[ResolverInput], start: usize, end: usize) -> u32 {
         self.members.clear();
-        let mut rotation = 0;
-        for &(_, i) in &self.lists[start..end] {
-            self.members.push(i);
-            rotation = rotation.max(self.memory[i].rotation);
-        }
+        self.members
+            .extend(self.lists[start..end].iter().map(|&(_, i)| i));
+        self.order_members(inputs)
+    }
+
+    /// Sorts `self.members` by (key, id) and returns their rotation (the largest of theirs).
+    fn order_members(&mut self, inputs: &[ResolverInput]) -> u32 {
         self.members
             .sort_unstable_by(|&a, &b| inputs[a].key.total_cmp(&inputs[b].key).then(a.cmp(&b)));
-        rotation
+        self.members
+            .iter()
+            .map(|&m| self.memory[m].rotation)
+            .max()
+            .unwrap_or(0)
     }
 
     /// Marks every list member held except its head (no side effects on memory).
@@ -465,17 +471,15 @@ impl Resolver {
         for k in 0..self.grown.len() {
             let root = self.grown[k];
             self.members.clear();
-            let (mut m, mut rotation) = (root, 0);
+            let mut m = root;
             loop {
                 self.members.push(m);
-                rotation = rotation.max(self.memory[m].rotation);
                 m = self.next[m];
                 if m == root {
                     break;
                 }
             }
-            self.members
-                .sort_unstable_by(|&a, &b| inputs[a].key.total_cmp(&inputs[b].key).then(a.cmp(&b)));
+            let rotation = self.order_members(inputs);
             let head = self.members[rotation as usize % self.members.len()];
             for &m in &self.members {
                 self.held[m] = m != head;
