@@ -61,8 +61,25 @@ impl RescueeField {
         }
     }
 
+    /// Sets rescuee `i`'s status and `known` flag: the one place both change, so the
+    /// unknown-waiting count and the known-waiting list always agree with them (any sequence
+    /// of calls keeps them exact, including ones the mission never makes, such as claiming an
+    /// unknown rescuee).
+    fn set(&mut self, i: usize, status: RescueeStatus, known: bool) {
+        let unknown_waiting = |s: RescueeStatus, k: bool| !k && s == RescueeStatus::Waiting;
+        let before = unknown_waiting(self.status[i], self.known[i]);
+        self.status[i] = status;
+        self.known[i] = known;
+        match (before, unknown_waiting(status, known)) {
+            (true, false) => self.unknown_waiting -= 1,
+            (false, true) => self.unknown_waiting += 1,
+            _ => {}
+        }
+        self.sync(i);
+    }
+
     /// Puts rescuee `i` into the known-waiting list or takes it out, as its `known` flag and
-    /// status now say (call after every change of either).
+    /// status now say (called by [`RescueeField::set`] and [`RescueeField::forget`]).
     fn sync(&mut self, i: usize) {
         let listed = self.slot[i] != NOT_LISTED;
         let should = self.known[i] && self.status[i] == RescueeStatus::Waiting;
@@ -144,9 +161,7 @@ impl RescueeField {
                 && self.status[i] == RescueeStatus::Waiting
                 && (self.positions[i] - center).norm_squared() <= r2
             {
-                self.known[i] = true;
-                self.unknown_waiting -= 1;
-                self.sync(i);
+                self.set(i, RescueeStatus::Waiting, true);
             }
         }
     }
@@ -175,40 +190,33 @@ impl RescueeField {
     /// Robot `robot` claims waiting rescuee `i`.
     pub fn claim(&mut self, i: usize, robot: usize) {
         debug_assert_eq!(self.status[i], RescueeStatus::Waiting);
-        self.status[i] = RescueeStatus::Claimed(robot);
-        self.sync(i);
+        self.set(i, RescueeStatus::Claimed(robot), self.known[i]);
     }
 
     /// Releases a claim: the rescuee waits again (and stays known).
     pub fn release(&mut self, i: usize) {
         if matches!(self.status[i], RescueeStatus::Claimed(_)) {
-            self.status[i] = RescueeStatus::Waiting;
+            self.set(i, RescueeStatus::Waiting, self.known[i]);
         }
-        self.sync(i);
     }
 
     /// Robot `robot` picks up rescuee `i`.
     pub fn pick_up(&mut self, i: usize, robot: usize) {
-        self.status[i] = RescueeStatus::Carried(robot);
+        self.set(i, RescueeStatus::Carried(robot), self.known[i]);
         self.pickups[i] += 1;
-        self.sync(i);
     }
 
     /// Puts carried rescuee `i` back where it was found: it waits again, unknown to everyone
     /// (`mission.load_on_leave: ReturnToArea`). It may be picked up again, so
     /// [`RescueeField::pickups`] can exceed 1 for it.
     pub fn put_back(&mut self, i: usize) {
-        self.status[i] = RescueeStatus::Waiting;
-        self.known[i] = false;
-        self.unknown_waiting += 1;
-        self.sync(i);
+        self.set(i, RescueeStatus::Waiting, false);
     }
 
     /// Sets the final status of a carried or claimed rescuee (`Delivered`, `Abandoned` or
     /// `Unreachable`).
     pub fn settle(&mut self, i: usize, status: RescueeStatus) {
-        self.status[i] = status;
-        self.sync(i);
+        self.set(i, status, self.known[i]);
     }
 }
 
@@ -271,7 +279,32 @@ mod tests {
                 let blocked = Point2::new(2.0 * (k % 5) as f64, 2.0 * (k % 3) as f64);
                 let free = |q: &PointM| *q != blocked;
                 prop_assert_eq!(f.nearest_known_waiting(&p, free), nearest_by_scan(&f, &p, free));
+                let unknown = (0..n).filter(|&j| !f.known[j] && f.status[j] == RescueeStatus::Waiting).count();
+                prop_assert_eq!(f.unknown_waiting, unknown);
             }
         }
+    }
+
+    /// Regression (CI, 2026-11-21): a claim that outlives [`RescueeField::forget`] (a new
+    /// round) and is then released made its rescuee wait unknown without counting it, and
+    /// detecting it then underflowed the count.
+    #[test]
+    fn a_claim_released_after_forget_is_counted_and_detected_once() {
+        let area = Rect {
+            min: Point2::new(0.0, 0.0),
+            max: Point2::new(10.0, 10.0),
+        };
+        let mut f = RescueeField::new(vec![Point2::new(1.0, 1.0)], area);
+        f.detect(&Point2::new(1.0, 1.0), 1.0);
+        f.claim(0, 3);
+        f.forget();
+        f.release(0);
+        assert_eq!(f.unknown_waiting, 1);
+        f.detect(&Point2::new(1.0, 1.0), 1.0);
+        assert_eq!(f.unknown_waiting, 0);
+        assert_eq!(
+            f.nearest_known_waiting(&Point2::new(0.0, 0.0), |_| true),
+            Some(0)
+        );
     }
 }
