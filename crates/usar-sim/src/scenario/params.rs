@@ -289,6 +289,24 @@ impl Default for NavigationParams {
     }
 }
 
+/// Who in a collision list is held (see `crate::world::resolver` and `docs/world-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum HoldRule {
+    /// Paper, Algorithm 5: the list's head moves, every other member is held (default). In a
+    /// dense crowd the lists grow to hundreds of robots and one robot per list moves.
+    #[default]
+    ListHead,
+    /// For crowds (not from the paper): the members are taken in the list's priority order
+    /// (rotated as under `ListHead`); a member moves unless it is about to collide with a
+    /// member before it that moves. In a list whose members are all about to collide with
+    /// each other (the paper's lists of two or three robots) this is `ListHead`; in a long
+    /// list every robot with no conflict ahead of it moves. Rule 3 (followers join held
+    /// robots' lists) is skipped: a robot that would hit a held one steers around it (rule 5).
+    /// Reference: greedy conflict resolution in priority order, as in prioritised planning
+    /// (Erdmann and Lozano-Perez, "On multiple moving objects", Algorithmica 2, 1987).
+    Yield,
+}
+
 /// Priority-based collision avoidance and deadlock solving (paper, section V, Algorithm 5).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -303,6 +321,8 @@ pub struct CollisionParams {
     /// A collision list none of whose members has made progress along its path (remaining path
     /// length down by more than 0.05 m) for this long is a deadlock, seconds, > 0; default 2.0.
     pub deadlock_after_s: Positive,
+    /// Who in a collision list is held; default [`HoldRule::ListHead`] (the paper's).
+    pub hold_rule: HoldRule,
 }
 
 impl Default for CollisionParams {
@@ -312,6 +332,7 @@ impl Default for CollisionParams {
             lookahead_s: Positive::known(1.0),
             safety_margin_m: NonNegative::known(0.2),
             deadlock_after_s: Positive::known(2.0),
+            hold_rule: HoldRule::ListHead,
         }
     }
 }

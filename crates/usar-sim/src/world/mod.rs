@@ -6,6 +6,8 @@
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
+//! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
+//!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
 //! - [`radiation`]: radiation zones.
@@ -21,6 +23,7 @@
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
+mod conflicts;
 pub mod distance_field;
 mod error;
 mod nav;

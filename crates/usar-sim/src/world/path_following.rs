@@ -10,8 +10,9 @@ use parry2d::math::Vector as Vec2;
 use super::bodies::to_point;
 use super::navigation::{PlanQuery, StandingDisc};
 use super::planning::PlanInto;
+use super::robot::Motion;
 use super::world::World;
-use crate::scenario::Locomotion;
+use crate::scenario::{HoldRule, Locomotion};
 
 /// Ground robots re-check the line of sight to their current waypoint every this many steps
 /// (staggered by id) and re-plan when it is blocked.
@@ -111,14 +112,18 @@ impl World {
     }
 
     /// The no-progress clock of ground robot `id` (`navigation.stall_replan_s`, default
-    /// [`STALL_REPLAN_S`]): restarts on
-    /// progress or while the robot was in a collision list at the last step; when it runs out,
-    /// the robot takes a detour ([`World::detour`]) and the clock restarts.
+    /// [`STALL_REPLAN_S`]): restarts on progress, and under `collision.hold_rule: ListHead`
+    /// while the robot was in a collision list at the last step; when it runs out, the robot
+    /// takes a detour ([`World::detour`]) and the clock restarts. (Under `Yield` a list member
+    /// stuck in a jam no rotation clears, e.g. robots meeting head-on in a gap between debris,
+    /// detours too.)
     fn watch_progress(&mut self, id: usize) {
         let steps = self.stats.steps;
+        let crowd = self.collision.hold_rule == HoldRule::Yield;
         let nav = &mut self.nav[id];
         let remaining = nav.remaining();
-        if self.robots[id].in_collision_list || remaining < nav.best_remaining - STALL_PROGRESS_M {
+        let listed = self.robots[id].in_collision_list && !crowd;
+        if listed || remaining < nav.best_remaining - STALL_PROGRESS_M {
             nav.best_remaining = remaining;
             nav.progress_step = steps;
             return;
@@ -137,9 +142,10 @@ impl World {
 
     /// Re-plans ground robot `id` from where it stands to its requested goal around the
     /// robots of its layer standing still within its sensing range (no goal, goal reached, or
-    /// no intended motion), each kept out to its body radius plus the robot's planning
-    /// inflation ([`super::navigation::PathPlanner::plan_around`]). On failure the path is
-    /// kept. Allocates nothing once the scratch buffers have grown.
+    /// no intended motion; under `collision.hold_rule: Yield` also held or blocked at the last
+    /// step), each kept out to its body radius plus the robot's planning inflation
+    /// ([`super::navigation::PathPlanner::plan_around`]). On failure the path is kept.
+    /// Allocates nothing once the scratch buffers have grown.
     fn detour(&mut self, id: usize) {
         let Some(requested) = self.nav[id].requested else {
             return;
@@ -148,8 +154,11 @@ impl World {
         let me = &self.nav[id];
         let range = me.sensing * self.robots[id].sensing_factor as f32;
         self.standing.clear();
+        let crowd = self.collision.hold_rule == HoldRule::Yield;
         for (j, other) in self.nav.iter().enumerate() {
-            let still = !self.robots[j].is_active() || other.intent == Vec2::ZERO;
+            let r = &self.robots[j];
+            let stuck = crowd && (r.held || r.motion == Motion::Blocked);
+            let still = !r.is_active() || other.intent == Vec2::ZERO || stuck;
             if j != id
                 && still
                 && other.layer == me.layer

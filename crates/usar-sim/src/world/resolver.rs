@@ -9,10 +9,13 @@
 //! 2. **Collision lists** are the connected components (two or more robots) of that relation.
 //!    A list is sorted by the caller's priority key (lower first, ties by id). With rotation
 //!    count `R` (see 4) the head is `sorted[R mod len]`; the head moves, the others are *held*
-//!    (commanded zero velocity).
-//! 3. **Followers join.** An active robot that is not held and whose intended motion would hit a
-//!    held robot (taken as standing still, same test as 1) joins that robot's list (repeated
-//!    until no robot joins); heads are then recomputed.
+//!    (commanded zero velocity). Under `collision.hold_rule: Yield` (not the paper's; for
+//!    crowds, [`HoldRule::Yield`]) the members are taken in that order from the head on,
+//!    wrapping around, and a member is held only when a member before it that moves is about
+//!    to collide with it (rule 1's relation); rule 3 is then skipped.
+//! 3. **Followers join** (`hold_rule: ListHead` only). An active robot that is not held and
+//!    whose intended motion would hit a held robot (taken as standing still, same test as 1)
+//!    joins that robot's list (repeated until no robot joins); heads are then recomputed.
 //! 4. **Deadlock.** A list is deadlocked when no member has *moved*, i.e. made progress along
 //!    its path (remaining path length below its best value by more than
 //!    [`DEADLOCK_PROGRESS_TOLERANCE_M`]), while in a list for at least
@@ -30,9 +33,10 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::conflicts::ConflictGraph;
 use super::navigation::ClearanceGrid;
 use super::neighbours::NeighbourQuery;
-use crate::scenario::{CollisionParams, Locomotion};
+use crate::scenario::{CollisionParams, HoldRule, Locomotion};
 
 /// Progress (decrease of the remaining path length below its best value since the stall timer
 /// last restarted) below which a list member counts as "not moved" for deadlock detection,
@@ -136,6 +140,10 @@ pub struct Resolver {
     cached: Vec<usize>,
     /// Rule 3's (follower, robot it would hit) pairs of this step.
     follow: Vec<(usize, usize)>,
+    /// Rule 1's pairs of this step as adjacency lists (kept under [`HoldRule::Yield`] only).
+    conflicts: ConflictGraph,
+    /// Under [`HoldRule::Yield`]: the members of the current list found to move so far.
+    moving: Vec<bool>,
     /// Ground and aerial bounds of this step (see [`Resolver::reach`]).
     bounds: [LayerBounds; 2],
     memory: Vec<Memory>,
@@ -205,6 +213,8 @@ impl Resolver {
             spans: vec![NO_SPAN; n],
             cached: Vec::new(),
             follow: Vec::with_capacity(n),
+            conflicts: ConflictGraph::default(),
+            moving: vec![false; n],
             bounds: [LayerBounds::default(); 2],
             memory,
             decisions: vec![Decision::default(); n],
@@ -353,10 +363,7 @@ impl Resolver {
         while start < self.lists.len() {
             let end = self.list_end(start);
             let rotation = self.load_list(inputs, start, end);
-            let head = self.members[rotation as usize % self.members.len()];
-            for &m in &self.members {
-                self.held[m] = m != head;
-            }
+            self.hold_members(rotation);
             start = end;
         }
     }
@@ -374,7 +381,9 @@ impl Resolver {
         self.cached.clear();
         self.track_progress(inputs, dt);
         self.link_pairs(inputs, near);
-        self.join_followers(inputs, near);
+        if self.params.hold_rule == HoldRule::ListHead {
+            self.join_followers(inputs, near);
+        }
         self.decide(inputs);
         self.forget_unlisted(inputs);
     }
@@ -398,6 +407,8 @@ impl Resolver {
     fn link_pairs(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
         let n = inputs.len();
         let horizon = self.params.lookahead_s.get() as f32;
+        let keep_pairs = self.params.hold_rule == HoldRule::Yield;
+        self.conflicts.clear();
         for i in 0..n {
             self.parent[i] = i;
             self.size[i] = 1;
@@ -424,8 +435,14 @@ impl Resolver {
                     horizon,
                 ) {
                     union(&mut self.parent, &mut self.size, &mut self.next, i, j);
+                    if keep_pairs {
+                        self.conflicts.push(i, j);
+                    }
                 }
             }
+        }
+        if keep_pairs {
+            self.conflicts.build(n);
         }
     }
 
@@ -480,10 +497,7 @@ impl Resolver {
                 }
             }
             let rotation = self.order_members(inputs);
-            let head = self.members[rotation as usize % self.members.len()];
-            for &m in &self.members {
-                self.held[m] = m != head;
-            }
+            self.hold_members(rotation);
         }
     }
 
@@ -536,8 +550,9 @@ impl Resolver {
                 self.deadlocked_lists += 1;
             }
             self.largest_list = self.largest_list.max(self.members.len());
-            let head = self.members[rotation as usize % self.members.len()];
+            self.hold_members(rotation);
             for &m in &self.members {
+                let held = self.held[m];
                 let mem = &mut self.memory[m];
                 mem.rotation = rotation;
                 if deadlocked {
@@ -546,10 +561,38 @@ impl Resolver {
                 }
                 let d = &mut self.decisions[m];
                 d.in_list = true;
-                d.held = m != head;
+                d.held = held;
                 d.joined = !mem.in_list;
                 d.deadlock_detected = deadlocked;
-                self.held[m] = m != head;
+            }
+        }
+    }
+
+    /// Sets `self.held` for the list in `self.members` (sorted by priority) with rotation
+    /// `rotation`, by the hold rule: under [`HoldRule::ListHead`] all but the head
+    /// `members[rotation mod len]`; under [`HoldRule::Yield`] the members taken from the head
+    /// on (wrapping around) are held when a member before them that moves is about to collide
+    /// with them. `O(list + its conflict pairs)`.
+    fn hold_members(&mut self, rotation: u32) {
+        let len = self.members.len();
+        let first = rotation as usize % len;
+        match self.params.hold_rule {
+            HoldRule::ListHead => {
+                let head = self.members[first];
+                for &m in &self.members {
+                    self.held[m] = m != head;
+                }
+            }
+            HoldRule::Yield => {
+                for k in 0..len {
+                    let m = self.members[(first + k) % len];
+                    let blocked = self.conflicts.neighbours(m).any(|j| self.moving[j]);
+                    self.held[m] = blocked;
+                    self.moving[m] = !blocked;
+                }
+                for &m in &self.members {
+                    self.moving[m] = false;
+                }
             }
         }
     }
@@ -680,6 +723,7 @@ mod tests {
             lookahead_s: Positive::new(1.0).unwrap(),
             safety_margin_m: NonNegative::new(0.2).unwrap(),
             deadlock_after_s: Positive::new(2.0).unwrap(),
+            hold_rule: HoldRule::ListHead,
         }
     }
 
@@ -743,6 +787,62 @@ mod tests {
         resolve(&mut r, &head_on(0.0, 0.0), 0.02);
         assert_eq!(held(&r), [false, true]);
         assert_eq!(r.deadlocked_lists(), 0);
+    }
+
+    /// A chain: robot 0 (first in priority) and robot 1 drive at each other; robot 2 crosses
+    /// robot 1's way from the side but stays clear of robot 0.
+    fn chain() -> Vec<ResolverInput> {
+        vec![
+            robot(0.0, 0.0, 0.0, 1.0, 0.0),
+            robot(0.0, 2.5, 0.0, -1.0, 1.0),
+            robot(-2.0, 2.5, 2.0, 0.0, 2.0),
+        ]
+    }
+
+    fn yield_params() -> CollisionParams {
+        CollisionParams {
+            hold_rule: HoldRule::Yield,
+            ..params()
+        }
+    }
+
+    #[test]
+    fn yield_holds_only_members_in_conflict_with_a_moving_member_before_them() {
+        let inputs = chain();
+        let clear = 0.4 + 0.4 + 0.2;
+        let conflict = |i: usize, j: usize| {
+            let (a, b) = (&inputs[i], &inputs[j]);
+            about_to_collide(b.pos - a.pos, b.intent - a.intent, clear, 1.0)
+        };
+        assert!(conflict(0, 1) && conflict(1, 2) && !conflict(0, 2));
+        // The paper's rule: one list of three, only its head (robot 0) moves.
+        let mut r = Resolver::new(params(), 3);
+        resolve(&mut r, &inputs, 0.02);
+        assert_eq!(r.largest_list(), 3);
+        assert_eq!(held(&r), [false, true, true]);
+        // Yield: robot 1 gives way to robot 0; robot 2's only conflict is robot 1, which
+        // stands, so robot 2 moves.
+        let mut r = Resolver::new(yield_params(), 3);
+        resolve(&mut r, &inputs, 0.02);
+        assert_eq!(r.largest_list(), 3);
+        assert_eq!(held(&r), [false, true, false]);
+        assert!(r.decisions().iter().all(|d| d.in_list));
+    }
+
+    #[test]
+    fn yield_decides_a_pair_as_the_paper_does_and_rotates_a_deadlock_alike() {
+        for keys in [(2.0, 1.0), (1.0, 2.0), (0.0, 0.0)] {
+            let mut paper = Resolver::new(params(), 2);
+            let mut crowd = Resolver::new(yield_params(), 2);
+            let inputs = head_on(keys.0, keys.1);
+            // 3 s of no progress: both detect the deadlock at 2 s and rotate the same way.
+            for _ in 0..150 {
+                resolve(&mut paper, &inputs, 0.02);
+                resolve(&mut crowd, &inputs, 0.02);
+                assert_eq!(paper.decisions(), crowd.decisions());
+            }
+            assert_eq!(paper.decisions().iter().filter(|d| d.held).count(), 1);
+        }
     }
 
     #[test]
