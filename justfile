@@ -39,6 +39,10 @@ replay METHOD="rne" TRIAL="0":
 replay-screenshot:
     USAR_WRITE_SCREENSHOT="$PWD/docs/img/replay.png" cargo test -p experiments --test replay_browser readme_screenshot -- --nocapture
 
+# swarm-1000's round bound: every round but the last completes in 1,800 s, every method (about 3 min on 2 cores).
+swarm-bound:
+    cargo test --release -p integration-tests --test swarm -- --ignored
+
 # RNE trust values of the paper's Example 1.
 trust:
     {{usar}} trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25

@@ -59,3 +59,55 @@ fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
         );
     }
 }
+
+/// Length of the round-bound trials, seconds.
+const BOUND_S: f64 = 1800.0;
+
+/// The bound of `docs/scaling.md` ("Jams"): in an 1,800 s trial of swarm-1000 (trial 0) every
+/// round but the last completes (every grouped robot back at its start), at least two rounds
+/// start, and every task's group brings rescuees back. About 70 s per method in release.
+fn rounds_complete_within_the_trial(name: &str) {
+    let s = load(&scenario_path("swarm-1000.ron"));
+    let r = Simulation::builder(&s)
+        .method(method(name, &s))
+        .duration_s(BOUND_S)
+        .build()
+        .unwrap()
+        .run_to_end()
+        .unwrap();
+    let summary: Vec<(f64, f64, bool)> =
+        r.rounds.iter().map(|k| (k.start_s, k.end_s, k.completed)).collect();
+    assert!(r.rounds.len() >= 2, "{name}: one round in {BOUND_S} s: {summary:?}");
+    let (_, done) = r.rounds.split_last().unwrap();
+    assert!(
+        done.iter().all(|k| k.completed),
+        "{name}: a round before the last did not complete: {summary:?}"
+    );
+    for (t, &n) in r.rescued.iter().enumerate() {
+        assert!(n > 0, "{name}: task {} rescued nothing: {:?}", r.tasks[t], r.rescued);
+    }
+}
+
+#[test]
+#[ignore = "1,800 s of 1,000 robots: run in release (.ci/run, just swarm-bound)"]
+fn every_round_but_the_last_completes_with_rne() {
+    rounds_complete_within_the_trial("rne");
+}
+
+#[test]
+#[ignore = "1,800 s of 1,000 robots: run in release (.ci/run, just swarm-bound)"]
+fn every_round_but_the_last_completes_with_dis() {
+    rounds_complete_within_the_trial("dis");
+}
+
+#[test]
+#[ignore = "1,800 s of 1,000 robots: run in release (.ci/run, just swarm-bound)"]
+fn every_round_but_the_last_completes_with_eng() {
+    rounds_complete_within_the_trial("eng");
+}
+
+#[test]
+#[ignore = "1,800 s of 1,000 robots: run in release (.ci/run, just swarm-bound)"]
+fn every_round_but_the_last_completes_with_hp_dis() {
+    rounds_complete_within_the_trial("hp_dis");
+}
