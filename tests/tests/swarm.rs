@@ -75,16 +75,27 @@ fn rounds_complete_within_the_trial(name: &str) {
         .unwrap()
         .run_to_end()
         .unwrap();
-    let summary: Vec<(f64, f64, bool)> =
-        r.rounds.iter().map(|k| (k.start_s, k.end_s, k.completed)).collect();
-    assert!(r.rounds.len() >= 2, "{name}: one round in {BOUND_S} s: {summary:?}");
+    let summary: Vec<(f64, f64, bool)> = r
+        .rounds
+        .iter()
+        .map(|k| (k.start_s, k.end_s, k.completed))
+        .collect();
+    assert!(
+        r.rounds.len() >= 2,
+        "{name}: one round in {BOUND_S} s: {summary:?}"
+    );
     let (_, done) = r.rounds.split_last().unwrap();
     assert!(
         done.iter().all(|k| k.completed),
         "{name}: a round before the last did not complete: {summary:?}"
     );
     for (t, &n) in r.rescued.iter().enumerate() {
-        assert!(n > 0, "{name}: task {} rescued nothing: {:?}", r.tasks[t], r.rescued);
+        assert!(
+            n > 0,
+            "{name}: task {} rescued nothing: {:?}",
+            r.tasks[t],
+            r.rescued
+        );
     }
 }
 

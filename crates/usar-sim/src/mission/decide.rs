@@ -7,7 +7,7 @@ use super::goals::{send, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
-use super::state::MissionState;
+use super::state::{LeaveFigures, MissionState};
 use crate::scenario::{Locomotion, PointM, Role, Scenario};
 use crate::world::{World, WorldError};
 
@@ -27,6 +27,7 @@ pub(crate) fn decide(
     world: &mut World,
     st: &mut MissionState,
 ) -> Result<(), MissionError> {
+    gather_leave_figures(scenario, st);
     for t in 0..scenario.tasks.len() {
         if group_should_leave(scenario, world, st, t) {
             leave_search_area(scenario, world, st, t)?;
@@ -54,48 +55,70 @@ pub(crate) fn decide(
     Ok(())
 }
 
-/// Fills `st.tally` for this step: each task's observer flag and unclaimed pool, `O(K n)`
-/// without allocation once the buffers exist.
+/// Fills `st.tally` for this step: each task's observer flag (an observer is still in its
+/// group) and unclaimed pool ([`MissionState::unclaimed_pool`]), in one pass over the team
+/// (`O(n + K)`, no allocation once the buffers exist).
 fn tally_tasks(scenario: &Scenario, st: &mut MissionState) {
     let k = scenario.tasks.len();
-    let mut tally = std::mem::take(&mut st.tally);
+    let tally = &mut st.tally;
     tally.observer.clear();
-    tally
-        .observer
-        .extend((0..k).map(|t| has_observer(scenario, st, t)));
+    tally.observer.resize(k, false);
+    // Pool, then claims, summed as `group_pool` does; the unclaimed pool is their difference.
     tally.unclaimed.clear();
-    tally.unclaimed.extend((0..k).map(|t| st.unclaimed_pool(t)));
-    st.tally = tally;
+    tally.unclaimed.resize(k, 0);
+    tally.claims.clear();
+    tally.claims.resize(k, 0);
+    for r in st.robots.iter().filter(|r| !r.is_resting()) {
+        let Some(t) = r.task else { continue };
+        tally.observer[t] |= scenario.kind_of(r.id).role == Role::Observer;
+        tally.unclaimed[t] = tally.unclaimed[t].saturating_add(r.resources);
+        tally.claims[t] += u32::from(r.claim.is_some());
+    }
+    for (pool, &claims) in tally.unclaimed.iter_mut().zip(&tally.claims) {
+        *pool = pool.saturating_sub(claims);
+    }
 }
 
-/// Whether task `t`'s group has an observer still in it.
-fn has_observer(scenario: &Scenario, st: &MissionState, t: usize) -> bool {
-    st.members(t)
-        .any(|r| scenario.kind_of(r.id).role == Role::Observer)
+/// Fills `st.tally.leave` with every task's [`LeaveFigures`], in one pass over the team
+/// (`O(n + K)`, no allocation once the buffer exists). Leaving one task's area changes no
+/// other task's figures, so they hold for the whole leave loop of [`decide`].
+fn gather_leave_figures(scenario: &Scenario, st: &mut MissionState) {
+    let leave = &mut st.tally.leave;
+    leave.clear();
+    leave.resize(scenario.tasks.len(), LeaveFigures::default());
+    for r in &st.robots {
+        let Some(t) = r.task else { continue };
+        let f = &mut leave[t];
+        if !r.is_resting() {
+            f.pool = f.pool.saturating_add(r.resources);
+        }
+        if !r.is_on_task() {
+            continue;
+        }
+        f.any_on_task = true;
+        let kind = scenario.kind_of(r.id);
+        if kind.locomotion == Locomotion::Ground {
+            f.free_capacity = f.free_capacity.saturating_add(r.capacity_free);
+            f.ground_all_waiting &= r.phase == Phase::Waiting;
+        }
+        if kind.role == Role::Observer && r.phase == Phase::ToSearchArea {
+            f.observer_arriving = true;
+        }
+    }
 }
 
 /// Whether task `t`'s group must leave its search area (see `docs/mission-model.md`): its
 /// pool of resources or its ground members' free capacity is used up, nothing more is to be
 /// had (every ground member waits and no observer is still flying in), or its search time
-/// budget (`mission.search_time_budget_s`) is spent. Allocates nothing.
+/// budget (`mission.search_time_budget_s`) is spent. Reads `st.tally.leave` (see
+/// [`gather_leave_figures`]).
 fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: usize) -> bool {
-    let on_task = || {
-        st.robots
-            .iter()
-            .filter(move |r| r.task == Some(t) && r.is_on_task())
-    };
-    let ground = |r: &&MissionRobot| scenario.kind_of(r.id).locomotion == Locomotion::Ground;
-    if on_task().next().is_none() {
+    let f = st.tally.leave[t];
+    if !f.any_on_task {
         return false;
     }
-    let (pool, _) = st.group_pool(t);
-    let free_capacity = on_task()
-        .filter(ground)
-        .fold(0u32, |sum, r| sum.saturating_add(r.capacity_free));
-    let observer_arriving = on_task()
-        .any(|r| scenario.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea);
-    let nothing_more =
-        on_task().filter(ground).all(|r| r.phase == Phase::Waiting) && !observer_arriving;
+    let (pool, free_capacity) = (f.pool, f.free_capacity);
+    let nothing_more = f.ground_all_waiting && !f.observer_arriving;
     let out_of_time = match (
         scenario.mission.search_time_budget_s,
         st.search_started_s[t],
@@ -249,4 +272,97 @@ fn next_sweep_waypoint(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::mission::draw_initial_levels;
+    use crate::scenario;
+
+    fn three_tasks() -> &'static Scenario {
+        static S: std::sync::OnceLock<Scenario> = std::sync::OnceLock::new();
+        S.get_or_init(|| {
+            let path = concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../scenarios/three-tasks.ron"
+            );
+            scenario::load(std::path::Path::new(path)).expect("three-tasks.ron loads")
+        })
+    }
+
+    const PHASES: [Phase; 9] = [
+        Phase::AtStart,
+        Phase::ToSearchArea,
+        Phase::Searching,
+        Phase::Waiting,
+        Phase::ToDropOff,
+        Phase::ToStart,
+        Phase::ToRest,
+        Phase::Recharging { until_s: 1.0 },
+        Phase::RestToStart,
+    ];
+
+    /// The per-task scans the one-pass figures replace (the code before them).
+    fn old_should_leave_figures(
+        s: &Scenario,
+        st: &MissionState,
+        t: usize,
+    ) -> (bool, u32, u32, bool, bool) {
+        let on_task = || {
+            st.robots
+                .iter()
+                .filter(move |r| r.task == Some(t) && r.is_on_task())
+        };
+        let ground = |r: &&MissionRobot| s.kind_of(r.id).locomotion == Locomotion::Ground;
+        let free = on_task()
+            .filter(ground)
+            .fold(0u32, |sum, r| sum.saturating_add(r.capacity_free));
+        let arriving = on_task()
+            .any(|r| s.kind_of(r.id).role == Role::Observer && r.phase == Phase::ToSearchArea);
+        let waiting = on_task().filter(ground).all(|r| r.phase == Phase::Waiting);
+        (
+            on_task().next().is_some(),
+            st.group_pool(t).0,
+            free,
+            arriving,
+            waiting,
+        )
+    }
+
+    proptest! {
+        #[test]
+        fn one_pass_figures_equal_the_per_task_scans(
+            states in prop::collection::vec(
+                (0usize..9, 0usize..4, 0u32..12, 0u32..8, any::<bool>(), any::<bool>()),
+                1..200,
+            ),
+        ) {
+            let s = three_tasks();
+            let mut st = MissionState::new(s, &draw_initial_levels(s, 7));
+            let k = s.tasks.len();
+            for (r, &(phase, task, resources, capacity, claim, leaving)) in
+                st.robots.iter_mut().zip(states.iter().cycle())
+            {
+                r.phase = PHASES[phase];
+                r.task = (task < k).then_some(task);
+                r.resources = if resources == 11 { u32::MAX } else { resources };
+                r.capacity_free = capacity;
+                r.claim = claim.then_some(0);
+                r.leaving = leaving && r.phase == Phase::ToDropOff;
+            }
+            gather_leave_figures(s, &mut st);
+            tally_tasks(s, &mut st);
+            for t in 0..k {
+                let f = st.tally.leave[t];
+                let got = (f.any_on_task, f.pool, f.free_capacity, f.observer_arriving, f.ground_all_waiting);
+                prop_assert_eq!(got, old_should_leave_figures(s, &st, t));
+                let observer = st.members(t).any(|r| s.kind_of(r.id).role == Role::Observer);
+                prop_assert_eq!(st.tally.observer[t], observer);
+                prop_assert_eq!(st.tally.unclaimed[t], st.unclaimed_pool(t));
+            }
+        }
+    }
 }

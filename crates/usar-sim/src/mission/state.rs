@@ -43,6 +43,39 @@ pub(crate) struct TaskTally {
     pub(crate) observer: Vec<bool>,
     /// Each task's [`MissionState::unclaimed_pool`], kept up to date as robots claim.
     pub(crate) unclaimed: Vec<u32>,
+    /// Scratch of the tally: each task's claims.
+    pub(crate) claims: Vec<u32>,
+    /// Each task's figures for the decision to leave its search area.
+    pub(crate) leave: Vec<LeaveFigures>,
+}
+
+/// What decides whether a task's group leaves its search area (see `decide::group_should_leave`),
+/// gathered for every task in one pass over the team.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LeaveFigures {
+    /// Some member is in the search phase (on the way, searching or waiting).
+    pub(crate) any_on_task: bool,
+    /// Resources held by the members not away for their needs ([`MissionState::group_pool`]).
+    pub(crate) pool: u32,
+    /// Free capacity of the ground members in the search phase, rescuees.
+    pub(crate) free_capacity: u32,
+    /// An observer in the search phase is still on its way to the area.
+    pub(crate) observer_arriving: bool,
+    /// Every ground member in the search phase waits.
+    pub(crate) ground_all_waiting: bool,
+}
+
+impl Default for LeaveFigures {
+    /// The figures of a task with no member.
+    fn default() -> Self {
+        Self {
+            any_on_task: false,
+            pool: 0,
+            free_capacity: 0,
+            observer_arriving: false,
+            ground_all_waiting: true,
+        }
+    }
 }
 
 impl MissionState {
