@@ -1,5 +1,7 @@
-//! `scenarios/swarm-1000.ron` end to end, short: 1,000 robots, four tasks, every method. The
-//! full-length runs are the scaling bench's (`docs/scaling.md`).
+//! `scenarios/swarm-1000.ron` end to end: 1,000 robots, four tasks, every method. A short run
+//! per method (default test run), and the ignored 1,800 s bound tests (every round but the
+//! last completes; run in release by `.ci/run` and `just swarm-bound`, `docs/scaling.md`,
+//! "Jams"). Speed is the scaling bench's.
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::Simulation;

@@ -79,7 +79,8 @@ impl RescueeField {
     }
 
     /// Puts rescuee `i` into the known-waiting list or takes it out, as its `known` flag and
-    /// status now say (called by [`RescueeField::set`] and [`RescueeField::forget`]).
+    /// status now say (called by [`RescueeField::set`]; [`RescueeField::forget`] empties the
+    /// list itself).
     fn sync(&mut self, i: usize) {
         let listed = self.slot[i] != NOT_LISTED;
         let should = self.known[i] && self.status[i] == RescueeStatus::Waiting;

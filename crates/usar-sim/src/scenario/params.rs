@@ -299,9 +299,11 @@ pub enum HoldRule {
     /// For crowds (not from the paper): the members are taken in the list's priority order
     /// (rotated as under `ListHead`); a member moves unless it is about to collide with a
     /// member before it that moves. In a list whose members are all about to collide with
-    /// each other (the paper's lists of two or three robots) this is `ListHead`; in a long
-    /// list every robot with no conflict ahead of it moves. Rule 3 (followers join held
-    /// robots' lists) is skipped: a robot that would hit a held one steers around it (rule 5).
+    /// each other this holds the same members as `ListHead`; in a long list every robot with
+    /// no conflict ahead of it moves. List members that make no progress also take detours
+    /// (`navigation.stall_replan_s`), which they never do under `ListHead`. Rule 3 (followers
+    /// join held robots' lists) is skipped: a robot that would hit a held one steers around it
+    /// (rule 5).
     /// Reference: greedy conflict resolution in priority order, as in prioritised planning
     /// (Erdmann and Lozano-Perez, "On multiple moving objects", Algorithmica 2, 1987).
     Yield,

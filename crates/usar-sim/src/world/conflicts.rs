@@ -8,7 +8,7 @@
 #[derive(Debug, Clone, Default)]
 pub struct ConflictGraph {
     pairs: Vec<(u32, u32)>,
-    /// `adj[start[i]..start[i + 1]]` are robot `i`'s neighbours, ascending.
+    /// `adj[start[i]..start[i + 1]]` are robot `i`'s neighbours, in no particular order.
     start: Vec<u32>,
     adj: Vec<u32>,
 }
@@ -25,8 +25,9 @@ impl ConflictGraph {
     }
 
     /// Builds the adjacency lists of robots `0..n` from the pairs pushed since
-    /// [`ConflictGraph::clear`]. Each list is in ascending order when the pairs were pushed
-    /// with ascending first ids (as the resolver does), otherwise in push order.
+    /// [`ConflictGraph::clear`]. A list's order depends on the push order (the resolver's
+    /// neighbour candidates come in any order), so readers must not depend on it: the `Yield`
+    /// rule only asks whether any neighbour qualifies.
     pub fn build(&mut self, n: usize) {
         self.start.clear();
         self.start.resize(n + 1, 0);

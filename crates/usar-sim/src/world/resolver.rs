@@ -24,8 +24,9 @@
 //!    robot in priority order becomes the head: Algorithm 5's `Swap(C, 0, C[i])` with `i++`)
 //!    and the members' stall timers restart; this repeats while the deadlock persists. A
 //!    merged list takes the largest `R` of its members; a robot in no list has `R = 0`.
-//! 5. **Moving robots steer** (heads and robots in no list): held, idle, arrived and
-//!    zero-speed robots of the same layer within sensing range are obstacles standing still;
+//! 5. **Moving robots steer** (heads, robots in no list, and under [`HoldRule::Yield`] every
+//!    list member not held): held, idle, arrived and zero-speed robots of the same layer
+//!    within sensing range are obstacles standing still;
 //!    the intended velocity is rotated by the smallest angle (15 degree steps up to 120 degrees,
 //!    right side first) whose straight motion keeps clear of them for the look-ahead (same test
 //!    as 1) and, for ground robots, does not drive into walls or debris. If no heading is clear
@@ -1102,15 +1103,18 @@ mod tests {
 
         /// On random crowds the resolver with the neighbour index decides exactly as with the
         /// all-pairs scan ([`AllRobots`]): the same lists, heads, deadlocks and steered
-        /// velocities, step after step (robots drift by their commands between steps).
+        /// velocities, step after step (robots drift by their commands between steps), under
+        /// both hold rules.
         #[test]
         fn the_index_decides_as_the_all_pairs_scan(
             crowd in proptest::collection::vec(random_robot(), 2..150),
+            crowd_rule in proptest::bool::ANY,
         ) {
             let n = crowd.len();
             let mut inputs = crowd;
-            let mut with_index = Resolver::new(params(), n);
-            let mut all_pairs = Resolver::new(params(), n);
+            let rule = if crowd_rule { yield_params() } else { params() };
+            let mut with_index = Resolver::new(rule, n);
+            let mut all_pairs = Resolver::new(rule, n);
             let g = ClearanceGrid::build(
                 &Arena {
                     width_m: Positive::new(30.0).unwrap(),
