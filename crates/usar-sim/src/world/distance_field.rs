@@ -19,10 +19,15 @@
 //! Mathematik 1 (1959); the shared-field idea is that of flow-field crowd navigation
 //! (Treuille, Cooper and Popovic, "Continuum crowds", SIGGRAPH 2006).
 
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use super::bucket_queue::BucketQueue;
+use super::navigation::{ClearanceGrid, DIAGONAL_COST, STRAIGHT_COST};
 
-use super::navigation::{ClearanceGrid, DIAGONAL_COST};
+/// The largest move cost, the bucket queue's window.
+const MAX_MOVE_COST: u32 = if DIAGONAL_COST > STRAIGHT_COST {
+    DIAGONAL_COST
+} else {
+    STRAIGHT_COST
+};
 
 /// Cost of a cell the search has not reached (yet, or at all).
 const UNREACHED: u32 = u32::MAX;
@@ -37,8 +42,9 @@ pub struct DistanceField {
     /// Tentative cost per cell, final once `settled`; [`UNREACHED`] if not reached.
     cost: Vec<u32>,
     settled: Vec<bool>,
-    /// Dijkstra's open set: (cost, cell), smallest first; ties by the lower cell index.
-    open: BinaryHeap<Reverse<(u32, u32)>>,
+    /// Dijkstra's open set: cells by cost, smallest first (Dial's bucket queue; equal costs
+    /// in any order, which changes no settled cost and so no path).
+    open: BucketQueue,
 }
 
 impl DistanceField {
@@ -50,8 +56,8 @@ impl DistanceField {
         let cells = (nx * ny) as usize;
         let mut cost = vec![UNREACHED; cells];
         cost[goal as usize] = 0;
-        let mut open = BinaryHeap::new();
-        open.push(Reverse((0, goal)));
+        let mut open = BucketQueue::new(MAX_MOVE_COST);
+        open.push(0, goal);
         Self {
             goal,
             inflation_bits: inflation.to_bits(),
@@ -77,7 +83,7 @@ impl DistanceField {
     pub fn cost_from(&mut self, grid: &ClearanceGrid, from: u32) -> Option<u32> {
         let inflation = f32::from_bits(self.inflation_bits);
         while !self.settled[from as usize] {
-            let Reverse((c, u)) = self.open.pop()?;
+            let (c, u) = self.open.pop()?;
             if self.settled[u as usize] {
                 continue;
             }
@@ -86,7 +92,7 @@ impl DistanceField {
                 let slot = &mut self.cost[v as usize];
                 if !self.settled[v as usize] && c + w < *slot {
                     *slot = c + w;
-                    self.open.push(Reverse((c + w, v)));
+                    self.open.push(c + w, v);
                 }
             }
         }

@@ -6,6 +6,7 @@
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
+//! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
@@ -23,6 +24,7 @@
 //! See `docs/world-model.md` for the model and its rules.
 
 pub mod bodies;
+mod bucket_queue;
 mod conflicts;
 pub mod distance_field;
 mod error;
