@@ -79,7 +79,14 @@ fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
 fn run_refuses_bad_options() {
     let o = usar(&["run", PAPER, "--method", "nope", "--duration", "1"]);
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("nope"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("nope"), "{err}");
+    // The error names the one flag it is about.
+    assert!(err.starts_with("error: --method: "), "{err}");
+    let o = usar(&["run", PAPER, "--method", "rne", "--duration", "-1"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.starts_with("error: --duration: trial length"), "{err}");
     let o = usar(&["run", PAPER, "--trial", "1", "--seed", "3"]);
     assert!(!o.status.success());
 }

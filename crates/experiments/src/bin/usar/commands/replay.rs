@@ -93,7 +93,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(d) = args.duration {
         builder = builder.duration_s(d);
     }
-    let sim = builder.build().context("--method, --duration")?;
+    let sim = crate::commands::run::build_trial(builder)?;
     crate::commands::run::warn_if_rounded(args.duration, &sim);
     let clock =
         experiments::replay::SampleClock::new(args.hz, scenario.sim.dt_s.get(), sim.progress().1)?;

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use usar_sim::mission::{Simulation, TrialResult, trial_steps};
+use usar_sim::mission::{MissionError, Simulation, TrialBuilder, TrialResult, trial_steps};
 use usar_sim::scenario;
 
 use experiments::atomic::write_atomic;
@@ -74,7 +74,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(d) = args.duration {
         builder = builder.duration_s(d);
     }
-    let mut sim = builder.build().context("--method, --duration")?;
+    let mut sim = build_trial(builder)?;
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;
@@ -93,6 +93,22 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out, "wrote {}", path.display())?;
     }
     Ok(())
+}
+
+/// Builds the trial, with the flag a builder error is about as its context: `--method` for an
+/// unknown or failing grouping method, `--duration` for a bad trial length.
+///
+/// # Errors
+/// The builder's [`MissionError`], with that context.
+pub fn build_trial(builder: TrialBuilder<'_>) -> Result<Simulation> {
+    builder.build().map_err(|e| {
+        let flag = match e {
+            MissionError::Method(_) | MissionError::Grouping { .. } => "--method",
+            MissionError::Duration(_) => "--duration",
+            MissionError::World(_) => "the trial",
+        };
+        anyhow::Error::new(e).context(flag)
+    })
 }
 
 /// Warns on stderr when the trial does not run the `requested` length exactly: a length that
