@@ -86,8 +86,8 @@ fn low_energy_scenario() -> Scenario {
     s.mission.initial_hp = fixed(90.0);
     s.radiation_zones.push(RadiationZone {
         area: Circle {
-            center: s.rest_station.center,
-            radius_m: s.rest_station.radius_m + 1.5,
+            center: s.rest_stations[0].center,
+            radius_m: s.rest_stations[0].radius_m + 1.5,
         },
         dose_rate_factor: 2.0,
     });
@@ -148,6 +148,52 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
         (recharge_s - s.mission.recharge_s.get()).abs() <= 2.0 * s.sim.dt_s.get(),
         "{recharge_s}"
     );
+}
+
+/// With two rest stations, a robot leaving to recharge heads for the one nearest to where it
+/// stands then, and recharges inside a station's disc; both stations are used.
+#[test]
+fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
+    let mut s = paper();
+    s.mission.initial_energy = fixed(30.5);
+    s.mission.initial_hp = fixed(90.0);
+    // Bottom left, mirroring the paper's station (56, 4) about the start rows' middle.
+    s.rest_stations.push(Circle {
+        center: usar_sim::scenario::PointM::new(24.0, 4.0),
+        radius_m: 2.0,
+    });
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(120.0)
+        .unwrap();
+    let mut was_to_rest = vec![false; s.robots.len()];
+    let mut used = [0usize; 2];
+    while !sim.is_finished() {
+        sim.step().unwrap();
+        for (id, was) in was_to_rest.iter_mut().enumerate() {
+            let phase = sim.robots()[id].phase;
+            let robot = sim.world().robot(id);
+            let to_rest = phase == Phase::ToRest;
+            if to_rest && !*was {
+                let station = s.nearest_rest_station(&robot.position);
+                let goal = robot.goal.expect("a robot on its way to rest has a goal");
+                assert!(
+                    (goal - s.rest_stations[station].center).norm() < 1e-6,
+                    "robot {id} at {:?} heads for {goal:?}, not station {station}",
+                    robot.position
+                );
+                used[station] += 1;
+            }
+            if let Phase::Recharging { .. } = phase {
+                assert!(
+                    s.in_rest_station(&robot.position),
+                    "robot {id} recharges at {:?}",
+                    robot.position
+                );
+            }
+            *was = to_rest;
+        }
+    }
+    assert!(used[0] > 0 && used[1] > 0, "trips per station {used:?}");
 }
 
 #[test]

@@ -62,7 +62,7 @@ fn check_method(name: &str) {
                     "{name}: energy rose"
                 );
                 assert!(
-                    s.rest_station.contains(&w.position),
+                    s.in_rest_station(&w.position),
                     "{name}: robot {} recharged outside the rest station",
                     r.id
                 );

@@ -51,12 +51,12 @@ fn resting_in_two_zones(overlap: RadiationOverlap, falloff: RadiationFalloff) ->
     s.mission.radiation_falloff = falloff;
     // Low enough that nobody reaches 0 % HP (the loss is then clamped) within the test.
     s.mission.hp_pct_per_step_in_radiation = 0.001.try_into().unwrap();
-    let c = s.rest_station.center;
+    let c = s.rest_stations[0].center;
     for (dx, factor) in [(0.0, 2.0), (1.0, 1.0)] {
         s.radiation_zones.push(RadiationZone {
             area: Circle {
                 center: usar_sim::scenario::PointM::new(c.x + dx, c.y),
-                radius_m: s.rest_station.radius_m + 3.0,
+                radius_m: s.rest_stations[0].radius_m + 3.0,
             },
             dose_rate_factor: factor,
         });

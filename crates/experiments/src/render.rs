@@ -443,10 +443,11 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Resul
             .map_err(draw_err)?;
     }
     chart
-        .draw_series([Polygon::new(
-            disc_polygon(&s.rest_station),
-            REST.mix(0.6).filled(),
-        )])
+        .draw_series(
+            s.rest_stations
+                .iter()
+                .map(|rs| Polygon::new(disc_polygon(rs), REST.mix(0.6).filled())),
+        )
         .map_err(draw_err)?;
 
     // Labels last so nothing covers them.
@@ -476,15 +477,16 @@ fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Resul
             )])
             .map_err(draw_err)?;
     }
-    let rs = s.rest_station;
     chart
-        .draw_series([label_at(
-            "rest station".into(),
-            rs.center.x,
-            rs.center.y - rs.radius_m,
-            11,
-            VPos::Top,
-        )])
+        .draw_series(s.rest_stations.iter().map(|rs| {
+            label_at(
+                "rest station".into(),
+                rs.center.x,
+                rs.center.y - rs.radius_m,
+                11,
+                VPos::Top,
+            )
+        }))
         .map_err(draw_err)?;
     Ok(())
 }

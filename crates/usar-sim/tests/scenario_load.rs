@@ -99,6 +99,32 @@ fn broken(from: &str, to: &str) -> String {
     BASE.replacen(from, to, 1)
 }
 
+/// A list of rest stations loads in the file's order, and a robot leaving to recharge is
+/// sent to the nearest (straight-line, ties to the one listed first).
+#[test]
+fn several_rest_stations_load_and_the_nearest_is_chosen() {
+    let src = broken(
+        "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)",
+        "rest_station: [(center_m: (25.0, 2.0), radius_m: 1.0), (center_m: (5.0, 2.0), radius_m: 1.5)]",
+    );
+    let s = scenario::from_str(&src, "stations.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.rest_stations.len(), 2);
+    assert_eq!(s.rest_stations[1].radius_m, 1.5);
+    let p = |x, y| scenario::PointM::new(x, y);
+    assert_eq!(s.nearest_rest_station(&p(24.0, 10.0)), 0);
+    assert_eq!(s.nearest_rest_station(&p(6.0, 10.0)), 1);
+    assert_eq!(
+        s.nearest_rest_station(&p(15.0, 2.0)),
+        0,
+        "a tie goes to the first"
+    );
+    assert!(s.in_rest_station(&p(5.0, 3.4)) && !s.in_rest_station(&p(15.0, 2.0)));
+    // One circle is a list of one.
+    let one = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(one.rest_stations.len(), 1);
+    assert_eq!(one.nearest_rest_station(&p(0.0, 0.0)), 0);
+}
+
 #[test]
 fn base_is_valid_and_defaults_apply() {
     let s = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
@@ -277,6 +303,40 @@ fn inline_cases() -> Vec<Case> {
             "sim.dt_s",
             Some("sim: (dt_s: 5.0)"),
             "longer than the trial",
+        ),
+        (
+            "empty rest station list",
+            broken("rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)", "rest_station: []"),
+            "rest_station",
+            Some("rest_station: []"),
+            "give at least one rest station",
+        ),
+        (
+            "second rest station outside the arena",
+            broken(
+                "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)",
+                "rest_station: [\n        (center_m: (25.0, 2.0), radius_m: 1.0),\n        (center_m: (29.8, 2.0), radius_m: 1.0),\n    ]",
+            ),
+            "rest_station[1]",
+            Some("(center_m: (29.8, 2.0)"),
+            "not inside the arena",
+        ),
+        (
+            "rest station list item with a bad radius",
+            broken(
+                "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)",
+                "rest_station: [\n        (center_m: (25.0, 2.0), radius_m: 1.0),\n        (center_m: (5.0, 2.0), radius_m: -1.0),\n    ]",
+            ),
+            "rest_station[1].radius_m",
+            Some("(center_m: (5.0, 2.0), radius_m: -1.0)"),
+            "-1",
+        ),
+        (
+            "rest station that is neither a circle nor a list",
+            broken("rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)", "rest_station: 3.0"),
+            "rest_station",
+            Some("rest_station: 3.0"),
+            "a circle (center_m: (x, y), radius_m: r) or a list of circles",
         ),
         (
             "syntax error",

@@ -24,7 +24,7 @@ fn shared_goals(s: &Scenario) -> Vec<PointM> {
     s.tasks
         .iter()
         .flat_map(|t| [t.goal, t.drop_off.center])
-        .chain([s.rest_station.center])
+        .chain(s.rest_stations.iter().map(|c| c.center))
         .collect()
 }
 

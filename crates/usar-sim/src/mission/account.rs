@@ -118,7 +118,7 @@ fn advance_phase(
             st.robots[id].phase = Phase::AtStart;
             stop(world, id)?;
         }
-        (Phase::ToRest, _) if (reached || scenario.rest_station.contains(&pos)) => {
+        (Phase::ToRest, _) if (reached || scenario.in_rest_station(&pos)) => {
             st.robots[id].phase = Phase::Recharging {
                 until_s: now + scenario.mission.recharge_s.get(),
             };
@@ -238,7 +238,8 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
         .push(MissionEvent::of_robot(now, id, Some(t), kind));
 }
 
-/// Robot `id` leaves its task and group for the rest station (energy or HP below its
+/// Robot `id` leaves its task and group for the nearest rest station
+/// ([`Scenario::nearest_rest_station`] from where it stands; energy or HP below its
 /// threshold). Its claim is released; its load is abandoned, put back, or first delivered
 /// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
 /// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
@@ -274,5 +275,7 @@ fn go_rest(
     r.leaving = false;
     r.task = None;
     r.phase = Phase::ToRest;
-    send(world, &mut st.recorder, id, scenario.rest_station.center)
+    let at = world.robot(id).position;
+    let station = scenario.rest_stations[scenario.nearest_rest_station(&at)].center;
+    send(world, &mut st.recorder, id, station)
 }

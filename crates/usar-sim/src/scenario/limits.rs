@@ -16,6 +16,9 @@ use super::validate::{Ctx, R};
 pub const MAX_KINDS: usize = 256;
 /// Most tasks a scenario may list.
 pub const MAX_TASKS: usize = 64;
+/// Most rest stations a scenario may list (each is a shared navigation goal with its own
+/// distance field).
+pub const MAX_REST_STATIONS: usize = 256;
 /// Most robots of a team, over all kinds (the `count`s add up to at most this).
 pub const MAX_ROBOTS: usize = 10_000;
 /// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).

@@ -37,8 +37,10 @@ pub struct Scenario {
     /// Every robot of the team, ordered by kind (in `kinds` order) and then as listed in the file.
     /// A robot's id is its index in this list.
     pub robots: Vec<RobotStart>,
-    /// Where robots recharge energy and refresh HP (paper, section VI.B: "rest position").
-    pub rest_station: Circle,
+    /// Where robots recharge energy and refresh HP (paper, section VI.B: "rest position"): at
+    /// least one station, in the file's order. The paper has one; a robot leaving to recharge
+    /// goes to the nearest ([`Scenario::nearest_rest_station`]).
+    pub rest_stations: Vec<Circle>,
     /// The tasks, at least one, in the file's order (a task's index in this list is its id
     /// everywhere: quotas, groups, results). [`Scenario::hardest_first`] orders them by
     /// difficulty.
@@ -249,6 +251,27 @@ impl Scenario {
         let mut order: Vec<usize> = (0..self.tasks.len()).collect();
         order.sort_by_key(|&t| std::cmp::Reverse(self.tasks[t].difficulty));
         order
+    }
+
+    /// The index in [`Scenario::rest_stations`] of the station whose centre is nearest to `p`
+    /// (straight-line distance, metres; on equal distances the one listed first). A robot
+    /// leaving to recharge goes there: with the paper's single station, always 0. A choice the
+    /// paper leaves open (it has one station); straight-line and not path distance keeps it
+    /// free of planning, and a scenario puts its stations where that is not misleading.
+    pub fn nearest_rest_station(&self, p: &PointM) -> usize {
+        let mut best = (0, f64::INFINITY);
+        for (i, c) in self.rest_stations.iter().enumerate() {
+            let d2 = (p - c.center).norm_squared();
+            if d2 < best.1 {
+                best = (i, d2);
+            }
+        }
+        best.0
+    }
+
+    /// Whether `p` lies inside any rest station (boundary included).
+    pub fn in_rest_station(&self, p: &PointM) -> bool {
+        self.rest_stations.iter().any(|c| c.contains(p))
     }
 
     /// The task names, in task-id order.

@@ -44,8 +44,9 @@ pub struct ScenarioSpec {
     pub arena: Arena,
     /// Robot kinds in grouping merge order (paper: carrier, supplier, observer); at least one.
     pub kinds: Vec<KindSpec>,
-    /// Rest (recharge) station.
-    pub rest_station: CircleSpec,
+    /// Rest (recharge) stations: one circle, or a list of at least one (a robot leaving to
+    /// recharge goes to the nearest, see [`RestStationsSpec`]).
+    pub rest_station: RestStationsSpec,
     /// The tasks, at least one, in the order the outputs list them (columns, figures); their
     /// `difficulty` orders them for grouping.
     pub tasks: Vec<TaskSpec>,
@@ -73,6 +74,67 @@ pub struct ScenarioSpec {
     /// Time step and seed; defaults in [`SimParams`].
     #[serde(default)]
     pub sim: SimParams,
+}
+
+/// The `rest_station` field: one circle `(center_m: (x, y), radius_m: r)` (the paper's single
+/// "rest position", section VI.B) or a list of circles `[(...), (...)]` for large teams, at
+/// least one and at most [`MAX_REST_STATIONS`](super::limits::MAX_REST_STATIONS). Written back
+/// in the form it was read (one circle stays one circle).
+#[derive(Debug, Clone, PartialEq)]
+pub enum RestStationsSpec {
+    /// One station, written as a circle.
+    One(CircleSpec),
+    /// Several stations, written as a list of circles (may be empty here; validation refuses
+    /// an empty list).
+    Many(Vec<CircleSpec>),
+}
+
+impl RestStationsSpec {
+    /// The stations, in the file's order (a station's index in this slice is its index in
+    /// [`Scenario::rest_stations`](super::Scenario::rest_stations)).
+    pub fn circles(&self) -> &[CircleSpec] {
+        match self {
+            Self::One(c) => std::slice::from_ref(c),
+            Self::Many(list) => list,
+        }
+    }
+}
+
+impl Serialize for RestStationsSpec {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Self::One(c) => c.serialize(s),
+            Self::Many(list) => list.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for RestStationsSpec {
+    /// A map or struct is one circle, a sequence a list; inner errors (unknown fields, a
+    /// negative radius) are the circle's own, at their own position.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+        struct Stations;
+        impl<'de> serde::de::Visitor<'de> for Stations {
+            type Value = RestStationsSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a circle (center_m: (x, y), radius_m: r) or a list of circles")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<Self::Value, A::Error> {
+                CircleSpec::deserialize(MapAccessDeserializer::new(map)).map(RestStationsSpec::One)
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<Self::Value, A::Error> {
+                Vec::deserialize(SeqAccessDeserializer::new(seq)).map(RestStationsSpec::Many)
+            }
+        }
+        d.deserialize_any(Stations)
+    }
 }
 
 /// A circle.

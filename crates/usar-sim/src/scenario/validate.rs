@@ -16,7 +16,8 @@ use super::generate::{
     Protected, Start, debris_index, expand_rescuees, generate_debris_field, start_positions,
 };
 use super::limits::{
-    MAX_DEBRIS, MAX_RESCUEES, check_derived, check_kind, check_lists, check_sweeps,
+    MAX_DEBRIS, MAX_RESCUEES, MAX_REST_STATIONS, check_derived, check_kind, check_lists,
+    check_sweeps,
 };
 use super::locate::SourceMap;
 use super::model::{
@@ -24,7 +25,9 @@ use super::model::{
 };
 use super::params::{Arena, ClampedNormal};
 use super::shape::DebrisShape;
-use super::spec::{CircleSpec, DebrisSpec, KindSpec, RectSpec, ScenarioSpec, TaskSpec, XyM};
+use super::spec::{
+    CircleSpec, DebrisSpec, KindSpec, RectSpec, RestStationsSpec, ScenarioSpec, TaskSpec, XyM,
+};
 
 pub(crate) type R<T> = Result<T, ScenarioError>;
 
@@ -205,10 +208,10 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         .reduce(f64::min)
         .unwrap_or(0.0);
     let mut debris = listed_debris(ctx, &spec.debris, &arena)?;
-    let rest_station = ctx.circle_in_arena("rest_station", &spec.rest_station, &arena)?;
-    check_reachable(ctx, &rest_station, &spec.tasks, &geometry, &debris, reach)?;
+    let rest_stations = rest_stations(ctx, &spec.rest_station, &arena)?;
+    check_reachable(ctx, &rest_stations, &spec.tasks, &geometry, &debris, reach)?;
     let starts = expand_starts(ctx, spec, &kinds, &arena)?;
-    let protected = protected_places(&starts, &kinds, &rest_station, &spec.tasks, &geometry);
+    let protected = protected_places(&starts, &kinds, &rest_stations, &spec.tasks, &geometry);
     for (j, field) in spec.debris_fields.iter().enumerate() {
         let existing: Vec<DebrisShape> = debris.iter().map(|(d, _)| *d).collect();
         let generated =
@@ -239,7 +242,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         arena,
         kinds,
         robots: starts.iter().map(|(_, r)| *r).collect(),
-        rest_station,
+        rest_stations: rest_stations.into_iter().map(|(_, c)| c).collect(),
         tasks,
         debris: debris.iter().map(|(d, _)| *d.debris()).collect(),
         radiation_zones,
@@ -451,21 +454,64 @@ fn one_debris(ctx: &Ctx<'_>, path: &str, d: &DebrisSpec, arena: &Arena) -> R<Deb
     Ok(shape)
 }
 
-/// The rest station's centre, every goal and every drop-off centre at least `reach` (the
+/// The rest stations with their field paths (`rest_station` for one circle,
+/// `rest_station[i]` in a list): at least one, at most [`MAX_REST_STATIONS`], each inside the
+/// arena.
+fn rest_stations(
+    ctx: &Ctx<'_>,
+    spec: &RestStationsSpec,
+    arena: &Arena,
+) -> R<Vec<(String, Circle)>> {
+    let circles = spec.circles();
+    if circles.is_empty() {
+        return Err(ctx.err(
+            "rest_station",
+            "an empty list: give at least one rest station".to_owned(),
+        ));
+    }
+    if circles.len() > MAX_REST_STATIONS {
+        return Err(ctx.err(
+            "rest_station",
+            format!(
+                "{} rest stations, more than the limit of {MAX_REST_STATIONS}",
+                circles.len()
+            ),
+        ));
+    }
+    circles
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let field = match spec {
+                RestStationsSpec::One(_) => "rest_station".to_owned(),
+                RestStationsSpec::Many(_) => format!("rest_station[{i}]"),
+            };
+            let circle = ctx.circle_in_arena(&field, c, arena)?;
+            Ok((field, circle))
+        })
+        .collect()
+}
+
+/// Every rest station's centre, every goal and every drop-off centre at least `reach` (the
 /// smallest ground body radius) from the listed debris, so ground robots can get there.
 fn check_reachable(
     ctx: &Ctx<'_>,
-    rest_station: &Circle,
+    rest_stations: &[(String, Circle)],
     tasks: &[TaskSpec],
     geometry: &[TaskGeometry],
     debris: &NamedDebris,
     reach: f64,
 ) -> R<()> {
-    let mut places = vec![(
-        "rest_station.center_m".to_owned(),
-        rest_station.center,
-        "rest station centre".to_owned(),
-    )];
+    let mut places: Vec<(String, PointM, String)> = rest_stations
+        .iter()
+        .map(|(field, c)| {
+            (
+                format!("{field}.center_m"),
+                c.center,
+                "rest station centre".to_owned(),
+            )
+        })
+        .collect();
     for (i, (t, g)) in tasks.iter().zip(geometry).enumerate() {
         places.push((
             format!("tasks[{i}].goal_m"),
@@ -532,12 +578,12 @@ fn expand_starts(
     Ok(out)
 }
 
-/// The places generated debris keeps away from: every start disc, the rest station, every
+/// The places generated debris keeps away from: every start disc, every rest station, every
 /// drop-off and every goal point.
 fn protected_places(
     starts: &[(Start, RobotStart)],
     kinds: &[RobotKind],
-    rest_station: &Circle,
+    rest_stations: &[(String, Circle)],
     tasks: &[TaskSpec],
     geometry: &[TaskGeometry],
 ) -> Vec<Protected> {
@@ -549,11 +595,15 @@ fn protected_places(
             what: format!("the start of {}", s.label),
         })
         .collect();
-    out.push(Protected {
-        center: rest_station.center,
-        radius_m: rest_station.radius_m,
-        what: "the rest station".into(),
-    });
+    out.extend(rest_stations.iter().map(|(field, c)| Protected {
+        center: c.center,
+        radius_m: c.radius_m,
+        what: if rest_stations.len() == 1 {
+            "the rest station".to_owned()
+        } else {
+            format!("the rest station {field}")
+        },
+    }));
     for (t, g) in tasks.iter().zip(geometry) {
         out.push(Protected {
             center: g.drop_off.center,

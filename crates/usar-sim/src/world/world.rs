@@ -395,12 +395,12 @@ impl World {
 }
 
 /// The goals many robots of `s` share, at physics precision: each task's goal point and
-/// drop-off centre (in task order), then the rest-station centre.
+/// drop-off centre (in task order), then every rest-station centre.
 fn shared_goals(s: &Scenario) -> Vec<Vec2> {
     s.tasks
         .iter()
         .flat_map(|t| [to_vec2(&t.goal), to_vec2(&t.drop_off.center)])
-        .chain(std::iter::once(to_vec2(&s.rest_station.center)))
+        .chain(s.rest_stations.iter().map(|c| to_vec2(&c.center)))
         .collect()
 }
 

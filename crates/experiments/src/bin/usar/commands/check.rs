@@ -102,6 +102,20 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
+/// `rest station (x, y) r R m`, or for several `rest stations: (x, y) r R m, ...`.
+fn rest_stations(s: &Scenario) -> String {
+    let one = |c: &usar_sim::scenario::Circle| {
+        format!("({:.1}, {:.1}) r {} m", c.center.x, c.center.y, c.radius_m)
+    };
+    match s.rest_stations.as_slice() {
+        [c] => format!("rest station {}", one(c)),
+        list => {
+            let all: Vec<String> = list.iter().map(one).collect();
+            format!("rest stations: {}", all.join(", "))
+        }
+    }
+}
+
 /// Prints a summary of a valid scenario: arena and timing, the kinds with their quota per
 /// task, the tasks (hardest first marked by their difficulty), every robot's start and its
 /// distance to each task's goal, debris, radiation and the rest station.
@@ -257,16 +271,13 @@ fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     };
     writeln!(
         out,
-        "\ndebris: {} ({} rectangles, {} discs); radiation zones: {}{}; rest station \
-         ({:.1}, {:.1}) r {} m",
+        "\ndebris: {} ({} rectangles, {} discs); radiation zones: {}{}; {}",
         s.debris.len(),
         rects,
         s.debris.len() - rects,
         s.radiation_zones.len(),
         doses,
-        s.rest_station.center.x,
-        s.rest_station.center.y,
-        s.rest_station.radius_m
+        rest_stations(s)
     )?;
     writeln!(
         out,
