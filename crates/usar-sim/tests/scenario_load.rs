@@ -339,6 +339,14 @@ fn inline_cases() -> Vec<Case> {
             "a circle (center_m: (x, y), radius_m: r) or a list of circles",
         ),
         (
+            "RON whitespace beyond ASCII's before the field",
+            broken("count: 2,\n", "count: 2,\u{0b}\u{2028}\u{85}")
+                .replace("rest_station: (center_m: (25.0, 2.0)", "rest_station: (center_m: (29.8, 2.0)"),
+            "rest_station",
+            Some("rest_station: (center_m: (29.8"),
+            "not inside the arena",
+        ),
+        (
             "syntax error",
             broken("count: 2,", "count: 2"),
             "kinds[0]",

@@ -141,7 +141,20 @@ struct Scanner<'a> {
 }
 
 fn is_delim(b: u8) -> bool {
-    b.is_ascii_whitespace() || b"()[]{},:\"'/#".contains(&b)
+    ron_ws_len(&[b]) == 1 || b"()[]{},:\"'/#".contains(&b)
+}
+
+/// Byte length of the whitespace character RON accepts at the start of `s`, 0 if there is
+/// none: ron 0.12's `is_whitespace_char` (space, tab, LF, CR, vertical tab, form feed, and
+/// U+0085, U+200E, U+200F, U+2028, U+2029 in UTF-8). Scanning with less would lose the
+/// position of every field after such a character (found by the scenario fuzz test).
+fn ron_ws_len(s: &[u8]) -> usize {
+    match s {
+        [b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C, ..] => 1,
+        [0xC2, 0x85, ..] => 2,
+        [0xE2, 0x80, 0x8E | 0x8F | 0xA8 | 0xA9, ..] => 3,
+        _ => 0,
+    }
 }
 
 impl Scanner<'_> {
@@ -157,7 +170,9 @@ impl Scanner<'_> {
     fn skip_ws(&mut self) {
         loop {
             match (self.peek(), self.peek_at(1)) {
-                (Some(b), _) if b.is_ascii_whitespace() => self.pos += 1,
+                (Some(_), _) if ron_ws_len(&self.s[self.pos..]) > 0 => {
+                    self.pos += ron_ws_len(&self.s[self.pos..]);
+                }
                 (Some(b'/'), Some(b'/')) => {
                     while let Some(b) = self.peek() {
                         self.pos += 1;
@@ -305,7 +320,9 @@ impl Scanner<'_> {
             _ if is_delim(b) => false,
             _ => {
                 // A word: number, identifier, unit variant, or a struct/variant name.
-                while matches!(self.peek(), Some(c) if !is_delim(c)) {
+                while matches!(self.peek(), Some(c) if !is_delim(c))
+                    && ron_ws_len(&self.s[self.pos..]) == 0
+                {
                     self.pos += 1;
                 }
                 let after_word = self.pos;
