@@ -2,7 +2,7 @@
 
 use integration_tests::{fixed, method, paper};
 use usar_sim::mission::{Phase, Simulation, hp_factor};
-use usar_sim::scenario::{Circle, Locomotion, RadiationZone, Role, Scenario};
+use usar_sim::scenario::{Circle, Debris, Locomotion, PointM, RadiationZone, Role, Scenario};
 
 /// Highest speed robot `id` reaches during the first `seconds` of the trial, m/s.
 fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
@@ -150,38 +150,41 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
     );
 }
 
-/// With two rest stations, a robot leaving to recharge heads for the one nearest to where it
-/// stands then, and recharges inside a station's disc; both stations are used.
-#[test]
-fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
+/// paper.ron with every robot just above the 30 % energy threshold (all leave to recharge
+/// within seconds) and a second rest station at (24, 4), left of the start rows, mirroring the
+/// paper's (56, 4) about their middle.
+fn two_station_scenario() -> Scenario {
     let mut s = paper();
     s.mission.initial_energy = fixed(30.5);
     s.mission.initial_hp = fixed(90.0);
-    // Bottom left, mirroring the paper's station (56, 4) about the start rows' middle.
     s.rest_stations.push(Circle {
-        center: usar_sim::scenario::PointM::new(24.0, 4.0),
+        center: PointM::new(24.0, 4.0),
         radius_m: 2.0,
     });
-    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+    s
+}
+
+/// For each robot's first trip to rest in 120 s: the robot, the station it heads for (by its
+/// goal), and the station nearest to it in a straight line when it left. Also checks that
+/// every recharging robot stands in a station's disc.
+fn first_trips_to_rest(s: &Scenario) -> Vec<(usize, usize, usize)> {
+    let mut sim = Simulation::for_trial(s, method("rne", s), 0)
         .with_duration_s(120.0)
         .unwrap();
-    let mut was_to_rest = vec![false; s.robots.len()];
-    let mut used = [0usize; 2];
+    let mut trips: Vec<Option<(usize, usize, usize)>> = vec![None; s.robots.len()];
     while !sim.is_finished() {
         sim.step().unwrap();
-        for (id, was) in was_to_rest.iter_mut().enumerate() {
+        for (id, trip) in trips.iter_mut().enumerate() {
             let phase = sim.robots()[id].phase;
             let robot = sim.world().robot(id);
-            let to_rest = phase == Phase::ToRest;
-            if to_rest && !*was {
-                let station = s.nearest_rest_station(&robot.position);
+            if phase == Phase::ToRest && trip.is_none() {
                 let goal = robot.goal.expect("a robot on its way to rest has a goal");
-                assert!(
-                    (goal - s.rest_stations[station].center).norm() < 1e-6,
-                    "robot {id} at {:?} heads for {goal:?}, not station {station}",
-                    robot.position
-                );
-                used[station] += 1;
+                let to = s
+                    .rest_stations
+                    .iter()
+                    .position(|c| (goal - c.center).norm() < 1e-6)
+                    .unwrap_or_else(|| panic!("robot {id} heads for {goal:?}, not a station"));
+                *trip = Some((id, to, s.nearest_rest_station(&robot.position)));
             }
             if let Phase::Recharging { .. } = phase {
                 assert!(
@@ -190,10 +193,46 @@ fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
                     robot.position
                 );
             }
-            *was = to_rest;
         }
     }
-    assert!(used[0] > 0 && used[1] > 0, "trips per station {used:?}");
+    trips.into_iter().flatten().collect()
+}
+
+/// In the open, a robot leaving to recharge heads for the nearer station: both are used, and
+/// each robot goes to the one nearest to it.
+#[test]
+fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
+    let trips = first_trips_to_rest(&two_station_scenario());
+    assert!(trips.len() >= 6, "{trips:?}");
+    assert!(
+        trips.iter().all(|(_, to, nearest)| to == nearest),
+        "{trips:?}"
+    );
+    assert!(trips.iter().any(|t| t.1 == 0) && trips.iter().any(|t| t.1 == 1));
+}
+
+/// Nearest by path, not in a straight line: with a wall between the start rows and the left
+/// station, whose way round is long, every ground robot goes to the right one, also those
+/// nearer to the left one in a straight line; aerial robots fly over the wall and still take
+/// the nearer one.
+#[test]
+fn a_rest_station_behind_a_wall_is_farther_by_path() {
+    let mut s = two_station_scenario();
+    s.debris.push(Debris::Rect {
+        center: PointM::new(28.0, 15.0),
+        half_extents_m: nalgebra::Vector2::new(0.5, 15.0),
+        rotation_rad: 0.0,
+    });
+    let trips = first_trips_to_rest(&s);
+    let (ground, aerial): (Vec<&(usize, usize, usize)>, Vec<_>) = trips
+        .iter()
+        .partition(|t| s.kind_of(t.0).locomotion == Locomotion::Ground);
+    assert!(ground.iter().all(|t| t.1 == 0), "{trips:?}");
+    assert!(
+        ground.iter().any(|t| t.2 == 1),
+        "no ground robot nearer the left station: {trips:?}"
+    );
+    assert!(aerial.iter().all(|t| t.1 == t.2), "{trips:?}");
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use super::decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 use super::error::MissionError;
 use super::events::{MissionEvent, MissionEventKind};
-use super::goals::{send, stop};
+use super::goals::{rest_station_for, send, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::Phase;
@@ -239,7 +239,7 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
 }
 
 /// Robot `id` leaves its task and group for the nearest rest station
-/// ([`Scenario::nearest_rest_station`] from where it stands; energy or HP below its
+/// ([`rest_station_for`]: by path from where it stands; energy or HP below its
 /// threshold). Its claim is released; its load is abandoned, put back, or first delivered
 /// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
 /// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
@@ -275,7 +275,6 @@ fn go_rest(
     r.leaving = false;
     r.task = None;
     r.phase = Phase::ToRest;
-    let at = world.robot(id).position;
-    let station = scenario.rest_stations[scenario.nearest_rest_station(&at)].center;
+    let station = scenario.rest_stations[rest_station_for(scenario, world, id)].center;
     send(world, &mut st.recorder, id, station)
 }

@@ -2,7 +2,7 @@
 
 use super::error::MissionError;
 use super::recorder::Recorder;
-use crate::scenario::PointM;
+use crate::scenario::{PointM, Scenario};
 use crate::world::{World, WorldError};
 
 /// Sends robot `id` to `goal`. A goal the planner cannot reach from where the robot stands
@@ -34,4 +34,29 @@ pub(crate) fn send(
 /// [`MissionError::World`] for an unknown robot id (a bug).
 pub(crate) fn stop(world: &mut World, id: usize) -> Result<(), MissionError> {
     world.set_goal(id, None).map_err(MissionError::from)
+}
+
+/// The index in [`Scenario::rest_stations`] of the station robot `id` goes to when it leaves
+/// to recharge: with one station that one; with several, the one with the shortest path
+/// from where the robot stands ([`World::path_length_m`]; on equal lengths the one listed
+/// first), or, when no station is reachable, the nearest in a straight line
+/// ([`Scenario::nearest_rest_station`]; the robot then stands, as for any unreachable goal).
+/// The paper has one station: how a robot chooses among several is ours
+/// (`docs/scenario-format.md`, "Rest stations").
+pub(crate) fn rest_station_for(scenario: &Scenario, world: &mut World, id: usize) -> usize {
+    if scenario.rest_stations.len() == 1 {
+        return 0;
+    }
+    let mut best: Option<(usize, f64)> = None;
+    for (i, c) in scenario.rest_stations.iter().enumerate() {
+        if let Some(len) = world.path_length_m(id, c.center)
+            && best.is_none_or(|(_, b)| len < b)
+        {
+            best = Some((i, len));
+        }
+    }
+    best.map_or_else(
+        || scenario.nearest_rest_station(&world.robot(id).position),
+        |(i, _)| i,
+    )
 }

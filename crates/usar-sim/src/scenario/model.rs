@@ -39,7 +39,7 @@ pub struct Scenario {
     pub robots: Vec<RobotStart>,
     /// Where robots recharge energy and refresh HP (paper, section VI.B: "rest position"): at
     /// least one station, in the file's order. The paper has one; a robot leaving to recharge
-    /// goes to the nearest ([`Scenario::nearest_rest_station`]).
+    /// goes to the one with the shortest path from where it stands.
     pub rest_stations: Vec<Circle>,
     /// The tasks, at least one, in the file's order (a task's index in this list is its id
     /// everywhere: quotas, groups, results). [`Scenario::hardest_first`] orders them by
@@ -254,10 +254,10 @@ impl Scenario {
     }
 
     /// The index in [`Scenario::rest_stations`] of the station whose centre is nearest to `p`
-    /// (straight-line distance, metres; on equal distances the one listed first). A robot
-    /// leaving to recharge goes there: with the paper's single station, always 0. A choice the
-    /// paper leaves open (it has one station); straight-line and not path distance keeps it
-    /// free of planning, and a scenario puts its stations where that is not misleading.
+    /// (straight-line distance, metres; on equal distances the one listed first). The mission
+    /// sends a robot leaving to recharge to the station with the shortest *path*, and uses
+    /// this only when no station can be reached (see `docs/scenario-format.md`, "Rest
+    /// stations"); with the paper's single station, always 0.
     pub fn nearest_rest_station(&self, p: &PointM) -> usize {
         let mut best = (0, f64::INFINITY);
         for (i, c) in self.rest_stations.iter().enumerate() {

@@ -45,7 +45,7 @@ pub struct ScenarioSpec {
     /// Robot kinds in grouping merge order (paper: carrier, supplier, observer); at least one.
     pub kinds: Vec<KindSpec>,
     /// Rest (recharge) stations: one circle, or a list of at least one (a robot leaving to
-    /// recharge goes to the nearest, see [`RestStationsSpec`]).
+    /// recharge goes to the one with the shortest path; see [`RestStationsSpec`]).
     pub rest_station: RestStationsSpec,
     /// The tasks, at least one, in the order the outputs list them (columns, figures); their
     /// `difficulty` orders them for grouping.

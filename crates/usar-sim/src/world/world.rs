@@ -197,6 +197,21 @@ impl World {
             .map(to_point)
     }
 
+    /// Length of the path robot `id` would take from where it stands to `goal`, metres: from
+    /// its position through the planned waypoints (the same plan as [`World::set_goal`]: a
+    /// shared goal's distance field or A* for ground robots, a straight line for aerial
+    /// ones), or `None` when no path exists. Does not change the robot (fills the plan cache).
+    pub fn path_length_m(&mut self, id: usize, goal: PointM) -> Option<f64> {
+        self.check_goal(id, goal).ok()?;
+        let mut at = self.nav[id].pos;
+        let mut length = 0.0;
+        for &wp in &self.scratch {
+            length += f64::from((wp - at).length());
+            at = wp;
+        }
+        Some(length)
+    }
+
     /// Whether [`World::check_goal`] succeeds.
     pub fn is_goal_reachable(&mut self, id: usize, goal: PointM) -> bool {
         self.check_goal(id, goal).is_ok()
