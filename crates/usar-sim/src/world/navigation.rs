@@ -232,6 +232,20 @@ impl StandingDisc {
         (p - self.center).length_squared() < self.radius_m * self.radius_m
     }
 
+    /// The disc, shrunk if needed so that none of `points` lies inside it (to 0.999 of the
+    /// nearest one's distance); `None` when a point is at its centre.
+    fn leaving_out(&self, points: &[Vec2]) -> Option<Self> {
+        let nearest = points
+            .iter()
+            .map(|&p| (p - self.center).length())
+            .fold(f32::INFINITY, f32::min);
+        let radius_m = self.radius_m.min(nearest * 0.999);
+        (radius_m > 0.0).then_some(Self {
+            center: self.center,
+            radius_m,
+        })
+    }
+
     /// Whether segment `a`-`b` passes through the disc.
     fn crosses(&self, a: Vec2, b: Vec2) -> bool {
         let d = b - a;
@@ -365,8 +379,11 @@ impl PathPlanner {
 
     /// A detour: plans like [`PathPlanner::plan`] with A* (never cached, never a shared field)
     /// but also keeps every cell centre and smoothed leg out of the `standing` discs (robots
-    /// standing in the way), except discs that hold the start or the goal (a robot touching
-    /// the planner's robot, or one parked on the goal, is left to steering and the mission).
+    /// standing in the way). A disc that holds the goal is dropped (a robot parked on the goal
+    /// is left to the mission); a disc that holds the start (a robot touching the planner's
+    /// robot) shrinks to just leave the start out, so the detour still goes round that robot
+    /// and not through it (dropping it left a robot pressed against a parked one on a path
+    /// through it for good).
     ///
     /// # Errors
     /// As [`PathPlanner::plan`]; [`NavError::NoPath`] also when the standing robots close
@@ -382,12 +399,13 @@ impl PathPlanner {
         out.clear();
         let inflation = query.inflation_m;
         let ends = Endpoints::snap(grid, arena, query)?;
-        let ends_at = [grid.cell_center(ends.start), ends.goal_point, query.from];
+        let starts = [grid.cell_center(ends.start), query.from];
         self.discs.clear();
         self.discs.extend(
             standing
                 .iter()
-                .filter(|d| !ends_at.iter().any(|&p| d.contains(p))),
+                .filter(|d| !d.contains(ends.goal_point))
+                .filter_map(|d| d.leaving_out(&starts)),
         );
         let cells = search(grid, ends.start, ends.goal, inflation, &self.discs)?;
         Ok(ends.write(grid, &cells, out))
@@ -758,5 +776,43 @@ mod tests {
         assert_eq!(a, b);
         assert_eq!(first, second);
         assert_eq!(planner.cache.len(), 1);
+    }
+
+    /// A robot touching the planner's robot on the straight way to the goal: the detour goes
+    /// round it (its disc shrunk to leave the start out), not through it.
+    #[test]
+    fn a_detour_goes_round_a_robot_touching_the_start() {
+        let g = grid(&[]);
+        let (from, to) = (Vec2::new(3.0, 5.0), Vec2::new(8.0, 5.0));
+        let standing = [StandingDisc {
+            center: Vec2::new(3.9, 5.0),
+            radius_m: 0.4 + INFL,
+        }];
+        let q = PlanQuery {
+            from,
+            to,
+            inflation_m: INFL,
+        };
+        let mut out = Vec::new();
+        let mut planner = PathPlanner::new();
+        planner
+            .plan_around(&g, ARENA, q, &standing, &mut out)
+            .expect("a way round");
+        let path: Vec<Vec2> = std::iter::once(from).chain(out).collect();
+        for leg in path.windows(2) {
+            let n = ((leg[1] - leg[0]).length() / 0.01).ceil() as u32;
+            for k in 0..=n {
+                let p = leg[0] + (leg[1] - leg[0]) * (k as f32 / n.max(1) as f32);
+                let d = (p - standing[0].center).length();
+                assert!(
+                    d >= 0.75,
+                    "{p:?} on leg {leg:?} is {d} m from the standing robot"
+                );
+            }
+        }
+        assert!(
+            (path.last().copied().unwrap() - to).length() < 0.2,
+            "{path:?}"
+        );
     }
 }

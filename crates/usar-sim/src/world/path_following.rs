@@ -141,7 +141,8 @@ impl World {
     }
 
     /// Re-plans ground robot `id` from where it stands to its requested goal around the
-    /// robots of its layer standing still within its sensing range (no goal, goal reached, or
+    /// robots of its layer standing still within its sensing range, or within its body radius
+    /// plus theirs plus its planning inflation whatever its sensing (no goal, goal reached, or
     /// no intended motion; under `collision.hold_rule: Yield` also held or blocked at the last
     /// step), each kept out to its body radius plus the robot's planning inflation
     /// ([`super::navigation::PathPlanner::plan_around`]). On failure the path is kept.
@@ -159,10 +160,13 @@ impl World {
             let r = &self.robots[j];
             let stuck = crowd && (r.held || r.motion == Motion::Blocked);
             let still = !r.is_active() || other.intent == Vec2::ZERO || stuck;
+            // Sensed, or near enough to touch its keep-out disc: a robot with its sensing
+            // cut by low HP still feels the one it is pressed against.
+            let reach = range.max(me.radius + other.radius + infl);
             if j != id
                 && still
                 && other.layer == me.layer
-                && (other.pos - me.pos).length_squared() <= range * range
+                && (other.pos - me.pos).length_squared() <= reach * reach
             {
                 self.standing.push(StandingDisc {
                     center: other.pos,
