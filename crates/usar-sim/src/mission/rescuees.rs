@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::rescuee_grid::RescueeGrid;
 use crate::scenario::{PointM, Rect};
 
 /// What has become of one rescuee.
@@ -40,6 +41,10 @@ pub struct RescueeField {
     known_waiting: Vec<u32>,
     /// Position of rescuee `i` in `known_waiting`, or [`NOT_LISTED`].
     slot: Vec<u32>,
+    /// The rescuees bucketed by position: what [`RescueeField::detect`] scans.
+    grid: RescueeGrid,
+    /// Rescuees detected in one call (scratch of [`RescueeField::detect`]).
+    hits: Vec<u32>,
 }
 
 /// `slot` of a rescuee that is not in the known-waiting list.
@@ -50,6 +55,8 @@ impl RescueeField {
     pub fn new(positions: Vec<PointM>, area: Rect) -> Self {
         let n = positions.len();
         Self {
+            grid: RescueeGrid::new(&positions, &area),
+            hits: Vec::new(),
             positions,
             status: vec![RescueeStatus::Waiting; n],
             known: vec![false; n],
@@ -144,8 +151,9 @@ impl RescueeField {
     }
 
     /// Marks as known every waiting rescuee within `range_m` of `center` (paper: detecting
-    /// rescuees within the observing range). Cheap when everything is known or `center` is far
-    /// from the search area.
+    /// rescuees within the observing range), in index order. Cheap when everything is known or
+    /// `center` is far from the search area; else `O(rescuees near center)` through the
+    /// rescuee grid.
     pub fn detect(&mut self, center: &PointM, range_m: f64) {
         if self.unknown_waiting == 0 {
             return;
@@ -157,14 +165,21 @@ impl RescueeField {
             return;
         }
         let r2 = range_m * range_m;
-        for i in 0..self.positions.len() {
+        let mut hits = std::mem::take(&mut self.hits);
+        hits.clear();
+        self.grid.for_each_candidate(center, range_m, |i| {
             if !self.known[i]
                 && self.status[i] == RescueeStatus::Waiting
                 && (self.positions[i] - center).norm_squared() <= r2
             {
-                self.set(i, RescueeStatus::Waiting, true);
+                hits.push(i as u32);
             }
+        });
+        hits.sort_unstable();
+        for &i in &hits {
+            self.set(i as usize, RescueeStatus::Waiting, true);
         }
+        self.hits = hits;
     }
 
     /// The known, waiting rescuee nearest to `from` (ties: lowest index) for which `free`
@@ -267,7 +282,16 @@ mod tests {
                 let i = k % n;
                 let p = Point2::new(x, y);
                 match kind {
-                    0 | 1 => f.detect(&p, 3.0),
+                    0 | 1 => {
+                        // Every waiting rescuee within range becomes known, and nothing else.
+                        let before = f.known.clone();
+                        f.detect(&p, 3.0);
+                        for (j, &was) in before.iter().enumerate() {
+                            let seen = f.status[j] == RescueeStatus::Waiting
+                                && (f.positions[j] - p).norm_squared() <= 9.0;
+                            prop_assert_eq!(f.known[j], was || seen, "rescuee {}", j);
+                        }
+                    }
                     2 if f.status(i) == RescueeStatus::Waiting => f.claim(i, k),
                     3 => f.release(i),
                     4 if matches!(f.status(i), RescueeStatus::Claimed(_)) => f.pick_up(i, k),

@@ -146,7 +146,8 @@ impl World {
     /// no intended motion; under `collision.hold_rule: Yield` also held or blocked at the last
     /// step), each kept out to its body radius plus the robot's planning inflation
     /// ([`super::navigation::PathPlanner::plan_around`]). On failure the path is kept.
-    /// Allocates nothing once the scratch buffers have grown.
+    /// Robots are found through the neighbour index (`O(robots nearby)`). Allocates nothing
+    /// once the scratch buffers have grown.
     fn detour(&mut self, id: usize) {
         let Some(requested) = self.nav[id].requested else {
             return;
@@ -156,7 +157,18 @@ impl World {
         let range = me.sensing * self.robots[id].sensing_factor as f32;
         self.standing.clear();
         let crowd = self.collision.hold_rule == HoldRule::Yield;
-        for (j, other) in self.nav.iter().enumerate() {
+        // Candidates from the neighbour index within the largest reach any robot of the
+        // layer can have, in id order (the order of a scan over the team).
+        let slot = usize::from(me.layer == Locomotion::Aerial);
+        let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
+        let near = &mut self.near_ids;
+        near.clear();
+        self.neighbours
+            .grid(me.layer)
+            .for_each_candidate(me.pos, reach_max, |j, _| near.push(j));
+        near.sort_unstable();
+        for &j in near.iter() {
+            let other = &self.nav[j];
             let r = &self.robots[j];
             let stuck = crowd && (r.held || r.motion == Motion::Blocked);
             let still = !r.is_active() || other.intent == Vec2::ZERO || stuck;

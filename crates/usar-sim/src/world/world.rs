@@ -59,7 +59,7 @@ pub struct World {
     pub(super) navigation: NavigationParams,
     pub(super) stats: WorldStats,
     /// Largest body radius of the ground and the aerial robots, metres (0 without robots).
-    max_radius_m: [f64; 2],
+    pub(super) max_radius_m: [f64; 2],
     /// Plans that may be discarded (goal checks, re-plans) are written here.
     pub(super) scratch: Vec<Vec2>,
     /// The goals many robots share, at physics precision: each task's goal point and drop-off
@@ -68,6 +68,8 @@ pub struct World {
     pub(super) shared_goals: Vec<Vec2>,
     /// Robots standing in the way of a detour (scratch of `path_following.rs`).
     pub(super) standing: Vec<StandingDisc>,
+    /// Robot ids from the neighbour index (scratch of `path_following.rs`).
+    pub(super) near_ids: Vec<usize>,
 }
 
 impl World {
@@ -134,6 +136,7 @@ impl World {
                 Vec::new()
             },
             standing: Vec::new(),
+            near_ids: Vec::new(),
         }
     }
 
