@@ -157,8 +157,8 @@ impl World {
         let range = me.sensing * self.robots[id].sensing_factor as f32;
         self.standing.clear();
         let crowd = self.collision.hold_rule == HoldRule::Yield;
-        // Candidates from the neighbour index within the largest reach any robot of the
-        // layer can have, in id order (the order of a scan over the team).
+        // Candidates from the neighbour index (robots of this layer only) within the largest
+        // reach any robot of the layer can have, in id order (the order of a scan over the team).
         let slot = usize::from(me.layer == Locomotion::Aerial);
         let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
         let near = &mut self.near_ids;
@@ -175,11 +175,7 @@ impl World {
             // Sensed, or near enough to touch its keep-out disc: a robot with its sensing
             // cut by low HP still feels the one it is pressed against.
             let reach = range.max(me.radius + other.radius + infl);
-            if j != id
-                && still
-                && other.layer == me.layer
-                && (other.pos - me.pos).length_squared() <= reach * reach
-            {
+            if j != id && still && (other.pos - me.pos).length_squared() <= reach * reach {
                 self.standing.push(StandingDisc {
                     center: other.pos,
                     radius_m: other.radius + infl,
