@@ -5,6 +5,7 @@
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
+//! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
@@ -26,6 +27,7 @@
 pub mod bodies;
 mod bucket_queue;
 mod conflicts;
+mod disc_mask;
 pub mod distance_field;
 mod error;
 mod nav;

@@ -13,6 +13,7 @@ use parry2d::math::Vector as Vec2;
 use pathfinding::prelude::astar;
 
 use super::bodies::StaticObstacle;
+use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
 use crate::scenario::Arena;
@@ -214,6 +215,8 @@ pub struct PathPlanner {
     fields: Vec<DistanceField>,
     raw: Vec<u32>,
     discs: Vec<StandingDisc>,
+    /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
+    mask: DiscMask,
 }
 
 /// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
@@ -227,8 +230,9 @@ pub struct StandingDisc {
 }
 
 impl StandingDisc {
-    /// Whether point `p` lies inside the disc.
-    fn contains(&self, p: Vec2) -> bool {
+    /// Whether point `p` lies inside the disc (`|p - center|^2 < radius_m^2` in `f32`; the
+    /// detour's [`super::disc_mask::DiscMask`] marks cells by this test).
+    pub(super) fn contains(&self, p: Vec2) -> bool {
         (p - self.center).length_squared() < self.radius_m * self.radius_m
     }
 
@@ -365,7 +369,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => search(grid, start, goal, inflation, &[]),
+                GoalKind::Own => search(grid, start, goal, inflation, None),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -407,7 +411,12 @@ impl PathPlanner {
                 .filter(|d| !d.contains(ends.goal_point))
                 .filter_map(|d| d.leaving_out(&starts)),
         );
-        let cells = search(grid, ends.start, ends.goal, inflation, &self.discs)?;
+        self.mask.mark(grid, &self.discs);
+        let blocked = Blocked {
+            discs: &self.discs,
+            mask: &self.mask,
+        };
+        let cells = search(grid, ends.start, ends.goal, inflation, Some(blocked))?;
         Ok(ends.write(grid, &cells, out))
     }
 
@@ -442,14 +451,23 @@ impl PathPlanner {
     }
 }
 
-/// A* (outside the `discs`) plus smoothing; returns smoothed cell indices from `start` to
-/// `goal` (both included).
+/// Robots standing in the way of a detour: their discs (for the smoothed legs) and the grid
+/// cells inside them (for A*'s successors), marked from the same discs.
+#[derive(Clone, Copy)]
+struct Blocked<'a> {
+    discs: &'a [StandingDisc],
+    mask: &'a DiscMask,
+}
+
+/// A* (outside the `blocked` discs, if any) plus smoothing; returns smoothed cell indices from
+/// `start` to `goal` (both included). A successor cell is dropped when its centre lies in a
+/// disc (one mask read per successor).
 fn search(
     grid: &ClearanceGrid,
     start: u32,
     goal: u32,
     inflation: f32,
-    discs: &[StandingDisc],
+    blocked: Option<Blocked>,
 ) -> Result<Vec<u32>, NavError> {
     if start == goal {
         return Ok(vec![start, goal]);
@@ -457,15 +475,19 @@ fn search(
     let (raw, _) = astar(
         &start,
         |&n| {
-            grid.successors(n, inflation).filter(|&(c, _)| {
-                discs.is_empty() || !discs.iter().any(|d| d.contains(grid.cell_center(c)))
-            })
+            grid.successors(n, inflation)
+                .filter(|&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
         },
         |&n| grid.octile(n, goal),
         |&n| n == goal,
     )
     .ok_or(NavError::NoPath)?;
-    Ok(smooth(grid, &raw, inflation, discs))
+    Ok(smooth(
+        grid,
+        &raw,
+        inflation,
+        blocked.map_or(&[], |b| b.discs),
+    ))
 }
 
 /// Greedy line-of-sight smoothing: from each anchor, jump to the farthest following cell still
