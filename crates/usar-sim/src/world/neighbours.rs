@@ -166,6 +166,17 @@ impl NeighbourGrid {
     /// half-side `radius_m` around `p` (with a small slack): every point within `radius_m` of
     /// `p`, and possibly others nearby. Cell by cell, not in id order.
     pub fn for_each_candidate(&self, p: Vec2, radius_m: f32, mut f: impl FnMut(usize, Vec2)) {
+        self.for_each_row(p, radius_m, |ids, pos| {
+            for (&id, &q) in ids.iter().zip(pos) {
+                f(id, q);
+            }
+        });
+    }
+
+    /// [`NeighbourGrid::for_each_candidate`] a row of cells at a time: calls `f(ids,
+    /// positions)` with the points (equal-length slices) of each row's cells that meet the
+    /// square (a row's cells are contiguous in the index).
+    fn for_each_row(&self, p: Vec2, radius_m: f32, mut f: impl FnMut(&[usize], &[Vec2])) {
         let r = radius_m.max(0.0);
         let slack = (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
         let r = r + slack;
@@ -177,9 +188,7 @@ impl NeighbourGrid {
                 self.starts[row + x0] as usize,
                 self.starts[row + x1 + 1] as usize,
             );
-            for k in a..b {
-                f(self.ids[k], self.pos[k]);
-            }
+            f(&self.ids[a..b], &self.pos[a..b]);
         }
     }
 
@@ -298,10 +307,18 @@ impl NeighbourQuery for NeighbourIndex {
         let r = radius_m.max(0.0);
         let r = r + (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
         let r2 = r * r;
-        self.grid(layer).for_each_candidate(p, radius_m, |id, q| {
-            if (q - p).length_squared() <= r2 {
-                out.push(id);
+        self.grid(layer).for_each_row(p, radius_m, |ids, pos| {
+            // Branch-free: every id is written, only those within the radius are kept (the
+            // test passes for about a third of a row's robots, so a branch mispredicts often).
+            let start = out.len();
+            out.resize(start + ids.len(), 0);
+            let buf = &mut out[start..];
+            let mut kept = 0;
+            for (k, (&id, &q)) in ids.iter().zip(pos).enumerate() {
+                buf[kept.min(k)] = id;
+                kept += usize::from((q - p).length_squared() <= r2);
             }
+            out.truncate(start + kept);
         });
     }
 }
@@ -370,7 +387,8 @@ mod tests {
         }
 
         /// The index's candidates of a layer include every robot of that layer within the
-        /// radius, each once, and no robot of the other layer.
+        /// radius, each once, no robot of the other layer and none beyond the radius (plus
+        /// slack).
         #[test]
         fn index_candidates_cover_the_layer(
             robots in prop::collection::vec((point(), any::<bool>()), 0..80),
@@ -391,6 +409,9 @@ mod tests {
                     let near = (q - p).length_squared() <= r * r;
                     prop_assert!(!(near && qg == g) || out.contains(&id), "missed {}", id);
                     prop_assert!(qg == g || !out.contains(&id), "wrong layer {}", id);
+                    // Beyond the radius plus the query slack: never a candidate.
+                    let far = (q - p).length() > r * 1.001 + 1e-3;
+                    prop_assert!(!far || !out.contains(&id), "too far {}", id);
                 }
             }
         }
