@@ -117,11 +117,12 @@ impl DistanceField {
             let on_shortest = |&(n, w): &(u32, u32)| {
                 self.settled[n as usize] && self.cost[n as usize].checked_add(w) == Some(here)
             };
-            let next = grid
-                .successors(cell, inflation)
+            let mut moves = grid.successors(cell, inflation);
+            let next = moves
+                .clone()
                 .filter(|&(_, w)| w == DIAGONAL_COST)
                 .find(on_shortest)
-                .or_else(|| grid.successors(cell, inflation).find(on_shortest));
+                .or_else(|| moves.find(on_shortest));
             let Some((n, _)) = next else {
                 // Unreachable for a settled cell (see above); stop rather than loop.
                 out.clear();

@@ -149,7 +149,7 @@ impl ClearanceGrid {
         &self,
         idx: u32,
         inflation: f32,
-    ) -> impl Iterator<Item = (u32, u32)> + use<> {
+    ) -> impl Iterator<Item = (u32, u32)> + Clone + use<> {
         let mut out = [(0u32, 0u32); 8];
         let mut k = 0;
         let ix = (idx % self.nx) as i64;

@@ -307,18 +307,19 @@ impl NeighbourQuery for NeighbourIndex {
         let r = radius_m.max(0.0);
         let r = r + (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
         let r2 = r * r;
+        const CHUNK: usize = 64;
+        let mut chunk = [0usize; CHUNK];
         self.grid(layer).for_each_row(p, radius_m, |ids, pos| {
             // Branch-free: every id is written, only those within the radius are kept (the
             // test passes for about a third of a row's robots, so a branch mispredicts often).
-            let start = out.len();
-            out.resize(start + ids.len(), 0);
-            let buf = &mut out[start..];
-            let mut kept = 0;
-            for (k, (&id, &q)) in ids.iter().zip(pos).enumerate() {
-                buf[kept.min(k)] = id;
-                kept += usize::from((q - p).length_squared() <= r2);
+            for (ids, pos) in ids.chunks(CHUNK).zip(pos.chunks(CHUNK)) {
+                let mut kept = 0;
+                for (k, (&id, &q)) in ids.iter().zip(pos).enumerate() {
+                    chunk[kept.min(k)] = id;
+                    kept += usize::from((q - p).length_squared() <= r2);
+                }
+                out.extend_from_slice(&chunk[..kept]);
             }
-            out.truncate(start + kept);
         });
     }
 }

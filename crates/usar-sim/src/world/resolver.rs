@@ -164,6 +164,21 @@ pub fn about_to_collide(r: Vec2, v: Vec2, clear: f32, horizon: f32) -> bool {
     (r + v * t).length_squared() < clear * clear
 }
 
+/// The candidate turns of rule 5 in the order they are tried, as `(sin, cos)` of
+/// `sign * k * STEER_ANGLE_STEP_RAD` for `k` in `1..=STEER_STEPS_PER_SIDE` and `sign` in
+/// `[-1, 1]` (right side first): computed once, the same `f32` values as computing them per
+/// robot and step.
+fn steer_turns() -> &'static [(f32, f32)] {
+    static TURNS: std::sync::OnceLock<Vec<(f32, f32)>> = std::sync::OnceLock::new();
+    TURNS.get_or_init(|| {
+        (1..=STEER_STEPS_PER_SIDE)
+            .flat_map(|k| {
+                [-1.0f32, 1.0].map(|sign| (sign * k as f32 * STEER_ANGLE_STEP_RAD).sin_cos())
+            })
+            .collect()
+    })
+}
+
 /// Index of a layer in per-layer arrays.
 fn layer_slot(layer: Locomotion) -> usize {
     match layer {
@@ -667,16 +682,13 @@ impl Resolver {
         if clear_of_robots(a.intent) {
             return Some(a.intent);
         }
-        for k in 1..=STEER_STEPS_PER_SIDE {
-            for sign in [-1.0f32, 1.0] {
-                let (s, c) = (sign * k as f32 * STEER_ANGLE_STEP_RAD).sin_cos();
-                let w = Vec2::new(
-                    a.intent.x * c - a.intent.y * s,
-                    a.intent.x * s + a.intent.y * c,
-                );
-                if clear_of_robots(w) && clear_of_statics(w) {
-                    return Some(w);
-                }
+        for &(s, c) in steer_turns() {
+            let w = Vec2::new(
+                a.intent.x * c - a.intent.y * s,
+                a.intent.x * s + a.intent.y * c,
+            );
+            if clear_of_robots(w) && clear_of_statics(w) {
+                return Some(w);
             }
         }
         None
