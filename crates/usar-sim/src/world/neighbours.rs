@@ -307,7 +307,7 @@ impl NeighbourQuery for NeighbourIndex {
         let r = radius_m.max(0.0);
         let r = r + (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
         let r2 = r * r;
-        const CHUNK: usize = 64;
+        const CHUNK: usize = 16;
         let mut chunk = [0usize; CHUNK];
         self.grid(layer).for_each_row(p, radius_m, |ids, pos| {
             // Branch-free: every id is written, only those within the radius are kept (the
