@@ -6,6 +6,7 @@
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
+//! - `grid_astar`: grid A* over dense per-cell arrays (the `pathfinding` crate's search order).
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
@@ -30,6 +31,7 @@ mod conflicts;
 mod disc_mask;
 pub mod distance_field;
 mod error;
+mod grid_astar;
 mod nav;
 pub mod navigation;
 pub mod neighbours;

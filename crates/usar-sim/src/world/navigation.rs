@@ -1,5 +1,5 @@
 //! Path planning of ground robots: a clearance grid built with parry2d distance queries, grid A*
-//! (the `pathfinding` crate) for a robot's own goals, shared distance fields
+//! (`grid_astar`: the `pathfinding` crate's A* over dense arrays) for a robot's own goals, shared distance fields
 //! ([`super::distance_field`]) for goals many robots share, and line-of-sight path smoothing.
 //!
 //! The grid stores, per cell, the distance from the cell centre to the nearest wall or debris
@@ -10,12 +10,12 @@
 use std::collections::HashMap;
 
 use parry2d::math::Vector as Vec2;
-use pathfinding::prelude::astar;
 
 use super::bodies::StaticObstacle;
 use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
+use super::grid_astar::GridAstar;
 use crate::scenario::Arena;
 use crate::scenario::in_field;
 
@@ -217,6 +217,8 @@ pub struct PathPlanner {
     discs: Vec<StandingDisc>,
     /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
     mask: DiscMask,
+    /// A*'s per-cell state, reused between searches.
+    astar: GridAstar,
 }
 
 /// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
@@ -369,7 +371,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => search(grid, start, goal, inflation, None),
+                GoalKind::Own => search(&mut self.astar, grid, start, goal, inflation, None),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -416,7 +418,14 @@ impl PathPlanner {
             discs: &self.discs,
             mask: &self.mask,
         };
-        let cells = search(grid, ends.start, ends.goal, inflation, Some(blocked))?;
+        let cells = search(
+            &mut self.astar,
+            grid,
+            ends.start,
+            ends.goal,
+            inflation,
+            Some(blocked),
+        )?;
         Ok(ends.write(grid, &cells, out))
     }
 
@@ -463,6 +472,7 @@ struct Blocked<'a> {
 /// `start` to `goal` (both included). A successor cell is dropped when its centre lies in a
 /// disc (one mask read per successor).
 fn search(
+    astar: &mut GridAstar,
     grid: &ClearanceGrid,
     start: u32,
     goal: u32,
@@ -472,16 +482,19 @@ fn search(
     if start == goal {
         return Ok(vec![start, goal]);
     }
-    let (raw, _) = astar(
-        &start,
-        |&n| {
-            grid.successors(n, inflation)
-                .filter(|&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
-        },
-        |&n| grid.octile(n, goal),
-        |&n| n == goal,
-    )
-    .ok_or(NavError::NoPath)?;
+    let (nx, ny) = grid.dims();
+    let raw = astar
+        .search(
+            nx as usize * ny as usize,
+            start,
+            goal,
+            |n| {
+                grid.successors(n, inflation)
+                    .filter(|&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
+            },
+            |n| grid.octile(n, goal),
+        )
+        .ok_or(NavError::NoPath)?;
     Ok(smooth(
         grid,
         &raw,
