@@ -649,7 +649,6 @@ impl Resolver {
         }
         let horizon = self.params.lookahead_s.get() as f32;
         let speed = a.intent.length();
-        let here = grid.clearance_at(a.pos);
         let span = self.near_span(near, inputs, i);
         let held = &self.held;
         self.near.clear();
@@ -670,6 +669,8 @@ impl Resolver {
             let Some(infl) = static_inflation else {
                 return true;
             };
+            // Looked up only when a turn is tried (most robots keep their intent).
+            let here = grid.clearance_at(a.pos);
             let len = (speed * horizon).min(STEER_STATIC_LOOKAHEAD_M);
             let dir = w / speed;
             let step = grid.cell_m() * 0.5;
