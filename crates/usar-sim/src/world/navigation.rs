@@ -1,6 +1,7 @@
 //! Path planning of ground robots: a clearance grid built with parry2d distance queries, grid A*
-//! (`grid_astar`: the `pathfinding` crate's A* over dense arrays) for a robot's own goals, shared distance fields
-//! ([`super::distance_field`]) for goals many robots share, and line-of-sight path smoothing.
+//! (`grid_astar`: the `pathfinding` crate's A* over dense arrays) for a robot's own goals,
+//! shared distance fields ([`super::distance_field`]) for goals many robots share, and
+//! line-of-sight path smoothing.
 //!
 //! The grid stores, per cell, the distance from the cell centre to the nearest wall or debris
 //! surface (capped). A cell is *free* for inflation `i` when that distance is `>= i`; the world

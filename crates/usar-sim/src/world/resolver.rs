@@ -669,7 +669,8 @@ impl Resolver {
             let Some(infl) = static_inflation else {
                 return true;
             };
-            // Looked up only when a turn is tried (most robots keep their intent).
+            // Looked up only when a turn is tried (most robots keep their intent), once per
+            // turn that is clear of robots.
             let here = grid.clearance_at(a.pos);
             let len = (speed * horizon).min(STEER_STATIC_LOOKAHEAD_M);
             let dir = w / speed;
