@@ -23,7 +23,6 @@ mod initial;
 mod metrics;
 mod needs;
 mod recorder;
-mod rescuee_grid;
 mod rescuees;
 mod robot;
 mod rounds;

@@ -3,8 +3,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::rescuee_grid::RescueeGrid;
+use parry2d::math::Vector as Vec2;
+
 use crate::scenario::{PointM, Rect};
+use crate::world::neighbours::NeighbourGrid;
 
 /// What has become of one rescuee.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -41,8 +43,9 @@ pub struct RescueeField {
     known_waiting: Vec<u32>,
     /// Position of rescuee `i` in `known_waiting`, or [`NOT_LISTED`].
     slot: Vec<u32>,
-    /// The rescuees bucketed by position: what [`RescueeField::detect`] scans.
-    grid: RescueeGrid,
+    /// The rescuees bucketed by position relative to the search area's `min` corner (`f32`
+    /// metres, the world's neighbour grid): what [`RescueeField::detect`] scans.
+    grid: NeighbourGrid,
     /// Rescuees detected in one call (scratch of [`RescueeField::detect`]).
     hits: Vec<u32>,
 }
@@ -50,12 +53,37 @@ pub struct RescueeField {
 /// `slot` of a rescuee that is not in the known-waiting list.
 const NOT_LISTED: u32 = u32::MAX;
 
+/// Rescuees per cell of [`RescueeField`]'s grid, about (the cell side is
+/// `sqrt(area * RESCUEES_PER_CELL / n)`); default 4.
+const RESCUEES_PER_CELL: f64 = 4.0;
+
+/// `p` relative to `origin`, in `f32` metres (a point of [`RescueeField`]'s grid).
+fn from_origin(p: &PointM, origin: &PointM) -> Vec2 {
+    Vec2::new((p.x - origin.x) as f32, (p.y - origin.y) as f32)
+}
+
+/// The neighbour grid of `positions` over `area`: cells sized for about
+/// [`RESCUEES_PER_CELL`] rescuees, positions relative to `area.min` (outside the area they
+/// fall into the border cells; a degenerate area or no rescuees gives one cell).
+fn rescuee_grid(positions: &[PointM], area: &Rect) -> NeighbourGrid {
+    let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
+    let cell_m = (w * h * RESCUEES_PER_CELL / positions.len().max(1) as f64).sqrt();
+    let mut grid = NeighbourGrid::new(w as f32, h as f32, cell_m as f32);
+    grid.rebuild(
+        positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i, from_origin(p, &area.min))),
+    );
+    grid
+}
+
 impl RescueeField {
     /// All rescuees of a task, waiting and unknown to everyone.
     pub fn new(positions: Vec<PointM>, area: Rect) -> Self {
         let n = positions.len();
         Self {
-            grid: RescueeGrid::new(&positions, &area),
+            grid: rescuee_grid(&positions, &area),
             hits: Vec::new(),
             positions,
             status: vec![RescueeStatus::Waiting; n],
@@ -152,8 +180,8 @@ impl RescueeField {
 
     /// Marks as known every waiting rescuee within `range_m` of `center` (paper: detecting
     /// rescuees within the observing range), in index order. Cheap when everything is known or
-    /// `center` is far from the search area; else `O(rescuees near center)` through the
-    /// rescuee grid.
+    /// `center` is far from the search area; else `O(rescuees near center)` through a
+    /// neighbour grid of the rescuees.
     pub fn detect(&mut self, center: &PointM, range_m: f64) {
         if self.unknown_waiting == 0 {
             return;
@@ -167,7 +195,10 @@ impl RescueeField {
         let r2 = range_m * range_m;
         let mut hits = std::mem::take(&mut self.hits);
         hits.clear();
-        self.grid.for_each_candidate(center, range_m, |i| {
+        // Candidates within the range plus the grid's slack, which covers the rounding to
+        // `f32`; the exact test is the `f64` one.
+        let c = from_origin(center, &self.area.min);
+        self.grid.for_each_candidate(c, range_m as f32, |i, _| {
             if !self.known[i]
                 && self.status[i] == RescueeStatus::Waiting
                 && (self.positions[i] - center).norm_squared() <= r2
@@ -267,6 +298,38 @@ mod tests {
     }
 
     proptest! {
+        /// Detection through the grid marks exactly the rescuees a scan of all would: many
+        /// rescuees (small cells) in a search area away from the origin (rescuees lie in their
+        /// task's area), queries inside and outside it, ranges from 0 to past the area, some
+        /// exactly at a rescuee's distance.
+        #[test]
+        fn detect_marks_exactly_the_rescuees_in_range(
+            points in prop::collection::vec((0.0f64..=1.0, 0.0f64..=1.0), 0..300),
+            queries in prop::collection::vec((-10.0f64..40.0, -10.0f64..30.0, 0.0f64..40.0, any::<bool>()), 1..20),
+            size in (0.5f64..30.0, 0.5f64..20.0),
+            origin in (0.0f64..100.0, 0.0f64..100.0),
+        ) {
+            let shift = |x: f64, y: f64| Point2::new(x + origin.0, y + origin.1);
+            let area = Rect { min: shift(0.0, 0.0), max: shift(size.0, size.1) };
+            let positions: Vec<PointM> =
+                points.iter().map(|&(u, v)| shift(u * size.0, v * size.1)).collect();
+            let mut f = RescueeField::new(positions.clone(), area);
+            for (k, &(x, y, r, exact)) in queries.iter().enumerate() {
+                let c = shift(x, y);
+                // Half the queries reach exactly to some rescuee.
+                let r = match positions.get(k % positions.len().max(1)) {
+                    Some(p) if exact => (p - c).norm(),
+                    _ => r,
+                };
+                let before = f.known.clone();
+                f.detect(&c, r);
+                for (j, p) in positions.iter().enumerate() {
+                    let in_range = (p - c).norm_squared() <= r * r;
+                    prop_assert_eq!(f.known[j], before[j] || in_range, "rescuee {} r {}", j, r);
+                }
+            }
+        }
+
         #[test]
         fn the_known_waiting_list_answers_as_the_full_scan(
             // Integer positions so that equal distances (ties by index) are common.
