@@ -17,6 +17,7 @@ use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
 use super::grid_astar::GridAstar;
+use super::grid_moves::{MOVES, MoveTable, Moves};
 use crate::scenario::Arena;
 use crate::scenario::in_field;
 
@@ -24,6 +25,9 @@ use crate::scenario::in_field;
 pub const STRAIGHT_COST: u32 = 1000;
 /// A* cost of a diagonal grid move (~ sqrt(2) * [`STRAIGHT_COST`]).
 pub const DIAGONAL_COST: u32 = 1414;
+/// Most move tables a [`ClearanceGrid`] keeps ([`ClearanceGrid::tabulate_moves`]; one byte
+/// per cell each): the world tabulates each ground kind's planning inflation, the first four.
+pub const MAX_MOVE_TABLES: usize = 4;
 /// Most entries the plan cache holds before it is cleared (bounded memory).
 const PLAN_CACHE_CAPACITY: usize = 4096;
 
@@ -34,6 +38,8 @@ pub struct ClearanceGrid {
     nx: u32,
     ny: u32,
     dist: Vec<f32>,
+    /// Move tables of the inflations given to [`ClearanceGrid::tabulate_moves`].
+    tables: Vec<MoveTable>,
 }
 
 impl ClearanceGrid {
@@ -63,7 +69,28 @@ impl ClearanceGrid {
                 }
             }
         }
-        Self { cell, nx, ny, dist }
+        Self {
+            cell,
+            nx,
+            ny,
+            dist,
+            tables: Vec::new(),
+        }
+    }
+
+    /// Tabulates every cell's moves for `inflation` metres (one byte per cell), so that
+    /// [`ClearanceGrid::successors`] for that inflation reads them instead of testing the
+    /// neighbours' clearances. The same moves in the same order: no search changes. Does
+    /// nothing when the inflation is tabulated already or [`MAX_MOVE_TABLES`] are (then its
+    /// moves are computed per call, as without a table).
+    pub fn tabulate_moves(&mut self, inflation: f32) {
+        if self.tables.len() >= MAX_MOVE_TABLES || self.tables.iter().any(|t| t.is_for(inflation)) {
+            return;
+        }
+        let table = MoveTable::new(inflation, self.nx * self.ny, |c| {
+            self.move_mask(c, inflation)
+        });
+        self.tables.push(table);
     }
 
     /// Side of a cell, metres.
@@ -146,15 +173,24 @@ impl ClearanceGrid {
     /// order: east, west, north, south, then the diagonals north-east, north-west, south-east,
     /// south-west; a diagonal only when both cells beside it are free too (no corner cutting).
     /// Symmetric: `b` is a successor of `a` with cost `w` if and only if `a` is one of `b`'s.
+    /// Read from the inflation's move table if [`ClearanceGrid::tabulate_moves`] made one.
     pub(super) fn successors(
         &self,
         idx: u32,
         inflation: f32,
     ) -> impl Iterator<Item = (u32, u32)> + Clone + use<> {
-        let mut out = [(0u32, 0u32); 8];
-        let mut k = 0;
-        let ix = (idx % self.nx) as i64;
-        let iy = (idx / self.nx) as i64;
+        let mask = match self.tables.iter().find(|t| t.is_for(inflation)) {
+            Some(table) => table.mask(idx),
+            None => self.move_mask(idx, inflation),
+        };
+        Moves::new(idx, self.nx, mask)
+    }
+
+    /// The moves of [`ClearanceGrid::successors`] as a mask: bit `b` for `MOVES[b]` of
+    /// `grid_moves.rs` (the order of the successors).
+    fn move_mask(&self, idx: u32, inflation: f32) -> u8 {
+        let ix = i64::from(idx % self.nx);
+        let iy = i64::from(idx / self.nx);
         let free = |x: i64, y: i64| {
             x >= 0
                 && y >= 0
@@ -162,26 +198,15 @@ impl ClearanceGrid {
                 && y < i64::from(self.ny)
                 && self.is_free((y as u32) * self.nx + x as u32, inflation)
         };
-        for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-            if free(ix + dx, iy + dy) {
-                out[k] = (
-                    ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
-                    STRAIGHT_COST,
-                );
-                k += 1;
+        let mut mask = 0u8;
+        for (b, &(dx, dy, _)) in MOVES.iter().enumerate() {
+            // No corner cutting: a diagonal needs both orthogonal neighbours free too.
+            let diagonal = dx != 0 && dy != 0;
+            if free(ix + dx, iy + dy) && (!diagonal || (free(ix + dx, iy) && free(ix, iy + dy))) {
+                mask |= 1 << b;
             }
         }
-        for (dx, dy) in [(1, 1), (-1, 1), (1, -1), (-1, -1)] {
-            // No corner cutting: both orthogonal neighbours must be free too.
-            if free(ix + dx, iy + dy) && free(ix + dx, iy) && free(ix, iy + dy) {
-                out[k] = (
-                    ((iy + dy) as u32) * self.nx + (ix + dx) as u32,
-                    DIAGONAL_COST,
-                );
-                k += 1;
-            }
-        }
-        out.into_iter().take(k)
+        mask
     }
 
     /// Octile distance between cells `a` and `b` in planner cost units (A*'s heuristic).
@@ -641,6 +666,64 @@ mod tests {
                 assert!(d >= min, "{p:?} on leg {leg:?} is {d} m from debris");
             }
         }
+    }
+
+    /// The successors of cell `idx` by their definition: the free neighbours in the order
+    /// east, west, north, south, north-east, north-west, south-east, south-west, a diagonal
+    /// only with both cells beside it free.
+    fn successors_by_definition(g: &ClearanceGrid, idx: u32, infl: f32) -> Vec<(u32, u32)> {
+        let (nx, ny) = (g.dims().0 as i64, g.dims().1 as i64);
+        let (x, y) = (i64::from(idx) % nx, i64::from(idx) / nx);
+        let free = |x: i64, y: i64| {
+            (0..nx).contains(&x) && (0..ny).contains(&y) && g.is_free((y * nx + x) as u32, infl)
+        };
+        let mut out = Vec::new();
+        for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+            if free(x + dx, y + dy) {
+                out.push((((y + dy) * nx + x + dx) as u32, STRAIGHT_COST));
+            }
+        }
+        for (dx, dy) in [(1, 1), (-1, 1), (1, -1), (-1, -1)] {
+            if free(x + dx, y + dy) && free(x + dx, y) && free(x, y + dy) {
+                out.push((((y + dy) * nx + x + dx) as u32, DIAGONAL_COST));
+            }
+        }
+        out
+    }
+
+    proptest::proptest! {
+        /// A move table gives every cell the successors of their definition, in their order,
+        /// as computing them per call does; an inflation without a table is computed.
+        #[test]
+        fn tabulated_moves_are_the_successors(
+            discs in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.5), 0..6),
+            infl in 0.0f32..1.2,
+        ) {
+            let statics: Vec<_> = discs.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            let computed = grid(&statics);
+            let mut tabulated = computed.clone();
+            tabulated.tabulate_moves(infl);
+            proptest::prop_assert_eq!(tabulated.tables.len(), 1);
+            for idx in 0..40 * 40 {
+                let expected = successors_by_definition(&computed, idx, infl);
+                let by_table: Vec<_> = tabulated.successors(idx, infl).collect();
+                let by_call: Vec<_> = computed.successors(idx, infl).collect();
+                let other: Vec<_> = tabulated.successors(idx, infl + 0.1).collect();
+                proptest::prop_assert_eq!(&by_table, &expected, "cell {}", idx);
+                proptest::prop_assert_eq!(&by_call, &expected, "cell {}", idx);
+                proptest::prop_assert_eq!(other, successors_by_definition(&computed, idx, infl + 0.1));
+            }
+        }
+    }
+
+    #[test]
+    fn move_tables_stop_at_their_limit() {
+        let mut g = grid(&[disc(5.0, 5.0, 1.0)]);
+        for k in 0..MAX_MOVE_TABLES + 2 {
+            g.tabulate_moves(0.1 * k as f32);
+            g.tabulate_moves(0.1 * k as f32);
+        }
+        assert_eq!(g.tables.len(), MAX_MOVE_TABLES);
     }
 
     #[test]

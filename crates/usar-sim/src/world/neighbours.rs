@@ -210,11 +210,11 @@ impl NeighbourGrid {
 /// The answer to "which robots of `layer` may lie within `radius_m` of `p`?": the resolver asks
 /// it through this trait so that tests can compare the grid with a scan of all robots.
 pub trait NeighbourQuery {
-    /// Writes to `out` (cleared first), in no particular order (deterministic: the same for the
-    /// same robots), the ids of robots on `layer` whose centre lies within `radius_m` (metres,
-    /// world frame) of `p`, and possibly of some other robots; callers apply their exact tests
-    /// to each candidate. Callers must not depend on the order (the resolver's unions and
-    /// all-tests do not).
+    /// Appends to `out` (keeping what it holds), in no particular order (deterministic: the
+    /// same for the same robots), the ids of robots on `layer` whose centre lies within
+    /// `radius_m` (metres, world frame) of `p`, and possibly of some other robots; callers
+    /// apply their exact tests to each candidate. Callers must not depend on the order (the
+    /// resolver's unions and all-tests do not).
     fn candidates(&self, layer: Locomotion, p: Vec2, radius_m: f32, out: &mut Vec<usize>);
 }
 
@@ -226,7 +226,6 @@ pub struct AllRobots(pub usize);
 
 impl NeighbourQuery for AllRobots {
     fn candidates(&self, _: Locomotion, _: Vec2, _: f32, out: &mut Vec<usize>) {
-        out.clear();
         out.extend(0..self.0);
     }
 }
@@ -303,7 +302,6 @@ impl NeighbourQuery for NeighbourIndex {
     /// area, so the callers' exact tests run on fewer robots; none within `radius_m` is
     /// dropped).
     fn candidates(&self, layer: Locomotion, p: Vec2, radius_m: f32, out: &mut Vec<usize>) {
-        out.clear();
         let r = radius_m.max(0.0);
         let r = r + (p.x.abs().max(p.y.abs()) + r + 1.0) * QUERY_SLACK_REL;
         let r2 = r * r;
@@ -401,7 +399,11 @@ mod tests {
             index.rebuild(robots.iter().map(|&(p, g)| (layer(g), p)));
             let mut out = Vec::new();
             for &(p, r, g) in &queries {
+                // Appends: what `out` held stays in front.
+                out.clear();
+                out.push(usize::MAX);
                 index.candidates(layer(g), p, r, &mut out);
+                prop_assert_eq!(out.remove(0), usize::MAX);
                 let mut sorted = out.clone();
                 sorted.sort_unstable();
                 sorted.dedup();

@@ -6,7 +6,7 @@ use parry2d::math::Vector as Vec2;
 use super::error::NavError;
 use super::navigation::{GoalKind, PlanQuery};
 use super::world::World;
-use crate::scenario::{Locomotion, in_field};
+use crate::scenario::{Locomotion, NavigationParams, in_field};
 
 /// Where [`World::plan`] writes the waypoints.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,13 +18,18 @@ pub(super) enum PlanInto {
     Scratch,
 }
 
+/// Inflation a robot of body radius `radius_m` plans with: `radius_m +
+/// navigation.clearance_m + navigation.grid_cell_m / 2`, metres, in `f32` (see
+/// [`super::navigation`]).
+pub(super) fn plan_inflation_m(radius_m: f32, navigation: &NavigationParams) -> f32 {
+    radius_m + navigation.clearance_m.get() as f32 + 0.5 * navigation.grid_cell_m.get() as f32
+}
+
 impl World {
     /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
     /// metres (see [`super::navigation`]).
     pub(super) fn plan_inflation(&self, id: usize) -> f32 {
-        self.nav[id].radius
-            + self.navigation.clearance_m.get() as f32
-            + 0.5 * self.navigation.grid_cell_m.get() as f32
+        plan_inflation_m(self.nav[id].radius, &self.navigation)
     }
 
     /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective

@@ -131,7 +131,7 @@ pub struct Resolver {
     /// in `lists`.
     roots: Vec<usize>,
     next_slot: Vec<usize>,
-    /// Candidates of the current neighbour query (any order).
+    /// Scratch of rule 5: the robots standing still near the steering robot.
     near: Vec<usize>,
     /// This step's neighbour candidates of each robot queried so far:
     /// `cached[span.0..span.1]` for `span = spans[i]` ([`NO_SPAN`] until queried). Rules 1, 3
@@ -300,9 +300,8 @@ impl Resolver {
         if self.spans[i] == NO_SPAN {
             let a = &inputs[i];
             let reach = self.reach(a);
-            near.candidates(a.layer, a.pos, reach, &mut self.near);
             let start = self.cached.len();
-            self.cached.extend_from_slice(&self.near);
+            near.candidates(a.layer, a.pos, reach, &mut self.cached);
             self.spans[i] = (start as u32, self.cached.len() as u32);
         }
         let (a, b) = self.spans[i];

@@ -13,7 +13,7 @@ use super::nav::Nav;
 
 use super::navigation::{ClearanceGrid, PathPlanner, StandingDisc};
 use super::neighbours::NeighbourIndex;
-use super::planning::PlanInto;
+use super::planning::{PlanInto, plan_inflation_m};
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
 use super::robot::RobotState;
@@ -82,12 +82,19 @@ impl World {
             + s.navigation.clearance_m.get()
             + 2.0 * s.navigation.grid_cell_m.get()
             + 1.0) as f32;
-        let grid = ClearanceGrid::build(
+        let mut grid = ClearanceGrid::build(
             &s.arena,
             &scene.statics,
             s.navigation.grid_cell_m.get(),
             cap,
         );
+        for k in s
+            .kinds
+            .iter()
+            .filter(|k| k.locomotion == Locomotion::Ground)
+        {
+            grid.tabulate_moves(plan_inflation_m(k.body_radius_m as f32, &s.navigation));
+        }
         let mut nav = Vec::with_capacity(s.robots.len());
         let mut robots = Vec::with_capacity(s.robots.len());
         for (id, r) in s.robots.iter().enumerate() {
