@@ -16,6 +16,7 @@ use super::bodies::StaticObstacle;
 use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
+use super::goal_region::{GOAL_REGION_BUDGET_CELLS, GoalRegion};
 use super::grid_astar::GridAstar;
 use super::grid_moves::{MOVES, MoveTable, Moves};
 use crate::scenario::Arena;
@@ -243,8 +244,8 @@ pub struct PathPlanner {
     discs: Vec<StandingDisc>,
     /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
     mask: DiscMask,
-    /// A*'s per-cell state, reused between searches.
-    astar: GridAstar,
+    /// A*'s per-cell state and the goal-region check, reused between searches.
+    search: GridSearch,
 }
 
 /// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
@@ -397,7 +398,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => search(&mut self.astar, grid, start, goal, inflation, None),
+                GoalKind::Own => self.search.run(grid, (start, goal), inflation, None),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -444,14 +445,9 @@ impl PathPlanner {
             discs: &self.discs,
             mask: &self.mask,
         };
-        let cells = search(
-            &mut self.astar,
-            grid,
-            ends.start,
-            ends.goal,
-            inflation,
-            Some(blocked),
-        )?;
+        let cells = self
+            .search
+            .run(grid, (ends.start, ends.goal), inflation, Some(blocked))?;
         Ok(ends.write(grid, &cells, out))
     }
 
@@ -494,39 +490,57 @@ struct Blocked<'a> {
     mask: &'a DiscMask,
 }
 
-/// A* (outside the `blocked` discs, if any) plus smoothing; returns smoothed cell indices from
-/// `start` to `goal` (both included). A successor cell is dropped when its centre lies in a
-/// disc (one mask read per successor).
-fn search(
-    astar: &mut GridAstar,
-    grid: &ClearanceGrid,
-    start: u32,
-    goal: u32,
-    inflation: f32,
-    blocked: Option<Blocked>,
-) -> Result<Vec<u32>, NavError> {
-    if start == goal {
-        return Ok(vec![start, goal]);
+/// A*'s per-cell state and the goal-region check, reused between searches.
+#[derive(Debug, Clone, Default)]
+struct GridSearch {
+    astar: GridAstar,
+    region: GoalRegion,
+}
+
+impl GridSearch {
+    /// A* (outside the `blocked` discs, if any) plus smoothing; returns smoothed cell indices
+    /// from `start` to `goal` (both included). A successor cell is dropped when its centre
+    /// lies in a disc (one mask read per successor). A goal shut in is found out by a flood
+    /// of its region first ([`super::goal_region`]): the same answer without a flood of the
+    /// whole grid.
+    fn run(
+        &mut self,
+        grid: &ClearanceGrid,
+        (start, goal): (u32, u32),
+        inflation: f32,
+        blocked: Option<Blocked>,
+    ) -> Result<Vec<u32>, NavError> {
+        if start == goal {
+            return Ok(vec![start, goal]);
+        }
+        let (nx, ny) = grid.dims();
+        let cells = nx as usize * ny as usize;
+        let enterable =
+            |c: u32| grid.is_free(c, inflation) && blocked.is_none_or(|b| !b.mask.is_marked(c));
+        let moves = |n| {
+            grid.successors(n, inflation)
+                .filter(move |&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
+        };
+        if self.region.proves_no_path(
+            cells,
+            (start, goal),
+            enterable(goal),
+            GOAL_REGION_BUDGET_CELLS,
+            moves,
+        ) {
+            return Err(NavError::NoPath);
+        }
+        let raw = self
+            .astar
+            .search(cells, start, goal, moves, |n| grid.octile(n, goal))
+            .ok_or(NavError::NoPath)?;
+        Ok(smooth(
+            grid,
+            &raw,
+            inflation,
+            blocked.map_or(&[], |b| b.discs),
+        ))
     }
-    let (nx, ny) = grid.dims();
-    let raw = astar
-        .search(
-            nx as usize * ny as usize,
-            start,
-            goal,
-            |n| {
-                grid.successors(n, inflation)
-                    .filter(|&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
-            },
-            |n| grid.octile(n, goal),
-        )
-        .ok_or(NavError::NoPath)?;
-    Ok(smooth(
-        grid,
-        &raw,
-        inflation,
-        blocked.map_or(&[], |b| b.discs),
-    ))
 }
 
 /// Greedy line-of-sight smoothing: from each anchor, jump to the farthest following cell still
