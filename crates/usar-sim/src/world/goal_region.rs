@@ -109,77 +109,23 @@ mod tests {
 
     use super::*;
     use crate::world::grid_astar::GridAstar;
+    use crate::world::grid_astar::tests::{Maze, maze};
 
-    /// A `w x h` maze: 8-connected moves into unblocked cells, a diagonal only with both
-    /// cells beside it unblocked (symmetric between unblocked cells, as the grid's moves).
-    #[derive(Debug)]
-    struct Maze {
-        w: u32,
-        h: u32,
-        blocked: Vec<bool>,
-    }
-
-    impl Maze {
-        fn open(&self, x: i64, y: i64) -> bool {
-            x >= 0
-                && y >= 0
-                && x < i64::from(self.w)
-                && y < i64::from(self.h)
-                && !self.blocked[(y as u32 * self.w + x as u32) as usize]
-        }
-
-        fn moves(&self, c: u32) -> Vec<(u32, u32)> {
-            let (x, y) = (i64::from(c % self.w), i64::from(c / self.w));
-            let mut out = Vec::new();
-            for (dx, dy) in [
-                (1, 0),
-                (-1, 0),
-                (0, 1),
-                (0, -1),
-                (1, 1),
-                (-1, 1),
-                (1, -1),
-                (-1, -1),
-            ] {
-                let diagonal = dx != 0 && dy != 0;
-                if self.open(x + dx, y + dy)
-                    && (!diagonal || (self.open(x + dx, y) && self.open(x, y + dy)))
-                {
-                    let cost = if diagonal { 14 } else { 10 };
-                    out.push((((y + dy) as u32) * self.w + (x + dx) as u32, cost));
+    /// Cells of the goal's component in `m` (plain depth-first search, the test's oracle).
+    fn component(m: &Maze, goal: u32) -> usize {
+        let mut seen = vec![false; m.blocked.len()];
+        let mut todo = vec![goal];
+        seen[goal as usize] = true;
+        let mut n = 0;
+        while let Some(c) = todo.pop() {
+            n += 1;
+            for (next, _) in m.successors(c) {
+                if !std::mem::replace(&mut seen[next as usize], true) {
+                    todo.push(next);
                 }
             }
-            out
         }
-
-        /// Cells of the goal's component (plain breadth-first search, the test's oracle).
-        fn component(&self, goal: u32) -> usize {
-            let mut seen = vec![false; self.blocked.len()];
-            let mut todo = vec![goal];
-            seen[goal as usize] = true;
-            let mut n = 0;
-            while let Some(c) = todo.pop() {
-                n += 1;
-                for (m, _) in self.moves(c) {
-                    if !std::mem::replace(&mut seen[m as usize], true) {
-                        todo.push(m);
-                    }
-                }
-            }
-            n
-        }
-    }
-
-    fn maze() -> impl Strategy<Value = (Maze, u32, u32)> {
-        (2u32..14, 2u32..14).prop_flat_map(|(w, h)| {
-            let cells = (w * h) as usize;
-            (
-                prop::collection::vec(prop::bool::weighted(0.35), cells),
-                0..w * h,
-                0..w * h,
-            )
-                .prop_map(move |(blocked, s, g)| (Maze { w, h, blocked }, s, g))
-        })
+        n
     }
 
     proptest! {
@@ -187,12 +133,14 @@ mod tests {
         /// goal's region fits the budget (or the goal cannot be entered).
         #[test]
         fn proves_no_path_exactly_when_a_star_finds_none(
-            (m, start, goal) in maze(),
+            m in maze(),
+            (s, g) in (any::<u32>(), any::<u32>()),
             budget in 1usize..60,
         ) {
             let cells = (m.w * m.h) as usize;
+            let (start, goal) = (s % (m.w * m.h), g % (m.w * m.h));
             let found = GridAstar::default()
-                .search(cells, start, goal, |c| m.moves(c), |_| 0)
+                .search(cells, start, goal, |c| m.successors(c), |_| 0)
                 .is_some();
             let enterable = !m.blocked[goal as usize];
             let proved = GoalRegion::default().proves_no_path(
@@ -200,10 +148,10 @@ mod tests {
                 (start, goal),
                 enterable,
                 budget,
-                |c| m.moves(c),
+                |c| m.successors(c),
             );
             prop_assert!(!(proved && found), "proved no path, but A* found one");
-            let small = !enterable || m.component(goal) <= budget;
+            let small = !enterable || component(&m, goal) <= budget;
             prop_assert!(found || !small || proved, "missed a shut-in goal");
         }
     }
@@ -220,18 +168,24 @@ mod tests {
                 }
             }
         }
-        let m = Maze { w, h, blocked };
+        let m = Maze {
+            w,
+            h,
+            blocked,
+            straight: vec![1; 81],
+            diagonal: vec![1; 81],
+        };
         let mut region = GoalRegion::default();
         let centre = 4 * w + 4;
         // The generation counter wraps: the region is cleared, no stale cell counts.
-        assert!(!region.proves_no_path(81, (0, 80), true, 81, |c| m.moves(c)));
+        assert!(!region.proves_no_path(81, (0, 80), true, 81, |c| m.successors(c)));
         region.current = u32::MAX - 1;
         for _ in 0..3 {
-            assert!(region.proves_no_path(81, (0, centre), true, 9, |c| m.moves(c)));
+            assert!(region.proves_no_path(81, (0, centre), true, 9, |c| m.successors(c)));
             // The ring's inside is 9 cells: a budget of 8 gives up ("maybe a path").
-            assert!(!region.proves_no_path(81, (0, centre), true, 8, |c| m.moves(c)));
+            assert!(!region.proves_no_path(81, (0, centre), true, 8, |c| m.successors(c)));
             // Reachable: never proved.
-            assert!(!region.proves_no_path(81, (0, 80), true, 81, |c| m.moves(c)));
+            assert!(!region.proves_no_path(81, (0, 80), true, 81, |c| m.successors(c)));
         }
     }
 }
