@@ -148,27 +148,25 @@ impl GridAstar {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use pathfinding::prelude::astar;
     use proptest::prelude::*;
 
     use super::*;
 
-    /// A `w x h` grid with `blocked` cells, 8-connected moves into unblocked cells (straight
-    /// cost `straight[c]`, diagonal `diagonal[c]` of the cell moved to, small so that ties are
-    /// many). Connectivity is symmetric between unblocked cells.
+    /// A `w x h` grid with `blocked` cells, 8-connected moves (straight cost `straight[c]`,
+    /// diagonal `diagonal[c]` of the cell moved to, small so that ties are many).
     #[derive(Debug)]
-    pub(in crate::world) struct Maze {
-        pub w: u32,
-        pub h: u32,
-        pub blocked: Vec<bool>,
-        pub straight: Vec<u32>,
-        pub diagonal: Vec<u32>,
+    struct Maze {
+        w: u32,
+        h: u32,
+        blocked: Vec<bool>,
+        straight: Vec<u32>,
+        diagonal: Vec<u32>,
     }
 
     impl Maze {
-        /// The moves out of cell `c`, as (cell, cost).
-        pub fn successors(&self, c: u32) -> Vec<(u32, u32)> {
+        fn successors(&self, c: u32) -> Vec<(u32, u32)> {
             let (x, y) = ((c % self.w) as i64, (c / self.w) as i64);
             let mut out = Vec::new();
             for (dx, dy) in [
@@ -200,8 +198,7 @@ pub(super) mod tests {
         }
     }
 
-    /// Random mazes of 2 to 15 cells a side, 30 % blocked.
-    pub(in crate::world) fn maze() -> impl Strategy<Value = Maze> {
+    fn maze() -> impl Strategy<Value = Maze> {
         (2u32..16, 2u32..16).prop_flat_map(|(w, h)| {
             let n = (w * h) as usize;
             (

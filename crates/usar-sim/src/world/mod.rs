@@ -6,8 +6,6 @@
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
-//! - `goal_region`: a bounded flood from a goal cell that proves "no path" before A* floods
-//!   the grid.
 //! - `grid_astar`: grid A* over dense per-cell arrays (the `pathfinding` crate's search order).
 //! - `grid_moves`: a cell's grid moves as a bit mask, tabulated per inflation.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
@@ -34,7 +32,6 @@ mod conflicts;
 mod disc_mask;
 pub mod distance_field;
 mod error;
-mod goal_region;
 mod grid_astar;
 mod grid_moves;
 mod nav;

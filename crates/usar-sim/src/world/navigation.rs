@@ -16,7 +16,6 @@ use super::bodies::StaticObstacle;
 use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
-use super::goal_region::{GOAL_REGION_BUDGET_CELLS, GoalRegion};
 use super::grid_astar::GridAstar;
 use super::grid_moves::{MOVES, MoveTable, Moves};
 use crate::scenario::Arena;
@@ -244,8 +243,8 @@ pub struct PathPlanner {
     discs: Vec<StandingDisc>,
     /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
     mask: DiscMask,
-    /// A*'s per-cell state and the goal-region check, reused between searches.
-    search: GridSearch,
+    /// A*'s per-cell state, reused between searches.
+    astar: GridAstar,
 }
 
 /// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
@@ -398,7 +397,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => self.search.run(grid, (start, goal), inflation, None),
+                GoalKind::Own => search(&mut self.astar, grid, (start, goal), inflation, None),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -445,9 +444,13 @@ impl PathPlanner {
             discs: &self.discs,
             mask: &self.mask,
         };
-        let cells = self
-            .search
-            .run(grid, (ends.start, ends.goal), inflation, Some(blocked))?;
+        let cells = search(
+            &mut self.astar,
+            grid,
+            (ends.start, ends.goal),
+            inflation,
+            Some(blocked),
+        )?;
         Ok(ends.write(grid, &cells, out))
     }
 
@@ -490,57 +493,45 @@ struct Blocked<'a> {
     mask: &'a DiscMask,
 }
 
-/// A*'s per-cell state and the goal-region check, reused between searches.
-#[derive(Debug, Clone, Default)]
-struct GridSearch {
-    astar: GridAstar,
-    region: GoalRegion,
-}
-
-impl GridSearch {
-    /// A* (outside the `blocked` discs, if any) plus smoothing; returns smoothed cell indices
-    /// from `start` to `goal` (both included). A successor cell is dropped when its centre
-    /// lies in a disc (one mask read per successor). A goal shut in is found out by a flood
-    /// of its region first ([`super::goal_region`]): the same answer without a flood of the
-    /// whole grid.
-    fn run(
-        &mut self,
-        grid: &ClearanceGrid,
-        (start, goal): (u32, u32),
-        inflation: f32,
-        blocked: Option<Blocked>,
-    ) -> Result<Vec<u32>, NavError> {
-        if start == goal {
-            return Ok(vec![start, goal]);
-        }
-        let (nx, ny) = grid.dims();
-        let cells = nx as usize * ny as usize;
-        let enterable =
-            |c: u32| grid.is_free(c, inflation) && blocked.is_none_or(|b| !b.mask.is_marked(c));
-        let moves = |n| {
-            grid.successors(n, inflation)
-                .filter(move |&(c, _)| blocked.is_none_or(|b| !b.mask.is_marked(c)))
-        };
-        if self.region.proves_no_path(
-            cells,
-            (start, goal),
-            enterable(goal),
-            GOAL_REGION_BUDGET_CELLS,
-            moves,
-        ) {
-            return Err(NavError::NoPath);
-        }
-        let raw = self
-            .astar
-            .search(cells, start, goal, moves, |n| grid.octile(n, goal))
-            .ok_or(NavError::NoPath)?;
-        Ok(smooth(
-            grid,
-            &raw,
-            inflation,
-            blocked.map_or(&[], |b| b.discs),
-        ))
+/// A* (outside the `blocked` discs, if any) plus smoothing; returns smoothed cell indices from
+/// `start` to `goal` (both included). A successor cell is dropped when its centre lies in a
+/// disc (one mask read per successor). A* reaches the goal only by a move into it, so a goal
+/// cell no move may enter (not free, or inside a standing robot's disc that leaves the goal
+/// point itself out) has no path: that is found out at once, not after a flood of every cell
+/// reachable from the start (the same answer).
+fn search(
+    astar: &mut GridAstar,
+    grid: &ClearanceGrid,
+    (start, goal): (u32, u32),
+    inflation: f32,
+    blocked: Option<Blocked>,
+) -> Result<Vec<u32>, NavError> {
+    if start == goal {
+        return Ok(vec![start, goal]);
     }
+    let enterable = |c: u32| blocked.is_none_or(|b| !b.mask.is_marked(c));
+    if !grid.is_free(goal, inflation) || !enterable(goal) {
+        return Err(NavError::NoPath);
+    }
+    let (nx, ny) = grid.dims();
+    let raw = astar
+        .search(
+            nx as usize * ny as usize,
+            start,
+            goal,
+            |n| {
+                grid.successors(n, inflation)
+                    .filter(move |&(c, _)| enterable(c))
+            },
+            |n| grid.octile(n, goal),
+        )
+        .ok_or(NavError::NoPath)?;
+    Ok(smooth(
+        grid,
+        &raw,
+        inflation,
+        blocked.map_or(&[], |b| b.discs),
+    ))
 }
 
 /// Greedy line-of-sight smoothing: from each anchor, jump to the farthest following cell still
@@ -728,6 +719,70 @@ mod tests {
                 proptest::prop_assert_eq!(other, successors_by_definition(&computed, idx, infl + 0.1));
             }
         }
+    }
+
+    proptest::proptest! {
+        /// A detour's search answers as plain A* over the cells outside the standing discs
+        /// (then smoothing) does, also when a disc covers the goal cell (no path at once).
+        #[test]
+        fn search_answers_as_a_star_outside_the_discs(
+            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.0), 0..4),
+            standing in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.2f32..1.5), 0..8),
+            (start, goal) in (0u32..1600, 0u32..1600),
+        ) {
+            let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            let g = grid(&statics);
+            let discs: Vec<_> = standing
+                .iter()
+                .map(|&(x, y, r)| StandingDisc { center: Vec2::new(x, y), radius_m: r })
+                .collect();
+            let mut mask = DiscMask::default();
+            mask.mark(&g, &discs);
+            let blocked = Blocked { discs: &discs, mask: &mask };
+            let ours = search(&mut GridAstar::default(), &g, (start, goal), INFL, Some(blocked));
+            let reference = if start == goal {
+                Ok(vec![start, goal])
+            } else {
+                GridAstar::default()
+                    .search(
+                        1600,
+                        start,
+                        goal,
+                        |n| g.successors(n, INFL).filter(|&(c, _)| !mask.is_marked(c)),
+                        |n| g.octile(n, goal),
+                    )
+                    .map(|raw| smooth(&g, &raw, INFL, &discs))
+                    .ok_or(NavError::NoPath)
+            };
+            proptest::prop_assert_eq!(ours, reference);
+        }
+    }
+
+    #[test]
+    fn a_goal_cell_inside_a_standing_disc_has_no_path() {
+        let g = grid(&[]);
+        let goal = g.cell_index(Vec2::new(5.1, 5.1));
+        // The disc holds the goal cell's centre (5.125, 5.125), not the goal point's corner
+        // of the cell.
+        let discs = [StandingDisc {
+            center: Vec2::new(5.3, 5.3),
+            radius_m: 0.3,
+        }];
+        let mut mask = DiscMask::default();
+        mask.mark(&g, &discs);
+        assert!(mask.is_marked(goal));
+        let blocked = Blocked {
+            discs: &discs,
+            mask: &mask,
+        };
+        let found = search(
+            &mut GridAstar::default(),
+            &g,
+            (0, goal),
+            INFL,
+            Some(blocked),
+        );
+        assert_eq!(found, Err(NavError::NoPath));
     }
 
     #[test]
