@@ -78,9 +78,9 @@ impl ClearanceGrid {
         }
     }
 
-    /// Tabulates every cell's moves for `inflation` metres (one byte per cell), so that
-    /// [`ClearanceGrid::successors`] for that inflation reads them instead of testing the
-    /// neighbours' clearances. The same moves in the same order: no search changes. Does
+    /// Tabulates every cell's moves for `inflation` metres (one byte per cell), so that grid
+    /// searches for that inflation (A*, distance fields and their descents) read them instead
+    /// of testing the neighbours' clearances. The same moves in the same order: no search changes. Does
     /// nothing when the inflation is tabulated already or [`MAX_MOVE_TABLES`] are (then its
     /// moves are computed per call, as without a table).
     pub fn tabulate_moves(&mut self, inflation: f32) {
