@@ -29,7 +29,8 @@ pub const MAX_SWEEP_POINTS: f64 = 1_000_000.0;
 /// Most debris shapes, listed and generated together.
 pub const MAX_DEBRIS: usize = 10_000;
 /// Most cells of the navigation grid, `ceil(width_m / grid_cell_m) * ceil(height_m /
-/// grid_cell_m)`: 2^24 cells (64 MiB of `f32` clearances), well inside a 32-bit cell index.
+/// grid_cell_m)`: 2^24 cells (64 MiB of `f32` clearances, and 16 MiB for each of at most
+/// four move tables), well inside a 32-bit cell index.
 pub const MAX_NAV_CELLS: u64 = 1 << 24;
 /// Longest arena side, metres: the world simulates in `f32`, whose spacing at 10 km is about
 /// 1 mm.

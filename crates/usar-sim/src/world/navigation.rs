@@ -80,9 +80,9 @@ impl ClearanceGrid {
 
     /// Tabulates every cell's moves for `inflation` metres (one byte per cell), so that grid
     /// searches for that inflation (A*, distance fields and their descents) read them instead
-    /// of testing the neighbours' clearances. The same moves in the same order: no search changes. Does
-    /// nothing when the inflation is tabulated already or [`MAX_MOVE_TABLES`] are (then its
-    /// moves are computed per call, as without a table).
+    /// of testing the neighbours' clearances. The same moves in the same order: no search
+    /// changes. Does nothing when the inflation is tabulated already or [`MAX_MOVE_TABLES`]
+    /// are (then its moves are computed per call, as without a table).
     pub fn tabulate_moves(&mut self, inflation: f32) {
         if self.tables.len() >= MAX_MOVE_TABLES || self.tables.iter().any(|t| t.is_for(inflation)) {
             return;
@@ -509,8 +509,8 @@ fn search(
     if start == goal {
         return Ok(vec![start, goal]);
     }
-    let enterable = |c: u32| blocked.is_none_or(|b| !b.mask.is_marked(c));
-    if !grid.is_free(goal, inflation) || !enterable(goal) {
+    let outside_discs = |c: u32| blocked.is_none_or(|b| !b.mask.is_marked(c));
+    if !grid.is_free(goal, inflation) || !outside_discs(goal) {
         return Err(NavError::NoPath);
     }
     let (nx, ny) = grid.dims();
@@ -521,7 +521,7 @@ fn search(
             goal,
             |n| {
                 grid.successors(n, inflation)
-                    .filter(move |&(c, _)| enterable(c))
+                    .filter(move |&(c, _)| outside_discs(c))
             },
             |n| grid.octile(n, goal),
         )
@@ -761,9 +761,9 @@ mod tests {
     #[test]
     fn a_goal_cell_inside_a_standing_disc_has_no_path() {
         let g = grid(&[]);
-        let goal = g.cell_index(Vec2::new(5.1, 5.1));
-        // The disc holds the goal cell's centre (5.125, 5.125), not the goal point's corner
-        // of the cell.
+        let goal = g.cell_index(Vec2::new(5.01, 5.01));
+        // The disc holds the goal cell's centre (5.125, 5.125), 0.25 m from its centre, but
+        // not the goal point, 0.41 m from it: a detour would keep it.
         let discs = [StandingDisc {
             center: Vec2::new(5.3, 5.3),
             radius_m: 0.3,
@@ -771,6 +771,7 @@ mod tests {
         let mut mask = DiscMask::default();
         mask.mark(&g, &discs);
         assert!(mask.is_marked(goal));
+        assert!(!discs[0].contains(Vec2::new(5.01, 5.01)));
         let blocked = Blocked {
             discs: &discs,
             mask: &mask,
