@@ -169,8 +169,9 @@ impl ClearanceGrid {
             (a.abs().max(b.abs()).max_element()).max(self.cell * self.nx.max(self.ny) as f32);
         let slack =
             self.cell * std::f32::consts::SQRT_2 + LOS_SKIP_MARGIN_M + LOS_SKIP_REL * extent;
-        let mut k = 0u32;
-        while k <= n {
+        // u64: `k` may run past `n = u32::MAX` (a segment of unbounded length) and must stop.
+        let mut k = 0u64;
+        while k <= u64::from(n) {
             let t = (k as f32 * step).min(len);
             let c = self.clearance_at(a + dir * t);
             let free = c >= inflation;
@@ -180,11 +181,11 @@ impl ClearanceGrid {
             let free_run = c - inflation - slack;
             // Samples k + 1 ..= k + skip are within `free_run` of this one.
             let skip = if free_run >= step {
-                (free_run / step) as u32
+                u64::from((free_run / step) as u32)
             } else {
                 0
             };
-            k = k.saturating_add(skip).saturating_add(1);
+            k += skip + 1;
         }
         true
     }
