@@ -440,7 +440,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => search(&mut self.astar, grid, (start, goal), inflation, None),
+                GoalKind::Own => search(&mut self.astar, grid, start, goal, inflation, None),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -490,7 +490,8 @@ impl PathPlanner {
         let cells = search(
             &mut self.astar,
             grid,
-            (ends.start, ends.goal),
+            ends.start,
+            ends.goal,
             inflation,
             Some(blocked),
         )?;
@@ -545,7 +546,8 @@ struct Blocked<'a> {
 fn search(
     astar: &mut GridAstar,
     grid: &ClearanceGrid,
-    (start, goal): (u32, u32),
+    start: u32,
+    goal: u32,
     inflation: f32,
     blocked: Option<Blocked>,
 ) -> Result<Vec<u32>, NavError> {
@@ -782,7 +784,7 @@ mod tests {
             let mut mask = DiscMask::default();
             mask.mark(&g, &discs);
             let blocked = Blocked { discs: &discs, mask: &mask };
-            let ours = search(&mut GridAstar::default(), &g, (start, goal), INFL, Some(blocked));
+            let ours = search(&mut GridAstar::default(), &g, start, goal, INFL, Some(blocked));
             let reference = if start == goal {
                 Ok(vec![start, goal])
             } else {
@@ -819,13 +821,7 @@ mod tests {
             discs: &discs,
             mask: &mask,
         };
-        let found = search(
-            &mut GridAstar::default(),
-            &g,
-            (0, goal),
-            INFL,
-            Some(blocked),
-        );
+        let found = search(&mut GridAstar::default(), &g, 0, goal, INFL, Some(blocked));
         assert_eq!(found, Err(NavError::NoPath));
     }
 
