@@ -39,7 +39,12 @@ impl World {
         }
         for id in 0..n {
             let command = self.command(id);
-            self.scene.physics.bodies[self.nav[id].body].set_linvel(command, true);
+            let body = self.nav[id].body;
+            // Writing through `bodies[..]` as `&mut` queues the body for Rapier's pass over
+            // user-modified bodies; an unchanged velocity needs no write (same physics).
+            if self.scene.physics.bodies[body].linvel() != command {
+                self.scene.physics.bodies[body].set_linvel(command, true);
+            }
         }
         if self.collision.enabled {
             self.stats.deadlocks_detected += self.resolver.deadlocked_lists();
