@@ -20,6 +20,10 @@
 //! draw the measured curve: steps per
 //! CPU second with all logic and with bare Rapier against team size, log-log, with the
 //! 25x-real-time line; `docs/img/scaling.svg` is made this way).
+//!
+//! A team that cannot be built (for example `--teams 1500` with the default base: the scaled
+//! start grids overlap) or an unknown `--method` stops the bench with a one-line error
+//! naming the scenario field, exit status 1.
 
 use std::time::Instant;
 
@@ -171,11 +175,13 @@ fn spread_starts(spec: &mut ScenarioSpec) {
 }
 
 /// The team of `n` robots (see the module docs): `paper.ron` for 12, else `base` scaled.
-fn team(n: usize, base: &str) -> Scenario {
+/// Errors (one line): the base does not read or parse, or the scaled team does not validate
+/// (for example its start grids no longer fit the arena).
+fn team(n: usize, base: &str) -> Result<Scenario, String> {
     let paper = path(PAPER);
     let base = if n == 12 { paper.as_str() } else { base };
-    let src = std::fs::read_to_string(base).expect("base scenario reads");
-    let mut spec = scenario::parse_spec(&src, base).expect("base scenario parses");
+    let src = std::fs::read_to_string(base).map_err(|e| format!("{base}: {e}"))?;
+    let mut spec = scenario::parse_spec(&src, base).map_err(|e| e.to_string())?;
     let count = spec.kinds.iter().map(|k| k.count).sum::<usize>();
     if count != n {
         scale_team(&mut spec, n);
@@ -188,7 +194,7 @@ fn team(n: usize, base: &str) -> Scenario {
         }
     }
     spec.validate(&format!("{base} x {n}"))
-        .unwrap_or_else(|e| panic!("team of {n}: {e}"))
+        .map_err(|e| format!("team of {n}: {e}"))
 }
 
 /// Peak resident set size of this process so far, MiB (`VmHWM`; 0 where unavailable).
@@ -240,17 +246,23 @@ fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
     )
 }
 
-/// Steps per second of the full simulation of `s`.
-fn with_logic(s: &Scenario, o: &Options) -> (u64, f64) {
+/// Steps per second of the full simulation of `s`. Errors (one line): the simulation does
+/// not build (an unknown `--method`) or a step fails.
+fn with_logic(s: &Scenario, o: &Options) -> Result<(u64, f64), String> {
     let mut sim = Simulation::builder(s)
         .method_named(&o.method)
         .trial(0)
         .duration_s(1e5)
         .build()
-        .expect("simulation builds");
-    time_steps(o.steps, o.budget_s, || {
-        sim.step().expect("step runs");
-    })
+        .map_err(|e| e.to_string())?;
+    let (mut done, mut failed) = (0u64, None);
+    let timed = time_steps(o.steps, o.budget_s, || {
+        if failed.is_none() {
+            done += 1;
+            failed = sim.step().err().map(|e| format!("step {done}: {e}"));
+        }
+    });
+    failed.map_or(Ok(timed), Err)
 }
 
 /// Steps per second of the same bodies in bare Rapier, each robot moving at its top speed
@@ -355,9 +367,12 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for &n in &o.teams {
-        let s = team(n, &o.base);
+        let measured = team(n, &o.base).and_then(|s| Ok((with_logic(&s, &o)?, s)));
+        let ((ls, lw), s) = measured.unwrap_or_else(|e| {
+            eprintln!("error: {e}");
+            std::process::exit(1);
+        });
         let dt = s.sim.dt_s.get();
-        let (ls, lw) = with_logic(&s, &o);
         let (bs, bw) = bare(&s, &o);
         let (logic, raw) = (ls as f64 / lw, bs as f64 / bw);
         println!(
