@@ -220,16 +220,16 @@ fn cpu_s(wall0: Instant) -> f64 {
         .map_or_else(|| wall0.elapsed().as_secs_f64(), |ns| ns * 1e-9)
 }
 
-/// Runs `step` up to `steps` times or until `budget_s` of wall time; returns (steps, CPU
-/// seconds of this thread spent).
-fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut()) -> (u64, f64) {
+/// Runs `step` up to `steps` times, until `budget_s` of wall time, or until it returns
+/// `false`; returns (steps run, CPU seconds of this thread spent).
+fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut() -> bool) -> (u64, f64) {
     let t0 = Instant::now();
     let c0 = cpu_s(t0);
     let mut done = 0;
     while done < steps {
-        step();
+        let go_on = step();
         done += 1;
-        if t0.elapsed().as_secs_f64() > budget_s {
+        if !go_on || t0.elapsed().as_secs_f64() > budget_s {
             break;
         }
     }
@@ -255,14 +255,12 @@ fn with_logic(s: &Scenario, o: &Options) -> Result<(u64, f64), String> {
         .duration_s(1e5)
         .build()
         .map_err(|e| e.to_string())?;
-    let (mut done, mut failed) = (0u64, None);
+    let mut failed = None;
     let timed = time_steps(o.steps, o.budget_s, || {
-        if failed.is_none() {
-            done += 1;
-            failed = sim.step().err().map(|e| format!("step {done}: {e}"));
-        }
+        failed = sim.step().err();
+        failed.is_none()
     });
-    failed.map_or(Ok(timed), Err)
+    failed.map_or(Ok(timed), |e| Err(format!("step {}: {e}", timed.0)))
 }
 
 /// Steps per second of the same bodies in bare Rapier, each robot moving at its top speed
@@ -280,7 +278,10 @@ fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
         let body = &mut scene.physics.bodies[scene.robot_bodies[id]];
         body.set_linvel(v.normalize_or_zero() * kind.max_speed_m_per_s as f32, true);
     }
-    time_steps(o.steps, o.budget_s, || scene.step())
+    time_steps(o.steps, o.budget_s, || {
+        scene.step();
+        true
+    })
 }
 
 /// One measured team: robots, steps per CPU second with all logic and with bare Rapier, step
@@ -290,6 +291,19 @@ struct Row {
     logic: f64,
     bare: f64,
     dt_s: f64,
+}
+
+/// Builds the team of `n` and measures it. Errors: as [`team`] and [`with_logic`].
+fn measure(n: usize, o: &Options) -> Result<Row, String> {
+    let s = team(n, &o.base)?;
+    let (ls, lw) = with_logic(&s, o)?;
+    let (bs, bw) = bare(&s, o);
+    Ok(Row {
+        robots: n,
+        logic: ls as f64 / lw,
+        bare: bs as f64 / bw,
+        dt_s: s.sim.dt_s.get(),
+    })
 }
 
 /// Draws `rows` as a log-log plot into the SVG file `path`.
@@ -367,26 +381,19 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for &n in &o.teams {
-        let measured = team(n, &o.base).and_then(|s| Ok((with_logic(&s, &o)?, s)));
-        let ((ls, lw), s) = measured.unwrap_or_else(|e| {
+        let row = measure(n, &o).unwrap_or_else(|e| {
             eprintln!("error: {e}");
             std::process::exit(1);
         });
-        let dt = s.sim.dt_s.get();
-        let (bs, bw) = bare(&s, &o);
-        let (logic, raw) = (ls as f64 / lw, bs as f64 / bw);
         println!(
-            "| {n} | {logic:.0} | {raw:.0} | {:.2} | {:.1} | {:.0} |",
-            raw / logic,
-            logic * dt,
+            "| {n} | {:.0} | {:.0} | {:.2} | {:.1} | {:.0} |",
+            row.logic,
+            row.bare,
+            row.bare / row.logic,
+            row.logic * row.dt_s,
             peak_rss_mib()
         );
-        rows.push(Row {
-            robots: n,
-            logic,
-            bare: raw,
-            dt_s: dt,
-        });
+        rows.push(row);
     }
     rows.retain(|r| r.logic.is_finite() && r.bare.is_finite() && r.logic > 0.0 && r.bare > 0.0);
     if let Some(path) = &o.svg {
