@@ -5,6 +5,8 @@
 //! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
+//! - `neighbour_lists`: the resolver's neighbour lists, kept over several steps (Verlet
+//!   lists).
 //! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
 //! - `grid_astar`: grid A* over dense per-cell arrays (the `pathfinding` crate's search order).
 //! - `grid_moves`: a cell's grid moves as a bit mask, tabulated per inflation.
@@ -36,6 +38,7 @@ mod grid_astar;
 mod grid_moves;
 mod nav;
 pub mod navigation;
+mod neighbour_lists;
 pub mod neighbours;
 mod path_following;
 mod planning;

@@ -87,10 +87,7 @@ impl World {
             } else {
                 let infl = (input.layer == Locomotion::Ground)
                     .then_some(input.radius + STEER_STATIC_GAP_M);
-                match self
-                    .resolver
-                    .steer(&self.inputs, id, &self.neighbours, &self.grid, infl)
-                {
+                match self.resolver.steer(&self.inputs, id, &self.grid, infl) {
                     Some(v) => v,
                     None => {
                         motion = Motion::Blocked;

@@ -1,0 +1,300 @@
+//! Neighbour lists kept over several steps (Verlet lists) for the resolver's pair rules.
+//!
+//! Every robot's list holds the robots of its layer within a *build radius* `B` of it at the
+//! positions of the last rebuild (the *epoch*), and possibly some others. The lists stay valid
+//! while, for each layer,
+//!
+//! `(q + 2 d) (1 + 1e-4) + 1e-4 <= B`
+//!
+//! where `q` bounds every robot's query radius this step (the resolver's reach) and `d` is the
+//! largest distance any robot has moved since the epoch: two robots within `q` of each other
+//! now were within `q + 2 d` at the epoch (triangle inequality; the factor and the term cover
+//! `f32` rounding), so each is on the other's list. When the test fails for any layer (or the
+//! team's size or a robot's layer changed, or a position is not finite) every list is rebuilt
+//! from the caller's [`NeighbourQuery`] with `B = Q + NEIGHBOUR_LIST_SKIN_M`, `Q` the largest
+//! `q` of the layer seen so far. The lists are a superset of each step's queries, in another
+//! order, and the resolver's rules apply their exact tests to every candidate and do not depend
+//! on the order, so they decide exactly as with a fresh query per robot and step (tested
+//! against [`super::neighbours::AllRobots`]).
+//!
+//! Cost: a check per step, `O(n)`; a rebuild, one query per robot. Robots of `swarm-1000.ron`
+//! drive at up to 2.5 m/s, 5 cm per step, so with the default skin lists last about five steps
+//! or more: a 300 s trial (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000
+//! times.
+//!
+//! Reference: L. Verlet, "Computer 'experiments' on classical fluids. I. Thermodynamical
+//! properties of Lennard-Jones molecules", Phys. Rev. 159, 98 (1967).
+
+use parry2d::math::Vector as Vec2;
+
+use super::neighbours::NeighbourQuery;
+use super::resolver::ResolverInput;
+use crate::scenario::Locomotion;
+
+/// Skin added to a layer's largest query radius when the lists are rebuilt, metres: a larger
+/// skin means longer lists and fewer rebuilds (a robot may move `skin / 2` before the lists
+/// must be rebuilt).
+pub const NEIGHBOUR_LIST_SKIN_M: f32 = 0.5;
+
+/// Relative and absolute slack (dimensionless, metres) of the validity test, for `f32`
+/// rounding of the displacements and the triangle inequality.
+const VALIDITY_SLACK: f32 = 1e-4;
+
+/// Per-robot neighbour lists over several steps (see the module docs).
+#[derive(Debug, Clone)]
+pub struct NeighbourLists {
+    /// Positions (metres) and layers of the robots at the last rebuild.
+    epoch_pos: Vec<Vec2>,
+    epoch_layer: Vec<Locomotion>,
+    /// Build radius of each layer (ground, aerial), metres; negative before the first build.
+    build_m: [f32; 2],
+    /// The largest query radius seen per layer, metres.
+    high_m: [f32; 2],
+    /// `ids[spans[i].0..spans[i].2]` is robot `i`'s list, its ids above `i` from
+    /// `spans[i].1` on.
+    spans: Vec<(usize, usize, usize)>,
+    ids: Vec<usize>,
+    rebuilds: u64,
+}
+
+/// Index of a layer in per-layer arrays.
+fn slot(layer: Locomotion) -> usize {
+    match layer {
+        Locomotion::Ground => 0,
+        Locomotion::Aerial => 1,
+    }
+}
+
+impl NeighbourLists {
+    /// Lists for no robot; the first [`NeighbourLists::refresh`] builds them.
+    pub fn new() -> Self {
+        Self {
+            epoch_pos: Vec::new(),
+            epoch_layer: Vec::new(),
+            build_m: [-1.0; 2],
+            high_m: [0.0; 2],
+            spans: Vec::new(),
+            ids: Vec::new(),
+            rebuilds: 0,
+        }
+    }
+
+    /// Makes the lists valid for the robots at `inputs[..].pos` (metres, indexed by id) on
+    /// `inputs[..].layer`, whose query radii this step are at most `query_m` (metres, ground
+    /// and aerial; NaN counts as 0, as in [`NeighbourQuery::candidates`]): rebuilds them from
+    /// `near` (which must index the robots at `inputs[..].pos`) unless they still are.
+    /// Returns whether it rebuilt.
+    pub fn refresh(
+        &mut self,
+        inputs: &[ResolverInput],
+        query_m: [f32; 2],
+        near: &impl NeighbourQuery,
+    ) -> bool {
+        for (high, q) in self.high_m.iter_mut().zip(query_m) {
+            *high = high.max(q);
+        }
+        if self.valid(inputs, query_m) {
+            return false;
+        }
+        self.rebuild(inputs, near);
+        true
+    }
+
+    /// Whether every layer passes the validity test of the module docs.
+    fn valid(&self, inputs: &[ResolverInput], query_m: [f32; 2]) -> bool {
+        if inputs.len() != self.epoch_pos.len() {
+            return false;
+        }
+        let mut moved2 = [0.0f32; 2];
+        for (a, (&p0, &layer0)) in inputs
+            .iter()
+            .zip(self.epoch_pos.iter().zip(&self.epoch_layer))
+        {
+            let d2 = (a.pos - p0).length_squared();
+            // A NaN or infinite displacement (a non-finite position): not valid.
+            if !d2.is_finite() || a.layer != layer0 {
+                return false;
+            }
+            let m = &mut moved2[slot(a.layer)];
+            *m = m.max(d2);
+        }
+        (0..2).all(|l| {
+            let need =
+                (query_m[l] + 2.0 * moved2[l].sqrt()) * (1.0 + VALIDITY_SLACK) + VALIDITY_SLACK;
+            need <= self.build_m[l]
+        })
+    }
+
+    /// Rebuilds every list with the build radius `high + skin` of its layer.
+    fn rebuild(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
+        for l in 0..2 {
+            self.build_m[l] = self.high_m[l].max(0.0) + NEIGHBOUR_LIST_SKIN_M;
+        }
+        self.epoch_pos.clear();
+        self.epoch_layer.clear();
+        self.spans.clear();
+        self.ids.clear();
+        for (i, a) in inputs.iter().enumerate() {
+            let start = self.ids.len();
+            near.candidates(a.layer, a.pos, self.build_m[slot(a.layer)], &mut self.ids);
+            // Ids up to `i` first, then those above it.
+            let list = &mut self.ids[start..];
+            let mut mid = 0;
+            for k in 0..list.len() {
+                if list[k] <= i {
+                    list.swap(mid, k);
+                    mid += 1;
+                }
+            }
+            self.spans.push((start, start + mid, self.ids.len()));
+            self.epoch_pos.push(a.pos);
+            self.epoch_layer.push(a.layer);
+        }
+        self.rebuilds += 1;
+    }
+
+    /// Robot `i`'s list (ids, any order; possibly `i` itself): every robot of its layer within
+    /// this step's query radius of it. Call after [`NeighbourLists::refresh`].
+    pub fn of(&self, i: usize) -> &[usize] {
+        let (a, _, b) = self.spans[i];
+        &self.ids[a..b]
+    }
+
+    /// The ids above `i` in robot `i`'s list (any order): each pair of robots within the
+    /// query radius of the lower id once.
+    pub fn above(&self, i: usize) -> &[usize] {
+        let (_, a, b) = self.spans[i];
+        &self.ids[a..b]
+    }
+
+    /// Rebuilds so far.
+    #[cfg(test)]
+    fn rebuilds(&self) -> u64 {
+        self.rebuilds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::world::neighbours::NeighbourIndex;
+
+    fn robot(x: f32, y: f32, layer: Locomotion) -> ResolverInput {
+        ResolverInput {
+            pos: Vec2::new(x, y),
+            intent: Vec2::ZERO,
+            radius: 0.4,
+            sensing: 3.0,
+            layer,
+            active: true,
+            key: 0.0,
+            remaining: 0.0,
+        }
+    }
+
+    fn index(inputs: &[ResolverInput]) -> NeighbourIndex {
+        let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
+        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+        ix
+    }
+
+    fn layer(ground: bool) -> Locomotion {
+        if ground {
+            Locomotion::Ground
+        } else {
+            Locomotion::Aerial
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+
+        /// After every refresh, each robot's list holds every robot of its layer within the
+        /// step's query radius (and none of the other layer), `above` is the part of the list
+        /// above the robot's id, over steps of small drifts (lists kept), jumps (teleports)
+        /// and growing query radii.
+        #[test]
+        fn lists_cover_every_query_of_the_step(
+            start in prop::collection::vec((-2.0f32..32.0, -2.0f32..32.0, any::<bool>()), 1..80),
+            steps in prop::collection::vec(
+                (prop::collection::vec((-0.06f32..0.06, -0.06f32..0.06), 80),
+                 prop::option::weighted(0.2, (0usize..80, -2.0f32..32.0, -2.0f32..32.0)),
+                 0.0f32..4.0, 0.0f32..6.0),
+                1..30),
+        ) {
+            let mut inputs: Vec<_> =
+                start.iter().map(|&(x, y, g)| robot(x, y, layer(g))).collect();
+            let n = inputs.len();
+            let mut lists = NeighbourLists::new();
+            for (drift, jump, q_ground, q_aerial) in &steps {
+                for (a, d) in inputs.iter_mut().zip(drift) {
+                    a.pos += Vec2::new(d.0, d.1);
+                }
+                if let Some((k, x, y)) = *jump {
+                    inputs[k % n].pos = Vec2::new(x, y);
+                }
+                let query = [*q_ground, *q_aerial];
+                lists.refresh(&inputs, query, &index(&inputs));
+                for (i, a) in inputs.iter().enumerate() {
+                    let of = lists.of(i);
+                    let q = query[slot(a.layer)];
+                    for (j, b) in inputs.iter().enumerate() {
+                        let near = (b.pos - a.pos).length_squared() <= q * q;
+                        if b.layer != a.layer {
+                            prop_assert!(!of.contains(&j), "{} lists {} of the other layer", i, j);
+                        } else if near {
+                            prop_assert!(of.contains(&j), "{} misses {}", i, j);
+                        }
+                    }
+                    let mut above: Vec<usize> = of.iter().copied().filter(|&j| j > i).collect();
+                    let mut got = lists.above(i).to_vec();
+                    above.sort_unstable();
+                    got.sort_unstable();
+                    prop_assert_eq!(above, got);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn lists_are_kept_until_a_robot_moves_half_the_skin() {
+        let mut inputs = vec![
+            robot(5.0, 5.0, Locomotion::Ground),
+            robot(7.0, 5.0, Locomotion::Ground),
+            robot(5.0, 6.0, Locomotion::Aerial),
+        ];
+        let query = [3.0, 4.0];
+        let mut lists = NeighbourLists::new();
+        assert!(lists.refresh(&inputs, query, &index(&inputs)));
+        // Moves that add up to less than half the skin (less the slack): the lists stay.
+        let step = NEIGHBOUR_LIST_SKIN_M * 0.45 / 10.0;
+        for _ in 0..10 {
+            inputs[0].pos.x += step;
+            assert!(!lists.refresh(&inputs, query, &index(&inputs)));
+        }
+        assert_eq!(lists.rebuilds(), 1);
+        // A robot beyond half the skin from its epoch position: rebuilt.
+        inputs[0].pos.x += NEIGHBOUR_LIST_SKIN_M * 0.06;
+        assert!(lists.refresh(&inputs, query, &index(&inputs)));
+        // A larger query radius than the lists were built for: rebuilt.
+        assert!(lists.refresh(
+            &inputs,
+            [3.0 + NEIGHBOUR_LIST_SKIN_M * 1.2, 4.0],
+            &index(&inputs)
+        ));
+        assert!(!lists.refresh(
+            &inputs,
+            [3.0 + NEIGHBOUR_LIST_SKIN_M * 1.2, 4.0],
+            &index(&inputs)
+        ));
+        // A non-finite position, or another team size: rebuilt.
+        inputs[2].pos.x = f32::NAN;
+        assert!(lists.refresh(&inputs, query, &index(&inputs)));
+        inputs.pop();
+        assert!(lists.refresh(&inputs, query, &index(&inputs)));
+        assert!(!lists.refresh(&inputs, query, &index(&inputs)));
+        assert_eq!(lists.rebuilds(), 5);
+    }
+}
