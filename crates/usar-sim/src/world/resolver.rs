@@ -626,7 +626,6 @@ impl Resolver {
             return Some(Vec2::ZERO);
         }
         let horizon = self.params.lookahead_s.get() as f32;
-        let speed = a.intent.length();
         let held = &self.held;
         self.near.clear();
         self.near
@@ -649,6 +648,7 @@ impl Resolver {
             // Looked up only when a turn is tried (most robots keep their intent), once per
             // turn that is clear of robots.
             let here = grid.clearance_at(a.pos);
+            let speed = a.intent.length();
             let len = (speed * horizon).min(STEER_STATIC_LOOKAHEAD_M);
             let dir = w / speed;
             let step = grid.cell_m() * 0.5;
