@@ -12,15 +12,20 @@
 //! `f32` rounding), so each is on the other's list. When the test fails for any layer (or the
 //! team's size or a robot's layer changed, or a position is not finite) every list is rebuilt
 //! from the caller's [`NeighbourQuery`] with `B = Q + NEIGHBOUR_LIST_SKIN_M`, `Q` the largest
-//! `q` of the layer seen so far. The lists are a superset of each step's queries, in another
-//! order, and the resolver's rules apply their exact tests to every candidate and do not depend
-//! on the order, so they decide exactly as with a fresh query per robot and step (tested
-//! against [`super::neighbours::AllRobots`]).
+//! `q` of the layer seen so far. The lists hold every robot within the step's query radius (not
+//! necessarily every robot a fresh query returns: those also include a thin band beyond the
+//! radius), in another order. The query radius (the resolver's reach) bounds every pair that
+//! can pass the resolver's exact tests, the rules apply those tests to every candidate and do
+//! not depend on the order, so they decide exactly as with a fresh query per robot and step
+//! (tested against [`super::neighbours::AllRobots`]).
+//!
+//! `Q` only grows: a step with a much larger reach (a speed or sensing spike) makes every later
+//! list longer (slower, still exact).
 //!
 //! Cost: a check per step, `O(n)`; a rebuild, one query per robot. Robots of `swarm-1000.ron`
 //! drive at up to 2.5 m/s, 5 cm per step, so with the default skin lists last about five steps
 //! or more: a 300 s trial (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000
-//! times.
+//! times (counted with a temporary print of the rebuild counter).
 //!
 //! Reference: L. Verlet, "Computer 'experiments' on classical fluids. I. Thermodynamical
 //! properties of Lennard-Jones molecules", Phys. Rev. 159, 98 (1967).
@@ -81,7 +86,7 @@ impl NeighbourLists {
 
     /// Makes the lists valid for the robots at `inputs[..].pos` (metres, indexed by id) on
     /// `inputs[..].layer`, whose query radii this step are at most `query_m` (metres, ground
-    /// and aerial; NaN counts as 0, as in [`NeighbourQuery::candidates`]): rebuilds them from
+    /// and aerial; a NaN radius makes every refresh rebuild): rebuilds them from
     /// `near` (which must index the robots at `inputs[..].pos`) unless they still are.
     /// Returns whether it rebuilt.
     pub fn refresh(
@@ -154,7 +159,8 @@ impl NeighbourLists {
     }
 
     /// Robot `i`'s list (ids, any order; possibly `i` itself): every robot of its layer within
-    /// this step's query radius of it. Call after [`NeighbourLists::refresh`].
+    /// this step's query radius of it, and possibly others (callers test each). Call after
+    /// [`NeighbourLists::refresh`]; panics if `i` is not below the team size of that refresh.
     pub fn of(&self, i: usize) -> &[usize] {
         let (a, _, b) = self.spans[i];
         &self.ids[a..b]
