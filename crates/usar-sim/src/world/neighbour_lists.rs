@@ -25,7 +25,7 @@
 //! Cost: a check per step, `O(n)`; a rebuild, one query per robot. Robots of `swarm-1000.ron`
 //! drive at up to 2.5 m/s, 5 cm per step, so with the default skin lists last about five steps
 //! or more: a 300 s trial (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000
-//! times (counted with a temporary print of the rebuild counter).
+//! times (counted with a temporary print in the rebuild).
 //!
 //! Reference: L. Verlet, "Computer 'experiments' on classical fluids. I. Thermodynamical
 //! properties of Lennard-Jones molecules", Phys. Rev. 159, 98 (1967).
@@ -33,7 +33,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::neighbours::NeighbourQuery;
-use super::resolver::ResolverInput;
+use super::resolver::{ResolverInput, layer_slot};
 use crate::scenario::Locomotion;
 
 /// Skin added to a layer's largest query radius when the lists are rebuilt, metres: a larger
@@ -59,15 +59,6 @@ pub struct NeighbourLists {
     /// `spans[i].1` on.
     spans: Vec<(usize, usize, usize)>,
     ids: Vec<usize>,
-    rebuilds: u64,
-}
-
-/// Index of a layer in per-layer arrays.
-fn slot(layer: Locomotion) -> usize {
-    match layer {
-        Locomotion::Ground => 0,
-        Locomotion::Aerial => 1,
-    }
 }
 
 impl NeighbourLists {
@@ -80,7 +71,6 @@ impl NeighbourLists {
             high_m: [0.0; 2],
             spans: Vec::new(),
             ids: Vec::new(),
-            rebuilds: 0,
         }
     }
 
@@ -120,7 +110,7 @@ impl NeighbourLists {
             if !d2.is_finite() || a.layer != layer0 {
                 return false;
             }
-            let m = &mut moved2[slot(a.layer)];
+            let m = &mut moved2[layer_slot(a.layer)];
             *m = m.max(d2);
         }
         (0..2).all(|l| {
@@ -141,7 +131,7 @@ impl NeighbourLists {
         self.ids.clear();
         for (i, a) in inputs.iter().enumerate() {
             let start = self.ids.len();
-            near.candidates(a.layer, a.pos, self.build_m[slot(a.layer)], &mut self.ids);
+            near.candidates(a.layer, a.pos, self.build_m[layer_slot(a.layer)], &mut self.ids);
             // Ids up to `i` first, then those above it.
             let list = &mut self.ids[start..];
             let mut mid = 0;
@@ -155,7 +145,6 @@ impl NeighbourLists {
             self.epoch_pos.push(a.pos);
             self.epoch_layer.push(a.layer);
         }
-        self.rebuilds += 1;
     }
 
     /// Robot `i`'s list (ids, any order; possibly `i` itself): every robot of its layer within
@@ -173,11 +162,6 @@ impl NeighbourLists {
         &self.ids[a..b]
     }
 
-    /// Rebuilds so far.
-    #[cfg(test)]
-    fn rebuilds(&self) -> u64 {
-        self.rebuilds
-    }
 }
 
 #[cfg(test)]
@@ -245,7 +229,7 @@ mod tests {
                 lists.refresh(&inputs, query, &index(&inputs));
                 for (i, a) in inputs.iter().enumerate() {
                     let of = lists.of(i);
-                    let q = query[slot(a.layer)];
+                    let q = query[layer_slot(a.layer)];
                     for (j, b) in inputs.iter().enumerate() {
                         let near = (b.pos - a.pos).length_squared() <= q * q;
                         if b.layer != a.layer {
@@ -280,7 +264,6 @@ mod tests {
             inputs[0].pos.x += step;
             assert!(!lists.refresh(&inputs, query, &index(&inputs)));
         }
-        assert_eq!(lists.rebuilds(), 1);
         // A robot beyond half the skin from its epoch position: rebuilt.
         inputs[0].pos.x += NEIGHBOUR_LIST_SKIN_M * 0.06;
         assert!(lists.refresh(&inputs, query, &index(&inputs)));
@@ -301,6 +284,5 @@ mod tests {
         inputs.pop();
         assert!(lists.refresh(&inputs, query, &index(&inputs)));
         assert!(!lists.refresh(&inputs, query, &index(&inputs)));
-        assert_eq!(lists.rebuilds(), 5);
     }
 }

@@ -174,8 +174,8 @@ fn steer_turns() -> &'static [(f32, f32)] {
     })
 }
 
-/// Index of a layer in per-layer arrays.
-fn layer_slot(layer: Locomotion) -> usize {
+/// Index of a layer in per-layer arrays: ground 0, aerial 1.
+pub(super) fn layer_slot(layer: Locomotion) -> usize {
     match layer {
         Locomotion::Ground => 0,
         Locomotion::Aerial => 1,
