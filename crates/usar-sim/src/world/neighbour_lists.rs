@@ -131,7 +131,12 @@ impl NeighbourLists {
         self.ids.clear();
         for (i, a) in inputs.iter().enumerate() {
             let start = self.ids.len();
-            near.candidates(a.layer, a.pos, self.build_m[layer_slot(a.layer)], &mut self.ids);
+            near.candidates(
+                a.layer,
+                a.pos,
+                self.build_m[layer_slot(a.layer)],
+                &mut self.ids,
+            );
             // Ids up to `i` first, then those above it.
             let list = &mut self.ids[start..];
             let mut mid = 0;
@@ -161,7 +166,6 @@ impl NeighbourLists {
         let (_, a, b) = self.spans[i];
         &self.ids[a..b]
     }
-
 }
 
 #[cfg(test)]
