@@ -244,10 +244,17 @@ pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
     requested.min(max).min(jobs).max(1)
 }
 
+/// Most trials one sweep may hold: grid cells x methods x trials, all shards together
+/// (1,000,000). A sweep keeps a few hundred bytes per trial in memory (its job list, records
+/// and tables), so the limit keeps a mistyped `--trials` a one-line error instead of an
+/// allocation failure; a larger study is several sweeps (for example one per `--seed`).
+pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
+
 /// The sweep's header: its parameters and grid as recorded in the journal.
 ///
 /// # Errors
-/// An unknown method, or a scenario that cannot be serialised.
+/// An unknown method, a scenario that cannot be serialised, or more than
+/// [`MAX_SWEEP_TRIALS`] trials in all.
 pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
     let model = trust_model(&cfg.scenario)?;
     let values: Vec<Vec<String>> = match &cfg.grid {
@@ -267,7 +274,21 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
                 hardest_first: s.hardest_first(),
             })
         })
-        .collect::<Result<_>>()?;
+        .collect::<Result<Vec<_>>>()?;
+    let total = cells
+        .len()
+        .saturating_mul(cfg.methods.len())
+        .saturating_mul(cfg.trials as usize);
+    if total > MAX_SWEEP_TRIALS {
+        bail!(
+            "--trials {}: {} cell(s) x {} method(s) x {} trials make {total} trials, more \
+             than the limit of {MAX_SWEEP_TRIALS} per sweep",
+            cfg.trials,
+            cells.len(),
+            cfg.methods.len(),
+            cfg.trials
+        );
+    }
     Ok(SweepHeader {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
@@ -630,14 +651,62 @@ fn collect(
     cells
 }
 
-/// Default output folder for a scenario: `results/<scenario name>/`.
+/// Default output folder for a scenario: `results/<scenario name>/`, always one folder inside
+/// `results/`: in the name, path separators (`/`, `\`), `:` and control characters become
+/// `_`, surrounding white space is dropped, and a name left empty or made only of dots (`.`,
+/// `..`) becomes `scenario`. So a scenario file cannot direct output elsewhere (`name:
+/// "../../x"` writes to `results/.._.._x/`).
 pub fn default_out_dir(scenario: &Scenario) -> PathBuf {
-    Path::new("results").join(&scenario.name)
+    Path::new("results").join(folder_name(&scenario.name))
+}
+
+/// The scenario name as one folder name (see [`default_out_dir`]).
+fn folder_name(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| {
+            if matches!(c, '/' | '\\' | ':') || c.is_control() {
+                '_'
+            } else {
+                c
+            }
+        })
+        .collect();
+    let clean = clean.trim();
+    if clean.chars().all(|c| c == '.') {
+        "scenario".to_string()
+    } else {
+        clean.to_string()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn default_out_dirs_stay_one_folder_inside_results() {
+        for (name, folder) in [
+            ("paper", "paper"),
+            ("swarm-1000 v2", "swarm-1000 v2"),
+            ("/etc", "_etc"),
+            ("../../escaped", ".._.._escaped"),
+            ("a/../b", "a_.._b"),
+            ("..", "scenario"),
+            (" . ", "scenario"),
+            ("C:\\tmp", "C__tmp"),
+            ("line\nbreak", "line_break"),
+        ] {
+            assert_eq!(folder_name(name), folder, "{name:?}");
+            let dir = Path::new("results").join(folder_name(name));
+            let parts: Vec<_> = dir.components().collect();
+            assert_eq!(parts.len(), 2, "{name:?} gives {}", dir.display());
+            assert!(
+                matches!(parts[1], std::path::Component::Normal(_)),
+                "{name:?}"
+            );
+        }
+    }
 
     #[test]
     fn threads_are_capped_at_the_maximum_and_the_job_count() {

@@ -1,0 +1,74 @@
+//! Limits of `usar sweep` that a scenario file or a mistyped option must not get past: the
+//! default output folder stays inside `results/` whatever the scenario's `name`, and a sweep
+//! of more than `MAX_SWEEP_TRIALS` trials is a one-line error before anything is written.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+
+fn usar_in(cwd: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .current_dir(cwd)
+        .args(args)
+        .output()
+        .expect("run usar")
+}
+
+/// `paper.ron` with its name replaced, written to `dir/named.ron`.
+fn named_copy(dir: &Path, name: &str) -> String {
+    let text = fs::read_to_string(PAPER).unwrap();
+    let renamed = text.replacen("name: \"paper\"", &format!("name: {name:?}"), 1);
+    assert_ne!(text, renamed, "paper.ron's name line moved");
+    let path = dir.join("named.ron");
+    fs::write(&path, renamed).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn a_scenario_name_cannot_direct_the_default_output_elsewhere() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cwd = tmp.path().join("work");
+    fs::create_dir(&cwd).unwrap();
+    let escape = tmp.path().join("escaped");
+    for name in ["../escaped", escape.to_str().unwrap()] {
+        let file = named_copy(tmp.path(), name);
+        let args = ["sweep", &file, "--methods", "dis", "--trials", "1"];
+        let o = usar_in(
+            &cwd,
+            &[&args[..], &["--duration", "2", "--threads", "1"]].concat(),
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(!escape.exists(), "name {name:?} wrote outside results/");
+    }
+    let mut folders: Vec<String> = fs::read_dir(cwd.join("results"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    folders.sort();
+    let mut expected = [
+        escape.to_string_lossy().replace('/', "_"),
+        ".._escaped".into(),
+    ];
+    expected.sort();
+    assert_eq!(folders, expected);
+    assert!(cwd.join("results/.._escaped/trials.csv").is_file());
+}
+
+#[test]
+fn too_many_trials_is_a_one_line_error_before_any_output() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    for (trials, extra) in [("4294967295", None), ("300000", Some("--shard=0/100000"))] {
+        let mut args = vec!["sweep", PAPER, "--trials", trials, "--out", out_s];
+        args.extend(extra);
+        let o = usar_in(tmp.path(), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains("more than the limit of 1000000"), "{err}");
+        assert!(!out.exists(), "{trials} trials left {}", out.display());
+    }
+}
