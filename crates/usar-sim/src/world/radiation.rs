@@ -31,12 +31,14 @@ pub fn zone_factor_at(zone: &RadiationZone, p: &PointM, falloff: RadiationFallof
 
 /// The dose factor at `p` over all `zones` under `rule` (0 outside all zones): the sum of the
 /// zones' factors ([`RadiationOverlap::Sum`]) or the largest ([`RadiationOverlap::Max`]), each
-/// from [`zone_factor_at`]. Dimensionless, `>= 0`. The mission layer multiplies it by
+/// from [`zone_factor_at`]. Dimensionless, finite and `>= 0`: a sum past `f64::MAX` (zones'
+/// factors are finite but may be as large as `f64::MAX`) is `f64::MAX`, so a rate of 0 still
+/// costs nothing (`0 * inf` would be NaN). The mission layer multiplies it by
 /// `mission.hp_pct_per_step_in_radiation` to get the HP lost per step.
 pub fn radiation_factor_at(zones: &[RadiationZone], p: &PointM, rule: DoseRule) -> f64 {
     let factors = zones.iter().map(|z| zone_factor_at(z, p, rule.falloff));
     match rule.overlap {
-        RadiationOverlap::Sum => factors.sum(),
+        RadiationOverlap::Sum => factors.sum::<f64>().min(f64::MAX),
         RadiationOverlap::Max => factors.fold(0.0, f64::max),
     }
 }
@@ -53,6 +55,22 @@ mod tests {
                 radius_m: r,
             },
             dose_rate_factor: f,
+        }
+    }
+
+    #[test]
+    fn overlapping_huge_factors_stay_finite() {
+        let zones = [zone(0.0, 4.0, 1e308), zone(1.0, 4.0, 1e308)];
+        let p = PointM::new(0.5, 0.0);
+        for overlap in [RadiationOverlap::Sum, RadiationOverlap::Max] {
+            let rule = DoseRule {
+                overlap,
+                falloff: RadiationFalloff::Uniform,
+            };
+            let f = radiation_factor_at(&zones, &p, rule);
+            assert!(f.is_finite() && f >= 1e308, "{overlap:?}: {f}");
+            // A zero HP rate costs nothing however strong the zones.
+            assert_eq!(0.0 * f, 0.0, "{overlap:?}");
         }
     }
 
