@@ -41,9 +41,14 @@ impl RonValue {
     /// Parses one value from `text` (surrounding white space allowed).
     ///
     /// # Errors
-    /// Text that is not one value, with the 1-based character position of the problem.
+    /// Text that is not one value, with the 1-based character position of the problem;
+    /// values nested more than [`MAX_NESTING`] deep.
     pub fn parse(text: &str) -> Result<Self, String> {
-        let mut p = Parser { s: text, pos: 0 };
+        let mut p = Parser {
+            s: text,
+            pos: 0,
+            depth: 0,
+        };
         let v = p.value()?;
         p.skip_ws();
         if p.pos < text.len() {
@@ -187,9 +192,15 @@ fn seq_to_json(items: &[RonValue], guide: Option<&Value>) -> Result<Value, Strin
 /// Characters that end a bare word.
 const DELIMITERS: &[char] = &['(', ')', '[', ']', ',', ':', '"'];
 
+/// Deepest nesting of values [`RonValue::parse`] reads (128, ron's own recursion limit for
+/// scenario files); deeper text is an error, not a stack overflow.
+pub const MAX_NESTING: usize = 128;
+
 struct Parser<'a> {
     s: &'a str,
     pos: usize,
+    /// Values being read around the current position.
+    depth: usize,
 }
 
 impl Parser<'_> {
@@ -212,6 +223,16 @@ impl Parser<'_> {
     }
 
     fn value(&mut self) -> Result<RonValue, String> {
+        if self.depth >= MAX_NESTING {
+            return Err(self.error(&format!("values nested more than {MAX_NESTING} deep")));
+        }
+        self.depth += 1;
+        let v = self.one_value();
+        self.depth -= 1;
+        v
+    }
+
+    fn one_value(&mut self) -> Result<RonValue, String> {
         self.skip_ws();
         match self.peek() {
             Some('"') => self.string().map(RonValue::Str),
@@ -345,6 +366,19 @@ mod tests {
 
     fn conv(text: &str, guide: Value) -> Result<Value, String> {
         RonValue::parse(text)?.to_json(Some(&guide))
+    }
+
+    #[test]
+    fn nesting_is_limited_not_a_stack_overflow() {
+        let nested = |n: usize| format!("{}1{}", "[".repeat(n), "]".repeat(n));
+        // 128 values in all: 127 lists around a number.
+        assert!(RonValue::parse(&nested(MAX_NESTING - 1)).is_ok());
+        for n in [MAX_NESTING, 100_000] {
+            let e = RonValue::parse(&nested(n)).unwrap_err();
+            assert!(e.contains("nested more than 128 deep"), "{e}");
+        }
+        let e = RonValue::parse(&"(".repeat(100_000)).unwrap_err();
+        assert!(e.contains("nested more than 128 deep"), "{e}");
     }
 
     #[test]
