@@ -197,6 +197,47 @@ fn inline_cases() -> Vec<Case> {
             "missing field named `sensing_range_m`",
         ),
         (
+            // No comma after the struct's last field: the error is still the struct's.
+            "missing field, no trailing comma",
+            broken(
+                "arena: (width_m: 30.0, height_m: 20.0)",
+                "arena: (height_m: 20.0)",
+            ),
+            "arena.width_m",
+            Some("arena: (height_m: 20.0)"),
+            "missing field named `width_m`",
+        ),
+        (
+            "missing field in a nested struct, no trailing comma",
+            broken(
+                "    debris: [",
+                "    mission: (initial_energy: (std_dev_pct: 1.0)),\n    debris: [",
+            ),
+            "mission.initial_energy.mean_pct",
+            Some("initial_energy: (std_dev_pct: 1.0)"),
+            "missing field named `mean_pct`",
+        ),
+        (
+            "missing field of the one rest station",
+            broken(
+                "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)",
+                "rest_station: (radius_m: 1.0)",
+            ),
+            "rest_station.center_m",
+            Some("rest_station: (radius_m: 1.0)"),
+            "missing field named `center_m`",
+        ),
+        (
+            "missing field of a listed rest station",
+            broken(
+                "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)",
+                "rest_station: [(center_m: (25.0, 2.0), radius_m: 1.0), (center_m: (25.0, 5.0))]",
+            ),
+            "rest_station[1].radius_m",
+            Some("rest_station: ["),
+            "missing field named `radius_m`",
+        ),
+        (
             "wrong type",
             broken("count: 2", "count: \"two\""),
             "kinds[0].count",

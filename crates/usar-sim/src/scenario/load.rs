@@ -93,7 +93,9 @@ fn syntax_error(e: SpannedError, origin: &str, map: &SourceMap) -> ScenarioError
     let field = match &e.code {
         RonError::NoSuchStructField { found, .. } => Some(child_path(here, found)),
         RonError::DuplicateStructField { field, .. } => Some(child_path(here, field)),
-        RonError::MissingStructField { field, .. } => Some(join(here.unwrap_or(""), field)),
+        RonError::MissingStructField { field, .. } => {
+            Some(join(map.path_within(offset).unwrap_or(""), field))
+        }
         _ => here.map(str::to_owned),
     };
     ScenarioError::Syntax {

@@ -85,6 +85,18 @@ impl SourceMap {
             .map(|e| e.path.as_str())
     }
 
+    /// The path of the innermost recorded field or element whose value is still open at
+    /// `offset` (key through value, end exclusive): the struct a closing bracket at `offset`
+    /// belongs to. ron reports a missing field at the struct's closing bracket, which
+    /// [`SourceMap::path_at`] would give to the struct's last field when no comma follows it.
+    pub(crate) fn path_within(&self, offset: usize) -> Option<&str> {
+        self.entries
+            .iter()
+            .filter(|e| e.start <= offset && offset < e.end)
+            .min_by_key(|e| e.end - e.start)
+            .map(|e| e.path.as_str())
+    }
+
     /// Byte offset of a 1-based line and character column (clamped to the source).
     pub(crate) fn offset_of(&self, line: usize, col: usize) -> usize {
         let Some(&ls) = self.line_starts.get(line.saturating_sub(1)) else {
