@@ -19,7 +19,7 @@ use std::time::Duration;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use usar_sim::mission::Simulation;
+use usar_sim::mission::{Simulation, unreachable_goals};
 use usar_sim::scenario;
 
 /// Wall-clock bound of one case (load, validation and the short trial).
@@ -156,7 +156,8 @@ enum Outcome {
     Rejected { message: String, positioned: bool },
 }
 
-/// Loads `bytes` as a scenario file and, when accepted, runs five steps with `rne`.
+/// Loads `bytes` as a scenario file and, when accepted, checks which goals its robots cannot
+/// reach and runs five steps with `rne`.
 fn check_and_run(bytes: &[u8], dir: &std::path::Path, case: usize) -> Outcome {
     let path = dir.join(format!("case{case}.ron"));
     std::fs::write(&path, bytes).expect("writing the case file");
@@ -171,6 +172,9 @@ fn check_and_run(bytes: &[u8], dir: &std::path::Path, case: usize) -> Outcome {
             };
         }
     };
+    // The reachability warnings of `usar check` plan from every start: they must not panic
+    // or hang on any accepted file either.
+    std::hint::black_box(unreachable_goals(&s));
     let run = Simulation::builder(&s)
         .method_named("rne")
         .duration_s(5.0 * s.sim.dt_s.get())

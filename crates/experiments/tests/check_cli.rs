@@ -30,6 +30,37 @@ fn check_summarises_the_paper_scenario() {
     ] {
         assert!(out.contains(needle), "{needle} missing in\n{out}");
     }
+    // Every goal of the paper's scenario is reachable: no warning.
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+}
+
+#[test]
+fn check_and_run_warn_about_goals_no_path_reaches() {
+    let split = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../usar-sim/tests/data/split-arena.ron"
+    );
+    for args in [
+        vec!["check", split],
+        vec!["run", split, "--method", "dis", "--duration", "1"],
+    ] {
+        let o = usar(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{args:?}: {err}");
+        let lines: Vec<&str> = err.lines().collect();
+        assert_eq!(lines.len(), 2, "{args:?}: {err}");
+        for (line, field) in lines
+            .iter()
+            .zip(["tasks.hard.goal_m", "tasks.hard.drop_off"])
+        {
+            let head = format!("warning: {split}: {field} (");
+            assert!(line.starts_with(&head), "{line}");
+            assert!(
+                line.contains("no path from the start of 2 robot(s) (id 0, 1)"),
+                "{line}"
+            );
+        }
+    }
 }
 
 #[test]

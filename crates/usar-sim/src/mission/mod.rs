@@ -12,6 +12,8 @@
 //! - [`Simulation`]: one trial, set up by [`Simulation::builder`], watched by a
 //!   [`StepObserver`]; [`TrialResult`]: its metrics; [`MissionEvent`]: what happened in the
 //!   last step ([`Simulation::events`]).
+//! - [`unreachable_goals`]: the goals some robots cannot reach from their starts (a check
+//!   before a trial; `usar check` warns about them).
 
 mod account;
 mod decide;
@@ -22,6 +24,7 @@ mod grouping;
 mod initial;
 mod metrics;
 mod needs;
+mod reachability;
 mod recorder;
 mod rescuees;
 mod robot;
@@ -37,6 +40,7 @@ pub use grouping::{adapted_quotas, group_available, shrink_quotas, snapshot};
 pub use initial::{InitialLevels, draw_initial_levels, trial_seed};
 pub use metrics::{RobotMetrics, RoundRecord, TrialResult, per};
 pub use needs::{entry, hp_factor, needs_vector};
+pub use reachability::{UnreachableGoal, unreachable_goals};
 pub use recorder::{Recorder, TrialInfo};
 pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};

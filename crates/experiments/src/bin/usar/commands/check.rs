@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
+use usar_sim::mission::unreachable_goals;
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
 
 use experiments::fingerprint::scenario_hash;
@@ -56,7 +57,8 @@ pub struct CheckArgs {
     pub hash: bool,
 }
 
-/// Runs `usar check`.
+/// Runs `usar check`. A valid scenario with goals some robots cannot reach also gets one
+/// warning line each on stderr ([`warn_unreachable`]); the exit status stays 0.
 ///
 /// # Errors
 /// The loader's error (its message names the file, line, column and field), unchanged; a bad
@@ -83,6 +85,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     } else {
         (None, base)
     };
+    warn_unreachable(&origin, &s);
     let hash = scenario_hash(&s)?;
     if args.hash {
         writeln!(out, "{hash}")?;
@@ -100,6 +103,15 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
     }
     Ok(())
+}
+
+/// Warns on stderr, one line each, about the goals some robots of `s` cannot reach from their
+/// starts ([`unreachable_goals`]): `warning: ORIGIN: tasks.hard.goal_m (6.0, 16.0): no path
+/// ...`. The scenario stays valid (a trial runs; those robots stand still).
+pub fn warn_unreachable(origin: &str, s: &Scenario) {
+    for u in unreachable_goals(s) {
+        eprintln!("warning: {origin}: {u}");
+    }
 }
 
 /// `rest station (x, y) r R m`, or for several `rest stations: (x, y) r R m, ...`.

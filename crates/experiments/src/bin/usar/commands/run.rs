@@ -65,6 +65,7 @@ pub struct RunArgs {
 /// A bad scenario or option, a failing trial, or an I/O error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let scenario = scenario::load(&args.scenario)?;
+    super::check::warn_unreachable(&args.scenario.display().to_string(), &scenario);
     let mut builder = Simulation::builder(&scenario)
         .method_named(&args.method)
         .trial(args.trial.unwrap_or(0));

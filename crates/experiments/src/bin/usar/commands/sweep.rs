@@ -250,6 +250,11 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
     let grid = grid_of(args)?;
+    warn_unreachable(
+        &args.scenario.display().to_string(),
+        &scenario,
+        grid.as_ref(),
+    );
     if let Some(d) = args.duration {
         warn_if_rounded(d, &scenario, grid.as_ref());
     }
@@ -273,6 +278,20 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         shard: shard_run(all)?,
         scenario,
     })
+}
+
+/// [`super::check::warn_unreachable`] for the scenario, or for each cell of a grid (the
+/// origin then names the cell's values).
+fn warn_unreachable(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
+    match grid {
+        None => super::check::warn_unreachable(origin, scenario),
+        Some(g) => {
+            for (i, c) in g.cells.iter().enumerate() {
+                let at = format!("{origin} (cell {i}: {})", c.values().join(", "));
+                super::check::warn_unreachable(&at, &c.scenario);
+            }
+        }
+    }
 }
 
 /// Warns once per distinct step (`sim.dt_s` of the scenario or of a grid's cells) when the
