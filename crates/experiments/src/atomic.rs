@@ -212,6 +212,16 @@ pub fn is_temp_name(name: &str) -> bool {
 /// # Errors
 /// An I/O error listing `dir` or removing a file.
 pub fn remove_stale_temps(dir: &Path) -> Result<Vec<PathBuf>> {
+    remove_files_where(dir, is_temp_name)
+}
+
+/// Removes from `dir` (not its subfolders) the regular files whose names `matches` accepts
+/// (names that are not UTF-8 never match); a missing folder has none. Returns the files
+/// removed.
+///
+/// # Errors
+/// An I/O error listing `dir` or removing a file.
+pub(crate) fn remove_files_where(dir: &Path, matches: fn(&str) -> bool) -> Result<Vec<PathBuf>> {
     let entries = match fs::read_dir(dir) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
@@ -221,7 +231,7 @@ pub fn remove_stale_temps(dir: &Path) -> Result<Vec<PathBuf>> {
     for entry in entries {
         let entry = entry.with_context(|| format!("listing {}", dir.display()))?;
         let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        if is_file && entry.file_name().to_str().is_some_and(is_temp_name) {
+        if is_file && entry.file_name().to_str().is_some_and(matches) {
             let p = entry.path();
             fs::remove_file(&p).with_context(|| format!("removing {}", p.display()))?;
             removed.push(p);
@@ -231,10 +241,11 @@ pub fn remove_stale_temps(dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn names(dir: &Path) -> Vec<String> {
+    /// The names in `dir`, sorted.
+    pub(crate) fn names(dir: &Path) -> Vec<String> {
         let mut v: Vec<String> = fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

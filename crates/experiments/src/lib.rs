@@ -35,6 +35,7 @@ pub mod report;
 pub mod shard;
 pub mod slurm;
 pub mod spec_ron;
+pub mod stale_outputs;
 pub mod stats;
 pub mod summary;
 pub mod sweep;

@@ -26,6 +26,7 @@ use crate::grid::Grid;
 use crate::lock::OutputLock;
 pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 use crate::shard::{ShardRun, shard_dir};
+use crate::stale_outputs::remove_previous_outputs;
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
@@ -75,7 +76,8 @@ pub struct SweepConfig {
     pub out_dir: PathBuf,
     /// Continue the journal in `out_dir` (refused if it has other parameters).
     pub resume: bool,
-    /// Discard an existing journal in `out_dir` and start afresh.
+    /// Discard an existing journal in `out_dir` and the earlier sweep's output files
+    /// ([`crate::stale_outputs::remove_previous_outputs`]) and start afresh.
     pub overwrite: bool,
     /// Show a progress bar (only drawn on a terminal).
     pub progress: bool,
@@ -436,16 +438,20 @@ impl OpenJournal {
 /// Creates, resumes or reuses the journal in `dir`, with the records it holds.
 fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<OpenJournal> {
     let path = Journal::path_in(dir);
+    if cfg.overwrite && !cfg.resume {
+        // The earlier sweep's tables, figures and grid cells go with its journal.
+        remove_previous_outputs(dir)?;
+        if path.exists() {
+            std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
+        }
+        return Ok(OpenJournal::new(Journal::create(dir, header)?));
+    }
     if !path.exists() {
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     if cfg.resume {
         let resumed = Journal::open_resume(dir, header)?;
         return Ok(OpenJournal::continued(resumed, JournalUse::Resumed));
-    }
-    if cfg.overwrite {
-        std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
-        return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     let why = match read_header(&path) {
         Ok(found) if &found == header => {

@@ -165,3 +165,40 @@ fn a_failing_trial_stops_nothing_else_in_the_grid() {
     let out = ok(&grid(&dir, &["--resume"]));
     assert!(out.contains("ran 4 trials"), "{out}");
 }
+
+#[test]
+fn overwrite_leaves_nothing_of_the_earlier_grid() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("o");
+    ok(&grid(&dir, &[]));
+    std::fs::write(dir.join(CELLS[1]).join("notes.txt"), "mine").unwrap();
+    // The same folder, no grid, --overwrite: the grid's files and cells go, other files stay.
+    let o = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["sweep", PAPER, "--methods", "dis", "--trials", "1"])
+        .args(["--duration", "4", "--quiet", "--overwrite", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("run usar");
+    ok(&o);
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let expected = [
+        CELLS[1],
+        "fig3a_rescuees.svg",
+        "fig3b_energy_per_rescuee.svg",
+        "fig3c_hp_per_rescuee.svg",
+        "journal.jsonl",
+        "report.md",
+        "summary.csv",
+        "sweep.lock",
+        "trials.csv",
+        "trials_long.csv",
+    ];
+    assert_eq!(names, expected);
+    let kept: Vec<_> = std::fs::read_dir(dir.join(CELLS[1])).unwrap().collect();
+    assert_eq!(kept.len(), 1, "only notes.txt stays in its cell");
+    assert_eq!(journal_trials(&dir), 1);
+}

@@ -42,7 +42,7 @@ impl RonValue {
     ///
     /// # Errors
     /// Text that is not one value, with the 1-based character position of the problem;
-    /// values nested more than [`MAX_NESTING`] deep.
+    /// values nested more than 128 deep (`MAX_NESTING`).
     pub fn parse(text: &str) -> Result<Self, String> {
         let mut p = Parser {
             s: text,

@@ -128,7 +128,8 @@ pub struct SweepArgs {
     #[arg(long)]
     pub resume: bool,
 
-    /// Discard a journal already in the output folder and start afresh.
+    /// Discard a journal already in the output folder, and the tables, figures and grid cells
+    /// of that sweep, and start afresh (other files stay).
     #[arg(long, conflicts_with = "resume")]
     pub overwrite: bool,
 
