@@ -100,6 +100,9 @@ impl Distribution {
         };
         v.add_scalar_mut(eps);
         let total = v.sum();
+        if total.is_infinite() {
+            return Err(RneError::Overflow { what });
+        }
         if total <= 0.0 || !total.is_finite() {
             return Err(RneError::ZeroTotal { what });
         }
@@ -120,7 +123,9 @@ vector_newtype!(Distribution, "shares");
 ///
 /// # Errors
 /// [`RneError::LengthMismatch`] if `needs.len() != weights.len()`; [`RneError::ZeroTotal`] if
-/// all weighted needs are zero and the smoothing adds nothing; [`RneError::InvalidEpsilon`].
+/// all weighted needs are zero and the smoothing adds nothing; [`RneError::Overflow`] if they
+/// and the smoothing add up past `f64::MAX` (needs near `f64::MAX` are scaled first, so this
+/// takes a huge smoothing epsilon); [`RneError::InvalidEpsilon`].
 ///
 /// # Reference
 /// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 8 and Algorithm 4 (NDC).
@@ -136,8 +141,26 @@ pub fn needs_distribution(
             actual: needs.len(),
         });
     }
-    let v = needs.as_dvector().component_mul(weights.as_dvector());
+    let v = weighted(needs.as_dvector(), weights.as_dvector());
     Distribution::from_weighted(v, opts, "needs vector")
+}
+
+/// The weighted needs `a_k w_k` to normalise: the plain product when its sum is a normal
+/// `f64` or zero (every ordinary input, bit for bit), otherwise the product of `a / max(a)`
+/// and `w / max(w)`. The distribution does not change with the scale of the needs or the
+/// weights, so scaling only keeps inputs near `f64::MAX` (whose sum overflows) or among the
+/// subnormals (where relative smoothing `e * sum` rounds to 0) computable.
+fn weighted(a: &DVector<f64>, w: &DVector<f64>) -> DVector<f64> {
+    let v = a.component_mul(w);
+    let total = v.sum();
+    if total == 0.0 || total.is_normal() {
+        return v;
+    }
+    let (a_max, w_max) = (a.amax(), w.amax());
+    if a_max == 0.0 || !a_max.is_finite() || !w_max.is_finite() {
+        return v;
+    }
+    (a / a_max).component_mul(&(w / w_max))
 }
 
 /// A group's needs distribution, Eqs. 11 and 16 (Defs. 2-3):
@@ -176,7 +199,7 @@ pub(crate) fn group_distribution_from_sums(
     weights: &Weights,
     opts: &DistributionOptions,
 ) -> Result<Distribution> {
-    let v = column_sums.component_mul(weights.as_dvector());
+    let v = weighted(&column_sums, weights.as_dvector());
     Distribution::from_weighted(v, opts, "group")
 }
 
@@ -270,6 +293,39 @@ mod tests {
             needs_distribution(&z, &ones, &bad),
             Err(RneError::InvalidEpsilon(-1.0))
         );
+    }
+
+    #[test]
+    fn needs_near_the_ends_of_f64_keep_their_distribution() {
+        let opts = DistributionOptions::default();
+        let d = |needs: &[f64], weights: &[f64]| {
+            let n = NeedsVector::new(needs.to_vec()).unwrap();
+            let w = Weights::new(weights.to_vec()).unwrap();
+            needs_distribution(&n, &w, &opts)
+        };
+        // The sum overflows: scaled, the needs keep their shares.
+        let big = d(&[9e307, 9e307], &[1.0, 1.0]).unwrap();
+        assert_relative_eq!(big.as_slice(), &[0.5, 0.5][..], epsilon = 1e-12);
+        let heavy = d(&[1e300, 1.0], &[1e10, 1.0]).unwrap();
+        assert_relative_eq!(heavy.as_slice(), &[1.0, 0.0][..], epsilon = 1e-8);
+        // Subnormal needs: the same distribution as any other scale, smoothing included.
+        let tiny = d(&[5e-324, 0.0, 0.0], &[1.0, 1.0, 1.0]).unwrap();
+        let unit = d(&[1.0, 0.0, 0.0], &[1.0, 1.0, 1.0]).unwrap();
+        assert_eq!(tiny, unit);
+        // Ordinary inputs are the plain product, bit for bit.
+        let plain = d(&[86.0, 120.0, 30.0], &[6.0, 4.0, 2.0]).unwrap();
+        let total = 86.0 * 6.0 + 120.0 * 4.0 + 30.0 * 2.0;
+        let eps = 1e-9 * total;
+        let t = (86.0 * 6.0 + eps) + (120.0 * 4.0 + eps) + (30.0 * 2.0 + eps);
+        assert_eq!(plain.as_slice()[0], (86.0 * 6.0 + eps) / t);
+    }
+
+    #[test]
+    fn a_group_sum_past_f64_max_is_an_overflow_error() {
+        let sums = DVector::from_vec(vec![f64::INFINITY, 1.0]);
+        let w = Weights::new(vec![1.0, 1.0]).unwrap();
+        let e = group_distribution_from_sums(sums, &w, &DistributionOptions::default());
+        assert_eq!(e.unwrap_err(), RneError::Overflow { what: "group" });
     }
 
     #[test]

@@ -61,6 +61,14 @@ pub enum RneError {
         /// Which input (e.g. "needs vector", "group").
         what: &'static str,
     },
+    /// The weighted needs plus the smoothing add up past `f64::MAX` even after scaling (a
+    /// group's column sums past `f64::MAX`, or a huge smoothing epsilon), so the needs
+    /// distribution cannot be computed.
+    #[error("{what}: weighted needs plus smoothing too large to add up (the sum overflows f64)")]
+    Overflow {
+        /// Which input (e.g. "needs vector", "group").
+        what: &'static str,
+    },
     /// The smoothing epsilon is negative or not finite.
     #[error("smoothing epsilon is {0}; it must be finite and >= 0")]
     InvalidEpsilon(f64),
