@@ -238,6 +238,14 @@ fn inline_cases() -> Vec<Case> {
             "missing field named `radius_m`",
         ),
         (
+            // No `sim` block: the default step is positioned at the scenario itself.
+            "a default that breaks a rule",
+            broken("    debris: [", "    mission: (duration_s: 0.01),\n    debris: ["),
+            "sim.dt_s",
+            Some("Scenario("),
+            "longer than the trial",
+        ),
+        (
             "wrong type",
             broken("count: 2", "count: \"two\""),
             "kinds[0].count",
@@ -543,6 +551,21 @@ fn deep_nesting_is_a_positioned_error_not_a_stack_overflow() {
         assert!(err.line_col().is_some(), "{err}");
         assert_eq!(err.to_string().lines().count(), 1, "{err}");
     }
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped_and_columns_count_after_it() {
+    let plain = scenario::from_str(BASE, "base.ron").expect("loads");
+    let with_bom = format!("\u{feff}{BASE}");
+    assert_eq!(
+        scenario::from_str(&with_bom, "bom.ron").expect("loads"),
+        plain
+    );
+    let spec = scenario::parse_spec(&with_bom, "bom.ron").expect("parses");
+    assert_eq!(spec, scenario::parse_spec(BASE, "base.ron").unwrap());
+    let bad = format!("\u{feff}{}", broken("Scenario(", "Scenario( x: 1,"));
+    let err = scenario::from_str(&bad, "bom.ron").expect_err("unknown field");
+    assert_eq!(err.line_col(), Some((1, 11)), "{err}");
 }
 
 #[test]

@@ -51,12 +51,19 @@ fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
     })
 }
 
-/// Parses and validates a scenario from RON text. `origin` names the source in errors (a file
-/// path, or e.g. `"<inline>"`).
+/// `src` without a leading UTF-8 byte-order mark (U+FEFF, which some editors write): ron
+/// would reject it, and an editor does not show it, so columns count from after it.
+fn without_bom(src: &str) -> &str {
+    src.strip_prefix('\u{feff}').unwrap_or(src)
+}
+
+/// Parses and validates a scenario from RON text (a leading byte-order mark is skipped).
+/// `origin` names the source in errors (a file path, or e.g. `"<inline>"`).
 ///
 /// # Errors
 /// As [`load`], without [`ScenarioError::Io`].
 pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
+    let src = without_bom(src);
     let map = SourceMap::build(src);
     let spec = parse_with(src, origin, &map)?;
     validate(
@@ -75,6 +82,7 @@ pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
 /// [`ScenarioError::Syntax`] with ron's position and, where it can be worked out, the field
 /// path.
 pub fn parse_spec(src: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError> {
+    let src = without_bom(src);
     parse_with(src, origin, &SourceMap::build(src))
 }
 

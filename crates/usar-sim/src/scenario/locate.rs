@@ -30,6 +30,8 @@ pub(crate) struct SourceMap {
     src: String,
     entries: Vec<Entry>,
     by_path: HashMap<String, usize>,
+    /// Byte offset of the top-level value (`Scenario(`), if the source has one.
+    root: Option<usize>,
 }
 
 impl SourceMap {
@@ -44,6 +46,7 @@ impl SourceMap {
             depth: 0,
         };
         sc.skip_ws_and_attributes();
+        let root = (sc.pos < src.len()).then_some(sc.pos);
         sc.value("");
         let mut by_path = HashMap::new();
         for (i, e) in sc.entries.iter().enumerate() {
@@ -54,19 +57,25 @@ impl SourceMap {
             src: src.to_owned(),
             entries: sc.entries,
             by_path,
+            root,
         }
     }
 
     /// Line and column (1-based, column in characters) of `path`, or of its nearest ancestor
     /// that appears in the source (`kinds[1].quota.easy` -> `kinds[1].quota` -> `kinds[1]` ->
-    /// `kinds`); `None` if none appears.
+    /// `kinds`), or else of the top-level value (`Scenario(`: a field whose whole block is
+    /// left to its defaults, such as `sim.dt_s` without `sim`); `None` only for a source
+    /// without a value.
     pub(crate) fn line_col_of(&self, path: &str) -> Option<(usize, usize)> {
         let mut p = path;
         loop {
             if let Some(&i) = self.by_path.get(p) {
                 return Some(self.line_col(self.entries[i].start));
             }
-            p = parent_path(p)?;
+            match parent_path(p) {
+                Some(parent) => p = parent,
+                None => return self.root.map(|r| self.line_col(r)),
+            }
         }
     }
 
@@ -470,7 +479,9 @@ Scenario(
         assert_eq!(m.line_col_of("kinds[1].name"), Some((8, 13)));
         // Fallback to the nearest ancestor.
         assert_eq!(m.line_col_of("kinds[1].quota.easy"), Some((7, 9)));
-        assert_eq!(m.line_col_of("mission.duration_s"), None);
+        // No ancestor in the source: the top-level value's position.
+        assert_eq!(m.line_col_of("mission.duration_s"), Some((3, 1)));
+        assert_eq!(SourceMap::build("  // nothing\n").line_col_of("name"), None);
     }
 
     #[test]
