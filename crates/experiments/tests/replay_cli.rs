@@ -132,7 +132,7 @@ fn usar_replay_refuses_bad_options_with_one_line() {
     let dir = tempfile::tempdir().expect("temp dir");
     let page = dir.path().join("r.html");
     for (args, says) in [
-        (vec!["--hz", "0"], "--hz 0"),
+        (vec!["--hz", "0"], "--hz: sampling rate 0 Hz"),
         (vec!["--method", "nope"], "nope"),
         (vec!["--duration", "-1"], "duration"),
     ] {
@@ -148,6 +148,15 @@ fn usar_replay_refuses_bad_options_with_one_line() {
     let o = usar(&["replay", "no-such.ron", "--out", text(&page)]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("no-such.ron"));
+    // The sweep's option is named as the sweep spells it.
+    let o = sweep(
+        &dir.path().join("s"),
+        &["--replay", "rne:0", "--replay-hz", "0"],
+    );
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert!(err.contains("--replay-hz: sampling rate 0 Hz"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
 }
 
 #[test]

@@ -26,7 +26,7 @@ impl SampleClock {
     pub fn new(hz: f64, dt_s: f64, total_steps: u64) -> Result<Self, ReplayError> {
         if !(hz.is_finite() && hz > 0.0) {
             return Err(ReplayError::Spec(format!(
-                "--hz {hz}: the sampling rate must be a positive number of samples per second"
+                "sampling rate {hz} Hz: it must be a positive number of samples per second"
             )));
         }
         if !(dt_s.is_finite() && dt_s > 0.0) {

@@ -96,7 +96,8 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     let sim = crate::commands::run::build_trial(builder)?;
     crate::commands::run::warn_if_rounded(args.duration, &sim);
     let clock =
-        experiments::replay::SampleClock::new(args.hz, scenario.sim.dt_s.get(), sim.progress().1)?;
+        experiments::replay::SampleClock::new(args.hz, scenario.sim.dt_s.get(), sim.progress().1)
+            .context("--hz")?;
     let robot_samples = clock.samples().saturating_mul(scenario.robots.len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
         eprintln!(

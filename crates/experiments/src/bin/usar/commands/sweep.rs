@@ -360,7 +360,9 @@ fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays
     let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model).ok();
     let methods: Vec<String> = cfg.methods.iter().filter_map(|m| canonical(m)).collect();
     let requests = parse_replay_list(&args.replay, &methods, cfg.trials, &canonical)?;
-    Ok(Some(SweepReplays::new(cfg, requests, args.replay_hz)?))
+    Ok(Some(
+        SweepReplays::new(cfg, requests, args.replay_hz).context("--replay-hz")?,
+    ))
 }
 
 /// The shard and plan of `--shard`, if given.
