@@ -1,10 +1,13 @@
-//! What `usar sweep --overwrite` removes besides the journal: the output files an earlier sweep
-//! wrote into the folder, so no table, figure or grid cell of it stays next to the new sweep's
-//! (a grid of other values, or a run killed before its files were written, left them mixed).
+//! What `usar sweep --overwrite` removes besides the journal: the output files the journaled
+//! sweep wrote into the folder, so no table, figure or grid cell of it stays next to the new
+//! sweep's (a grid of other values, or a run killed before its files were written, left them
+//! mixed).
 //!
-//! Only names a sweep writes are removed ([`crate::output::write_outputs`], the grid's files
-//! and replays, [`crate::replay`]); anything else in the folder is kept, and a cell folder is
-//! removed only once it is empty.
+//! Only a folder with a journal is touched, and in it only names a sweep writes
+//! ([`crate::output::write_outputs`], the grid's files and replays, [`crate::replay`]): at the
+//! top the tables, figures, reports, replays and grid files (never a `scenario.ron`, which a
+//! sweep writes only into grid cells), and the cell folders the journal's header names, each
+//! emptied of its outputs and removed only once empty. Anything else stays.
 
 use std::fs;
 use std::io::ErrorKind;
@@ -14,64 +17,75 @@ use anyhow::{Context, Result};
 
 use crate::atomic::remove_files_where;
 use crate::figures::FIGURES;
+use crate::grid::names::{cell_dir, field_labels};
+use crate::journal::{GridHeader, read_header};
+use crate::vary::FieldPath;
 
-/// Files of one cell (the output folder itself without a grid): tables, figures, report,
-/// the cell's scenario.
-const CELL_FILES: [&str; 5] = [
-    "trials.csv",
-    "trials_long.csv",
-    "summary.csv",
-    "report.md",
-    "scenario.ron",
-];
+/// Tables and the report of one cell (or of the output folder without a grid).
+const TABLES: [&str; 4] = ["trials.csv", "trials_long.csv", "summary.csv", "report.md"];
 
-/// Whether a sweep writes a file of this name into a cell's folder (or the output folder
-/// without a grid): [`CELL_FILES`], the figures of [`FIGURES`], `replay-*.html`.
-fn is_cell_output(name: &str) -> bool {
-    CELL_FILES.contains(&name)
+/// Whether a sweep writes a file of this name at the top of its output folder: [`TABLES`],
+/// the figures of [`FIGURES`], `replay-*.html`, `grid.csv`, `grid.md` and `grid_*.svg`.
+fn is_top_output(name: &str) -> bool {
+    TABLES.contains(&name)
         || FIGURES.iter().any(|f| f.file == name)
         || (name.starts_with("replay-") && name.ends_with(".html"))
-}
-
-/// Whether a sweep writes a file of this name at the top of its output folder: a cell's
-/// files, `grid.csv`, `grid.md` and the grid figures `grid_*.svg`.
-fn is_top_output(name: &str) -> bool {
-    is_cell_output(name)
         || name == "grid.csv"
         || name == "grid.md"
         || (name.starts_with("grid_") && name.ends_with(".svg"))
 }
 
-/// Whether a folder name is a grid cell's ([`crate::grid::names::cell_dir`]): `c`, at least
-/// two digits, then the end or `_`.
-fn is_cell_dir(name: &str) -> bool {
-    let Some(rest) = name.strip_prefix('c') else {
-        return false;
-    };
-    let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-    digits >= 2 && (digits == rest.len() || rest.as_bytes()[digits] == b'_')
+/// Whether a sweep writes a file of this name into a grid cell's folder: [`TABLES`], the
+/// figures, replays and the cell's `scenario.ron`.
+fn is_cell_output(name: &str) -> bool {
+    name == "scenario.ron" || (!name.starts_with("grid") && is_top_output(name))
 }
 
-/// Removes from `dir` the output files of an earlier sweep: the top-level tables, figures,
-/// reports and grid files, and in each grid cell folder (`c00_...`) its files, then the folder
-/// if that left it empty. Other files and folders stay. A missing folder has nothing to
-/// remove. Call it only while holding the folder's lock ([`crate::lock`]). Returns the files
-/// removed.
+/// The cell folder names of a journaled grid ([`crate::grid::names::cell_dir`] of its fields
+/// and values); none without a grid or when a field no longer parses.
+fn cell_dirs(grid: &GridHeader) -> Vec<String> {
+    if grid.fields.is_empty() {
+        return Vec::new();
+    }
+    let Ok(paths) = grid
+        .fields
+        .iter()
+        .map(|f| FieldPath::parse(f))
+        .collect::<Result<Vec<_>, _>>()
+    else {
+        return Vec::new();
+    };
+    let labels = field_labels(&paths.iter().collect::<Vec<_>>());
+    let n = grid.cells.len();
+    grid.cells
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let values: Vec<&str> = c.values.iter().map(String::as_str).collect();
+            cell_dir(i, n, &labels, &values)
+        })
+        .collect()
+}
+
+/// Removes from `dir` the output files of the sweep journaled in `journal` (a file in `dir`):
+/// the top-level tables, figures, reports, replays and grid files, and in each cell folder
+/// its header names, that cell's files, then the folder if that left it empty. Nothing when
+/// `journal` does not exist; only the top-level files when its header cannot be read. Call
+/// it only while holding the folder's lock ([`crate::lock`]). Returns the files removed.
 ///
 /// # Errors
-/// An I/O error listing a folder or removing a file or an empty cell folder.
-pub fn remove_previous_outputs(dir: &Path) -> Result<Vec<PathBuf>> {
-    if !dir.is_dir() {
+/// An I/O error listing a folder or removing a file or an emptied cell folder.
+pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf>> {
+    if !journal.is_file() {
         return Ok(Vec::new());
     }
     let mut removed = remove_files_where(dir, is_top_output)?;
-    for entry in fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
-        let entry = entry.with_context(|| format!("listing {}", dir.display()))?;
-        let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
-        if !is_dir || !entry.file_name().to_str().is_some_and(is_cell_dir) {
+    let cells = read_header(journal).map_or_else(|_| Vec::new(), |h| cell_dirs(&h.grid));
+    for name in cells {
+        let cell = dir.join(name);
+        if !cell.is_dir() {
             continue;
         }
-        let cell = entry.path();
         removed.extend(remove_files_where(&cell, is_cell_output)?);
         match fs::remove_dir(&cell) {
             Ok(()) => {}
@@ -86,9 +100,35 @@ pub fn remove_previous_outputs(dir: &Path) -> Result<Vec<PathBuf>> {
 mod tests {
     use super::*;
     use crate::atomic::tests::names;
+    use crate::journal::{CellHeader, JOURNAL_FORMAT, Journal, SweepHeader};
+
+    /// A journal whose header has a grid over `mission.duration_s` with these values.
+    fn journal(dir: &Path, values: &[&str]) -> PathBuf {
+        let cell = |v: &str| CellHeader {
+            values: vec![v.to_string()],
+            scenario_hash: "0".into(),
+            duration_s: 1.0,
+            tasks: vec!["t".into()],
+            hardest_first: vec![0],
+        };
+        let header = SweepHeader {
+            format: JOURNAL_FORMAT,
+            version: "0".into(),
+            scenario: "s".into(),
+            methods: vec!["DIS".into()],
+            trials: 1,
+            base_seed: 0,
+            grid: GridHeader {
+                fields: vec!["mission.duration_s".into()],
+                cells: values.iter().map(|v| cell(v)).collect(),
+            },
+        };
+        drop(Journal::create(dir, &header).unwrap());
+        Journal::path_in(dir)
+    }
 
     #[test]
-    fn removes_a_sweeps_files_and_keeps_everything_else() {
+    fn removes_the_journaled_sweeps_files_and_keeps_everything_else() {
         let tmp = tempfile::tempdir().unwrap();
         let d = tmp.path();
         for f in [
@@ -100,7 +140,7 @@ mod tests {
             "grid.md",
             "grid_rescued_total.svg",
             "replay-rne-0.html",
-            "journal.jsonl",
+            "scenario.ron",
             "sweep.lock",
             "notes.txt",
         ] {
@@ -109,34 +149,39 @@ mod tests {
         for cell in [
             "c00_duration_s=30",
             "c01_duration_s=40",
-            "c02",
-            "cx1",
-            "c1_x",
+            "c02_duration_s=50",
+            "c2024_backup",
         ] {
             fs::create_dir(d.join(cell)).unwrap();
             fs::write(d.join(cell).join("trials.csv"), "x").unwrap();
             fs::write(d.join(cell).join("scenario.ron"), "x").unwrap();
         }
         fs::write(d.join("c01_duration_s=40/mine.txt"), "x").unwrap();
-        let removed = remove_previous_outputs(d).unwrap();
-        assert_eq!(removed.len(), 8 + 3 * 2, "{removed:?}");
+        let j = journal(d, &["30", "40"]);
+        // A folder without a journal is not touched.
+        assert!(
+            remove_previous_outputs(d, &d.join("none.jsonl"))
+                .unwrap()
+                .is_empty()
+        );
+        let removed = remove_previous_outputs(d, &j).unwrap();
+        assert_eq!(removed.len(), 8 + 2 * 2, "{removed:?}");
         assert_eq!(
             names(d),
             [
                 "c01_duration_s=40",
-                "c1_x",
-                "cx1",
+                "c02_duration_s=50",
+                "c2024_backup",
                 "journal.jsonl",
                 "notes.txt",
+                "scenario.ron",
                 "sweep.lock"
             ]
         );
         assert_eq!(names(&d.join("c01_duration_s=40")), ["mine.txt"]);
-        assert_eq!(names(&d.join("cx1")), ["scenario.ron", "trials.csv"]);
-        assert!(
-            remove_previous_outputs(&d.join("missing"))
-                .unwrap()
-                .is_empty()
+        assert_eq!(
+            names(&d.join("c2024_backup")),
+            ["scenario.ron", "trials.csv"]
         );
     }
 }

@@ -283,9 +283,8 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
         .saturating_mul(cfg.trials as usize);
     if total > MAX_SWEEP_TRIALS {
         bail!(
-            "--trials {}: {} cell(s) x {} method(s) x {} trials make {total} trials, more \
-             than the limit of {MAX_SWEEP_TRIALS} per sweep",
-            cfg.trials,
+            "the sweep's {} cell(s) x {} method(s) x {} trials make {total} trials, more than \
+             the limit of {MAX_SWEEP_TRIALS} per sweep",
             cells.len(),
             cfg.methods.len(),
             cfg.trials
@@ -440,7 +439,7 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
     let path = Journal::path_in(dir);
     if cfg.overwrite && !cfg.resume {
         // The earlier sweep's tables, figures and grid cells go with its journal.
-        remove_previous_outputs(dir)?;
+        remove_previous_outputs(dir, &path)?;
         if path.exists() {
             std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
         }

@@ -61,6 +61,30 @@ fn check_and_run_warn_about_goals_no_path_reaches() {
             );
         }
     }
+    // A grid warns once per goal, naming the cells.
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("g");
+    let o = usar(&[
+        "sweep",
+        split,
+        "--methods",
+        "dis",
+        "--trials",
+        "1",
+        "--duration",
+        "1",
+        "--quiet",
+        "--vary",
+        "mission.recharge_s=10,20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 2, "{err}");
+    let head = format!("warning: {split} (every cell): tasks.hard.goal_m");
+    assert!(lines[0].starts_with(&head), "{err}");
 }
 
 #[test]

@@ -93,6 +93,9 @@ impl Distribution {
     ) -> Result<Self> {
         opts.smoothing.validate()?;
         let total: f64 = v.sum();
+        if total.is_infinite() {
+            return Err(RneError::Overflow { what });
+        }
         let eps = match opts.smoothing {
             Smoothing::None => 0.0,
             Smoothing::Relative(e) => e * total,
@@ -141,23 +144,24 @@ pub fn needs_distribution(
             actual: needs.len(),
         });
     }
-    let v = weighted(needs.as_dvector(), weights.as_dvector());
+    let v = weighted(needs.as_dvector(), weights.as_dvector(), opts.smoothing);
     Distribution::from_weighted(v, opts, "needs vector")
 }
 
 /// The weighted needs `a_k w_k` to normalise: the plain product when its sum is a normal
-/// `f64` or zero (every ordinary input, bit for bit), otherwise the product of `a / max(a)`
-/// and `w / max(w)`. The distribution does not change with the scale of the needs or the
-/// weights, so scaling only keeps inputs near `f64::MAX` (whose sum overflows) or among the
-/// subnormals (where relative smoothing `e * sum` rounds to 0) computable.
-fn weighted(a: &DVector<f64>, w: &DVector<f64>) -> DVector<f64> {
+/// `f64` (every ordinary input, bit for bit), when all needs are zero, or with
+/// [`Smoothing::Absolute`] (whose result depends on the scale); otherwise the product of
+/// `a / max(a)` and `w / max(w)`. Without smoothing or with [`Smoothing::Relative`] the
+/// distribution does not change with the scale of the needs or the weights, so scaling only
+/// keeps inputs near `f64::MAX` (whose sum overflows) or among the subnormals (whose products
+/// round to 0, or where `e * sum` does) computable.
+fn weighted(a: &DVector<f64>, w: &DVector<f64>, smoothing: Smoothing) -> DVector<f64> {
     let v = a.component_mul(w);
-    let total = v.sum();
-    if total == 0.0 || total.is_normal() {
+    if v.sum().is_normal() || matches!(smoothing, Smoothing::Absolute(_)) {
         return v;
     }
     let (a_max, w_max) = (a.amax(), w.amax());
-    if a_max == 0.0 || !a_max.is_finite() || !w_max.is_finite() {
+    if a_max == 0.0 || !a_max.is_finite() || !w_max.is_finite() || w_max == 0.0 {
         return v;
     }
     (a / a_max).component_mul(&(w / w_max))
@@ -199,7 +203,7 @@ pub(crate) fn group_distribution_from_sums(
     weights: &Weights,
     opts: &DistributionOptions,
 ) -> Result<Distribution> {
-    let v = weighted(&column_sums, weights.as_dvector());
+    let v = weighted(&column_sums, weights.as_dvector(), opts.smoothing);
     Distribution::from_weighted(v, opts, "group")
 }
 
@@ -312,6 +316,19 @@ mod tests {
         let tiny = d(&[5e-324, 0.0, 0.0], &[1.0, 1.0, 1.0]).unwrap();
         let unit = d(&[1.0, 0.0, 0.0], &[1.0, 1.0, 1.0]).unwrap();
         assert_eq!(tiny, unit);
+        // Needs whose products all round to 0: scaled, the same distribution too.
+        let vanishing = d(&[1e-200, 0.0], &[1e-200, 1.0]).unwrap();
+        let one = d(&[1.0, 0.0], &[1.0, 1.0]).unwrap();
+        assert_relative_eq!(vanishing.as_slice(), one.as_slice(), epsilon = 1e-12);
+        // Absolute smoothing depends on the scale: those needs are not rescaled.
+        let abs = DistributionOptions {
+            smoothing: Smoothing::Absolute(1e-9),
+            ..DistributionOptions::default()
+        };
+        let n = NeedsVector::new(vec![1e-310, 0.0]).unwrap();
+        let w = Weights::new(vec![1.0, 1.0]).unwrap();
+        let a = needs_distribution(&n, &w, &abs).unwrap();
+        assert_relative_eq!(a.as_slice(), &[0.5, 0.5][..], epsilon = 1e-12);
         // Ordinary inputs are the plain product, bit for bit.
         let plain = d(&[86.0, 120.0, 30.0], &[6.0, 4.0, 2.0]).unwrap();
         let total = 86.0 * 6.0 + 120.0 * 4.0 + 30.0 * 2.0;
@@ -324,8 +341,22 @@ mod tests {
     fn a_group_sum_past_f64_max_is_an_overflow_error() {
         let sums = DVector::from_vec(vec![f64::INFINITY, 1.0]);
         let w = Weights::new(vec![1.0, 1.0]).unwrap();
-        let e = group_distribution_from_sums(sums, &w, &DistributionOptions::default());
-        assert_eq!(e.unwrap_err(), RneError::Overflow { what: "group" });
+        for smoothing in [
+            Smoothing::Relative(1e-9),
+            Smoothing::Relative(0.0),
+            Smoothing::None,
+        ] {
+            let opts = DistributionOptions {
+                smoothing,
+                ..DistributionOptions::default()
+            };
+            let e = group_distribution_from_sums(sums.clone(), &w, &opts);
+            assert_eq!(
+                e.unwrap_err(),
+                RneError::Overflow { what: "group" },
+                "{smoothing:?}"
+            );
+        }
     }
 
     #[test]

@@ -64,12 +64,19 @@ impl fmt::Display for UnreachableGoal {
 ///
 /// Builds the trial's world ([`World::new`]) and plans with the same planner as a trial,
 /// from the starts, before any robot moves; other robots are not obstacles to the plan. Cost:
-/// one plan per robot and goal (shared distance fields make most of them cheap).
+/// one plan per robot and goal, most of them cheap lookups in the shared distance fields.
+/// With `navigation.shared_goal_fields: false` every plan is an A* search, so only the first
+/// robot of each run of robots of one kind is checked (robots are listed kind by kind).
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
     let mut world = World::new(s);
-    let ground: Vec<usize> = (0..s.robots.len())
+    let mut ground: Vec<usize> = (0..s.robots.len())
         .filter(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
         .collect();
+    if !s.navigation.shared_goal_fields {
+        // Every plan is an A* search, and one to an unreachable goal floods the robot's
+        // whole region: check the first robot of each kind only.
+        ground.dedup_by_key(|&mut id| s.robots[id].kind);
+    }
     let mut out = Vec::new();
     for (t, task) in s.tasks.iter().enumerate() {
         let members: Vec<usize> = ground
@@ -140,6 +147,15 @@ mod tests {
             line.starts_with("tasks.hard.goal_m (6.0, 16.0): no path"),
             "{line}"
         );
+        // With A* for every plan, the first robot of each kind stands for its kind.
+        let astar = SPLIT.replace(
+            "    debris: [",
+            "    navigation: (shared_goal_fields: false),\n    debris: [",
+        );
+        assert_ne!(astar, SPLIT);
+        let found = unreachable_goals(&from_str(&astar, "astar.ron").unwrap());
+        let robots: Vec<&[usize]> = found.iter().map(|u| u.robots.as_slice()).collect();
+        assert_eq!(robots, [[0], [0]], "{found:?}");
         // A gap in the wall (a shorter wall) opens the way: nothing to report.
         let open = SPLIT.replace("size_m: (0.5, 20.0)", "size_m: (0.5, 12.0)");
         assert_eq!(unreachable_goals(&from_str(&open, "open.ron").unwrap()), []);

@@ -65,7 +65,6 @@ pub struct RunArgs {
 /// A bad scenario or option, a failing trial, or an I/O error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let scenario = scenario::load(&args.scenario)?;
-    super::check::warn_unreachable(&args.scenario.display().to_string(), &scenario);
     let mut builder = Simulation::builder(&scenario)
         .method_named(&args.method)
         .trial(args.trial.unwrap_or(0));
@@ -76,6 +75,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         builder = builder.duration_s(d);
     }
     let mut sim = build_trial(builder)?;
+    super::check::warn_unreachable(&args.scenario.display().to_string(), &scenario);
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;

@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
+use usar_sim::mission::unreachable_goals;
 use usar_sim::scenario::{self, Scenario};
 
 use experiments::analysis::Analysis;
@@ -251,11 +252,6 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
     let grid = grid_of(args)?;
-    warn_unreachable(
-        &args.scenario.display().to_string(),
-        &scenario,
-        grid.as_ref(),
-    );
     if let Some(d) = args.duration {
         warn_if_rounded(d, &scenario, grid.as_ref());
     }
@@ -281,17 +277,30 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     })
 }
 
-/// [`super::check::warn_unreachable`] for the scenario, or for each cell of a grid (the
-/// origin then names the cell's values).
+/// [`super::check::warn_unreachable`] for the scenario, or for the cells of a grid: each
+/// warning once, with the cells it holds for (`(cells 0, 2)`, or `(every cell)`).
 fn warn_unreachable(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
-    match grid {
-        None => super::check::warn_unreachable(origin, scenario),
-        Some(g) => {
-            for (i, c) in g.cells.iter().enumerate() {
-                let at = format!("{origin} (cell {i}: {})", c.values().join(", "));
-                super::check::warn_unreachable(&at, &c.scenario);
+    let Some(g) = grid else {
+        return super::check::warn_unreachable(origin, scenario);
+    };
+    let mut found: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, c) in g.cells.iter().enumerate() {
+        for u in unreachable_goals(&c.scenario) {
+            let text = u.to_string();
+            match found.iter_mut().find(|(t, _)| *t == text) {
+                Some((_, cells)) => cells.push(i),
+                None => found.push((text, vec![i])),
             }
         }
+    }
+    for (text, cells) in found {
+        let at = if cells.len() == g.cells.len() {
+            "every cell".to_string()
+        } else {
+            let list: Vec<String> = cells.iter().map(usize::to_string).collect();
+            format!("cells {}", list.join(", "))
+        };
+        eprintln!("warning: {origin} ({at}): {text}");
     }
 }
 
@@ -321,6 +330,13 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let tasks = cfg.scenario.task_names();
     let metrics = grid_metrics(&args.spec.grid_metrics, &tasks)?;
     let replays = replays_of(args, &cfg)?;
+    // Options first (a bad one is the only line), then what the scenario warns about.
+    experiments::sweep::header_of(&cfg)?;
+    warn_unreachable(
+        &cfg.scenario_path.display().to_string(),
+        &cfg.scenario,
+        cfg.grid.as_ref(),
+    );
     if let Some(r) = &replays {
         cfg.hooks.trial_observer = Some(r.observer_factory(cfg.hooks.trial_observer.take()));
     }
@@ -360,9 +376,8 @@ fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays
     let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model).ok();
     let methods: Vec<String> = cfg.methods.iter().filter_map(|m| canonical(m)).collect();
     let requests = parse_replay_list(&args.replay, &methods, cfg.trials, &canonical)?;
-    Ok(Some(
-        SweepReplays::new(cfg, requests, args.replay_hz).context("--replay-hz")?,
-    ))
+    experiments::replay::ReplayRecorder::new(args.replay_hz).context("--replay-hz")?;
+    Ok(Some(SweepReplays::new(cfg, requests, args.replay_hz)?))
 }
 
 /// The shard and plan of `--shard`, if given.
