@@ -437,6 +437,10 @@ impl OpenJournal {
 /// Creates, resumes or reuses the journal in `dir`, with the records it holds.
 fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<OpenJournal> {
     let path = Journal::path_in(dir);
+    if path.metadata().is_ok_and(|m| m.is_file() && m.len() == 0) {
+        // An empty file holds no sweep (not even a header): nothing to resume or lose.
+        std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
+    }
     if cfg.overwrite && !cfg.resume {
         // The earlier sweep's tables, figures and grid cells go with its journal.
         remove_previous_outputs(dir, &path)?;

@@ -185,3 +185,19 @@ fn check_set_errors_name_the_override() {
         assert!(o.stdout.is_empty());
     }
 }
+
+#[test]
+fn an_error_with_stderr_closed_still_exits_with_status_1() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["check", "no-such-scenario.ron"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run usar");
+    // Close both read ends before usar writes: its error message meets a closed pipe.
+    drop(child.stdout.take());
+    drop(child.stderr.take());
+    let status = child.wait().expect("wait for usar");
+    assert_eq!(status.code(), Some(1), "{status:?}");
+}

@@ -110,3 +110,20 @@ fn resume_refuses_a_journal_of_other_parameters() {
     // The journal is left as it was.
     assert_eq!(journal_trials(&dir), 1);
 }
+
+#[test]
+fn an_empty_journal_is_started_afresh_with_or_without_resume() {
+    let tmp = tempfile::tempdir().unwrap();
+    for extra in [&[][..], &["--resume"][..]] {
+        let dir = tmp.path().join(format!("e{}", extra.len()));
+        std::fs::create_dir(&dir).unwrap();
+        std::fs::write(dir.join("journal.jsonl"), "").unwrap();
+        let o = sweep(&dir, extra);
+        assert!(
+            o.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert_eq!(journal_trials(&dir), 4, "{extra:?}");
+    }
+}

@@ -530,6 +530,12 @@ fn a_byte_that_is_not_utf8_is_reported_at_its_line_and_column() {
     let err = scenario::load(&path).expect_err("not UTF-8");
     assert_eq!(err.line_col(), Some((3, 5)), "{err}");
     assert!(err.to_string().contains("0xff is not UTF-8"), "{err}");
+    // After a byte-order mark, a bad byte on the first line: columns count from after it.
+    let mut first = b"\xEF\xBB\xBF".to_vec();
+    first.extend_from_slice(b"Scen\xffario(");
+    std::fs::write(&path, &first).unwrap();
+    let err = scenario::load(&path).expect_err("not UTF-8");
+    assert_eq!(err.line_col(), Some((1, 5)), "{err}");
 }
 
 #[test]

@@ -24,7 +24,9 @@ pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
         path: origin.clone(),
         error,
     })?;
-    let src = utf8(&bytes, &origin)?;
+    // The byte-order mark goes first, so a bad byte on line 1 gets its column without it.
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+    let src = utf8(bytes, &origin)?;
     from_str(src, &origin)
 }
 

@@ -1,5 +1,6 @@
 //! The `usar` command line. See `usar --help`.
 
+use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
@@ -15,8 +16,11 @@ fn main() -> ExitCode {
     match run(cli, &mut out) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
+            // Not `eprintln!`, which panics (exit 101) when stderr is a closed pipe: the exit
+            // status reports the failure whether or not the message could be written.
+            match writeln!(std::io::stderr(), "error: {e:#}") {
+                Ok(()) | Err(_) => ExitCode::FAILURE,
+            }
         }
     }
 }
