@@ -1,6 +1,6 @@
 //! Splitting a `--vary` value list on its top-level commas.
 
-/// Splits `text` on the commas that are not inside `()`, `[]` or a double-quoted string
+/// Splits `text` on the commas that are not inside `()`, `[]`, `{}` or a double-quoted string
 /// (where `\"` does not end the string), trimming each part.
 ///
 /// `0.1,(1.0, 2.0),"a,b"` gives `["0.1", "(1.0, 2.0)", "\"a,b\""]`. An empty text gives one
@@ -27,9 +27,13 @@ pub fn split_top_level(text: &str) -> Result<Vec<String>, String> {
         }
         match c {
             '"' => in_string = Some(pos + 1),
-            '(' | '[' => open.push((c, pos + 1)),
-            ')' | ']' => {
-                let want = if c == ')' { '(' } else { '[' };
+            '(' | '[' | '{' => open.push((c, pos + 1)),
+            ')' | ']' | '}' => {
+                let want = match c {
+                    ')' => '(',
+                    ']' => '[',
+                    _ => '{',
+                };
                 match open.pop() {
                     Some((o, _)) if o == want => {}
                     _ => return Err(format!("unmatched '{c}' at character {}", pos + 1)),
@@ -62,6 +66,11 @@ mod tests {
             split_top_level("0.1, (1.0, 2.0) ,\"a,b\",[1,2],Some((3, 4))").unwrap(),
             ["0.1", "(1.0, 2.0)", "\"a,b\"", "[1,2]", "Some((3, 4))"]
         );
+        assert_eq!(
+            split_top_level(r#"{"hard": 2, "easy": 4},{hard: 3, easy: 3}"#).unwrap(),
+            [r#"{"hard": 2, "easy": 4}"#, "{hard: 3, easy: 3}"]
+        );
+        assert!(split_top_level("{a: (1}").is_err());
         assert_eq!(split_top_level("5").unwrap(), ["5"]);
         assert_eq!(split_top_level("").unwrap(), [""]);
         assert_eq!(split_top_level("1,,2").unwrap(), ["1", "", "2"]);

@@ -5,7 +5,8 @@
 //! `\"` and `\\` escapes) or bare (`paper2`, `Aerial`: a unit enum variant is a string in
 //! JSON), `Some(x)` and `None`, tuples and lists (`(1.0, 2.0)`, `[(1, 2), (3, 4)]`), structs
 //! (`(mean_pct: 70.0, std_dev_pct: 5.0)`, the struct name optional) and enum variants with
-//! data (newtype `Name(x)`, struct-like `Row(first_m: (30.0, 3.0), step_m: (3.0, 0.0))`).
+//! data (newtype `Name(x)`, struct-like `Row(first_m: (30.0, 3.0), step_m: (3.0, 0.0))`) and
+//! maps (`{"hard": 3, "easy": 3}`, keys quoted or bare).
 //!
 //! The JSON shape of the old value decides what a bare word becomes: `1` for a string field is
 //! the string `"1"`, `true` for a boolean field a boolean; a number field takes only a finite
@@ -26,6 +27,9 @@ pub enum RonValue {
     Tuple(Args),
     /// `[...]`: a list.
     List(Vec<RonValue>),
+    /// `{key: value, ...}`: a map, keys quoted or bare (e.g. a kind's `quota`,
+    /// `{"hard": 3, "easy": 3}`).
+    Map(Vec<(String, RonValue)>),
 }
 
 /// The inside of `(...)`: positional items or `name: value` fields.
@@ -96,6 +100,15 @@ impl RonValue {
             RonValue::List(items) => {
                 scalar_guide(guide, "[...]")?;
                 seq_to_json(items, guide)
+            }
+            RonValue::Map(entries) => {
+                scalar_guide(guide, "{...}")?;
+                let mut map = Map::new();
+                for (key, v) in entries {
+                    let g = guide.and_then(|g| g.get(key));
+                    map.insert(key.clone(), v.to_json(g)?);
+                }
+                Ok(Value::Object(map))
             }
         }
     }
@@ -190,7 +203,7 @@ fn seq_to_json(items: &[RonValue], guide: Option<&Value>) -> Result<Value, Strin
 }
 
 /// Characters that end a bare word.
-const DELIMITERS: &[char] = &['(', ')', '[', ']', ',', ':', '"'];
+const DELIMITERS: &[char] = &['(', ')', '[', ']', '{', '}', ',', ':', '"'];
 
 /// Deepest nesting of values [`RonValue::parse`] reads (128, ron's own recursion limit for
 /// scenario files); deeper text is an error, not a stack overflow.
@@ -238,6 +251,7 @@ impl Parser<'_> {
             Some('"') => self.string().map(RonValue::Str),
             Some('(') => self.args().map(RonValue::Tuple),
             Some('[') => self.list().map(RonValue::List),
+            Some('{') => self.map().map(RonValue::Map),
             _ => {
                 let word = self.bare();
                 if word.is_empty() {
@@ -341,6 +355,36 @@ impl Parser<'_> {
         Ok(items)
     }
 
+    /// `{ key: value, ... }` with keys quoted or bare.
+    fn map(&mut self) -> Result<Vec<(String, RonValue)>, String> {
+        self.pos += 1;
+        let mut entries = Vec::new();
+        loop {
+            self.skip_ws();
+            let key = match self.peek() {
+                Some('}') => {
+                    self.pos += 1;
+                    break;
+                }
+                Some('"') => self.string()?,
+                _ => self.bare(),
+            };
+            if key.is_empty() {
+                return Err(self.error("expected a map key"));
+            }
+            self.skip_ws();
+            if self.peek() != Some(':') {
+                return Err(self.error("expected ':' after a map key"));
+            }
+            self.pos += 1;
+            entries.push((key, self.value()?));
+            if !self.separator('}')? {
+                break;
+            }
+        }
+        Ok(entries)
+    }
+
     /// After an item: `,` (true: more may follow) or the closing bracket (false, consumed).
     fn separator(&mut self, close: char) -> Result<bool, String> {
         self.skip_ws();
@@ -379,6 +423,41 @@ mod tests {
         }
         let e = RonValue::parse(&"(".repeat(100_000)).unwrap_err();
         assert!(e.contains("nested more than 128 deep"), "{e}");
+    }
+
+    #[test]
+    fn maps_with_quoted_or_bare_keys() {
+        let guide = json!({"hard": 3, "easy": 3});
+        assert_eq!(
+            conv(r#"{"hard": 2, easy: 4}"#, guide.clone()).unwrap(),
+            json!({"hard": 2, "easy": 4})
+        );
+        assert_eq!(conv("{}", guide.clone()).unwrap(), json!({}));
+        assert_eq!(
+            conv("{hard: x}", guide.clone()).unwrap_err(),
+            "expected a number, found x"
+        );
+        assert!(
+            RonValue::parse("{hard 2}")
+                .unwrap_err()
+                .contains("expected ':'")
+        );
+        assert!(
+            RonValue::parse("{: 2}")
+                .unwrap_err()
+                .contains("expected a map key")
+        );
+        assert!(
+            RonValue::parse("{a: 1")
+                .unwrap_err()
+                .contains("expected ',' or '}'")
+        );
+        let deep = format!("{}1{}", "{a: ".repeat(200), "}".repeat(200));
+        assert!(
+            RonValue::parse(&deep)
+                .unwrap_err()
+                .contains("nested more than 128")
+        );
     }
 
     #[test]
