@@ -477,10 +477,11 @@ fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn header() -> SweepHeader {
+    /// A header of a 2-cell grid over `mission.duration_s` (values `10` and `20`).
+    pub(crate) fn header() -> SweepHeader {
         SweepHeader {
             format: JOURNAL_FORMAT,
             version: "0".into(),

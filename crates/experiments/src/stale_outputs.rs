@@ -100,32 +100,8 @@ pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf
 mod tests {
     use super::*;
     use crate::atomic::tests::names;
-    use crate::journal::{CellHeader, JOURNAL_FORMAT, Journal, SweepHeader};
-
-    /// A journal whose header has a grid over `mission.duration_s` with these values.
-    fn journal(dir: &Path, values: &[&str]) -> PathBuf {
-        let cell = |v: &str| CellHeader {
-            values: vec![v.to_string()],
-            scenario_hash: "0".into(),
-            duration_s: 1.0,
-            tasks: vec!["t".into()],
-            hardest_first: vec![0],
-        };
-        let header = SweepHeader {
-            format: JOURNAL_FORMAT,
-            version: "0".into(),
-            scenario: "s".into(),
-            methods: vec!["DIS".into()],
-            trials: 1,
-            base_seed: 0,
-            grid: GridHeader {
-                fields: vec!["mission.duration_s".into()],
-                cells: values.iter().map(|v| cell(v)).collect(),
-            },
-        };
-        drop(Journal::create(dir, &header).unwrap());
-        Journal::path_in(dir)
-    }
+    use crate::journal::Journal;
+    use crate::journal::tests::header;
 
     #[test]
     fn removes_the_journaled_sweeps_files_and_keeps_everything_else() {
@@ -147,17 +123,19 @@ mod tests {
             fs::write(d.join(f), "x").unwrap();
         }
         for cell in [
-            "c00_duration_s=30",
-            "c01_duration_s=40",
-            "c02_duration_s=50",
+            "c00_duration_s=10",
+            "c01_duration_s=20",
+            "c02_duration_s=30",
             "c2024_backup",
         ] {
             fs::create_dir(d.join(cell)).unwrap();
             fs::write(d.join(cell).join("trials.csv"), "x").unwrap();
             fs::write(d.join(cell).join("scenario.ron"), "x").unwrap();
         }
-        fs::write(d.join("c01_duration_s=40/mine.txt"), "x").unwrap();
-        let j = journal(d, &["30", "40"]);
+        fs::write(d.join("c01_duration_s=20/mine.txt"), "x").unwrap();
+        // The journal of a grid over mission.duration_s = 10, 20.
+        drop(Journal::create(d, &header()).unwrap());
+        let j = Journal::path_in(d);
         // A folder without a journal is not touched.
         assert!(
             remove_previous_outputs(d, &d.join("none.jsonl"))
@@ -169,8 +147,8 @@ mod tests {
         assert_eq!(
             names(d),
             [
-                "c01_duration_s=40",
-                "c02_duration_s=50",
+                "c01_duration_s=20",
+                "c02_duration_s=30",
                 "c2024_backup",
                 "journal.jsonl",
                 "notes.txt",
@@ -178,7 +156,7 @@ mod tests {
                 "sweep.lock"
             ]
         );
-        assert_eq!(names(&d.join("c01_duration_s=40")), ["mine.txt"]);
+        assert_eq!(names(&d.join("c01_duration_s=20")), ["mine.txt"]);
         assert_eq!(
             names(&d.join("c2024_backup")),
             ["scenario.ron", "trials.csv"]

@@ -252,12 +252,34 @@ pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
 /// allocation failure; a larger study is several sweeps (for example one per `--seed`).
 pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
 
+/// Refuses a sweep of more than [`MAX_SWEEP_TRIALS`] trials (grid cells x methods x trials)
+/// with a one-line error; cheap, so a caller can check before any other work.
+///
+/// # Errors
+/// The count and the limit, when the count is above it.
+pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
+    let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
+    let total = cells
+        .saturating_mul(cfg.methods.len())
+        .saturating_mul(cfg.trials as usize);
+    if total > MAX_SWEEP_TRIALS {
+        bail!(
+            "the sweep's {cells} cell(s) x {} method(s) x {} trials make {total} trials, more \
+             than the limit of {MAX_SWEEP_TRIALS} per sweep",
+            cfg.methods.len(),
+            cfg.trials
+        );
+    }
+    Ok(())
+}
+
 /// The sweep's header: its parameters and grid as recorded in the journal.
 ///
 /// # Errors
 /// An unknown method, a scenario that cannot be serialised, or more than
 /// [`MAX_SWEEP_TRIALS`] trials in all.
 pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
+    check_trial_count(cfg)?;
     let model = trust_model(&cfg.scenario)?;
     let values: Vec<Vec<String>> = match &cfg.grid {
         Some(g) => g.cells.iter().map(|c| c.values()).collect(),
@@ -276,20 +298,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
                 hardest_first: s.hardest_first(),
             })
         })
-        .collect::<Result<Vec<_>>>()?;
-    let total = cells
-        .len()
-        .saturating_mul(cfg.methods.len())
-        .saturating_mul(cfg.trials as usize);
-    if total > MAX_SWEEP_TRIALS {
-        bail!(
-            "the sweep's {} cell(s) x {} method(s) x {} trials make {total} trials, more than \
-             the limit of {MAX_SWEEP_TRIALS} per sweep",
-            cells.len(),
-            cfg.methods.len(),
-            cfg.trials
-        );
-    }
+        .collect::<Result<_>>()?;
     Ok(SweepHeader {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),

@@ -160,8 +160,9 @@ fn weighted(a: &DVector<f64>, w: &DVector<f64>, smoothing: Smoothing) -> DVector
     if v.sum().is_normal() || matches!(smoothing, Smoothing::Absolute(_)) {
         return v;
     }
+    // Weights are finite and > 0 (`Weights::new`); needs or column sums may be 0 or inf.
     let (a_max, w_max) = (a.amax(), w.amax());
-    if a_max == 0.0 || !a_max.is_finite() || !w_max.is_finite() || w_max == 0.0 {
+    if a_max == 0.0 || !a_max.is_finite() {
         return v;
     }
     (a / a_max).component_mul(&(w / w_max))

@@ -103,12 +103,7 @@ impl RonValue {
             }
             RonValue::Map(entries) => {
                 scalar_guide(guide, "{...}")?;
-                let mut map = Map::new();
-                for (key, v) in entries {
-                    let g = guide.and_then(|g| g.get(key));
-                    map.insert(key.clone(), v.to_json(g)?);
-                }
-                Ok(Value::Object(map))
+                fields_to_json(entries, guide)
             }
         }
     }
@@ -178,15 +173,19 @@ fn args_to_json(args: &Args, guide: Option<&Value>, newtype: bool) -> Result<Val
             items[0].to_json(guide)
         }
         Args::Positional(items) => seq_to_json(items, guide),
-        Args::Named(fields) => {
-            let mut map = Map::new();
-            for (name, v) in fields {
-                let g = guide.and_then(|g| g.get(name));
-                map.insert(name.clone(), v.to_json(g)?);
-            }
-            Ok(Value::Object(map))
-        }
+        Args::Named(fields) => fields_to_json(fields, guide),
     }
+}
+
+/// The JSON object of `name: value` fields or map entries, each value guided by the guide's
+/// entry of its name.
+fn fields_to_json(fields: &[(String, RonValue)], guide: Option<&Value>) -> Result<Value, String> {
+    let mut map = Map::new();
+    for (name, v) in fields {
+        let g = guide.and_then(|g| g.get(name));
+        map.insert(name.clone(), v.to_json(g)?);
+    }
+    Ok(Value::Object(map))
 }
 
 fn seq_to_json(items: &[RonValue], guide: Option<&Value>) -> Result<Value, String> {

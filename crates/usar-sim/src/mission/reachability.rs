@@ -66,7 +66,7 @@ impl fmt::Display for UnreachableGoal {
 /// from the starts, before any robot moves; other robots are not obstacles to the plan. Cost:
 /// one plan per robot and goal, most of them cheap lookups in the shared distance fields.
 /// With `navigation.shared_goal_fields: false` every plan is an A* search, so only the first
-/// robot of each run of robots of one kind is checked (robots are listed kind by kind).
+/// robot of each kind is checked (`Scenario::robots` is ordered by kind).
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
     let mut world = World::new(s);
     let mut ground: Vec<usize> = (0..s.robots.len())

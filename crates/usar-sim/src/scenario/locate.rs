@@ -87,11 +87,7 @@ impl SourceMap {
     /// The path of the innermost recorded field or element whose range contains `offset`
     /// (key through value, ends inclusive), if any.
     pub(crate) fn path_at(&self, offset: usize) -> Option<&str> {
-        self.entries
-            .iter()
-            .filter(|e| e.start <= offset && offset <= e.end)
-            .min_by_key(|e| e.end - e.start)
-            .map(|e| e.path.as_str())
+        self.innermost(|e| e.start <= offset && offset <= e.end)
     }
 
     /// The path of the innermost recorded field or element whose value is still open at
@@ -99,9 +95,14 @@ impl SourceMap {
     /// belongs to. ron reports a missing field at the struct's closing bracket, which
     /// [`SourceMap::path_at`] would give to the struct's last field when no comma follows it.
     pub(crate) fn path_within(&self, offset: usize) -> Option<&str> {
+        self.innermost(|e| e.start <= offset && offset < e.end)
+    }
+
+    /// The path of the shortest entry `holds` accepts.
+    fn innermost(&self, holds: impl Fn(&Entry) -> bool) -> Option<&str> {
         self.entries
             .iter()
-            .filter(|e| e.start <= offset && offset < e.end)
+            .filter(|e| holds(e))
             .min_by_key(|e| e.end - e.start)
             .map(|e| e.path.as_str())
     }

@@ -331,7 +331,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let metrics = grid_metrics(&args.spec.grid_metrics, &tasks)?;
     let replays = replays_of(args, &cfg)?;
     // Options first (a bad one is the only line), then what the scenario warns about.
-    experiments::sweep::header_of(&cfg)?;
+    experiments::sweep::check_trial_count(&cfg)?;
     warn_unreachable(
         &cfg.scenario_path.display().to_string(),
         &cfg.scenario,
