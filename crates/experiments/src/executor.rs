@@ -162,10 +162,10 @@ pub(crate) fn execute(
             let n = done.fetch_add(1, Ordering::SeqCst) + 1;
             if let Outcome::Failed(msg) = &record.outcome {
                 pb.suspend(|| {
-                    eprintln!(
+                    crate::console::warn(format!(
                         "trial {} #{} (seed {}){} failed: {msg}",
                         record.method, record.trial, record.seed, plans[record.cell].label
-                    );
+                    ));
                 });
             }
             pb.set_message(format!("{n}/{} trials{over}", jobs.len()));

@@ -561,14 +561,14 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             Some(_) => "will run again",
             None => "is not used (no such trial in this sweep)",
         };
-        eprintln!(
+        crate::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
             Journal::path_in(&dir).display(),
             r.line,
             r.method,
             r.trial,
             r.cell,
-        );
+        ));
     }
     let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
         .into_iter()

@@ -5,6 +5,20 @@ use std::process::{Command, Output};
 
 const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
 
+/// A scenario whose hard task's goal and drop-off no robot can reach: every command warns.
+const SPLIT_ARENA: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../usar-sim/tests/data/split-arena.ron"
+);
+
+/// `check` and a 1 s `run` of [`SPLIT_ARENA`]: each prints the two reachability warnings.
+fn warning_commands() -> [Vec<&'static str>; 2] {
+    [
+        vec!["check", SPLIT_ARENA],
+        vec!["run", SPLIT_ARENA, "--method", "dis", "--duration", "1"],
+    ]
+}
+
 fn usar(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_usar"))
         .args(args)
@@ -36,14 +50,8 @@ fn check_summarises_the_paper_scenario() {
 
 #[test]
 fn check_and_run_warn_about_goals_no_path_reaches() {
-    let split = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../usar-sim/tests/data/split-arena.ron"
-    );
-    for args in [
-        vec!["check", split],
-        vec!["run", split, "--method", "dis", "--duration", "1"],
-    ] {
+    let split = SPLIT_ARENA;
+    for args in warning_commands() {
         let o = usar(&args);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(o.status.success(), "{args:?}: {err}");
@@ -200,4 +208,21 @@ fn an_error_with_stderr_closed_still_exits_with_status_1() {
     drop(child.stderr.take());
     let status = child.wait().expect("wait for usar");
     assert_eq!(status.code(), Some(1), "{status:?}");
+}
+
+#[test]
+fn warnings_meeting_a_closed_stderr_leave_the_exit_status_0() {
+    use std::process::Stdio;
+    for args in warning_commands() {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("run usar");
+        // The reader goes before usar warns: its warnings meet a closed pipe (EPIPE).
+        drop(child.stderr.take());
+        let status = child.wait().expect("wait for usar");
+        assert_eq!(status.code(), Some(0), "{args:?}: {status:?}");
+    }
 }

@@ -110,7 +110,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
 /// ...`. The scenario stays valid (a trial runs; those robots stand still).
 pub fn warn_unreachable(origin: &str, s: &Scenario) {
     for u in unreachable_goals(s) {
-        eprintln!("warning: {origin}: {u}");
+        experiments::console::warn(format!("warning: {origin}: {u}"));
     }
 }
 

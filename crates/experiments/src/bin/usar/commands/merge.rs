@@ -48,14 +48,14 @@ pub struct MergeArgs {
 pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     let m = merge_shards(&args.dir)?;
     for (path, r) in &m.rejected {
-        eprintln!(
+        experiments::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); left out (trial {} #{} of cell {})",
             path.display(),
             r.line,
             r.method,
             r.trial,
             r.cell
-        );
+        ));
     }
     let tasks = m.config.scenario.task_names();
     let metrics = grid_metrics(&m.plan.grid_metrics, &tasks)?;

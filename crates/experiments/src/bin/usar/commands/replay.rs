@@ -100,13 +100,13 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
             .context("--hz")?;
     let robot_samples = clock.samples().saturating_mul(scenario.robots.len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
-        eprintln!(
+        experiments::console::warn(format!(
             "warning: {} robots x {} samples: the page will need about {} MB of memory in the \
              browser; a shorter --duration or a lower --hz keeps it light",
             scenario.robots.len(),
             clock.samples(),
             robot_samples * 60 / 1_000_000
-        );
+        ));
     }
     let t0 = Instant::now();
     let t = record_trial(sim, args.hz, None).context("recording the trial")?;

@@ -118,7 +118,7 @@ pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
     if let Some(d) = requested
         && let Some(w) = rounding_warning(d, sim.scenario().sim.dt_s.get())
     {
-        eprintln!("{w}");
+        experiments::console::warn(w);
     }
 }
 

@@ -240,12 +240,12 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     let threads = match all.threads {
         Some(0) => bail!("--threads must be at least 1"),
         Some(n) if n > max_threads() => {
-            eprintln!(
+            experiments::console::warn(format!(
                 "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
                  cores: using {}",
                 max_threads() / MAX_THREADS_PER_CORE,
                 max_threads()
-            );
+            ));
             max_threads()
         }
         Some(n) => n,
@@ -300,7 +300,7 @@ fn warn_unreachable(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
             let list: Vec<String> = cells.iter().map(usize::to_string).collect();
             format!("cells {}", list.join(", "))
         };
-        eprintln!("warning: {origin} ({at}): {text}");
+        experiments::console::warn(format!("warning: {origin} ({at}): {text}"));
     }
 }
 
@@ -315,7 +315,7 @@ fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
     steps.dedup();
     for dt_s in steps {
         if let Some(w) = super::run::rounding_warning(requested_s, dt_s) {
-            eprintln!("{w}");
+            experiments::console::warn(w);
         }
     }
 }
