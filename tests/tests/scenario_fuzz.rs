@@ -19,7 +19,7 @@ use std::time::Duration;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-use usar_sim::mission::{Simulation, unreachable_goals};
+use usar_sim::mission::{Simulation, tasks_without_rescue, unreachable_goals};
 use usar_sim::scenario;
 
 /// Wall-clock bound of one case (load, validation and the short trial).
@@ -172,9 +172,9 @@ fn check_and_run(bytes: &[u8], dir: &std::path::Path, case: usize) -> Outcome {
             };
         }
     };
-    // The reachability warnings of `usar check` plan from every start: they must not panic
-    // or hang on any accepted file either.
-    std::hint::black_box(unreachable_goals(&s));
+    // The warnings of `usar check` (reachability plans from every start, tasks without rescue)
+    // must not panic or hang on any accepted file either.
+    std::hint::black_box((unreachable_goals(&s), tasks_without_rescue(&s)));
     let run = Simulation::builder(&s)
         .method_named("rne")
         .duration_s(5.0 * s.sim.dt_s.get())

@@ -226,3 +226,27 @@ fn warnings_meeting_a_closed_stderr_leave_the_exit_status_0() {
         assert_eq!(status.code(), Some(0), "{args:?}: {status:?}");
     }
 }
+
+#[test]
+fn check_warns_about_tasks_no_group_can_rescue_from() {
+    let o = usar(&[
+        "check",
+        PAPER,
+        "--set",
+        "kinds[0].locomotion=Aerial",
+        "--set",
+        "kinds[1].carrying_capacity=0",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 2, "{err}");
+    for (line, task) in lines.iter().zip(["hard", "easy"]) {
+        let head =
+            format!("warning: {PAPER}: tasks.{task}: no ground robot with carrying_capacity > 0");
+        assert!(line.starts_with(&head), "{line}");
+    }
+    // The shipped scenario itself gets no warning.
+    let o = usar(&["check", PAPER]);
+    assert!(o.status.success() && o.stderr.is_empty());
+}

@@ -14,6 +14,8 @@
 //!   last step ([`Simulation::events`]).
 //! - [`unreachable_goals`]: the goals some robots cannot reach from their starts (a check
 //!   before a trial; `usar check` warns about them).
+//! - [`tasks_without_rescue`]: the tasks no group can rescue from, whatever the method (a
+//!   check before a trial; `usar check` warns about them).
 
 mod account;
 mod decide;
@@ -26,6 +28,7 @@ mod metrics;
 mod needs;
 mod reachability;
 mod recorder;
+mod rescue_capacity;
 mod rescuees;
 mod robot;
 mod rounds;
@@ -42,6 +45,7 @@ pub use metrics::{RobotMetrics, RoundRecord, TrialResult, per};
 pub use needs::{entry, hp_factor, needs_vector};
 pub use reachability::{UnreachableGoal, unreachable_goals};
 pub use recorder::{Recorder, TrialInfo};
+pub use rescue_capacity::{NoRescue, TaskWithoutRescue, tasks_without_rescue};
 pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
 pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};

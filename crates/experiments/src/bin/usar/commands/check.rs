@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Args;
-use usar_sim::mission::unreachable_goals;
+use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
 
 use experiments::fingerprint::scenario_hash;
@@ -57,8 +57,9 @@ pub struct CheckArgs {
     pub hash: bool,
 }
 
-/// Runs `usar check`. A valid scenario with goals some robots cannot reach also gets one
-/// warning line each on stderr ([`warn_unreachable`]); the exit status stays 0.
+/// Runs `usar check`. A valid scenario with tasks no group can rescue from or goals some
+/// robots cannot reach also gets one warning line each on stderr ([`warn_about`]); the exit
+/// status stays 0.
 ///
 /// # Errors
 /// The loader's error (its message names the file, line, column and field), unchanged; a bad
@@ -85,7 +86,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     } else {
         (None, base)
     };
-    warn_unreachable(&origin, &s);
+    warn_about(&origin, &s);
     let hash = scenario_hash(&s)?;
     if args.hash {
         writeln!(out, "{hash}")?;
@@ -105,12 +106,21 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// Warns on stderr, one line each, about the goals some robots of `s` cannot reach from their
-/// starts ([`unreachable_goals`]): `warning: ORIGIN: tasks.hard.goal_m (6.0, 16.0): no path
-/// ...`. The scenario stays valid (a trial runs; those robots stand still).
-pub fn warn_unreachable(origin: &str, s: &Scenario) {
-    for u in unreachable_goals(s) {
-        experiments::console::warn(format!("warning: {origin}: {u}"));
+/// The warnings about a valid scenario `s`, one line each without the `warning: ORIGIN: `
+/// head: the tasks no group can rescue from ([`tasks_without_rescue`]), then the goals some
+/// robots cannot reach from their starts ([`unreachable_goals`]).
+pub fn scenario_warnings(s: &Scenario) -> Vec<String> {
+    let idle = tasks_without_rescue(s).into_iter().map(|t| t.to_string());
+    idle.chain(unreachable_goals(s).iter().map(ToString::to_string))
+        .collect()
+}
+
+/// Warns on stderr, one line each, about [`scenario_warnings`] of `s`: `warning: ORIGIN:
+/// tasks.hard.goal_m (6.0, 16.0): no path ...`. The scenario stays valid (a trial runs; such
+/// tasks yield nothing, such robots stand still).
+pub fn warn_about(origin: &str, s: &Scenario) {
+    for w in scenario_warnings(s) {
+        experiments::console::warn(format!("warning: {origin}: {w}"));
     }
 }
 

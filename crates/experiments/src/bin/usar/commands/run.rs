@@ -75,7 +75,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         builder = builder.duration_s(d);
     }
     let mut sim = build_trial(builder)?;
-    super::check::warn_unreachable(&args.scenario.display().to_string(), &scenario);
+    super::check::warn_about(&args.scenario.display().to_string(), &scenario);
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;

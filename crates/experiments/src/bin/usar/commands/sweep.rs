@@ -9,7 +9,6 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
-use usar_sim::mission::unreachable_goals;
 use usar_sim::scenario::{self, Scenario};
 
 use experiments::analysis::Analysis;
@@ -277,16 +276,15 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     })
 }
 
-/// [`super::check::warn_unreachable`] for the scenario, or for the cells of a grid: each
-/// warning once, with the cells it holds for (`(cells 0, 2)`, or `(every cell)`).
-fn warn_unreachable(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
+/// [`super::check::warn_about`] the scenario, or the cells of a grid: each warning once, with
+/// the cells it holds for (`(cells 0, 2)`, or `(every cell)`).
+fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
     let Some(g) = grid else {
-        return super::check::warn_unreachable(origin, scenario);
+        return super::check::warn_about(origin, scenario);
     };
     let mut found: Vec<(String, Vec<usize>)> = Vec::new();
     for (i, c) in g.cells.iter().enumerate() {
-        for u in unreachable_goals(&c.scenario) {
-            let text = u.to_string();
+        for text in super::check::scenario_warnings(&c.scenario) {
             match found.iter_mut().find(|(t, _)| *t == text) {
                 Some((_, cells)) => cells.push(i),
                 None => found.push((text, vec![i])),
@@ -332,7 +330,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let replays = replays_of(args, &cfg)?;
     // Options first (a bad one is the only line), then what the scenario warns about.
     experiments::sweep::check_trial_count(&cfg)?;
-    warn_unreachable(
+    warn_about(
         &cfg.scenario_path.display().to_string(),
         &cfg.scenario,
         cfg.grid.as_ref(),
