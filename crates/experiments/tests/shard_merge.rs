@@ -191,3 +191,42 @@ fn a_bad_shard_argument_is_one_line() {
         "error: --shard 3/3: the shard index must be from 0 to 2"
     );
 }
+
+#[test]
+fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    // Line 2 of shard 1's journal (its first record): another rescuee count, still JSON.
+    let journal = dir.join("shards/1-of-2/journal.jsonl");
+    let text = String::from_utf8(read(&journal)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let at = lines[1].find("\"rescued\":[").unwrap() + "\"rescued\":[".len();
+    let digit = lines[1].as_bytes()[at];
+    let other = if digit == b'9' {
+        '8'
+    } else {
+        char::from(digit + 1)
+    };
+    lines[1].replace_range(at..=at, &other.to_string());
+    std::fs::write(&journal, lines.join("\n") + "\n").unwrap();
+
+    let o = usar(&["merge"], &dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("shard 1/2: 1 of its"), "{err}");
+    assert!(
+        err.contains("trials have no record that verifies (")
+            && err.contains(": its record on line 2 does not verify (edited?))"),
+        "{err}"
+    );
+    assert!(!dir.join("grid.csv").exists());
+
+    // The shard runs the trial again; the merge then has nothing to warn about.
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let o = usar(&["merge"], &dir);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("does not verify"), "{err}");
+}

@@ -33,7 +33,8 @@ pub struct UnfinishedShard {
     /// The shard.
     pub shard: Shard,
     /// What is missing, e.g. `no journal (DIR/shards/1-of-4/journal.jsonl)` or `2 of its 3
-    /// trials have no record (RNE #1 of cell 0, ...)`.
+    /// trials have no record that verifies (RNE #1 of cell 0, DIS #0 of cell 0: its record on
+    /// line 2 does not verify (edited?))`.
     pub why: String,
 }
 
@@ -64,7 +65,7 @@ pub enum MergeError {
         /// The shard counts found, ascending.
         counts: Vec<usize>,
     },
-    /// Shards with no journal or with jobs that have no record.
+    /// Shards with no journal or with jobs that have no record that verifies.
     #[error("{}", incomplete_message(.count, .unfinished, .commands))]
     Incomplete {
         /// The shard count of the split.
@@ -107,7 +108,9 @@ pub struct Merged {
     pub outcome: SweepOutcome,
     /// The shard count of the split.
     pub count: usize,
-    /// Record lines that do not verify, with their journal (they were left out).
+    /// Record lines that do not verify, with their journal (they were left out), but for
+    /// those a record of the same trial in the same journal supersedes (the shard ran the
+    /// trial again): those change nothing.
     pub rejected: Vec<(PathBuf, RejectedRecord)>,
     /// Shards with failed trials, by index: their command ([`SweepPlan::shard_command`])
     /// retries them.
@@ -202,7 +205,8 @@ fn plan_and_header(
     Ok((plan, config, header))
 }
 
-/// What each shard lacks: no journal, or jobs with no record.
+/// What each shard lacks: no journal, or jobs with no record that verifies (a job whose only
+/// record in the shard's journal does not verify names that record's line).
 fn unfinished(
     header: &SweepHeader,
     shards: &[ShardJournal],
@@ -229,14 +233,19 @@ fn unfinished(
             .filter(|&(_, &o)| o == s.shard.index)
             .map(|(j, _)| j)
             .collect();
+        let rejected = s.contents.as_ref().map_or(&[][..], |c| &c.rejected[..]);
         let lacking: Vec<String> = own
             .iter()
             .filter(|j| !has(j.cell, &header.methods[j.method], j.trial))
             .map(|j| {
-                format!(
-                    "{} #{} of cell {}",
-                    header.methods[j.method], j.trial, j.cell
-                )
+                let method = &header.methods[j.method];
+                let edited = rejected
+                    .iter()
+                    .rfind(|r| (r.cell, r.method.as_str(), r.trial) == (j.cell, method, j.trial))
+                    .map_or(String::new(), |r| {
+                        format!(": its record on line {} does not verify (edited?)", r.line)
+                    });
+                format!("{method} #{} of cell {}{edited}", j.trial, j.cell)
             })
             .collect();
         if !lacking.is_empty() {
@@ -245,7 +254,7 @@ fn unfinished(
             out.push(UnfinishedShard {
                 shard: s.shard,
                 why: format!(
-                    "{} of its {} trials have no record ({}{more})",
+                    "{} of its {} trials have no record that verifies ({}{more})",
                     lacking.len(),
                     own.len(),
                     shown.join(", ")
@@ -275,7 +284,15 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
         if let Some(c) = &s.contents {
             records.extend(c.records.iter().cloned());
             let path = Journal::path_in(&s.dir);
-            rejected.extend(c.rejected.iter().map(|r| (path.clone(), r.clone())));
+            // A line that a later record of its trial supersedes (the shard ran it again)
+            // changes nothing; only the others are left out of the merge.
+            let superseded = |r: &RejectedRecord| {
+                c.records
+                    .iter()
+                    .any(|k| k.key() == (r.cell, r.method.as_str(), r.trial))
+            };
+            let stale = c.rejected.iter().filter(|r| !superseded(r));
+            rejected.extend(stale.map(|r| (path.clone(), r.clone())));
         }
     }
     let unfinished = unfinished(&header, &shards, &records);
