@@ -402,6 +402,21 @@ fn inline_cases() -> Vec<Case> {
             Some("quota: (easy: 1, hard: 1)"),
             "Expected",
         ),
+        (
+            // ron stops reading the integer at the `.` and asks for a comma.
+            "fraction in an integer field",
+            broken("count: 2,", "count: 2.0,"),
+            "kinds[0].count",
+            Some("count: 2.0,"),
+            "expected an integer, found `2.0`",
+        ),
+        (
+            "a longer fraction in another integer field",
+            broken("carrying_capacity: 2,", "carrying_capacity: 2.50,"),
+            "kinds[0].carrying_capacity",
+            Some("carrying_capacity: 2.50,"),
+            "expected an integer, found `2.50`",
+        ),
     ]
 }
 

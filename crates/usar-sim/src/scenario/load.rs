@@ -91,12 +91,12 @@ pub fn parse_spec(src: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError
 fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, ScenarioError> {
     ron::Options::default()
         .from_str::<ScenarioSpec>(src)
-        .map_err(|e| syntax_error(e, origin, map))
+        .map_err(|e| syntax_error(e, src, origin, map))
 }
 
 /// Turns ron's error into a [`ScenarioError::Syntax`], adding the field path found at the
-/// error's position.
-fn syntax_error(e: SpannedError, origin: &str, map: &SourceMap) -> ScenarioError {
+/// error's position (`src` is the text `map` was built from).
+fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> ScenarioError {
     let pos = e.span.start;
     let offset = map.offset_of(pos.line, pos.col);
     let here = map.path_at(offset);
@@ -114,8 +114,44 @@ fn syntax_error(e: SpannedError, origin: &str, map: &SourceMap) -> ScenarioError
             line_col: Some((pos.line, pos.col)),
         },
         field: field.filter(|f| !f.is_empty()),
-        message: e.code.to_string(),
+        message: syntax_message(&e.code, src, offset),
     }
+}
+
+/// ron's message for `code` at byte `offset` of `src`; but where ron read an integer and
+/// stopped at a decimal point (`count: 6.0` gives "Expected comma" at the `.`),
+/// `expected an integer, found `6.0``.
+fn syntax_message(code: &RonError, src: &str, offset: usize) -> String {
+    if matches!(code, RonError::ExpectedComma)
+        && let Some(number) = number_with_fraction_at(src, offset)
+    {
+        return format!("expected an integer, found `{number}`");
+    }
+    code.to_string()
+}
+
+/// The number around byte `offset` of `src` when `offset` is at its decimal point right
+/// after at least one digit: `6.0` for `count: 6.0,` with `offset` at the `.`.
+fn number_with_fraction_at(src: &str, offset: usize) -> Option<&str> {
+    let bytes = src.as_bytes();
+    if bytes.get(offset) != Some(&b'.') {
+        return None;
+    }
+    let digit_like = |b: &u8| b.is_ascii_digit() || *b == b'_';
+    let start = offset
+        - bytes[..offset]
+            .iter()
+            .rev()
+            .take_while(|b| digit_like(b))
+            .count();
+    if start == offset {
+        return None;
+    }
+    let tail = bytes[offset..]
+        .iter()
+        .take_while(|b| digit_like(b) || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'))
+        .count();
+    src.get(start..offset + tail)
 }
 
 /// The path of field `name` given the innermost path at the error: the path itself if it
