@@ -370,6 +370,47 @@ impl Slots {
     }
 }
 
+/// Warns about each journal line of `dir` that does not verify, with what becomes of its
+/// trial: it runs again, it is another shard's (`in_shard` holds this shard's jobs), or it is
+/// no trial of this sweep. A line that a later record of its trial (one that verifies)
+/// supersedes changes nothing and is not reported.
+fn warn_rejected(
+    dir: &Path,
+    rejected: &[RejectedRecord],
+    slots: &Slots,
+    records: &[Option<TrialRecord>],
+    in_shard: Option<&HashSet<JobId>>,
+) {
+    for r in rejected {
+        let method = slots.methods.iter().position(|m| *m == r.method);
+        let mine = |own: &HashSet<JobId>| {
+            method.is_some_and(|method| {
+                own.contains(&JobId {
+                    cell: r.cell,
+                    method,
+                    trial: r.trial,
+                })
+            })
+        };
+        let fate = match slots.of(r.cell, &r.method, r.trial) {
+            Some(i) if is_ok(records[i].as_ref()) => continue,
+            Some(_) if !in_shard.is_none_or(mine) => {
+                "is another shard's (the shard that owns it runs it)"
+            }
+            Some(_) => "will run again",
+            None => "is not used (no such trial in this sweep)",
+        };
+        crate::console::warn(format!(
+            "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
+            Journal::path_in(dir).display(),
+            r.line,
+            r.method,
+            r.trial,
+            r.cell,
+        ));
+    }
+}
+
 fn is_ok(r: Option<&TrialRecord>) -> bool {
     matches!(
         r,
@@ -553,23 +594,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             records[i] = Some(r);
         }
     }
-    // A rejected record that a later record of its trial (one that verifies) supersedes
-    // changes nothing: only the others are reported.
-    for r in &opened.rejected {
-        let fate = match slots.of(r.cell, &r.method, r.trial) {
-            Some(i) if is_ok(records[i].as_ref()) => continue,
-            Some(_) => "will run again",
-            None => "is not used (no such trial in this sweep)",
-        };
-        crate::console::warn(format!(
-            "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
-            Journal::path_in(&dir).display(),
-            r.line,
-            r.method,
-            r.trial,
-            r.cell,
-        ));
-    }
+    warn_rejected(&dir, &opened.rejected, &slots, &records, in_shard.as_ref());
     let jobs: Vec<Job> = job_list(plans.len(), header.methods.len(), cfg.trials)
         .into_iter()
         .filter(|id| in_shard.as_ref().is_none_or(|own| own.contains(id)))

@@ -192,24 +192,36 @@ fn a_bad_shard_argument_is_one_line() {
     );
 }
 
+/// `line` with the first digit of its first task's rescuee count changed: still JSON, but its
+/// checksum no longer verifies.
+fn edited(line: &str) -> String {
+    let at = line.find("\"rescued\":[").unwrap() + "\"rescued\":[".len();
+    let digit = line.as_bytes()[at];
+    let other = if digit == b'9' {
+        '8'
+    } else {
+        char::from(digit + 1)
+    };
+    let mut out = line.to_string();
+    out.replace_range(at..=at, &other.to_string());
+    out
+}
+
+fn journal_lines(path: &Path) -> Vec<String> {
+    let text = String::from_utf8(read(path)).unwrap();
+    text.lines().map(str::to_string).collect()
+}
+
 #[test]
 fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &["--shard", "0/2"]));
     ok(&sweep(&dir, &["--shard", "1/2"]));
-    // Line 2 of shard 1's journal (its first record): another rescuee count, still JSON.
+    // Line 2 of shard 1's journal (its first record) edited.
     let journal = dir.join("shards/1-of-2/journal.jsonl");
-    let text = String::from_utf8(read(&journal)).unwrap();
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let at = lines[1].find("\"rescued\":[").unwrap() + "\"rescued\":[".len();
-    let digit = lines[1].as_bytes()[at];
-    let other = if digit == b'9' {
-        '8'
-    } else {
-        char::from(digit + 1)
-    };
-    lines[1].replace_range(at..=at, &other.to_string());
+    let mut lines = journal_lines(&journal);
+    lines[1] = edited(&lines[1]);
     std::fs::write(&journal, lines.join("\n") + "\n").unwrap();
 
     let o = usar(&["merge"], &dir);
@@ -225,6 +237,37 @@ fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
 
     // The shard runs the trial again; the merge then has nothing to warn about.
     ok(&sweep(&dir, &["--shard", "1/2"]));
+    let o = usar(&["merge"], &dir);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("does not verify"), "{err}");
+}
+
+#[test]
+fn an_edited_copy_of_another_shards_record_is_not_run_or_merged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    // An edited copy of shard 0's first record at the end of shard 1's journal.
+    let theirs = journal_lines(&dir.join("shards/0-of-2/journal.jsonl"));
+    let journal = dir.join("shards/1-of-2/journal.jsonl");
+    let mut lines = journal_lines(&journal);
+    lines.push(edited(&theirs[1]));
+    let line = lines.len();
+    std::fs::write(&journal, lines.join("\n") + "\n").unwrap();
+
+    let o = sweep(&dir, &["--shard", "1/2"]);
+    let out = ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!(
+            "journal.jsonl:{line}: record does not verify (edited?)"
+        )) && err.contains("is another shard's (the shard that owns it runs it)"),
+        "{err}"
+    );
+    assert!(out.contains("from the shard's journal"), "{out}");
+    // Shard 0 holds the trial's record: the merge takes it and says nothing of the copy.
     let o = usar(&["merge"], &dir);
     ok(&o);
     let err = String::from_utf8_lossy(&o.stderr);

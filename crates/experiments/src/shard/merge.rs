@@ -109,8 +109,9 @@ pub struct Merged {
     /// The shard count of the split.
     pub count: usize,
     /// Record lines that do not verify, with their journal (they were left out), but for
-    /// those a record of the same trial in the same journal supersedes (the shard ran the
-    /// trial again): those change nothing.
+    /// those whose trial has a record that verifies in any shard's journal (the shard ran
+    /// the trial again, or the line is a copy of another shard's trial): those change
+    /// nothing.
     pub rejected: Vec<(PathBuf, RejectedRecord)>,
     /// Shards with failed trials, by index: their command ([`SweepPlan::shard_command`])
     /// retries them.
@@ -284,17 +285,17 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
         if let Some(c) = &s.contents {
             records.extend(c.records.iter().cloned());
             let path = Journal::path_in(&s.dir);
-            // A line that a later record of its trial supersedes (the shard ran it again)
-            // changes nothing; only the others are left out of the merge.
-            let superseded = |r: &RejectedRecord| {
-                c.records
-                    .iter()
-                    .any(|k| k.key() == (r.cell, r.method.as_str(), r.trial))
-            };
-            let stale = c.rejected.iter().filter(|r| !superseded(r));
-            rejected.extend(stale.map(|r| (path.clone(), r.clone())));
+            rejected.extend(c.rejected.iter().map(|r| (path.clone(), r.clone())));
         }
     }
+    // A line whose trial has a record that verifies (a later one of the same journal, after
+    // the shard ran it again, or the owning shard's) changes nothing; only the others are
+    // left out of the merge with a warning.
+    rejected.retain(|(_, r)| {
+        !records
+            .iter()
+            .any(|k| k.key() == (r.cell, r.method.as_str(), r.trial))
+    });
     let unfinished = unfinished(&header, &shards, &records);
     if !unfinished.is_empty() {
         let commands = unfinished
