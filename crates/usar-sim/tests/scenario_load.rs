@@ -761,3 +761,34 @@ fn format_doc_minimal_example_loads() {
     assert_eq!(s.name, "tiny");
     assert_eq!(s.sim.seed, 7);
 }
+
+#[test]
+fn a_fraction_in_an_integer_field_is_named_at_the_number() {
+    let paper = std::fs::read_to_string(scenarios_dir().join("paper.ron")).unwrap();
+    for (from, to, field, number) in [
+        ("count: 6,", "count: 6.0,", "kinds[0].count", "6.0"),
+        // In an `Option`, ron asks for the closing parenthesis instead of a comma.
+        (
+            "seed: Some(2021),",
+            "seed: Some(2021.5),",
+            "debris_fields[0].seed",
+            "2021.5",
+        ),
+    ] {
+        assert_eq!(paper.matches(from).count(), 1, "{from}");
+        let src = paper.replacen(from, to, 1);
+        let err = scenario::from_str(&src, "paper.ron").expect_err(to);
+        let line = line_of(&src, to);
+        let col = src.lines().nth(line - 1).unwrap().find(number).unwrap() + 1;
+        assert_eq!(err.line_col(), Some((line, col)), "{err}");
+        assert_eq!(err.field(), Some(field), "{err}");
+        assert_eq!(
+            err.to_string(),
+            format!("paper.ron:{line}:{col}: {field}: expected an integer, found `{number}`")
+        );
+    }
+    // A float field keeps ron's own message: no integer was read there.
+    let src = paper.replacen("body_radius_m: 0.4,", "body_radius_m: 0.4.5,", 1);
+    let err = scenario::from_str(&src, "paper.ron").expect_err("0.4.5");
+    assert!(!err.to_string().contains("expected an integer"), "{err}");
+}

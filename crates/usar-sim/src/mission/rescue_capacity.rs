@@ -1,5 +1,5 @@
-//! Which tasks no group can work, whatever the grouping method: a check of a valid scenario
-//! before it runs.
+//! Which tasks no group can rescue from, whatever the grouping method: a check of a valid
+//! scenario before it runs.
 //!
 //! Every method fills a task's group from the kinds' quotas (`docs/mission-model.md`), and
 //! only ground members with free carrying capacity claim rescuees, each pick-up drawing one
@@ -18,7 +18,11 @@ pub enum NoRescue {
     /// No kind has a quota for the task: its group is always empty, and it is never worked.
     NoRobots,
     /// The kinds with a quota for the task are aerial or have `carrying_capacity: 0`.
-    NoGroundCapacity,
+    NoGroundCapacity {
+        /// Some of those kinds are aerial with `carrying_capacity > 0` (their capacity is
+        /// unused: aerial robots do not rescue).
+        aerial_capacity: bool,
+    },
     /// The kinds with a quota for the task have `rescuing_resources: 0`.
     NoResources,
 }
@@ -36,9 +40,17 @@ impl fmt::Display for TaskWithoutRescue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let why = match self.reason {
             NoRescue::NoRobots => "no kind has a quota for it; the task is never worked",
-            NoRescue::NoGroundCapacity => {
+            NoRescue::NoGroundCapacity {
+                aerial_capacity: true,
+            } => {
                 "no ground robot with carrying_capacity > 0 in its quotas (aerial robots do not \
                  rescue); its groups can rescue no one"
+            }
+            NoRescue::NoGroundCapacity {
+                aerial_capacity: false,
+            } => {
+                "no ground robot with carrying_capacity > 0 in its quotas; its groups can \
+                 rescue no one"
             }
             NoRescue::NoResources => {
                 "no rescuing_resources in its quotas; its groups can rescue no one"
@@ -60,7 +72,9 @@ pub fn tasks_without_rescue(s: &Scenario) -> Vec<TaskWithoutRescue> {
             NoRescue::NoRobots
         } else if !members().any(|k| k.locomotion == Locomotion::Ground && k.carrying_capacity > 0)
         {
-            NoRescue::NoGroundCapacity
+            NoRescue::NoGroundCapacity {
+                aerial_capacity: members().any(|k| k.carrying_capacity > 0),
+            }
         } else if members().all(|k| k.rescuing_resources == 0) {
             NoRescue::NoResources
         } else {
@@ -107,7 +121,10 @@ mod tests {
         let found = tasks_without_rescue(&s);
         let fields: Vec<&str> = found.iter().map(|f| f.field.as_str()).collect();
         assert_eq!(fields, ["tasks.hard", "tasks.easy"]);
-        assert!(found.iter().all(|f| f.reason == NoRescue::NoGroundCapacity));
+        let aerial = NoRescue::NoGroundCapacity {
+            aerial_capacity: true,
+        };
+        assert!(found.iter().all(|f| f.reason == aerial));
         assert!(
             found[0]
                 .to_string()
@@ -116,7 +133,7 @@ mod tests {
     }
 
     #[test]
-    fn a_task_without_quotas_or_without_resources_is_named() {
+    fn tasks_without_quotas_capacity_or_resources_are_named() {
         let s = paper_with(&[
             ("quota: (easy: 3, hard: 3)", "quota: (hard: 6)"),
             ("quota: (easy: 2, hard: 2)", "quota: (hard: 4)"),
@@ -126,6 +143,19 @@ mod tests {
         assert_eq!(found.len(), 1);
         assert_eq!(found[0].field, "tasks.easy");
         assert_eq!(found[0].reason, NoRescue::NoRobots);
+
+        // Ground kinds without capacity: no mention of aerial robots.
+        let s = paper_with(&[
+            ("carrying_capacity: 6,", "carrying_capacity: 0,"),
+            ("carrying_capacity: 1,", "carrying_capacity: 0,"),
+        ]);
+        let found = tasks_without_rescue(&s);
+        assert_eq!(found.len(), 2);
+        let ground = NoRescue::NoGroundCapacity {
+            aerial_capacity: false,
+        };
+        assert!(found.iter().all(|f| f.reason == ground));
+        assert!(!found[0].to_string().contains("aerial"), "{}", found[0]);
 
         let s = paper_with(&[
             ("rescuing_resources: 1,", "rescuing_resources: 0,"),

@@ -95,7 +95,8 @@ fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, 
 }
 
 /// Turns ron's error into a [`ScenarioError::Syntax`], adding the field path found at the
-/// error's position (`src` is the text `map` was built from).
+/// error's position (`src` is the text `map` was built from). A number with a fraction where
+/// ron read an integer ([`integer_with_fraction`]) is reported at the number's start.
 fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> ScenarioError {
     let pos = e.span.start;
     let offset = map.offset_of(pos.line, pos.col);
@@ -108,33 +109,42 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
         }
         _ => here.map(str::to_owned),
     };
+    let (line_col, message) = match integer_with_fraction(&e.code, src, offset) {
+        Some((start, number)) => (
+            map.line_col(start),
+            format!("expected an integer, found `{number}`"),
+        ),
+        None => ((pos.line, pos.col), e.code.to_string()),
+    };
     ScenarioError::Syntax {
         location: SourceLocation {
             origin: origin.to_owned(),
-            line_col: Some((pos.line, pos.col)),
+            line_col: Some(line_col),
         },
         field: field.filter(|f| !f.is_empty()),
-        message: syntax_message(&e.code, src, offset),
+        message,
     }
 }
 
-/// ron's message for `code` at byte `offset` of `src`; but where ron read an integer and
-/// stopped at a decimal point (`count: 6.0` gives "Expected comma" at the `.`),
-/// `expected an integer, found `6.0``.
-fn syntax_message(code: &RonError, src: &str, offset: usize) -> String {
-    if matches!(code, RonError::ExpectedComma)
-        && let Some(number) = number_with_fraction_at(src, offset)
-    {
-        return format!("expected an integer, found `{number}`");
-    }
-    code.to_string()
-}
-
-/// The number around byte `offset` of `src` when `offset` is at its decimal point right
-/// after at least one digit: `6.0` for `count: 6.0,` with `offset` at the `.`.
-fn number_with_fraction_at(src: &str, offset: usize) -> Option<&str> {
+/// Where ron read an integer and stopped at a decimal point, the number's byte offset in
+/// `src` and its text: `count: 6.0` gives "Expected comma" at the `.`, `seed: Some(2021.0)`
+/// "Expected closing `)`". `None` for any other error, or when the `.` at `offset` does not
+/// follow an integer's digits (which follow a space, `(`, `[`, `:` or a sign).
+fn integer_with_fraction<'a>(
+    code: &RonError,
+    src: &'a str,
+    offset: usize,
+) -> Option<(usize, &'a str)> {
+    let stopped_early = matches!(
+        code,
+        RonError::ExpectedComma
+            | RonError::ExpectedOptionEnd
+            | RonError::ExpectedStructLikeEnd
+            | RonError::ExpectedArrayEnd
+            | RonError::ExpectedMapEnd
+    );
     let bytes = src.as_bytes();
-    if bytes.get(offset) != Some(&b'.') {
+    if !stopped_early || bytes.get(offset) != Some(&b'.') {
         return None;
     }
     let digit_like = |b: &u8| b.is_ascii_digit() || *b == b'_';
@@ -144,14 +154,15 @@ fn number_with_fraction_at(src: &str, offset: usize) -> Option<&str> {
             .rev()
             .take_while(|b| digit_like(b))
             .count();
-    if start == offset {
+    let before = start.checked_sub(1).map(|i| bytes[i]);
+    if start == offset || before.is_some_and(|b| b.is_ascii_alphanumeric() || b == b'.') {
         return None;
     }
     let tail = bytes[offset..]
         .iter()
         .take_while(|b| digit_like(b) || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'))
         .count();
-    src.get(start..offset + tail)
+    src.get(start..offset + tail).map(|number| (start, number))
 }
 
 /// The path of field `name` given the innermost path at the error: the path itself if it
