@@ -166,6 +166,13 @@ pub struct RejectedRecord {
     pub trial: u32,
 }
 
+impl RejectedRecord {
+    /// The identity of the trial the line claims, as [`TrialRecord::key`].
+    pub fn key(&self) -> RecordKey<'_> {
+        (self.cell, &self.method, self.trial)
+    }
+}
+
 /// A journal read from a file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JournalContents {

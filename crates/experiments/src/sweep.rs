@@ -383,22 +383,21 @@ fn warn_rejected(
 ) {
     for r in rejected {
         let method = slots.methods.iter().position(|m| *m == r.method);
-        let mine = |own: &HashSet<JobId>| {
-            method.is_some_and(|method| {
-                own.contains(&JobId {
-                    cell: r.cell,
-                    method,
-                    trial: r.trial,
-                })
-            })
+        let owned_elsewhere = |method| {
+            let id = JobId {
+                cell: r.cell,
+                method,
+                trial: r.trial,
+            };
+            in_shard.is_some_and(|own| !own.contains(&id))
         };
-        let fate = match slots.of(r.cell, &r.method, r.trial) {
-            Some(i) if is_ok(records[i].as_ref()) => continue,
-            Some(_) if !in_shard.is_none_or(mine) => {
+        let fate = match (slots.of(r.cell, &r.method, r.trial), method) {
+            (Some(i), _) if is_ok(records[i].as_ref()) => continue,
+            (Some(_), Some(m)) if owned_elsewhere(m) => {
                 "is another shard's (the shard that owns it runs it)"
             }
-            Some(_) => "will run again",
-            None => "is not used (no such trial in this sweep)",
+            (Some(_), _) => "will run again",
+            (None, _) => "is not used (no such trial in this sweep)",
         };
         crate::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",

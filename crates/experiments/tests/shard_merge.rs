@@ -212,17 +212,35 @@ fn journal_lines(path: &Path) -> Vec<String> {
     text.lines().map(str::to_string).collect()
 }
 
-#[test]
-fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
+fn write_journal_lines(path: &Path, lines: &[String]) {
+    std::fs::write(path, lines.join("\n") + "\n").unwrap();
+}
+
+/// Both shards of a 2-way split swept into `<tmp>/s`.
+fn swept_in_two_shards() -> (tempfile::TempDir, std::path::PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &["--shard", "0/2"]));
     ok(&sweep(&dir, &["--shard", "1/2"]));
+    (tmp, dir)
+}
+
+/// `usar merge dir` succeeds and warns of no journal line.
+fn assert_merges_without_warnings(dir: &Path) {
+    let o = usar(&["merge"], dir);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("does not verify"), "{err}");
+}
+
+#[test]
+fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
+    let (_tmp, dir) = swept_in_two_shards();
     // Line 2 of shard 1's journal (its first record) edited.
     let journal = dir.join("shards/1-of-2/journal.jsonl");
     let mut lines = journal_lines(&journal);
     lines[1] = edited(&lines[1]);
-    std::fs::write(&journal, lines.join("\n") + "\n").unwrap();
+    write_journal_lines(&journal, &lines);
 
     let o = usar(&["merge"], &dir);
     assert!(!o.status.success());
@@ -237,29 +255,23 @@ fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
 
     // The shard runs the trial again; the merge then has nothing to warn about.
     ok(&sweep(&dir, &["--shard", "1/2"]));
-    let o = usar(&["merge"], &dir);
-    ok(&o);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!err.contains("does not verify"), "{err}");
+    assert_merges_without_warnings(&dir);
 }
 
 #[test]
 fn an_edited_copy_of_another_shards_record_is_not_run_or_merged() {
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("s");
-    ok(&sweep(&dir, &["--shard", "0/2"]));
-    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let (_tmp, dir) = swept_in_two_shards();
     // An edited copy of shard 0's first record at the end of shard 1's journal.
     let theirs = journal_lines(&dir.join("shards/0-of-2/journal.jsonl"));
     let journal = dir.join("shards/1-of-2/journal.jsonl");
     let mut lines = journal_lines(&journal);
     lines.push(edited(&theirs[1]));
-    let line = lines.len();
-    std::fs::write(&journal, lines.join("\n") + "\n").unwrap();
+    write_journal_lines(&journal, &lines);
 
     let o = sweep(&dir, &["--shard", "1/2"]);
     let out = ok(&o);
     let err = String::from_utf8_lossy(&o.stderr);
+    let line = lines.len();
     assert!(
         err.contains(&format!(
             "journal.jsonl:{line}: record does not verify (edited?)"
@@ -268,8 +280,5 @@ fn an_edited_copy_of_another_shards_record_is_not_run_or_merged() {
     );
     assert!(out.contains("from the shard's journal"), "{out}");
     // Shard 0 holds the trial's record: the merge takes it and says nothing of the copy.
-    let o = usar(&["merge"], &dir);
-    ok(&o);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!err.contains("does not verify"), "{err}");
+    assert_merges_without_warnings(&dir);
 }

@@ -242,7 +242,7 @@ fn unfinished(
                 let method = &header.methods[j.method];
                 let edited = rejected
                     .iter()
-                    .rfind(|r| (r.cell, r.method.as_str(), r.trial) == (j.cell, method, j.trial))
+                    .rfind(|r| r.key() == (j.cell, method.as_str(), j.trial))
                     .map_or(String::new(), |r| {
                         format!(": its record on line {} does not verify (edited?)", r.line)
                     });
@@ -291,11 +291,7 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
     // A line whose trial has a record that verifies (a later one of the same journal, after
     // the shard ran it again, or the owning shard's) changes nothing; only the others are
     // left out of the merge with a warning.
-    rejected.retain(|(_, r)| {
-        !records
-            .iter()
-            .any(|k| k.key() == (r.cell, r.method.as_str(), r.trial))
-    });
+    rejected.retain(|(_, r)| !records.iter().any(|k| k.key() == r.key()));
     let unfinished = unfinished(&header, &shards, &records);
     if !unfinished.is_empty() {
         let commands = unfinished

@@ -129,7 +129,7 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
 /// Where ron read an integer and stopped at a decimal point, the number's byte offset in
 /// `src` and its text: `count: 6.0` gives "Expected comma" at the `.`, `seed: Some(2021.0)`
 /// "Expected closing `)`". `None` for any other error, or when the `.` at `offset` does not
-/// follow an integer's digits (which follow a space, `(`, `[`, `:` or a sign).
+/// follow an integer's digits (digits after a letter or a `.` belong to a name or a float).
 fn integer_with_fraction<'a>(
     code: &RonError,
     src: &'a str,
