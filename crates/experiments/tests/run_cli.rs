@@ -90,3 +90,23 @@ fn run_refuses_bad_options() {
     let o = usar(&["run", PAPER, "--trial", "1", "--seed", "3"]);
     assert!(!o.status.success());
 }
+
+#[test]
+fn a_huge_or_tiny_duration_is_named_in_a_short_line() {
+    let o = usar(&["run", PAPER, "--method", "dis", "--duration", "-1e300"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        err.trim_end(),
+        "error: --duration: trial length: expected a number of seconds > 0, found -1e300"
+    );
+    // Shorter than one step: one step is run, and the warning writes the request as given.
+    let o = usar(&["run", PAPER, "--method", "dis", "--duration", "1e-300"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        err.trim_end(),
+        "warning: --duration 1e-300 s is shorter than one step of 0.02 s (sim.dt_s): the trial \
+         runs 0.02 s (1 step)"
+    );
+}

@@ -243,3 +243,105 @@ fn a_huge_clearance_or_rescuee_grid_ratio_is_an_error_not_an_overflow() {
         "tasks[0].rescuees.spacing_m",
     );
 }
+
+/// Byte ranges of the number literals of RON text `src`, outside comments and strings.
+fn number_literals(src: &str) -> Vec<std::ops::Range<usize>> {
+    let b = src.as_bytes();
+    let (mut out, mut i) = (Vec::new(), 0);
+    while i < b.len() {
+        match b[i] {
+            b'/' if b.get(i + 1) == Some(&b'/') => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'"' => {
+                i += 1;
+                while i < b.len() && b[i] != b'"' {
+                    i += 1 + usize::from(b[i] == b'\\');
+                }
+                i += 1;
+            }
+            c if c.is_ascii_alphabetic() || c == b'_' => {
+                while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
+                    i += 1;
+                }
+            }
+            c if c.is_ascii_digit()
+                || (c == b'-' && b.get(i + 1).is_some_and(u8::is_ascii_digit)) =>
+            {
+                let start = i;
+                i += 1;
+                while i < b.len()
+                    && (b[i].is_ascii_alphanumeric()
+                        || b[i] == b'.'
+                        || (b[i] == b'-' && matches!(b[i - 1], b'e' | b'E')))
+                {
+                    i += 1;
+                }
+                out.push(start..i);
+            }
+            _ => i += 1,
+        }
+    }
+    out
+}
+
+/// The longest run of digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn huge_or_tiny_numbers_in_any_field_give_a_short_one_line_error() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let extremes = [
+        "1e300",
+        "-1e300",
+        "1e-300",
+        "123456789012345678901234567890.0",
+    ];
+    let (mut checked, mut faults) = (0, Vec::new());
+    for name in ["paper.ron", "three-tasks.ron", "swarm-1000.ron"] {
+        let src = std::fs::read_to_string(dir.join(name)).expect(name);
+        let literals = number_literals(&src);
+        assert!(
+            literals.len() > 20,
+            "{name}: only {} numbers",
+            literals.len()
+        );
+        for range in literals {
+            for x in extremes {
+                let edited = format!("{}{x}{}", &src[..range.start], &src[range.end..]);
+                let Err(e) = scenario::from_str(&edited, name) else {
+                    continue;
+                };
+                let text = e.to_string();
+                let fault = if e.line_col().is_none() {
+                    "no position"
+                } else if text.contains('\n') {
+                    "not one line"
+                } else if longest_digit_run(&text) > 24 || text.len() >= 400 {
+                    "too long"
+                } else {
+                    ""
+                };
+                if !fault.is_empty() {
+                    let literal = &src[range.clone()];
+                    faults.push(format!("{name}: {literal} -> {x}: {fault}: {text}"));
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(
+        faults.is_empty(),
+        "{} faults:\n{}",
+        faults.len(),
+        faults.join("\n")
+    );
+    assert!(checked > 100, "only {checked} edits were rejected");
+}

@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::index::BoxIndex;
 use super::limits::MAX_DEBRIS;
-use super::model::{Circle, Debris, PointM, Rect, RobotKind};
+use super::model::{Circle, Debris, PointM, Rect, RobotKind, number_text};
 use super::params::Arena;
 use super::shape::DebrisShape;
 use super::spec::{DebrisFieldSpec, DebrisShapeSpec, RescueeLayoutSpec, StartsSpec, XyM};
@@ -155,7 +155,11 @@ fn size_range(ctx: &Ctx<'_>, path: &str, (lo, hi): (f64, f64)) -> R<(f64, f64)> 
     } else {
         Err(ctx.err(
             path,
-            format!("expected (min, max) with 0 < min <= max, both finite, found ({lo}, {hi})"),
+            format!(
+                "expected (min, max) with 0 < min <= max, both finite, found ({}, {})",
+                number_text(lo),
+                number_text(hi)
+            ),
         ))
     }
 }
@@ -177,7 +181,10 @@ fn draw_of(ctx: &Ctx<'_>, base: &str, shape: &DebrisShapeSpec, w: f64, h: f64) -
                 return Err(ctx.err(
                     format!("{base}.shape.radius_m"),
                     format!(
-                        "the smallest disc (radius {lo} m) does not fit in the region ({w} x {h} m)"
+                        "the smallest disc (radius {} m) does not fit in the region ({} x {} m)",
+                        number_text(lo),
+                        number_text(w),
+                        number_text(h)
                     ),
                 ));
             }
@@ -198,8 +205,11 @@ fn draw_of(ctx: &Ctx<'_>, base: &str, shape: &DebrisShapeSpec, w: f64, h: f64) -
                 return Err(ctx.err(
                     format!("{base}.shape.side_m"),
                     format!(
-                        "the smallest rectangle (side {lo} m) does not fit in the region \
-                         ({w} x {h} m)"
+                        "the smallest rectangle (side {} m) does not fit in the region ({} x \
+                         {} m)",
+                        number_text(lo),
+                        number_text(w),
+                        number_text(h)
                     ),
                 ));
             }
@@ -476,7 +486,12 @@ fn grid_points(ctx: &Ctx<'_>, path: &str, s: f64, margin: f64, area: &Rect) -> R
     if uw < 0.0 || uh < 0.0 {
         return Err(ctx.err(
             format!("{path}.margin_m"),
-            format!("margin {m} m leaves no room in a {w} x {h} m search area"),
+            format!(
+                "margin {} m leaves no room in a {} x {} m search area",
+                number_text(m),
+                number_text(w),
+                number_text(h)
+            ),
         ));
     }
     // Counted in f64 (a huge ratio cannot overflow), cast once known to be small.
@@ -485,7 +500,12 @@ fn grid_points(ctx: &Ctx<'_>, path: &str, s: f64, margin: f64, area: &Rect) -> R
     if nx * ny > MAX_GRID_POINTS as f64 {
         return Err(ctx.err(
             format!("{path}.spacing_m"),
-            format!("spacing {s} m gives {nx} x {ny} rescuees, more than {MAX_GRID_POINTS}"),
+            format!(
+                "spacing {} m gives {} x {} rescuees, more than {MAX_GRID_POINTS}",
+                number_text(s),
+                number_text(nx),
+                number_text(ny)
+            ),
         ));
     }
     let (nx, ny) = (nx as usize, ny as usize);

@@ -7,7 +7,7 @@
 //! Source: issue 11 (hardening), classes 1-3; the numbers are engineering choices well above
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
-use super::model::{Locomotion, RobotKind, Scenario, short};
+use super::model::{Locomotion, RobotKind, Scenario, number_text};
 use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimParams};
 use super::spec::KindSpec;
 use super::validate::{Ctx, R};
@@ -87,7 +87,7 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
             format!("kinds[{k}].max_speed_m_per_s"),
             format!(
                 "{} m/s is faster than the limit of {MAX_SPEED_M_PER_S} m/s",
-                short(kind.max_speed_m_per_s)
+                number_text(kind.max_speed_m_per_s)
             ),
         ));
     }
@@ -115,7 +115,7 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
                 format!("kinds[{k}].{name}"),
                 format!(
                     "expected a number in [{lo:e}, {hi:e}] (a needs level), found {}",
-                    short(v)
+                    number_text(v)
                 ),
             ));
         }
@@ -144,7 +144,7 @@ pub(crate) fn check_derived(
                 format!("arena.{name}"),
                 format!(
                     "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
-                    short(v)
+                    number_text(v)
                 ),
             ));
         }
@@ -162,7 +162,7 @@ pub(crate) fn check_derived(
                 name,
                 format!(
                     "{} m is longer than the limit of {MAX_ARENA_SIDE_M} m",
-                    short(v)
+                    number_text(v)
                 ),
             ));
         }
@@ -176,8 +176,11 @@ pub(crate) fn check_derived(
         return Err(ctx.err(
             "navigation.grid_cell_m",
             format!(
-                "cells of {cell_m} m make a {nx:.0} x {ny:.0} navigation grid, more than the \
-                 limit of {MAX_NAV_CELLS} cells; use larger cells"
+                "cells of {} m make a {} x {} navigation grid, more than the limit of \
+                 {MAX_NAV_CELLS} cells; use larger cells",
+                number_text(cell_m),
+                number_text(nx),
+                number_text(ny)
             ),
         ));
     }
@@ -187,7 +190,10 @@ pub(crate) fn check_derived(
         if !(lo..=hi).contains(&w) {
             return Err(ctx.err(
                 format!("needs_weights.{name}"),
-                format!("expected a number in [{lo:e}, {hi:e}], found {}", short(w)),
+                format!(
+                    "expected a number in [{lo:e}, {hi:e}], found {}",
+                    number_text(w)
+                ),
             ));
         }
     }
@@ -198,9 +204,13 @@ pub(crate) fn check_derived(
             return Err(ctx.err(
                 format!("kinds[{k}].max_speed_m_per_s"),
                 format!(
-                    "at {} m/s a {} robot moves {step_m} m per step of {dt_s} s (sim.dt_s), \
-                     more than its body radius {} m; lower the speed or the step",
-                    kind.max_speed_m_per_s, kind.name, kind.body_radius_m
+                    "at {} m/s a {} robot moves {} m per step of {} s (sim.dt_s), more than \
+                     its body radius {} m; lower the speed or the step",
+                    number_text(kind.max_speed_m_per_s),
+                    kind.name,
+                    number_text(step_m),
+                    number_text(dt_s),
+                    number_text(kind.body_radius_m)
                 ),
             ));
         }
@@ -239,8 +249,8 @@ pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
                 format!(
                     "sweep rows {} m apart make {} waypoints over the search area of task {:?}, \
                      more than the limit of {MAX_SWEEP_POINTS}",
-                    short(spacing_m),
-                    short(points),
+                    number_text(spacing_m),
+                    number_text(points),
                     t.name
                 ),
             ));

@@ -301,7 +301,8 @@ pub const MAX_TRIAL_STEPS: u64 = 10_000_000;
 pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
     if !(duration_s.is_finite() && duration_s > 0.0) {
         return Err(format!(
-            "trial length: expected a number of seconds > 0, found {duration_s}"
+            "trial length: expected a number of seconds > 0, found {}",
+            number_text(duration_s)
         ));
     }
     let ratio = duration_s / dt_s;
@@ -315,20 +316,32 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
         return Err(format!(
             "trial length {} s is {} steps of {} s, more than the limit of {MAX_TRIAL_STEPS} \
              steps",
-            short(duration_s),
-            short(steps),
-            short(dt_s)
+            number_text(duration_s),
+            number_text(steps),
+            number_text(dt_s)
         ));
     }
     Ok(steps.max(1.0) as u64)
 }
 
-/// `v` as a message writes it: plainly, or in scientific notation when plain digits would run
-/// long (`1e300`, not 301 digits; `1e-12`, not twelve zeros).
-pub(crate) fn short(v: f64) -> String {
+/// `v` as error and warning messages write a number: plainly (`0.5`, `600`) when its
+/// magnitude is in `[1e-6, 1e15)` or it is zero, else in scientific notation (`1e300`, not 301
+/// digits; `1e-12`, not eleven zeros; `-inf`, `NaN`), so a message stays one short line
+/// whatever number a scenario or flag holds.
+pub fn number_text(v: f64) -> String {
     if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
         format!("{v:e}")
     } else {
         format!("{v}")
+    }
+}
+
+/// `v` with three decimals (`2.500`), or as [`number_text`] writes it when it is 1e15 or more in
+/// magnitude (or not finite), where three decimals would follow sixteen or more digits.
+pub(crate) fn number_text_3dp(v: f64) -> String {
+    if v.abs() < 1e15 {
+        format!("{v:.3}")
+    } else {
+        number_text(v)
     }
 }

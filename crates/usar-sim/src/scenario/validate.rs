@@ -22,6 +22,7 @@ use super::limits::{
 use super::locate::SourceMap;
 use super::model::{
     Circle, Debris, Locomotion, PointM, RadiationZone, Rect, RobotKind, RobotStart, Scenario, Task,
+    number_text, number_text_3dp,
 };
 use super::params::{Arena, ClampedNormal};
 use super::shape::DebrisShape;
@@ -68,7 +69,10 @@ impl Ctx<'_> {
         if v.is_finite() && v >= 0.0 {
             Ok(v)
         } else {
-            Err(self.err(field, format!("expected a finite number >= 0, found {v}")))
+            Err(self.err(
+                field,
+                format!("expected a finite number >= 0, found {}", number_text(v)),
+            ))
         }
     }
 
@@ -78,7 +82,12 @@ impl Ctx<'_> {
         } else {
             Err(self.err(
                 field,
-                format!("expected a number in [{lo}, {hi}], found {v}"),
+                format!(
+                    "expected a number in [{}, {}], found {}",
+                    number_text(lo),
+                    number_text(hi),
+                    number_text(v)
+                ),
             ))
         }
     }
@@ -146,7 +155,7 @@ impl Ctx<'_> {
                 format!(
                     "circle at {} with radius {} m is not inside the arena {}",
                     fmt_pt(&center),
-                    radius_m,
+                    number_text(radius_m),
                     fmt_arena(arena)
                 ),
             ));
@@ -156,11 +165,15 @@ impl Ctx<'_> {
 }
 
 pub(crate) fn fmt_pt(p: &PointM) -> String {
-    format!("({}, {})", p.x, p.y)
+    format!("({}, {})", number_text(p.x), number_text(p.y))
 }
 
 fn fmt_arena(a: &Arena) -> String {
-    format!("[0, {}] x [0, {}] m", a.width(), a.height())
+    format!(
+        "[0, {}] x [0, {}] m",
+        number_text(a.width()),
+        number_text(a.height())
+    )
 }
 
 fn disc_inside(arena: &Arena, c: &PointM, r: f64) -> bool {
@@ -422,7 +435,8 @@ fn one_debris(ctx: &Ctx<'_>, path: &str, d: &DebrisSpec, arena: &Arena) -> R<Deb
                     format!("{path}.size_m"),
                     format!(
                         "expected width and height finite and > 0, found ({}, {})",
-                        size_m[0], size_m[1]
+                        number_text(size_m[0]),
+                        number_text(size_m[1])
                     ),
                 ));
             }
@@ -531,9 +545,11 @@ fn check_reachable(
                 return Err(ctx.err(
                     field,
                     format!(
-                        "{what} {} is {dist:.3} m from {name}; it must be at least {reach} m \
-                         (the smallest ground body radius) away so ground robots can reach it",
-                        fmt_pt(&p)
+                        "{what} {} is {} m from {name}; it must be at least {} m (the \
+                         smallest ground body radius) away so ground robots can reach it",
+                        fmt_pt(&p),
+                        number_text_3dp(dist),
+                        number_text(reach)
                     ),
                 ));
             }
@@ -561,7 +577,7 @@ fn expand_starts(
                         "{}: start {} with body radius {} m is not inside the arena {}",
                         start.label,
                         fmt_pt(&p),
-                        kind.body_radius_m,
+                        number_text(kind.body_radius_m),
                         fmt_arena(arena)
                     ),
                 ));
@@ -648,10 +664,11 @@ fn check_starts(
                     s.path.clone(),
                     format!(
                         "{}: start {} of a ground robot overlaps {name}: its centre is \
-                         {dist:.3} m from it, need at least the body radius {} m",
+                         {} m from it, need at least the body radius {} m",
                         s.label,
                         fmt_pt(&r.start_in_world),
-                        kind.body_radius_m
+                        number_text_3dp(dist),
+                        number_text(kind.body_radius_m)
                     ),
                 ));
             }
@@ -669,12 +686,14 @@ fn check_starts(
                 return Err(ctx.err(
                     sb.path.clone(),
                     format!(
-                        "{}: start {} overlaps {} at {}: {dist:.3} m apart, need at least \
-                         {need} m (sum of body radii)",
+                        "{}: start {} overlaps {} at {}: {} m apart, need at least {} m \
+                         (sum of body radii)",
                         sb.label,
                         fmt_pt(&b.start_in_world),
                         sa.label,
-                        fmt_pt(&a.start_in_world)
+                        fmt_pt(&a.start_in_world),
+                        number_text_3dp(dist),
+                        number_text(need)
                     ),
                 ));
             }
@@ -769,8 +788,9 @@ fn check_params(ctx: &Ctx<'_>, spec: &ScenarioSpec) -> R<()> {
         return Err(ctx.err(
             "sim.dt_s",
             format!(
-                "step {dt_s} s is longer than the trial (mission.duration_s = {} s)",
-                m.duration_s
+                "step {} s is longer than the trial (mission.duration_s = {} s)",
+                number_text(dt_s),
+                number_text(m.duration_s.get())
             ),
         ));
     }
@@ -783,7 +803,8 @@ fn check_clamp(ctx: &Ctx<'_>, path: &str, d: &ClampedNormal) -> R<()> {
             format!("{path}.max_pct"),
             format!(
                 "expected a number in [{}, 100] (at least min_pct), found {}",
-                d.min_pct, d.max_pct
+                number_text(d.min_pct.get()),
+                number_text(d.max_pct.get())
             ),
         ));
     }

@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::mission::{MissionError, Simulation, TrialBuilder, TrialResult, trial_steps};
-use usar_sim::scenario;
+use usar_sim::scenario::{self, number_text};
 
 use experiments::atomic::write_atomic;
 use experiments::metrics::{Metric, Quantity, Scope};
@@ -138,8 +138,11 @@ pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
         "is not a whole number of steps"
     };
     Some(format!(
-        "warning: --duration {requested_s} s {why} of {dt_s} s (sim.dt_s): the trial runs \
-         {actual_s} s ({steps} step{})",
+        "warning: --duration {} s {why} of {} s (sim.dt_s): the trial runs {} s ({steps} \
+         step{})",
+        number_text(requested_s),
+        number_text(dt_s),
+        number_text(actual_s),
         if steps == 1 { "" } else { "s" }
     ))
 }
