@@ -25,6 +25,18 @@ use usar_sim::scenario;
 /// Wall-clock bound of one case (load, validation and the short trial).
 const CASE_BOUND: Duration = Duration::from_secs(30);
 
+/// The longest run of digits an error may hold: the longest extreme below (23) quoted back,
+/// but not a huge or tiny value written out in full (`1e300` as 301 digits).
+const MAX_DIGITS_IN_A_MESSAGE: usize = 24;
+
+/// The longest run of ASCII digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
 /// Values an extreme-number mutation writes in place of a number.
 const EXTREMES: [&str; 16] = [
     "0",
@@ -194,6 +206,7 @@ struct Tally {
     rejected_positioned: Cell<usize>,
     rejected_unpositioned: Cell<usize>,
     multi_line: Cell<usize>,
+    long_numbers: Cell<usize>,
     run_failed: Cell<usize>,
     panics: Cell<usize>,
     hangs: Cell<usize>,
@@ -293,6 +306,10 @@ fn mutated_scenarios_never_panic_hang_or_give_multi_line_errors() {
                     Tally::bump(&tally.multi_line);
                     tally.example("multi-line error", file, &muts, &message);
                 }
+                if longest_digit_run(&message) > MAX_DIGITS_IN_A_MESSAGE {
+                    Tally::bump(&tally.long_numbers);
+                    tally.example("long number", file, &muts, &message);
+                }
                 if positioned {
                     Tally::bump(&tally.rejected_positioned);
                 } else {
@@ -305,13 +322,14 @@ fn mutated_scenarios_never_panic_hang_or_give_multi_line_errors() {
     });
     println!(
         "fuzz: {} cases, {} accepted (short run ok), {} rejected with position, {} rejected \
-         without position, {} multi-line errors, {} accepted but the run failed, {} panics, {} \
-         hangs",
+         without position, {} multi-line errors, {} with a number of more than \
+         {MAX_DIGITS_IN_A_MESSAGE} digits, {} accepted but the run failed, {} panics, {} hangs",
         tally.cases.get(),
         tally.accepted.get(),
         tally.rejected_positioned.get(),
         tally.rejected_unpositioned.get(),
         tally.multi_line.get(),
+        tally.long_numbers.get(),
         tally.run_failed.get(),
         tally.panics.get(),
         tally.hangs.get()
@@ -331,6 +349,11 @@ fn mutated_scenarios_never_panic_hang_or_give_multi_line_errors() {
         tally.rejected_unpositioned.get(),
         0,
         "rejections without position"
+    );
+    assert_eq!(
+        tally.long_numbers.get(),
+        0,
+        "errors writing a long number in full (examples above)"
     );
     assert_eq!(tally.run_failed.get(), 0, "accepted files whose run failed");
     assert!(tally.accepted.get() > 0, "no mutated file was accepted");
