@@ -94,7 +94,7 @@ struct Layout {
 impl Layout {
     fn new(s: &Scenario) -> Self {
         let (w, h) = (s.arena.width(), s.arena.height());
-        let pad = s.arena.wall_thickness_m.get() + 1.0;
+        let pad = drawn_wall_m(s) + 1.0;
         let (x0, x1) = (-pad, w + pad);
         let (y0, y1) = (-pad, h + pad);
         let px_per_m = (MAP_TARGET_PX / (x1 - x0).max(y1 - y0)).clamp(MIN_PX_PER_M, MAX_PX_PER_M);
@@ -358,11 +358,19 @@ fn label_at(text: String, x: f64, y: f64, size: u32, v: VPos) -> Text<'static, (
     Text::new(text, (x, y), font(size).pos(Pos::new(HPos::Center, v)))
 }
 
+/// The walls' drawn thickness, metres: `arena.wall_thickness_m`, but at most a tenth of the
+/// arena's longer side, so that thick walls (up to 10 km) do not shrink the arena in the
+/// picture to a dot.
+fn drawn_wall_m(s: &Scenario) -> f64 {
+    let longer_side_m = s.arena.width().max(s.arena.height());
+    s.arena.wall_thickness_m.get().min(0.1 * longer_side_m)
+}
+
 /// Draws everything that does not move: walls, search areas (with their rescuees when
 /// `rescuees`), drop-offs, radiation zones, debris, the rest station, goal points and labels.
 fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Result<()> {
     let (w, h) = (s.arena.width(), s.arena.height());
-    let t = s.arena.wall_thickness_m.get();
+    let t = drawn_wall_m(s);
     let walls = [
         [(-t, -t), (w + t, 0.0)],
         [(-t, h), (w + t, h + t)],

@@ -171,3 +171,37 @@ fn bad_options_are_reported() {
     assert!(stderr(&o).contains("--trace"), "{}", stderr(&o));
     assert!(!out.exists());
 }
+
+/// The `width` attribute of SVG document `svg`, pixels.
+fn svg_width_px(svg: &str) -> f64 {
+    let rest = &svg[svg.find("width=\"").expect("width") + 7..];
+    rest[..rest.find('"').expect("closing quote")]
+        .parse()
+        .expect("a number")
+}
+
+#[test]
+fn walls_kilometres_thick_do_not_shrink_the_arena_in_the_picture() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let src = std::fs::read_to_string(paper()).expect("paper.ron");
+    let thick = src.replacen("wall_thickness_m: 1.0", "wall_thickness_m: 10000.0", 1);
+    assert_ne!(src, thick, "paper.ron's wall line moved");
+    let thick_ron = dir.path().join("thick.ron");
+    std::fs::write(&thick_ron, thick).expect("write");
+    let mut widths = Vec::new();
+    for (ron, svg) in [(paper(), "paper.svg"), (thick_ron, "thick.svg")] {
+        let out = dir.path().join(svg);
+        let o = usar(&["render", text(&ron), "--out", text(&out)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&out).expect("SVG written");
+        assert_svg(&svg);
+        widths.push(svg_width_px(&svg));
+    }
+    // The walls are drawn at most 8 m thick (a tenth of 80 m): the picture keeps its size.
+    assert!(
+        (widths[1] / widths[0] - 1.0).abs() < 0.2,
+        "{} px against {} px",
+        widths[1],
+        widths[0]
+    );
+}

@@ -345,3 +345,37 @@ fn huge_or_tiny_numbers_in_any_field_give_a_short_one_line_error() {
     );
     assert!(checked > 100, "only {checked} edits were rejected");
 }
+
+#[test]
+fn a_waypoint_tolerance_beyond_five_metres_is_an_error() {
+    let e = rejected(
+        &paper_with("waypoint_tolerance_m: 0.3", "waypoint_tolerance_m: 100.0"),
+        "navigation.waypoint_tolerance_m",
+    );
+    assert!(e.to_string().contains("limit of 5 m"), "{e}");
+    let s = scenario::from_str(
+        &paper_with("waypoint_tolerance_m: 0.3", "waypoint_tolerance_m: 5.0"),
+        "t.ron",
+    )
+    .expect("5 m is the limit, accepted");
+    short_run(&s);
+}
+
+#[test]
+fn a_wall_thicker_than_ten_kilometres_is_an_error_and_ten_run() {
+    let e = rejected(
+        &paper_with("wall_thickness_m: 1.0", "wall_thickness_m: 1e12"),
+        "arena.wall_thickness_m",
+    );
+    assert!(
+        e.to_string()
+            .contains("1000000000000 m is longer than the limit of 10000 m"),
+        "{e}"
+    );
+    let s = scenario::from_str(
+        &paper_with("wall_thickness_m: 1.0", "wall_thickness_m: 10000.0"),
+        "t.ron",
+    )
+    .expect("10 km is the limit, accepted");
+    short_run(&s);
+}

@@ -35,6 +35,12 @@ pub const MAX_NAV_CELLS: u64 = 1 << 24;
 /// Longest arena side, metres: the world simulates in `f32`, whose spacing at 10 km is about
 /// 1 mm.
 pub const MAX_ARENA_SIDE_M: f64 = 10_000.0;
+/// Largest `navigation.waypoint_tolerance_m`, metres: a robot counts as at a waypoint, goal,
+/// rescuee or drop-off within this distance (plus its body radius for a rescuee), so a
+/// tolerance near the arena's size would let robots pick up and deliver rescuees without
+/// moving. 12.5 times the largest body radius of the shipped scenarios (0.4 m), about 17 times
+/// the default (0.3 m).
+pub const MAX_WAYPOINT_TOLERANCE_M: f64 = 5.0;
 /// Most rescuees a robot carries at once and most rescuing resources it brings
 /// (`carrying_capacity`, `rescuing_resources`): a group's sums over [`MAX_ROBOTS`] robots stay
 /// within a 32-bit count.
@@ -123,8 +129,9 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
     Ok(())
 }
 
-/// The arena, `navigation.clearance_m`, `navigation.waypoint_tolerance_m` and
-/// `collision.safety_margin_m` against [`MAX_ARENA_SIDE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
+/// The arena's sides and wall thickness, `navigation.clearance_m` and
+/// `collision.safety_margin_m` against [`MAX_ARENA_SIDE_M`],
+/// `navigation.waypoint_tolerance_m` against [`MAX_WAYPOINT_TOLERANCE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
 /// needs weights against [`NEEDS_RANGE`], and every kind's distance per step: a robot at top
 /// speed moves at most its body radius per step (`max_speed_m_per_s * dt_s <=
 /// body_radius_m`), so it cannot pass through a wall, debris or another robot between two
@@ -138,7 +145,11 @@ pub(crate) fn check_derived(
     kinds: &[RobotKind],
     sim: &SimParams,
 ) -> R<()> {
-    for (name, v) in [("width_m", arena.width()), ("height_m", arena.height())] {
+    for (name, v) in [
+        ("width_m", arena.width()),
+        ("height_m", arena.height()),
+        ("wall_thickness_m", arena.wall_thickness_m.get()),
+    ] {
         if v > MAX_ARENA_SIDE_M {
             return Err(ctx.err(
                 format!("arena.{name}"),
@@ -151,10 +162,6 @@ pub(crate) fn check_derived(
     }
     for (name, v) in [
         ("navigation.clearance_m", navigation.clearance_m.get()),
-        (
-            "navigation.waypoint_tolerance_m",
-            navigation.waypoint_tolerance_m.get(),
-        ),
         ("collision.safety_margin_m", collision.safety_margin_m.get()),
     ] {
         if v > MAX_ARENA_SIDE_M {
@@ -166,6 +173,17 @@ pub(crate) fn check_derived(
                 ),
             ));
         }
+    }
+    let tolerance_m = navigation.waypoint_tolerance_m.get();
+    if tolerance_m > MAX_WAYPOINT_TOLERANCE_M {
+        return Err(ctx.err(
+            "navigation.waypoint_tolerance_m",
+            format!(
+                "{} m is more than the limit of {MAX_WAYPOINT_TOLERANCE_M} m (robots would count \
+                 as at goals and rescuees that far away)",
+                number_text(tolerance_m)
+            ),
+        ));
     }
     let cell_m = navigation.grid_cell_m.get();
     let (nx, ny) = (

@@ -19,7 +19,8 @@ pub struct Arena {
     pub width_m: Positive,
     /// Inner height, metres, > 0.
     pub height_m: Positive,
-    /// Boundary wall thickness (outside the field), metres, > 0; default 0.5.
+    /// Boundary wall thickness (outside the field), metres, > 0 and at most
+    /// [`crate::scenario::limits::MAX_ARENA_SIDE_M`] (10,000); default 0.5.
     #[serde(default = "Arena::default_wall_thickness_m")]
     pub wall_thickness_m: Positive,
 }
@@ -261,7 +262,8 @@ pub struct NavigationParams {
     pub grid_cell_m: Positive,
     /// Clearance kept from debris and walls beyond the body radius, metres, >= 0; default 0.1.
     pub clearance_m: NonNegative,
-    /// Distance at which a waypoint counts as reached, metres, > 0; default 0.3.
+    /// Distance at which a waypoint counts as reached, metres, > 0 and at most
+    /// [`crate::scenario::limits::MAX_WAYPOINT_TOLERANCE_M`] (5); default 0.3.
     pub waypoint_tolerance_m: Positive,
     /// Whether ground robots reach the goals many of them share (task goal points, drop-off
     /// centres, the rest station) by descending one distance field per goal and clearance
