@@ -250,3 +250,15 @@ fn check_warns_about_tasks_no_group_can_rescue_from() {
     let o = usar(&["check", PAPER]);
     assert!(o.status.success() && o.stderr.is_empty());
 }
+
+#[cfg(unix)]
+#[test]
+fn check_refuses_an_endless_file_at_the_size_limit() {
+    let o = usar(&["check", "/dev/zero"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.starts_with("error: /dev/zero: cannot read scenario file: longer than the limit of"),
+        "{err}"
+    );
+}

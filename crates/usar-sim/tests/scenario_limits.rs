@@ -379,3 +379,32 @@ fn a_wall_thicker_than_ten_kilometres_is_an_error_and_ten_run() {
     .expect("10 km is the limit, accepted");
     short_run(&s);
 }
+
+#[cfg(unix)]
+#[test]
+fn an_endless_scenario_file_is_refused_at_the_size_limit_not_read_whole() {
+    let e = scenario::load("/dev/zero").expect_err("endless input");
+    assert!(matches!(e, ScenarioError::Io { .. }), "{e}");
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "/dev/zero: cannot read scenario file: longer than the limit of {} bytes",
+            limits::MAX_SCENARIO_BYTES
+        )
+    );
+}
+
+#[test]
+fn read_source_skips_the_byte_order_mark_and_positions_a_bad_byte() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("bom.ron");
+    std::fs::write(
+        &path,
+        [b"\xEF\xBB\xBF".as_slice(), paper().as_bytes()].concat(),
+    )
+    .unwrap();
+    assert_eq!(scenario::read_source(&path).expect("reads"), paper());
+    std::fs::write(&path, b"(\n  name: \"a\xFFb\",\n)").unwrap();
+    let e = scenario::read_source(&path).expect_err("not UTF-8");
+    assert_eq!(e.line_col(), Some((2, 11)), "{e}");
+}

@@ -12,6 +12,10 @@ use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimP
 use super::spec::KindSpec;
 use super::validate::{Ctx, R};
 
+/// Longest scenario file, bytes (64 MiB): the shipped 1,000-robot scenario is under 10 KB,
+/// and a file listing every start, debris shape and rescuee up to [`MAX_ROBOTS`],
+/// [`MAX_DEBRIS`] and [`MAX_RESCUEES`] (about 20 bytes a point) stays under 25 MB.
+pub const MAX_SCENARIO_BYTES: u64 = 64 << 20;
 /// Most robot kinds a scenario may list (grouping merges kind by kind).
 pub const MAX_KINDS: usize = 256;
 /// Most tasks a scenario may list.

@@ -1,10 +1,12 @@
 //! Loading: read a RON file, deserialize the [`ScenarioSpec`], validate it into a [`Scenario`].
 
+use std::io::Read;
 use std::path::Path;
 
 use ron::error::{Error as RonError, SpannedError};
 
 use super::error::{ScenarioError, SourceLocation};
+use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
 use super::model::Scenario;
 use super::spec::ScenarioSpec;
@@ -19,15 +21,37 @@ use super::validate::{Ctx, validate};
 /// broken rule (with field path and, where the field appears, line and column).
 pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
     let path = path.as_ref();
+    from_str(&read_source(path)?, &path.display().to_string())
+}
+
+/// The text of the scenario file at `path`, as [`load`] reads it: at most
+/// [`MAX_SCENARIO_BYTES`] bytes (an endless input such as `/dev/zero` is refused once it
+/// passes the limit, not read into memory), a leading UTF-8 byte-order mark skipped, and
+/// UTF-8 checked. Errors name the path as given.
+///
+/// # Errors
+/// [`ScenarioError::Io`] if the file cannot be read or is longer than the limit,
+/// [`ScenarioError::Syntax`] at the line and column of the first byte that is not UTF-8.
+pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
+    let path = path.as_ref();
     let origin = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|error| ScenarioError::Io {
+    let io_error = |error| ScenarioError::Io {
         path: origin.clone(),
         error,
-    })?;
+    };
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_SCENARIO_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(io_error)?;
+    if bytes.len() as u64 > MAX_SCENARIO_BYTES {
+        return Err(io_error(std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("longer than the limit of {MAX_SCENARIO_BYTES} bytes"),
+        )));
+    }
     // The byte-order mark goes first, so a bad byte on line 1 gets its column without it.
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
-    let src = utf8(bytes, &origin)?;
-    from_str(src, &origin)
+    let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+    Ok(utf8(text, &origin)?.to_owned())
 }
 
 /// The file's text, or a [`ScenarioError::Syntax`] at the first byte that is not UTF-8 (line

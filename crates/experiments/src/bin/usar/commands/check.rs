@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use clap::Args;
 use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
@@ -75,8 +75,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let needs_spec = args.print || !overrides.is_empty();
     let (spec, s) = if needs_spec {
-        let text = std::fs::read_to_string(&args.scenario)
-            .with_context(|| format!("{origin}: cannot read scenario file"))?;
+        let text = scenario::read_source(&args.scenario)?;
         let spec = apply_overrides(&scenario::parse_spec(&text, &origin)?, &overrides)
             .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i]))?;
         let s = spec

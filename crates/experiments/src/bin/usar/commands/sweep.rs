@@ -210,8 +210,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
         return Ok(None);
     }
     let origin = args.scenario.display().to_string();
-    let text = std::fs::read_to_string(&args.scenario)
-        .with_context(|| format!("{origin}: cannot read scenario file"))?;
+    let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
     Grid::build(&spec, &args.vary).map(Some)
 }
@@ -395,8 +394,7 @@ impl SweepSpecArgs {
     /// # Errors
     /// The scenario file cannot be read.
     pub fn plan(&self) -> Result<SweepPlan> {
-        let scenario_text = std::fs::read_to_string(&self.scenario)
-            .with_context(|| format!("{}: cannot read scenario file", self.scenario.display()))?;
+        let scenario_text = scenario::read_source(&self.scenario)?;
         Ok(SweepPlan {
             scenario_path: self.scenario.clone(),
             scenario_text,
