@@ -262,3 +262,34 @@ fn check_refuses_an_endless_file_at_the_size_limit() {
         "{err}"
     );
 }
+
+#[test]
+fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let src = std::fs::read_to_string(PAPER).expect("paper.ron");
+    let broken = src.replacen("max_speed_m_per_s: 2.5", "max_speed_m_per_s: 1000.0", 1);
+    assert_ne!(src, broken, "paper.ron's speed line moved");
+    let path = dir.path().join("fast.ron");
+    std::fs::write(&path, broken).expect("write");
+    let file = path.to_str().expect("utf-8 path");
+    let own = format!(
+        "error: {file}:28:13: kinds[0].max_speed_m_per_s: 1000 m/s is faster than the limit of \
+         100 m/s"
+    );
+    // The file alone, and with an override of another field: the file's own error, positioned.
+    for set in [&[][..], &["--set", "mission.duration_s=30.0"]] {
+        let o = usar(&[&["check", file][..], set].concat());
+        assert_eq!(o.status.code(), Some(1));
+        assert_eq!(String::from_utf8_lossy(&o.stderr).trim_end(), own);
+    }
+    // "Set a field before validating": the override repairs the rule.
+    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // An override that breaks the rule otherwise is named.
+    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=500.0"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim_end(),
+        "error: --set kinds[0].max_speed_m_per_s=500.0: kinds[0].max_speed_m_per_s: 500 m/s is \
+         faster than the limit of 100 m/s"
+    );
+}

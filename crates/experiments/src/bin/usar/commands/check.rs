@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
-use usar_sim::scenario::{self, Debris, Locomotion, Scenario};
+use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError};
 
 use experiments::fingerprint::scenario_hash;
 use experiments::spec_ron::spec_to_ron;
@@ -66,8 +66,6 @@ pub struct CheckArgs {
 /// `--set` (`--set FIELD=VALUE: field.path: message`).
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     let origin = args.scenario.display().to_string();
-    // The file alone first, so its own errors keep their line and column.
-    let base = scenario::load(&args.scenario)?;
     let overrides = args
         .set
         .iter()
@@ -78,12 +76,10 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         let text = scenario::read_source(&args.scenario)?;
         let spec = apply_overrides(&scenario::parse_spec(&text, &origin)?, &overrides)
             .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i]))?;
-        let s = spec
-            .validate(&origin)
-            .map_err(|e| anyhow!(rule_error("--set", &overrides, &e)))?;
+        let s = validate_overridden(&spec, &text, &origin, &overrides)?;
         (Some(spec), s)
     } else {
-        (None, base)
+        (None, scenario::load(&args.scenario)?)
     };
     warn_about(&origin, &s);
     let hash = scenario_hash(&s)?;
@@ -310,6 +306,31 @@ fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 
 fn nalgebra_dist(a: scenario::PointM, b: scenario::PointM) -> f64 {
     (a - b).norm()
+}
+
+/// Validates `spec`, the file `text` with `overrides` applied, as the help promises: the
+/// overrides may repair a rule the file breaks. A rule the overridden spec breaks just as the
+/// file alone does (same field, same message) is the file's own, reported at its line and
+/// column; any other is the overrides' ([`rule_error`]).
+///
+/// # Errors
+/// That rule, as said.
+fn validate_overridden(
+    spec: &scenario::ScenarioSpec,
+    text: &str,
+    origin: &str,
+    overrides: &[Override],
+) -> Result<scenario::Scenario> {
+    spec.validate(origin)
+        .map_err(|e| match (scenario::from_str(text, origin), &e) {
+            (
+                Err(own @ ScenarioError::Invalid { .. }),
+                ScenarioError::Invalid { field, message, .. },
+            ) if own.field() == Some(field) && own.to_string().ends_with(message.as_str()) => {
+                anyhow!(own)
+            }
+            _ => anyhow!(rule_error("--set", overrides, &e)),
+        })
 }
 
 /// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.

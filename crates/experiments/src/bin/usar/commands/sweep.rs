@@ -94,6 +94,7 @@ pub struct SweepSpecArgs {
     /// Vary a scenario field: run the sweep once per value, in a grid over every --vary
     /// (repeatable; the first varies slowest). FIELD is a path such as
     /// `mission.duration_s`, `kinds[0].count` or `radiation_zones[*].radius_m`; values are RON.
+    /// The scenario file must be valid on its own; each cell is validated with its values.
     #[arg(long, value_name = "FIELD=V1,V2,..", allow_hyphen_values = true)]
     pub vary: Vec<String>,
 
