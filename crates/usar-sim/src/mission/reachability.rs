@@ -64,19 +64,16 @@ impl fmt::Display for UnreachableGoal {
 ///
 /// Builds the trial's world ([`World::new`]) and plans with the same planner as a trial,
 /// from the starts, before any robot moves; other robots are not obstacles to the plan. Cost:
-/// one plan per robot and goal, most of them cheap lookups in the shared distance fields.
-/// With `navigation.shared_goal_fields: false` every plan is an A* search, so only the first
-/// robot of each kind is checked (`Scenario::robots` is ordered by kind).
+/// one lookup per robot and goal, in the shared distance fields or (with
+/// `navigation.shared_goal_fields: false`) in the grid's regions, labelled once per
+/// clearance class in one pass over the grid.
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
     let mut world = World::new(s);
-    let mut ground: Vec<usize> = (0..s.robots.len())
+    // Every robot is checked: a shared goal by its distance field, any other goal from the
+    // grid's regions (`World::is_goal_reachable`), so no check floods the grid per robot.
+    let ground: Vec<usize> = (0..s.robots.len())
         .filter(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
         .collect();
-    if !s.navigation.shared_goal_fields {
-        // Every plan is an A* search, and one to an unreachable goal floods the robot's
-        // whole region: check the first robot of each kind only.
-        ground.dedup_by_key(|&mut id| s.robots[id].kind);
-    }
     let mut out = Vec::new();
     for (t, task) in s.tasks.iter().enumerate() {
         let members: Vec<usize> = ground
@@ -147,7 +144,8 @@ mod tests {
             line.starts_with("tasks.hard.goal_m (6.0, 16.0): no path"),
             "{line}"
         );
-        // With A* for every plan, the first robot of each kind stands for its kind.
+        // With A* for every plan: the same robots (the regions answer, not one search per
+        // robot; only the first robot of each kind was listed before).
         let astar = SPLIT.replace(
             "    debris: [",
             "    navigation: (shared_goal_fields: false),\n    debris: [",
@@ -155,7 +153,7 @@ mod tests {
         assert_ne!(astar, SPLIT);
         let found = unreachable_goals(&from_str(&astar, "astar.ron").unwrap());
         let robots: Vec<&[usize]> = found.iter().map(|u| u.robots.as_slice()).collect();
-        assert_eq!(robots, [[0], [0]], "{found:?}");
+        assert_eq!(robots, [[0, 1], [0, 1]], "{found:?}");
         // A gap in the wall (a shorter wall) opens the way: nothing to report.
         let open = SPLIT.replace("size_m: (0.5, 20.0)", "size_m: (0.5, 12.0)");
         assert_eq!(unreachable_goals(&from_str(&open, "open.ron").unwrap()), []);

@@ -10,6 +10,8 @@
 //! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
 //! - `grid_astar`: grid A* over dense per-cell arrays (the `pathfinding` crate's search order).
 //! - `grid_moves`: a cell's grid moves as a bit mask, tabulated per inflation.
+//! - `grid_regions`: the grid's regions per inflation (cells grid moves join), so a search
+//!   between two regions fails without running.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
@@ -36,6 +38,7 @@ pub mod distance_field;
 mod error;
 mod grid_astar;
 mod grid_moves;
+mod grid_regions;
 mod nav;
 pub mod navigation;
 mod neighbour_lists;

@@ -18,6 +18,7 @@ use super::distance_field::DistanceField;
 use super::error::NavError;
 use super::grid_astar::GridAstar;
 use super::grid_moves::{MOVES, MoveTable, Moves};
+use super::grid_regions::GridRegions;
 use crate::scenario::Arena;
 use crate::scenario::in_field;
 
@@ -288,6 +289,12 @@ pub struct PathPlanner {
     mask: DiscMask,
     /// A*'s per-cell state, reused between searches.
     astar: GridAstar,
+    /// The grid's regions per inflation, labelled after an A* finds no path (or for
+    /// [`PathPlanner::connects`]): a later search from another start in another region fails
+    /// at once instead of visiting the whole region again.
+    regions: GridRegions,
+    /// A* searches run (own goals and detours), for [`PathPlanner::astar_searches`].
+    astar_searches: u64,
 }
 
 /// A robot standing in the way of a detour ([`PathPlanner::plan_around`]): no cell centre and
@@ -440,7 +447,7 @@ impl PathPlanner {
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
         if !self.cache.contains_key(&key) {
             let cells = match kind {
-                GoalKind::Own => search(&mut self.astar, grid, start, goal, inflation, None),
+                GoalKind::Own => self.search_own(grid, start, goal, inflation),
                 GoalKind::Shared => self.descend(grid, start, goal, inflation),
             };
             if self.cache.len() >= PLAN_CACHE_CAPACITY {
@@ -474,6 +481,10 @@ impl PathPlanner {
         out.clear();
         let inflation = query.inflation_m;
         let ends = Endpoints::snap(grid, arena, query)?;
+        // Standing robots only close ways: two regions of the bare grid stay apart.
+        if self.regions.known_apart(inflation, ends.start, ends.goal) {
+            return Err(NavError::NoPath);
+        }
         let starts = [grid.cell_center(ends.start), query.from];
         self.discs.clear();
         self.discs.extend(
@@ -487,6 +498,7 @@ impl PathPlanner {
             discs: &self.discs,
             mask: &self.mask,
         };
+        self.astar_searches += 1;
         let cells = search(
             &mut self.astar,
             grid,
@@ -521,6 +533,58 @@ impl PathPlanner {
             return Ok(vec![start, goal]);
         }
         Ok(smooth_galloping(grid, &self.raw, inflation))
+    }
+
+    /// A* from cell `start` to cell `goal` ([`search`]), failing at once when the two are
+    /// known to lie in different regions; a search that finds no path to a free goal labels
+    /// the regions at `inflation` for the searches after it. The same result as the search
+    /// alone, since a region is what A* can reach.
+    fn search_own(
+        &mut self,
+        grid: &ClearanceGrid,
+        start: u32,
+        goal: u32,
+        inflation: f32,
+    ) -> Result<Vec<u32>, NavError> {
+        if self.regions.known_apart(inflation, start, goal) {
+            return Err(NavError::NoPath);
+        }
+        self.astar_searches += 1;
+        let found = search(&mut self.astar, grid, start, goal, inflation, None);
+        if found == Err(NavError::NoPath) && grid.is_free(goal, inflation) {
+            self.regions.label(grid, inflation);
+        }
+        found
+    }
+
+    /// Whether [`PathPlanner::plan`] with [`GoalKind::Own`] would find a path for `query`,
+    /// answered from the grid's region labels (made once per inflation) instead of a search:
+    /// `Ok` exactly when that plan succeeds.
+    ///
+    /// # Errors
+    /// As [`PathPlanner::plan`].
+    pub fn connects(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        query: PlanQuery,
+    ) -> Result<(), NavError> {
+        let ends = Endpoints::snap(grid, arena, query)?;
+        if ends.start == ends.goal
+            || self
+                .regions
+                .connected(grid, query.inflation_m, ends.start, ends.goal)
+        {
+            Ok(())
+        } else {
+            Err(NavError::NoPath)
+        }
+    }
+
+    /// A* searches run so far, for a robot's own goals and for detours (a cached plan, a
+    /// shared goal's descent and a search known to fail from the regions run none).
+    pub fn astar_searches(&self) -> u64 {
+        self.astar_searches
     }
 
     /// The shared fields built so far (one per goal cell and inflation).

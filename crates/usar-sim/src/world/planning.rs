@@ -32,6 +32,18 @@ impl World {
         plan_inflation_m(self.nav[id].radius, &self.navigation)
     }
 
+    /// The A* query robot `id` would plan `goal` with: `Some` for a ground robot and a goal
+    /// that is not a shared goal point, `None` otherwise (aerial robots fly straight, shared
+    /// goals descend their distance fields).
+    pub(super) fn own_goal_query(&self, id: usize, goal: Vec2) -> Option<PlanQuery> {
+        let nav = &self.nav[id];
+        (nav.layer == Locomotion::Ground && !self.shared_goals.contains(&goal)).then(|| PlanQuery {
+            from: nav.pos,
+            to: goal,
+            inflation_m: self.plan_inflation(id),
+        })
+    }
+
     /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
     /// goal. Ground robots plan on the clearance grid ([`super::navigation::PathPlanner::plan`],
     /// inflation [`World::plan_inflation`]): a goal that is one of the scenario's shared goal

@@ -222,9 +222,17 @@ impl World {
         Some(length)
     }
 
-    /// Whether [`World::check_goal`] succeeds.
+    /// Whether [`World::check_goal`] succeeds. A ground robot's own goal (one A* would plan
+    /// to) is answered from the grid's regions, labelled once per inflation, not by a search:
+    /// the same answer, without visiting a walled-in goal's surroundings for every robot.
     pub fn is_goal_reachable(&mut self, id: usize, goal: PointM) -> bool {
-        self.check_goal(id, goal).is_ok()
+        if id >= self.robots.len() {
+            return false;
+        }
+        match self.own_goal_query(id, to_vec2(&goal)) {
+            Some(query) => self.planner.connects(&self.grid, self.arena, query).is_ok(),
+            None => self.check_goal(id, goal).is_ok(),
+        }
     }
 
     fn check_factor(what: &'static str, value: f64) -> Result<(), WorldError> {
