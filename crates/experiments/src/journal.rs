@@ -366,7 +366,7 @@ impl Journal {
     /// I/O error.
     pub fn open_resume(dir: &Path, header: &SweepHeader) -> Result<(Self, JournalContents)> {
         let path = Self::path_in(dir);
-        let contents = read_journal(&path).context("--resume")?;
+        let contents = read_journal(&path)?;
         if &contents.header != header {
             bail!(
                 "--resume: {} was written by a sweep with other parameters ({}); run with \

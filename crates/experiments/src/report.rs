@@ -175,22 +175,32 @@ fn results(r: &mut String, a: &CellAnalysis) {
     r.push('\n');
 }
 
-/// The "Round lengths" subsection: completed rounds per method and over all methods, with
-/// their median, 95th percentile and longest length, seconds, and the mean number of rounds
-/// started per trial. A stalled round (robots unable to get back) shows up here long before
-/// it moves a mean.
 /// Appends the "Pooled statistics" subsection: the calibration targets (the authors' results
-/// sheet, pooled over methods) next to this sweep's values pooled the same way.
+/// sheet, pooled over methods) next to this sweep's values pooled the same way. A scenario
+/// without tasks named `easy` and `hard` (every value n/a) gets one sentence instead of the
+/// table; a value that is n/a (a ratio of zeros) is not marked.
 fn pooled(r: &mut String, a: &CellAnalysis) {
-    let _ = writeln!(
+    let _ = write!(
         r,
         "### Pooled statistics\n\nOver all trials of all methods, as ratios of means: the \
          method-independent statistics `scenarios/paper.ron` is calibrated against (the \
-         authors' results sheet; `docs/calibration.md`). A value outside the band is marked \
-         **out**.\n\n| statistic | this sweep | target | band |\n|---|---|---|---|"
+         authors' results sheet; `docs/calibration.md`). "
+    );
+    if a.pooled.iter().all(|(_, x)| x.is_nan()) {
+        r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
+        return;
+    }
+    let _ = writeln!(
+        r,
+        "A value outside the band is marked **out**.\n\n| statistic | this sweep | target | \
+         band |\n|---|---|---|---|"
     );
     for (t, x) in &a.pooled {
-        let mark = if t.holds(*x) { "" } else { " **out**" };
+        let mark = if x.is_nan() || t.holds(*x) {
+            ""
+        } else {
+            " **out**"
+        };
         let _ = writeln!(
             r,
             "| {} | {}{mark} | {} | ± {} |",
@@ -203,6 +213,10 @@ fn pooled(r: &mut String, a: &CellAnalysis) {
     r.push('\n');
 }
 
+/// The "Round lengths" subsection: completed rounds per method and over all methods, with
+/// their median, 95th percentile and longest length, seconds, and the mean number of rounds
+/// started per trial. A stalled round (robots unable to get back) shows up here long before
+/// it moves a mean.
 fn round_lengths(r: &mut String, a: &CellAnalysis) {
     let _ = writeln!(
         r,
