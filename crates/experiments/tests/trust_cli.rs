@@ -165,3 +165,25 @@ fn help_shows_examples() {
         "{text}"
     );
 }
+
+#[test]
+fn huge_or_tiny_numbers_are_written_short() {
+    let base = ["trust", "--needs", "1,3", "--needs", "3,1"];
+    let err = |extra: &[&str]| {
+        let out = usar(&[&base[..], extra].concat());
+        assert!(!out.status.success());
+        String::from_utf8_lossy(&out.stderr).trim_end().to_owned()
+    };
+    assert_eq!(
+        err(&["--weights", "1,1", "--log-base", "1e-320"]),
+        "error: --log-base: log base is 1e-320; it must be finite and > 1"
+    );
+    assert_eq!(
+        err(&["--weights", "-1e300,1"]),
+        "error: --weights: weights[0] = -1e300; weights must be finite and > 0"
+    );
+    let out = usar(&[&base[..], &["--weights", "1,1", "--log-base", "1e300"]].concat());
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("in log base 1e300 units;"), "{text}");
+}

@@ -22,7 +22,7 @@ pub enum RneError {
         actual: usize,
     },
     /// A need is negative, NaN or infinite (needs must be finite and `>= 0`).
-    #[error("needs[{index}] = {value}; needs must be finite and >= 0")]
+    #[error("needs[{index}] = {}; needs must be finite and >= 0", number_text(*.value))]
     InvalidNeed {
         /// 0-based index of the need in its vector.
         index: usize,
@@ -30,7 +30,7 @@ pub enum RneError {
         value: f64,
     },
     /// A weight is zero, negative, NaN or infinite (weights must be finite and `> 0`).
-    #[error("weights[{index}] = {value}; weights must be finite and > 0")]
+    #[error("weights[{index}] = {}; weights must be finite and > 0", number_text(*.value))]
     InvalidWeight {
         /// 0-based index of the weight.
         index: usize,
@@ -38,7 +38,10 @@ pub enum RneError {
         value: f64,
     },
     /// A probability-like value (input of [`crate::relative_entropy`]) is negative or not finite.
-    #[error("probabilities[{index}] = {value}; values must be finite and >= 0")]
+    #[error(
+        "probabilities[{index}] = {}; values must be finite and >= 0",
+        number_text(*.value)
+    )]
     InvalidProbability {
         /// 0-based index.
         index: usize,
@@ -70,10 +73,10 @@ pub enum RneError {
         what: &'static str,
     },
     /// The smoothing epsilon is negative or not finite.
-    #[error("smoothing epsilon is {0}; it must be finite and >= 0")]
+    #[error("smoothing epsilon is {}; it must be finite and >= 0", number_text(*.0))]
     InvalidEpsilon(f64),
     /// The logarithm base is not finite or not `> 1`.
-    #[error("log base is {0}; it must be finite and > 1")]
+    #[error("log base is {}; it must be finite and > 1", number_text(*.0))]
     InvalidLogBase(f64),
     /// A log base string could not be parsed.
     #[error("cannot parse log base {0:?}; use e, 2, 10 or a number > 1")]
@@ -176,3 +179,13 @@ pub enum RneError {
 
 /// Shorthand for `Result<T, RneError>`.
 pub type Result<T> = std::result::Result<T, RneError>;
+
+/// `v` as messages write a number: plainly when its magnitude is in `[1e-6, 1e15)` or it is
+/// zero, else in scientific notation (`1e-320`, not 320 digits), so a message stays short.
+pub(crate) fn number_text(v: f64) -> String {
+    if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}

@@ -82,7 +82,7 @@ fn unit(base: LogBase) -> String {
         _ if base == LogBase::E => "nats (natural log)".into(),
         2.0 => "bits (log base 2)".into(),
         10.0 => "hartleys (log base 10)".into(),
-        b => format!("log base {b} units"),
+        _ => format!("log base {base} units"),
     }
 }
 
