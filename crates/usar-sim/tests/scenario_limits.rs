@@ -408,3 +408,21 @@ fn read_source_skips_the_byte_order_mark_and_positions_a_bad_byte() {
     let e = scenario::read_source(&path).expect_err("not UTF-8");
     assert_eq!(e.line_col(), Some((2, 11)), "{e}");
 }
+
+#[test]
+fn a_control_character_in_a_name_is_an_error_at_the_name() {
+    for (from, to, field) in [
+        ("name: \"paper\"", "name: \"pa\\nper\"", "name"),
+        ("name: \"carrier\"", "name: \"car\\trier\"", "kinds[0].name"),
+        ("name: \"hard\"", "name: \"ha\\u{7}rd\"", "tasks[0].name"),
+    ] {
+        let e = rejected(&paper_with(from, to), field);
+        assert!(e.to_string().contains("holds the control character"), "{e}");
+    }
+    // Other characters stay allowed.
+    scenario::from_str(
+        &paper_with("name: \"paper\"", "name: \"pa: per/é\""),
+        "t.ron",
+    )
+    .expect("a name with punctuation and accents");
+}

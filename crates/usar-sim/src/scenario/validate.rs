@@ -204,11 +204,27 @@ struct TaskGeometry {
 /// Debris with the names messages give them (`debris[3]`, `debris_fields[0] shape 2`).
 type NamedDebris = Vec<(DebrisShape, String)>;
 
+/// Checks `name`, the `what` at `field`: not blank, and one line of text without control
+/// characters (a line break or tab would break the reports' tables, the CSV headers that
+/// carry task names, and the console's lines).
+fn check_name(ctx: &Ctx<'_>, field: String, what: &str, name: &str) -> R<()> {
+    if name.trim().is_empty() {
+        return Err(ctx.err(field, format!("expected a non-empty {what}")));
+    }
+    if let Some(c) = name.chars().find(|c| c.is_control()) {
+        return Err(ctx.err(
+            field,
+            format!(
+                "{what} {name:?} holds the control character {c:?}; a name is one line of text"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// See the module docs.
 pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
-    if spec.name.trim().is_empty() {
-        return Err(ctx.err("name", "expected a non-empty name"));
-    }
+    check_name(ctx, "name".into(), "name", &spec.name)?;
     let arena = spec.arena;
     check_lists(ctx, &spec.kinds, spec.tasks.len())?;
     let geometry = task_geometry(ctx, &spec.tasks, &arena)?;
@@ -278,9 +294,7 @@ fn task_geometry(ctx: &Ctx<'_>, tasks: &[TaskSpec], arena: &Arena) -> R<Vec<Task
     let mut out = Vec::with_capacity(tasks.len());
     for (i, t) in tasks.iter().enumerate() {
         let base = format!("tasks[{i}]");
-        if t.name.trim().is_empty() {
-            return Err(ctx.err(format!("{base}.name"), "expected a non-empty task name"));
-        }
+        check_name(ctx, format!("{base}.name"), "task name", &t.name)?;
         if let Some(j) = tasks[..i].iter().position(|o| o.name == t.name) {
             return Err(ctx.err(
                 format!("{base}.name"),
@@ -323,9 +337,7 @@ fn validate_kinds(ctx: &Ctx<'_>, specs: &[KindSpec], tasks: &[TaskSpec]) -> R<Ve
     let mut kinds: Vec<RobotKind> = Vec::with_capacity(specs.len());
     for (k, s) in specs.iter().enumerate() {
         let f = |name: &str| format!("kinds[{k}].{name}");
-        if s.name.trim().is_empty() {
-            return Err(ctx.err(f("name"), "expected a non-empty kind name"));
-        }
+        check_name(ctx, f("name"), "kind name", &s.name)?;
         if let Some(j) = kinds.iter().position(|o| o.name == s.name) {
             return Err(ctx.err(
                 f("name"),
