@@ -293,3 +293,22 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
          faster than the limit of 100 m/s"
     );
 }
+
+#[test]
+fn a_rejected_long_set_value_is_quoted_by_its_start() {
+    let stations: Vec<String> = (0..257)
+        .map(|i| format!("(center_m: ({}.0, 4.0), radius_m: 1.0)", 1 + i % 70))
+        .collect();
+    let set = format!("rest_station=[{}]", stations.join(", "));
+    let o = usar(&["check", PAPER, "--set", &set]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let n = set.chars().count();
+    assert!(
+        err.trim_end().ends_with(&format!(
+            "... ({n} characters): rest_station: 257 rest stations, more than the limit of 256"
+        )),
+        "{err}"
+    );
+    assert!(err.len() < 200, "{} bytes: {err}", err.len());
+}

@@ -12,7 +12,7 @@ use anyhow::{Result, anyhow, bail};
 use serde_json::Value;
 use usar_sim::scenario::{Scenario, ScenarioSpec};
 
-use crate::vary::{Override, Vary, apply_overrides, rule_error, spec_json};
+use crate::vary::{Override, Vary, apply_overrides, brief, rule_error, spec_json};
 
 /// The cells of a parameter sweep.
 #[derive(Debug, Clone)]
@@ -65,7 +65,7 @@ impl Grid {
         }
         let varies = args
             .iter()
-            .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {a}: {e}")))
+            .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {}: {e}", brief(a))))
             .collect::<Result<Vec<_>>>()?;
         check_distinct(&varies)?;
         let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
@@ -79,7 +79,7 @@ impl Grid {
             let overrides = cell_overrides(&varies, index);
             let origin = format!("cell {index}");
             let spec = apply_overrides(base, &overrides)
-                .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i]))?;
+                .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i].brief()))?;
             let scenario = spec
                 .validate(&origin)
                 .map_err(|e| anyhow!(rule_error("--vary", &overrides, &e)))?;
@@ -136,17 +136,18 @@ fn check_distinct(varies: &[Vary]) -> Result<()> {
 fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> Result<()> {
     v.path
         .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
-        .map_err(|e| anyhow!("--vary {arg}: {e}"))?;
+        .map_err(|e| anyhow!("--vary {}: {e}", brief(arg)))?;
     let mut specs: Vec<ScenarioSpec> = Vec::with_capacity(v.values.len());
     for (k, value) in v.values.iter().enumerate() {
         let o = v.at(k);
         let spec = apply_overrides(base, std::slice::from_ref(&o))
-            .map_err(|(_, e)| anyhow!("--vary {o}: {e}"))?;
+            .map_err(|(_, e)| anyhow!("--vary {}: {e}", o.brief()))?;
         if let Some(j) = specs.iter().position(|s| *s == spec) {
             bail!(
-                "--vary {arg}: values {} and {} give the same scenario",
-                v.values[j].text,
-                value.text
+                "--vary {}: values {} and {} give the same scenario",
+                brief(arg),
+                brief(&v.values[j].text),
+                brief(&value.text)
             );
         }
         specs.push(spec);

@@ -86,6 +86,29 @@ impl Override {
     }
 }
 
+/// Longest command-line argument an error message quotes in full, characters ([`brief`]).
+pub const QUOTED_ARG_CHARS: usize = 80;
+
+/// `arg` (a `--set` or `--vary` argument) as an error message quotes it: in full up to
+/// [`QUOTED_ARG_CHARS`] characters, else its first 60 and the length (`rest_station=[(center_m:
+/// ... (10,412 characters)`), so that an error about a long value stays a short line.
+pub fn brief(arg: &str) -> String {
+    let n = arg.chars().count();
+    if n <= QUOTED_ARG_CHARS {
+        arg.to_owned()
+    } else {
+        let head: String = arg.chars().take(60).collect();
+        format!("{head}... ({n} characters)")
+    }
+}
+
+impl Override {
+    /// The override as an error quotes it ([`brief`] of `FIELD=VALUE`).
+    pub fn brief(&self) -> String {
+        brief(&self.to_string())
+    }
+}
+
 impl fmt::Display for Override {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}={}", self.path, self.value.text)
@@ -191,7 +214,10 @@ pub fn rule_error(flag: &str, overrides: &[Override], e: &ScenarioError) -> Stri
     } else {
         overrides.iter().collect()
     };
-    let names: Vec<String> = named.iter().map(|o| format!("{flag} {o}")).collect();
+    let names: Vec<String> = named
+        .iter()
+        .map(|o| format!("{flag} {}", o.brief()))
+        .collect();
     format!("{}: {field}: {message}", names.join(" "))
 }
 
@@ -205,6 +231,17 @@ mod tests {
 
     fn paper() -> ScenarioSpec {
         parse_spec(PAPER, "paper.ron").unwrap()
+    }
+
+    #[test]
+    fn brief_quotes_short_arguments_whole_and_long_ones_by_their_start() {
+        let short = "kinds[0].count=7";
+        assert_eq!(brief(short), short);
+        let exactly = "x".repeat(QUOTED_ARG_CHARS);
+        assert_eq!(brief(&exactly), exactly);
+        let long = format!("rest_station=[{}]", "é".repeat(200));
+        let head: String = long.chars().take(60).collect();
+        assert_eq!(brief(&long), format!("{head}... (215 characters)"));
     }
 
     fn set(args: &[&str]) -> Result<ScenarioSpec, (usize, String)> {

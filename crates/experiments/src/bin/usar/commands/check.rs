@@ -12,7 +12,7 @@ use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError};
 
 use experiments::fingerprint::scenario_hash;
 use experiments::spec_ron::spec_to_ron;
-use experiments::vary::{Override, apply_overrides, rule_error};
+use experiments::vary::{Override, apply_overrides, brief, rule_error};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -69,13 +69,13 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     let overrides = args
         .set
         .iter()
-        .map(|a| Override::parse(a).map_err(|e| anyhow!("--set {a}: {e}")))
+        .map(|a| Override::parse(a).map_err(|e| anyhow!("--set {}: {e}", brief(a))))
         .collect::<Result<Vec<_>>>()?;
     let needs_spec = args.print || !overrides.is_empty();
     let (spec, s) = if needs_spec {
         let text = scenario::read_source(&args.scenario)?;
         let spec = apply_overrides(&scenario::parse_spec(&text, &origin)?, &overrides)
-            .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i]))?;
+            .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i].brief()))?;
         let s = validate_overridden(&spec, &text, &origin, &overrides)?;
         (Some(spec), s)
     } else {
