@@ -792,3 +792,29 @@ fn a_fraction_in_an_integer_field_is_named_at_the_number() {
     let err = scenario::from_str(&src, "paper.ron").expect_err("0.4.5");
     assert!(!err.to_string().contains("expected an integer"), "{err}");
 }
+
+#[test]
+fn old_mac_line_endings_are_counted_as_lines() {
+    // A rule error and a syntax error, each at the same line and column whatever the line
+    // ending: `\n`, `\r\n` or a bare `\r` (which ron does not count as a line break).
+    for (from, to, field) in [
+        ("count: 2,", "count: 0,", "kinds[0].count"),
+        ("count: 2,", "count: 2,,", "kinds[0]"),
+    ] {
+        let unix = broken(from, to);
+        let want = scenario::from_str(&unix, "t.ron").expect_err(to);
+        let rule = matches!(want, ScenarioError::Invalid { .. });
+        assert_eq!(
+            rule,
+            to == "count: 0,",
+            "one rule error, one syntax error: {want}"
+        );
+        assert!(want.line_col().is_some_and(|(line, _)| line > 5), "{want}");
+        for ending in ["\r\n", "\r"] {
+            let src = unix.replace('\n', ending);
+            let e = scenario::from_str(&src, "t.ron").expect_err(to);
+            assert_eq!(e.line_col(), want.line_col(), "{ending:?}: {e}");
+            assert!(e.field().is_some_and(|f| f.starts_with(field)), "{e}");
+        }
+    }
+}

@@ -138,6 +138,9 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
             map.line_col(start),
             format!("expected an integer, found `{number}`"),
         ),
+        // ron counts no line for a bare `\r` (old Mac line endings): report where an editor
+        // shows the error.
+        None if map.has_bare_cr() => (map.line_col(offset), e.code.to_string()),
         None => ((pos.line, pos.col), e.code.to_string()),
     };
     ScenarioError::Syntax {
