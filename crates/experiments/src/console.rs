@@ -68,7 +68,11 @@ pub fn print_sweep(
             crate::journal::Journal::path_in(&cfg.out_dir).display()
         )?;
     }
-    let mut durations: Vec<f64> = h.grid.cells.iter().map(|c| c.duration_s).collect();
+    let mut durations: Vec<f64> = cfg
+        .cell_scenarios()
+        .into_iter()
+        .map(|s| cfg.simulated_length_of(s))
+        .collect();
     durations.dedup();
     let length = match durations.as_slice() {
         [d] => format!("{d} s"),

@@ -111,7 +111,8 @@ fn setup(r: &mut String, input: &ReportInput<'_>) {
     let _ = writeln!(
         r,
         "- Trials: {} per method, {} s of simulated time each.",
-        h.trials, cell.duration_s
+        h.trials,
+        crate::sweep::simulated_length_s(cell.duration_s, s.sim.dt_s.get())
     );
     let _ = writeln!(
         r,

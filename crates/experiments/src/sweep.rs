@@ -131,6 +131,12 @@ impl SweepConfig {
         self.duration_s.unwrap_or(scenario.mission.duration_s.get())
     }
 
+    /// The simulated length of each trial of a cell with `scenario`, seconds: its
+    /// [`SweepConfig::duration_of`] run as whole steps ([`simulated_length_s`]).
+    pub fn simulated_length_of(&self, scenario: &Scenario) -> f64 {
+        simulated_length_s(self.duration_of(scenario), scenario.sim.dt_s.get())
+    }
+
     /// The folder of the journal (and the lock): `out_dir`, or the shard's folder under it.
     pub fn journal_dir(&self) -> PathBuf {
         match &self.shard {
@@ -693,6 +699,25 @@ fn collect(
     cells
 }
 
+/// The simulated length of a trial asked to last `duration_s` at step `dt_s`, seconds: its
+/// whole steps (`usar_sim::scenario::trial_steps`) times `dt_s`, or `duration_s` itself when
+/// that is a whole number of steps (within 1e-9 relative: `600` stays `600`, not
+/// `600.0000000000001`) or a length the sweep refuses anyway. `--duration 0.01` at the default
+/// 0.02 s step runs 0.02 s.
+pub fn simulated_length_s(duration_s: f64, dt_s: f64) -> f64 {
+    match trial_steps(duration_s, dt_s) {
+        Ok(steps) => {
+            let ran_s = steps as f64 * dt_s;
+            if (ran_s - duration_s).abs() <= 1e-9 * duration_s.abs().max(1.0) {
+                duration_s
+            } else {
+                ran_s
+            }
+        }
+        Err(_) => duration_s,
+    }
+}
+
 /// Default output folder for a scenario: `results/<scenario name>/`, always one folder inside
 /// `results/`: in the name, path separators (`/`, `\`), `:` and control characters become
 /// `_`, surrounding white space is dropped, and a name left empty or made only of dots (`.`,
@@ -725,6 +750,17 @@ fn folder_name(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn simulated_length_is_the_whole_steps_that_run() {
+        assert_eq!(simulated_length_s(600.0, 0.02), 600.0);
+        assert_eq!(simulated_length_s(30.0, 0.02), 30.0);
+        assert_eq!(simulated_length_s(0.01, 0.02), 0.02);
+        assert!((simulated_length_s(0.03, 0.02) - 0.04).abs() < 1e-12);
+        assert!((simulated_length_s(12.345, 0.02) - 12.36).abs() < 1e-12);
+        // A length the sweep refuses is shown as asked (the sweep fails on it).
+        assert_eq!(simulated_length_s(-1.0, 0.02), -1.0);
+    }
 
     #[test]
     fn default_out_dirs_stay_one_folder_inside_results() {

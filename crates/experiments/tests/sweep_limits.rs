@@ -72,3 +72,35 @@ fn too_many_trials_is_a_one_line_error_before_any_output() {
         assert!(!out.exists(), "{trials} trials left {}", out.display());
     }
 }
+
+#[test]
+fn a_duration_between_steps_is_reported_as_the_length_that_ran() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = usar_in(
+        tmp.path(),
+        &[
+            "sweep",
+            PAPER,
+            "--methods",
+            "dis",
+            "--trials",
+            "1",
+            "--duration",
+            "0.03",
+            "--threads",
+            "1",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("DIS x 1 trials x 0.04 s,"), "{stdout}");
+    let report = fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains("1 per method, 0.04 s of simulated time each."),
+        "{report}"
+    );
+}
