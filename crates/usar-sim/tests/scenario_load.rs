@@ -817,4 +817,14 @@ fn old_mac_line_endings_are_counted_as_lines() {
             assert!(e.field().is_some_and(|f| f.starts_with(field)), "{e}");
         }
     }
+    // A shipped file, which starts with `//` comments, loads with bare-CR endings (ron ends
+    // a comment only at `\n`), and a bad byte is placed on its line.
+    let paper = std::fs::read_to_string(scenarios_dir().join("paper.ron")).unwrap();
+    let mac = paper.replace('\n', "\r");
+    scenario::from_str(&mac, "paper.ron").expect("paper.ron with bare-CR line endings");
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mac.ron");
+    std::fs::write(&path, b"(\r  name: \"a\xFFb\",\r)").unwrap();
+    let e = scenario::load(&path).expect_err("not UTF-8");
+    assert_eq!(e.line_col(), Some((2, 11)), "{e}");
 }

@@ -1,5 +1,6 @@
 //! Loading: read a RON file, deserialize the [`ScenarioSpec`], validate it into a [`Scenario`].
 
+use std::borrow::Cow;
 use std::io::Read;
 use std::path::Path;
 
@@ -59,8 +60,14 @@ pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
 fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
     std::str::from_utf8(bytes).map_err(|e| {
         let valid = &bytes[..e.valid_up_to()];
-        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        // A line ends at `\n`, or at a `\r` not followed by `\n` (as in [`without_bom`]).
+        let ends_line =
+            |i: usize| bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
+        let line_start = (0..valid.len())
+            .rev()
+            .find(|&i| ends_line(i))
+            .map_or(0, |i| i + 1);
+        let line = (0..valid.len()).filter(|&i| ends_line(i)).count() + 1;
         // The prefix is valid UTF-8 by construction.
         let col = std::str::from_utf8(&valid[line_start..]).map_or(1, |s| s.chars().count() + 1);
         ScenarioError::Syntax {
@@ -78,9 +85,22 @@ fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
 }
 
 /// `src` without a leading UTF-8 byte-order mark (U+FEFF, which some editors write): ron
-/// would reject it, and an editor does not show it, so columns count from after it.
-fn without_bom(src: &str) -> &str {
-    src.strip_prefix('\u{feff}').unwrap_or(src)
+/// would reject it, and an editor does not show it, so columns count from after it. A bare
+/// `\r` (old Mac line endings) becomes `\n`: ron ends a line, and a `//` comment, only at
+/// `\n`, so such a file would fail in its first comment, at line 1. Byte offsets do not
+/// change, and `\r\n` is left as it is.
+fn without_bom(src: &str) -> Cow<'_, str> {
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
+    let bytes = src.as_bytes();
+    let bare_cr = |i: usize| bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n');
+    if !(0..bytes.len()).any(bare_cr) {
+        return Cow::Borrowed(src);
+    }
+    let lf: Vec<u8> = (0..bytes.len())
+        .map(|i| if bare_cr(i) { b'\n' } else { bytes[i] })
+        .collect();
+    // One ASCII byte replaced by another: still UTF-8.
+    Cow::Owned(String::from_utf8(lf).unwrap_or_else(|_| src.to_owned()))
 }
 
 /// Parses and validates a scenario from RON text (a leading byte-order mark is skipped).
@@ -90,8 +110,8 @@ fn without_bom(src: &str) -> &str {
 /// As [`load`], without [`ScenarioError::Io`].
 pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
     let src = without_bom(src);
-    let map = SourceMap::build(src);
-    let spec = parse_with(src, origin, &map)?;
+    let map = SourceMap::build(&src);
+    let spec = parse_with(&src, origin, &map)?;
     validate(
         &spec,
         &Ctx {
@@ -109,7 +129,7 @@ pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
 /// path.
 pub fn parse_spec(src: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError> {
     let src = without_bom(src);
-    parse_with(src, origin, &SourceMap::build(src))
+    parse_with(&src, origin, &SourceMap::build(&src))
 }
 
 fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, ScenarioError> {
@@ -138,9 +158,6 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
             map.line_col(start),
             format!("expected an integer, found `{number}`"),
         ),
-        // ron counts no line for a bare `\r` (old Mac line endings): report where an editor
-        // shows the error.
-        None if map.has_bare_cr() => (map.line_col(offset), e.code.to_string()),
         None => ((pos.line, pos.col), e.code.to_string()),
     };
     ScenarioError::Syntax {

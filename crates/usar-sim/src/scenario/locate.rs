@@ -25,13 +25,8 @@ struct Entry {
 /// Field paths of a RON source and where they are.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct SourceMap {
-    /// Byte offset of the start of every line as ron counts lines (after each `\n`), to turn
-    /// ron's positions into offsets.
+    /// Byte offset of the start of every line.
     line_starts: Vec<usize>,
-    /// Byte offset of the start of every line as an editor shows it (after each `\n`, and
-    /// after each `\r` not followed by `\n`: old Mac line endings), for the positions this
-    /// map reports. The same as `line_starts` unless the source has a bare `\r`.
-    shown_line_starts: Vec<usize>,
     src: String,
     entries: Vec<Entry>,
     by_path: HashMap<String, usize>,
@@ -44,12 +39,6 @@ impl SourceMap {
     pub(crate) fn build(src: &str) -> SourceMap {
         let mut line_starts = vec![0];
         line_starts.extend(src.match_indices('\n').map(|(i, _)| i + 1));
-        let bytes = src.as_bytes();
-        let mut shown_line_starts = vec![0];
-        shown_line_starts.extend(bytes.iter().enumerate().filter_map(|(i, &b)| {
-            let breaks = b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
-            breaks.then_some(i + 1)
-        }));
         let mut sc = Scanner {
             s: src.as_bytes(),
             pos: 0,
@@ -65,7 +54,6 @@ impl SourceMap {
         }
         SourceMap {
             line_starts,
-            shown_line_starts,
             src: src.to_owned(),
             entries: sc.entries,
             by_path,
@@ -130,19 +118,13 @@ impl SourceMap {
             .map_or(self.src.len(), |(i, _)| ls + i)
     }
 
-    /// Whether the source has a line break ron does not count (a `\r` not followed by `\n`).
-    pub(crate) fn has_bare_cr(&self) -> bool {
-        self.shown_line_starts.len() != self.line_starts.len()
-    }
-
-    /// 1-based line and character column of a byte offset, as an editor shows them (a bare
-    /// `\r` ends a line too).
+    /// 1-based line and character column of a byte offset.
     pub(crate) fn line_col(&self, offset: usize) -> (usize, usize) {
-        let line_idx = match self.shown_line_starts.binary_search(&offset) {
+        let line_idx = match self.line_starts.binary_search(&offset) {
             Ok(i) => i,
             Err(i) => i - 1,
         };
-        let ls = self.shown_line_starts[line_idx];
+        let ls = self.line_starts[line_idx];
         let end = offset.min(self.src.len());
         let col = self.src.get(ls..end).map_or(1, |s| s.chars().count() + 1);
         (line_idx + 1, col)
