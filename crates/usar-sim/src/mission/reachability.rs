@@ -70,43 +70,56 @@ impl fmt::Display for UnreachableGoal {
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
     let mut world = World::new(s);
     // Every robot is checked: a shared goal by its distance field, any other goal from the
-    // grid's regions (`World::is_goal_reachable`), so no check floods the grid per robot.
-    let ground: Vec<usize> = (0..s.robots.len())
+    // grid's regions (`World::is_goal_reachable`). Robots go by body radius, so each
+    // clearance class's regions are labelled once even when more classes than the planner
+    // keeps labels for take turns.
+    let mut ground: Vec<usize> = (0..s.robots.len())
         .filter(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
         .collect();
-    let mut out = Vec::new();
-    for (t, task) in s.tasks.iter().enumerate() {
-        let members: Vec<usize> = ground
+    ground.sort_by(|&a, &b| {
+        (s.kind_of(a)
+            .body_radius_m
+            .total_cmp(&s.kind_of(b).body_radius_m))
+        .then(a.cmp(&b))
+    });
+    // Robots cut off from each task's goal and drop-off, and from every rest station.
+    let mut cut_off = vec![[Vec::new(), Vec::new()]; s.tasks.len()];
+    let mut stranded = Vec::new();
+    for &id in &ground {
+        for (t, task) in s.tasks.iter().enumerate() {
+            if s.kind_of(id).quota[t] == 0 {
+                continue;
+            }
+            for (k, goal) in [task.goal, task.drop_off.center].into_iter().enumerate() {
+                if !world.is_goal_reachable(id, goal) {
+                    cut_off[t][k].push(id);
+                }
+            }
+        }
+        if !s
+            .rest_stations
             .iter()
-            .copied()
-            .filter(|&id| s.kind_of(id).quota[t] > 0)
-            .collect();
-        for (what, goal) in [("goal_m", task.goal), ("drop_off", task.drop_off.center)] {
-            let robots: Vec<usize> = members
-                .iter()
-                .copied()
-                .filter(|&id| !world.is_goal_reachable(id, goal))
-                .collect();
+            .any(|c| world.is_goal_reachable(id, c.center))
+        {
+            stranded.push(id);
+        }
+    }
+    let mut out = Vec::new();
+    for (task, lists) in s.tasks.iter().zip(cut_off) {
+        let goals = [("goal_m", task.goal), ("drop_off", task.drop_off.center)];
+        for ((what, goal), mut robots) in goals.into_iter().zip(lists) {
             if !robots.is_empty() {
-                let field = format!("tasks.{}.{what}", task.name);
+                robots.sort_unstable();
                 out.push(UnreachableGoal {
-                    field,
+                    field: format!("tasks.{}.{what}", task.name),
                     goal,
                     robots,
                 });
             }
         }
     }
-    let stranded: Vec<usize> = ground
-        .iter()
-        .copied()
-        .filter(|&id| {
-            !s.rest_stations
-                .iter()
-                .any(|c| world.is_goal_reachable(id, c.center))
-        })
-        .collect();
     if let (false, Some(first)) = (stranded.is_empty(), s.rest_stations.first()) {
+        stranded.sort_unstable();
         let field = if s.rest_stations.len() == 1 {
             "rest_station"
         } else {

@@ -1,5 +1,7 @@
 //! The navigation grid's regions at one inflation: the sets of free cells that grid moves
-//! ([`ClearanceGrid::successors`]) join, labelled once by a flood fill. Two cells in different
+//! ([`ClearanceGrid::successors`]) join, labelled once by a flood fill: after the first A*
+//! that finds no path, or for the first goal check
+//! ([`super::navigation::PathPlanner::connects`]). Two cells in different
 //! regions have no path between them, so a search between them is known to fail without
 //! running it; without the labels an A* to a walled-in goal visits every cell of the start's
 //! region, which takes seconds on a grid near the 2^24-cell limit, for every robot sent there.
@@ -10,7 +12,7 @@
 use super::navigation::ClearanceGrid;
 
 /// Most inflations whose labels are kept at once (4 bytes a cell each: 64 MiB at the largest
-/// grid); labelling a fifth drops the oldest, which is labelled again if needed.
+/// grid); labelling a fifth drops the least recently used, labelled again if needed.
 const MAX_LABELLED_INFLATIONS: usize = 4;
 
 /// The label of a cell that is not free at the inflation.
@@ -19,7 +21,7 @@ const NOT_FREE: u32 = u32::MAX;
 /// Region labels of the navigation grid, per inflation, made on demand.
 #[derive(Debug, Clone, Default)]
 pub(super) struct GridRegions {
-    /// (inflation's bits, one label per cell), oldest first.
+    /// (inflation's bits, one label per cell), least recently used first.
     labelled: Vec<(u32, Vec<u32>)>,
     /// The flood fill's stack, reused.
     stack: Vec<u32>,
@@ -52,7 +54,12 @@ impl GridRegions {
     pub(super) fn label(&mut self, grid: &ClearanceGrid, inflation: f32) -> &[u32] {
         let bits = inflation.to_bits();
         let k = match self.labelled.iter().position(|(b, _)| *b == bits) {
-            Some(k) => k,
+            // Least recently used goes first: the one used now moves to the end.
+            Some(k) => {
+                let used = self.labelled.remove(k);
+                self.labelled.push(used);
+                self.labelled.len() - 1
+            }
             None => {
                 if self.labelled.len() >= MAX_LABELLED_INFLATIONS {
                     self.labelled.remove(0);
@@ -151,25 +158,27 @@ mod tests {
         assert!(!regions.connected(&g, infl, outside, inside));
         assert!(regions.connected(&g, infl, outside, elsewhere));
         assert!(regions.known_apart(infl, outside, inside));
-        // Every free cell: connected to `outside` exactly when A* finds a path.
-        let mut planner = PathPlanner::new();
+        // Every free cell: connected to `outside` exactly when A* finds a path. A fresh
+        // planner per cell, so that the answer is the search's, not the planner's own labels.
         let (nx, ny) = g.dims();
-        for c in (0..nx * ny).step_by(7) {
+        let mut walled_in = 0;
+        for c in (0..nx * ny)
+            .step_by(7)
+            .filter(|&c| g.is_free(c, infl) && c != outside)
+        {
             let query = PlanQuery {
                 from: g.cell_center(outside),
                 to: g.cell_center(c),
                 inflation_m: infl,
             };
-            let mut out = Vec::new();
-            let planned = planner.plan(&g, (10.0, 10.0), query, GoalKind::Own, &mut out);
-            if g.is_free(c, infl) {
-                assert_eq!(
-                    planned.is_ok(),
-                    regions.connected(&g, infl, outside, c),
-                    "cell {c}"
-                );
-            }
+            let mut planner = PathPlanner::new();
+            let planned = planner.plan(&g, (10.0, 10.0), query, GoalKind::Own, &mut Vec::new());
+            assert_eq!(planner.astar_searches(), 1, "cell {c}: A* ran");
+            let connected = regions.connected(&g, infl, outside, c);
+            assert_eq!(planned.is_ok(), connected, "cell {c}");
+            walled_in += usize::from(!connected);
         }
+        assert!(walled_in > 0, "some sampled cells lie inside the box");
     }
 
     #[test]
