@@ -285,6 +285,25 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
     // "Set a field before validating": the override repairs the rule.
     let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // A second rule the file breaks, found once the override repairs the first: at its line
+    // and column, with the override it was found with.
+    let both = std::fs::read_to_string(&path).unwrap().replacen(
+        "waypoint_tolerance_m: 0.3",
+        "waypoint_tolerance_m: 100.0",
+        1,
+    );
+    std::fs::write(&path, both).expect("write");
+    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.starts_with(&format!("error: {file}:173:"))
+            && err
+                .contains(": navigation.waypoint_tolerance_m: 100 m is more than the limit of 5 m")
+            && err
+                .trim_end()
+                .ends_with("(with --set kinds[0].max_speed_m_per_s=2.5)"),
+        "{err}"
+    );
     // An override that breaks the rule otherwise is named.
     let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=500.0"]);
     assert_eq!(

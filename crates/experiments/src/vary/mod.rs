@@ -195,6 +195,16 @@ pub fn apply_overrides(
     Ok(out)
 }
 
+/// The overrides whose field overlaps `field` (a path as errors write it: the same field, one
+/// inside it, or one it lies in), in order.
+pub fn touching<'a>(overrides: &'a [Override], field: &str) -> Vec<&'a Override> {
+    let about = FieldPath::parse(field).ok();
+    overrides
+        .iter()
+        .filter(|o| about.as_ref().is_some_and(|p| p.overlaps(&o.path)))
+        .collect()
+}
+
 /// The one-line message for a spec with `overrides` that breaks a rule:
 /// `FLAG FIELD=VALUE: field.path: message`, naming the override whose field the rule is
 /// about, or every override when the rule is about none (or several) of their fields. `flag`
@@ -204,11 +214,7 @@ pub fn rule_error(flag: &str, overrides: &[Override], e: &ScenarioError) -> Stri
         ScenarioError::Invalid { field, message, .. } => (field.as_str(), message.as_str()),
         other => return format!("{other}"),
     };
-    let about = FieldPath::parse(field).ok();
-    let culprits: Vec<&Override> = overrides
-        .iter()
-        .filter(|o| about.as_ref().is_some_and(|p| p.overlaps(&o.path)))
-        .collect();
+    let culprits = touching(overrides, field);
     let named: Vec<&Override> = if culprits.len() == 1 {
         culprits
     } else {

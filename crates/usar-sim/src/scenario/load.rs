@@ -121,6 +121,28 @@ pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
     )
 }
 
+/// Validates `spec`, parsed from RON text `src` and perhaps changed since (say by
+/// command-line overrides), placing a broken rule at the line and column where its field
+/// appears in `src` (or its nearest ancestor that does), as [`from_str`] does.
+///
+/// # Errors
+/// [`ScenarioError::Invalid`] for the first broken rule.
+pub fn validate_in_source(
+    spec: &ScenarioSpec,
+    src: &str,
+    origin: &str,
+) -> Result<Scenario, ScenarioError> {
+    let src = without_bom(src);
+    let map = SourceMap::build(&src);
+    validate(
+        spec,
+        &Ctx {
+            origin,
+            map: Some(&map),
+        },
+    )
+}
+
 /// Parses RON text into the raw, unvalidated [`ScenarioSpec`] (e.g. to change a value, such as
 /// a kind's `count`, before [`ScenarioSpec::validate`]).
 ///

@@ -12,7 +12,7 @@ use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError};
 
 use experiments::fingerprint::scenario_hash;
 use experiments::spec_ron::spec_to_ron;
-use experiments::vary::{Override, apply_overrides, brief, rule_error};
+use experiments::vary::{Override, apply_overrides, brief, rule_error, touching};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -62,8 +62,9 @@ pub struct CheckArgs {
 /// status stays 0.
 ///
 /// # Errors
-/// The loader's error (its message names the file, line, column and field), unchanged; a bad
-/// `--set` (`--set FIELD=VALUE: field.path: message`).
+/// Without `--set`, the loader's error (its message names the file, line, column and field),
+/// unchanged; with it, a bad `--set` (`--set FIELD=VALUE: field.path: message`) or a rule the
+/// overridden file breaks ([`validate_overridden`]).
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     let origin = args.scenario.display().to_string();
     let overrides = args
@@ -309,9 +310,11 @@ fn nalgebra_dist(a: scenario::PointM, b: scenario::PointM) -> f64 {
 }
 
 /// Validates `spec`, the file `text` with `overrides` applied, as the help promises: the
-/// overrides may repair a rule the file breaks. A rule the overridden spec breaks just as the
-/// file alone does (same field, same message) is the file's own, reported at its line and
-/// column; any other is the overrides' ([`rule_error`]).
+/// overrides may repair a rule the file breaks. A broken rule about an overridden field names
+/// that `--set` ([`rule_error`]). Any other is reported at its field's line and column in the
+/// file: as it is when the file alone breaks it the same way, else followed by the overrides
+/// it was found with (`(with --set kinds[0].count=7)`: a count that no longer matches the
+/// file's quota).
 ///
 /// # Errors
 /// That rule, as said.
@@ -321,16 +324,24 @@ fn validate_overridden(
     origin: &str,
     overrides: &[Override],
 ) -> Result<scenario::Scenario> {
-    spec.validate(origin)
-        .map_err(|e| match (scenario::from_str(text, origin), &e) {
-            (
-                Err(own @ ScenarioError::Invalid { .. }),
-                ScenarioError::Invalid { field, message, .. },
-            ) if own.field() == Some(field) && own.to_string().ends_with(message.as_str()) => {
-                anyhow!(own)
-            }
-            _ => anyhow!(rule_error("--set", overrides, &e)),
-        })
+    scenario::validate_in_source(spec, text, origin).map_err(|e| {
+        let field = match &e {
+            ScenarioError::Invalid { field, .. } => field.as_str(),
+            _ => return anyhow!(e),
+        };
+        if !touching(overrides, field).is_empty() {
+            return anyhow!(rule_error("--set", overrides, &e));
+        }
+        let own = scenario::from_str(text, origin).err();
+        if own.is_some_and(|own| own.to_string() == e.to_string()) {
+            return anyhow!(e);
+        }
+        let with: Vec<String> = overrides
+            .iter()
+            .map(|o| format!("--set {}", o.brief()))
+            .collect();
+        anyhow!("{e} (with {})", with.join(" "))
+    })
 }
 
 /// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.
