@@ -74,8 +74,9 @@ pub fn print_sweep(
         .map(|s| cfg.simulated_length_of(s))
         .collect();
     durations.dedup();
-    let length = match durations.as_slice() {
-        [d] => format!("{d} s"),
+    let length = match (durations.as_slice(), cfg.duration_s) {
+        ([d], _) => format!("{d} s"),
+        (_, Some(d)) => format!("--duration {d} s in whole steps of each cell's sim.dt_s"),
         _ => "each cell's mission.duration_s".to_string(),
     };
     let grid = match &cfg.grid {

@@ -703,7 +703,8 @@ fn collect(
 /// whole steps (`usar_sim::scenario::trial_steps`) times `dt_s`, or `duration_s` itself when
 /// that is a whole number of steps (within 1e-9 relative: `600` stays `600`, not
 /// `600.0000000000001`) or a length the sweep refuses anyway. `--duration 0.01` at the default
-/// 0.02 s step runs 0.02 s.
+/// 0.02 s step runs 0.02 s. The product is rounded to 12 significant digits, so that it prints
+/// as the steps' length (`0.7`, not `0.7000000000000001`, for 35 steps of 0.02 s).
 pub fn simulated_length_s(duration_s: f64, dt_s: f64) -> f64 {
     match trial_steps(duration_s, dt_s) {
         Ok(steps) => {
@@ -711,7 +712,7 @@ pub fn simulated_length_s(duration_s: f64, dt_s: f64) -> f64 {
             if (ran_s - duration_s).abs() <= 1e-9 * duration_s.abs().max(1.0) {
                 duration_s
             } else {
-                ran_s
+                format!("{ran_s:.11e}").parse().unwrap_or(ran_s)
             }
         }
         Err(_) => duration_s,
@@ -758,6 +759,8 @@ mod tests {
         assert_eq!(simulated_length_s(0.01, 0.02), 0.02);
         assert!((simulated_length_s(0.03, 0.02) - 0.04).abs() < 1e-12);
         assert!((simulated_length_s(12.345, 0.02) - 12.36).abs() < 1e-12);
+        // Printed as the steps' length, without float noise: 35 x 0.02 s.
+        assert_eq!(simulated_length_s(0.69, 0.02).to_string(), "0.7");
         // A length the sweep refuses is shown as asked (the sweep fails on it).
         assert_eq!(simulated_length_s(-1.0, 0.02), -1.0);
     }

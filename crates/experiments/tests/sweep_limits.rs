@@ -73,34 +73,49 @@ fn too_many_trials_is_a_one_line_error_before_any_output() {
     }
 }
 
+/// `usar sweep paper.ron` of one DIS trial of `duration` seconds on one thread into `out`,
+/// with `extra` options, run in `cwd`.
+fn one_dis_trial(cwd: &Path, duration: &str, extra: &[&str], out: &Path) -> Output {
+    let args = [
+        "sweep",
+        PAPER,
+        "--methods",
+        "dis",
+        "--trials",
+        "1",
+        "--duration",
+        duration,
+    ];
+    let quiet = ["--threads", "1", "--quiet", "--out", out.to_str().unwrap()];
+    let o = usar_in(cwd, &[&args[..], extra, &quiet[..]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
 #[test]
 fn a_duration_between_steps_is_reported_as_the_length_that_ran() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
-    let o = usar_in(
-        tmp.path(),
-        &[
-            "sweep",
-            PAPER,
-            "--methods",
-            "dis",
-            "--trials",
-            "1",
-            "--duration",
-            "0.03",
-            "--threads",
-            "1",
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = one_dis_trial(tmp.path(), "0.03", &[], &out);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("DIS x 1 trials x 0.04 s,"), "{stdout}");
     let report = fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         report.contains("1 per method, 0.04 s of simulated time each."),
         "{report}"
+    );
+    // A grid whose cells' steps differ: each cell's report gives its own length, and the
+    // header does not claim the cells ran their mission.duration_s.
+    let grid = tmp.path().join("grid");
+    let o = one_dis_trial(tmp.path(), "1", &["--vary", "sim.dt_s=0.02,0.03"], &grid);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("DIS x 1 trials x --duration 1 s in whole steps of each cell's sim.dt_s,"),
+        "{stdout}"
+    );
+    let cell = fs::read_to_string(grid.join("c01_dt_s=0.03/report.md")).unwrap();
+    assert!(
+        cell.contains("1 per method, 1.02 s of simulated time each."),
+        "{cell}"
     );
 }

@@ -415,6 +415,7 @@ fn a_control_character_in_a_name_is_an_error_at_the_name() {
         ("name: \"paper\"", "name: \"pa\\nper\"", "name"),
         ("name: \"carrier\"", "name: \"car\\trier\"", "kinds[0].name"),
         ("name: \"hard\"", "name: \"ha\\u{7}rd\"", "tasks[0].name"),
+        ("name: \"easy\"", "name: \"ea\\u{2028}sy\"", "tasks[1].name"),
     ] {
         let e = rejected(&paper_with(from, to), field);
         assert!(e.to_string().contains("holds the control character"), "{e}");

@@ -11,7 +11,7 @@ use crate::claims::CLAIMS;
 use crate::grid::Grid;
 use crate::metrics::Metric;
 use crate::report::software_version;
-use crate::sweep::SweepOutcome;
+use crate::sweep::{SweepOutcome, simulated_length_s};
 use crate::table::num;
 
 /// What [`grid_md`] needs.
@@ -70,10 +70,19 @@ fn setup(r: &mut String, input: &GridReportInput<'_>) {
         h.grid.cells.len()
     );
     let _ = writeln!(r, "- Methods: {}.", h.methods.join(", "));
-    let mut durations: Vec<f64> = h.grid.cells.iter().map(|c| c.duration_s).collect();
+    let mut durations: Vec<f64> = h
+        .grid
+        .cells
+        .iter()
+        .zip(&input.grid.cells)
+        .map(|(c, g)| simulated_length_s(c.duration_s, g.scenario.sim.dt_s.get()))
+        .collect();
     durations.dedup();
-    let each = match durations.as_slice() {
-        [d] => format!("{d} s of simulated time each"),
+    let mut asked: Vec<f64> = h.grid.cells.iter().map(|c| c.duration_s).collect();
+    asked.dedup();
+    let each = match (durations.as_slice(), asked.as_slice()) {
+        ([d], _) => format!("{d} s of simulated time each"),
+        (_, [a]) => format!("of {a} s in whole steps of each cell's `sim.dt_s` (see the cells)"),
         _ => "of each cell's `mission.duration_s` (see the cells)".to_string(),
     };
     let _ = writeln!(r, "- Trials: {} per method and cell, {each}.", h.trials);

@@ -89,13 +89,25 @@ impl Override {
 /// Longest command-line argument an error message quotes in full, characters ([`brief`]).
 pub const QUOTED_ARG_CHARS: usize = 80;
 
-/// `arg` (a `--set` or `--vary` argument) as an error message quotes it: in full up to
+/// `arg` (a `--set` or `--vary` argument, or a value) as an error message quotes it, control
+/// characters escaped: in full up to
 /// [`QUOTED_ARG_CHARS`] characters, else its first 60 and the length (`rest_station=[(center_m:
-/// ... (10,412 characters)`), so that an error about a long value stays a short line.
+/// ... (10412 characters)`), so that an error about a long value stays a short line.
 pub fn brief(arg: &str) -> String {
+    // A control character is written escaped (`\n`), so the message stays one line.
+    let arg: String = arg
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_debug().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect();
     let n = arg.chars().count();
     if n <= QUOTED_ARG_CHARS {
-        arg.to_owned()
+        arg
     } else {
         let head: String = arg.chars().take(60).collect();
         format!("{head}... ({n} characters)")
@@ -248,6 +260,7 @@ mod tests {
         let long = format!("rest_station=[{}]", "é".repeat(200));
         let head: String = long.chars().take(60).collect();
         assert_eq!(brief(&long), format!("{head}... (215 characters)"));
+        assert_eq!(brief("name=\"a\nb\""), "name=\"a\\nb\"");
     }
 
     fn set(args: &[&str]) -> Result<ScenarioSpec, (usize, String)> {

@@ -12,6 +12,7 @@
 //! the string `"1"`, `true` for a boolean field a boolean; a number field takes only a finite
 //! number. Whether the result has the right type is finally decided by deserialising the spec.
 
+use super::brief;
 use serde_json::{Map, Number, Value};
 
 /// A parsed RON value.
@@ -71,8 +72,14 @@ impl RonValue {
         match self {
             RonValue::Bare(t) => bare_to_json(t, guide),
             RonValue::Str(s) => match guide {
-                Some(Value::Number(_)) => Err(format!("expected a number, found {s:?}")),
-                Some(Value::Bool(_)) => Err(format!("expected true or false, found {s:?}")),
+                Some(Value::Number(_)) => Err(format!(
+                    "expected a number, found {}",
+                    brief(&format!("{s:?}"))
+                )),
+                Some(Value::Bool(_)) => Err(format!(
+                    "expected true or false, found {}",
+                    brief(&format!("{s:?}"))
+                )),
                 _ => Ok(Value::String(s.clone())),
             },
             RonValue::Call(name, args) if name == "Some" => match args {
@@ -119,8 +126,8 @@ fn is_variant(m: &Map<String, Value>) -> bool {
 /// Refuses a composite value where a number or boolean is expected.
 fn scalar_guide(guide: Option<&Value>, found: &str) -> Result<(), String> {
     match guide {
-        Some(Value::Number(_)) => Err(format!("expected a number, found {found}")),
-        Some(Value::Bool(_)) => Err(format!("expected true or false, found {found}")),
+        Some(Value::Number(_)) => Err(format!("expected a number, found {}", brief(found))),
+        Some(Value::Bool(_)) => Err(format!("expected true or false, found {}", brief(found))),
         _ => Ok(()),
     }
 }
@@ -134,7 +141,7 @@ fn bare_to_json(t: &str, guide: Option<&Value>) -> Result<Value, String> {
         Some(Value::Bool(_)) => match t {
             "true" => Ok(Value::Bool(true)),
             "false" => Ok(Value::Bool(false)),
-            _ => Err(format!("expected true or false, found {t}")),
+            _ => Err(format!("expected true or false, found {}", brief(t))),
         },
         Some(Value::Number(_)) => number(t),
         _ => match t {
@@ -157,8 +164,8 @@ fn number(t: &str) -> Result<Value, String> {
     match t.parse::<f64>() {
         Ok(f) => Number::from_f64(f)
             .map(Value::Number)
-            .ok_or_else(|| format!("expected a finite number, found {t}")),
-        Err(_) => Err(format!("expected a number, found {t}")),
+            .ok_or_else(|| format!("expected a finite number, found {}", brief(t))),
+        Err(_) => Err(format!("expected a number, found {}", brief(t))),
     }
 }
 

@@ -205,17 +205,22 @@ struct TaskGeometry {
 type NamedDebris = Vec<(DebrisShape, String)>;
 
 /// Checks `name`, the `what` at `field`: not blank, and one line of text without control
-/// characters (a line break or tab would break the reports' tables, the CSV headers that
-/// carry task names, and the console's lines).
+/// characters or the Unicode line and paragraph separators (a line break or tab would break
+/// the reports' tables, the CSV headers that carry task names, and the console's lines).
 fn check_name(ctx: &Ctx<'_>, field: String, what: &str, name: &str) -> R<()> {
     if name.trim().is_empty() {
         return Err(ctx.err(field, format!("expected a non-empty {what}")));
     }
-    if let Some(c) = name.chars().find(|c| c.is_control()) {
+    let breaks_lines = |c: char| c.is_control() || matches!(c, '\u{2028}' | '\u{2029}');
+    if let Some(c) = name.chars().find(|&c| breaks_lines(c)) {
+        // At most 60 characters of the name are quoted, so the message stays short.
+        let quoted: String = name.chars().take(60).collect();
+        let more = if quoted.len() < name.len() { "..." } else { "" };
         return Err(ctx.err(
             field,
             format!(
-                "{what} {name:?} holds the control character {c:?}; a name is one line of text"
+                "{what} {quoted:?}{more} holds the control character {c:?}; a name is one line \
+                 of text"
             ),
         ));
     }

@@ -128,8 +128,8 @@ pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
 /// length is refused anyway (the caller reports that error).
 pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
     let steps = trial_steps(requested_s, dt_s).ok()?;
-    let actual_s = steps as f64 * dt_s;
-    if (actual_s - requested_s).abs() <= 1e-9 * requested_s.abs().max(1.0) {
+    let actual_s = experiments::sweep::simulated_length_s(requested_s, dt_s);
+    if actual_s == requested_s {
         return None;
     }
     let why = if requested_s < dt_s {
