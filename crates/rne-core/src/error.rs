@@ -180,12 +180,38 @@ pub enum RneError {
 /// Shorthand for `Result<T, RneError>`.
 pub type Result<T> = std::result::Result<T, RneError>;
 
-/// `v` as messages write a number: plainly when its magnitude is in `[1e-6, 1e15)` or it is
-/// zero, else in scientific notation (`1e-320`, not 320 digits), so a message stays short.
-pub(crate) fn number_text(v: f64) -> String {
+/// `v` as error and warning messages write a number: plainly (`0.5`, `600`) when its
+/// magnitude is in `[1e-6, 1e15)` or it is zero, else in scientific notation (`1e300`, not 301
+/// digits; `1e-320`, not 320; `-inf`, `NaN`), so a message stays one short line whatever number
+/// an input holds. Used by every crate of the workspace (`usar_sim::scenario` re-exports it).
+pub fn number_text(v: f64) -> String {
     if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
         format!("{v:e}")
     } else {
         format!("{v}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number_text;
+
+    #[test]
+    fn numbers_are_plain_in_range_and_scientific_outside() {
+        let cases = [
+            (0.5, "0.5"),
+            (600.0, "600"),
+            (0.0, "0"),
+            (-0.0, "-0"),
+            (1e-6, "0.000001"),
+            (1e15, "1e15"),
+            (1e300, "1e300"),
+            (-1e-320, "-1e-320"),
+            (f64::INFINITY, "inf"),
+            (f64::NAN, "NaN"),
+        ];
+        for (v, text) in cases {
+            assert_eq!(number_text(v), text, "{v}");
+        }
     }
 }

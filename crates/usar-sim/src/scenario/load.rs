@@ -60,7 +60,7 @@ pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
 fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
     std::str::from_utf8(bytes).map_err(|e| {
         let valid = &bytes[..e.valid_up_to()];
-        // A line ends at `\n`, or at a `\r` not followed by `\n` (as in [`without_bom`]).
+        // A line ends at `\n`, or at a `\r` not followed by `\n` (as in [`normalised_source`]).
         let ends_line =
             |i: usize| bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
         let line_start = (0..valid.len())
@@ -89,7 +89,7 @@ fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
 /// `\r` (old Mac line endings) becomes `\n`: ron ends a line, and a `//` comment, only at
 /// `\n`, so such a file would fail in its first comment, at line 1. Byte offsets do not
 /// change, and `\r\n` is left as it is.
-fn without_bom(src: &str) -> Cow<'_, str> {
+fn normalised_source(src: &str) -> Cow<'_, str> {
     let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     let bytes = src.as_bytes();
     let bare_cr = |i: usize| bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n');
@@ -109,7 +109,7 @@ fn without_bom(src: &str) -> Cow<'_, str> {
 /// # Errors
 /// As [`load`], without [`ScenarioError::Io`].
 pub fn from_str(src: &str, origin: &str) -> Result<Scenario, ScenarioError> {
-    let src = without_bom(src);
+    let src = normalised_source(src);
     let map = SourceMap::build(&src);
     let spec = parse_with(&src, origin, &map)?;
     validate(
@@ -132,7 +132,7 @@ pub fn validate_in_source(
     src: &str,
     origin: &str,
 ) -> Result<Scenario, ScenarioError> {
-    let src = without_bom(src);
+    let src = normalised_source(src);
     let map = SourceMap::build(&src);
     validate(
         spec,
@@ -150,7 +150,7 @@ pub fn validate_in_source(
 /// [`ScenarioError::Syntax`] with ron's position and, where it can be worked out, the field
 /// path.
 pub fn parse_spec(src: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError> {
-    let src = without_bom(src);
+    let src = normalised_source(src);
     parse_with(&src, origin, &SourceMap::build(&src))
 }
 

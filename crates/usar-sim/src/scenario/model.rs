@@ -324,17 +324,7 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
     Ok(steps.max(1.0) as u64)
 }
 
-/// `v` as error and warning messages write a number: plainly (`0.5`, `600`) when its
-/// magnitude is in `[1e-6, 1e15)` or it is zero, else in scientific notation (`1e300`, not 301
-/// digits; `1e-12`, not eleven zeros; `-inf`, `NaN`), so a message stays one short line
-/// whatever number a scenario or flag holds.
-pub fn number_text(v: f64) -> String {
-    if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
-}
+pub use rne_core::number_text;
 
 /// `v` with three decimals (`2.500`), or as [`number_text`] writes it when it is 1e15 or more in
 /// magnitude (or not finite), where three decimals would follow sixteen or more digits.
