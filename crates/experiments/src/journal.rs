@@ -244,12 +244,17 @@ fn parse_header_line(path: &Path, line: &str) -> Result<(SweepHeader, String)> {
 /// does not verify, or a damaged line other than the last (the message gives its line number
 /// and names `--overwrite`).
 pub fn read_journal(path: &Path) -> Result<JournalContents> {
-    let text =
-        fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut lines = text.split_inclusive('\n').enumerate().peekable();
+    check_regular_file(path)?;
+    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut lines = bytes
+        .split_inclusive(|&b| b == b'\n')
+        .enumerate()
+        .peekable();
     let Some((_, first)) = lines.next() else {
         bail!("{}: empty journal (no header line)", path.display());
     };
+    let first = std::str::from_utf8(first)
+        .map_err(|_| anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display()))?;
     let (header, sum) = parse_header_line(path, first)?;
     let mut contents = JournalContents {
         header,
@@ -259,9 +264,11 @@ pub fn read_journal(path: &Path) -> Result<JournalContents> {
         complete_bytes: first.len() as u64,
     };
     while let Some((i, line)) = lines.next() {
-        if lines.peek().is_none() && !line.ends_with('\n') {
+        if lines.peek().is_none() && !line.ends_with(b"\n") {
+            // Cut short by a kill, possibly inside a multi-byte character.
             break;
         }
+        let line = std::str::from_utf8(line).map_err(|_| damaged(path, i + 1))?;
         let Ok(RawLine {
             header: None,
             trial: Some(raw),
@@ -308,12 +315,37 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
 /// # Errors
 /// As [`read_journal`] for the first line.
 pub fn read_header(path: &Path) -> Result<SweepHeader> {
+    check_regular_file(path)?;
     let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut first = String::new();
+    let mut first = Vec::new();
     BufReader::new(file)
-        .read_line(&mut first)
+        .read_until(b'\n', &mut first)
         .with_context(|| format!("reading {}", path.display()))?;
-    parse_header_line(path, &first).map(|(h, _)| h)
+    let first = std::str::from_utf8(&first)
+        .map_err(|_| anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display()))?;
+    parse_header_line(path, first).map(|(h, _)| h)
+}
+
+/// Whether anything, even a symbolic link to a missing file, is at `path`.
+pub fn something_at(path: &Path) -> bool {
+    path.symlink_metadata().is_ok()
+}
+
+/// Refuses a journal path that is not a regular file (after symbolic links): a folder, a FIFO
+/// (reading one would wait for a writer for ever), a device, or a link to a missing file.
+fn check_regular_file(path: &Path) -> Result<()> {
+    match fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(()),
+        Ok(_) => bail!(
+            "{}: not a regular file (a folder, FIFO or device); {START_AFRESH}",
+            path.display()
+        ),
+        Err(_) if something_at(path) => bail!(
+            "{}: a symbolic link to a missing file; {START_AFRESH}",
+            path.display()
+        ),
+        Err(e) => Err(e).with_context(|| format!("cannot read {}", path.display())),
+    }
 }
 
 /// An open journal, appending one flushed line per record.
@@ -780,5 +812,70 @@ pub(crate) mod tests {
                 "{msg}"
             );
         }
+    }
+
+    #[test]
+    fn a_last_line_cut_inside_a_character_is_dropped_and_a_bad_byte_is_placed() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut j = Journal::create(dir.path(), &header()).unwrap();
+        j.append(&record(0, 0)).unwrap();
+        drop(j);
+        let path = Journal::path_in(dir.path());
+        let whole = fs::read(&path).unwrap();
+        // A kill one byte into a two-byte character ("\u{fc}" is C3 BC in UTF-8).
+        let mut cut = whole.clone();
+        cut.extend_from_slice(b"{\"trial\":{\"scenario\":\"Pr\xc3");
+        fs::write(&path, &cut).unwrap();
+        let (_, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0)]);
+        assert_eq!(fs::read(&path).unwrap(), whole);
+        // A complete line that is not UTF-8 is damaged, by its line number.
+        let mut bad = whole.clone();
+        bad.extend_from_slice(b"{\"trial\":\xff}\n");
+        bad.extend_from_slice(&whole[whole.iter().position(|&b| b == b'\n').unwrap() + 1..]);
+        fs::write(&path, &bad).unwrap();
+        let msg = format!("{:#}", read_journal(&path).unwrap_err());
+        assert!(
+            msg.contains("journal.jsonl:3: not a valid journal line"),
+            "{msg}"
+        );
+        // And a header that is not UTF-8.
+        fs::write(&path, b"{\"header\":\xff}\n").unwrap();
+        for e in [
+            read_journal(&path).unwrap_err(),
+            read_header(&path).unwrap_err(),
+        ] {
+            let msg = format!("{e:#}");
+            assert!(
+                msg.contains("journal.jsonl:1: not a journal header"),
+                "{msg}"
+            );
+        }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_journal_that_is_a_fifo_or_a_dangling_link_is_refused_without_waiting() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = Journal::path_in(dir.path());
+        let made = std::process::Command::new("mkfifo").arg(&path).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+        for e in [
+            read_journal(&path).unwrap_err(),
+            read_header(&path).unwrap_err(),
+            Journal::open_resume(dir.path(), &header()).unwrap_err(),
+        ] {
+            let msg = format!("{e:#}");
+            assert!(msg.contains("journal.jsonl: not a regular file"), "{msg}");
+            assert!(msg.contains("--overwrite"), "{msg}");
+        }
+        fs::remove_file(&path).unwrap();
+        std::os::unix::fs::symlink(dir.path().join("gone"), &path).unwrap();
+        assert!(something_at(&path) && !path.exists());
+        let msg = format!("{:#}", read_journal(&path).unwrap_err());
+        assert!(
+            msg.contains("journal.jsonl: a symbolic link to a missing file"),
+            "{msg}"
+        );
     }
 }

@@ -30,7 +30,7 @@ use crate::stale_outputs::remove_previous_outputs;
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
-    SweepHeader, TrialRecord, header_diff, read_header,
+    SweepHeader, TrialRecord, header_diff, read_header, something_at,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -499,12 +499,12 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
     if cfg.overwrite && !cfg.resume {
         // The earlier sweep's tables, figures and grid cells go with its journal.
         remove_previous_outputs(dir, &path)?;
-        if path.exists() {
+        if something_at(&path) {
             std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
         }
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
-    if !path.exists() {
+    if !something_at(&path) {
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     if cfg.resume {

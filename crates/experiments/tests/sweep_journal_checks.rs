@@ -154,3 +154,36 @@ fn a_damaged_journal_names_overwrite_and_overwrite_helps() {
     ok(&sweep(&dir, &["--overwrite"]));
     assert_eq!(lines(&journal).len(), 1 + 4);
 }
+
+/// A journal path holding a FIFO or a link to a missing file: a one-line error naming
+/// `--overwrite` (not a wait for a writer, nor "File exists"), and `--overwrite` replaces it.
+#[cfg(unix)]
+#[test]
+fn a_journal_that_is_no_file_is_refused_and_overwrite_replaces_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    std::fs::create_dir(&dir).unwrap();
+    let journal = dir.join("journal.jsonl");
+    let fifo = |p: &Path| {
+        let made = Command::new("mkfifo").arg(p).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    };
+    let link = |p: &Path| std::os::unix::fs::symlink(tmp.path().join("gone"), p).unwrap();
+    for (make, what) in [
+        (&fifo as &dyn Fn(&Path), "not a regular file"),
+        (&link, "a symbolic link to a missing file"),
+    ] {
+        make(&journal);
+        for extra in [&["--resume"][..], &[]] {
+            let e = err(&sweep(&dir, extra));
+            assert!(
+                e.contains(&format!("journal.jsonl: {what}")) && e.contains("--overwrite"),
+                "{extra:?}: {e}"
+            );
+            assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        }
+        ok(&sweep(&dir, &["--overwrite"]));
+        assert_eq!(lines(&journal).len(), 1 + 4);
+        std::fs::remove_file(&journal).unwrap();
+    }
+}

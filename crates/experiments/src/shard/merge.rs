@@ -159,7 +159,7 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
             let shard = Shard::new(i, count)?;
             let sdir = shard_dir(dir, shard);
             let path = Journal::path_in(&sdir);
-            let contents = if path.exists() {
+            let contents = if crate::journal::something_at(&path) {
                 Some(read_journal(&path)?)
             } else {
                 None
