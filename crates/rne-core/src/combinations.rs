@@ -16,10 +16,34 @@ pub struct Bipartition {
 }
 
 impl Bipartition {
-    /// The split whose first subgroup is `first` (indices into `0..n`, any order, no
-    /// duplicates); both lists come out sorted ascending.
-    pub fn from_first(n: usize, mut first: Vec<usize>) -> Self {
+    /// The split whose first subgroup is `first` (indices into `0..n`, any order); both lists
+    /// come out sorted ascending.
+    ///
+    /// # Errors
+    /// [`RneError::InvalidSplitIndex`] naming an index `>= n` or one given twice.
+    pub fn from_first(n: usize, mut first: Vec<usize>) -> Result<Self> {
         first.sort_unstable();
+        if let Some(&index) = first.last().filter(|&&i| i >= n) {
+            return Err(RneError::InvalidSplitIndex {
+                n,
+                index,
+                problem: "out of range",
+            });
+        }
+        if let Some(w) = first.windows(2).find(|w| w[0] == w[1]) {
+            return Err(RneError::InvalidSplitIndex {
+                n,
+                index: w[0],
+                problem: "given twice",
+            });
+        }
+        Ok(Self::from_sorted_first(n, first))
+    }
+
+    /// [`Bipartition::from_first`] for a `first` already known to be ascending, without
+    /// repeats and within `0..n`.
+    pub(crate) fn from_sorted_first(n: usize, first: Vec<usize>) -> Self {
+        debug_assert!(first.windows(2).all(|w| w[0] < w[1]) && first.last() < Some(&n));
         let second = complement(n, &first);
         Self { first, second }
     }
@@ -90,7 +114,8 @@ pub fn combinations(n: usize, m: usize) -> Result<Combinations> {
     })
 }
 
-/// `C(n, m)`, saturating at `u128::MAX` (never overflows or panics); 0 if `m > n`.
+/// `C(n, m)`, exact whenever it fits in a `u128` and saturating at `u128::MAX` otherwise
+/// (never overflows or panics); 0 if `m > n`.
 pub fn binomial(n: usize, m: usize) -> u128 {
     if m > n {
         return 0;
@@ -99,13 +124,23 @@ pub fn binomial(n: usize, m: usize) -> u128 {
     let n = n as u128;
     let mut c: u128 = 1;
     for i in 0..m {
-        // c * (n - i) / (i + 1) is exact at every step (c = C(n, i) before it).
-        c = match c.checked_mul(n - i) {
-            Some(p) => p / (i + 1),
+        // C(n, i + 1) = C(n, i) * (n - i) / (i + 1). With g = gcd(n - i, i + 1), (i + 1) / g
+        // divides C(n, i), so no intermediate exceeds C(n, i + 1), which grows with i up to
+        // m <= n / 2: saturating here means the result does not fit.
+        let g = gcd(n - i, i + 1);
+        c = match (c / ((i + 1) / g)).checked_mul((n - i) / g) {
+            Some(next) => next,
             None => return u128::MAX,
         };
     }
     c
+}
+
+fn gcd(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
 }
 
 /// How many splits [`two_way_splits`]`(n, m)` yields: `C(n, m)`, halved when `m = n - m > 0`
@@ -115,7 +150,11 @@ pub fn binomial(n: usize, m: usize) -> u128 {
 /// 20 split 10/10, 7.8e7 for 30 split 15/15, 1.6e13 for 48 split 24/24.
 pub fn split_count(n: usize, m: usize) -> u128 {
     let c = binomial(n, m);
-    if 2 * m == n && n > 0 { c / 2 } else { c }
+    if m <= n && m == n - m && n > 0 {
+        c / 2
+    } else {
+        c
+    }
 }
 
 /// Lazy iterator over the splits of [`two_way_splits`]; holds one split at a time.
@@ -163,10 +202,11 @@ impl Iterator for TwoWaySplits {
 /// `ASC(A, m) = { (S, A \ S) : S ⊆ A, |S| = m }` modulo swapping when `|S| = |A \ S|`;
 /// paper Algorithm 2 and Sec. V (`C_x^{x/2}` combinations).
 pub fn two_way_splits(n: usize, m: usize) -> Result<TwoWaySplits> {
+    let firsts = combinations(n, m)?;
     Ok(TwoWaySplits {
         n,
-        firsts: combinations(n, m)?,
-        symmetric: 2 * m == n && n > 0,
+        firsts,
+        symmetric: m == n - m && n > 0,
     })
 }
 
@@ -257,6 +297,30 @@ mod tests {
         assert_eq!(split_count(2, 3), 0);
         assert_eq!(binomial(1000, 500), u128::MAX);
         assert_eq!(binomial(1000, 1), 1000);
+        // Exact up to the largest value that fits: no intermediate overflows first.
+        assert_eq!(
+            binomial(128, 64),
+            23_951_146_041_928_082_866_135_587_776_380_551_750
+        );
+        assert_eq!(
+            binomial(131, 65),
+            188_694_833_082_770_476_622_296_176_145_946_360_850
+        );
+        assert_eq!(binomial(132, 66), u128::MAX);
+        assert_eq!(binomial(usize::MAX, 1), usize::MAX as u128);
+        assert_eq!(binomial(usize::MAX, usize::MAX - 1), usize::MAX as u128);
+        // Pascal's rule wherever the sum fits.
+        for n in 1..140 {
+            for k in 1..n {
+                let (a, b) = (binomial(n - 1, k - 1), binomial(n - 1, k));
+                if let Some(sum) = a.checked_add(b).filter(|&s| s < u128::MAX) {
+                    assert_eq!(binomial(n, k), sum, "C({n}, {k})");
+                }
+            }
+        }
+        // Huge sizes neither overflow nor panic.
+        assert_eq!(split_count(usize::MAX, usize::MAX / 2 + 1), u128::MAX);
+        assert!(two_way_splits(usize::MAX, 0).is_ok());
     }
 
     #[test]
@@ -265,12 +329,28 @@ mod tests {
         let first: Vec<_> = two_way_splits(48, 24).unwrap().take(3).collect();
         assert_eq!(first[0].first, (0..24).collect::<Vec<_>>());
         assert_eq!(first[2].first.last(), Some(&25));
+    }
+
+    #[test]
+    fn from_first_builds_a_partition_or_names_the_bad_index() {
         assert_eq!(
-            Bipartition::from_first(5, vec![3, 1]),
+            Bipartition::from_first(5, vec![3, 1]).unwrap(),
             Bipartition {
                 first: vec![1, 3],
                 second: vec![0, 2, 4]
             }
+        );
+        assert_eq!(
+            Bipartition::from_first(3, vec![5, 1])
+                .unwrap_err()
+                .to_string(),
+            "split of 0..3: index 5 is out of range"
+        );
+        assert_eq!(
+            Bipartition::from_first(3, vec![1, 2, 1])
+                .unwrap_err()
+                .to_string(),
+            "split of 0..3: index 1 is given twice"
         );
     }
 }

@@ -78,13 +78,46 @@ pub struct DistributionOptions {
     pub alignment: Alignment,
 }
 
+/// How far from 1 the shares of a [`Distribution`] built by [`Distribution::new`] may sum
+/// (absolute; the distributions this crate computes are within a few `f64::EPSILON`).
+pub const DISTRIBUTION_SUM_TOLERANCE: f64 = 1e-9;
+
 /// A needs distribution `D = (d_1, ..., d_j)`: `j >= 1` entries, each in `[0, 1]`, summing to 1
-/// (up to rounding). Produced by [`needs_distribution`] or [`group_distribution`].
+/// (up to rounding). Produced by [`needs_distribution`] or [`group_distribution`], or from
+/// given shares by [`Distribution::new`].
+///
+/// Serialises as a plain list of numbers; deserialising validates (as [`Distribution::new`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(into = "Vec<f64>")]
+#[serde(try_from = "Vec<f64>", into = "Vec<f64>")]
 pub struct Distribution(DVector<f64>);
 
 impl Distribution {
+    /// A distribution from given shares, e.g. one read back from a file.
+    ///
+    /// # Errors
+    /// [`RneError::Empty`] if `shares` is empty; [`RneError::InvalidProbability`] naming the
+    /// first share that is negative or not finite; [`RneError::NotNormalised`] if they do not
+    /// sum to 1 within [`DISTRIBUTION_SUM_TOLERANCE`].
+    pub fn new(shares: impl Into<Vec<f64>>) -> Result<Self> {
+        let shares = shares.into();
+        if shares.is_empty() {
+            return Err(RneError::Empty {
+                what: "distribution",
+            });
+        }
+        if let Some(index) = shares.iter().position(|p| !p.is_finite() || *p < 0.0) {
+            return Err(RneError::InvalidProbability {
+                index,
+                value: shares[index],
+            });
+        }
+        let sum: f64 = shares.iter().sum();
+        if (sum - 1.0).abs() > DISTRIBUTION_SUM_TOLERANCE {
+            return Err(RneError::NotNormalised { sum });
+        }
+        Ok(Self(DVector::from_vec(shares)))
+    }
+
     /// Normalises non-negative weighted needs `v_k` into `d_k = (v_k + eps) / sum_k (v_k + eps)`.
     fn from_weighted(
         mut v: DVector<f64>,
@@ -117,7 +150,7 @@ impl Distribution {
     }
 }
 
-vector_newtype!(Distribution, "shares");
+vector_newtype!(Distribution, "shares", validated);
 
 /// A robot's needs distribution, Eq. 8 (Def. 1) and Algorithm 4 (NDC):
 ///
@@ -127,8 +160,10 @@ vector_newtype!(Distribution, "shares");
 /// # Errors
 /// [`RneError::LengthMismatch`] if `needs.len() != weights.len()`; [`RneError::ZeroTotal`] if
 /// all weighted needs are zero and the smoothing adds nothing; [`RneError::Overflow`] if they
-/// and the smoothing add up past `f64::MAX` (needs near `f64::MAX` are scaled first, so this
-/// takes a huge smoothing epsilon); [`RneError::InvalidEpsilon`].
+/// and the smoothing add up past `f64::MAX` (with no or relative smoothing, needs near
+/// `f64::MAX` are scaled first, so this takes a huge epsilon; [`Smoothing::Absolute`] is not
+/// scale invariant, so its inputs are not scaled and products near `f64::MAX` overflow);
+/// [`RneError::InvalidEpsilon`].
 ///
 /// # Reference
 /// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 8 and Algorithm 4 (NDC).
@@ -218,6 +253,36 @@ mod tests {
     }
 
     #[test]
+    fn a_distribution_reads_back_what_it_writes_and_nothing_invalid() {
+        let d = needs_distribution(
+            &NeedsVector::new(vec![1.0, 3.0, 0.0]).unwrap(),
+            &w(),
+            &DistributionOptions::default(),
+        )
+        .unwrap();
+        let json = serde_json::to_string(&d).unwrap();
+        assert!(json.starts_with('[') && !json.starts_with("[["), "{json}");
+        assert_eq!(serde_json::from_str::<Distribution>(&json).unwrap(), d);
+        assert_eq!(Distribution::new(d.as_slice().to_vec()).unwrap(), d);
+        for (bad, why) in [
+            ("[]", "distribution is empty"),
+            (
+                "[-1.0, 2.0]",
+                "probabilities[0] = -1; values must be finite and >= 0",
+            ),
+            (
+                "[0.7, 0.7]",
+                "distribution shares sum to 1.4; they must sum to 1",
+            ),
+            ("[[0.5, 0.5], 2, null]", "invalid type"),
+        ] {
+            let e = serde_json::from_str::<Distribution>(bad).unwrap_err();
+            assert!(e.to_string().contains(why), "{bad}: {e}");
+        }
+        assert!(Distribution::new(vec![0.5, 0.5 + 1e-12]).is_ok());
+    }
+
+    #[test]
     fn example1_distributions() {
         let opts = DistributionOptions {
             smoothing: Smoothing::None,
@@ -278,10 +343,13 @@ mod tests {
     fn zero_vector_errors_unless_absolute_smoothing() {
         let z = NeedsVector::new(vec![0.0, 0.0]).unwrap();
         let ones = Weights::uniform(2).unwrap();
-        assert!(matches!(
-            needs_distribution(&z, &ones, &DistributionOptions::default()),
-            Err(RneError::ZeroTotal { .. })
-        ));
+        let e = needs_distribution(&z, &ones, &DistributionOptions::default()).unwrap_err();
+        assert!(matches!(e, RneError::ZeroTotal { .. }));
+        // The default (relative) smoothing is on and cannot help: the message says what can.
+        assert!(
+            e.to_string()
+                .ends_with("(give it a non-zero need, or use absolute smoothing)")
+        );
         let abs = DistributionOptions {
             smoothing: Smoothing::Absolute(1e-9),
             ..Default::default()

@@ -37,7 +37,8 @@ pub enum RneError {
         /// The offending value.
         value: f64,
     },
-    /// A probability-like value (input of [`crate::relative_entropy`]) is negative or not finite.
+    /// A probability-like value (input of [`crate::relative_entropy`] or a share given to
+    /// [`crate::Distribution::new`]) is negative or not finite.
     #[error(
         "probabilities[{index}] = {}; values must be finite and >= 0",
         number_text(*.value)
@@ -48,6 +49,23 @@ pub enum RneError {
         /// The offending value.
         value: f64,
     },
+    /// An index given to [`crate::Bipartition::from_first`] is not in `0..n` or is repeated.
+    #[error("split of 0..{n}: index {index} is {problem}")]
+    InvalidSplitIndex {
+        /// Size of the index set.
+        n: usize,
+        /// The offending index.
+        index: usize,
+        /// `"out of range"` or `"given twice"`.
+        problem: &'static str,
+    },
+    /// The shares given to [`crate::Distribution::new`] do not sum to 1 (within
+    /// [`crate::DISTRIBUTION_SUM_TOLERANCE`]).
+    #[error("distribution shares sum to {}; they must sum to 1", number_text(*.sum))]
+    NotNormalised {
+        /// Their sum.
+        sum: f64,
+    },
     /// An input that must hold at least one element is empty (no needs, an empty group, an
     /// empty team or no task).
     #[error("{what} is empty")]
@@ -55,10 +73,12 @@ pub enum RneError {
         /// Which input is empty.
         what: &'static str,
     },
-    /// All weighted needs are zero and smoothing is off, so the needs distribution
-    /// (Eq. 8 / Eq. 11) is `0/0`.
+    /// All weighted needs are zero and the smoothing adds nothing to them (no smoothing, or
+    /// [`crate::Smoothing::Relative`], which adds a share of their zero total), so the needs
+    /// distribution (Eq. 8 / Eq. 11) is `0/0`. Only [`crate::Smoothing::Absolute`] with an
+    /// epsilon `> 0` gives an all-zero needs vector a distribution (the uniform one).
     #[error(
-        "{what} has all weighted needs equal to zero; its needs distribution is undefined (enable smoothing or give it a non-zero need)"
+        "{what} has all weighted needs equal to zero; its needs distribution is undefined (give it a non-zero need, or use absolute smoothing)"
     )]
     ZeroTotal {
         /// Which input (e.g. "needs vector", "group").
@@ -102,7 +122,7 @@ pub enum RneError {
     /// The task quotas of a kind do not add up to the number of robots of that kind.
     #[error(
         "kind {kind} has {available} robots but its task quotas {quotas:?} sum to {}",
-        quotas.iter().sum::<usize>()
+        quotas.iter().map(|&q| q as u128).sum::<u128>()
     )]
     QuotaMismatch {
         /// Kind index.

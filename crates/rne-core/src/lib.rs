@@ -36,8 +36,8 @@ pub use combinations::{
     Bipartition, Combinations, TwoWaySplits, binomial, combinations, split_count, two_way_splits,
 };
 pub use distribution::{
-    Alignment, DEFAULT_RELATIVE_EPSILON, Distribution, DistributionOptions, Smoothing,
-    group_distribution, needs_distribution,
+    Alignment, DEFAULT_RELATIVE_EPSILON, DISTRIBUTION_SUM_TOLERANCE, Distribution,
+    DistributionOptions, Smoothing, group_distribution, needs_distribution,
 };
 pub use error::{Result, RneError, number_text};
 pub use needs::{NeedsMatrix, NeedsVector, Weights};

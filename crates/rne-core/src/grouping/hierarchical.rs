@@ -204,7 +204,7 @@ impl HierarchicalRne {
             }
         }
         // `two_way_splits` always yields at least one split.
-        Ok(best.unwrap_or((Bipartition::from_first(0, vec![]), 0.0)))
+        Ok(best.unwrap_or((Bipartition::from_sorted_first(0, vec![]), 0.0)))
     }
 
     /// The heuristic step 1 for kinds beyond the exact limit: a split of the same sizes with

@@ -152,7 +152,7 @@ impl GroupingRequest {
                     actual: q.len(),
                 });
             }
-            if q.iter().sum::<usize>() != available {
+            if q.iter().try_fold(0usize, |sum, &x| sum.checked_add(x)) != Some(available) {
                 return Err(RneError::QuotaMismatch {
                     kind,
                     available,
@@ -256,6 +256,17 @@ mod tests {
                 available: 1,
                 quotas: vec![1, 1]
             })
+        );
+        // Quotas whose sum overflows a usize are a mismatch too (it wrapped to a match).
+        let e = two(vec![robot(0, 0)], vec![vec![usize::MAX, 2]]).unwrap_err();
+        assert!(matches!(e, RneError::QuotaMismatch { available: 1, .. }));
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "kind 0 has 1 robots but its task quotas [{}, 2] sum to {}",
+                usize::MAX,
+                u128::from(u64::MAX) + 2
+            )
         );
         assert_eq!(two(vec![], q), Err(RneError::Empty { what: "team" }));
         let mut bad = robot(3, 0);

@@ -44,7 +44,7 @@ fn improves(new: f64, old: f64) -> bool {
 pub(crate) fn heuristic_split(scorer: &SplitScorer<'_>, m: usize) -> Bipartition {
     let n = scorer.n();
     if m == 0 || m == n {
-        return Bipartition::from_first(n, (0..m).collect());
+        return Bipartition::from_sorted_first(n, (0..m).collect());
     }
     let mut w = scorer.scratch();
     let mut starts: Vec<(Vec<bool>, f64)> = initial_splits(scorer, m)
@@ -70,7 +70,7 @@ pub(crate) fn heuristic_split(scorer: &SplitScorer<'_>, m: usize) -> Bipartition
         }
     }
     let in_first = best.map(|(s, _)| s).unwrap_or_default();
-    Bipartition::from_first(n, (0..n).filter(|&r| in_first[r]).collect())
+    Bipartition::from_sorted_first(n, (0..n).filter(|&r| in_first[r]).collect())
 }
 
 /// The `2 (j + 1)` initial splits of step 1 as membership flags.

@@ -17,7 +17,9 @@ pub(crate) struct SplitScorer<'a> {
     model: &'a TrustModel,
     members: &'a [&'a NeedsVector],
     j: usize,
-    /// `n x j`, row-major: member `r`'s weighted needs `n_rk w_k`.
+    /// `n x j`, row-major: member `r`'s weighted needs `n_rk w_k`, or with no or relative
+    /// smoothing, when their total is not a normal `f64`, `(n_rk / max n) (w_k / max w)`
+    /// (as the distributions scale them: the same shares, computable near `f64::MAX`).
     weighted: Vec<f64>,
     /// Relative smoothing epsilon `e` (0 unless `Smoothing::Relative`).
     eps_rel: f64,
@@ -60,11 +62,8 @@ impl<'a> SplitScorer<'a> {
                 actual: j,
             });
         }
-        let weighted = members
-            .iter()
-            .flat_map(|m| m.as_slice().iter().zip(w).map(|(n, w)| n * w))
-            .collect();
         let opts = model.options();
+        let weighted = weighted_rows(members, w, opts.smoothing);
         let (eps_rel, eps_abs) = match opts.smoothing {
             Smoothing::None => (0.0, 0.0),
             Smoothing::Relative(e) => (e, 0.0),
@@ -268,6 +267,35 @@ impl<'a> SplitScorer<'a> {
         let shift = c * sum_g - (1.0 + self.j as f64 * c) * dot;
         g.iter().map(|gi| (gi + shift) / z).collect()
     }
+}
+
+/// The members' weighted needs, row-major, scaled like `distribution::weighted` when their
+/// total over the whole kind (which bounds every side's sums) is not a normal `f64`.
+fn weighted_rows(members: &[&NeedsVector], w: &[f64], smoothing: Smoothing) -> Vec<f64> {
+    let plain: Vec<f64> = members
+        .iter()
+        .flat_map(|m| m.as_slice().iter().zip(w).map(|(n, w)| n * w))
+        .collect();
+    if plain.iter().sum::<f64>().is_normal() || matches!(smoothing, Smoothing::Absolute(_)) {
+        return plain;
+    }
+    let n_max = members
+        .iter()
+        .flat_map(|m| m.as_slice())
+        .fold(0.0_f64, |a, &b| a.max(b));
+    let w_max = w.iter().fold(0.0_f64, |a, &b| a.max(b));
+    if n_max == 0.0 || !n_max.is_finite() {
+        return plain;
+    }
+    members
+        .iter()
+        .flat_map(|m| {
+            m.as_slice()
+                .iter()
+                .zip(w)
+                .map(|(n, w)| (n / n_max) * (w / w_max))
+        })
+        .collect()
 }
 
 /// `sum_k p_k ln(p_k / q_k)` with `0 ln(0/q) = 0` and `p ln(p/0) = +inf`.

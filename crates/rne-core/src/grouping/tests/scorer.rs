@@ -84,3 +84,36 @@ proptest! {
         prop_assert!((numeric - analytic).abs() <= 1e-3 * analytic.abs().max(1e-2), "numeric {} vs analytic {}", numeric, analytic);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Needs near `f64::MAX` (their weighted total overflows) are scaled as the distributions
+    /// scale them, so the heuristic finds as good a split as at ordinary magnitudes, with the
+    /// same exact `J` (it kept an arbitrary start when every candidate scored `-inf`).
+    #[test]
+    fn the_heuristic_is_scale_invariant_up_to_f64_max((rows, _) in kind(), relative in any::<bool>()) {
+        let smoothing = if relative { Smoothing::default() } else { Smoothing::None };
+        let j = rows[0].len();
+        let n = rows.len();
+        let weights = |c: f64| Weights::new((1..=j).map(|w| c * w as f64).collect::<Vec<_>>()).unwrap();
+        let opts = RneOptions { smoothing, alignment: Alignment::Category, log_base: LogBase::TWO };
+        let j_of = |scale: f64, w_scale: f64| {
+            let method = HierarchicalRne::new(TrustModel::new(weights(w_scale), opts).unwrap());
+            let needs: Vec<NeedsVector> = rows
+                .iter()
+                .map(|r| NeedsVector::new(r.iter().map(|x| x * scale).collect::<Vec<_>>()).unwrap())
+                .collect();
+            let members: Vec<&NeedsVector> = needs.iter().collect();
+            let (split, _) = method.best_split_heuristic(&members, n / 2).unwrap();
+            // Score both splits on the ordinary scale.
+            let plain: Vec<NeedsVector> = rows.iter().map(|r| NeedsVector::new(r.clone()).unwrap()).collect();
+            let pick = |idx: &[usize]| idx.iter().map(|&i| &plain[i]).collect::<Vec<_>>();
+            let m1 = HierarchicalRne::new(TrustModel::new(weights(1.0), opts).unwrap());
+            m1.between_rne(&pick(&split.first), &pick(&split.second)).unwrap()
+        };
+        let ordinary = j_of(1.0, 1.0);
+        let huge = j_of(1e305, 10.0);
+        prop_assert!((huge - ordinary).abs() <= 1e-9 * ordinary.max(1e-12), "{} vs {}", huge, ordinary);
+    }
+}
