@@ -22,7 +22,7 @@
 //! can leave a last line cut short; [`Journal::open_resume`] drops it.
 
 use std::fs::{self, File, OpenOptions};
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -197,7 +197,8 @@ const START_AFRESH: &str =
 /// The error for a damaged line (`line` is 1-based).
 fn damaged(path: &Path, line: usize) -> anyhow::Error {
     anyhow!(
-        "{}:{line}: not a valid journal line; the journal is damaged: {START_AFRESH}",
+        "{}:{line}: not a valid journal line; the journal is damaged: delete that line (a trial \
+         it held runs again), or {START_AFRESH}",
         path.display()
     )
 }
@@ -269,6 +270,11 @@ pub fn read_journal(path: &Path) -> Result<JournalContents> {
             break;
         }
         let line = std::str::from_utf8(line).map_err(|_| damaged(path, i + 1))?;
+        if line.trim().is_empty() {
+            // A blank line (an editor's final newline) holds nothing.
+            contents.complete_bytes += line.len() as u64;
+            continue;
+        }
         let Ok(RawLine {
             header: None,
             trial: Some(raw),
@@ -326,6 +332,27 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
     parse_header_line(path, first).map(|(h, _)| h)
 }
 
+/// Whether the regular file at `path` holds no complete line and nothing but the start of a
+/// journal header (empty, or a sweep killed while it wrote its header): no trial to lose.
+pub fn holds_no_line(path: &Path) -> bool {
+    const HEADER_START: &[u8] = b"{\"header\":";
+    // Checked before opening: opening a FIFO to read waits for a writer.
+    if !fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
+    let Ok(file) = File::open(path) else {
+        return false;
+    };
+    let mut start = Vec::new();
+    let read = BufReader::new(file)
+        .take(1 << 20)
+        .read_until(b'\n', &mut start);
+    read.is_ok()
+        && !start.ends_with(b"\n")
+        && start.len() < 1 << 20
+        && (start.starts_with(HEADER_START) || HEADER_START.starts_with(&start))
+}
+
 /// Whether anything, even a symbolic link to a missing file, is at `path`.
 pub fn something_at(path: &Path) -> bool {
     path.symlink_metadata().is_ok()
@@ -349,12 +376,23 @@ fn check_regular_file(path: &Path) -> Result<()> {
 }
 
 /// An open journal, appending one flushed line per record.
+///
+/// A line that cannot be written whole (a full disk) is cut back off the file, so the journal
+/// keeps only complete lines and a later append, or a resume, finds it intact; if even that
+/// fails, every later append is refused without writing.
 #[derive(Debug)]
 pub struct Journal {
     path: PathBuf,
     file: File,
     /// The header's checksum, part of every record's.
     header_sum: String,
+    /// Length of the file up to the end of its last complete line, bytes.
+    complete_bytes: u64,
+    /// Set when a failed append could not be cut back off the file.
+    damaged: bool,
+    /// Tests: the next line is written only up to this many bytes, then fails.
+    #[cfg(test)]
+    fail_after_bytes: Option<usize>,
 }
 
 impl Journal {
@@ -382,6 +420,10 @@ impl Journal {
             path,
             file,
             header_sum,
+            complete_bytes: 0,
+            damaged: false,
+            #[cfg(test)]
+            fail_after_bytes: None,
         };
         j.write_line(&journal_line("header", &json, &j.header_sum))?;
         Ok(j)
@@ -421,6 +463,10 @@ impl Journal {
             path,
             file,
             header_sum: contents.header_sum.clone(),
+            complete_bytes: contents.complete_bytes,
+            damaged: false,
+            #[cfg(test)]
+            fail_after_bytes: None,
         };
         Ok((journal, contents))
     }
@@ -437,10 +483,39 @@ impl Journal {
     }
 
     fn write_line(&mut self, s: &str) -> Result<()> {
-        self.file
-            .write_all(s.as_bytes())
-            .and_then(|()| self.file.flush())
-            .with_context(|| format!("appending to {}", self.path.display()))
+        if self.damaged {
+            bail!(
+                "{}: an earlier line could not be written nor removed; not appending",
+                self.path.display()
+            );
+        }
+        if let Err(e) = self.write_bytes(s.as_bytes()) {
+            // Cut the part of the line that was written back off, so that the journal ends
+            // with a complete line, and write the next line where it ended.
+            let end = self.complete_bytes;
+            let cut = self.file.set_len(end);
+            if cut
+                .and_then(|()| self.file.seek(SeekFrom::Start(end)))
+                .is_err()
+            {
+                self.damaged = true;
+            }
+            return Err(e).with_context(|| format!("appending to {}", self.path.display()));
+        }
+        self.complete_bytes += s.len() as u64;
+        Ok(())
+    }
+
+    fn write_bytes(&mut self, bytes: &[u8]) -> std::io::Result<()> {
+        #[cfg(test)]
+        if let Some(n) = self.fail_after_bytes.take() {
+            self.file.write_all(&bytes[..n.min(bytes.len())])?;
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::StorageFull,
+                "no space left on device (test)",
+            ));
+        }
+        self.file.write_all(bytes).and_then(|()| self.file.flush())
     }
 }
 
@@ -875,6 +950,85 @@ pub(crate) mod tests {
         let msg = format!("{:#}", read_journal(&path).unwrap_err());
         assert!(
             msg.contains("journal.jsonl: a symbolic link to a missing file"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn a_line_that_cannot_be_written_whole_is_cut_back_off() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = Journal::path_in(dir.path());
+        let mut j = Journal::create(dir.path(), &header()).unwrap();
+        j.append(&record(0, 0)).unwrap();
+        let before = fs::read(&path).unwrap();
+        // A full disk cuts the next line after 40 bytes; another thread's record follows
+        // once space is back.
+        j.fail_after_bytes = Some(40);
+        let msg = format!("{:#}", j.append(&record(1, 1)).unwrap_err());
+        assert!(
+            msg.contains("appending to") && msg.contains("no space left"),
+            "{msg}"
+        );
+        assert_eq!(fs::read(&path).unwrap(), before);
+        j.append(&record(0, 2)).unwrap();
+        drop(j);
+        let (_, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(0, 2)]);
+        assert!(c.rejected.is_empty());
+        // The same in a resumed journal (opened to append).
+        let (mut j, _) = Journal::open_resume(dir.path(), &header()).unwrap();
+        j.fail_after_bytes = Some(30);
+        assert!(j.append(&record(1, 0)).is_err());
+        j.append(&record(1, 1)).unwrap();
+        drop(j);
+        let c = read_journal(&path).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(0, 2), record(1, 1)]);
+        // If the cut fails too, nothing more is appended after the partial line.
+        let (mut j, _) = Journal::open_resume(dir.path(), &header()).unwrap();
+        j.file = File::open(&path).unwrap();
+        j.fail_after_bytes = Some(0);
+        assert!(j.append(&record(1, 1)).is_err());
+        j.file = OpenOptions::new().append(true).open(&path).unwrap();
+        let msg = format!("{:#}", j.append(&record(1, 2)).unwrap_err());
+        assert!(msg.contains("could not be written nor removed"), "{msg}");
+        assert_eq!(read_journal(&path).unwrap().records.len(), 3);
+    }
+
+    #[test]
+    fn blank_lines_hold_nothing_and_a_cut_header_holds_no_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = Journal::path_in(dir.path());
+        let mut j = Journal::create(dir.path(), &header()).unwrap();
+        j.append(&record(0, 0)).unwrap();
+        drop(j);
+        assert!(!holds_no_line(&path));
+        let whole = fs::read_to_string(&path).unwrap();
+        fs::write(&path, format!("{whole}\n  \n")).unwrap();
+        let (mut j, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!(c.records, vec![record(0, 0)]);
+        j.append(&record(0, 1)).unwrap();
+        drop(j);
+        assert_eq!(read_journal(&path).unwrap().records.len(), 2);
+        // A header cut short (or nothing) holds no trial; other text is not taken for one.
+        let first = whole.lines().next().unwrap();
+        for (text, none) in [
+            ("", true),
+            ("{\"hea", true),
+            (&first[..first.len() / 2], true),
+            ("notes", false),
+            (&whole[..], false),
+        ] {
+            fs::write(&path, text).unwrap();
+            assert_eq!(holds_no_line(&path), none, "{text:?}");
+        }
+        // The message for a damaged line says which line to delete.
+        fs::write(&path, format!("{whole}garbage\n{whole}")).unwrap();
+        let msg = format!("{:#}", read_journal(&path).unwrap_err());
+        assert!(
+            msg.contains(
+                "journal.jsonl:3: not a valid journal line; the journal is damaged: \
+                          delete that line"
+            ),
             "{msg}"
         );
     }

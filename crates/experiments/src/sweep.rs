@@ -30,7 +30,7 @@ use crate::stale_outputs::remove_previous_outputs;
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
-    SweepHeader, TrialRecord, header_diff, read_header, something_at,
+    SweepHeader, TrialRecord, header_diff, holds_no_line, read_header, something_at,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -492,8 +492,8 @@ impl OpenJournal {
 /// Creates, resumes or reuses the journal in `dir`, with the records it holds.
 fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<OpenJournal> {
     let path = Journal::path_in(dir);
-    if path.metadata().is_ok_and(|m| m.is_file() && m.len() == 0) {
-        // An empty file holds no sweep (not even a header): nothing to resume or lose.
+    if holds_no_line(&path) {
+        // An empty file, or a header cut short, holds no trial: nothing to resume or lose.
         std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
     }
     if cfg.overwrite && !cfg.resume {
@@ -520,7 +520,8 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
             "it was written with other parameters: {}",
             header_diff(&found, header)
         ),
-        Err(e) => format!("{e:#}"),
+        // It cannot be continued: its own message says how to start afresh.
+        Err(e) => return Err(e),
     };
     bail!(
         "{} already exists ({why}): pass --resume to continue that sweep, or --overwrite to \

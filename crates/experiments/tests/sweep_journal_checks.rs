@@ -187,3 +187,31 @@ fn a_journal_that_is_no_file_is_refused_and_overwrite_replaces_it() {
         std::fs::remove_file(&journal).unwrap();
     }
 }
+
+/// A sweep killed while it wrote its header left no trial: the next sweep starts afresh
+/// without a word. A journal that cannot be continued is refused by its own message, without
+/// the advice to pass --resume, which would fail.
+#[test]
+fn a_cut_header_starts_afresh_and_an_unusable_journal_does_not_advise_resume() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &[]));
+    let journal = dir.join("journal.jsonl");
+    let whole = lines(&journal);
+    std::fs::write(&journal, &whole[0][..whole[0].len() / 2]).unwrap();
+    ok(&sweep(&dir, &[]));
+    let again = lines(&journal);
+    assert!(
+        again[0] == whole[0] && again.len() == whole.len(),
+        "a new sweep of 4 trials"
+    );
+    let mut header = whole[0].clone();
+    header.insert(header.len() - 3, '0');
+    write_lines(&journal, &[header]);
+    let e = err(&sweep(&dir, &[]));
+    assert!(
+        e.contains("journal.jsonl:1:") && e.contains("--overwrite"),
+        "{e}"
+    );
+    assert!(!e.contains("pass --resume"), "{e}");
+}
