@@ -445,3 +445,29 @@ fn a_rescue_takes_pickup_s_standing_still() {
     }
     assert!(rescues >= 10, "{rescues} rescues");
 }
+
+/// `min_hp_factor: 0` lets a robot at 0 % HP with an empty battery (and, for an observer, no
+/// resources or capacity) have an all-zero needs vector; RNE grouping gives such a group the
+/// uniform distribution (relative smoothing's convention) and the trial runs. Every RNE trial
+/// of this valid scenario used to fail with "all weighted needs equal to zero".
+#[test]
+fn robots_with_all_zero_needs_are_grouped_by_rne() {
+    let mut s = paper();
+    s.mission.min_hp_factor = 0.0.try_into().unwrap();
+    s.mission.initial_hp = fixed(0.0);
+    s.mission.initial_energy = fixed(0.0);
+    let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+        .with_duration_s(5.0)
+        .unwrap();
+    // The observers: no rescuing resources, no carrying capacity.
+    let zero = sim
+        .robots()
+        .iter()
+        .filter(|r| sim.needs(r.id).as_slice().iter().all(|&n| n == 0.0))
+        .count();
+    assert_eq!(zero, 2, "the observers' needs vectors are all zero");
+    while !sim.is_finished() {
+        sim.step().expect("an RNE step with all-zero needs vectors");
+    }
+    assert_eq!(sim.result().rounds.len(), 1);
+}

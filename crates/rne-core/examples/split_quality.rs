@@ -69,7 +69,7 @@ fn main() {
         let refs: Vec<&NeedsVector> = members.iter().collect();
         let t0 = Instant::now();
         let Ok((_, exact)) = method.best_split_exact(&refs, m) else {
-            continue; // an all-zero subgroup has no distribution (tied regime only)
+            continue; // without smoothing an all-zero subgroup has no distribution
         };
         let t1 = Instant::now();
         let (_, heur) = method.best_split_heuristic(&refs, m).expect("heuristic");
@@ -86,7 +86,9 @@ fn main() {
             worst_case = format!("team {team}: regime {regime}, n = {n}, m = {m}");
         }
     }
-    println!("kinds compared: {counted} (of {teams}; the rest had an all-zero subgroup)");
+    println!(
+        "kinds compared: {counted} (of {teams}; the rest had an all-zero subgroup and no smoothing)"
+    );
     println!(
         "heuristic J / exact optimum: mean {:.6}, worst {worst:.6} ({worst_case})",
         sum / counted as f64

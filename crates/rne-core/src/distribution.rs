@@ -20,7 +20,10 @@ pub const DEFAULT_RELATIVE_EPSILON: f64 = 1e-9;
 /// * [`Smoothing::Relative`]`(e)`: `eps_abs = e * sum_k n_k w_k`. Scale invariant: multiplying
 ///   a needs vector by `c > 0` leaves its distribution unchanged. **Default**, with
 ///   `e = 1e-9` ([`DEFAULT_RELATIVE_EPSILON`]); then a zero category gets probability
-///   `~1e-9` and a one-sided zero costs about `p_k * ln(p_k / 1e-9) <= ~20.7 p_k` nats.
+///   `~1e-9` and a one-sided zero costs about `p_k * ln(p_k / 1e-9) <= ~20.7 p_k` nats. An
+///   all-zero needs vector (a robot with nothing left: no HP, energy, resources or free
+///   capacity) has no scale to take a share of; with `e > 0` it gets the uniform
+///   distribution, as with `Absolute` (a convention: the paper leaves `0/0` open).
 /// * [`Smoothing::Absolute`]`(e)`: `eps_abs = e` in weighted-need units. Not scale invariant,
 ///   but an all-zero needs vector gets the uniform distribution instead of an error.
 /// * [`Smoothing::None`] (or either variant with `e = 0`): no smoothing; RNE may then be
@@ -131,6 +134,8 @@ impl Distribution {
         }
         let eps = match opts.smoothing {
             Smoothing::None => 0.0,
+            // All needs zero: no scale to take a share of; uniform, as `Absolute` gives.
+            Smoothing::Relative(e) if total == 0.0 && e > 0.0 => 1.0,
             Smoothing::Relative(e) => e * total,
             Smoothing::Absolute(e) => e,
         };
@@ -159,7 +164,7 @@ vector_newtype!(Distribution, "shares", validated);
 ///
 /// # Errors
 /// [`RneError::LengthMismatch`] if `needs.len() != weights.len()`; [`RneError::ZeroTotal`] if
-/// all weighted needs are zero and the smoothing adds nothing; [`RneError::Overflow`] if they
+/// all weighted needs are zero and there is no smoothing ([`Smoothing::None`] or `e = 0`); [`RneError::Overflow`] if they
 /// and the smoothing add up past `f64::MAX` (with no or relative smoothing, needs near
 /// `f64::MAX` are scaled first, so this takes a huge epsilon; [`Smoothing::Absolute`] is not
 /// scale invariant, so its inputs are not scaled and products near `f64::MAX` overflow);
@@ -340,15 +345,25 @@ mod tests {
     }
 
     #[test]
-    fn zero_vector_errors_unless_absolute_smoothing() {
+    fn a_zero_vector_is_uniform_with_smoothing_and_an_error_without() {
         let z = NeedsVector::new(vec![0.0, 0.0]).unwrap();
         let ones = Weights::uniform(2).unwrap();
-        let e = needs_distribution(&z, &ones, &DistributionOptions::default()).unwrap_err();
+        // Relative smoothing (the default) has no scale to take a share of: uniform.
+        assert_eq!(
+            needs_distribution(&z, &ones, &DistributionOptions::default())
+                .unwrap()
+                .as_slice(),
+            &[0.5, 0.5]
+        );
+        let none = DistributionOptions {
+            smoothing: Smoothing::None,
+            ..Default::default()
+        };
+        let e = needs_distribution(&z, &ones, &none).unwrap_err();
         assert!(matches!(e, RneError::ZeroTotal { .. }));
-        // The default (relative) smoothing is on and cannot help: the message says what can.
         assert!(
             e.to_string()
-                .ends_with("(give it a non-zero need, or use absolute smoothing)")
+                .ends_with("(enable smoothing or give it a non-zero need)")
         );
         let abs = DistributionOptions {
             smoothing: Smoothing::Absolute(1e-9),

@@ -73,12 +73,11 @@ pub enum RneError {
         /// Which input is empty.
         what: &'static str,
     },
-    /// All weighted needs are zero and the smoothing adds nothing to them (no smoothing, or
-    /// [`crate::Smoothing::Relative`], which adds a share of their zero total), so the needs
-    /// distribution (Eq. 8 / Eq. 11) is `0/0`. Only [`crate::Smoothing::Absolute`] with an
-    /// epsilon `> 0` gives an all-zero needs vector a distribution (the uniform one).
+    /// All weighted needs are zero and there is no smoothing ([`crate::Smoothing::None`], or
+    /// an epsilon of 0), so the needs distribution (Eq. 8 / Eq. 11) is `0/0`. With smoothing
+    /// (`e > 0`) an all-zero needs vector gets the uniform distribution.
     #[error(
-        "{what} has all weighted needs equal to zero; its needs distribution is undefined (give it a non-zero need, or use absolute smoothing)"
+        "{what} has all weighted needs equal to zero; its needs distribution is undefined without smoothing (enable smoothing or give it a non-zero need)"
     )]
     ZeroTotal {
         /// Which input (e.g. "needs vector", "group").

@@ -152,9 +152,16 @@ impl<'a> SplitScorer<'a> {
     }
 
     /// The smoothed distribution of weighted sums `s` into `out` (unsorted); its normaliser
-    /// `Z`, or `None` if the total is not positive (the distribution is undefined).
+    /// `Z` (infinite for the uniform distribution relative smoothing gives zero sums), or
+    /// `None` if the total is not positive (the distribution is undefined).
     fn distribution(&self, s: &[f64], out: &mut [f64]) -> Option<f64> {
         let total: f64 = s.iter().sum();
+        if total == 0.0 && self.eps_rel > 0.0 {
+            // Uniform by convention (`Smoothing::Relative`); an infinite normaliser gives
+            // this side no gradient, as the convention has none.
+            out.fill(1.0 / self.j as f64);
+            return Some(f64::INFINITY);
+        }
         let eps = self.eps_abs + self.eps_rel * total;
         let z = total + eps * self.j as f64;
         if !(z > 0.0 && z.is_finite()) {

@@ -91,10 +91,9 @@ proptest! {
     fn heuristic_grouping_returns_a_partition_meeting_quotas(req in random_request(1..=5)) {
         let method = HierarchicalRne::new(TrustModel::with_weights(Weights::uniform(3).unwrap()))
             .with_exact_split_limit(0);
-        match method.group(&req) {
-            Ok(a) => prop_assert!(a.validate(&req).is_ok()),
-            Err(e) => prop_assert!(matches!(e, RneError::ZeroTotal { .. }), "{}", e),
-        }
+        // With smoothing (the default) even an all-zero subgroup has a distribution.
+        let a = method.group(&req);
+        prop_assert!(a.as_ref().is_ok_and(|a| a.validate(&req).is_ok()), "{:?}", a);
     }
 
     #[test]
