@@ -258,22 +258,46 @@ pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
 /// allocation failure; a larger study is several sweeps (for example one per `--seed`).
 pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
 
-/// Refuses a sweep of more than [`MAX_SWEEP_TRIALS`] trials (grid cells x methods x trials)
-/// with a one-line error; cheap, so a caller can check before any other work.
+/// Refuses a sweep of more than [`MAX_SWEEP_TRIALS`] trials (grid cells x methods x trials),
+/// or split into more shards (`--shard I/N`) than it has trials, with a one-line error;
+/// cheap, so a caller can check before any other work.
 ///
 /// # Errors
-/// The count and the limit, when the count is above it.
+/// The count and the limit, when the count is above it; see [`check_shard_count`].
 pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
     let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
     let total = cells
         .saturating_mul(cfg.methods.len())
         .saturating_mul(cfg.trials as usize);
+    if let Some(s) = &cfg.shard {
+        check_shard_count(
+            &format!("--shard {}/{}", s.shard.index, s.shard.count),
+            s.shard.count,
+            total,
+        )?;
+    }
     if total > MAX_SWEEP_TRIALS {
         bail!(
             "the sweep's {cells} cell(s) x {} method(s) x {} trials make {total} trials, more \
              than the limit of {MAX_SWEEP_TRIALS} per sweep",
             cfg.methods.len(),
             cfg.trials
+        );
+    }
+    Ok(())
+}
+
+/// Refuses a split into more shards than the sweep has trials (`total`): a shard without a
+/// trial would be one more job to run, and to wait for, with nothing to do. `option` names
+/// the flag in the message (`--shard 3/50`, `--shards 50`).
+///
+/// # Errors
+/// `shards > total`, naming the most shards the sweep can use.
+pub fn check_shard_count(option: &str, shards: usize, total: usize) -> Result<()> {
+    if shards > total {
+        bail!(
+            "{option}: the sweep has {total} trial(s), so at most {total} shards have work; \
+             split it into at most {total}"
         );
     }
     Ok(())

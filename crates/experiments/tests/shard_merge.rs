@@ -190,6 +190,15 @@ fn a_bad_shard_argument_is_one_line() {
         String::from_utf8_lossy(&o.stderr).trim(),
         "error: --shard 3/3: the shard index must be from 0 to 2"
     );
+    // 2 cells x 2 methods x 3 trials: a 13th shard would have nothing to run.
+    let o = sweep(&tmp.path().join("s"), &["--shard", "0/13"]);
+    assert!(!o.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim(),
+        "error: --shard 0/13: the sweep has 12 trial(s), so at most 12 shards have work; split \
+         it into at most 12"
+    );
+    assert!(!tmp.path().join("s").exists());
 }
 
 /// `line` with the first digit of its first task's rescuee count changed: still JSON, but its

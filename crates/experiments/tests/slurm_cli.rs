@@ -135,3 +135,22 @@ fn bad_options_are_refused_before_anything_is_written() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--time"));
     assert!(!out.join("slurm/sweep.sbatch").exists());
 }
+
+#[test]
+fn more_shards_than_trials_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    let o = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["slurm", PAPER, "--methods", "rne,dis", "--trials", "2"])
+        .args(["--duration", "60", "--shards", "5", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run usar");
+    assert!(!o.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim(),
+        "error: --shards 5: the sweep has 4 trial(s), so at most 4 shards have work; split it \
+         into at most 4"
+    );
+    assert!(!out.join("slurm").exists());
+}
