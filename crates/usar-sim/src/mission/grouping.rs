@@ -17,6 +17,10 @@ use crate::scenario::{AwayQuotas, Scenario};
 ///
 /// For two tasks `(q_easy, q_hard)` these are `hard = min(q_hard, n)`, `easy = min(q_easy,
 /// n - hard)` and its mirror, and "take from the larger, easy on a tie".
+///
+/// # Panics
+/// If `quota` is empty (no task) or `hardest_first` is not a permutation of its indices; a
+/// validated scenario's quotas and task order always are.
 pub fn shrink_quotas(
     quota: &[usize],
     n: usize,

@@ -44,6 +44,10 @@ pub fn hp_factor(hp_pct: f64, min_factor: f64) -> f64 {
 /// `res = resources`, `cap = capacity`, `obs = observing_range_m * f(hp)`, with `f` =
 /// [`hp_factor`]. Units are mixed (that is the paper's model); the needs distribution
 /// normalises them with the scenario's weights.
+///
+/// # Panics
+/// If `hp_pct` or `energy_pct` is NaN (levels outside `[0, 100]` are clamped); the mission
+/// keeps both finite. The kind must be validated (its fields finite and positive).
 pub fn needs_vector(
     kind: &RobotKind,
     min_hp_factor: f64,

@@ -9,12 +9,27 @@ use crate::scenario::{Locomotion, PointM, Rect, Scenario};
 /// least 1) at the centres of equal vertical strips. Rows and points are thus at most
 /// `spacing_m` apart and at most `spacing_m / 2` from the area's edges, so a robot following
 /// them passes within `spacing_m / 2` of every point between the first and the last column
-/// and within `spacing_m / √2` of every point of the area (the corners). `spacing_m` is finite
-/// and `> 0`.
+/// and within `spacing_m / √2` of every point of the area (the corners).
+///
+/// # Panics
+/// Unless `spacing_m` is finite and `> 0` and the pattern has at most
+/// [`MAX_SWEEP_POINTS`](crate::scenario::limits::MAX_SWEEP_POINTS) points (a validated
+/// scenario's spacing always passes both): a clear message instead of an allocation failure.
 pub fn sweep_waypoints(area: &Rect, spacing_m: f64) -> Vec<PointM> {
     let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
-    let nx = ((w / spacing_m).ceil() as usize).max(1);
-    let ny = ((h / spacing_m).ceil() as usize).max(1);
+    let (cols, rows) = (
+        (w / spacing_m).ceil().max(1.0),
+        (h / spacing_m).ceil().max(1.0),
+    );
+    assert!(
+        spacing_m.is_finite()
+            && spacing_m > 0.0
+            && cols * rows <= crate::scenario::limits::MAX_SWEEP_POINTS,
+        "sweep_waypoints: spacing {spacing_m} m over a {w} x {h} m area: the spacing must be \
+         finite and > 0 and give at most {} points",
+        crate::scenario::limits::MAX_SWEEP_POINTS
+    );
+    let (nx, ny) = (cols as usize, rows as usize);
     let mut out = Vec::with_capacity(nx * ny);
     for j in 0..ny {
         let y = area.min.y + (j as f64 + 0.5) * h / ny as f64;
@@ -50,6 +65,18 @@ pub fn sweep_spacing_m(scenario: &Scenario) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A spacing too fine for the area is a clear panic, not an allocation failure that
+    /// aborts the process (1e-7 m over 10 x 10 m asked for 1.6e17 bytes).
+    #[test]
+    #[should_panic(expected = "the spacing must be finite and > 0 and give at most")]
+    fn a_spacing_too_fine_is_a_clear_panic() {
+        let area = Rect {
+            min: PointM::new(0.0, 0.0),
+            max: PointM::new(10.0, 10.0),
+        };
+        sweep_waypoints(&area, 1e-7);
+    }
 
     #[test]
     fn a_sweep_passes_within_half_its_spacing_of_every_point() {
