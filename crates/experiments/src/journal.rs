@@ -203,11 +203,12 @@ fn damaged(path: &Path, line: usize) -> anyhow::Error {
     )
 }
 
-/// Parses and verifies the header line (the first line) of the journal at `path`; returns
-/// the header and its checksum.
-fn parse_header_line(path: &Path, line: &str) -> Result<(SweepHeader, String)> {
-    check_format(path, line)?;
+/// Parses and verifies the header line (the first line, as read) of the journal at `path`;
+/// returns the header and its checksum.
+fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> {
     let not_a_header = || anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display());
+    let line = std::str::from_utf8(line).map_err(|_| not_a_header())?;
+    check_format(path, line)?;
     if !line.ends_with('\n') {
         bail!(
             "{}:1: the header line is cut short; {START_AFRESH}",
@@ -254,8 +255,6 @@ pub fn read_journal(path: &Path) -> Result<JournalContents> {
     let Some((_, first)) = lines.next() else {
         bail!("{}: empty journal (no header line)", path.display());
     };
-    let first = std::str::from_utf8(first)
-        .map_err(|_| anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display()))?;
     let (header, sum) = parse_header_line(path, first)?;
     let mut contents = JournalContents {
         header,
@@ -327,9 +326,7 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
     BufReader::new(file)
         .read_until(b'\n', &mut first)
         .with_context(|| format!("reading {}", path.display()))?;
-    let first = std::str::from_utf8(&first)
-        .map_err(|_| anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display()))?;
-    parse_header_line(path, first).map(|(h, _)| h)
+    parse_header_line(path, &first).map(|(h, _)| h)
 }
 
 /// Whether the regular file at `path` holds no complete line and nothing but the start of a
@@ -337,10 +334,7 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
 pub fn holds_no_line(path: &Path) -> bool {
     const HEADER_START: &[u8] = b"{\"header\":";
     // Checked before opening: opening a FIFO to read waits for a writer.
-    if !fs::metadata(path).is_ok_and(|m| m.is_file()) {
-        return false;
-    }
-    let Ok(file) = File::open(path) else {
+    let Ok(file) = check_regular_file(path).and_then(|()| Ok(File::open(path)?)) else {
         return false;
     };
     let mut start = Vec::new();

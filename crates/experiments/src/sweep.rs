@@ -266,9 +266,7 @@ pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
 /// The count and the limit, when the count is above it; see [`check_shard_count`].
 pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
     let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
-    let total = cells
-        .saturating_mul(cfg.methods.len())
-        .saturating_mul(cfg.trials as usize);
+    let total = trial_count(cfg);
     if let Some(s) = &cfg.shard {
         check_shard_count(
             &format!("--shard {}/{}", s.shard.index, s.shard.count),
@@ -285,6 +283,14 @@ pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The sweep's trials in all shards together: grid cells x methods x trials (saturating).
+pub fn trial_count(cfg: &SweepConfig) -> usize {
+    let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
+    cells
+        .saturating_mul(cfg.methods.len())
+        .saturating_mul(cfg.trials as usize)
 }
 
 /// Refuses a split into more shards than the sweep has trials (`total`): a shard without a

@@ -164,11 +164,11 @@ vector_newtype!(Distribution, "shares", validated);
 ///
 /// # Errors
 /// [`RneError::LengthMismatch`] if `needs.len() != weights.len()`; [`RneError::ZeroTotal`] if
-/// all weighted needs are zero and there is no smoothing ([`Smoothing::None`] or `e = 0`); [`RneError::Overflow`] if they
-/// and the smoothing add up past `f64::MAX` (with no or relative smoothing, needs near
-/// `f64::MAX` are scaled first, so this takes a huge epsilon; [`Smoothing::Absolute`] is not
-/// scale invariant, so its inputs are not scaled and products near `f64::MAX` overflow);
-/// [`RneError::InvalidEpsilon`].
+/// all weighted needs are zero and there is no smoothing ([`Smoothing::None`] or `e = 0`);
+/// [`RneError::Overflow`] if they and the smoothing add up past `f64::MAX` (with no or
+/// relative smoothing, needs near `f64::MAX` are scaled first, so this takes a huge epsilon;
+/// [`Smoothing::Absolute`] is not scale invariant, so its inputs are not scaled and products
+/// near `f64::MAX` overflow); [`RneError::InvalidEpsilon`].
 ///
 /// # Reference
 /// `D_R = (N_R .* W) / <N_R, W>`; paper Def. 1, Eq. 8 and Algorithm 4 (NDC).
@@ -197,15 +197,28 @@ pub fn needs_distribution(
 /// round to 0, or where `e * sum` does) computable.
 fn weighted(a: &DVector<f64>, w: &DVector<f64>, smoothing: Smoothing) -> DVector<f64> {
     let v = a.component_mul(w);
-    if v.sum().is_normal() || matches!(smoothing, Smoothing::Absolute(_)) {
-        return v;
+    match needs_scale(v.sum(), a.amax(), w.amax(), smoothing) {
+        None => v,
+        Some((a_max, w_max)) => (a / a_max).component_mul(&(w / w_max)),
     }
-    // Weights are finite and > 0 (`Weights::new`); needs or column sums may be 0 or inf.
-    let (a_max, w_max) = (a.amax(), w.amax());
-    if a_max == 0.0 || !a_max.is_finite() {
-        return v;
-    }
-    (a / a_max).component_mul(&(w / w_max))
+}
+
+/// The rule of `weighted`: `None` to multiply needs and weights as they are (their product's
+/// sum `plain_sum` is a normal `f64`, the smoothing is [`Smoothing::Absolute`], or the largest
+/// need `a_max` is 0 or infinite), else the divisors `(a_max, w_max)` to scale needs and
+/// weights by first. Weights are finite and `> 0` (`Weights::new`); needs or column sums may
+/// be 0 or infinite. Also used by the heuristic split's scorer, so both scale alike.
+pub(crate) fn needs_scale(
+    plain_sum: f64,
+    a_max: f64,
+    w_max: f64,
+    smoothing: Smoothing,
+) -> Option<(f64, f64)> {
+    let as_they_are = plain_sum.is_normal()
+        || matches!(smoothing, Smoothing::Absolute(_))
+        || a_max == 0.0
+        || !a_max.is_finite();
+    (!as_they_are).then_some((a_max, w_max))
 }
 
 /// A group's needs distribution, Eqs. 11 and 16 (Defs. 2-3):

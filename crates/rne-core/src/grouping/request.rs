@@ -265,7 +265,7 @@ mod tests {
             format!(
                 "kind 0 has 1 robots but its task quotas [{}, 2] sum to {}",
                 usize::MAX,
-                u128::from(u64::MAX) + 2
+                usize::MAX as u128 + 2
             )
         );
         assert_eq!(two(vec![], q), Err(RneError::Empty { what: "team" }));

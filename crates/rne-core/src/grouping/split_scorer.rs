@@ -6,7 +6,7 @@
 
 use nalgebra::DVector;
 
-use crate::distribution::{Alignment, Smoothing, group_distribution_from_sums};
+use crate::distribution::{Alignment, Smoothing, group_distribution_from_sums, needs_scale};
 use crate::error::{Result, RneError};
 use crate::needs::NeedsVector;
 use crate::rne::TrustModel;
@@ -276,33 +276,30 @@ impl<'a> SplitScorer<'a> {
     }
 }
 
-/// The members' weighted needs, row-major, scaled like `distribution::weighted` when their
-/// total over the whole kind (which bounds every side's sums) is not a normal `f64`.
+/// The members' weighted needs, row-major, scaled by [`needs_scale`]'s rule (as the
+/// distributions are) applied to the whole kind, whose total bounds every side's sums.
 fn weighted_rows(members: &[&NeedsVector], w: &[f64], smoothing: Smoothing) -> Vec<f64> {
     let plain: Vec<f64> = members
         .iter()
         .flat_map(|m| m.as_slice().iter().zip(w).map(|(n, w)| n * w))
         .collect();
-    if plain.iter().sum::<f64>().is_normal() || matches!(smoothing, Smoothing::Absolute(_)) {
-        return plain;
-    }
     let n_max = members
         .iter()
         .flat_map(|m| m.as_slice())
         .fold(0.0_f64, |a, &b| a.max(b));
     let w_max = w.iter().fold(0.0_f64, |a, &b| a.max(b));
-    if n_max == 0.0 || !n_max.is_finite() {
-        return plain;
+    match needs_scale(plain.iter().sum(), n_max, w_max, smoothing) {
+        None => plain,
+        Some((n_max, w_max)) => members
+            .iter()
+            .flat_map(|m| {
+                m.as_slice()
+                    .iter()
+                    .zip(w)
+                    .map(|(n, w)| (n / n_max) * (w / w_max))
+            })
+            .collect(),
     }
-    members
-        .iter()
-        .flat_map(|m| {
-            m.as_slice()
-                .iter()
-                .zip(w)
-                .map(|(n, w)| (n / n_max) * (w / w_max))
-        })
-        .collect()
 }
 
 /// `sum_k p_k ln(p_k / q_k)` with `0 ln(0/q) = 0` and `p ln(p/0) = +inf`.

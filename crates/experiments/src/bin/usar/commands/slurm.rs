@@ -93,12 +93,11 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     let out_dir = absolute(&out_dir)?;
     // The sweep must be one `usar sweep` accepts: build it (and its header) now.
     let cfg = plan.config(&out_dir)?;
-    let header = experiments::sweep::header_of(&cfg)?;
-    let trials = header.grid.cells.len() * header.methods.len() * header.trials as usize;
+    experiments::sweep::header_of(&cfg)?;
     experiments::sweep::check_shard_count(
         &format!("--shards {}", args.shards),
         args.shards,
-        trials,
+        experiments::sweep::trial_count(&cfg),
     )?;
     let workdir = std::env::current_dir().context("reading the current folder")?;
     let usar = std::env::current_exe().context("finding the usar executable")?;
