@@ -320,13 +320,28 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
 /// # Errors
 /// As [`read_journal`] for the first line.
 pub fn read_header(path: &Path) -> Result<SweepHeader> {
+    parse_header_line(path, &first_line(path)?).map(|(h, _)| h)
+}
+
+/// The first line of the regular file at `path`, with its newline if it has one.
+fn first_line(path: &Path) -> Result<Vec<u8>> {
     check_regular_file(path)?;
     let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
     let mut first = Vec::new();
     BufReader::new(file)
         .read_until(b'\n', &mut first)
         .with_context(|| format!("reading {}", path.display()))?;
-    parse_header_line(path, &first).map(|(h, _)| h)
+    Ok(first)
+}
+
+/// The header of the journal at `path` as written, without checking its checksum, its
+/// format or that its line is complete: only to learn which files and cell folders its sweep
+/// wrote (`--overwrite` removes them), never to trust a record. `None` when there is no
+/// regular file at `path` or its first line holds no header of this format's shape.
+pub fn read_header_unverified(path: &Path) -> Option<SweepHeader> {
+    let line = first_line(path).ok()?;
+    let raw: RawLine<'_> = serde_json::from_slice(line.trim_ascii_end()).ok()?;
+    serde_json::from_str(raw.header?.get()).ok()
 }
 
 /// Whether the regular file at `path` holds no complete line and nothing but the start of a

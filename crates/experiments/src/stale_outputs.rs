@@ -3,22 +3,26 @@
 //! sweep's (a grid of other values, or a run killed before its files were written, left them
 //! mixed).
 //!
-//! Only a folder with a journal is touched, and in it only names a sweep writes
+//! Only a folder with a journal (its own, or a shard's under `shards/`, whose merge wrote
+//! there) is touched, and in it only names a sweep writes
 //! ([`crate::output::write_outputs`], the grid's files and replays, [`crate::replay`]): at the
 //! top the tables, figures, reports, replays and grid files (never a `scenario.ron`, which a
-//! sweep writes only into grid cells), and the cell folders the journal's header names, each
-//! emptied of its outputs and removed only once empty. Anything else stays.
+//! sweep writes only into grid cells), and the cell folders the journals' headers name, each
+//! emptied of its outputs and removed only once empty. Anything else stays, the shards'
+//! folders too.
 
+use std::collections::BTreeSet;
 use std::fs;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
-use crate::atomic::remove_files_where;
+use crate::atomic::{remove_files_where, remove_stale_temps};
 use crate::figures::FIGURES;
 use crate::grid::names::{cell_dir, field_labels};
-use crate::journal::{GridHeader, read_header};
+use crate::journal::{GridHeader, Journal, read_header_unverified};
+use crate::shard::shard_folders;
 use crate::vary::FieldPath;
 
 /// Tables and the report of one cell (or of the output folder without a grid).
@@ -67,26 +71,46 @@ fn cell_dirs(grid: &GridHeader) -> Vec<String> {
         .collect()
 }
 
-/// Removes from `dir` the output files of the sweep journaled in `journal` (a file in `dir`):
-/// the top-level tables, figures, reports, replays and grid files, and in each cell folder
-/// its header names, that cell's files, then the folder if that left it empty. Nothing when
-/// `journal` does not exist; only the top-level files when its header cannot be read. Call
-/// it only while holding the folder's lock ([`crate::lock`]). Returns the files removed.
+/// The journals whose sweeps wrote into `dir`: `journal` (the folder's own) and those of the
+/// shards under `dir/shards/`, whose merge (`usar merge`) wrote there; only regular files.
+fn journals_of(dir: &Path, journal: &Path) -> Result<Vec<PathBuf>> {
+    let mut journals = vec![journal.to_path_buf()];
+    for (_, shard) in shard_folders(dir)? {
+        journals.push(Journal::path_in(&shard));
+    }
+    journals.retain(|j| j.is_file());
+    Ok(journals)
+}
+
+/// Removes from `dir` the output files of the sweeps journaled in `journal` (a file in `dir`)
+/// and in the journals of its shards (`dir/shards/<I>-of-<N>/journal.jsonl`, whose merge
+/// wrote into `dir`): the top-level tables, figures, reports, replays and grid files, and in
+/// each cell folder a header names, that cell's files and temporary files a kill left
+/// ([`crate::atomic::is_temp_name`]), then the folder if that left it empty. A header is read
+/// for its names only, without verifying it ([`read_header_unverified`]): an edited header
+/// still names its sweep's cells. Nothing when no such journal exists. Call it only while
+/// holding the folder's lock ([`crate::lock`]). Returns the files removed.
 ///
 /// # Errors
 /// An I/O error listing a folder or removing a file or an emptied cell folder.
 pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf>> {
-    if !journal.is_file() {
+    let journals = journals_of(dir, journal)?;
+    if journals.is_empty() {
         return Ok(Vec::new());
     }
     let mut removed = remove_files_where(dir, is_top_output)?;
-    let cells = read_header(journal).map_or_else(|_| Vec::new(), |h| cell_dirs(&h.grid));
+    let cells: BTreeSet<String> = journals
+        .iter()
+        .filter_map(|j| read_header_unverified(j))
+        .flat_map(|h| cell_dirs(&h.grid))
+        .collect();
     for name in cells {
         let cell = dir.join(name);
         if !cell.is_dir() {
             continue;
         }
         removed.extend(remove_files_where(&cell, is_cell_output)?);
+        removed.extend(remove_stale_temps(&cell)?);
         match fs::remove_dir(&cell) {
             Ok(()) => {}
             Err(e) if e.kind() == ErrorKind::DirectoryNotEmpty => {}
@@ -161,5 +185,48 @@ mod tests {
             names(&d.join("c2024_backup")),
             ["scenario.ron", "trials.csv"]
         );
+    }
+
+    /// Files in the cell folders of the test header's grid (`mission.duration_s` = 10, 20).
+    fn old_cells(d: &Path, files: &[&str]) {
+        for cell in ["c00_duration_s=10", "c01_duration_s=20"] {
+            fs::create_dir_all(d.join(cell)).unwrap();
+            for f in files {
+                fs::write(d.join(cell).join(f), "x").unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn an_edited_header_still_names_its_cells_and_their_temp_files_go() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        drop(Journal::create(d, &header()).unwrap());
+        let j = Journal::path_in(d);
+        let edited = fs::read_to_string(&j)
+            .unwrap()
+            .replace("\"sum\":\"", "\"sum\":\"0");
+        fs::write(&j, edited).unwrap();
+        assert!(crate::journal::read_header(&j).is_err());
+        // A kill left a temporary file next to a cell's table.
+        old_cells(d, &["trials.csv", ".summary.csv.tmp-99999-1"]);
+        let removed = remove_previous_outputs(d, &j).unwrap();
+        assert_eq!(removed.len(), 4, "{removed:?}");
+        assert_eq!(names(d), ["journal.jsonl"]);
+    }
+
+    #[test]
+    fn the_cells_a_merge_of_shards_wrote_go_and_the_shards_stay() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let shard = d.join("shards/0-of-2");
+        drop(Journal::create(&shard, &header()).unwrap());
+        fs::write(d.join("grid.csv"), "x").unwrap();
+        old_cells(d, &["trials.csv", "scenario.ron"]);
+        // The folder has no journal of its own: a merge wrote its files.
+        let removed = remove_previous_outputs(d, &Journal::path_in(d)).unwrap();
+        assert_eq!(removed.len(), 5, "{removed:?}");
+        assert_eq!(names(d), ["shards"]);
+        assert_eq!(names(&shard), ["journal.jsonl"]);
     }
 }

@@ -30,7 +30,8 @@ use crate::stale_outputs::remove_previous_outputs;
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
-    SweepHeader, TrialRecord, header_diff, holds_no_line, read_header, something_at,
+    SweepHeader, TrialRecord, header_diff, holds_no_line, read_header, read_header_unverified,
+    something_at,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -535,6 +536,9 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     if !something_at(&path) {
+        if cfg.shard.is_none() {
+            refuse_other_sweeps_shards(dir, header)?;
+        }
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
     if cfg.resume {
@@ -558,6 +562,32 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
          start afresh (or choose another --out)",
         path.display()
     )
+}
+
+/// Refuses to start a sweep in `dir` when a journal of its shards (`dir/shards/`, see
+/// [`crate::shard`]) was written by another sweep: `usar merge` writes that sweep's files into
+/// `dir`, and the two would mix. `--overwrite` removes those files instead
+/// ([`remove_previous_outputs`]).
+fn refuse_other_sweeps_shards(dir: &Path, header: &SweepHeader) -> Result<()> {
+    for (_, shard) in crate::shard::shard_folders(dir)? {
+        let path = Journal::path_in(&shard);
+        if !something_at(&path) {
+            continue;
+        }
+        let why = match read_header_unverified(&path) {
+            Some(found) if &found == header => continue,
+            Some(found) => header_diff(&found, header),
+            None => "its header cannot be read".to_string(),
+        };
+        bail!(
+            "{} is a shard's journal of another sweep ({why}), whose merge writes its files into \
+             {}: pass --overwrite to start afresh there (the merged files go, the shards stay), \
+             or choose another --out",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
 }
 
 /// Runs the sweep (every job without a successful record in the journal) and returns its

@@ -19,12 +19,13 @@ use anyhow::{Context, Result, bail};
 
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
-    Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, read_journal,
+    Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff,
+    read_header_unverified, read_journal,
 };
 use crate::lock::OutputLock;
 use crate::shard::plan::plan_mismatch;
 use crate::shard::spec::{job_costs_ms, sweep_jobs};
-use crate::shard::{SHARDS_DIR, Shard, SweepPlan, shard_dir, split};
+use crate::shard::{SHARDS_DIR, Shard, SweepPlan, shard_dir, shard_folders, split};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome, cells_from_records, header_of};
 
 /// A shard that is not done.
@@ -120,18 +121,7 @@ pub struct Merged {
 
 /// The shards under `dir/shards/`, of one split; a folder with another name is ignored.
 fn find_split(dir: &Path) -> Result<usize> {
-    let root = dir.join(SHARDS_DIR);
-    let mut counts = BTreeSet::new();
-    if root.is_dir() {
-        let entries =
-            std::fs::read_dir(&root).with_context(|| format!("reading {}", root.display()))?;
-        for e in entries {
-            let e = e.with_context(|| format!("reading {}", root.display()))?;
-            if let Some(s) = e.file_name().to_str().and_then(Shard::from_dir_name) {
-                counts.insert(s.count);
-            }
-        }
-    }
+    let counts: BTreeSet<usize> = shard_folders(dir)?.iter().map(|(s, _)| s.count).collect();
     match counts.len() {
         0 => Err(MergeError::NoShards {
             dir: dir.to_path_buf(),
@@ -204,6 +194,28 @@ fn plan_and_header(
         }
     }
     Ok((plan, config, header))
+}
+
+/// Refuses to merge into `dir` when its own journal (`dir/journal.jsonl`, of a sweep run
+/// there without `--shard`) is another sweep's than the shards': the merge would write over
+/// that sweep's files and mix the two.
+fn refuse_other_sweeps_journal(dir: &Path, header: &SweepHeader) -> Result<()> {
+    let path = Journal::path_in(dir);
+    if !crate::journal::something_at(&path) {
+        return Ok(());
+    }
+    let why = match read_header_unverified(&path) {
+        Some(found) if &found == header => return Ok(()),
+        Some(found) => header_diff(&found, header),
+        None => "its header cannot be read".to_string(),
+    };
+    bail!(
+        "{} is the journal of another sweep than the shards' ({why}), whose files are in {}: \
+         merging would mix the two; move that journal and its files away, or run the shards \
+         with another --out",
+        path.display(),
+        dir.display()
+    )
 }
 
 /// What each shard lacks: no journal, or jobs with no record that verifies (a job whose only
@@ -279,6 +291,7 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
     let count = find_split(dir)?;
     let shards = read_shards(dir, count)?;
     let (plan, config, header) = plan_and_header(dir, &shards)?;
+    refuse_other_sweeps_journal(dir, &header)?;
     let mut records = Vec::new();
     let mut rejected = Vec::new();
     for s in &shards {
@@ -294,9 +307,10 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
     rejected.retain(|(_, r)| !records.iter().any(|k| k.key() == r.key()));
     let unfinished = unfinished(&header, &shards, &records);
     if !unfinished.is_empty() {
+        let here = std::env::current_dir().ok();
         let commands = unfinished
             .iter()
-            .map(|u| plan.shard_command(u.shard, dir))
+            .map(|u| plan.shard_command(u.shard, dir, here.as_deref()))
             .collect();
         return Err(MergeError::Incomplete {
             count,

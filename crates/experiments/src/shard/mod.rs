@@ -12,5 +12,5 @@ pub mod spec;
 
 pub use merge::{MergeError, Merged, merge_shards};
 pub use plan::{SweepPlan, shell_join};
-pub use run::{SHARDS_DIR, ShardRun, shard_dir};
+pub use run::{SHARDS_DIR, ShardRun, shard_dir, shard_folders};
 pub use spec::{MAX_SHARDS, Shard, ShardError, split};

@@ -39,6 +39,11 @@ pub struct SweepPlan {
     pub duration_s: Option<f64>,
     /// `--grid-metrics` (empty: the default metrics).
     pub grid_metrics: Vec<String>,
+    /// The folder the shard's command ran in, absolute: [`SweepPlan::shard_command`] run from
+    /// another folder makes the scenario path absolute against it. `None` when unknown (a
+    /// plan written before this field existed, or no current folder).
+    #[serde(default)]
+    pub working_dir: Option<PathBuf>,
 }
 
 impl SweepPlan {
@@ -124,18 +129,29 @@ impl SweepPlan {
     /// The shell command that runs (or continues) `shard` of this sweep into `out_dir`:
     /// `usar sweep SCENARIO <options> --shard I/N --out DIR`, every word quoted for a POSIX
     /// shell where it needs it.
-    pub fn shard_command(&self, shard: Shard, out_dir: &Path) -> String {
+    ///
+    /// `out_dir` is relative to `here`, the folder the command is shown in, and so is the
+    /// command when `here` is [`SweepPlan::working_dir`] (or that is unknown); otherwise the
+    /// scenario path and `out_dir` are made absolute, so that the command runs from any
+    /// folder.
+    pub fn shard_command(&self, shard: Shard, out_dir: &Path, here: Option<&Path>) -> String {
+        let (scenario, out) = match (&self.working_dir, here) {
+            (Some(wd), Some(here)) if wd != here => {
+                (wd.join(&self.scenario_path), here.join(out_dir))
+            }
+            _ => (self.scenario_path.clone(), out_dir.to_path_buf()),
+        };
         let mut words = vec![
             "usar".to_string(),
             "sweep".to_string(),
-            self.scenario_path.display().to_string(),
+            scenario.display().to_string(),
         ];
         words.extend(self.sweep_options());
         words.extend([
             "--shard".to_string(),
             shard.to_string(),
             "--out".to_string(),
-            out_dir.display().to_string(),
+            out.display().to_string(),
         ]);
         shell_join(&words)
     }
@@ -158,4 +174,55 @@ pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
          mixes two sweeps",
         SweepPlan::path_in(dir).display()
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(working_dir: Option<&str>) -> SweepPlan {
+        SweepPlan {
+            scenario_path: "scenarios/my paper.ron".into(),
+            scenario_text: String::new(),
+            vary: Vec::new(),
+            methods: vec!["rne".into(), "dis".into()],
+            trials: 2,
+            seed: None,
+            duration_s: None,
+            grid_metrics: Vec::new(),
+            working_dir: working_dir.map(PathBuf::from),
+        }
+    }
+
+    #[test]
+    fn a_command_shown_in_another_folder_than_the_shards_has_absolute_paths() {
+        let shard = Shard::new(1, 2).unwrap();
+        let relative = "usar sweep 'scenarios/my paper.ron' --methods 'rne,dis' --trials 2 \
+                        --shard 1/2 --out 'out dir'";
+        let out = Path::new("out dir");
+        // Shown where the shard ran, or with either folder unknown: as the shard was run.
+        let here = Some(Path::new("/home/me"));
+        assert_eq!(
+            plan(Some("/home/me")).shard_command(shard, out, here),
+            relative
+        );
+        assert_eq!(plan(None).shard_command(shard, out, here), relative);
+        assert_eq!(
+            plan(Some("/home/me")).shard_command(shard, out, None),
+            relative
+        );
+        assert_eq!(
+            plan(Some("/home/me")).shard_command(shard, out, Some(Path::new("/tmp"))),
+            "usar sweep '/home/me/scenarios/my paper.ron' --methods 'rne,dis' --trials 2 \
+             --shard 1/2 --out '/tmp/out dir'"
+        );
+    }
+
+    #[test]
+    fn a_plan_without_a_working_dir_still_reads() {
+        let mut json = serde_json::to_value(plan(Some("/x"))).unwrap();
+        json.as_object_mut().unwrap().remove("working_dir");
+        let read: SweepPlan = serde_json::from_value(json).unwrap();
+        assert_eq!(read, plan(None));
+    }
 }

@@ -10,6 +10,8 @@
 
 use std::path::{Path, PathBuf};
 
+use anyhow::{Context, Result};
+
 use crate::shard::{Shard, SweepPlan};
 
 /// Name of the folder, under a sweep's output folder, that holds the shards' folders.
@@ -19,6 +21,30 @@ pub const SHARDS_DIR: &str = "shards";
 /// `<out_dir>/shards/<I>-of-<N>` ([`Shard::dir_name`]).
 pub fn shard_dir(out_dir: &Path, shard: Shard) -> PathBuf {
     out_dir.join(SHARDS_DIR).join(shard.dir_name())
+}
+
+/// The shard folders under `<out_dir>/shards/`, ordered by shard count, then index; a folder
+/// or file whose name is not `<I>-of-<N>` is skipped, and there are none when `shards/` does
+/// not exist.
+///
+/// # Errors
+/// An I/O error listing `<out_dir>/shards/`.
+pub fn shard_folders(out_dir: &Path) -> Result<Vec<(Shard, PathBuf)>> {
+    let root = out_dir.join(SHARDS_DIR);
+    if !root.is_dir() {
+        return Ok(Vec::new());
+    }
+    let mut found = Vec::new();
+    let entries =
+        std::fs::read_dir(&root).with_context(|| format!("reading {}", root.display()))?;
+    for e in entries {
+        let e = e.with_context(|| format!("reading {}", root.display()))?;
+        if let Some(s) = e.file_name().to_str().and_then(Shard::from_dir_name) {
+            found.push((s, e.path()));
+        }
+    }
+    found.sort_by_key(|(s, _)| (s.count, s.index));
+    Ok(found)
 }
 
 /// A sweep run as one shard (`usar sweep ... --shard I/N`): which shard, and the plan written

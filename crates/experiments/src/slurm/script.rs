@@ -327,6 +327,7 @@ mod tests {
             seed: None,
             duration_s: Some(60.0),
             grid_metrics: Vec::new(),
+            working_dir: None,
         }
     }
 

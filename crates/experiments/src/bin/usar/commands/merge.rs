@@ -72,10 +72,11 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     if m.failed_shards.is_empty() {
         return Ok(());
     }
+    let here = std::env::current_dir().ok();
     let commands: Vec<String> = m
         .failed_shards
         .iter()
-        .map(|s| format!("  {}", m.plan.shard_command(*s, &args.dir)))
+        .map(|s| format!("  {}", m.plan.shard_command(*s, &args.dir, here.as_deref())))
         .collect();
     bail!(
         "{} trials failed (listed in report.md); the files above leave them out. Run their \

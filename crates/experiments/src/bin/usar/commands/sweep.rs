@@ -4,7 +4,7 @@
 //! `grid.md` for a grid).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -19,7 +19,7 @@ use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
 use experiments::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
-use experiments::shard::{Shard, ShardRun, SweepPlan};
+use experiments::shard::{Shard, ShardRun, SweepPlan, shell_join};
 use experiments::sweep::{
     MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, canonical_method,
     default_out_dir, max_threads, run_sweep, trust_model,
@@ -405,6 +405,7 @@ impl SweepSpecArgs {
             seed: self.seed,
             duration_s: self.duration,
             grid_metrics: self.grid_metrics.clone(),
+            working_dir: std::env::current_dir().ok(),
         })
     }
 }
@@ -439,11 +440,16 @@ fn print_shard(
     )?;
     writeln!(
         out,
-        "when every shard of {} is done: usar merge {}",
+        "when every shard of {} is done: {}",
         shard.count,
-        cfg.out_dir.display()
+        merge_command(&cfg.out_dir)
     )?;
     Ok(())
+}
+
+/// `usar merge OUT`, quoted for a POSIX shell where it needs it.
+fn merge_command(out_dir: &Path) -> String {
+    shell_join(&["usar".into(), "merge".into(), out_dir.display().to_string()])
 }
 
 /// The error listing failed trials, if any.
