@@ -182,6 +182,45 @@ fn shards_of_a_different_sweep_are_refused() {
 }
 
 #[test]
+fn the_shard_that_ran_another_sweep_is_named_and_its_command_mends_the_split() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    // Shard 0 of 3 ran with another seed than shards 1 and 2.
+    ok(&sweep(&dir, &["--shard", "0/3", "--seed", "7"]));
+    ok(&sweep(&dir, &["--shard", "1/3"]));
+    ok(&sweep(&dir, &["--shard", "2/3"]));
+    let o = usar(&["merge"], &dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("1 of 3 shards ran another sweep"), "{err}");
+    assert!(
+        err.contains("shard 0/3") && err.contains("seed 7 vs"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("shard 1/3") && !err.contains("shard 2/3"),
+        "{err}"
+    );
+    let command = err
+        .lines()
+        .map(str::trim)
+        .find(|l| l.starts_with("usar sweep"))
+        .unwrap_or_else(|| panic!("no command in: {err}"));
+    assert!(
+        command.contains("--shard 0/3 --out") && command.ends_with(" --overwrite"),
+        "{command}"
+    );
+    let usar_bin = env!("CARGO_BIN_EXE_usar");
+    let mended = Command::new("sh")
+        .arg("-c")
+        .arg(command.replacen("usar", &format!("'{usar_bin}'"), 1))
+        .output()
+        .unwrap();
+    ok(&mended);
+    ok(&usar(&["merge"], &dir));
+}
+
+#[test]
 fn a_bad_shard_argument_is_one_line() {
     let tmp = tempfile::tempdir().unwrap();
     let o = sweep(&tmp.path().join("s"), &["--shard", "3/3"]);

@@ -66,6 +66,19 @@ pub enum MergeError {
         /// The shard counts found, ascending.
         counts: Vec<usize>,
     },
+    /// Shards whose journals are of another sweep than most shards' (another seed, trial
+    /// count, scenario, ...): the rest of the split cannot be merged with them.
+    #[error("{}", other_sweep_message(.count, .odd, .commands))]
+    OtherSweep {
+        /// The shard count of the split.
+        count: usize,
+        /// The odd shards, by index, each with its journal's differences from the sweep
+        /// (`DIR/shards/0-of-3: journal has trials 8 vs 7`).
+        odd: Vec<(Shard, String)>,
+        /// The command that runs each of them afresh as a shard of the sweep, in the same
+        /// order.
+        commands: Vec<String>,
+    },
     /// Shards with no journal or with jobs that have no record that verifies.
     #[error("{}", incomplete_message(.count, .unfinished, .commands))]
     Incomplete {
@@ -97,12 +110,27 @@ fn incomplete_message(
     m
 }
 
+fn other_sweep_message(count: &usize, odd: &[(Shard, String)], commands: &[String]) -> String {
+    let mut m = format!(
+        "{} of {count} shards ran another sweep than the rest, so nothing was merged:",
+        odd.len()
+    );
+    for (shard, why) in odd {
+        let _ = write!(m, "\n  shard {shard} ({why})");
+    }
+    m.push_str("\nrun them afresh as shards of the sweep, then merge again:");
+    for c in commands {
+        let _ = write!(m, "\n  {c}");
+    }
+    m
+}
+
 /// The merged sweep.
 #[derive(Debug, Clone)]
 pub struct Merged {
     /// The sweep's configuration, rebuilt from the plan, with the merge's output folder.
     pub config: SweepConfig,
-    /// The plan (of the lowest shard that has one).
+    /// The plan (of the lowest shard whose journal has the sweep's header).
     pub plan: SweepPlan,
     /// The outcome: the sweep's header, every record of every shard; it holds the lock on
     /// the output folder. Every trial counts as reused ([`SweepOutcome::ran`] is 0).
@@ -163,15 +191,37 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
         .collect()
 }
 
-/// The plan of the lowest shard that has one, its configuration and the sweep's header, which
-/// every shard's journal must have.
+/// The header most shard journals have (ties: the one of the lowest shard); `None` when no
+/// shard has a journal.
+fn majority_header(shards: &[ShardJournal]) -> Option<&SweepHeader> {
+    let mut seen: Vec<(&SweepHeader, usize)> = Vec::new();
+    for c in shards.iter().filter_map(|s| s.contents.as_ref()) {
+        match seen.iter_mut().find(|(h, _)| *h == &c.header) {
+            Some((_, n)) => *n += 1,
+            None => seen.push((&c.header, 1)),
+        }
+    }
+    // max_by_key keeps the last of equal counts: reversed, the first seen wins a tie.
+    seen.into_iter()
+        .rev()
+        .max_by_key(|&(_, n)| n)
+        .map(|(h, _)| h)
+}
+
+/// The sweep's plan, its configuration and its header, which every shard's journal must
+/// have. The plan is that of the lowest shard whose journal has the header most shards have
+/// (the odd ones out are then named as such), or of the lowest shard with a plan.
 fn plan_and_header(
     dir: &Path,
     shards: &[ShardJournal],
 ) -> Result<(SweepPlan, SweepConfig, SweepHeader)> {
+    let majority = majority_header(shards);
+    let with_plan = |s: &&ShardJournal| s.contents.is_some() && SweepPlan::path_in(&s.dir).exists();
     let Some(first) = shards
         .iter()
-        .find(|s| s.contents.is_some() && SweepPlan::path_in(&s.dir).exists())
+        .filter(with_plan)
+        .find(|s| s.contents.as_ref().map(|c| &c.header) == majority)
+        .or_else(|| shards.iter().find(with_plan))
     else {
         bail!(
             "{}: no shard has both a journal and a {} (run the shards with `usar sweep ... \
@@ -185,15 +235,48 @@ fn plan_and_header(
         .config(dir)
         .with_context(|| format!("{}", SweepPlan::path_in(&first.dir).display()))?;
     let header = header_of(&config)?;
-    for s in shards {
-        if let Some(c) = &s.contents
-            && c.header != header
-        {
-            return Err(plan_mismatch(&first.dir, &header_diff(&c.header, &header))
-                .context(format!("shard {} ({})", s.shard, s.dir.display())));
-        }
+    let differs = |s: &ShardJournal| s.contents.as_ref().is_some_and(|c| c.header != header);
+    if differs(first) {
+        let found = first
+            .contents
+            .as_ref()
+            .map(|c| &c.header)
+            .unwrap_or(&header);
+        return Err(
+            plan_mismatch(&first.dir, &header_diff(found, &header)).context(format!(
+                "shard {} ({})",
+                first.shard,
+                first.dir.display()
+            )),
+        );
     }
-    Ok((plan, config, header))
+    let odd: Vec<(Shard, String)> = shards
+        .iter()
+        .filter(|s| differs(s))
+        .filter_map(|s| {
+            let c = s.contents.as_ref()?;
+            let why = format!("{}: {}", s.dir.display(), header_diff(&c.header, &header));
+            Some((s.shard, why))
+        })
+        .collect();
+    if odd.is_empty() {
+        return Ok((plan, config, header));
+    }
+    let here = std::env::current_dir().ok();
+    Err(MergeError::OtherSweep {
+        count: shards.len(),
+        commands: odd
+            .iter()
+            .map(|(s, _)| {
+                format!(
+                    "{} --overwrite",
+                    plan.shard_command(*s, dir, here.as_deref())
+                )
+            })
+            .collect(),
+        odd,
+    }
+    .into())
 }
 
 /// Refuses to merge into `dir` when its own journal (`dir/journal.jsonl`, of a sweep run
