@@ -571,7 +571,7 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
 fn refuse_other_sweeps_shards(dir: &Path, header: &SweepHeader) -> Result<()> {
     for (_, shard) in crate::shard::shard_folders(dir)? {
         let path = Journal::path_in(&shard);
-        if !something_at(&path) {
+        if !something_at(&path) || holds_no_line(&path) {
             continue;
         }
         let why = match read_header_unverified(&path) {

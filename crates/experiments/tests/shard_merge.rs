@@ -143,6 +143,20 @@ fn a_missing_shard_is_named_with_its_command_and_nothing_is_merged() {
     assert!(err.contains("--shard 1/3 --out"), "{err}");
     assert!(!dir.join("grid.csv").exists());
 
+    // A shard killed before its journal's header was whole: named as not run, as a sweep
+    // treats such a journal as none.
+    std::fs::create_dir_all(dir.join("shards/1-of-3")).unwrap();
+    std::fs::write(dir.join("shards/1-of-3/journal.jsonl"), "{\"header\":{\"fo").unwrap();
+    let o = usar(&["merge"], &dir);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("shard 1/3: its journal holds no trial"),
+        "{err}"
+    );
+    assert!(err.contains("--shard 1/3 --out"), "{err}");
+    ok(&sweep(&dir, &["--shard", "1/3"]));
+    ok(&usar(&["merge"], &dir));
+
     // A folder with no shard at all.
     let o = usar(&["merge"], &tmp.path().join("empty"));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no shards to merge"));

@@ -19,8 +19,8 @@ use anyhow::{Context, Result, bail};
 
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
-    Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff,
-    read_header_unverified, read_journal,
+    Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
+    read_header_unverified, read_journal, something_at,
 };
 use crate::lock::OutputLock;
 use crate::shard::plan::plan_mismatch;
@@ -177,7 +177,8 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
             let shard = Shard::new(i, count)?;
             let sdir = shard_dir(dir, shard);
             let path = Journal::path_in(&sdir);
-            let contents = if crate::journal::something_at(&path) {
+            // A journal killed before its header was whole holds no trial: as none.
+            let contents = if something_at(&path) && !holds_no_line(&path) {
                 Some(read_journal(&path)?)
             } else {
                 None
@@ -284,7 +285,7 @@ fn plan_and_header(
 /// that sweep's files and mix the two.
 fn refuse_other_sweeps_journal(dir: &Path, header: &SweepHeader) -> Result<()> {
     let path = Journal::path_in(dir);
-    if !crate::journal::something_at(&path) {
+    if !something_at(&path) || holds_no_line(&path) {
         return Ok(());
     }
     let why = match read_header_unverified(&path) {
@@ -319,7 +320,12 @@ fn unfinished(
         if s.contents.is_none() {
             out.push(UnfinishedShard {
                 shard: s.shard,
-                why: format!("no journal ({})", Journal::path_in(&s.dir).display()),
+                why: match Journal::path_in(&s.dir) {
+                    p if something_at(&p) => {
+                        format!("its journal holds no trial ({})", p.display())
+                    }
+                    p => format!("no journal ({})", p.display()),
+                },
             });
             continue;
         }
