@@ -558,6 +558,9 @@ pub fn header_diff(old: &SweepHeader, new: &SweepHeader) -> String {
     format!("journal has {}", d.join(", "))
 }
 
+/// What a changed scenario hash means ([`crate::fingerprint::scenario_hash`]).
+const EDITED: &str = "the scenario file was edited: a value or its description";
+
 fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
     if old.fields != new.fields {
         d.push(format!(
@@ -570,6 +573,16 @@ fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
     if old.cells.len() != new.cells.len() {
         d.push(format!("{} cells vs {}", old.cells.len(), new.cells.len()));
         return;
+    }
+    // An edit of the scenario file changes every cell's hash: said once.
+    let every_hash = old.cells.len() > 1
+        && old
+            .cells
+            .iter()
+            .zip(&new.cells)
+            .all(|(a, b)| a.values == b.values && a.scenario_hash != b.scenario_hash);
+    if every_hash {
+        d.push(format!("another scenario in every cell ({EDITED})"));
     }
     for (i, (a, b)) in old.cells.iter().zip(&new.cells).enumerate() {
         let cell = if old.fields.is_empty() {
@@ -584,9 +597,10 @@ fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
                 b.values.join(", ")
             ));
         }
-        if a.scenario_hash != b.scenario_hash {
+        // Other values give another hash: that is said by the values.
+        if a.scenario_hash != b.scenario_hash && a.values == b.values && !every_hash {
             d.push(format!(
-                "{cell}scenario hash {} vs {}",
+                "{cell}scenario hash {} vs {} ({EDITED})",
                 a.scenario_hash, b.scenario_hash
             ));
         }
@@ -853,6 +867,32 @@ pub(crate) mod tests {
             "{msg}"
         );
         assert!(!msg.contains("run the sweep again"), "{msg}");
+    }
+
+    #[test]
+    fn an_edited_scenario_is_said_once_for_every_cell() {
+        let mut edited = header();
+        for c in &mut edited.grid.cells {
+            c.scenario_hash = fnv1a64_hex(c.scenario_hash.as_bytes());
+        }
+        assert_eq!(
+            header_diff(&header(), &edited),
+            "journal has another scenario in every cell (the scenario file was edited: a value \
+             or its description)"
+        );
+        edited.grid.cells[0] = header().grid.cells[0].clone();
+        let one = header_diff(&header(), &edited);
+        assert!(
+            one.starts_with("journal has cell 1 scenario hash "),
+            "{one}"
+        );
+        assert!(one.ends_with(" (the scenario file was edited: a value or its description)"));
+        // Another value of the varied field gives another hash: the value says it.
+        edited.grid.cells[1].values = vec!["30".into()];
+        assert_eq!(
+            header_diff(&header(), &edited),
+            "journal has cell 1 values 20 vs 30"
+        );
     }
 
     #[test]
