@@ -737,6 +737,28 @@ pub(crate) mod tests {
         assert!(fs::read_to_string(&path).unwrap().ends_with('\n'));
     }
 
+    #[test]
+    fn nul_bytes_a_crash_left_at_the_end_are_dropped_as_a_cut_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut j = Journal::create(dir.path(), &header()).unwrap();
+        j.append(&record(0, 0)).unwrap();
+        let whole = fs::metadata(Journal::path_in(dir.path())).unwrap().len();
+        drop(j);
+        // A system crash after the file grew but before its last block was written.
+        let mut f = OpenOptions::new()
+            .append(true)
+            .open(Journal::path_in(dir.path()))
+            .unwrap();
+        f.write_all(&[0; 4096]).unwrap();
+        drop(f);
+        let (mut j, c) = Journal::open_resume(dir.path(), &header()).unwrap();
+        assert_eq!((c.records, c.complete_bytes), (vec![record(0, 0)], whole));
+        j.append(&record(1, 1)).unwrap();
+        drop(j);
+        let c = read_journal(&Journal::path_in(dir.path())).unwrap();
+        assert_eq!(c.records, vec![record(0, 0), record(1, 1)]);
+    }
+
     /// A journal of `header()` with records (0, 0) failed, (0, 0) ok... as `record` makes them,
     /// then (1, 1); returns its path and lines.
     fn journal_of_three(dir: &Path) -> (PathBuf, Vec<String>) {
