@@ -362,6 +362,21 @@ pub fn holds_no_line(path: &Path) -> bool {
         && (start.starts_with(HEADER_START) || HEADER_START.starts_with(&start))
 }
 
+/// Why the journal at `path` is another sweep's than the one with `header`: the differences
+/// ([`header_diff`]), or that its header cannot be read. `None` when nothing is at `path`,
+/// it holds no line ([`holds_no_line`]), or its header (not verified:
+/// [`read_header_unverified`]) is `header`.
+pub fn other_sweeps(path: &Path, header: &SweepHeader) -> Option<String> {
+    if !something_at(path) || holds_no_line(path) {
+        return None;
+    }
+    match read_header_unverified(path) {
+        Some(found) if &found == header => None,
+        Some(found) => Some(header_diff(&found, header)),
+        None => Some("its header cannot be read".to_string()),
+    }
+}
+
 /// Whether anything, even a symbolic link to a missing file, is at `path`.
 pub fn something_at(path: &Path) -> bool {
     path.symlink_metadata().is_ok()

@@ -30,8 +30,7 @@ use crate::stale_outputs::remove_previous_outputs;
 
 use crate::journal::{
     CellHeader, GridHeader, JOURNAL_FORMAT, Journal, JournalContents, Outcome, RejectedRecord,
-    SweepHeader, TrialRecord, header_diff, holds_no_line, read_header, read_header_unverified,
-    something_at,
+    SweepHeader, TrialRecord, header_diff, holds_no_line, other_sweeps, read_header, something_at,
 };
 
 /// Everything a sweep needs. [`SweepConfig::new`] gives the defaults of `usar sweep`; set
@@ -571,21 +570,15 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
 fn refuse_other_sweeps_shards(dir: &Path, header: &SweepHeader) -> Result<()> {
     for (_, shard) in crate::shard::shard_folders(dir)? {
         let path = Journal::path_in(&shard);
-        if !something_at(&path) || holds_no_line(&path) {
-            continue;
+        if let Some(why) = other_sweeps(&path, header) {
+            bail!(
+                "{} is a shard's journal of another sweep ({why}), whose merge writes its files \
+                 into {}: pass --overwrite to start afresh there (the merged files go, the \
+                 shards stay), or choose another --out",
+                path.display(),
+                dir.display()
+            );
         }
-        let why = match read_header_unverified(&path) {
-            Some(found) if &found == header => continue,
-            Some(found) => header_diff(&found, header),
-            None => "its header cannot be read".to_string(),
-        };
-        bail!(
-            "{} is a shard's journal of another sweep ({why}), whose merge writes its files into \
-             {}: pass --overwrite to start afresh there (the merged files go, the shards stay), \
-             or choose another --out",
-            path.display(),
-            dir.display()
-        );
     }
     Ok(())
 }

@@ -20,7 +20,7 @@ use anyhow::{Context, Result, bail};
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
     Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
-    read_header_unverified, read_journal, something_at,
+    other_sweeps, read_journal, something_at,
 };
 use crate::lock::OutputLock;
 use crate::shard::plan::plan_mismatch;
@@ -285,13 +285,8 @@ fn plan_and_header(
 /// that sweep's files and mix the two.
 fn refuse_other_sweeps_journal(dir: &Path, header: &SweepHeader) -> Result<()> {
     let path = Journal::path_in(dir);
-    if !something_at(&path) || holds_no_line(&path) {
+    let Some(why) = other_sweeps(&path, header) else {
         return Ok(());
-    }
-    let why = match read_header_unverified(&path) {
-        Some(found) if &found == header => return Ok(()),
-        Some(found) => header_diff(&found, header),
-        None => "its header cannot be read".to_string(),
     };
     bail!(
         "{} is the journal of another sweep than the shards' ({why}), whose files are in {}: \
@@ -373,8 +368,9 @@ fn unfinished(
 /// temporary files killed writers left there and in the cell folders.
 ///
 /// # Errors
-/// [`MergeError`] (no shards, shards of two splits, unfinished shards: nothing is merged
-/// then), journals whose headers differ from the plan's sweep (the differences are listed), a
+/// [`MergeError`] (no shards, shards of two splits, shards that ran another sweep than the
+/// rest, unfinished shards: nothing is merged then), a plan that does not match its shard's
+/// journal, a journal of another sweep at the top of `dir` (the differences are listed), a
 /// damaged journal or plan, a locked `dir`, or an I/O error.
 pub fn merge_shards(dir: &Path) -> Result<Merged> {
     let count = find_split(dir)?;
