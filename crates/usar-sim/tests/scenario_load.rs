@@ -828,3 +828,15 @@ fn old_mac_line_endings_are_counted_as_lines() {
     let e = scenario::load(&path).expect_err("not UTF-8");
     assert_eq!(e.line_col(), Some((2, 11)), "{e}");
 }
+
+#[test]
+fn a_huge_number_where_ron_wants_another_type_is_written_short() {
+    let paper = std::fs::read_to_string(scenarios_dir().join("paper.ron")).unwrap();
+    let from = "quota: (easy: 3, hard: 3),";
+    assert_eq!(paper.matches(from).count(), 1);
+    let src = paper.replacen(from, "quota: -1e63,", 1);
+    let err = scenario::from_str(&src, "paper.ron").expect_err("a number for a quota");
+    let msg = err.to_string();
+    assert!(msg.contains("kinds[0].quota") && msg.contains("`-1e63`"), "{msg}");
+    assert!(!msg.contains("0000000000"), "{msg}");
+}
