@@ -837,6 +837,9 @@ fn a_huge_number_where_ron_wants_another_type_is_written_short() {
     let src = paper.replacen(from, "quota: -1e63,", 1);
     let err = scenario::from_str(&src, "paper.ron").expect_err("a number for a quota");
     let msg = err.to_string();
-    assert!(msg.contains("kinds[0].quota") && msg.contains("`-1e63`"), "{msg}");
+    assert!(
+        msg.contains("kinds[0].quota") && msg.contains("`-1e63`"),
+        "{msg}"
+    );
     assert!(!msg.contains("0000000000"), "{msg}");
 }
