@@ -456,8 +456,14 @@ fn is_ok(r: Option<&TrialRecord>) -> bool {
     )
 }
 
-/// Refuses parameters no sweep can run with.
-fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
+/// Refuses parameters no sweep can run with: `--trials 0`, no method or one twice, a cell
+/// whose tasks differ from the scenario's, or a trial length (`--duration`) that is not a
+/// positive number of seconds. `header` is [`header_of`] `cfg`. [`run_sweep`] checks this
+/// first; `usar slurm` checks it before it writes the scripts.
+///
+/// # Errors
+/// The first parameter that is refused, in one line naming its option.
+pub fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
     if cfg.trials == 0 {
         bail!("--trials must be at least 1");
     }

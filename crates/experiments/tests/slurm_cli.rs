@@ -154,3 +154,55 @@ fn more_shards_than_trials_are_refused() {
     );
     assert!(!out.join("slurm").exists());
 }
+
+/// `usar slurm PAPER --methods rne --shards 1 ARGS --out OUT`.
+fn slurm_with(out: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["slurm", PAPER, "--methods", "rne", "--shards", "1"])
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .expect("run usar")
+}
+
+/// The one-line error of a refused `o`.
+fn refused(o: &Output) -> String {
+    assert!(!o.status.success(), "accepted");
+    let err = String::from_utf8_lossy(&o.stderr).trim().to_string();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    err
+}
+
+#[test]
+fn a_sweep_that_usar_sweep_refuses_is_refused_before_anything_is_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    for (args, error) in [
+        (
+            &["--duration", "nan"][..],
+            "error: --duration: trial length",
+        ),
+        (&["--duration", "0"][..], "error: --duration: trial length"),
+        (&["--trials", "0"][..], "error: --trials must be at least 1"),
+    ] {
+        let err = refused(&slurm_with(&out, args));
+        assert!(err.starts_with(error), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+}
+
+#[test]
+fn a_path_with_a_line_break_is_refused_and_never_reaches_a_script() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x\ntouch pwned #");
+    let err = refused(&slurm_with(&out, &["--trials", "1"]));
+    assert!(
+        err.contains("--out") && err.contains("holds a line break"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_dir(tmp.path()).unwrap().count(), 0);
+    let out = tmp.path().join("a \"quoted\" name");
+    let err = refused(&slurm_with(&out, &["--trials", "1"]));
+    assert!(err.contains("holds a double quote"), "{err}");
+}

@@ -103,6 +103,34 @@ pub fn check_options(o: &SlurmOptions) -> Result<()> {
     Ok(())
 }
 
+/// Refuses paths the scripts cannot hold: a line break in any of them would end a comment or
+/// an `#SBATCH` line and leave the rest of the path as a command bash runs, and a double
+/// quote in the output folder would end the quoted `#SBATCH --output` value.
+///
+/// # Errors
+/// The first such path, naming its option, in one line.
+pub fn check_paths(job: &SlurmJob<'_>) -> Result<()> {
+    let paths = [
+        ("the scenario path", job.plan.scenario_path.as_path()),
+        ("--out", job.out_dir),
+        ("the current folder", job.workdir),
+        ("the usar executable's path", job.usar),
+    ];
+    for (name, path) in paths {
+        let text = path.to_string_lossy();
+        if text.contains(['\n', '\r']) {
+            bail!("{name} {text:?} holds a line break, which an sbatch script cannot hold");
+        }
+    }
+    if job.out_dir.to_string_lossy().contains('"') {
+        bail!(
+            "--out {:?} holds a double quote, which an #SBATCH line cannot hold",
+            job.out_dir.display().to_string()
+        );
+    }
+    Ok(())
+}
+
 /// A path as the value of an `#SBATCH` line: in double quotes when it holds a space (sbatch
 /// reads quoted values there).
 fn directive_value(p: &Path) -> String {
@@ -272,9 +300,11 @@ fn job_name(plan: &SweepPlan) -> String {
 /// are made executable.
 ///
 /// # Errors
-/// Bad options ([`check_options`]) or an I/O error.
+/// Bad options ([`check_options`]), paths a script cannot hold ([`check_paths`]), or an I/O
+/// error.
 pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
     check_options(job.options)?;
+    check_paths(job)?;
     let files = SlurmFiles::under(job.out_dir);
     std::fs::create_dir_all(&files.logs)
         .with_context(|| format!("creating folder {}", files.logs.display()))?;

@@ -93,7 +93,11 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     let out_dir = absolute(&out_dir)?;
     // The sweep must be one `usar sweep` accepts: build it (and its header) now.
     let cfg = plan.config(&out_dir)?;
-    experiments::sweep::header_of(&cfg)?;
+    let header = experiments::sweep::header_of(&cfg)?;
+    experiments::sweep::check_config(&cfg, &header)?;
+    if let Some(d) = args.spec.duration {
+        super::sweep::warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
+    }
     experiments::sweep::check_shard_count(
         &format!("--shards {}", args.shards),
         args.shards,

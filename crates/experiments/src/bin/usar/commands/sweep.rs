@@ -304,7 +304,7 @@ fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
 
 /// Warns once per distinct step (`sim.dt_s` of the scenario or of a grid's cells) when the
 /// `--duration` of `requested_s` seconds is not a whole number of steps of it.
-fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
+pub(crate) fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
     let mut steps: Vec<f64> = match grid {
         Some(g) => g.cells.iter().map(|c| c.scenario.sim.dt_s.get()).collect(),
         None => vec![scenario.sim.dt_s.get()],
