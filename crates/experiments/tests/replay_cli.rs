@@ -135,6 +135,8 @@ fn usar_replay_refuses_bad_options_with_one_line() {
         (vec!["--hz", "0"], "--hz: sampling rate 0 Hz"),
         (vec!["--method", "nope"], "nope"),
         (vec!["--duration", "-1"], "duration"),
+        // A seed is used as is: a trial index with it would label the page wrongly.
+        (vec!["--seed", "3", "--trial", "2"], "cannot be used with"),
     ] {
         let mut all = vec!["replay", "--out", text(&page)];
         let p = paper();

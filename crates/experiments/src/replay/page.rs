@@ -287,10 +287,12 @@ fn escape_html(s: &str) -> String {
 pub fn replay_html(scenario: &Scenario, rec: &Recording) -> Result<String, ReplayError> {
     let (svg, map) = render_map_svg(scenario).map_err(|e| ReplayError::Draw(format!("{e:#}")))?;
     let meta = PageMeta::new(scenario, rec, map);
-    // `</` cannot end the script element early once escaped; JSON reads `<\/` as `</`.
+    // In a script element, `</script` ends it and `<!--` starts a comment that can swallow
+    // the rest of the page: with every `<` written `\u003c` (JSON reads it back as `<`; a `<`
+    // occurs only inside strings), no scenario text can do either.
     let json = serde_json::to_string(&meta)
         .map_err(|e| ReplayError::Encode(e.to_string()))?
-        .replace("</", "<\\/");
+        .replace('<', "\\u003c");
     let data = BASE64.encode(compress(&encode_recording(rec))?);
     let title = format!(
         "{} - {} trial {} - replay",
@@ -425,6 +427,21 @@ mod tests {
             per_robot_sample < 4.0,
             "{per_robot_sample:.2} bytes per robot and sample"
         );
+    }
+
+    #[test]
+    fn no_scenario_text_can_end_or_comment_out_the_metadata_script() {
+        let mut s = paper();
+        let text = "a <!--<script> b </script> c \u{2028} d";
+        s.description = text.to_string();
+        s.name = text.to_string();
+        let rec = recorded(&s, 2.0);
+        let html = replay_html(&s, &rec).expect("page");
+        let meta = script(&html, "meta");
+        assert!(!meta.contains('<'), "{meta}");
+        let meta: serde_json::Value = serde_json::from_str(meta).expect("metadata is JSON");
+        assert_eq!(meta["description"], text);
+        assert_eq!(meta["scenario"], text);
     }
 
     #[test]

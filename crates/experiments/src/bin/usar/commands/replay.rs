@@ -46,9 +46,9 @@ pub struct ReplayArgs {
     #[arg(long, value_name = "NAME", default_value = "rne")]
     pub method: String,
 
-    /// Index of the trial (0-based; selects the starting team's energy and HP).
-    #[arg(long, value_name = "N", default_value_t = 0)]
-    pub trial: u32,
+    /// Index of the trial (0-based; selects the starting team's energy and HP); default 0.
+    #[arg(long, value_name = "N", conflicts_with = "seed")]
+    pub trial: Option<u32>,
 
     /// Seed of the starting team, used as is (a sweep's trials.csv `seed` column).
     #[arg(long, value_name = "SEED", conflicts_with = "base_seed")]
@@ -83,9 +83,9 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         .with_context(|| format!("cannot load scenario {}", path.display()))?;
     let mut builder = Simulation::builder(&scenario)
         .method_named(&args.method)
-        .trial(args.trial);
+        .trial(args.trial.unwrap_or(0));
     if let Some(base) = args.base_seed {
-        builder = builder.seed(trial_seed(base, args.trial));
+        builder = builder.seed(trial_seed(base, args.trial.unwrap_or(0)));
     }
     if let Some(seed) = args.seed {
         builder = builder.seed(seed);
