@@ -49,6 +49,25 @@ fn check_summarises_the_paper_scenario() {
 }
 
 #[test]
+fn check_gives_the_trial_length_a_trial_runs() {
+    let summary = |duration: &str| {
+        let o = usar(&["check", PAPER, "--set", duration]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8(o.stdout).unwrap();
+        out.lines().nth(1).unwrap().to_string()
+    };
+    let line = summary("mission.duration_s=0.03");
+    assert!(
+        line.contains(
+            "trial 0.04 s (2 steps; mission.duration_s 0.03 s rounded up to whole steps)"
+        ),
+        "{line}"
+    );
+    let line = summary("mission.duration_s=0.04");
+    assert!(line.contains("trial 0.04 s (2 steps), seed"), "{line}");
+}
+
+#[test]
 fn check_and_run_warn_about_goals_no_path_reaches() {
     let split = SPLIT_ARENA;
     for args in warning_commands() {

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
-use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError};
+use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError, number_text};
 
 use experiments::fingerprint::scenario_hash;
 use experiments::spec_ron::spec_to_ron;
@@ -142,14 +142,25 @@ fn rest_stations(s: &Scenario) -> String {
 /// An I/O error writing to `out`.
 pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     writeln!(out, "scenario {}: {}", s.name, s.description)?;
+    let (dt_s, duration_s) = (s.sim.dt_s.get(), s.mission.duration_s.get());
+    // What a trial runs: whole steps (usar run, sweep and replay report this length).
+    let run_s = experiments::sweep::simulated_length_s(duration_s, dt_s);
+    let rounded = if run_s == duration_s {
+        String::new()
+    } else {
+        format!(
+            "; mission.duration_s {} s rounded up to whole steps",
+            number_text(duration_s)
+        )
+    };
     writeln!(
         out,
-        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps), seed {}",
+        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed {}",
         s.arena.width_m,
         s.arena.height_m,
         s.arena.wall_thickness_m,
         s.sim.dt_s,
-        s.mission.duration_s,
+        number_text(run_s),
         s.steps_per_trial(),
         s.sim.seed
     )?;
