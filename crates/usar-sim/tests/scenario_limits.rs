@@ -427,3 +427,15 @@ fn a_control_character_in_a_name_is_an_error_at_the_name() {
     )
     .expect("a name with punctuation and accents");
 }
+
+#[test]
+fn a_step_count_past_f64_is_said_in_words_not_inf() {
+    let err = usar_sim::scenario::trial_steps(1e308, 0.02).unwrap_err();
+    assert_eq!(
+        err,
+        "trial length 1e308 s is more than 1.8e308 steps of 0.02 s, more than the limit of \
+         10000000 steps"
+    );
+    let err = usar_sim::scenario::trial_steps(1e300, 0.02).unwrap_err();
+    assert!(err.contains("is 5e301 steps"), "{err}");
+}

@@ -7,7 +7,7 @@
 //! Source: issue 11 (hardening), classes 1-3; the numbers are engineering choices well above
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
-use super::model::{Locomotion, RobotKind, Scenario, number_text};
+use super::model::{Locomotion, RobotKind, Scenario, count_text, number_text};
 use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimParams};
 use super::spec::KindSpec;
 use super::validate::{Ctx, R};
@@ -272,7 +272,7 @@ pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
                     "sweep rows {} m apart make {} waypoints over the search area of task {:?}, \
                      more than the limit of {MAX_SWEEP_POINTS}",
                     number_text(spacing_m),
-                    number_text(points),
+                    count_text(points),
                     t.name
                 ),
             ));

@@ -317,7 +317,7 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
             "trial length {} s is {} steps of {} s, more than the limit of {MAX_TRIAL_STEPS} \
              steps",
             number_text(duration_s),
-            number_text(steps),
+            count_text(steps),
             number_text(dt_s)
         ));
     }
@@ -325,6 +325,16 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
 }
 
 pub use rne_core::number_text;
+
+/// A count computed in `f64` as messages write it: as [`number_text`], or `more than 1.8e308`
+/// when it overflowed to infinity (a count is never negative).
+pub(crate) fn count_text(v: f64) -> String {
+    if v.is_infinite() {
+        "more than 1.8e308".to_string()
+    } else {
+        number_text(v)
+    }
+}
 
 /// `v` with three decimals (`2.500`), or as [`number_text`] writes it when it is 1e15 or more in
 /// magnitude (or not finite), where three decimals would follow sixteen or more digits.
