@@ -54,7 +54,13 @@ fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
     let tmp = tempfile::tempdir().unwrap();
     let (a, b) = (tmp.path().join("a.json"), tmp.path().join("b.json"));
     let seed = usar_sim::mission::trial_seed(2021, 0).to_string();
-    for (args, path) in [(["--trial", "0"], &a), (["--seed", seed.as_str()], &b)] {
+    let headers = [
+        format!("paper trial 0 with RNE (seed {seed}), 10 s"),
+        // A seed given as is belongs to no trial index.
+        format!("paper a trial with RNE (seed {seed}), 10 s"),
+    ];
+    let runs = [(["--trial", "0"], &a), (["--seed", seed.as_str()], &b)];
+    for ((args, path), header) in runs.into_iter().zip(headers) {
         let o = usar(&[
             "run",
             PAPER,
@@ -68,6 +74,8 @@ fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
             path.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8(o.stdout).unwrap();
+        assert_eq!(stdout.lines().next(), Some(header.as_str()), "{stdout}");
     }
     let read = |p: &std::path::Path| -> usar_sim::mission::TrialResult {
         serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()

@@ -80,7 +80,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;
     let wall = t0.elapsed().as_secs_f64();
-    print_result(&result, out)?;
+    // A seed given as is belongs to no trial index.
+    print_result(&result, args.seed.is_none(), out)?;
     writeln!(
         out,
         "\n{} s simulated in {:.2} s wall-clock ({} sim-s per wall-s)",
@@ -148,15 +149,21 @@ pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
 }
 
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the
-/// per-robot table.
+/// per-robot table. The header names the trial's index when `indexed` (`trial 3`), else only
+/// its seed (`usar run --seed`).
 ///
 /// # Errors
 /// An I/O error writing to `out`.
-pub fn print_result(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+pub fn print_result(r: &TrialResult, indexed: bool, out: &mut dyn Write) -> Result<()> {
+    let trial = if indexed {
+        format!("trial {}", r.trial)
+    } else {
+        "a trial".to_string()
+    };
     writeln!(
         out,
-        "{} trial {} with {} (seed {}), {} s",
-        r.scenario, r.trial, r.method, r.seed, r.duration_s
+        "{} {trial} with {} (seed {}), {} s",
+        r.scenario, r.method, r.seed, r.duration_s
     )?;
     print_tasks(r, out)?;
     print_rounds(r, out)?;
