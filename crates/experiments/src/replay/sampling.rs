@@ -32,12 +32,10 @@ impl SampleClock {
         if !(dt_s.is_finite() && dt_s > 0.0) {
             return Err(ReplayError::Spec(format!("step {dt_s} s is not positive")));
         }
+        // A rate so low that `hz * dt_s` underflows gives an infinite spacing: the sparsest
+        // clock (`as` saturates at u64::MAX), as any rate below one sample per trial.
         let every = (1.0 / (hz * dt_s)).round();
-        let every_steps = if every.is_finite() && every >= 1.0 {
-            every.min(u64::MAX as f64) as u64
-        } else {
-            1
-        };
+        let every_steps = if every >= 1.0 { every as u64 } else { 1 };
         Ok(Self {
             every_steps,
             total_steps,
@@ -102,6 +100,14 @@ mod tests {
         assert_eq!(c.samples(), 11);
         for hz in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             assert!(SampleClock::new(hz, 0.02, 10).is_err(), "{hz}");
+        }
+    }
+
+    #[test]
+    fn the_lowest_rates_give_the_sparsest_clock_not_the_densest() {
+        for hz in [1e-6, 1e-306, 1e-307, 1e-320, 5e-324] {
+            let c = SampleClock::new(hz, 0.02, 250).unwrap();
+            assert_eq!(c.samples(), 2, "{hz}: the start and the last step");
         }
     }
 
