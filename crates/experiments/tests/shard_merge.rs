@@ -235,6 +235,26 @@ fn the_shard_that_ran_another_sweep_is_named_and_its_command_mends_the_split() {
 }
 
 #[test]
+fn an_edited_plan_is_named_as_such() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let plan = dir.join("shards/0-of-2/plan.json");
+    let text = std::fs::read_to_string(&plan).unwrap();
+    assert!(text.contains("\"trials\": 3"), "{text}");
+    std::fs::write(&plan, text.replace("\"trials\": 3", "\"trials\": 4")).unwrap();
+    let o = usar(&["merge"], &dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("shard 0/2") && err.contains("plan.json: the plan does not match"),
+        "{err}"
+    );
+    assert!(err.contains("trials 3 vs 4"), "{err}");
+}
+
+#[test]
 fn a_bad_shard_argument_is_one_line() {
     let tmp = tempfile::tempdir().unwrap();
     let o = sweep(&tmp.path().join("s"), &["--shard", "3/3"]);

@@ -236,28 +236,20 @@ fn plan_and_header(
         .config(dir)
         .with_context(|| format!("{}", SweepPlan::path_in(&first.dir).display()))?;
     let header = header_of(&config)?;
-    let differs = |s: &ShardJournal| s.contents.as_ref().is_some_and(|c| c.header != header);
-    if differs(first) {
-        let found = first
-            .contents
-            .as_ref()
-            .map(|c| &c.header)
-            .unwrap_or(&header);
-        return Err(
-            plan_mismatch(&first.dir, &header_diff(found, &header)).context(format!(
-                "shard {} ({})",
-                first.shard,
-                first.dir.display()
-            )),
-        );
+    // Each shard whose journal has another header, with the differences.
+    let odd_of = |s: &ShardJournal| {
+        let c = s.contents.as_ref().filter(|c| c.header != header)?;
+        Some((s.shard, header_diff(&c.header, &header)))
+    };
+    if let Some((shard, diff)) = odd_of(first) {
+        // The plan does not give its own shard's header: the plan was edited.
+        return Err(plan_mismatch(&first.dir, &diff)
+            .context(format!("shard {shard} ({})", first.dir.display())));
     }
     let odd: Vec<(Shard, String)> = shards
         .iter()
-        .filter(|s| differs(s))
         .filter_map(|s| {
-            let c = s.contents.as_ref()?;
-            let why = format!("{}: {}", s.dir.display(), header_diff(&c.header, &header));
-            Some((s.shard, why))
+            odd_of(s).map(|(shard, diff)| (shard, format!("{}: {diff}", s.dir.display())))
         })
         .collect();
     if odd.is_empty() {
