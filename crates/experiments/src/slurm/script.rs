@@ -24,11 +24,13 @@ pub struct SlurmOptions {
     pub shards: usize,
     /// `--partition`.
     pub partition: Option<String>,
-    /// `--time`, the limit per task (Slurm's formats: `MM`, `HH:MM:SS`, `D-HH:MM`).
+    /// `--time`, the limit per task in one of Slurm's formats (`MM`, `MM:SS`, `HH:MM:SS`, `D-HH`,
+    /// `D-HH:MM`, `D-HH:MM:SS`, `UNLIMITED`; checked by [`check_options`]).
     pub time: Option<String>,
     /// `--cpus-per-task` (>= 1): each shard runs its trials on this many threads.
     pub cpus_per_task: usize,
-    /// `--mem`, memory per task (`4G`, `500M`).
+    /// `--mem`, memory per task: digits and an optional unit `K`/`M`/`G`/`T` (`4G`, `500M`;
+    /// megabytes when none; checked by [`check_options`]).
     pub mem: Option<String>,
     /// `--account`.
     pub account: Option<String>,
@@ -78,8 +80,10 @@ impl SlurmFiles {
 /// Refuses options that would make a broken script.
 ///
 /// # Errors
-/// A shard count of 0 or above [`MAX_SHARDS`], `--cpus-per-task 0`, or a value that is empty
-/// or holds a line break or a space (it would end the `#SBATCH` line).
+/// A shard count of 0 or above [`MAX_SHARDS`], `--cpus-per-task 0`, a value that is empty
+/// or holds a line break or a space (it would end the `#SBATCH` line), a `--time` in none of
+/// Slurm's time formats or a `--mem` that is not a size (sbatch would refuse both, after the
+/// files are written).
 pub fn check_options(o: &SlurmOptions) -> Result<()> {
     if o.shards == 0 || o.shards > MAX_SHARDS {
         bail!("--shards must be from 1 to {MAX_SHARDS}");
@@ -100,7 +104,49 @@ pub fn check_options(o: &SlurmOptions) -> Result<()> {
             bail!("{name} {v:?}: expected one word (no spaces or line breaks)");
         }
     }
+    if let Some(t) = &o.time
+        && !is_slurm_time(t)
+    {
+        bail!(
+            "--time {t:?}: expected one of Slurm's time formats: MINUTES, MINUTES:SECONDS, \
+             HOURS:MINUTES:SECONDS, DAYS-HOURS, DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS \
+             or UNLIMITED (e.g. 90, 1:30:00, 2-12)"
+        );
+    }
+    if let Some(m) = &o.mem
+        && !is_slurm_memory(m)
+    {
+        bail!(
+            "--mem {m:?}: expected a whole number with an optional unit K, M, G or T \
+             (megabytes when none; e.g. 4G, 500M)"
+        );
+    }
     Ok(())
+}
+
+/// Whether `t` is one of the time limits `sbatch --time` documents: `M`, `M:S`, `H:M:S`,
+/// `D-H`, `D-H:M`, `D-H:M:S` (each field digits), or `UNLIMITED`/`INFINITE` (any case).
+/// Reference: Slurm's `sbatch(1)`, option `--time`.
+fn is_slurm_time(t: &str) -> bool {
+    if t.eq_ignore_ascii_case("unlimited") || t.eq_ignore_ascii_case("infinite") {
+        return true;
+    }
+    let digits = |f: &str| !f.is_empty() && f.bytes().all(|b| b.is_ascii_digit());
+    let (days, clock) = match t.split_once('-') {
+        Some((d, rest)) => (Some(d), rest),
+        None => (None, t),
+    };
+    let fields: Vec<&str> = clock.split(':').collect();
+    days.is_none_or(digits) && fields.len() <= 3 && fields.iter().all(|f| digits(f))
+}
+
+/// Whether `m` is a memory size `sbatch --mem` reads: digits, then optionally a unit `K`,
+/// `M`, `G` or `T` (any case, optionally followed by `B`). Reference: Slurm's `sbatch(1)`,
+/// option `--mem`.
+fn is_slurm_memory(m: &str) -> bool {
+    let number_end = m.bytes().take_while(u8::is_ascii_digit).count();
+    let unit = m[number_end..].to_ascii_uppercase();
+    number_end > 0 && ["", "K", "M", "G", "T", "KB", "MB", "GB", "TB"].contains(&unit.as_str())
 }
 
 /// Refuses paths the scripts cannot hold: a line break in any of them would end a comment or
@@ -408,6 +454,42 @@ mod tests {
         ];
         for o in bad {
             assert!(check_options(&o).is_err(), "{o:?}");
+        }
+    }
+
+    /// The accepted and refused values were checked against `sbatch --test-only` of Slurm
+    /// 22.05.8 (Debian's slurm-wlm): it says "Invalid --time specification" or "Invalid --mem
+    /// specification" for each refused one and nothing for the accepted ones.
+    #[test]
+    fn time_and_memory_follow_slurms_formats() {
+        let with = |time: &str, mem: &str| SlurmOptions {
+            time: Some(time.into()),
+            mem: Some(mem.into()),
+            ..options()
+        };
+        let good_times = [
+            "10",
+            "10:30",
+            "1:00:00",
+            "2-3",
+            "2-3:04",
+            "2-3:04:05",
+            "UNLIMITED",
+        ];
+        for t in good_times {
+            assert!(check_options(&with(t, "4G")).is_ok(), "{t}");
+        }
+        for t in ["abc", "1:2:3:4", "1.5", "10m", "1h", ":", "2-3:4:5:6"] {
+            let e = check_options(&with(t, "4G")).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("--time {t:?}: expected")), "{e}");
+            assert!(!e.contains('\n'), "{e}");
+        }
+        for m in ["4G", "4g", "500M", "500", "0", "4GB", "1T", "1024K", "4MB"] {
+            assert!(check_options(&with("10", m)).is_ok(), "{m}");
+        }
+        for m in ["1.5G", "abc", "-5", "4G;x", "4X", "4GiB", "G"] {
+            let e = check_options(&with("10", m)).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("--mem {m:?}: expected")), "{e}");
         }
     }
 }

@@ -52,7 +52,8 @@ pub struct SlurmArgs {
     #[arg(long, value_name = "P")]
     pub partition: Option<String>,
 
-    /// Time limit per task (sbatch --time: MM, HH:MM:SS, D-HH:MM); default the cluster's.
+    /// Time limit per task (sbatch --time: MM, MM:SS, HH:MM:SS, D-HH, D-HH:MM, D-HH:MM:SS or
+    /// UNLIMITED); default the cluster's.
     #[arg(long, value_name = "T")]
     pub time: Option<String>,
 
