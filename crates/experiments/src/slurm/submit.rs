@@ -44,10 +44,25 @@ fn sbatch(sbatch: &Path, extra: &[String], script: &Path) -> Result<String> {
             "sbatch {} failed ({}): {}",
             script.display(),
             out.status,
-            String::from_utf8_lossy(&out.stderr).trim()
+            one_line(&String::from_utf8_lossy(&out.stderr))
         );
     }
     parse_job_id(&String::from_utf8_lossy(&out.stdout))
+}
+
+/// A program's message on one line: its non-empty lines, trimmed, joined by ` / `
+/// (sbatch prints one `sbatch: error: ...` line per failed step).
+fn one_line(message: &str) -> String {
+    let lines: Vec<&str> = message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    if lines.is_empty() {
+        "(it printed nothing)".to_string()
+    } else {
+        lines.join(" / ")
+    }
 }
 
 /// Submits the array of `files`, then its merge chained with `--dependency=afterok`, with the
@@ -87,5 +102,39 @@ mod tests {
         assert_eq!(parse_job_id("77;cluster-a\n").ok(), Some("77".into()));
         assert!(parse_job_id("Submitted batch job 12\n").is_err());
         assert!(parse_job_id("").is_err());
+    }
+
+    #[test]
+    fn sbatchs_message_is_given_on_one_line() {
+        let stderr = "sbatch: error: resolve_ctls_from_dns_srv: res_nsearch error: Unknown host\n\
+                      sbatch: error: fetch_config: DNS SRV lookup failed\n\n";
+        assert_eq!(
+            one_line(stderr),
+            "sbatch: error: resolve_ctls_from_dns_srv: res_nsearch error: Unknown host / \
+             sbatch: error: fetch_config: DNS SRV lookup failed"
+        );
+        assert_eq!(one_line(" \n"), "(it printed nothing)");
+    }
+
+    /// A fake `sbatch` that fails with two lines: the error `submit` gives is one line.
+    #[cfg(unix)]
+    #[test]
+    fn a_refused_submission_is_one_line() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let fake = dir.path().join("sbatch");
+        std::fs::write(
+            &fake,
+            "#!/bin/sh\necho 'sbatch: error: one' >&2\necho 'sbatch: error: two' >&2\nexit 1\n",
+        )
+        .unwrap();
+        std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+        let files = SlurmFiles::under(dir.path());
+        let e = format!("{:#}", submit(&files, &fake).unwrap_err());
+        assert!(!e.contains('\n'), "{e}");
+        assert!(
+            e.ends_with("sbatch: error: one / sbatch: error: two"),
+            "{e}"
+        );
     }
 }
