@@ -4,13 +4,26 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser;
+use clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand;
 mod cli;
 mod commands;
 
 use cli::{Cli, run};
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // `--help`, `--version` and the help shown for a bare `usar` print as clap writes them.
+        Err(e) if !e.use_stderr() || e.kind() == DisplayHelpOnMissingArgumentOrSubcommand => {
+            e.exit()
+        }
+        Err(e) => {
+            let text = one_line(&e.render().to_string());
+            return match writeln!(std::io::stderr(), "{text}") {
+                Ok(()) | Err(_) => ExitCode::from(2),
+            };
+        }
+    };
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     match run(cli, &mut out) {
@@ -23,4 +36,19 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// A usage error of clap on one line, as every other error of `usar`: its paragraphs (the
+/// error, a tip, the usage, the pointer to `--help`) joined by `; `, the lines of each by a
+/// space.
+fn one_line(rendered: &str) -> String {
+    rendered
+        .split("\n\n")
+        .map(|p| {
+            let lines: Vec<&str> = p.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
+            lines.join(" ")
+        })
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
