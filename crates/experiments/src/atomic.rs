@@ -32,8 +32,9 @@ const MAX_LINKS: usize = 40;
 /// [module documentation](self) for every case.
 ///
 /// # Errors
-/// `path` is a folder, a block device or a socket, a link loop, or an I/O error (the path in
-/// its context). No temporary file is left behind on any error.
+/// `path` is a folder, a block device or a socket, a link loop, or an I/O error. Every message
+/// names the path it was about (the file written, and its temporary file), so a caller adds no
+/// "writing ..." context of its own. No temporary file is left behind on any error.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     match target_of(path)? {
         Target::Replace(target) => replace_via_temp(&target, bytes),
@@ -163,7 +164,13 @@ fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
     let guard = TempFile(Some(tmp.clone()));
     f.write_all(bytes)
         .and_then(|()| f.sync_all())
-        .with_context(|| format!("writing {}", tmp.display()))?;
+        .with_context(|| {
+            let tmp_name = tmp.file_name().unwrap_or_default().to_string_lossy();
+            format!(
+                "writing {} (its temporary file {tmp_name})",
+                target.display()
+            )
+        })?;
     drop(f);
     if let Ok(old) = fs::metadata(target) {
         fs::set_permissions(&tmp, old.permissions())

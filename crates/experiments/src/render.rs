@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -77,7 +77,7 @@ pub fn kind_color(s: &Scenario, k: usize) -> RGBColor {
 /// If drawing or writing the file fails.
 pub fn render_svg(scenario: &Scenario, traces: Option<&[Trace]>, out: &Path) -> Result<()> {
     let svg = render_svg_string(scenario, traces)?;
-    write_atomic(out, svg.as_bytes()).with_context(|| format!("writing {}", out.display()))
+    write_atomic(out, svg.as_bytes())
 }
 
 /// The drawing's geometry: field extent in metres and the scale.

@@ -205,3 +205,25 @@ fn walls_kilometres_thick_do_not_shrink_the_arena_in_the_picture() {
         widths[0]
     );
 }
+
+/// A full device: the error names the file once, on one line (it said "writing /dev/full:
+/// writing /dev/full: ..."), for `render` and `replay` alike.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_device_is_named_once() {
+    let full = Path::new("/dev/full");
+    if !full.exists() {
+        return;
+    }
+    for cmd in ["render", "replay"] {
+        let o = usar(&[cmd, text(&paper()), "--out", "/dev/full"]);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{cmd}");
+        assert_eq!(err.matches("/dev/full").count(), 1, "{cmd}: {err}");
+        assert!(
+            err.starts_with("error: writing /dev/full: "),
+            "{cmd}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{cmd}: {err}");
+    }
+}

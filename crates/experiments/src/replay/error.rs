@@ -24,11 +24,12 @@ pub enum ReplayError {
     #[error("encoding the page: {0}")]
     Encode(String),
     /// Writing the page failed.
-    #[error("writing {}: {message}", path.display())]
+    #[error("{message}")]
     Write {
         /// The page's path.
         path: PathBuf,
-        /// What went wrong.
+        /// What went wrong, naming the path (the message of
+        /// [`write_atomic`](crate::atomic::write_atomic)).
         message: String,
     },
 }
