@@ -338,4 +338,17 @@ mod tests {
             "{e}"
         );
     }
+
+    /// `()` for a struct is a struct with no field given: the first required field is named
+    /// (serde said "invalid length 0, expected struct TaskSpec with 6 elements"), and a struct
+    /// whose fields all have defaults takes them.
+    #[test]
+    fn an_empty_struct_names_its_first_missing_field() {
+        let (_, e) = set(&["tasks[0]=()"]).unwrap_err();
+        assert_eq!(e, "tasks[0]: missing field `name`");
+        let (_, e) = set(&["tasks[0]=TaskSpec()"]).unwrap_err();
+        assert_eq!(e, "tasks[0]: missing field `name`");
+        let s = set(&["collision=()"]).unwrap();
+        assert_eq!(s.collision, usar_sim::scenario::CollisionParams::default());
+    }
 }

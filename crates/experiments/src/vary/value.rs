@@ -89,7 +89,7 @@ impl RonValue {
             RonValue::Call(name, args) => {
                 scalar_guide(guide, &format!("{name}(...)"))?;
                 match guide {
-                    Some(Value::Object(m)) if !is_variant(m) && matches!(args, Args::Named(_)) => {
+                    Some(Value::Object(m)) if !is_variant(m) && is_struct_body(args) => {
                         args_to_json(args, guide, false)
                     }
                     _ => {
@@ -113,6 +113,14 @@ impl RonValue {
                 fields_to_json(entries, guide)
             }
         }
+    }
+}
+
+/// Whether `(...)` after a struct's name is its body: named fields, or none (`Name()`).
+fn is_struct_body(args: &Args) -> bool {
+    match args {
+        Args::Named(_) => true,
+        Args::Positional(items) => items.is_empty(),
     }
 }
 
@@ -171,9 +179,15 @@ fn number(t: &str) -> Result<Value, String> {
 
 /// The JSON of `(...)`: an array of positional items, an object of named ones. One
 /// positional item is the item itself in a newtype variant `Name(x)`, and in `(x)` unless a
-/// list or tuple is expected.
+/// list or tuple is expected. An empty `()` for a struct is a struct with no field given (an
+/// empty object: the spec's defaults, or an error naming the first missing field).
 fn args_to_json(args: &Args, guide: Option<&Value>, newtype: bool) -> Result<Value, String> {
     match args {
+        Args::Positional(items)
+            if items.is_empty() && matches!(guide, Some(Value::Object(m)) if !is_variant(m)) =>
+        {
+            Ok(Value::Object(Map::new()))
+        }
         Args::Positional(items)
             if items.len() == 1 && (newtype || !matches!(guide, Some(Value::Array(_)))) =>
         {
