@@ -28,6 +28,26 @@ pub fn sig6(x: f64) -> String {
     format!("{x:.decimals$}")
 }
 
+/// Formats a positive rate or size `x` for a one-line summary with 3 significant digits and no
+/// trailing zeros (`2.94`, `0.704`, `10`, `1250`); scientific notation below `1e-3` or from
+/// `1e6` up (`1.67e-5`); `0`, `inf`, `NaN` as [`sig6`] writes them.
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return sig6(x);
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    if !(-3..6).contains(&magnitude) {
+        return format!("{x:.2e}");
+    }
+    let decimals = (2 - magnitude).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// Renders a labelled matrix. `values[r][c]` is shown with [`sig6`]; a cell gets a `*` when
 /// `marked(r, c)` is true. `row_labels.len() == values.len()`,
 /// `col_labels.len() == values[r].len()`.
@@ -138,6 +158,17 @@ mod tests {
         assert_eq!(sig6(0.0), "0");
         assert_eq!(sig6(f64::INFINITY), "inf");
         assert_eq!(sig6(1.5e-9), "1.50000e-9");
+    }
+
+    #[test]
+    fn three_significant_digits_without_trailing_zeros() {
+        assert_eq!(sig3(1.0 / 0.34), "2.94");
+        assert_eq!(sig3(1.0 / 1.42), "0.704");
+        assert_eq!(sig3(10.0), "10");
+        assert_eq!(sig3(50.000_000_000_001), "50");
+        assert_eq!(sig3(1250.0), "1250");
+        assert_eq!(sig3(1.0 / 60_000.0), "1.67e-5");
+        assert_eq!(sig3(0.0), "0");
     }
 
     #[test]

@@ -189,3 +189,28 @@ fn grid_sweeps_write_a_replay_in_every_cell() {
         assert!(c.join("replay-dis-0.html").is_file(), "{}", c.display());
     }
 }
+
+/// The summary gives the rate used with three significant digits (it printed
+/// `2.941176470588235 samples/s` for `--hz 3`, which samples every 17th step of 0.02 s).
+#[test]
+fn the_summary_rounds_the_rate_used() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let page = dir.path().join("r.html");
+    let p = paper();
+    let o = usar(&[
+        "replay",
+        &p,
+        "--duration",
+        "4",
+        "--hz",
+        "3",
+        "--out",
+        text(&page),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains(", 4.0 s at 2.94 samples/s, "),
+        "{}",
+        stdout(&o)
+    );
+}

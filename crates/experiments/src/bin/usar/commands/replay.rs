@@ -123,7 +123,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         rec.trial,
         rec.seed,
         rec.duration_s(),
-        rec.clock.actual_hz(rec.dt_s),
+        experiments::table::sig3(rec.clock.actual_hz(rec.dt_s)),
         rec.samples,
         rec.robots,
         rec.marks.len(),
