@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
+use crate::claims::ClaimCheck;
 use crate::metrics::{Metric, Quantity, Scope};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
 use crate::table::{mean_sd, pval};
@@ -191,11 +192,11 @@ fn claims(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
         match chk.metric {
             Some(_) => writeln!(
                 out,
-                "  ({}) {}: {} (max p = {})",
+                "  ({}) {}: {} ({})",
                 chk.claim.id,
                 chk.claim.text,
                 chk.verdict.words(),
-                pval(chk.worst_p())
+                max_p_text(chk)
             )?,
             None => writeln!(
                 out,
@@ -244,6 +245,24 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
         writeln!(out)?;
     }
     Ok(())
+}
+
+/// `max p = ...` of a claim, or why there is none: with fewer than two trials of a method,
+/// Welch's test has no variance to work with (`max p = n/a` said nothing of the cause).
+fn max_p_text(chk: &ClaimCheck) -> String {
+    let p = chk.worst_p();
+    let fewest = chk
+        .comparisons
+        .iter()
+        .map(|c| c.other_summary.n)
+        .chain([chk.subject_summary.n])
+        .min()
+        .unwrap_or(0);
+    if p.is_nan() && fewest < 2 {
+        "no p: Welch's test needs at least 2 trials per method".to_string()
+    } else {
+        format!("max p = {}", pval(p))
+    }
 }
 
 #[cfg(test)]

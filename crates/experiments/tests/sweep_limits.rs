@@ -119,3 +119,36 @@ fn a_duration_between_steps_is_reported_as_the_length_that_ran() {
         "{cell}"
     );
 }
+
+/// One trial per method: the claims say why they have no p-value (they said `max p = n/a`).
+#[test]
+fn one_trial_per_method_says_why_claims_have_no_p() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = usar_in(
+        dir.path(),
+        &[
+            "sweep",
+            PAPER,
+            "--trials",
+            "1",
+            "--duration",
+            "4",
+            "--quiet",
+            "--threads",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let claims: Vec<&str> = text.lines().filter(|l| l.starts_with("  (")).collect();
+    assert_eq!(claims.len(), 5, "{text}");
+    for line in claims {
+        assert!(
+            line.ends_with("(no p: Welch's test needs at least 2 trials per method)"),
+            "{line}"
+        );
+    }
+}
