@@ -29,6 +29,10 @@ pub enum RescueeStatus {
 }
 
 /// The rescuees of one task, indexed as in [`crate::scenario::Task::rescuees`].
+///
+/// # Panics
+/// Every method that takes a rescuee index `i` panics if `i >= self.len()`, as slice
+/// indexing does (the mission only passes indices it got from this field).
 #[derive(Debug, Clone)]
 pub struct RescueeField {
     positions: Vec<PointM>,
@@ -234,7 +238,13 @@ impl RescueeField {
         best.map(|(_, i)| i)
     }
 
-    /// Robot `robot` claims waiting rescuee `i`.
+    /// Robot `robot` claims waiting rescuee `i`. `robot` is stored as given (not checked
+    /// against the team).
+    ///
+    /// # Panics
+    /// If `i >= self.len()`; in debug builds also if rescuee `i` is not waiting (claiming a
+    /// rescuee another robot holds is a logic error of the caller; a release build records
+    /// the new claim).
     pub fn claim(&mut self, i: usize, robot: usize) {
         debug_assert_eq!(self.status[i], RescueeStatus::Waiting);
         self.set(i, RescueeStatus::Claimed(robot), self.known[i]);
