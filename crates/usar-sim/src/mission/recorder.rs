@@ -7,7 +7,13 @@ use super::robot::MissionRobot;
 use crate::scenario::Scenario;
 use crate::world::World;
 
-/// Running counts of one trial: per robot, per task (by task id) and per round.
+/// Running counts of one trial: per robot, per task (by task id) and per round. Energy and HP
+/// are percentage points (`pct`), times seconds.
+///
+/// # Panics
+/// Every method that takes a robot id `id` or a task id `t`/`task` panics if it is not one of
+/// the scenario's (`id >= robots`, `t >= tasks`), as slice indexing does; the mission passes
+/// only its own ids.
 #[derive(Debug, Clone)]
 pub struct Recorder {
     robots: Vec<RobotMetrics>,
