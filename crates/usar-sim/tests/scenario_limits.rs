@@ -415,17 +415,38 @@ fn a_control_character_in_a_name_is_an_error_at_the_name() {
         ("name: \"paper\"", "name: \"pa\\nper\"", "name"),
         ("name: \"carrier\"", "name: \"car\\trier\"", "kinds[0].name"),
         ("name: \"hard\"", "name: \"ha\\u{7}rd\"", "tasks[0].name"),
-        ("name: \"easy\"", "name: \"ea\\u{2028}sy\"", "tasks[1].name"),
     ] {
         let e = rejected(&paper_with(from, to), field);
         assert!(e.to_string().contains("holds the control character"), "{e}");
     }
+    // A line separator is not a control character, but it breaks a line as one does.
+    let e = rejected(
+        &paper_with("name: \"easy\"", "name: \"ea\\u{2028}sy\""),
+        "tasks[1].name",
+    );
+    assert!(
+        e.to_string()
+            .contains("holds the line-breaking character '\\u{2028}'"),
+        "{e}"
+    );
     // Other characters stay allowed.
     scenario::from_str(
         &paper_with("name: \"paper\"", "name: \"pa: per/é\""),
         "t.ron",
     )
     .expect("a name with punctuation and accents");
+}
+
+/// A task named `total` would give two `rescued_total` columns (the sum over the tasks and
+/// the task's own): it is refused at its name.
+#[test]
+fn the_task_name_total_is_reserved() {
+    let text = paper_with("name: \"hard\"", "name: \"total\"")
+        .replace("\"hard\":", "\"total\":")
+        .replace("hard:", "total:");
+    let e = rejected(&text, "tasks[0].name");
+    assert!(e.to_string().contains("\"total\" is reserved"), "{e}");
+    assert_eq!(scenario::RESERVED_TASK_NAME, "total");
 }
 
 #[test]

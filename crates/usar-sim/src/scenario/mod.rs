@@ -28,4 +28,5 @@ pub use params::*;
 pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;
+pub use validate::RESERVED_TASK_NAME;
 pub use validate::START_TOLERANCE;

@@ -204,6 +204,11 @@ struct TaskGeometry {
 /// Debris with the names messages give them (`debris[3]`, `debris_fields[0] shape 2`).
 type NamedDebris = Vec<(DebrisShape, String)>;
 
+/// The name no task may have: the tables name the sum over all tasks `total`
+/// (`rescued_total`, `energy_total_pct`, the `total` rows of `summary.csv`), so a task of
+/// that name would give two columns of one name.
+pub const RESERVED_TASK_NAME: &str = "total";
+
 /// Checks `name`, the `what` at `field`: not blank, and one line of text without control
 /// characters or the Unicode line and paragraph separators (a line break or tab would break
 /// the reports' tables, the CSV headers that carry task names, and the console's lines).
@@ -216,12 +221,14 @@ fn check_name(ctx: &Ctx<'_>, field: String, what: &str, name: &str) -> R<()> {
         // At most 60 characters of the name are quoted, so the message stays short.
         let quoted: String = name.chars().take(60).collect();
         let more = if quoted.len() < name.len() { "..." } else { "" };
+        let kind = if c.is_control() {
+            "the control character"
+        } else {
+            "the line-breaking character"
+        };
         return Err(ctx.err(
             field,
-            format!(
-                "{what} {quoted:?}{more} holds the control character {c:?}; a name is one line \
-                 of text"
-            ),
+            format!("{what} {quoted:?}{more} holds {kind} {c:?}; a name is one line of text"),
         ));
     }
     Ok(())
@@ -300,6 +307,15 @@ fn task_geometry(ctx: &Ctx<'_>, tasks: &[TaskSpec], arena: &Arena) -> R<Vec<Task
     for (i, t) in tasks.iter().enumerate() {
         let base = format!("tasks[{i}]");
         check_name(ctx, format!("{base}.name"), "task name", &t.name)?;
+        if t.name == RESERVED_TASK_NAME {
+            return Err(ctx.err(
+                format!("{base}.name"),
+                format!(
+                    "the task name {RESERVED_TASK_NAME:?} is reserved: the tables' columns of \
+                     all tasks together use it (rescued_total, energy_total_pct)"
+                ),
+            ));
+        }
         if let Some(j) = tasks[..i].iter().position(|o| o.name == t.name) {
             return Err(ctx.err(
                 format!("{base}.name"),
