@@ -361,6 +361,54 @@ fn a_waypoint_tolerance_beyond_five_metres_is_an_error() {
     short_run(&s);
 }
 
+/// A tolerance below f32's reach was accepted and robots stalled short of their first
+/// waypoint (1e-6 m: 4 rounds, then nothing; 1e-9 m: round 0 never completed).
+#[test]
+fn a_waypoint_tolerance_robots_cannot_meet_is_an_error() {
+    for tiny in ["0.000001", "1e-9", "0.0009"] {
+        let e = rejected(
+            &paper_with(
+                "waypoint_tolerance_m: 0.3",
+                &format!("waypoint_tolerance_m: {tiny}"),
+            ),
+            "navigation.waypoint_tolerance_m",
+        );
+        assert!(
+            e.to_string().contains("less than the least of 0.001 m"),
+            "{e}"
+        );
+    }
+    let s = scenario::from_str(
+        &paper_with("waypoint_tolerance_m: 0.3", "waypoint_tolerance_m: 0.001"),
+        "t.ron",
+    )
+    .expect("1 mm is the least in an 80 m arena");
+    short_run(&s);
+    // In a 10 km arena f32's spacing sets the bound.
+    let least = scenario::limits::min_waypoint_tolerance_m(10_000.0);
+    assert!((least - 0.019_073_486).abs() < 1e-6, "{least}");
+}
+
+/// A cell larger than the arena made a grid that saw no debris: robots drove into it and no
+/// warning was given.
+#[test]
+fn a_navigation_cell_larger_than_the_arena_is_an_error() {
+    let e = rejected(
+        &paper_with("grid_cell_m: 0.25", "grid_cell_m: 200.0"),
+        "navigation.grid_cell_m",
+    );
+    assert!(
+        e.to_string()
+            .contains("larger than the arena's shorter side (60 m)"),
+        "{e}"
+    );
+    scenario::from_str(
+        &paper_with("grid_cell_m: 0.25", "grid_cell_m: 60.0"),
+        "t.ron",
+    )
+    .expect("a cell of the shorter side is accepted");
+}
+
 #[test]
 fn a_wall_thicker_than_ten_kilometres_is_an_error_and_ten_run() {
     let e = rejected(

@@ -45,6 +45,19 @@ pub const MAX_ARENA_SIDE_M: f64 = 10_000.0;
 /// moving. 12.5 times the largest body radius of the shipped scenarios (0.4 m), about 17 times
 /// the default (0.3 m).
 pub const MAX_WAYPOINT_TOLERANCE_M: f64 = 5.0;
+/// Smallest `navigation.waypoint_tolerance_m`, metres, in any arena: 1 mm. In a large arena
+/// the bound is higher, [`min_waypoint_tolerance_m`]: the world keeps positions in `f32`, so
+/// a tolerance near `f32`'s spacing at the arena's far corner can never be met and robots
+/// stall short of their first waypoint (1e-6 m in a 30 m arena did).
+pub const MIN_WAYPOINT_TOLERANCE_M: f64 = 1e-3;
+
+/// The smallest `navigation.waypoint_tolerance_m` for an arena whose longer side is
+/// `longest_side_m`, metres: the larger of [`MIN_WAYPOINT_TOLERANCE_M`] and 16 times `f32`'s
+/// spacing there (`16 * f32::EPSILON * longest_side_m`, 0.019 m at the 10 km limit).
+pub fn min_waypoint_tolerance_m(longest_side_m: f64) -> f64 {
+    MIN_WAYPOINT_TOLERANCE_M.max(16.0 * f64::from(f32::EPSILON) * longest_side_m)
+}
+
 /// Most rescuees a robot carries at once and most rescuing resources it brings
 /// (`carrying_capacity`, `rescuing_resources`): a group's sums over [`MAX_ROBOTS`] robots stay
 /// within a 32-bit count.
@@ -135,7 +148,9 @@ pub(crate) fn check_kind(ctx: &Ctx<'_>, k: usize, kind: &RobotKind) -> R<()> {
 
 /// The arena's sides and wall thickness, `navigation.clearance_m` and
 /// `collision.safety_margin_m` against [`MAX_ARENA_SIDE_M`],
-/// `navigation.waypoint_tolerance_m` against [`MAX_WAYPOINT_TOLERANCE_M`], the navigation grid against [`MAX_NAV_CELLS`], the
+/// `navigation.waypoint_tolerance_m` against [`MAX_WAYPOINT_TOLERANCE_M`] and
+/// [`min_waypoint_tolerance_m`], the navigation grid's cell against the arena's shorter side
+/// and its cell count against [`MAX_NAV_CELLS`], the
 /// needs weights against [`NEEDS_RANGE`], and every kind's distance per step: a robot at top
 /// speed moves at most its body radius per step (`max_speed_m_per_s * dt_s <=
 /// body_radius_m`), so it cannot pass through a wall, debris or another robot between two
@@ -189,7 +204,31 @@ pub(crate) fn check_derived(
             ),
         ));
     }
+    let least_m = min_waypoint_tolerance_m(arena.width().max(arena.height()));
+    if tolerance_m < least_m {
+        return Err(ctx.err(
+            "navigation.waypoint_tolerance_m",
+            format!(
+                "{} m is less than the least of {} m for this arena (positions are f32: robots \
+                 could never come that close to a waypoint)",
+                number_text(tolerance_m),
+                number_text(least_m)
+            ),
+        ));
+    }
     let cell_m = navigation.grid_cell_m.get();
+    let shorter_side_m = arena.width().min(arena.height());
+    if cell_m > shorter_side_m {
+        return Err(ctx.err(
+            "navigation.grid_cell_m",
+            format!(
+                "cells of {} m are larger than the arena's shorter side ({} m): the navigation \
+                 grid could not see the debris",
+                number_text(cell_m),
+                number_text(shorter_side_m)
+            ),
+        ));
+    }
     let (nx, ny) = (
         (arena.width() / cell_m).ceil().max(1.0),
         (arena.height() / cell_m).ceil().max(1.0),

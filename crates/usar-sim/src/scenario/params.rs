@@ -258,12 +258,15 @@ impl Default for MissionParams {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct NavigationParams {
-    /// Side of an occupancy-grid cell, metres, > 0; default 0.25.
+    /// Side of an occupancy-grid cell, metres, > 0 and at most the arena's shorter side;
+    /// default 0.25.
     pub grid_cell_m: Positive,
     /// Clearance kept from debris and walls beyond the body radius, metres, >= 0; default 0.1.
     pub clearance_m: NonNegative,
-    /// Distance at which a waypoint counts as reached, metres, > 0 and at most
-    /// [`crate::scenario::limits::MAX_WAYPOINT_TOLERANCE_M`] (5); default 0.3.
+    /// Distance at which a waypoint counts as reached, metres, at least
+    /// [`crate::scenario::limits::min_waypoint_tolerance_m`] (1 mm, more in arenas over
+    /// 525 m) and at most [`crate::scenario::limits::MAX_WAYPOINT_TOLERANCE_M`] (5); default
+    /// 0.3.
     pub waypoint_tolerance_m: Positive,
     /// Whether ground robots reach the goals many of them share (task goal points, drop-off
     /// centres, the rest station) by descending one distance field per goal and clearance
