@@ -151,6 +151,14 @@ impl Means {
     }
 }
 
+/// Whether a scenario with these task names has the statistics: tasks named `easy` and
+/// `hard` (without them every statistic is NaN and the reports say so in one sentence).
+pub fn applies_to(tasks: &[String]) -> bool {
+    ["easy", "hard"]
+        .iter()
+        .all(|name| tasks.iter().any(|t| t == name))
+}
+
 /// `statistic` pooled over `results` (every trial weighs the same, whatever its method). NaN
 /// for no results or results without tasks named `easy` and `hard`; a ratio with a zero
 /// denominator is infinite or NaN, as IEEE division gives.

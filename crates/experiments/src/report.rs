@@ -9,6 +9,7 @@ use usar_sim::mission::trial_seed;
 use usar_sim::scenario::Scenario;
 
 use crate::analysis::CellAnalysis;
+use crate::calibration;
 use crate::claims::{ALPHA, Verdict};
 use crate::figures::FIGURES;
 use crate::grid::GridCell;
@@ -187,8 +188,7 @@ fn pooled(r: &mut String, a: &CellAnalysis) {
          method-independent statistics `scenarios/paper.ron` is calibrated against (the \
          authors' results sheet; `docs/calibration.md`). "
     );
-    let named = |t: &str| a.tasks.iter().any(|x| x == t);
-    if !(named("easy") && named("hard")) {
+    if !calibration::applies_to(&a.tasks) {
         r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
         return;
     }

@@ -182,3 +182,34 @@ fn four_tasks_end_to_end() {
     let (file, tasks) = SCENARIOS[3];
     end_to_end(file, tasks);
 }
+
+/// A grid over a scenario without tasks named `easy` and `hard`: `grid.md` says in one
+/// sentence that the calibration statistics need them (it showed a row of `n/a !`, marking
+/// every undefined value as outside its band).
+#[test]
+fn a_grid_without_easy_and_hard_has_no_pooled_table() {
+    let path = format!("{ROOT}/tests/data/one-task.ron");
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("g");
+    usar(&[
+        "sweep",
+        &path,
+        "--methods",
+        "rne,dis",
+        "--trials",
+        "1",
+        "--duration",
+        "4",
+        "--quiet",
+        "--threads",
+        "1",
+        "--vary",
+        "mission.pickup_s=0,1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let md = read(&out.join("grid.md"));
+    assert!(md.contains("## Pooled statistics"), "{md}");
+    assert!(md.contains("which this scenario lacks"), "{md}");
+    assert!(!md.contains("n/a !"), "{md}");
+}

@@ -162,14 +162,29 @@ fn cells(r: &mut String, input: &GridReportInput<'_>) {
 }
 
 /// The calibration statistics of every cell, pooled over its trials of all methods, against
-/// their targets (`docs/calibration.md`); a value outside its band is marked with `!`.
+/// their targets (`docs/calibration.md`); a value outside its band is marked with `!`, a
+/// value that is n/a is not. A scenario without tasks named `easy` and `hard` gets one
+/// sentence instead of the table (every value would be n/a).
 fn pooled(r: &mut String, input: &GridReportInput<'_>) {
     let h = &input.outcome.header;
+    let _ = write!(
+        r,
+        "## Pooled statistics\n\nPer cell, over all trials of all methods (ratios of means): \
+         the method-independent statistics `scenarios/paper.ron` is calibrated against \
+         (`docs/calibration.md`). "
+    );
+    let tasks = input
+        .analysis
+        .cells
+        .first()
+        .map_or(&[][..], |c| &c.tasks[..]);
+    if !calibration::applies_to(tasks) {
+        r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
+        return;
+    }
     let _ = writeln!(
         r,
-        "## Pooled statistics\n\nPer cell, over all trials of all methods (ratios of means; \
-         calibration targets of `docs/calibration.md` in the header, `!` marks a value outside \
-         its band).\n"
+        "The targets are in the header; `!` marks a value outside its band.\n"
     );
     let labels: Vec<String> = calibration::TARGETS
         .iter()
@@ -179,7 +194,7 @@ fn pooled(r: &mut String, input: &GridReportInput<'_>) {
     for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {
         cell_start(r, index, &c.values);
         for (t, x) in &a.pooled {
-            let mark = if t.holds(*x) { "" } else { " !" };
+            let mark = if x.is_nan() || t.holds(*x) { "" } else { " !" };
             let _ = write!(r, " {}{mark} |", num(*x));
         }
         r.push('\n');
