@@ -9,7 +9,9 @@ use crate::scenario::{Locomotion, PointM, Rect, Scenario};
 /// least 1) at the centres of equal vertical strips. Rows and points are thus at most
 /// `spacing_m` apart and at most `spacing_m / 2` from the area's edges, so a robot following
 /// them passes within `spacing_m / 2` of every point between the first and the last column
-/// and within `spacing_m / √2` of every point of the area (the corners).
+/// and within `spacing_m / √2` of every point of the area (the corners). A robot that turns
+/// within its waypoint tolerance of a row's end point covers less at the left and right
+/// edges: see "Searching" in `docs/mission-model.md` (a known limitation).
 ///
 /// # Panics
 /// Unless `spacing_m` is finite and `> 0` and the pattern has at most
