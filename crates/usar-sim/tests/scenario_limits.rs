@@ -103,6 +103,26 @@ fn a_robot_faster_than_its_body_per_step_is_an_error() {
     assert!(e.to_string().contains("per step"), "{e}");
 }
 
+/// Two ground robots closing faster than a body radius per step passed through each other
+/// (20 m/s, 0.4 m bodies, 0.02 s steps: 0.8 m per step); each alone moves 0.4 m per step,
+/// which the per-kind rule allows.
+#[test]
+fn robots_that_close_more_than_a_body_radius_per_step_are_an_error() {
+    let fast = paper_with("max_speed_m_per_s: 2.5,", "max_speed_m_per_s: 20.0,");
+    let e = rejected(&fast, "kinds[0].max_speed_m_per_s");
+    assert!(
+        e.to_string()
+            .contains("two carrier robots driving at each other close 0.8 m per step"),
+        "{e}"
+    );
+    // 10 m/s closes 0.4 m per step: exactly the radius, accepted.
+    scenario::from_str(
+        &paper_with("max_speed_m_per_s: 2.5,", "max_speed_m_per_s: 10.0,"),
+        "t.ron",
+    )
+    .expect("closing one body radius per step is allowed");
+}
+
 // Class 3: no endless trial, no endless validation.
 
 #[test]
