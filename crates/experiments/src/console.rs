@@ -11,7 +11,7 @@ use crate::analysis::{Analysis, CellAnalysis};
 use crate::claims::ClaimCheck;
 use crate::metrics::{Metric, Quantity, Scope};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
-use crate::table::{mean_sd, pval};
+use crate::table::{mean_sd, pval, sig3};
 
 /// Columns of the one-cell table: rescuees in total and per task, then the energy and HP cost
 /// per rescuee of the hardest task; each with its heading.
@@ -132,16 +132,14 @@ pub fn print_sweep(
 }
 
 /// A speed (simulated seconds per wall-clock second) for the terminal: whole numbers from 10
-/// up (`1153`), three significant digits below (`2.47`, `0.442`), so a run slower than real
-/// time does not print as `0`.
+/// up (`1153`), three significant digits below ([`sig3`]: `2.47`, `0.442`, `1.20e-5`), so a
+/// run slower than real time does not print as `0`.
 pub fn speed(sim_s_per_wall_s: f64) -> String {
     let x = sim_s_per_wall_s;
     if !x.is_finite() || x >= 10.0 {
         format!("{x:.0}")
-    } else if x >= 1.0 {
-        format!("{x:.2}")
     } else {
-        format!("{x:.3}")
+        sig3(x)
     }
 }
 
@@ -272,5 +270,6 @@ mod tests {
         assert_eq!(super::speed(1153.4), "1153");
         assert_eq!(super::speed(2.4661), "2.47");
         assert_eq!(super::speed(0.44166), "0.442");
+        assert_eq!(super::speed(1.2e-5), "1.20e-5");
     }
 }

@@ -28,9 +28,10 @@ pub fn sig6(x: f64) -> String {
     format!("{x:.decimals$}")
 }
 
-/// Formats a positive rate or size `x` for a one-line summary with 3 significant digits and no
-/// trailing zeros (`2.94`, `0.704`, `10`, `1250`); scientific notation below `1e-3` or from
-/// `1e6` up (`1.67e-5`); `0`, `inf`, `NaN` as [`sig6`] writes them.
+/// Formats a positive rate or size `x` for a one-line summary with 3 significant digits, in
+/// fixed notation without trailing zeros (`2.94`, `0.704`, `10`, `1250`: whole numbers keep
+/// all their digits) from `1e-3` to below `1e6`, in scientific notation outside (`1.67e-5`,
+/// `1.20e-5`); `0`, `inf`, `NaN` as [`sig6`] writes them.
 pub fn sig3(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return sig6(x);

@@ -211,10 +211,12 @@ fn majority_header(shards: &[ShardJournal]) -> Option<&SweepHeader> {
 
 /// The sweep's plan, its configuration and its header, which every shard's journal must
 /// have. The plan is that of the lowest shard whose journal has the header most shards have
-/// (the odd ones out are then named as such), or of the lowest shard with a plan.
+/// (the odd ones out are then named as such), or of the lowest shard with a plan. `here` is
+/// the folder the commands of [`MergeError::OtherSweep`] are shown in.
 fn plan_and_header(
     dir: &Path,
     shards: &[ShardJournal],
+    here: Option<&Path>,
 ) -> Result<(SweepPlan, SweepConfig, SweepHeader)> {
     let majority = majority_header(shards);
     let with_plan = |s: &&ShardJournal| s.contents.is_some() && SweepPlan::path_in(&s.dir).exists();
@@ -255,17 +257,11 @@ fn plan_and_header(
     if odd.is_empty() {
         return Ok((plan, config, header));
     }
-    let here = std::env::current_dir().ok();
     Err(MergeError::OtherSweep {
         count: shards.len(),
         commands: odd
             .iter()
-            .map(|(s, _)| {
-                format!(
-                    "{} --overwrite",
-                    plan.shard_command(*s, dir, here.as_deref())
-                )
-            })
+            .map(|(s, _)| format!("{} --overwrite", plan.shard_command(*s, dir, here)))
             .collect(),
         odd,
     }
@@ -367,7 +363,9 @@ fn unfinished(
 pub fn merge_shards(dir: &Path) -> Result<Merged> {
     let count = find_split(dir)?;
     let shards = read_shards(dir, count)?;
-    let (plan, config, header) = plan_and_header(dir, &shards)?;
+    // The folder the suggested commands are shown in (see `SweepPlan::shard_command`).
+    let here = std::env::current_dir().ok();
+    let (plan, config, header) = plan_and_header(dir, &shards, here.as_deref())?;
     refuse_other_sweeps_journal(dir, &header)?;
     let mut records = Vec::new();
     let mut rejected = Vec::new();
@@ -384,7 +382,6 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
     rejected.retain(|(_, r)| !records.iter().any(|k| k.key() == r.key()));
     let unfinished = unfinished(&header, &shards, &records);
     if !unfinished.is_empty() {
-        let here = std::env::current_dir().ok();
         let commands = unfinished
             .iter()
             .map(|u| plan.shard_command(u.shard, dir, here.as_deref()))

@@ -8,7 +8,8 @@ use crate::scenario::Scenario;
 use crate::world::World;
 
 /// Running counts of one trial: per robot, per task (by task id) and per round. Energy and HP
-/// are percentage points (`pct`), times seconds.
+/// are in percentage points of a full battery and full health (`pct`); times in seconds
+/// (`_s`).
 ///
 /// # Panics
 /// Every method that takes a robot id `id` or a task id `t`/`task` panics if it is not one of

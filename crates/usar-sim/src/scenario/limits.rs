@@ -282,8 +282,9 @@ pub(crate) fn check_derived(
 
 /// Two ground robots driving at each other close `(v_a + v_b) * dt_s` per step: that must not
 /// exceed the smaller body radius, or they could pass through each other between two steps
-/// (at 20 m/s two 0.4 m robots did). Aerial robots fly over everything and are not checked.
-/// Blamed on the faster kind's `max_speed_m_per_s` (a kind with itself included).
+/// (in a run with collision avoidance off, two 0.4 m robots at 20 m/s did). Aerial robots
+/// fly over everything and are not checked. Blamed on the faster kind's `max_speed_m_per_s`
+/// (a kind with itself included).
 fn check_closing_speeds(ctx: &Ctx<'_>, kinds: &[RobotKind], dt_s: f64) -> R<()> {
     let ground: Vec<(usize, &RobotKind)> = kinds
         .iter()
