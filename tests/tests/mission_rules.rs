@@ -336,7 +336,11 @@ fn swept_fraction(s: &Scenario) -> f64 {
     let reach = kind.body_radius_m + kind.observing_range_m;
     let (mut seen, mut all) = (0, 0);
     for task in &s.tasks {
-        let w = sweep_waypoints(&task.search_area, sweep_spacing_m(s));
+        let w = sweep_waypoints(
+            &task.search_area,
+            sweep_spacing_m(s),
+            s.mission.sweep_pattern,
+        );
         for p in &task.rescuees {
             let d = w
                 .windows(2)
@@ -367,6 +371,37 @@ fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
     assert_eq!(v0.mission.sweep_spacing_m.map(|x| x.get()), Some(2.0));
     let f = swept_fraction(&v0);
     assert!(f < 0.2, "2 m rows pass {f} of the rescuees");
+}
+
+/// Regression: a row of the blind sweep ended at the centre of its last column and the robot
+/// turned within `navigation.waypoint_tolerance_m` of it, cutting the corner, so rescuees
+/// along the left and right edges of the area were missed (2 of the 8 in
+/// `tests/data/blind-edges.ron` found in 600 s, none of the four corners); and the pattern's
+/// last waypoint was assigned but never driven to. Now the rows reach the edges and the robot
+/// turns only at them: one sweep finds all 8.
+#[test]
+fn a_blind_sweep_finds_the_rescuees_at_the_corners_and_edges() {
+    let s = integration_tests::load(&integration_tests::data_path("blind-edges.ron"));
+    assert!(!s.kinds.iter().any(|k| k.role == Role::Observer));
+    let reach = s.kinds[0].body_radius_m + s.kinds[0].observing_range_m;
+    let area = &s.tasks[0].search_area;
+    for p in &s.tasks[0].rescuees {
+        let to_edge = (p.x - area.min.x)
+            .min(area.max.x - p.x)
+            .min(p.y - area.min.y)
+            .min(area.max.y - p.y);
+        assert!(to_edge < 0.25 * reach, "{p:?} is not at an edge");
+    }
+    let r = Simulation::for_trial(&s, method("dis", &s), 0)
+        .run_to_end()
+        .unwrap();
+    assert_eq!(
+        r.rounds[0].rescued,
+        vec![8],
+        "first round: {:?}",
+        r.rounds[0]
+    );
+    assert_eq!(r.rescued, vec![8]);
 }
 
 #[test]

@@ -83,3 +83,44 @@ fn unreachable_goal_is_reported_not_panicking() {
     // ...but is for the aerial one.
     assert!(w.is_goal_reachable(1, PointM::new(10.0, 5.0)));
 }
+
+/// `set_goal_within` holds a robot to its own tolerance: the ground robot drives around the
+/// block to its goal and stops within 1 mm of it (the arena's floor), where `set_goal` lets
+/// it stop `navigation.waypoint_tolerance_m` (0.3 m) short; a tolerance below the floor, or
+/// NaN, is raised to it instead of never being met.
+#[test]
+fn a_goal_set_within_a_tolerance_is_reached_within_it() {
+    let s = common::debris_crossing();
+    let tol = s.navigation.waypoint_tolerance_m.get();
+    let goal = s.tasks[0].goal;
+    let stop_distance = |tolerance_m: Option<f64>| {
+        let mut w = World::new(&s);
+        match tolerance_m {
+            Some(t) => w.set_goal_within(0, goal, t).unwrap(),
+            None => w.set_goal(0, Some(goal)).unwrap(),
+        }
+        for _ in 0..(BOUND_S / s.sim.dt_s.get()) as usize {
+            w.step();
+            if w.robot(0).goal_reached {
+                break;
+            }
+        }
+        assert!(w.robot(0).goal_reached, "{tolerance_m:?}: not reached");
+        // Standing still after arrival.
+        let at = w.robot(0).position;
+        w.step();
+        assert!((w.robot(0).position - at).norm() < 1e-6);
+        (at - goal).norm()
+    };
+    let loose = stop_distance(None);
+    assert!(loose > 0.5 * tol && loose <= tol + 1e-6, "{loose}");
+    for t in [0.0, 1e-9, f64::NAN, 1e-3] {
+        let d = stop_distance(Some(t));
+        assert!(
+            d <= 1e-3 + 1e-6,
+            "tolerance {t}: stopped {d} m from the goal"
+        );
+    }
+    let d = stop_distance(Some(0.1));
+    assert!(d <= 0.1 + 1e-6 && d > 0.01, "tolerance 0.1: {d}");
+}

@@ -8,7 +8,7 @@ use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
 use super::state::{LeaveFigures, MissionState};
-use crate::scenario::{Locomotion, PointM, Role, Scenario};
+use crate::scenario::{Locomotion, PointM, Rect, Role, Scenario, SweepPattern};
 use crate::world::{World, WorldError};
 
 /// A claim on a rescuee is given up when the robot has not come `CLAIM_PROGRESS_M` closer to
@@ -174,9 +174,17 @@ fn decide_ground_on_task(
         return Ok(());
     }
     let r = &st.robots[id];
+    let edge_to_edge = scenario.mission.sweep_pattern == SweepPattern::EdgeToEdge;
     match r.phase {
         Phase::ToSearchArea => {}
-        _ if blind && can_rescue && r.sweep_visited < st.sweeps[t].len() => {
+        // Sweeping: waypoints are left, or the last one is still being driven to (a robot
+        // without a claim is `Searching` only while it sweeps; `CentreToCentre` stopped
+        // once the last was assigned).
+        _ if blind
+            && can_rescue
+            && (r.sweep_visited < st.sweeps[t].len()
+                || (r.phase == Phase::Searching && edge_to_edge)) =>
+        {
             let w = world.robot(id);
             let stalled = match w.goal {
                 None => true,
@@ -185,8 +193,12 @@ fn decide_ground_on_task(
                     w.goal_reached || sweep_stalled(world.time_s(), &mut st.robots[id], d)
                 }
             };
-            if stalled {
-                next_sweep_waypoint(world, st, id, t)?;
+            if stalled && st.robots[id].sweep_visited < st.sweeps[t].len() {
+                let turns = edge_to_edge.then_some(&scenario.tasks[t].search_area);
+                next_sweep_waypoint(world, st, id, t, turns)?;
+            } else if stalled {
+                st.robots[id].phase = Phase::Waiting;
+                stop(world, id)?;
             }
         }
         Phase::Waiting => {}
@@ -247,12 +259,18 @@ fn sweep_stalled(now: f64, r: &mut MissionRobot, d: f64) -> bool {
     now - r.target_progress_s > CLAIM_STALL_S
 }
 
-/// Sends robot `id` to its next reachable waypoint of task `t`'s sweep, if any is left.
+/// Sends robot `id` to its next reachable waypoint of task `t`'s sweep, if any is left. With
+/// `turns_in` (the search area of an `EdgeToEdge` pattern) a turn, a row's end on the area's
+/// left or right edge, is reached only at it (the world's smallest tolerance,
+/// [`World::set_goal_within`]); every other waypoint within `navigation.waypoint_tolerance_m`.
+/// A robot that turned within the tolerance of a row's end cut the corner and missed rescuees
+/// along the edges (see [`sweep_waypoints`](super::sweep::sweep_waypoints)).
 fn next_sweep_waypoint(
     world: &mut World,
     st: &mut MissionState,
     id: usize,
     t: usize,
+    turns_in: Option<&Rect>,
 ) -> Result<(), MissionError> {
     let sweep = &st.sweeps[t];
     let pos = world.robot(id).position;
@@ -265,7 +283,13 @@ fn next_sweep_waypoint(
         r.phase = Phase::Searching;
         r.target_best_m = (p - pos).norm();
         r.target_progress_s = now;
-        match world.set_goal(id, Some(p)) {
+        let turn = turns_in.is_some_and(|a| p.x == a.min.x || p.x == a.max.x);
+        let sent = if turn {
+            world.set_goal_within(id, p, 0.0)
+        } else {
+            world.set_goal(id, Some(p))
+        };
+        match sent {
             Ok(()) => return Ok(()),
             Err(WorldError::Unreachable { .. }) => {}
             Err(e) => return Err(e.into()),

@@ -50,4 +50,4 @@ pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
 pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};
 pub use state::MissionState;
-pub use sweep::{sweep_spacing_m, sweep_waypoints};
+pub use sweep::{sweep_point_count, sweep_spacing_m, sweep_waypoints};

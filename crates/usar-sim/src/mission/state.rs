@@ -117,7 +117,7 @@ impl MissionState {
             sweeps: scenario
                 .tasks
                 .iter()
-                .map(|t| sweep_waypoints(&t.search_area, spacing))
+                .map(|t| sweep_waypoints(&t.search_area, spacing, scenario.mission.sweep_pattern))
                 .collect(),
             round_open: false,
             search_started_s: vec![None; scenario.tasks.len()],

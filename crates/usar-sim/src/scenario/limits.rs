@@ -28,7 +28,7 @@ pub const MAX_ROBOTS: usize = 10_000;
 /// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).
 pub const MAX_RESCUEES: usize = 1_000_000;
 /// Most waypoints of a blind group's lawn-mower sweep over one search area
-/// (`mission::sweep_waypoints`: `ceil(width / spacing) * ceil(height / spacing)`).
+/// (`mission::sweep_point_count`: about `(width / spacing) * (height / spacing)`).
 pub const MAX_SWEEP_POINTS: f64 = 1_000_000.0;
 /// Most debris shapes, listed and generated together.
 pub const MAX_DEBRIS: usize = 10_000;
@@ -331,11 +331,8 @@ fn check_closing_speeds(ctx: &Ctx<'_>, kinds: &[RobotKind], dt_s: f64) -> R<()> 
 pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
     let spacing_m = crate::mission::sweep_spacing_m(s);
     for t in &s.tasks {
-        let (w, h) = (
-            t.search_area.max.x - t.search_area.min.x,
-            t.search_area.max.y - t.search_area.min.y,
-        );
-        let points = (w / spacing_m).ceil().max(1.0) * (h / spacing_m).ceil().max(1.0);
+        let points =
+            crate::mission::sweep_point_count(&t.search_area, spacing_m, s.mission.sweep_pattern);
         if points > MAX_SWEEP_POINTS {
             let field = match s.mission.sweep_spacing_m {
                 Some(_) => "mission.sweep_spacing_m".to_owned(),

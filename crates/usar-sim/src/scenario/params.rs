@@ -106,6 +106,23 @@ pub enum LoadOnLeave {
     DeliverFirst,
 }
 
+/// The lawn-mower pattern of a blind group's search (paper silent; see `mission::sweep_waypoints`
+/// and "Searching" in `docs/mission-model.md`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum SweepPattern {
+    /// Each row runs from the search area's left edge to its right edge, and a robot turns at
+    /// a row's end itself, not within `navigation.waypoint_tolerance_m` of it: the robot
+    /// passes within `sweep_spacing_m / 2` of every point of the area (default).
+    #[default]
+    EdgeToEdge,
+    /// The pattern before 2026-11-24, kept so that `scenarios/paper-v0.ron` reproduces its
+    /// commit: a row ends at the centre of its outer columns, a robot turns within the
+    /// waypoint tolerance of it, and the pattern's last waypoint is assigned but not driven
+    /// to. It misses rescuees in a strip up to `sweep_spacing_m / 2 + waypoint_tolerance_m`
+    /// wide along the area's left and right edges.
+    CentreToCentre,
+}
+
 /// What a stay at the rest station restores (paper: "recharging its energy (or for refreshing
 /// its health HP)"; see `docs/mission-model.md`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -171,8 +188,9 @@ impl ClampedNormal {
 }
 
 /// Mission rules (paper, section VI.B). Every field has a default: the paper's value where it
-/// gives one, otherwise the model as it was before calibration (`scenarios/paper-v0.ron`);
-/// `scenarios/paper.ron` writes every field out.
+/// gives one, otherwise the model as it was before calibration (`scenarios/paper-v0.ron`),
+/// except where that model was a defect (`sweep_spacing_m`, `sweep_pattern`: paper-v0.ron
+/// writes the old values out); `scenarios/paper.ron` writes every field out.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct MissionParams {
@@ -206,6 +224,9 @@ pub struct MissionParams {
     /// default `None`: the narrowest ground detection width `2 * (body_radius_m +
     /// observing_range_m)` (see `mission::sweep_spacing_m`), so a sweep covers the area.
     pub sweep_spacing_m: Option<Positive>,
+    /// The blind search's pattern; default `EdgeToEdge` (`CentreToCentre` is the defective
+    /// pattern of the model before 2026-11-24).
+    pub sweep_pattern: SweepPattern,
     /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]`; default 0
     /// (the factor is `hp_pct / 100`, so a robot at 0 % HP stops; see `mission::hp_factor`).
     pub min_hp_factor: Fraction,
@@ -242,6 +263,7 @@ impl Default for MissionParams {
             search_time_budget_s: None,
             refresh: Refresh::default(),
             sweep_spacing_m: None,
+            sweep_pattern: SweepPattern::default(),
             min_hp_factor: Fraction::known(0.0),
             pickup_s: NonNegative::known(0.0),
             low_energy_pct: Percent::known(30.0),

@@ -25,6 +25,10 @@ pub(super) struct Nav {
     pub(super) requested: Option<Vec2>,
     /// The effective goal.
     pub(super) goal: Option<Vec2>,
+    /// Distance from the effective goal within which it counts as reached, metres:
+    /// `navigation.waypoint_tolerance_m` unless the goal was set by
+    /// [`super::World::set_goal_within`].
+    pub(super) goal_tolerance_m: f32,
     /// Waypoints (start excluded, effective goal last); non-empty while `goal` is set.
     pub(super) path: Vec<Vec2>,
     /// Index of the current waypoint in `path`.
@@ -51,6 +55,7 @@ impl Nav {
             layer: kind.locomotion,
             requested: None,
             goal: None,
+            goal_tolerance_m: 0.0,
             path: Vec::with_capacity(64),
             wp: 0,
             pos,

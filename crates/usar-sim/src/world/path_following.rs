@@ -39,7 +39,8 @@ impl World {
     }
 
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
-    /// once it is reached; marks the goal reached within `navigation.waypoint_tolerance_m`).
+    /// once it is reached; marks the goal reached within its tolerance, by default
+    /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]).
     pub(super) fn update_intent(&mut self, id: usize) {
         let nav = &mut self.nav[id];
         nav.intent = Vec2::ZERO;
@@ -49,7 +50,7 @@ impl World {
         if self.robots[id].goal_reached {
             return;
         }
-        if (goal - nav.pos).length() <= self.navigation.waypoint_tolerance_m.get() as f32 {
+        if (goal - nav.pos).length() <= nav.goal_tolerance_m {
             self.robots[id].goal_reached = true;
             return;
         }

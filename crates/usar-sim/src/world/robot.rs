@@ -39,7 +39,9 @@ pub enum Motion {
     /// Free to move, but every candidate heading would collide within the look-ahead (e.g. the
     /// goal is occupied by another robot); it stands still this step.
     Blocked,
-    /// The goal has been reached (within `navigation.waypoint_tolerance_m`); the robot stands
+    /// The goal has been reached (within its tolerance: `navigation.waypoint_tolerance_m`, or
+    /// the one given to [`World::set_goal_within`](crate::world::World::set_goal_within)); the
+    /// robot stands
     /// still until a new goal is set.
     Arrived,
 }
@@ -66,8 +68,10 @@ pub struct RobotState {
     /// requested one, or the nearest free grid-cell centre when the requested point lies inside
     /// the inflated obstacles (see [`crate::world::NavError`]).
     pub goal: Option<PointM>,
-    /// Whether the robot is within `navigation.waypoint_tolerance_m` of `goal`. Sticky: stays
-    /// `true` until a new goal is set.
+    /// Whether the robot has come within its goal's tolerance of `goal`
+    /// (`navigation.waypoint_tolerance_m`, or the one given to
+    /// [`World::set_goal_within`](crate::world::World::set_goal_within)). Sticky: stays `true`
+    /// until a new goal is set.
     pub goal_reached: bool,
     /// What the robot did in the last step.
     pub motion: Motion,

@@ -166,6 +166,38 @@ impl World {
     /// [`WorldError::UnknownRobot`]; [`WorldError::Unreachable`] when planning fails (goal
     /// outside the arena, blocked, or no path): the robot's goal is then cleared (it stops).
     pub fn set_goal(&mut self, id: usize, goal: Option<PointM>) -> Result<(), WorldError> {
+        let tolerance_m = self.navigation.waypoint_tolerance_m.get();
+        self.set_goal_with_tolerance(id, goal, tolerance_m)
+    }
+
+    /// [`World::set_goal`] with the goal reached only within `tolerance_m` of it (metres)
+    /// instead of `navigation.waypoint_tolerance_m`: for a point the robot must pass closely,
+    /// such as a turn of a blind search's sweep (`mission::sweep_waypoints`). The robot slows
+    /// on its last leg so that it does not overshoot the goal (at most the remaining distance
+    /// per step), so it can meet a tolerance smaller than a step's travel. A tolerance below
+    /// the arena's floor [`min_waypoint_tolerance_m`](crate::scenario::limits::min_waypoint_tolerance_m)
+    /// (`f32` positions cannot resolve less), or NaN, is raised to that floor.
+    ///
+    /// # Errors
+    /// As [`World::set_goal`].
+    pub fn set_goal_within(
+        &mut self,
+        id: usize,
+        goal: PointM,
+        tolerance_m: f64,
+    ) -> Result<(), WorldError> {
+        let (w, h) = self.arena;
+        let floor_m = crate::scenario::limits::min_waypoint_tolerance_m(f64::from(w.max(h)));
+        self.set_goal_with_tolerance(id, Some(goal), tolerance_m.max(floor_m))
+    }
+
+    /// [`World::set_goal`] with the goal's tolerance given (metres, used as is).
+    fn set_goal_with_tolerance(
+        &mut self,
+        id: usize,
+        goal: Option<PointM>,
+        tolerance_m: f64,
+    ) -> Result<(), WorldError> {
         self.check_id(id)?;
         let result = match goal {
             None => Ok(None),
@@ -174,6 +206,7 @@ impl World {
         let nav = &mut self.nav[id];
         nav.best_remaining = f32::INFINITY;
         nav.progress_step = self.stats.steps;
+        nav.goal_tolerance_m = tolerance_m as f32;
         let state = &mut self.robots[id];
         state.goal_reached = false;
         match result {
