@@ -38,8 +38,9 @@ pub const JOURNAL_FILE: &str = "journal.jsonl";
 /// Format version of the journal; bumped when its lines change shape. Format 2 added the
 /// grid to the header and the cell index to every record; format 3 a checksum to every line;
 /// format 4 the cell's task names and difficulty order to the header, and per-task results
-/// (one entry per task, in the scenario's order) to every record.
-pub const JOURNAL_FORMAT: u32 = 4;
+/// (one entry per task, in the scenario's order) to every record; format 5 the build that
+/// wrote the journal to the header ([`SweepHeader::build`]).
+pub const JOURNAL_FORMAT: u32 = 5;
 
 /// The parameters that determine a sweep's results. `--resume` continues a journal only if
 /// its header equals the new sweep's header.
@@ -49,6 +50,12 @@ pub struct SweepHeader {
     pub format: u32,
     /// Version of the `experiments` crate that wrote the journal.
     pub version: String,
+    /// The build of `usar` that wrote the journal ([`crate::report::software_build`]: the git
+    /// commit, with a hash of the uncommitted changes when there are any; empty when built
+    /// outside a git checkout). Another build may simulate differently, so its journal is
+    /// neither continued nor merged: before format 5, a sweep rerun after the model's code
+    /// changed silently reused the old code's trials.
+    pub build: String,
     /// Name of the scenario the grid was built from.
     pub scenario: String,
     /// Grouping methods, upper case, in sweep order.
@@ -553,6 +560,20 @@ pub fn header_diff(old: &SweepHeader, new: &SweepHeader) -> String {
     if old.version != new.version {
         d.push(format!("version {} vs {}", old.version, new.version));
     }
+    if old.build != new.build {
+        let name = |b: &str| {
+            if b.is_empty() {
+                "unrecorded".to_owned()
+            } else {
+                b.to_owned()
+            }
+        };
+        d.push(format!(
+            "build {} vs {} (another build of usar may simulate differently)",
+            name(&old.build),
+            name(&new.build)
+        ));
+    }
     if old.scenario != new.scenario {
         d.push(format!("scenario {} vs {}", old.scenario, new.scenario));
     }
@@ -637,6 +658,7 @@ pub(crate) mod tests {
         SweepHeader {
             format: JOURNAL_FORMAT,
             version: "0".into(),
+            build: "abc1234".into(),
             scenario: "s".into(),
             methods: vec!["RNE".into()],
             trials: 2,

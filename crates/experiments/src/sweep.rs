@@ -338,6 +338,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
     Ok(SweepHeader {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
+        build: crate::report::software_build().to_owned(),
         scenario: cfg.scenario.name.clone(),
         methods: cfg
             .methods
@@ -555,6 +556,13 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
             let resumed = Journal::open_resume(dir, header)?;
             return Ok(OpenJournal::continued(resumed, JournalUse::Reused));
         }
+        Ok(found) if found.build != header.build => bail!(
+            "{} already exists ({}): its trials cannot be continued by this build; pass \
+             --overwrite to start afresh (or choose another --out, or run the build that \
+             wrote it)",
+            path.display(),
+            header_diff(&found, header)
+        ),
         Ok(found) => format!(
             "it was written with other parameters: {}",
             header_diff(&found, header)

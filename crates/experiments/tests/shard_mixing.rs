@@ -107,3 +107,60 @@ fn the_shards_own_sweep_runs_plainly_in_their_folder() {
     ok(&merge(&dir));
     assert_eq!(std::fs::read(dir.join("trials.csv")).unwrap(), merged);
 }
+
+/// Rewrites the journal at `path` as if the build `build` had written it: the header's build,
+/// and every line's checksum recomputed so that the journal verifies.
+fn set_journal_build(path: &Path, build: &str) {
+    use experiments::journal::{header_sum, record_sum};
+    let text = std::fs::read_to_string(path).unwrap();
+    let body = |line: &str, kind: &str| -> String {
+        let prefix = format!("{{\"{kind}\":");
+        let (json, _) = line
+            .strip_prefix(&prefix)
+            .unwrap()
+            .rsplit_once(",\"sum\":")
+            .unwrap();
+        json.to_owned()
+    };
+    let mut lines = text.lines();
+    let json = body(lines.next().unwrap(), "header");
+    let at = json.find("\"build\":\"").unwrap() + "\"build\":\"".len();
+    let end = at + json[at..].find('"').unwrap();
+    let json = format!("{}{build}{}", &json[..at], &json[end..]);
+    let sum = header_sum(&json);
+    let mut out = format!("{{\"header\":{json},\"sum\":\"{sum}\"}}\n");
+    for line in lines {
+        let record = body(line, "trial");
+        let record_sum = record_sum(&sum, &record);
+        out.push_str(&format!(
+            "{{\"trial\":{record},\"sum\":\"{record_sum}\"}}\n"
+        ));
+    }
+    std::fs::write(path, out).unwrap();
+}
+
+/// Shards run by two builds of usar are not merged (the second may simulate differently);
+/// shards of one build are, whichever build merges them.
+#[test]
+fn shards_of_two_builds_are_not_merged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let journal = |i: usize| {
+        dir.join("shards")
+            .join(format!("{i}-of-2"))
+            .join("journal.jsonl")
+    };
+    set_journal_build(&journal(1), "0000000-other");
+    let err = refused(&merge(&dir));
+    assert!(
+        err.contains("build ") && err.contains("0000000-other") && err.contains("--overwrite"),
+        "{err}"
+    );
+    assert!(!dir.join("trials.csv").exists());
+    // Both shards of that other build: merged by this one.
+    set_journal_build(&journal(0), "0000000-other");
+    ok(&merge(&dir));
+    assert!(dir.join("trials.csv").exists());
+}

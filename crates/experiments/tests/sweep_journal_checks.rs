@@ -215,3 +215,53 @@ fn a_cut_header_starts_afresh_and_an_unusable_journal_does_not_advise_resume() {
     );
     assert!(!e.contains("pass --resume"), "{e}");
 }
+
+/// Rewrites the header of the journal at `path` as if the build `build` had written it (its
+/// checksum recomputed, so it verifies); the records then no longer verify.
+fn set_journal_build(path: &Path, build: &str) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let (first, rest) = text.split_once('\n').unwrap();
+    let json = first
+        .strip_prefix("{\"header\":")
+        .and_then(|l| l.rsplit_once(",\"sum\":"))
+        .unwrap()
+        .0;
+    let at = json.find("\"build\":\"").unwrap() + "\"build\":\"".len();
+    let end = at + json[at..].find('"').unwrap();
+    let json = format!("{}{build}{}", &json[..at], &json[end..]);
+    let sum = experiments::journal::header_sum(&json);
+    std::fs::write(
+        path,
+        format!("{{\"header\":{json},\"sum\":\"{sum}\"}}\n{rest}"),
+    )
+    .unwrap();
+}
+
+/// Regression: the journal did not record which build wrote it, so after the simulator's code
+/// changed, the same command silently took every trial from the old code's journal ("all 40
+/// trials came from the journal"). A journal of another build is now neither continued by the
+/// same command nor by --resume; --overwrite starts afresh.
+#[test]
+fn a_journal_of_another_build_is_not_continued() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    ok(&sweep(&out, &[]));
+    let trials = std::fs::read(out.join("trials.csv")).unwrap();
+    let journal = out.join("journal.jsonl");
+    set_journal_build(&journal, "0000000-other");
+    let e = err(&sweep(&out, &[]));
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("journal has build 0000000-other vs ")
+            && e.contains("pass --overwrite")
+            && !e.contains("--resume"),
+        "{e}"
+    );
+    let e = err(&sweep(&out, &["--resume"]));
+    assert!(e.contains("journal has build 0000000-other vs "), "{e}");
+    let o = ok(&sweep(&out, &["--overwrite"]));
+    assert!(!o.contains("came from the journal"), "{o}");
+    assert_eq!(std::fs::read(out.join("trials.csv")).unwrap(), trials);
+    let header = std::fs::read_to_string(&journal).unwrap();
+    assert!(!header.contains("0000000-other"));
+}

@@ -237,7 +237,12 @@ fn plan_and_header(
     let config = plan
         .config(dir)
         .with_context(|| format!("{}", SweepPlan::path_in(&first.dir).display()))?;
-    let header = header_of(&config)?;
+    let mut header = header_of(&config)?;
+    // The shards must share one build, not that of the binary that merges (which runs no
+    // trial): the first shard's sets it.
+    if let Some(c) = &first.contents {
+        header.build.clone_from(&c.header.build);
+    }
     // Each shard whose journal has another header, with the differences.
     let odd_of = |s: &ShardJournal| {
         let c = s.contents.as_ref().filter(|c| c.header != header)?;
