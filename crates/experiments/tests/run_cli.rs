@@ -118,3 +118,21 @@ fn a_huge_or_tiny_duration_is_named_in_a_short_line() {
          runs 0.02 s (1 step)"
     );
 }
+
+/// Regression: `usar run ... | head` ended with `error: Broken pipe (os error 32)` once `head`
+/// had gone. A closed pipe now ends the command quietly with 141 (128 + SIGPIPE), as a shell
+/// reports a program killed by that signal.
+#[test]
+fn a_reader_that_goes_away_ends_the_command_quietly() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["run", PAPER, "--method", "dis", "--duration", "2"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run usar");
+    // The reader goes before the trial's table is written.
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(141));
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+}

@@ -28,6 +28,9 @@ fn main() -> ExitCode {
     let mut out = stdout.lock();
     match run(cli, &mut out) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of a pipe went away (`usar run ... | head`): nothing to say, and the exit
+        // status a program killed by SIGPIPE gets from the shell.
+        Err(e) if is_broken_pipe(&e) => ExitCode::from(BROKEN_PIPE_EXIT_CODE),
         Err(e) => {
             // Not `eprintln!`, which panics (exit 101) when stderr is a closed pipe: the exit
             // status reports the failure whether or not the message could be written.
@@ -36,6 +39,18 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// Exit status when the reader of a pipe `usar` writes to has gone: 128 + SIGPIPE (13), as a
+/// shell reports a program killed by that signal.
+const BROKEN_PIPE_EXIT_CODE: u8 = 141;
+
+/// Whether `e` comes from writing to a pipe whose reader has gone.
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }
 
 /// A usage error of clap on one line, as every other error of `usar`: its paragraphs (the
