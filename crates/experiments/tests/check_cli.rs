@@ -311,11 +311,16 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
         "waypoint_tolerance_m: 100.0",
         1,
     );
+    // Its line in paper.ron, 1-based.
+    let line = 1 + both
+        .lines()
+        .position(|l| l.contains("waypoint_tolerance_m: 100.0"))
+        .unwrap();
     std::fs::write(&path, both).expect("write");
     let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.starts_with(&format!("error: {file}:173:"))
+        err.starts_with(&format!("error: {file}:{line}:"))
             && err
                 .contains(": navigation.waypoint_tolerance_m: 100 m is more than the limit of 5 m")
             && err
