@@ -38,18 +38,15 @@ pub fn sweep_waypoints(area: &Rect, spacing_m: f64, pattern: SweepPattern) -> Ve
     );
     let cols = (w / spacing_m).ceil().max(1.0) as usize;
     let ny = (h / spacing_m).ceil().max(1.0) as usize;
-    let (nx, x_at): (usize, &dyn Fn(usize) -> f64) = match pattern {
+    let nx = match pattern {
+        SweepPattern::EdgeToEdge => cols + 1,
+        SweepPattern::CentreToCentre => cols,
+    };
+    let x_at = |i: usize| match pattern {
         // The last point exactly on the right edge (no rounding of i * w / cols).
-        SweepPattern::EdgeToEdge => (cols + 1, &|i| {
-            if i == cols {
-                area.max.x
-            } else {
-                area.min.x + i as f64 * w / cols as f64
-            }
-        }),
-        SweepPattern::CentreToCentre => {
-            (cols, &|i| area.min.x + (i as f64 + 0.5) * w / cols as f64)
-        }
+        SweepPattern::EdgeToEdge if i == cols => area.max.x,
+        SweepPattern::EdgeToEdge => area.min.x + i as f64 * w / cols as f64,
+        SweepPattern::CentreToCentre => area.min.x + (i as f64 + 0.5) * w / cols as f64,
     };
     let mut out = Vec::with_capacity(nx * ny);
     for j in 0..ny {
