@@ -355,3 +355,29 @@ fn a_rejected_long_set_value_is_quoted_by_its_start() {
     );
     assert!(err.len() < 200, "{} bytes: {err}", err.len());
 }
+
+#[test]
+fn an_index_reaches_a_single_rest_station_as_element_0() {
+    let hash_line = |set: &str| {
+        let o = usar(&["check", PAPER, "--set", set]);
+        assert!(
+            o.status.success(),
+            "{set}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let out = String::from_utf8(o.stdout).unwrap();
+        let line = out.lines().find(|l| l.starts_with("scenario hash"));
+        line.expect("a scenario hash line").to_string()
+    };
+    let single = hash_line("rest_station.radius_m=3");
+    assert_eq!(hash_line("rest_station[0].radius_m=3"), single);
+    assert_eq!(hash_line("rest_station[*].radius_m=3"), single);
+    assert_ne!(hash_line("rest_station.radius_m=2.5"), single);
+    let o = usar(&["check", PAPER, "--set", "rest_station[1].radius_m=3"]);
+    assert!(!o.status.success());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("no element [1] in rest_station: it has 1"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

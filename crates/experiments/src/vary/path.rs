@@ -191,6 +191,12 @@ fn set_at(
     if let Some((_, content)) = variant_content(node) {
         return set_at(content, steps, here, make);
     }
+    if matches!(step, Step::Index(_) | Step::All)
+        && node.is_object()
+        && ONE_OR_LIST_FIELDS.contains(&here.as_str())
+    {
+        return set_in_list_of_one(node, steps, here, make);
+    }
     let shown = where_(here);
     let len = here.len();
     let result = match (step, &mut *node) {
@@ -261,6 +267,28 @@ fn set_at(
 }
 
 /// The `name` field of a list element that is a struct with one.
+/// The fields a scenario writes either as one struct or as a list of them, where a list of
+/// one behaves as the struct ([`usar_sim::scenario::RestStationsSpec`]): an index or `[*]`
+/// reaches the single struct as element 0 (`rest_station[0].radius_m`, `rest_station[*]`).
+const ONE_OR_LIST_FIELDS: &[&str] = &["rest_station"];
+
+/// Sets `steps` (starting with an index or `[*]`) in the single struct `node` taken as a list
+/// of one, and keeps `node` a single struct, so the scenario keeps the form it was written in.
+fn set_in_list_of_one(
+    node: &mut Value,
+    steps: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+) -> Result<(), String> {
+    let mut list = Value::Array(vec![node.take()]);
+    let result = set_at(&mut list, steps, here, make);
+    *node = match list {
+        Value::Array(mut items) if items.len() == 1 => items.pop().unwrap_or_default(),
+        other => other,
+    };
+    result
+}
+
 fn element_name(item: &Value) -> Option<String> {
     item.get("name")?.as_str().map(str::to_string)
 }
@@ -413,6 +441,35 @@ mod tests {
         // The variant itself can be replaced.
         set(&mut v, "kinds[1].starts", json!({"Row": {}})).unwrap();
         assert_eq!(v["kinds"][1]["starts"], json!({"Row": {}}));
+    }
+
+    #[test]
+    fn a_single_rest_station_is_element_0_of_a_list_of_one() {
+        let one = json!({"rest_station": {"center_m": [1.0, 2.0], "radius_m": 2.0}});
+        let mut v = one.clone();
+        set(&mut v, "rest_station[0].radius_m", json!(3.0)).unwrap();
+        assert_eq!(
+            v,
+            json!({"rest_station": {"center_m": [1.0, 2.0], "radius_m": 3.0}}),
+            "the station keeps its single form"
+        );
+        set(&mut v, "rest_station[*].radius_m", json!(4.0)).unwrap();
+        assert_eq!(v["rest_station"]["radius_m"], json!(4.0));
+        let mut v = one.clone();
+        let e = set(&mut v, "rest_station[1].radius_m", json!(3.0)).unwrap_err();
+        assert_eq!(
+            e,
+            "no element [1] in rest_station: it has 1 (indices 0 to 0)"
+        );
+        assert_eq!(v, one, "a failed set leaves the station as it was");
+        // Only fields written as one or a list: any other struct has no element [0].
+        let e = set(
+            &mut json!({"drop_off": {"r": 1.0}}),
+            "drop_off[0].r",
+            json!(2),
+        )
+        .unwrap_err();
+        assert_eq!(e, "drop_off is a struct, which has no element [0]");
     }
 
     #[test]
