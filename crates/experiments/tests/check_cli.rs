@@ -1,9 +1,11 @@
 //! `usar check`: a summary of a valid scenario; the loader's error and a non-zero exit status
 //! for an invalid one.
 
-use std::process::{Command, Output};
+mod common;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use std::process::Command;
+
+use common::{PAPER, usar};
 
 /// A scenario whose hard task's goal and drop-off no robot can reach: every command warns.
 const SPLIT_ARENA: &str = concat!(
@@ -19,16 +21,9 @@ fn warning_commands() -> [Vec<&'static str>; 2] {
     ]
 }
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
-
 #[test]
 fn check_summarises_the_paper_scenario() {
-    let o = usar(&["check", PAPER]);
+    let o = usar(["check", PAPER]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let out = String::from_utf8_lossy(&o.stdout);
     for needle in [
@@ -51,7 +46,7 @@ fn check_summarises_the_paper_scenario() {
 #[test]
 fn check_gives_the_trial_length_a_trial_runs() {
     let summary = |duration: &str| {
-        let o = usar(&["check", PAPER, "--set", duration]);
+        let o = usar(["check", PAPER, "--set", duration]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let out = String::from_utf8(o.stdout).unwrap();
         out.lines().nth(1).unwrap().to_string()
@@ -91,7 +86,7 @@ fn check_and_run_warn_about_goals_no_path_reaches() {
     // A grid warns once per goal, naming the cells.
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("g");
-    let o = usar(&[
+    let o = usar([
         "sweep",
         split,
         "--methods",
@@ -122,7 +117,7 @@ fn check_reports_the_loader_error_with_its_position() {
     // An unknown field: ron reports it with line and column.
     let broken = text.replacen("name:", "nmae:", 1);
     std::fs::write(&bad, broken).unwrap();
-    let o = usar(&["check", bad.to_str().unwrap()]);
+    let o = usar(["check", bad.to_str().unwrap()]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     let prefix = format!("error: {}:", bad.display());
@@ -133,7 +128,7 @@ fn check_reports_the_loader_error_with_its_position() {
     assert!(parts.next().unwrap().parse::<usize>().is_ok(), "{err}");
     assert!(parts.next().unwrap().parse::<usize>().is_ok(), "{err}");
 
-    let o = usar(&["check", "/nonexistent/x.ron"]);
+    let o = usar(["check", "/nonexistent/x.ron"]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/x.ron"));
 }
@@ -141,14 +136,14 @@ fn check_reports_the_loader_error_with_its_position() {
 #[test]
 fn every_subcommand_help_has_examples() {
     for sub in ["check", "run", "sweep"] {
-        let o = usar(&[sub, "--help"]);
+        let o = usar([sub, "--help"]);
         assert!(o.status.success());
         assert!(
             String::from_utf8_lossy(&o.stdout).contains("Examples:"),
             "{sub}"
         );
     }
-    let o = usar(&["--help"]);
+    let o = usar(["--help"]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("usar sweep scenarios/paper.ron"));
 }
 
@@ -161,7 +156,7 @@ fn check_set_print_and_hash_reproduce_an_overridden_scenario() {
         "--set",
         "kinds[0].starts.first_m=(31.5, 3.0)",
     ];
-    let o = usar(&[&["check", PAPER][..], &set, &["--print"]].concat());
+    let o = usar([&["check", PAPER][..], &set, &["--print"]].concat());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let printed = String::from_utf8(o.stdout).unwrap();
     assert!(
@@ -184,7 +179,7 @@ fn check_set_print_and_hash_reproduce_an_overridden_scenario() {
     assert_eq!(hash_of(&["check", file, "--hash"]), h);
     assert_ne!(hash_of(&["check", PAPER, "--hash"]), h);
     // The summary shows it too.
-    let o = usar(&["check", file]);
+    let o = usar(["check", file]);
     assert!(String::from_utf8_lossy(&o.stdout).contains(&format!("scenario hash {h}")));
 }
 
@@ -206,7 +201,7 @@ fn check_set_errors_name_the_override() {
              found maybe\n",
         ),
     ] {
-        let o = usar(&["check", PAPER, "--set", set]);
+        let o = usar(["check", PAPER, "--set", set]);
         assert!(!o.status.success(), "{set}");
         assert_eq!(String::from_utf8_lossy(&o.stderr), want);
         assert!(o.stdout.is_empty());
@@ -248,7 +243,7 @@ fn warnings_meeting_a_closed_stderr_leave_the_exit_status_0() {
 
 #[test]
 fn check_warns_about_tasks_no_group_can_rescue_from() {
-    let o = usar(&[
+    let o = usar([
         "check",
         PAPER,
         "--set",
@@ -266,14 +261,14 @@ fn check_warns_about_tasks_no_group_can_rescue_from() {
         assert!(line.starts_with(&head), "{line}");
     }
     // The shipped scenario itself gets no warning.
-    let o = usar(&["check", PAPER]);
+    let o = usar(["check", PAPER]);
     assert!(o.status.success() && o.stderr.is_empty());
 }
 
 #[cfg(unix)]
 #[test]
 fn check_refuses_an_endless_file_at_the_size_limit() {
-    let o = usar(&["check", "/dev/zero"]);
+    let o = usar(["check", "/dev/zero"]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
@@ -297,12 +292,12 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
     );
     // The file alone, and with an override of another field: the file's own error, positioned.
     for set in [&[][..], &["--set", "mission.duration_s=30.0"]] {
-        let o = usar(&[&["check", file][..], set].concat());
+        let o = usar([&["check", file][..], set].concat());
         assert_eq!(o.status.code(), Some(1));
         assert_eq!(String::from_utf8_lossy(&o.stderr).trim_end(), own);
     }
     // "Set a field before validating": the override repairs the rule.
-    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
+    let o = usar(["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // A second rule the file breaks, found once the override repairs the first: at its line
     // and column, with the override it was found with.
@@ -317,7 +312,7 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
         .position(|l| l.contains("waypoint_tolerance_m: 100.0"))
         .unwrap();
     std::fs::write(&path, both).expect("write");
-    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
+    let o = usar(["check", file, "--set", "kinds[0].max_speed_m_per_s=2.5"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.starts_with(&format!("error: {file}:{line}:"))
@@ -329,7 +324,7 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
         "{err}"
     );
     // An override that breaks the rule otherwise is named.
-    let o = usar(&["check", file, "--set", "kinds[0].max_speed_m_per_s=500.0"]);
+    let o = usar(["check", file, "--set", "kinds[0].max_speed_m_per_s=500.0"]);
     assert_eq!(
         String::from_utf8_lossy(&o.stderr).trim_end(),
         "error: --set kinds[0].max_speed_m_per_s=500.0: kinds[0].max_speed_m_per_s: 500 m/s is \
@@ -343,7 +338,7 @@ fn a_rejected_long_set_value_is_quoted_by_its_start() {
         .map(|i| format!("(center_m: ({}.0, 4.0), radius_m: 1.0)", 1 + i % 70))
         .collect();
     let set = format!("rest_station=[{}]", stations.join(", "));
-    let o = usar(&["check", PAPER, "--set", &set]);
+    let o = usar(["check", PAPER, "--set", &set]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
     let n = set.chars().count();
@@ -359,7 +354,7 @@ fn a_rejected_long_set_value_is_quoted_by_its_start() {
 #[test]
 fn an_index_reaches_a_single_rest_station_as_element_0() {
     let hash_line = |set: &str| {
-        let o = usar(&["check", PAPER, "--set", set]);
+        let o = usar(["check", PAPER, "--set", set]);
         assert!(
             o.status.success(),
             "{set}: {}",
@@ -373,7 +368,7 @@ fn an_index_reaches_a_single_rest_station_as_element_0() {
     assert_eq!(hash_line("rest_station[0].radius_m=3"), single);
     assert_eq!(hash_line("rest_station[*].radius_m=3"), single);
     assert_ne!(hash_line("rest_station.radius_m=2.5"), single);
-    let o = usar(&["check", PAPER, "--set", "rest_station[1].radius_m=3"]);
+    let o = usar(["check", PAPER, "--set", "rest_station[1].radius_m=3"]);
     assert!(!o.status.success());
     assert!(
         String::from_utf8_lossy(&o.stderr).contains("no element [1] in rest_station: it has 1"),

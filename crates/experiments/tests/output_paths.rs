@@ -4,26 +4,21 @@
 //! temporary files of killed runs from its folder when it resumes.
 #![cfg(unix)]
 
+mod common;
+
+use std::ffi::OsStr;
 use std::fs;
 use std::os::unix::fs::{FileTypeExt, symlink};
 use std::path::Path;
 use std::process::{Command, Output};
 use std::time::Duration;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
-const STOPPED: i32 = 75;
+use common::{PAPER, STOPPED, ok};
 
+/// `usar ARGS PATHS`.
 fn usar(args: &[&str], paths: &[&Path]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .args(paths)
-        .output()
-        .expect("run usar")
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let paths = paths.iter().map(|p| p.as_os_str());
+    common::usar(args.iter().map(OsStr::new).chain(paths))
 }
 
 fn names(dir: &Path) -> Vec<String> {

@@ -1,29 +1,10 @@
 //! End-to-end tests of `usar render` (runs the built binary).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
-
-fn paper() -> PathBuf {
-    PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenarios/paper.ron"
-    ))
-}
-
-fn text(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{PAPER, stderr, text, usar};
 
 /// Checks that `svg` looks like one complete SVG document.
 fn assert_svg(svg: &str) {
@@ -37,7 +18,7 @@ fn assert_svg(svg: &str) {
 fn renders_the_paper_arena() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("pictures/arena.svg");
-    let o = usar(&["render", text(&paper()), "--out", text(&out)]);
+    let o = usar(["render", PAPER, "--out", text(&out)]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains("12 robots"));
     let svg = std::fs::read_to_string(&out).expect("SVG written");
@@ -74,9 +55,9 @@ fn renders_the_paper_arena() {
 fn trace_draws_paths_of_a_short_trial() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("trace.svg");
-    let o = usar(&[
+    let o = usar([
         "render",
-        text(&paper()),
+        PAPER,
         "--out",
         text(&out),
         "--trace",
@@ -106,7 +87,7 @@ fn a_missing_scenario_fails_with_its_path() {
     let dir = tempfile::tempdir().expect("temp dir");
     let missing = dir.path().join("no-such.ron");
     let out = dir.path().join("x.svg");
-    let o = usar(&["render", text(&missing), "--out", text(&out)]);
+    let o = usar(["render", text(&missing), "--out", text(&out)]);
     assert!(!o.status.success());
     let e = stderr(&o);
     assert!(
@@ -119,12 +100,12 @@ fn a_missing_scenario_fails_with_its_path() {
 #[test]
 fn a_broken_scenario_prints_the_loaders_message() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let src = std::fs::read_to_string(paper()).expect("paper.ron");
+    let src = std::fs::read_to_string(PAPER).expect("paper.ron");
     let broken = src.replacen("duration_s: 600.0", "duration_s: -1.0", 1);
     assert_ne!(src, broken, "paper.ron sets mission.duration_s");
     let path = dir.path().join("broken.ron");
     std::fs::write(&path, broken).unwrap();
-    let o = usar(&[
+    let o = usar([
         "render",
         text(&path),
         "--out",
@@ -146,9 +127,9 @@ fn a_broken_scenario_prints_the_loaders_message() {
 fn bad_options_are_reported() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("x.svg");
-    let o = usar(&[
+    let o = usar([
         "render",
-        text(&paper()),
+        PAPER,
         "--out",
         text(&out),
         "--trace",
@@ -159,14 +140,7 @@ fn bad_options_are_reported() {
     let e = stderr(&o);
     assert!(e.contains("--method") && e.contains("rne"), "{e}");
     // Trial options need --trace.
-    let o = usar(&[
-        "render",
-        text(&paper()),
-        "--out",
-        text(&out),
-        "--trial",
-        "2",
-    ]);
+    let o = usar(["render", PAPER, "--out", text(&out), "--trial", "2"]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--trace"), "{}", stderr(&o));
     assert!(!out.exists());
@@ -183,15 +157,18 @@ fn svg_width_px(svg: &str) -> f64 {
 #[test]
 fn walls_kilometres_thick_do_not_shrink_the_arena_in_the_picture() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let src = std::fs::read_to_string(paper()).expect("paper.ron");
+    let src = std::fs::read_to_string(PAPER).expect("paper.ron");
     let thick = src.replacen("wall_thickness_m: 1.0", "wall_thickness_m: 10000.0", 1);
     assert_ne!(src, thick, "paper.ron's wall line moved");
     let thick_ron = dir.path().join("thick.ron");
     std::fs::write(&thick_ron, thick).expect("write");
     let mut widths = Vec::new();
-    for (ron, svg) in [(paper(), "paper.svg"), (thick_ron, "thick.svg")] {
+    for (ron, svg) in [
+        (PathBuf::from(PAPER), "paper.svg"),
+        (thick_ron, "thick.svg"),
+    ] {
         let out = dir.path().join(svg);
-        let o = usar(&["render", text(&ron), "--out", text(&out)]);
+        let o = usar(["render", text(&ron), "--out", text(&out)]);
         assert!(o.status.success(), "{}", stderr(&o));
         let svg = std::fs::read_to_string(&out).expect("SVG written");
         assert_svg(&svg);
@@ -216,7 +193,7 @@ fn a_full_device_is_named_once() {
         return;
     }
     for cmd in ["render", "replay"] {
-        let o = usar(&[cmd, text(&paper()), "--out", "/dev/full"]);
+        let o = usar([cmd, PAPER, "--out", "/dev/full"]);
         let err = stderr(&o);
         assert!(!o.status.success(), "{cmd}");
         assert_eq!(err.matches("/dev/full").count(), 1, "{cmd}: {err}");

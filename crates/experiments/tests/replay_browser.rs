@@ -7,12 +7,16 @@
 //! chromium`), unless `USAR_SKIP_BROWSER_TESTS=1`. `USAR_WRITE_SCREENSHOT=PATH` makes
 //! `readme_screenshot` write the README's picture (the paper's trial 0 at 118 s) to PATH.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use usar_sim::mission::Simulation;
 use usar_sim::scenario;
+
+use common::stderr;
 
 /// Wall-clock limit of one browser run.
 const BROWSER_TIMEOUT: Duration = Duration::from_secs(90);
@@ -121,10 +125,6 @@ fn page_state(chromium: &Path, page: &Path, hash: &str) -> serde_json::Value {
         .replace("&gt;", ">")
         .replace("&amp;", "&");
     serde_json::from_str(&json).unwrap_or_else(|e| panic!("state {json:?}: {e}"))
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// Writes a replay with the `usar` binary.

@@ -1,26 +1,11 @@
 //! End-to-end tests of `usar replay` and `usar sweep --replay` (runs the built binary).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
-
-fn paper() -> String {
-    concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron").to_string()
-}
-
-fn text(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{PAPER, stderr, text, usar};
 
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
@@ -39,16 +24,15 @@ fn sweep(out: &Path, extra: &[&str]) -> Output {
         "--out",
         text(out),
     ];
-    let p = paper();
-    args.insert(1, &p);
+    args.insert(1, PAPER);
     args.extend_from_slice(extra);
     usar(&args)
 }
 
 fn replay(method: &str, trial: &str, out: &Path) -> Vec<u8> {
-    let o = usar(&[
+    let o = usar([
         "replay",
-        &paper(),
+        PAPER,
         "--method",
         method,
         "--trial",
@@ -139,15 +123,14 @@ fn usar_replay_refuses_bad_options_with_one_line() {
         (vec!["--seed", "3", "--trial", "2"], "cannot be used with"),
     ] {
         let mut all = vec!["replay", "--out", text(&page)];
-        let p = paper();
-        all.insert(1, &p);
+        all.insert(1, PAPER);
         all.extend(args.iter().copied());
         let o = usar(&all);
         assert!(!o.status.success(), "{args:?} accepted");
         assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
         assert!(!page.exists());
     }
-    let o = usar(&["replay", "no-such.ron", "--out", text(&page)]);
+    let o = usar(["replay", "no-such.ron", "--out", text(&page)]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("no-such.ron"));
     // The sweep's option is named as the sweep spells it.
@@ -196,10 +179,9 @@ fn grid_sweeps_write_a_replay_in_every_cell() {
 fn the_summary_rounds_the_rate_used() {
     let dir = tempfile::tempdir().expect("temp dir");
     let page = dir.path().join("r.html");
-    let p = paper();
-    let o = usar(&[
+    let o = usar([
         "replay",
-        &p,
+        PAPER,
         "--duration",
         "4",
         "--hz",

@@ -1,21 +1,16 @@
 //! `usar run`: one trial's metrics on the terminal and as JSON.
 
-use std::process::{Command, Output};
+mod common;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use std::process::Command;
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+use common::{PAPER, usar};
 
 #[test]
 fn run_prints_metrics_and_writes_json() {
     let tmp = tempfile::tempdir().unwrap();
     let json = tmp.path().join("t.json");
-    let o = usar(&[
+    let o = usar([
         "run",
         PAPER,
         "--method",
@@ -61,7 +56,7 @@ fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
     ];
     let runs = [(["--trial", "0"], &a), (["--seed", seed.as_str()], &b)];
     for ((args, path), header) in runs.into_iter().zip(headers) {
-        let o = usar(&[
+        let o = usar([
             "run",
             PAPER,
             "--method",
@@ -85,23 +80,23 @@ fn run_with_a_seed_reproduces_the_trial_with_that_seed() {
 
 #[test]
 fn run_refuses_bad_options() {
-    let o = usar(&["run", PAPER, "--method", "nope", "--duration", "1"]);
+    let o = usar(["run", PAPER, "--method", "nope", "--duration", "1"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("nope"), "{err}");
     // The error names the one flag it is about.
     assert!(err.starts_with("error: --method: "), "{err}");
-    let o = usar(&["run", PAPER, "--method", "rne", "--duration", "-1"]);
+    let o = usar(["run", PAPER, "--method", "rne", "--duration", "-1"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.starts_with("error: --duration: trial length"), "{err}");
-    let o = usar(&["run", PAPER, "--trial", "1", "--seed", "3"]);
+    let o = usar(["run", PAPER, "--trial", "1", "--seed", "3"]);
     assert!(!o.status.success());
 }
 
 #[test]
 fn a_huge_or_tiny_duration_is_named_in_a_short_line() {
-    let o = usar(&["run", PAPER, "--method", "dis", "--duration", "-1e300"]);
+    let o = usar(["run", PAPER, "--method", "dis", "--duration", "-1e300"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(
@@ -109,7 +104,7 @@ fn a_huge_or_tiny_duration_is_named_in_a_short_line() {
         "error: --duration: trial length: expected a number of seconds > 0, found -1e300"
     );
     // Shorter than one step: one step is run, and the warning writes the request as given.
-    let o = usar(&["run", PAPER, "--method", "dis", "--duration", "1e-300"]);
+    let o = usar(["run", PAPER, "--method", "dis", "--duration", "1e-300"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(

@@ -1,19 +1,11 @@
 //! The commands shard runs and merges suggest can be pasted as they are: quoted for the shell,
 //! and runnable from the folder the message was shown in, whichever folder the shard ran in.
 
-use std::path::Path;
+mod common;
+
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-
-/// `usar ARGS`, run in the folder `cwd`.
-fn usar(cwd: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .current_dir(cwd)
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+use common::{PAPER, usar_in};
 
 fn text(o: &Output) -> (String, String) {
     (
@@ -32,9 +24,9 @@ fn suggested_commands_are_quoted_and_run_from_the_folder_they_are_shown_in() {
     std::fs::create_dir_all(&b).unwrap();
     std::fs::copy(PAPER, a.join("my paper.ron")).unwrap();
     let out = "o ut;x";
-    let shard = usar(
+    let shard = usar_in(
         &a,
-        &[
+        [
             "sweep",
             "my paper.ron",
             "--methods",
@@ -58,7 +50,7 @@ fn suggested_commands_are_quoted_and_run_from_the_folder_they_are_shown_in() {
     );
 
     // A merge from the parent folder names shard 1 with a command that runs from anywhere.
-    let merge = usar(&root, &["merge", "a/o ut;x"]);
+    let merge = usar_in(&root, ["merge", "a/o ut;x"]);
     let (_, stderr) = text(&merge);
     assert!(!merge.status.success());
     let command = stderr
@@ -84,6 +76,6 @@ fn suggested_commands_are_quoted_and_run_from_the_folder_they_are_shown_in() {
         !b.join("o ut").exists(),
         "the command wrote into the folder it ran in"
     );
-    let merge = usar(&a, &["merge", out]);
+    let merge = usar_in(&a, ["merge", out]);
     assert!(merge.status.success(), "{}", text(&merge).1);
 }

@@ -2,6 +2,8 @@
 //! them killed and resumed) merge into the same CSV files as the sweep on one machine; a
 //! missing shard and a failed trial are named with the command that runs the shard again.
 
+mod common;
+
 use std::collections::HashSet;
 use std::path::Path;
 use std::process::{Command, Output};
@@ -11,9 +13,8 @@ use experiments::shard::Shard;
 use experiments::sweep::{SweepConfig, header_of, job_list};
 use usar_sim::scenario;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-/// Exit status of `--stop-after`.
-const STOPPED: i32 = 75;
+use common::{PAPER, STOPPED, merge, ok, read, read_lines, write_lines};
+
 const CELLS: [&str; 2] = [
     "c00_hp_pct_per_step_in_radiation=0.0003",
     "c01_hp_pct_per_step_in_radiation=0.003",
@@ -33,23 +34,6 @@ fn sweep(out: &Path, extra: &[&str]) -> Output {
         .args(extra)
         .output()
         .expect("run usar")
-}
-
-fn usar(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .arg(dir)
-        .output()
-        .expect("run usar")
-}
-
-fn ok(o: &Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn read(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 fn assert_same_csv(a: &Path, b: &Path) {
@@ -117,7 +101,7 @@ fn shards_in_any_order_merge_into_the_files_of_one_sweep() {
     // A shard writes no tables: only its journal and plan.
     assert!(!three.join("grid.csv").exists());
     assert!(three.join("shards/0-of-3/plan.json").exists());
-    let merged = ok(&usar(&["merge"], &three));
+    let merged = ok(&merge(&three));
     assert!(merged.contains("merged 3 shards"), "{merged}");
     assert_same_csv(&local, &three);
 
@@ -125,7 +109,7 @@ fn shards_in_any_order_merge_into_the_files_of_one_sweep() {
     let two = tmp.path().join("two");
     ok(&sweep(&two, &["--shard", "1/2"]));
     ok(&sweep(&two, &["--shard", "0/2"]));
-    ok(&usar(&["merge"], &two));
+    ok(&merge(&two));
     assert_same_csv(&local, &two);
 }
 
@@ -135,7 +119,7 @@ fn a_missing_shard_is_named_with_its_command_and_nothing_is_merged() {
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &["--shard", "0/3"]));
     ok(&sweep(&dir, &["--shard", "2/3"]));
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("1 of 3 shards are not done"), "{err}");
@@ -147,7 +131,7 @@ fn a_missing_shard_is_named_with_its_command_and_nothing_is_merged() {
     // treats such a journal as none.
     std::fs::create_dir_all(dir.join("shards/1-of-3")).unwrap();
     std::fs::write(dir.join("shards/1-of-3/journal.jsonl"), "{\"header\":{\"fo").unwrap();
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.contains("shard 1/3: its journal holds no trial"),
@@ -155,10 +139,10 @@ fn a_missing_shard_is_named_with_its_command_and_nothing_is_merged() {
     );
     assert!(err.contains("--shard 1/3 --out"), "{err}");
     ok(&sweep(&dir, &["--shard", "1/3"]));
-    ok(&usar(&["merge"], &dir));
+    ok(&merge(&dir));
 
     // A folder with no shard at all.
-    let o = usar(&["merge"], &tmp.path().join("empty"));
+    let o = merge(&tmp.path().join("empty"));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no shards to merge"));
 }
 
@@ -170,7 +154,7 @@ fn a_failed_trial_names_its_shard_and_rerunning_the_shard_fixes_the_merge() {
     // Trial 0 of DIS is job 1 of the job list: shard 1 of 2.
     let failed = sweep(&dir, &["--shard", "1/2", "--fail-trial", "dis:0"]);
     assert!(!failed.status.success());
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("trials failed"), "{err}");
@@ -179,7 +163,7 @@ fn a_failed_trial_names_its_shard_and_rerunning_the_shard_fixes_the_merge() {
     // The files are written without the failed trials, as a sweep writes them.
     assert!(dir.join("grid.csv").exists());
     ok(&sweep(&dir, &["--shard", "1/2"]));
-    ok(&usar(&["merge"], &dir));
+    ok(&merge(&dir));
 }
 
 #[test]
@@ -189,7 +173,7 @@ fn shards_of_a_different_sweep_are_refused() {
     ok(&sweep(&dir, &["--shard", "0/2"]));
     // Shard 1 of the same folder with another seed: its header differs.
     ok(&sweep(&dir, &["--shard", "1/2", "--seed", "7"]));
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success());
     assert!(err.contains("shard 1/2") && err.contains("seed"), "{err}");
@@ -203,7 +187,7 @@ fn the_shard_that_ran_another_sweep_is_named_and_its_command_mends_the_split() {
     ok(&sweep(&dir, &["--shard", "0/3", "--seed", "7"]));
     ok(&sweep(&dir, &["--shard", "1/3"]));
     ok(&sweep(&dir, &["--shard", "2/3"]));
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("1 of 3 shards ran another sweep"), "{err}");
@@ -231,7 +215,7 @@ fn the_shard_that_ran_another_sweep_is_named_and_its_command_mends_the_split() {
         .output()
         .unwrap();
     ok(&mended);
-    ok(&usar(&["merge"], &dir));
+    ok(&merge(&dir));
 }
 
 #[test]
@@ -244,7 +228,7 @@ fn an_edited_plan_is_named_as_such() {
     let text = std::fs::read_to_string(&plan).unwrap();
     assert!(text.contains("\"trials\": 3"), "{text}");
     std::fs::write(&plan, text.replace("\"trials\": 3", "\"trials\": 4")).unwrap();
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
@@ -289,15 +273,6 @@ fn edited(line: &str) -> String {
     out
 }
 
-fn journal_lines(path: &Path) -> Vec<String> {
-    let text = String::from_utf8(read(path)).unwrap();
-    text.lines().map(str::to_string).collect()
-}
-
-fn write_journal_lines(path: &Path, lines: &[String]) {
-    std::fs::write(path, lines.join("\n") + "\n").unwrap();
-}
-
 /// Both shards of a 2-way split swept into `<tmp>/s`.
 fn swept_in_two_shards() -> (tempfile::TempDir, std::path::PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
@@ -309,7 +284,7 @@ fn swept_in_two_shards() -> (tempfile::TempDir, std::path::PathBuf) {
 
 /// `usar merge dir` succeeds and warns of no journal line.
 fn assert_merges_without_warnings(dir: &Path) {
-    let o = usar(&["merge"], dir);
+    let o = merge(dir);
     ok(&o);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("does not verify"), "{err}");
@@ -320,11 +295,11 @@ fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
     let (_tmp, dir) = swept_in_two_shards();
     // Line 2 of shard 1's journal (its first record) edited.
     let journal = dir.join("shards/1-of-2/journal.jsonl");
-    let mut lines = journal_lines(&journal);
+    let mut lines = read_lines(&journal);
     lines[1] = edited(&lines[1]);
-    write_journal_lines(&journal, &lines);
+    write_lines(&journal, &lines);
 
-    let o = usar(&["merge"], &dir);
+    let o = merge(&dir);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("shard 1/2: 1 of its"), "{err}");
@@ -344,11 +319,11 @@ fn an_edited_shard_record_is_named_and_rerunning_the_shard_clears_it() {
 fn an_edited_copy_of_another_shards_record_is_not_run_or_merged() {
     let (_tmp, dir) = swept_in_two_shards();
     // An edited copy of shard 0's first record at the end of shard 1's journal.
-    let theirs = journal_lines(&dir.join("shards/0-of-2/journal.jsonl"));
+    let theirs = read_lines(&dir.join("shards/0-of-2/journal.jsonl"));
     let journal = dir.join("shards/1-of-2/journal.jsonl");
-    let mut lines = journal_lines(&journal);
+    let mut lines = read_lines(&journal);
     lines.push(edited(&theirs[1]));
-    write_journal_lines(&journal, &lines);
+    write_lines(&journal, &lines);
 
     let o = sweep(&dir, &["--shard", "1/2"]);
     let out = ok(&o);

@@ -2,10 +2,13 @@
 //! refuses a folder whose own journal is another sweep's, a sweep refuses a folder whose
 //! shards are another sweep's, and `--overwrite` removes what the shards' merge wrote.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::{PAPER, merge, ok, set_journal_build};
+
 /// The cell folders of the sharded sweep's grid.
 const CELLS: [&str; 2] = [
     "c00_hp_pct_per_step_in_radiation=0.0003",
@@ -27,18 +30,6 @@ fn sweep(out: &Path, extra: &[&str]) -> Output {
 fn grid_shard(out: &Path, shard: &str) -> Output {
     let vary = "mission.hp_pct_per_step_in_radiation=0.0003,0.003";
     sweep(out, &["--vary", vary, "--shard", shard])
-}
-
-fn merge(dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .arg("merge")
-        .arg(dir)
-        .output()
-        .expect("run usar")
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 fn refused(o: &Output) -> String {
@@ -106,37 +97,6 @@ fn the_shards_own_sweep_runs_plainly_in_their_folder() {
     // And a merge after it: the folder's journal is the shards' sweep.
     ok(&merge(&dir));
     assert_eq!(std::fs::read(dir.join("trials.csv")).unwrap(), merged);
-}
-
-/// Rewrites the journal at `path` as if the build `build` had written it: the header's build,
-/// and every line's checksum recomputed so that the journal verifies.
-fn set_journal_build(path: &Path, build: &str) {
-    use experiments::journal::{header_sum, record_sum};
-    let text = std::fs::read_to_string(path).unwrap();
-    let body = |line: &str, kind: &str| -> String {
-        let prefix = format!("{{\"{kind}\":");
-        let (json, _) = line
-            .strip_prefix(&prefix)
-            .unwrap()
-            .rsplit_once(",\"sum\":")
-            .unwrap();
-        json.to_owned()
-    };
-    let mut lines = text.lines();
-    let json = body(lines.next().unwrap(), "header");
-    let at = json.find("\"build\":\"").unwrap() + "\"build\":\"".len();
-    let end = at + json[at..].find('"').unwrap();
-    let json = format!("{}{build}{}", &json[..at], &json[end..]);
-    let sum = header_sum(&json);
-    let mut out = format!("{{\"header\":{json},\"sum\":\"{sum}\"}}\n");
-    for line in lines {
-        let record = body(line, "trial");
-        let record_sum = record_sum(&sum, &record);
-        out.push_str(&format!(
-            "{{\"trial\":{record},\"sum\":\"{record_sum}\"}}\n"
-        ));
-    }
-    std::fs::write(path, out).unwrap();
 }
 
 /// Shards run by two builds of usar are not merged (the second may simulate differently);

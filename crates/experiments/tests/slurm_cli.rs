@@ -1,10 +1,12 @@
 //! `usar slurm`: the job array and merge scripts it writes, and `--submit` with a stand-in
 //! `sbatch` that records its arguments (the real Slurm runs in `scripts/slurm-test.sh`).
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::{PAPER, ok, read_text};
 
 fn slurm(out: &Path, extra: &[&str], path_env: Option<&str>) -> Output {
     let mut c = Command::new(env!("CARGO_BIN_EXE_usar"));
@@ -26,15 +28,6 @@ fn slurm(out: &Path, extra: &[&str], path_env: Option<&str>) -> Output {
     c.output().expect("run usar")
 }
 
-fn ok(o: &Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn read(p: &Path) -> String {
-    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-}
-
 #[test]
 fn writes_an_array_script_a_merge_script_and_a_submit_script() {
     let tmp = tempfile::tempdir().unwrap();
@@ -54,7 +47,7 @@ fn writes_an_array_script_a_merge_script_and_a_submit_script() {
         None,
     ));
     assert!(printed.contains("submit.sh"), "{printed}");
-    let array = read(&out.join("slurm/sweep.sbatch"));
+    let array = read_text(&out.join("slurm/sweep.sbatch"));
     for line in [
         "#SBATCH --array=0-3",
         "#SBATCH --cpus-per-task=3",
@@ -68,9 +61,9 @@ fn writes_an_array_script_a_merge_script_and_a_submit_script() {
     ] {
         assert!(array.contains(line), "no {line:?} in\n{array}");
     }
-    let merge = read(&out.join("slurm/merge.sbatch"));
+    let merge = read_text(&out.join("slurm/merge.sbatch"));
     assert!(merge.contains(" merge "), "{merge}");
-    let submit = read(&out.join("slurm/submit.sh"));
+    let submit = read_text(&out.join("slurm/submit.sh"));
     assert!(
         submit.contains("--dependency=afterok:\"$array\""),
         "{submit}"
@@ -110,7 +103,7 @@ fn submit_chains_the_merge_to_the_array_with_afterok() {
         printed.contains("array as job 41 and the merge as job 42"),
         "{printed}"
     );
-    let calls = read(&log);
+    let calls = read_text(&log);
     let calls: Vec<&str> = calls.lines().collect();
     assert_eq!(calls.len(), 2, "{calls:?}");
     assert!(calls[0].starts_with("--parsable ") && calls[0].ends_with("sweep.sbatch"));

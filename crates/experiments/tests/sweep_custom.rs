@@ -1,6 +1,8 @@
 //! A grouping method of the user's own runs through the sweep machinery (journal, analysis,
 //! tables) via `SweepConfig::method_factory`, next to a built-in one.
 
+mod common;
+
 use std::path::PathBuf;
 
 use experiments::analysis::Analysis;
@@ -9,7 +11,7 @@ use experiments::sweep::{MethodFactory, SweepConfig, run_sweep};
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 use usar_sim::scenario;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::PAPER;
 
 /// Deals each kind's robots out in id order, easiest task first: the lowest ids of each kind
 /// go to the easy task.

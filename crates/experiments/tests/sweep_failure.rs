@@ -1,10 +1,12 @@
 //! `usar sweep`: a trial that fails (panics) is journaled with its error, the other trials
 //! finish and are written, and the exit status is non-zero naming the failed trial.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::PAPER;
 
 fn sweep(out: &Path, extra: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_usar"))

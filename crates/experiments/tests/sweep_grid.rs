@@ -2,20 +2,16 @@
 //! two fields give heat maps and more give tables only, each cell's scenario.ron round-trips
 //! through `usar check`, and bad --vary inputs are one-line errors before anything runs.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
 use usar_sim::scenario::parse_spec;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-const HP: &str = "mission.hp_pct_per_step_in_radiation";
+use common::{PAPER, ok, read_text, usar};
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+const HP: &str = "mission.hp_pct_per_step_in_radiation";
 
 /// A short grid sweep of paper.ron into `out`: rne,dis x 2 trials x 5 s, then `extra`.
 fn grid(out: &Path, extra: &[&str]) -> Output {
@@ -26,14 +22,6 @@ fn grid(out: &Path, extra: &[&str]) -> Output {
         .args(extra)
         .output()
         .expect("run usar")
-}
-
-fn text(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 const CELL_FILES: [&str; 7] = [
@@ -69,9 +57,9 @@ fn a_two_value_grid_writes_every_file() {
                 p.display()
             );
         }
-        let trials = text(&out.join(cell).join("trials.csv"));
+        let trials = read_text(&out.join(cell).join("trials.csv"));
         assert_eq!(trials.lines().count(), 1 + 4, "{trials}");
-        let report = text(&out.join(cell).join("report.md"));
+        let report = read_text(&out.join(cell).join("report.md"));
         assert!(
             report.contains("cell ") && report.contains("scenario.ron"),
             "{report}"
@@ -88,7 +76,7 @@ fn a_two_value_grid_writes_every_file() {
         assert!(out.join(f).exists(), "{f} missing");
     }
     // grid.csv: long form, one row per cell x method x metric (17 metrics).
-    let csv = text(&out.join("grid.csv"));
+    let csv = read_text(&out.join("grid.csv"));
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
@@ -107,16 +95,16 @@ fn a_two_value_grid_writes_every_file() {
         rows[34]
     );
     // One line chart per chosen metric, linked from grid.md with both values in its tables.
-    let md = text(&out.join("grid.md"));
+    let md = read_text(&out.join("grid.md"));
     assert!(md.contains("![rescuees, total across the grid](grid_rescued_total.svg)"));
     assert!(md.contains("| 1 | `0.003` |"), "{md}");
-    let svg = text(&out.join("grid_rescued_total.svg"));
+    let svg = read_text(&out.join("grid_rescued_total.svg"));
     assert!(
         svg.contains("bands: 95 % confidence interval"),
         "not a line chart"
     );
     // The journal: one header with the grid, every record with its cell.
-    let journal = text(&out.join("journal.jsonl"));
+    let journal = read_text(&out.join("journal.jsonl"));
     let first = journal.lines().next().unwrap();
     assert!(first.contains(&format!("\"fields\":[\"{HP}\"]")), "{first}");
     let cells_seen: Vec<&str> = journal
@@ -142,20 +130,20 @@ fn a_cell_scenario_ron_round_trips_through_check() {
     ok(&grid(&out, &["--vary", vary]));
     let cell = out.join("c01_first_m=31.5_2.5");
     let ron = cell.join("scenario.ron");
-    let o = usar(&["check", ron.to_str().unwrap(), "--hash"]);
+    let o = usar(["check", ron.to_str().unwrap(), "--hash"]);
     ok(&o);
     let hash = String::from_utf8(o.stdout).unwrap().trim().to_string();
     // The same hash as the journal records for the cell, and as the report shows.
-    let header = text(&out.join("journal.jsonl"));
+    let header = read_text(&out.join("journal.jsonl"));
     let header = header.lines().next().unwrap();
     let cell1 = &header[header.find("{\"values\":[\"(31.5, 2.5)\"]").unwrap()..];
     assert!(
         cell1.contains(&format!("\"scenario_hash\":\"{hash}\"")),
         "{hash} not in {header}"
     );
-    assert!(text(&cell.join("report.md")).contains(&hash));
+    assert!(read_text(&cell.join("report.md")).contains(&hash));
     // The spec equals the one `check --set --print` gives for the same override.
-    let o = usar(&[
+    let o = usar([
         "check",
         PAPER,
         "--set",
@@ -164,9 +152,9 @@ fn a_cell_scenario_ron_round_trips_through_check() {
     ]);
     ok(&o);
     let printed = parse_spec(&String::from_utf8(o.stdout).unwrap(), "printed").unwrap();
-    let written = parse_spec(&text(&ron), "written").unwrap();
+    let written = parse_spec(&read_text(&ron), "written").unwrap();
     assert_eq!(printed, written);
-    let base = parse_spec(&text(Path::new(PAPER)), "paper").unwrap();
+    let base = parse_spec(&read_text(Path::new(PAPER)), "paper").unwrap();
     assert_ne!(written, base);
 }
 
@@ -197,7 +185,7 @@ fn two_fields_give_heat_maps_and_more_give_tables_only() {
             .is_dir()
     );
     for metric in ["rescued_total", "rounds"] {
-        let svg = text(&out.join(format!("grid_{metric}.svg")));
+        let svg = read_text(&out.join(format!("grid_{metric}.svg")));
         assert!(
             svg.contains("cells: mean over trials"),
             "{metric}: not a heat map"
@@ -207,7 +195,7 @@ fn two_fields_give_heat_maps_and_more_give_tables_only() {
         }
     }
     assert!(!out.join("grid_rescued_hard.svg").exists());
-    let md = text(&out.join("grid.md"));
+    let md = read_text(&out.join("grid.md"));
     assert!(md.contains("## rounds (`rounds`)"), "{md}");
 
     // Three fields (one value each: a single cell): tables, no figure, and grid.md says so.
@@ -224,7 +212,7 @@ fn two_fields_give_heat_maps_and_more_give_tables_only() {
         ],
     ));
     assert!(!out3.join("grid_rescued_total.svg").exists());
-    let md = text(&out3.join("grid.md"));
+    let md = read_text(&out3.join("grid.md"));
     assert!(md.contains("No figure: 3 fields are varied"), "{md}");
     assert!(
         out3.join("c00_hp_pct_per_step_in_radiation=0.003_dt_s=0.025_enabled=false/trials.csv")
@@ -317,7 +305,7 @@ fn each_cell_runs_its_own_duration_unless_duration_is_given() {
             .output()
             .expect("run usar");
         ok(&o);
-        let mut d: Vec<(u64, f64)> = text(&out.join("journal.jsonl"))
+        let mut d: Vec<(u64, f64)> = read_text(&out.join("journal.jsonl"))
             .lines()
             .skip(1)
             .map(|l| {
@@ -331,7 +319,7 @@ fn each_cell_runs_its_own_duration_unless_duration_is_given() {
         d
     };
     assert_eq!(run(&tmp.path().join("own"), &[]), [(0, 3.0), (1, 6.0)]);
-    let md = text(&tmp.path().join("own/grid.md"));
+    let md = read_text(&tmp.path().join("own/grid.md"));
     assert!(md.contains("of each cell's `mission.duration_s`"), "{md}");
     assert_eq!(
         run(&tmp.path().join("fixed"), &["--duration", "2"]),

@@ -2,12 +2,13 @@
 //! uninterrupted one, 1 and 2 threads write the same files, running the same command twice
 //! reuses the journal, and a failing trial of one cell stops nothing else.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
-const STOPPED: i32 = 75;
+use common::{PAPER, STOPPED, journal_trials, ok, read};
+
 const VARY: [&str; 4] = [
     "--vary",
     "mission.hp_pct_per_step_in_radiation=0.0003,0.003",
@@ -32,23 +33,6 @@ fn grid(out: &Path, extra: &[&str]) -> Output {
         .args(extra)
         .output()
         .expect("run usar")
-}
-
-fn ok(o: &Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn read(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn journal_trials(dir: &Path) -> usize {
-    std::fs::read_to_string(dir.join("journal.jsonl"))
-        .unwrap()
-        .lines()
-        .filter(|l| l.starts_with("{\"trial\""))
-        .count()
 }
 
 /// The files that must not depend on threads or interruptions.

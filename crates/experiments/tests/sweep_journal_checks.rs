@@ -2,12 +2,12 @@
 //! its trial runs again (the files equal an untampered run's); an edited header is refused;
 //! a damaged journal names the flag that helps, `--overwrite`.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
-const STOPPED: i32 = 75;
+use common::{PAPER, STOPPED, ok, read, read_lines, set_journal_build, write_lines};
 
 /// rne,dis x `trials` trials x 20 s into `out`, then `extra`.
 fn sweep_of(trials: &str, out: &Path, extra: &[&str]) -> Output {
@@ -24,11 +24,6 @@ fn sweep(out: &Path, extra: &[&str]) -> Output {
     sweep_of("2", out, extra)
 }
 
-fn ok(o: &Output) -> String {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
 fn err(o: &Output) -> String {
     assert!(
         !o.status.success(),
@@ -36,22 +31,6 @@ fn err(o: &Output) -> String {
         String::from_utf8_lossy(&o.stdout)
     );
     String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn read(p: &Path) -> Vec<u8> {
-    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-}
-
-fn lines(p: &Path) -> Vec<String> {
-    String::from_utf8(read(p))
-        .unwrap()
-        .lines()
-        .map(String::from)
-        .collect()
-}
-
-fn write_lines(p: &Path, lines: &[String]) {
-    std::fs::write(p, lines.join("\n") + "\n").unwrap();
 }
 
 /// The string or number after the first `pattern` (`"key":` with what precedes it) in a
@@ -73,7 +52,7 @@ fn an_edited_record_is_reported_and_run_again() {
     // Line 3 (the second record): more rescuees in the first task than it had, still valid
     // JSON.
     let journal = parts.join("journal.jsonl");
-    let mut ls = lines(&journal);
+    let mut ls = read_lines(&journal);
     assert_eq!(ls.len(), 4);
     let first: u32 = field(&ls[2], "\"rescued\":[").parse().unwrap();
     let from = format!("\"rescued\":[{first},");
@@ -115,7 +94,7 @@ fn an_edited_header_is_refused() {
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &[]));
     let journal = dir.join("journal.jsonl");
-    let mut ls = lines(&journal);
+    let mut ls = read_lines(&journal);
     // Claim the journal was a 3-trial sweep, so that `--trials 3 --resume` would reuse it.
     assert!(ls[0].contains("\"trials\":2,"), "{}", ls[0]);
     ls[0] = ls[0].replace("\"trials\":2,", "\"trials\":3,");
@@ -138,7 +117,7 @@ fn a_damaged_journal_names_overwrite_and_overwrite_helps() {
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &[]));
     let journal = dir.join("journal.jsonl");
-    let mut ls = lines(&journal);
+    let mut ls = read_lines(&journal);
     let half = ls[2].len() / 2;
     ls[2].truncate(half);
     write_lines(&journal, &ls);
@@ -152,7 +131,7 @@ fn a_damaged_journal_names_overwrite_and_overwrite_helps() {
         assert_eq!(e.trim_end().lines().count(), 1, "{e}");
     }
     ok(&sweep(&dir, &["--overwrite"]));
-    assert_eq!(lines(&journal).len(), 1 + 4);
+    assert_eq!(read_lines(&journal).len(), 1 + 4);
 }
 
 /// A journal path holding a FIFO or a link to a missing file: a one-line error naming
@@ -183,7 +162,7 @@ fn a_journal_that_is_no_file_is_refused_and_overwrite_replaces_it() {
             assert_eq!(e.trim_end().lines().count(), 1, "{e}");
         }
         ok(&sweep(&dir, &["--overwrite"]));
-        assert_eq!(lines(&journal).len(), 1 + 4);
+        assert_eq!(read_lines(&journal).len(), 1 + 4);
         std::fs::remove_file(&journal).unwrap();
     }
 }
@@ -197,10 +176,10 @@ fn a_cut_header_starts_afresh_and_an_unusable_journal_does_not_advise_resume() {
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &[]));
     let journal = dir.join("journal.jsonl");
-    let whole = lines(&journal);
+    let whole = read_lines(&journal);
     std::fs::write(&journal, &whole[0][..whole[0].len() / 2]).unwrap();
     ok(&sweep(&dir, &[]));
-    let again = lines(&journal);
+    let again = read_lines(&journal);
     assert!(
         again[0] == whole[0] && again.len() == whole.len(),
         "a new sweep of 4 trials"
@@ -214,27 +193,6 @@ fn a_cut_header_starts_afresh_and_an_unusable_journal_does_not_advise_resume() {
         "{e}"
     );
     assert!(!e.contains("pass --resume"), "{e}");
-}
-
-/// Rewrites the header of the journal at `path` as if the build `build` had written it (its
-/// checksum recomputed, so it verifies); the records then no longer verify.
-fn set_journal_build(path: &Path, build: &str) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let (first, rest) = text.split_once('\n').unwrap();
-    let json = first
-        .strip_prefix("{\"header\":")
-        .and_then(|l| l.rsplit_once(",\"sum\":"))
-        .unwrap()
-        .0;
-    let at = json.find("\"build\":\"").unwrap() + "\"build\":\"".len();
-    let end = at + json[at..].find('"').unwrap();
-    let json = format!("{}{build}{}", &json[..at], &json[end..]);
-    let sum = experiments::journal::header_sum(&json);
-    std::fs::write(
-        path,
-        format!("{{\"header\":{json},\"sum\":\"{sum}\"}}\n{rest}"),
-    )
-    .unwrap();
 }
 
 /// Regression: the journal did not record which build wrote it, so after the simulator's code

@@ -2,19 +2,13 @@
 //! default output folder stays inside `results/` whatever the scenario's `name`, and a sweep
 //! of more than `MAX_SWEEP_TRIALS` trials is a one-line error before anything is written.
 
+mod common;
+
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-
-fn usar_in(cwd: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .current_dir(cwd)
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+use common::{PAPER, usar_in};
 
 /// `paper.ron` with its name replaced, written to `dir/named.ron`.
 fn named_copy(dir: &Path, name: &str) -> String {
@@ -37,7 +31,7 @@ fn a_scenario_name_cannot_direct_the_default_output_elsewhere() {
         let args = ["sweep", &file, "--methods", "dis", "--trials", "1"];
         let o = usar_in(
             &cwd,
-            &[&args[..], &["--duration", "2", "--threads", "1"]].concat(),
+            [&args[..], &["--duration", "2", "--threads", "1"]].concat(),
         );
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(!escape.exists(), "name {name:?} wrote outside results/");
@@ -87,7 +81,7 @@ fn one_dis_trial(cwd: &Path, duration: &str, extra: &[&str], out: &Path) -> Outp
         duration,
     ];
     let quiet = ["--threads", "1", "--quiet", "--out", out.to_str().unwrap()];
-    let o = usar_in(cwd, &[&args[..], extra, &quiet[..]].concat());
+    let o = usar_in(cwd, [&args[..], extra, &quiet[..]].concat());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     o
 }
@@ -127,7 +121,7 @@ fn one_trial_per_method_says_why_claims_have_no_p() {
     let out = dir.path().join("out");
     let o = usar_in(
         dir.path(),
-        &[
+        [
             "sweep",
             PAPER,
             "--trials",

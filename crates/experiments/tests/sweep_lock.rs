@@ -2,6 +2,8 @@
 //! into a folder in use fails at once naming the holder's pid and touches nothing; the lock
 //! of a killed sweep does not block the next one.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -9,7 +11,7 @@ use std::time::{Duration, Instant};
 use experiments::journal::read_journal;
 use experiments::lock::{LOCK_FILE, OutputLock};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::{PAPER, read};
 
 fn sweep_cmd(out: &Path, trials: &str, duration: &str, extra: &[&str]) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_usar"));
@@ -22,10 +24,6 @@ fn sweep_cmd(out: &Path, trials: &str, duration: &str, extra: &[&str]) -> Comman
 
 fn sweep(out: &Path, extra: &[&str]) -> Output {
     sweep_cmd(out, "2", "10", extra).output().expect("run usar")
-}
-
-fn read(p: &Path) -> Vec<u8> {
-    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
 /// Asserts `o` failed because the folder is locked by `pid`, in one line, quickly.

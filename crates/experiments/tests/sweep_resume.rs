@@ -1,12 +1,12 @@
 //! `usar sweep`: a sweep killed part-way and resumed writes the same trials.csv and
 //! summary.csv as an uninterrupted one; --resume refuses a journal of other parameters.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
-/// Exit status of `--stop-after` (experiments::sweep::STOP_EXIT_CODE).
-const STOPPED: i32 = 75;
+use common::{PAPER, STOPPED, journal_trials, read};
 
 fn sweep(out: &Path, extra: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_usar"))
@@ -16,18 +16,6 @@ fn sweep(out: &Path, extra: &[&str]) -> Output {
         .args(extra)
         .output()
         .expect("run usar")
-}
-
-fn read(dir: &Path, name: &str) -> Vec<u8> {
-    std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
-
-fn journal_trials(dir: &Path) -> usize {
-    std::fs::read_to_string(dir.join("journal.jsonl"))
-        .unwrap()
-        .lines()
-        .filter(|l| l.starts_with("{\"trial\""))
-        .count()
 }
 
 #[test]
@@ -69,9 +57,12 @@ fn resumed_sweep_matches_uninterrupted_one() {
     assert_eq!(journal_trials(&parts), 4);
 
     for name in ["trials.csv", "summary.csv"] {
-        assert!(read(&whole, name) == read(&parts, name), "{name} differs");
+        assert!(
+            read(&whole.join(name)) == read(&parts.join(name)),
+            "{name} differs"
+        );
     }
-    let rows = String::from_utf8(read(&whole, "trials.csv")).unwrap();
+    let rows = String::from_utf8(read(&whole.join("trials.csv"))).unwrap();
     let methods: Vec<&str> = rows
         .lines()
         .skip(1)
@@ -91,7 +82,7 @@ fn resumed_sweep_matches_uninterrupted_one() {
     let o = sweep(&parts, &["--resume"]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("all 4 trials came from the journal"));
-    assert!(read(&whole, "trials.csv") == read(&parts, "trials.csv"));
+    assert!(read(&whole.join("trials.csv")) == read(&parts.join("trials.csv")));
 }
 
 #[test]

@@ -1,10 +1,12 @@
 //! `usar sweep`: 1 and 2 threads write byte-identical trials.csv and summary.csv; a thread
 //! count past the cap is capped with a warning.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
-const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+use common::PAPER;
 
 fn sweep(out: &Path, threads: &str) {
     let o = Command::new(env!("CARGO_BIN_EXE_usar"))

@@ -2,10 +2,13 @@
 //! `usar check`, `run`, `sweep` and `render`, and every output names each task; a sweep's
 //! per-task counts equal those of `usar run` for the same trial.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
+
+use std::process::Output;
 
 use usar_sim::mission::TrialResult;
+
+use common::read_text;
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
 
@@ -20,11 +23,9 @@ const SCENARIOS: &[(&str, &[&str])] = &[
     ),
 ];
 
+/// `usar ARGS`, which must succeed.
 fn usar(args: &[&str]) -> Output {
-    let o = Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar");
+    let o = common::usar(args);
     assert!(
         o.status.success(),
         "usar {}: {}",
@@ -32,10 +33,6 @@ fn usar(args: &[&str]) -> Output {
         String::from_utf8_lossy(&o.stderr)
     );
     o
-}
-
-fn read(p: &Path) -> String {
-    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
 /// The `rescued_<task>` values of `method`'s trial 0 in a trials.csv text.
@@ -82,7 +79,7 @@ fn end_to_end(file: &str, tasks: &[&str]) {
         json.to_str().unwrap(),
     ]);
     let run_out = String::from_utf8(run.stdout).unwrap();
-    let r: TrialResult = serde_json::from_str(&read(&json)).unwrap();
+    let r: TrialResult = serde_json::from_str(&read_text(&json)).unwrap();
     assert_eq!(r.tasks, tasks);
     assert_eq!(r.rescued.len(), tasks.len());
     for t in tasks {
@@ -106,11 +103,11 @@ fn end_to_end(file: &str, tasks: &[&str]) {
         "--out",
         out.to_str().unwrap(),
     ]);
-    let trials = read(&out.join("trials.csv"));
+    let trials = read_text(&out.join("trials.csv"));
     assert_eq!(sweep_counts(&trials, "RNE", tasks), r.rescued);
-    let long = read(&out.join("trials_long.csv"));
-    let summary = read(&out.join("summary.csv"));
-    let report = read(&out.join("report.md"));
+    let long = read_text(&out.join("trials_long.csv"));
+    let summary = read_text(&out.join("summary.csv"));
+    let report = read_text(&out.join("report.md"));
     for t in tasks {
         // 2 methods x 2 trials x (rescued, energy, hp, and the two costs per rescuee).
         let rows = long
@@ -135,7 +132,7 @@ fn end_to_end(file: &str, tasks: &[&str]) {
     if !paper_tasks {
         assert!(!report.contains("n/a **out**"), "{report}");
     }
-    let fig = read(&out.join("fig3a_rescuees.svg"));
+    let fig = read_text(&out.join("fig3a_rescuees.svg"));
     for t in tasks {
         assert!(fig.contains(t), "fig3a names task {t}");
     }
@@ -150,7 +147,7 @@ fn end_to_end(file: &str, tasks: &[&str]) {
         "--duration",
         "20",
     ]);
-    let svg = read(&svg);
+    let svg = read_text(&svg);
     for t in tasks {
         assert!(
             svg.contains(&format!("{t} search area")),
@@ -208,7 +205,7 @@ fn a_grid_without_easy_and_hard_has_no_pooled_table() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    let md = read(&out.join("grid.md"));
+    let md = read_text(&out.join("grid.md"));
     assert!(md.contains("## Pooled statistics"), "{md}");
     assert!(md.contains("which this scenario lacks"), "{md}");
     assert!(!md.contains("n/a !"), "{md}");

@@ -1,13 +1,8 @@
 //! End-to-end tests of `usar trust` (runs the built binary).
 
-use std::process::{Command, Output};
+mod common;
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+use common::usar;
 
 /// The numeric cell of `row` under column `col` in the matrix that follows `title`.
 fn cell(stdout: &str, title: &str, row: &str, col: usize) -> (f64, bool) {
@@ -28,7 +23,7 @@ fn close(got: f64, want: f64, tol: f64) -> bool {
 
 #[test]
 fn example1_prints_distributions_and_marks_the_most_trusted() {
-    let out = usar(&[
+    let out = usar([
         "trust",
         "--weights",
         "6,4,2",
@@ -57,7 +52,7 @@ fn example1_prints_distributions_and_marks_the_most_trusted() {
 
 #[test]
 fn groups_add_agent_group_and_group_group_values() {
-    let out = usar(&[
+    let out = usar([
         "trust",
         "--weights",
         "6,4,2",
@@ -94,7 +89,7 @@ fn groups_add_agent_group_and_group_group_values() {
 
 #[test]
 fn log_base_and_no_smoothing() {
-    let out = usar(&[
+    let out = usar([
         "trust",
         "--weights",
         "1,1",
@@ -116,7 +111,7 @@ fn log_base_and_no_smoothing() {
 
 #[test]
 fn bad_input_is_a_one_line_error_with_nonzero_exit() {
-    let out = usar(&[
+    let out = usar([
         "trust",
         "--weights",
         "6,4,2",
@@ -132,7 +127,7 @@ fn bad_input_is_a_one_line_error_with_nonzero_exit() {
         "error: --needs #2 has 2 values but --weights has 3"
     );
 
-    let out = usar(&["trust", "--weights", "6,4,2", "--needs", "86,-1,30"]);
+    let out = usar(["trust", "--weights", "6,4,2", "--needs", "86,-1,30"]);
     assert!(!out.status.success());
     let err = String::from_utf8(out.stderr).expect("utf-8");
     assert_eq!(err.lines().count(), 1, "{err}");
@@ -141,7 +136,7 @@ fn bad_input_is_a_one_line_error_with_nonzero_exit() {
         "{err}"
     );
 
-    let out = usar(&[
+    let out = usar([
         "trust",
         "--weights",
         "6,4,2",
@@ -156,9 +151,9 @@ fn bad_input_is_a_one_line_error_with_nonzero_exit() {
 
 #[test]
 fn help_shows_examples() {
-    let top = usar(&["--help"]);
+    let top = usar(["--help"]);
     assert!(String::from_utf8_lossy(&top.stdout).contains("usar trust --weights 6,4,2"));
-    let sub = usar(&["trust", "--help"]);
+    let sub = usar(["trust", "--help"]);
     let text = String::from_utf8_lossy(&sub.stdout);
     assert!(
         text.contains("Examples:") && text.contains("--log-base"),
@@ -170,7 +165,7 @@ fn help_shows_examples() {
 fn huge_or_tiny_numbers_are_written_short() {
     let base = ["trust", "--needs", "1,3", "--needs", "3,1"];
     let err = |extra: &[&str]| {
-        let out = usar(&[&base[..], extra].concat());
+        let out = usar([&base[..], extra].concat());
         assert!(!out.status.success());
         String::from_utf8_lossy(&out.stderr).trim_end().to_owned()
     };
@@ -182,7 +177,7 @@ fn huge_or_tiny_numbers_are_written_short() {
         err(&["--weights", "-1e300,1"]),
         "error: --weights: weights[0] = -1e300; weights must be finite and > 0"
     );
-    let out = usar(&[&base[..], &["--weights", "1,1", "--log-base", "1e300"]].concat());
+    let out = usar([&base[..], &["--weights", "1,1", "--log-base", "1e300"]].concat());
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("in log base 1e300 units;"), "{text}");

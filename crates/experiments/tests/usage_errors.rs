@@ -1,14 +1,9 @@
 //! Usage errors (an unknown flag, a bad value, a missing argument) are one line on stderr with
 //! exit code 2, like every other error of `usar`; `--help` and a bare `usar` still print help.
 
-use std::process::{Command, Output};
+mod common;
 
-fn usar(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(args)
-        .output()
-        .expect("run usar")
-}
+use common::usar;
 
 #[test]
 fn usage_errors_are_one_line_with_the_tip_and_the_usage() {
@@ -44,10 +39,10 @@ fn usage_errors_are_one_line_with_the_tip_and_the_usage() {
 
 #[test]
 fn help_is_still_printed_whole() {
-    let o = usar(&["run", "--help"]);
+    let o = usar(["run", "--help"]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).lines().count() > 5);
-    let bare = usar(&[]);
+    let bare = usar([] as [&str; 0]);
     let text = String::from_utf8_lossy(&bare.stderr);
     assert!(
         text.contains("Commands:") && text.lines().count() > 5,
