@@ -6,13 +6,19 @@
 //! tail of its path that tells it apart from the other varied fields (`max_speed_m_per_s`, or
 //! `kinds-0.max_speed_m_per_s` when `kinds[1].max_speed_m_per_s` is varied too); `[i]` is
 //! written `-i` and `[*]` `-all`. Labels and values keep ASCII letters, digits, `.`, `+` and
-//! `-` (and `_` in labels); any other run of characters becomes one `_`. The index alone
-//! makes names unique.
+//! `-` (and `_` in labels); any other run of characters becomes one `_`. A name longer than
+//! [`MAX_NAME`] characters (many varied fields) is cut there, so it stays within the 255
+//! bytes file systems allow; the index alone makes names unique, and each cell's
+//! `scenario.ron` and the grid's tables give its values in full.
 
 use crate::vary::{FieldPath, Step};
 
 /// Longest label or value part kept in a folder name, characters.
 const MAX_PART: usize = 40;
+
+/// Longest folder name, characters (ASCII, so bytes): below the 255 bytes of a file name on
+/// Linux, macOS and Windows file systems, with room for a temporary suffix.
+pub const MAX_NAME: usize = 200;
 
 /// One label per path: the shortest tail of its components (a name with its indices) that no
 /// other path shares, sanitised.
@@ -66,6 +72,11 @@ pub fn cell_dir(index: usize, n_cells: usize, labels: &[String], values: &[&str]
         name.push_str(label);
         name.push('=');
         name.push_str(&clip(&sanitise(value, false)));
+    }
+    if name.len() > MAX_NAME {
+        name.truncate(MAX_NAME);
+        let kept = name.trim_end_matches(['_', '=', '.']).len();
+        name.truncate(kept);
     }
     name
 }
@@ -142,5 +153,24 @@ mod tests {
         assert_eq!(sanitise("/", false), "v");
         assert_eq!(sanitise("a_b", false), "a_b");
         assert_eq!(clip(&"x".repeat(100)).len(), MAX_PART);
+    }
+
+    /// Regression: thirteen varied fields made a name of over 255 bytes, and the sweep failed
+    /// with "File name too long (os error 36)".
+    #[test]
+    fn names_of_many_fields_are_cut_to_a_file_name() {
+        let l: Vec<String> = (0..13)
+            .map(|i| format!("field_number_{i:02}_with_a_long_name"))
+            .collect();
+        let values = ["0.5"; 13];
+        let name = cell_dir(1, 2, &l, &values);
+        assert!(name.len() <= MAX_NAME, "{} characters", name.len());
+        assert!(
+            name.starts_with("c01_field_number_00_with_a_long_name=0.5_"),
+            "{name}"
+        );
+        assert!(!name.ends_with(['_', '=', '.']), "{name}");
+        // Shorter names are as before.
+        assert_eq!(cell_dir(1, 2, &l[..2], &values[..2]).len(), 4 + 2 * 36 + 1);
     }
 }
