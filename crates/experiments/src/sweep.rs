@@ -274,12 +274,23 @@ pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
             total,
         )?;
     }
+    check_sweep_size(cells, cfg.methods.len(), cfg.trials)
+}
+
+/// Refuses `cells` grid cells x `methods` methods x `trials` trials (saturating) above
+/// [`MAX_SWEEP_TRIALS`]: the check of [`check_trial_count`] before a grid's cells are built
+/// (their count from [`crate::grid::Grid::cell_count`]).
+///
+/// # Errors
+/// The three counts, their product and the limit, when the product is above it.
+pub fn check_sweep_size(cells: usize, methods: usize, trials: u32) -> Result<()> {
+    let total = cells
+        .saturating_mul(methods)
+        .saturating_mul(trials as usize);
     if total > MAX_SWEEP_TRIALS {
         bail!(
-            "the sweep's {cells} cell(s) x {} method(s) x {} trials make {total} trials, more \
-             than the limit of {MAX_SWEEP_TRIALS} per sweep",
-            cfg.methods.len(),
-            cfg.trials
+            "the sweep's {cells} cell(s) x {methods} method(s) x {trials} trials make {total} \
+             trials, more than the limit of {MAX_SWEEP_TRIALS} per sweep"
         );
     }
     Ok(())

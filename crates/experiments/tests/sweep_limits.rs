@@ -67,6 +67,45 @@ fn too_many_trials_is_a_one_line_error_before_any_output() {
     }
 }
 
+/// Regression: a `--vary` grid was built cell by cell before its size was checked, so nine
+/// fields of ten values (1e9 cells) aborted on a 1.17 TB allocation with a backtrace, and
+/// 1,001,000 cells took over a minute and 5 GB before the one-line error. The product of the
+/// value counts is now checked first, in `usar sweep` and `usar slurm` alike.
+#[test]
+fn a_grid_over_the_trial_limit_is_refused_before_its_cells_are_built() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    let ten = "0,1,2,3,4,5,6,7,8,9";
+    let fields = [
+        "mission.pickup_s",
+        "mission.recharge_s",
+        "mission.low_hp_pct",
+        "mission.low_energy_pct",
+        "mission.energy_pct_per_m",
+        "mission.hp_pct_per_step_in_radiation",
+        "mission.energy_pct_per_moving_step",
+        "collision.safety_margin_m",
+        "navigation.clearance_m",
+    ];
+    let varies: Vec<String> = fields.iter().map(|f| format!("--vary={f}={ten}")).collect();
+    for command in [&["sweep"][..], &["slurm", "--shards", "2"]] {
+        let mut args = command.to_vec();
+        args.extend([PAPER, "--trials", "1", "--methods", "rne"]);
+        args.extend(["--out", out_s]);
+        args.extend(varies.iter().map(String::as_str));
+        let o = usar_in(tmp.path(), &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{command:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{command:?}: {err}");
+        assert!(
+            err.contains("1000000000 cell(s)") && err.contains("more than the limit of 1000000"),
+            "{command:?}: {err}"
+        );
+        assert!(!out.exists(), "{command:?} left {}", out.display());
+    }
+}
+
 /// `usar sweep paper.ron` of one DIS trial of `duration` seconds on one thread into `out`,
 /// with `extra` options, run in `cwd`.
 fn one_dis_trial(cwd: &Path, duration: &str, extra: &[&str], out: &Path) -> Output {

@@ -12,7 +12,40 @@ use anyhow::{Result, anyhow, bail};
 use serde_json::Value;
 use usar_sim::scenario::{Scenario, ScenarioSpec};
 
+use crate::sweep::MAX_SWEEP_TRIALS;
 use crate::vary::{Override, Vary, apply_overrides, brief, rule_error, spec_json};
+
+/// Parses the `--vary` arguments `args` (at least one).
+fn parse_varies(args: &[String]) -> Result<Vec<Vary>> {
+    if args.is_empty() {
+        bail!("a grid needs at least one --vary");
+    }
+    args.iter()
+        .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {}: {e}", brief(a))))
+        .collect()
+}
+
+/// The product of the value counts of `varies`, saturating at `usize::MAX`.
+fn cells_of(varies: &[Vary]) -> usize {
+    varies
+        .iter()
+        .fold(1usize, |n, v| n.saturating_mul(v.values.len()))
+}
+
+/// The value counts of `varies` as a product, `10 x 10 x 3 values`.
+fn shape_text(varies: &[Vary]) -> String {
+    let counts: Vec<String> = varies.iter().map(|v| v.values.len().to_string()).collect();
+    format!("{} values", counts.join(" x "))
+}
+
+/// A saturated count as "more than 18446744073709551614", else the count.
+fn count_text(n: usize) -> String {
+    if n == usize::MAX {
+        format!("more than {}", usize::MAX - 1)
+    } else {
+        n.to_string()
+    }
+}
 
 /// The cells of a parameter sweep.
 #[derive(Debug, Clone)]
@@ -58,22 +91,24 @@ impl Grid {
     /// duration_s, ...)`), a value of the wrong type, two values giving the same scenario, or
     /// a cell that breaks a rule (`--vary mission.duration_s=-5: mission.duration_s: expected
     /// a finite number > 0, found -5`; a rule broken only by a combination names every value
-    /// of the cell).
+    /// of the cell), or more cells than [`MAX_SWEEP_TRIALS`] (checked before any cell is made).
     pub fn build(base: &ScenarioSpec, args: &[String]) -> Result<Self> {
-        if args.is_empty() {
-            bail!("a grid needs at least one --vary");
-        }
-        let varies = args
-            .iter()
-            .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {}: {e}", brief(a))))
-            .collect::<Result<Vec<_>>>()?;
+        let varies = parse_varies(args)?;
         check_distinct(&varies)?;
+        let n_cells = cells_of(&varies);
+        if n_cells > MAX_SWEEP_TRIALS {
+            bail!(
+                "the grid's {} make {} cells, more than the limit of {MAX_SWEEP_TRIALS} trials \
+                 per sweep",
+                shape_text(&varies),
+                count_text(n_cells)
+            );
+        }
         let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
         for (v, arg) in varies.iter().zip(args) {
             check_values(base, &base_json, v, arg)?;
         }
         let labels = names::field_labels(&varies.iter().map(|v| &v.path).collect::<Vec<_>>());
-        let n_cells = varies.iter().map(|v| v.values.len()).product::<usize>();
         let mut cells = Vec::with_capacity(n_cells);
         for index in 0..n_cells {
             let overrides = cell_overrides(&varies, index);
@@ -93,6 +128,16 @@ impl Grid {
             });
         }
         Ok(Self { varies, cells })
+    }
+
+    /// How many cells the `--vary` arguments `args` make (the product of their value
+    /// counts; `usize::MAX` when that overflows), without building any: a caller checks a
+    /// sweep's size with it before [`Grid::build`] validates every cell.
+    ///
+    /// # Errors
+    /// As [`Grid::build`] for a malformed argument or none at all.
+    pub fn cell_count(args: &[String]) -> Result<usize> {
+        parse_varies(args).map(|v| cells_of(&v))
     }
 
     /// The varied field paths, in `--vary` order.
@@ -209,6 +254,32 @@ mod tests {
             c.dir,
             "c04_hp_pct_per_step_in_radiation=0.003_max_speed_m_per_s=1.5"
         );
+    }
+
+    #[test]
+    fn a_grid_over_the_trial_limit_is_refused_before_any_cell_is_made() {
+        let ten = "=0,1,2,3,4,5,6,7,8,9";
+        let fields = [
+            "mission.pickup_s",
+            "mission.recharge_s",
+            "mission.low_hp_pct",
+            "mission.low_energy_pct",
+            "mission.energy_pct_per_m",
+            "collision.safety_margin_m",
+            "navigation.clearance_m",
+        ];
+        let args: Vec<String> = fields.iter().map(|f| format!("{f}{ten}")).collect();
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        assert_eq!(Grid::cell_count(&args).unwrap(), 10_000_000);
+        assert_eq!(
+            err(&refs),
+            "the grid's 10 x 10 x 10 x 10 x 10 x 10 x 10 values make 10000000 cells, more \
+             than the limit of 1000000 trials per sweep"
+        );
+        // The count saturates instead of overflowing.
+        let many = vec![format!("mission.pickup_s{ten}"); 30];
+        assert_eq!(Grid::cell_count(&many).unwrap(), usize::MAX);
+        assert!(Grid::cell_count(&[]).is_err());
     }
 
     #[test]

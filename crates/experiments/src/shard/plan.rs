@@ -77,13 +77,19 @@ impl SweepPlan {
     /// progress bar, no resume or overwrite, no hooks, no shard.
     ///
     /// # Errors
-    /// A scenario or `--vary` that does not load (the messages of `usar sweep`).
+    /// A scenario or `--vary` that does not load (the messages of `usar sweep`), or a sweep
+    /// above [`crate::sweep::MAX_SWEEP_TRIALS`] trials (refused before the grid is built).
     pub fn config(&self, out_dir: &Path) -> Result<SweepConfig> {
         let origin = self.scenario_path.display().to_string();
         let scenario = scenario::from_str(&self.scenario_text, &origin)?;
         let grid = if self.vary.is_empty() {
             None
         } else {
+            crate::sweep::check_sweep_size(
+                Grid::cell_count(&self.vary)?,
+                self.methods.len(),
+                self.trials,
+            )?;
             let spec = scenario::parse_spec(&self.scenario_text, &origin)?;
             Some(Grid::build(&spec, &self.vary)?)
         };

@@ -205,11 +205,17 @@ pub fn grid_metrics(names: &[String], tasks: &[String]) -> Result<Vec<Metric>> {
         .collect()
 }
 
-/// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`.
+/// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`. A grid
+/// that would make the sweep larger than its limit is refused before any cell is built.
 fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     if args.vary.is_empty() {
         return Ok(None);
     }
+    experiments::sweep::check_sweep_size(
+        Grid::cell_count(&args.vary)?,
+        args.methods.len(),
+        args.trials,
+    )?;
     let origin = args.scenario.display().to_string();
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
