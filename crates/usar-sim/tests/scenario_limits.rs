@@ -516,6 +516,37 @@ fn the_task_name_total_is_reserved() {
     assert!(e.to_string().contains("\"total\" is reserved"), "{e}");
 }
 
+/// Regression: a task named `per_rescuee` made `energy_per_rescuee_pct` and
+/// `hp_per_rescuee_pct` twice in trials.csv and summary.csv (the task's cost and the cost per
+/// rescuee of all tasks), and `per_hard_rescuee` next to `hard` likewise, silently.
+#[test]
+fn task_names_that_would_repeat_a_per_rescuee_column_are_refused() {
+    let renamed = |to: &str| {
+        paper_with("name: \"easy\"", &format!("name: \"{to}\""))
+            .replace("\"easy\":", &format!("\"{to}\":"))
+            .replace("easy:", &format!("{to}:"))
+    };
+    for (name, whose) in [
+        ("per_rescuee", "all tasks"),
+        ("per_hard_rescuee", "task \"hard\""),
+    ] {
+        let e = rejected(&renamed(name), "tasks[1].name");
+        let want = format!(
+            "the task name \"{name}\" would give the column energy_{name}_pct, the energy per rescuee of {whose}"
+        );
+        assert!(e.to_string().contains(&want), "{e}");
+    }
+    // A name that only looks alike is a task like any other.
+    for name in [
+        "per_easy_rescuee",
+        "per__rescuee",
+        "per_rescuees",
+        "rescuee",
+    ] {
+        scenario::from_str(&renamed(name), "t.ron").unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
 #[test]
 fn a_step_count_past_f64_is_said_in_words_not_inf() {
     let err = usar_sim::scenario::trial_steps(1e308, 0.02).unwrap_err();

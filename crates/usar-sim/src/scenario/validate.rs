@@ -209,6 +209,22 @@ type NamedDebris = Vec<(DebrisShape, String)>;
 /// that name would give two columns of one name.
 pub const RESERVED_TASK_NAME: &str = "total";
 
+/// Whose energy per rescuee the tables' columns of a task named `name` would stand for: the
+/// columns `energy_<task>_pct` and `hp_<task>_pct` of a task `per_rescuee` are those of all
+/// tasks' cost per rescuee (`energy_per_rescuee_pct`), and of a task `per_<other>_rescuee`
+/// those of task `other` (`energy_per_<other>_rescuee_pct`). `None` when there is no clash.
+fn per_rescuee_clash(name: &str, tasks: &[TaskSpec]) -> Option<String> {
+    let inner = name.strip_prefix("per_")?.strip_suffix("rescuee")?;
+    if inner.is_empty() {
+        return Some("all tasks".into());
+    }
+    let other = inner.strip_suffix('_')?;
+    tasks
+        .iter()
+        .any(|o| o.name == other)
+        .then(|| format!("task {other:?}"))
+}
+
 /// Checks `name`, the `what` at `field`: not blank, and one line of text without control
 /// characters or the Unicode line and paragraph separators (a line break or tab would break
 /// the reports' tables, the CSV headers that carry task names, and the console's lines).
@@ -320,6 +336,16 @@ fn task_geometry(ctx: &Ctx<'_>, tasks: &[TaskSpec], arena: &Arena) -> R<Vec<Task
             return Err(ctx.err(
                 format!("{base}.name"),
                 format!("duplicate task name {:?} (also tasks[{j}])", t.name),
+            ));
+        }
+        if let Some(whose) = per_rescuee_clash(&t.name, tasks) {
+            return Err(ctx.err(
+                format!("{base}.name"),
+                format!(
+                    "the task name {:?} would give the column energy_{}_pct, the energy per \
+                     rescuee of {whose}",
+                    t.name, t.name
+                ),
             ));
         }
         let named = |e: ScenarioError| match e {
