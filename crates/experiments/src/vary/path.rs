@@ -266,7 +266,6 @@ fn set_at(
     result
 }
 
-/// The `name` field of a list element that is a struct with one.
 /// The fields a scenario writes either as one struct or as a list of them, where a list of
 /// one behaves as the struct ([`usar_sim::scenario::RestStationsSpec`]): an index or `[*]`
 /// reaches the single struct as element 0 (`rest_station[0].radius_m`, `rest_station[*]`).
@@ -289,6 +288,7 @@ fn set_in_list_of_one(
     result
 }
 
+/// The `name` field of a list element that is a struct with one.
 fn element_name(item: &Value) -> Option<String> {
     item.get("name")?.as_str().map(str::to_string)
 }
