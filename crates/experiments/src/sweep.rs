@@ -277,9 +277,19 @@ pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
     check_sweep_size(cells, cfg.methods.len(), cfg.trials)
 }
 
+/// Refuses the sweep of `--vary` arguments `vary` x `methods` methods x `trials` trials above
+/// [`MAX_SWEEP_TRIALS`] before its grid is built: the cells are counted from the value lists
+/// ([`crate::grid::Grid::cell_count`]), none is made. `usar sweep` and `usar slurm` call it
+/// before [`crate::grid::Grid::build`].
+///
+/// # Errors
+/// A malformed `--vary` argument, or the counts and the limit when the sweep is above it.
+pub fn check_grid_size(vary: &[String], methods: usize, trials: u32) -> Result<()> {
+    check_sweep_size(crate::grid::Grid::cell_count(vary)?, methods, trials)
+}
+
 /// Refuses `cells` grid cells x `methods` methods x `trials` trials (saturating) above
-/// [`MAX_SWEEP_TRIALS`]: the check of [`check_trial_count`] before a grid's cells are built
-/// (their count from [`crate::grid::Grid::cell_count`]).
+/// [`MAX_SWEEP_TRIALS`]: the check of [`check_trial_count`] and [`check_grid_size`].
 ///
 /// # Errors
 /// The three counts, their product and the limit, when the product is above it.

@@ -85,11 +85,7 @@ impl SweepPlan {
         let grid = if self.vary.is_empty() {
             None
         } else {
-            crate::sweep::check_sweep_size(
-                Grid::cell_count(&self.vary)?,
-                self.methods.len(),
-                self.trials,
-            )?;
+            crate::sweep::check_grid_size(&self.vary, self.methods.len(), self.trials)?;
             let spec = scenario::parse_spec(&self.scenario_text, &origin)?;
             Some(Grid::build(&spec, &self.vary)?)
         };

@@ -211,11 +211,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     if args.vary.is_empty() {
         return Ok(None);
     }
-    experiments::sweep::check_sweep_size(
-        Grid::cell_count(&args.vary)?,
-        args.methods.len(),
-        args.trials,
-    )?;
+    experiments::sweep::check_grid_size(&args.vary, args.methods.len(), args.trials)?;
     let origin = args.scenario.display().to_string();
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
