@@ -1,13 +1,27 @@
 //! Invariants of the mission that hold whatever the golden numbers are: checked at every step
-//! of a full 600 s paper.ron trial for each built-in grouping method.
+//! of a full 600 s paper.ron trial for each built-in grouping method, and with a control
+//! period of 0.1 s (`sim.control_period_s`) for two of them.
 
 use integration_tests::{method, paper};
 use usar_sim::mission::{Phase, RescueeStatus, Simulation};
+use usar_sim::scenario::{Positive, Scenario};
 
 const EPS: f64 = 1e-9;
 
+/// paper.ron with the robots deciding every 0.1 s (five steps).
+fn paper_at_10_hz() -> Scenario {
+    let mut s = paper();
+    s.sim.control_period_s = Some(Positive::new(0.1).expect("positive"));
+    assert_eq!(s.sim.control_steps(), 5);
+    s
+}
+
 fn check_method(name: &str) {
-    let s = paper();
+    check(name, &paper());
+}
+
+fn check(name: &str, s: &Scenario) {
+    let s = s.clone();
     let mut sim = Simulation::for_trial(&s, method(name, &s), 0);
     let mut prev: Vec<(f64, f64, Phase)> = sim
         .robots()
@@ -16,8 +30,12 @@ fn check_method(name: &str) {
         .collect();
     let mut rounds_seen = 0;
     while !sim.is_finished() {
+        // The mission decides before a control step, and reviews phases after the step before
+        // a control step and after the last.
+        let decided = sim.world().is_control_step();
         sim.step().expect("built-in methods do not fail");
         let world = sim.world();
+        let reviewed = decided || world.is_control_step() || sim.is_finished();
         for r in sim.robots() {
             let kind = s.kind_of(r.id);
             let w = world.robot(r.id);
@@ -55,6 +73,20 @@ fn check_method(name: &str) {
                     "{name}: energy rate"
                 );
             }
+            // Every moving step costs energy, whatever the control period (unless a recharge
+            // ended this step or the robot had none left).
+            if w.moved_this_step && e0 > EPS && r.energy_pct <= e0 + EPS {
+                assert!(
+                    r.energy_pct < e0 - EPS,
+                    "{name}: robot {} moved for free",
+                    r.id
+                );
+            }
+            assert!(
+                reviewed || r.phase == phase0,
+                "{name}: robot {} changed phase between control steps",
+                r.id
+            );
             // Energy rises only when a recharge at the rest station ends.
             if r.energy_pct > e0 + EPS {
                 assert!(
@@ -171,4 +203,14 @@ fn invariants_eng() {
 #[test]
 fn invariants_hp_dis() {
     check_method("hp_dis");
+}
+
+#[test]
+fn invariants_rne_with_a_control_period() {
+    check("rne", &paper_at_10_hz());
+}
+
+#[test]
+fn invariants_dis_with_a_control_period() {
+    check("dis", &paper_at_10_hz());
 }

@@ -558,3 +558,48 @@ fn a_step_count_past_f64_is_said_in_words_not_inf() {
     let err = usar_sim::scenario::trial_steps(1e300, 0.02).unwrap_err();
     assert!(err.contains("is 5e301 steps"), "{err}");
 }
+
+// `sim.control_period_s`: a whole number of steps, from one step to the whole trial.
+
+#[test]
+fn a_control_period_that_is_no_whole_number_of_steps_is_an_error() {
+    for bad in ["0.01", "0.05", "0.1000001", "1e-300"] {
+        let src = paper_with(
+            "sim: (dt_s: 0.02, seed: 2021)",
+            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({bad}))"),
+        );
+        let e = rejected(&src, "sim.control_period_s");
+        assert!(e.to_string().contains("control period"), "{bad}: {e}");
+    }
+}
+
+#[test]
+fn a_control_period_longer_than_the_trial_is_an_error() {
+    let src = paper_with(
+        "sim: (dt_s: 0.02, seed: 2021)",
+        "sim: (dt_s: 0.02, seed: 2021, control_period_s: Some(600.02))",
+    );
+    let e = rejected(&src, "sim.control_period_s");
+    assert!(e.to_string().contains("longer than the trial"), "{e}");
+}
+
+#[test]
+fn control_periods_of_whole_steps_are_accepted_and_run() {
+    for (period, steps) in [
+        ("0.02", 1),
+        ("0.1", 5),
+        ("0.30000000000000004", 15),
+        ("600", 30_000),
+    ] {
+        let src = paper_with(
+            "sim: (dt_s: 0.02, seed: 2021)",
+            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({period}))"),
+        );
+        let s = scenario::from_str(&src, "t.ron").unwrap_or_else(|e| panic!("{period}: {e}"));
+        assert_eq!(s.sim.control_steps(), steps, "{period}");
+        short_run(&s);
+    }
+    let s = scenario::from_str(&paper(), "paper.ron").expect("paper.ron");
+    assert_eq!(s.sim.control_period_s, None);
+    assert_eq!(s.sim.control_steps(), 1);
+}

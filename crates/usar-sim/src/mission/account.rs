@@ -14,8 +14,10 @@ use crate::scenario::{LoadOnLeave, Locomotion, PointM, Refresh, Scenario};
 use crate::world::World;
 
 /// Accounts the step just taken for every robot, in id order: energy (per moving step and per
-/// metre moved), HP (per step in radiation), detections of its group, its phase, and a leave
-/// for the rest station when energy or HP fell below its threshold.
+/// metre moved) and HP (per step in radiation) every step; with `review` (after the step
+/// before a control step, `sim.control_period_s`, and after the last step: every step without
+/// a control period) also detections of its group, its phase, and a leave for the rest
+/// station when energy or HP fell below its threshold.
 ///
 /// # Errors
 /// [`MissionError::World`] if the world refuses a command (a bug).
@@ -23,6 +25,7 @@ pub(crate) fn account(
     scenario: &Scenario,
     world: &mut World,
     st: &mut MissionState,
+    review: bool,
 ) -> Result<(), MissionError> {
     let m = &scenario.mission;
     let dt = scenario.sim.dt_s.get();
@@ -48,6 +51,9 @@ pub(crate) fn account(
             let lost = (m.hp_pct_per_step_in_radiation.get() * rad).min(r.hp_pct);
             r.hp_pct -= lost;
             st.recorder.hp(id, r.task, lost, dt);
+        }
+        if !review {
+            continue;
         }
         if let Some(t) = r.task
             && r.is_on_task()

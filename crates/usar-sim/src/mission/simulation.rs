@@ -230,17 +230,23 @@ impl Simulation {
         }
         let (sc, world, st) = (&self.scenario, &mut self.world, &mut self.state);
         st.events.clear();
-        if !st.round_open {
-            start_round(sc, world, st, self.method.as_ref())?;
+        if world.is_control_step() {
+            if !st.round_open {
+                start_round(sc, world, st, self.method.as_ref())?;
+            }
+            decide(sc, world, st)?;
         }
-        decide(sc, world, st)?;
         world.step();
         self.steps_done += 1;
-        account(sc, world, st)?;
-        if st.round_open && round_complete(st) {
+        let last = self.steps_done >= self.total_steps;
+        // The review runs after the step before a control step (and after the last step), so
+        // the decisions of that control step see what it found.
+        let review = world.is_control_step() || last;
+        account(sc, world, st, review)?;
+        if review && st.round_open && round_complete(st) {
             close_round(world, st, true);
         }
-        if self.steps_done >= self.total_steps && st.round_open {
+        if last && st.round_open {
             close_round(world, st, false);
         }
         Ok(())

@@ -376,6 +376,16 @@ pub struct SimParams {
     /// Base seed of trials (trial `k` uses a seed derived from it and `k`) and default seed of
     /// debris fields; default 0.
     pub seed: u64,
+    /// How often the robots' software runs, seconds: a whole number of steps `dt_s`, at least
+    /// one step and at most `mission.duration_s`. Every control period the mission's decisions
+    /// (rounds, claims, leaving, detection, phases), path following and the collision resolver
+    /// run once and each robot's commanded velocity is held until the next; physics and the
+    /// per-step costs (energy, HP in radiation) run every step. `None` (default): every step,
+    /// the model `paper.ron` was calibrated with. Not from the paper (its Unity scripts ran at
+    /// the engine's rate); large teams use a robot controller's rate, e.g. `Some(0.1)` (10 Hz, the
+    /// default control step of the ARGoS swarm simulator). See `docs/world-model.md`,
+    /// "Control period".
+    pub control_period_s: Option<Positive>,
 }
 
 impl Default for SimParams {
@@ -383,7 +393,21 @@ impl Default for SimParams {
         Self {
             dt_s: Positive::known(1.0 / 50.0),
             seed: 0,
+            control_period_s: None,
         }
+    }
+}
+
+impl SimParams {
+    /// Steps per control period (see [`SimParams::control_period_s`]): 1 without a period,
+    /// else `control_period_s / dt_s` rounded to the nearest whole number, at least 1 (exact
+    /// in a validated scenario, which holds a whole number of steps).
+    pub fn control_steps(&self) -> u64 {
+        self.control_period_s.map_or(1, |p| {
+            let steps = (p.get() / self.dt_s.get()).round();
+            // `as` saturates: a huge ratio (refused by validation) stays finite.
+            (steps as u64).max(1)
+        })
     }
 }
 

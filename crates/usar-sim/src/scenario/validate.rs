@@ -853,7 +853,44 @@ fn check_params(ctx: &Ctx<'_>, spec: &ScenarioSpec) -> R<()> {
             ),
         ));
     }
-    Ok(())
+    check_control_period(ctx, spec)
+}
+
+/// `sim.control_period_s`: a whole number of steps (relative tolerance 1e-9), from one step
+/// to the whole trial.
+fn check_control_period(ctx: &Ctx<'_>, spec: &ScenarioSpec) -> R<()> {
+    let Some(period) = spec.sim.control_period_s else {
+        return Ok(());
+    };
+    let (period_s, dt_s) = (period.get(), spec.sim.dt_s.get());
+    let duration_s = spec.mission.duration_s.get();
+    let steps = (period_s / dt_s).round();
+    let problem = if period_s < dt_s * (1.0 - 1e-9) {
+        Some(format!(
+            "shorter than one step (sim.dt_s = {} s)",
+            number_text(dt_s)
+        ))
+    } else if period_s > duration_s {
+        Some(format!(
+            "longer than the trial (mission.duration_s = {} s)",
+            number_text(duration_s)
+        ))
+    } else if (steps * dt_s - period_s).abs() > 1e-9 * period_s {
+        Some(format!(
+            "not a whole number of steps of {} s (sim.dt_s): {} steps",
+            number_text(dt_s),
+            number_text(period_s / dt_s)
+        ))
+    } else {
+        None
+    };
+    match problem {
+        Some(why) => Err(ctx.err(
+            "sim.control_period_s",
+            format!("control period {} s is {why}", number_text(period_s)),
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check_clamp(ctx: &Ctx<'_>, path: &str, d: &ClampedNormal) -> R<()> {

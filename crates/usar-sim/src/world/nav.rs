@@ -37,6 +37,9 @@ pub(super) struct Nav {
     pub(super) pos: Vec2,
     /// Intended velocity (path following, before collision avoidance), metres per second.
     pub(super) intent: Vec2,
+    /// Velocity commanded at the last control step (the intent after the resolver), held
+    /// until the next one, metres per second.
+    pub(super) command: Vec2,
     /// Shortest remaining path length since the no-progress clock last restarted, metres
     /// (infinite right after a goal is set); see `path_following.rs`.
     pub(super) best_remaining: f32,
@@ -60,6 +63,7 @@ impl Nav {
             wp: 0,
             pos,
             intent: Vec2::ZERO,
+            command: Vec2::ZERO,
             best_remaining: f32::INFINITY,
             progress_step: 0,
         }

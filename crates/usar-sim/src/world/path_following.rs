@@ -15,7 +15,9 @@ use super::world::World;
 use crate::scenario::{HoldRule, Locomotion};
 
 /// Ground robots re-check the line of sight to their current waypoint every this many steps
-/// (staggered by id) and re-plan when it is blocked.
+/// (staggered by id) and re-plan when it is blocked; with a control period of `k` steps
+/// (`sim.control_period_s`), every `max(1, 10 / k)` control steps (integer division), so
+/// about as often in time.
 pub const PATH_CHECK_INTERVAL_STEPS: u64 = 10;
 /// Longest stretch of the line of sight checked by the periodic path check, metres.
 pub const PATH_CHECK_MAX_M: f32 = 4.0;
@@ -56,7 +58,9 @@ impl World {
         }
         if nav.layer == Locomotion::Ground {
             self.watch_progress(id);
-            if (self.stats.steps + id as u64).is_multiple_of(PATH_CHECK_INTERVAL_STEPS) {
+            let k = self.control_steps;
+            let every = (PATH_CHECK_INTERVAL_STEPS / k).max(1);
+            if (self.stats.steps / k + id as u64).is_multiple_of(every) {
                 self.check_path(id);
             }
         }
@@ -230,7 +234,8 @@ impl World {
     }
 
     /// Velocity towards robot `id`'s current waypoint at top speed times the speed factor; on
-    /// the last leg at most `distance / dt`, so the goal is not overshot.
+    /// the last leg at most `distance / period` (the control period: the step `dt` without
+    /// `sim.control_period_s`), so the goal is not overshot before the next control step.
     fn intent_to_waypoint(&self, id: usize) -> Vec2 {
         let nav = &self.nav[id];
         let to_target = nav.waypoint() - nav.pos;
@@ -240,7 +245,7 @@ impl World {
         }
         let mut speed = nav.max_speed * self.robots[id].speed_factor as f32;
         if nav.wp >= nav.path.len() - 1 {
-            speed = speed.min(dist / self.dt as f32);
+            speed = speed.min(dist / self.control_period_s() as f32);
         }
         to_target * (speed / dist)
     }

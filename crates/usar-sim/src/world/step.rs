@@ -17,28 +17,32 @@ pub const MOVED_TOLERANCE_M: f64 = 1e-4;
 
 impl World {
     /// Advances the world by one fixed step `dt`:
-    /// 1. every robot (by id) updates its intended velocity from its goal and path;
-    /// 2. if `collision.enabled`, the resolver builds collision lists, holds all but each
-    ///    list's head, rotates deadlocked lists, and the moving robots steer around robots
-    ///    standing still (see [`crate::world::resolver`]); otherwise the intents are commanded
-    ///    as they are;
-    /// 3. the commanded velocities are set on the bodies and Rapier steps once;
-    /// 4. positions, velocities, flags and counters are read back, and the neighbour index is
-    ///    rebuilt (the next step's resolver and the mission's queries use it).
+    /// 1. on a control step ([`World::is_control_step`]; every step without
+    ///    `sim.control_period_s`), every robot (by id) updates its intended velocity from its
+    ///    goal and path; if `collision.enabled`, the resolver builds collision lists, holds all
+    ///    but each list's head, rotates deadlocked lists, and the moving robots steer around
+    ///    robots standing still (see [`crate::world::resolver`]); otherwise the intents are
+    ///    commanded as they are. Between control steps each robot keeps its command, motion
+    ///    and list flags;
+    /// 2. the commanded velocities are set on the bodies (held robots count a held step) and
+    ///    Rapier steps once;
+    /// 3. positions, velocities, flags and counters are read back, and before a control step
+    ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
     /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
     pub fn step(&mut self) {
         let n = self.robots.len();
-        for id in 0..n {
-            self.update_intent(id);
-            self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
-        }
-        if self.collision.enabled {
-            self.resolver
-                .resolve(&self.inputs, &self.neighbours, self.dt);
+        if self.is_control_step() {
+            self.control();
         }
         for id in 0..n {
-            let command = self.command(id);
+            let state = &mut self.robots[id];
+            if state.held {
+                let c = &mut state.counters;
+                c.steps_held += 1;
+                c.time_held_s = c.steps_held as f64 * self.dt;
+            }
+            let command = self.nav[id].command;
             let body = self.nav[id].body;
             // Writing through `bodies[..]` as `&mut` queues the body for Rapier's pass over
             // user-modified bodies; an unchanged velocity needs no write (same physics).
@@ -46,21 +50,44 @@ impl World {
                 self.scene.physics.bodies[body].set_linvel(command, true);
             }
         }
-        if self.collision.enabled {
-            self.stats.deadlocks_detected += self.resolver.deadlocked_lists();
-            self.stats.max_list_len = self.stats.max_list_len.max(self.resolver.largest_list());
-        }
         self.scene.step();
         self.stats.steps += 1;
         for id in 0..n {
             self.read_back(id);
         }
-        self.reindex();
+        if self.is_control_step() {
+            self.reindex();
+        } else {
+            self.index_fresh = false;
+        }
     }
 
-    /// The velocity robot `id` commands this step: its intent, or with the resolver on, zero
-    /// when held or blocked and else its intent steered around robots standing still. Records
-    /// the robot's motion, list flags and resolver counters.
+    /// The control step's software: intents, the resolver over the control period, and each
+    /// robot's command, motion and list flags (see [`World::step`]).
+    fn control(&mut self) {
+        let n = self.robots.len();
+        for id in 0..n {
+            self.update_intent(id);
+            self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
+        }
+        if self.collision.enabled {
+            let period_s = self.control_period_s();
+            self.resolver
+                .resolve(&self.inputs, &self.neighbours, period_s);
+        }
+        for id in 0..n {
+            self.nav[id].command = self.command(id);
+        }
+        if self.collision.enabled {
+            self.stats.deadlocks_detected += self.resolver.deadlocked_lists();
+            self.stats.max_list_len = self.stats.max_list_len.max(self.resolver.largest_list());
+        }
+    }
+
+    /// The velocity robot `id` commands until the next control step: its intent, or with the
+    /// resolver on, zero when held or blocked and else its intent steered around robots
+    /// standing still. Records the robot's motion, list flags and resolver counters (a held
+    /// step is counted by [`World::step`], every step).
     fn command(&mut self, id: usize) -> Vec2 {
         let input = self.inputs[id];
         let state = &mut self.robots[id];
@@ -80,8 +107,6 @@ impl World {
             c.deadlocks_detected += u64::from(d.deadlock_detected);
             c.deadlocks_resolved += u64::from(d.deadlock_resolved);
             if d.held {
-                c.steps_held += 1;
-                c.time_held_s = c.steps_held as f64 * self.dt;
                 motion = Motion::Held;
                 Vec2::ZERO
             } else {

@@ -55,6 +55,11 @@ pub struct World {
     /// Arena width and height at physics precision, metres.
     pub(super) arena: (f32, f32),
     pub(super) dt: f64,
+    /// Steps per control period (`sim.control_period_s`, see [`World::control_steps`]), >= 1.
+    pub(super) control_steps: u64,
+    /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
+    /// every control step and after a teleport, not after the steps in between.
+    pub(super) index_fresh: bool,
     pub(super) collision: CollisionParams,
     pub(super) navigation: NavigationParams,
     pub(super) stats: WorldStats,
@@ -126,6 +131,8 @@ impl World {
             },
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
+            control_steps: s.sim.control_steps(),
+            index_fresh: true,
             collision: s.collision,
             navigation: s.navigation,
             stats: WorldStats::default(),
@@ -339,6 +346,8 @@ impl World {
         let body = &mut self.scene.physics.bodies[nav.body];
         body.set_translation(p, true);
         body.set_linvel(Vec2::ZERO, true);
+        nav.command = Vec2::ZERO;
+        nav.intent = Vec2::ZERO;
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
@@ -351,6 +360,23 @@ impl World {
     pub(super) fn reindex(&mut self) {
         self.neighbours
             .rebuild(self.nav.iter().map(|n| (n.layer, n.pos)));
+        self.index_fresh = true;
+    }
+
+    /// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of
+    /// `p` (and perhaps others): the neighbour index's candidates while it is fresh, else
+    /// every robot of the layer (between control steps the index is not rebuilt). Callers
+    /// test the distance themselves, so both give the same answers.
+    fn for_each_near(&self, layer: Locomotion, p: Vec2, radius_m: f32, mut f: impl FnMut(usize)) {
+        if self.index_fresh {
+            self.neighbours
+                .grid(layer)
+                .for_each_candidate(p, radius_m, |j, _| f(j));
+        } else {
+            (0..self.nav.len())
+                .filter(|&j| self.nav[j].layer == layer)
+                .for_each(f);
+        }
     }
 
     /// Whether the spot `p` is clear of ground robots: no ground robot other than `except` has
@@ -360,14 +386,10 @@ impl World {
     pub fn is_spot_clear(&self, p: &PointM, except: usize, gap_m: f64) -> bool {
         let radius = self.max_radius_m[0] + gap_m.max(0.0);
         let mut clear = true;
-        self.neighbours.grid(Locomotion::Ground).for_each_candidate(
-            to_vec2(p),
-            radius as f32,
-            |j, _| {
-                let o = &self.robots[j];
-                clear &= j == except || (o.position - p).norm() > o.radius_m + gap_m;
-            },
-        );
+        self.for_each_near(Locomotion::Ground, to_vec2(p), radius as f32, |j| {
+            let o = &self.robots[j];
+            clear &= j == except || (o.position - p).norm() > o.radius_m + gap_m;
+        });
         clear
     }
 
@@ -379,6 +401,26 @@ impl World {
     /// The fixed step, seconds (`scenario.sim.dt_s`).
     pub fn dt_s(&self) -> f64 {
         self.dt
+    }
+
+    /// Steps per control period, >= 1 (`scenario.sim.control_period_s / dt_s`; 1 without a
+    /// period): see [`World::is_control_step`].
+    pub fn control_steps(&self) -> u64 {
+        self.control_steps
+    }
+
+    /// The control period, seconds: [`World::control_steps`] times the step.
+    pub fn control_period_s(&self) -> f64 {
+        self.control_steps as f64 * self.dt
+    }
+
+    /// Whether the next [`World::step`] is a control step: the number of steps taken so far is
+    /// a multiple of [`World::control_steps`] (every step without a control period). A control
+    /// step updates every robot's intent and runs the resolver; the steps between hold each
+    /// robot's commanded velocity. The mission runs its decisions before a control step and
+    /// its reviews (detection, phases) after the step before one.
+    pub fn is_control_step(&self) -> bool {
+        self.stats.steps.is_multiple_of(self.control_steps)
     }
 
     /// World-level totals.
@@ -446,15 +488,13 @@ impl World {
             worst = worst.max(f64::from(a.radius) - d);
             let slot = usize::from(!ground);
             let reach = a.radius + self.max_radius_m[slot] as f32;
-            self.neighbours
-                .grid(a.layer)
-                .for_each_candidate(a.pos, reach, |j, _| {
-                    let b = &self.nav[j];
-                    if j > i {
-                        let d = (b.pos - a.pos).length();
-                        worst = worst.max(f64::from(a.radius + b.radius - d));
-                    }
-                });
+            self.for_each_near(a.layer, a.pos, reach, |j| {
+                let b = &self.nav[j];
+                if j > i {
+                    let d = (b.pos - a.pos).length();
+                    worst = worst.max(f64::from(a.radius + b.radius - d));
+                }
+            });
         }
         worst
     }
