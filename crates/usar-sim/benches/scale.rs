@@ -1,7 +1,8 @@
 //! Scaling bench (issue 10): for teams of 12, 100, 300 and 1,000 robots, world steps per second
 //! with all logic (`Simulation::step`: rounds, decisions, navigation, resolver, Rapier,
 //! accounting), the same bodies stepped by bare Rapier (same colliders, integration parameters
-//! and static obstacles, each robot driven at its top speed towards its first goal, no logic),
+//! and static obstacles, each robot driven at its top speed towards its first goal, no logic;
+//! the two run in alternating blocks of 50 steps, so both see the same load of the machine),
 //! their ratio, simulated seconds per wall second with all logic, and the process's peak
 //! resident memory (`VmHWM` of `/proc/self/status`, after each team; teams run smallest first).
 //!
@@ -220,52 +221,54 @@ fn cpu_s(wall0: Instant) -> f64 {
         .map_or_else(|| wall0.elapsed().as_secs_f64(), |ns| ns * 1e-9)
 }
 
-/// Runs `step` up to `steps` times, until `budget_s` of wall time, or until it returns
-/// `false`; returns (steps run, CPU seconds of this thread spent).
-fn time_steps(steps: u64, budget_s: f64, mut step: impl FnMut() -> bool) -> (u64, f64) {
+/// Steps per measured block: the logic and bare Rapier run in alternating blocks of this
+/// many steps, so both see the same load of a shared machine.
+const BLOCK_STEPS: u64 = 50;
+
+/// Steps run and CPU seconds spent.
+type Timed = (u64, f64);
+
+/// Runs `logic` and `bare` alternately, [`BLOCK_STEPS`] at a time, each up to `steps` times,
+/// until `budget_s` of wall time, or until `logic` returns `false`; returns the steps run
+/// and CPU seconds of this thread spent by each.
+fn time_steps(
+    steps: u64,
+    budget_s: f64,
+    mut logic: impl FnMut() -> bool,
+    mut bare: impl FnMut(),
+) -> (Timed, Timed) {
     let t0 = Instant::now();
-    let c0 = cpu_s(t0);
-    let mut done = 0;
-    while done < steps {
-        let go_on = step();
-        done += 1;
-        if !go_on || t0.elapsed().as_secs_f64() > budget_s {
-            break;
+    let (mut logic_done, mut logic_s, mut bare_done, mut bare_s) = (0, 0.0, 0, 0.0);
+    let mut go_on = true;
+    while go_on && logic_done < steps && t0.elapsed().as_secs_f64() <= budget_s {
+        let block = BLOCK_STEPS.min(steps - logic_done);
+        let c0 = cpu_s(t0);
+        for _ in 0..block {
+            go_on = logic();
+            logic_done += 1;
+            if !go_on {
+                break;
+            }
         }
+        let c1 = cpu_s(t0);
+        for _ in 0..block {
+            bare();
+        }
+        bare_done += block;
+        let c2 = cpu_s(t0);
+        logic_s += c1 - c0;
+        bare_s += c2 - c1;
     }
-    let cpu = cpu_s(t0) - c0;
     // The kernel adds a running thread's CPU time at scheduler ticks: a measurement shorter
     // than a tick can read 0, then the wall time stands in.
-    (
-        done,
-        if cpu > 0.0 {
-            cpu
-        } else {
-            t0.elapsed().as_secs_f64()
-        },
-    )
+    let wall = t0.elapsed().as_secs_f64();
+    let or_wall = |s: f64| if s > 0.0 { s } else { wall };
+    ((logic_done, or_wall(logic_s)), (bare_done, or_wall(bare_s)))
 }
 
-/// Steps per second of the full simulation of `s`. Errors (one line): the simulation does
-/// not build (an unknown `--method`) or a step fails.
-fn with_logic(s: &Scenario, o: &Options) -> Result<(u64, f64), String> {
-    let mut sim = Simulation::builder(s)
-        .method_named(&o.method)
-        .trial(0)
-        .duration_s(1e5)
-        .build()
-        .map_err(|e| e.to_string())?;
-    let mut failed = None;
-    let timed = time_steps(o.steps, o.budget_s, || {
-        failed = sim.step().err();
-        failed.is_none()
-    });
-    failed.map_or(Ok(timed), |e| Err(format!("step {}: {e}", timed.0)))
-}
-
-/// Steps per second of the same bodies in bare Rapier, each robot moving at its top speed
-/// towards its first task's goal (ground) or search-area centre (aerial).
-fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
+/// The same bodies in bare Rapier, each robot moving at its top speed towards its first
+/// task's goal (ground) or search-area centre (aerial).
+fn bare_scene(s: &Scenario) -> PhysicsScene {
     let mut scene = PhysicsScene::new(s);
     for (id, r) in s.robots.iter().enumerate() {
         let kind = &s.kinds[r.kind];
@@ -278,10 +281,31 @@ fn bare(s: &Scenario, o: &Options) -> (u64, f64) {
         let body = &mut scene.physics.bodies[scene.robot_bodies[id]];
         body.set_linvel(v.normalize_or_zero() * kind.max_speed_m_per_s as f32, true);
     }
-    time_steps(o.steps, o.budget_s, || {
-        scene.step();
-        true
-    })
+    scene
+}
+
+/// Steps and CPU seconds of the full simulation of `s` and of its bodies in bare Rapier, run
+/// in alternating blocks. Errors (one line): the simulation does not build (an unknown
+/// `--method`) or a step fails.
+fn run_both(s: &Scenario, o: &Options) -> Result<(Timed, Timed), String> {
+    let mut sim = Simulation::builder(s)
+        .method_named(&o.method)
+        .trial(0)
+        .duration_s(1e5)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let mut scene = bare_scene(s);
+    let mut failed = None;
+    let timed = time_steps(
+        o.steps,
+        o.budget_s,
+        || {
+            failed = sim.step().err();
+            failed.is_none()
+        },
+        || scene.step(),
+    );
+    failed.map_or(Ok(timed), |e| Err(format!("step {}: {e}", timed.0.0)))
 }
 
 /// One measured team: robots, steps per CPU second with all logic and with bare Rapier, step
@@ -296,8 +320,7 @@ struct Row {
 /// Builds the team of `n` and measures it. Errors: as [`team`] and [`with_logic`].
 fn measure(n: usize, o: &Options) -> Result<Row, String> {
     let s = team(n, &o.base)?;
-    let (ls, lw) = with_logic(&s, o)?;
-    let (bs, bw) = bare(&s, o);
+    let ((ls, lw), (bs, bw)) = run_both(&s, o)?;
     Ok(Row {
         robots: n,
         logic: ls as f64 / lw,

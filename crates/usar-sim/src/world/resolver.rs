@@ -36,7 +36,7 @@ use parry2d::math::Vector as Vec2;
 
 use super::conflicts::ConflictGraph;
 use super::navigation::ClearanceGrid;
-use super::neighbour_lists::NeighbourLists;
+use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
 use crate::scenario::{CollisionParams, HoldRule, Locomotion};
 
@@ -231,6 +231,14 @@ impl Resolver {
             deadlocked_lists: 0,
             largest_list: 0,
         }
+    }
+
+    /// The resolver for a run every `control_steps` steps (`sim.control_period_s`): the same
+    /// decisions, with its neighbour lists' skin for that period (0.5 m per step of the period,
+    /// at most 1.5 m: robots move farther between two runs).
+    pub fn for_control_steps(mut self, control_steps: u64) -> Self {
+        self.neighbour_lists = NeighbourLists::with_skin(skin_for_control_steps(control_steps));
+        self
     }
 
     /// Lists found deadlocked (and rotated) by the last [`Resolver::resolve`].
@@ -1094,7 +1102,8 @@ mod tests {
         /// On random crowds the resolver with the neighbour index decides exactly as with the
         /// all-pairs scan ([`AllRobots`]): the same lists, heads, deadlocks and steered
         /// velocities, step after step (robots drift by their commands between steps), under
-        /// both hold rules.
+        /// both hold rules, with the skin of one step per control period and the 1.5 m skin of
+        /// longer periods.
         #[test]
         fn the_index_decides_as_the_all_pairs_scan(
             crowd in proptest::collection::vec(random_robot(), 2..150),
@@ -1105,6 +1114,7 @@ mod tests {
             let mut inputs = crowd;
             let rule = if crowd_rule { yield_params() } else { params() };
             let mut with_index = Resolver::new(rule, n);
+            let mut wide_skin = Resolver::new(rule, n).for_control_steps(5);
             let mut all_pairs = Resolver::new(rule, n);
             let g = ClearanceGrid::build(
                 &Arena {
@@ -1120,8 +1130,10 @@ mod tests {
                 let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
                 ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
                 with_index.resolve(&inputs, &ix, 0.25);
+                wide_skin.resolve(&inputs, &ix, 0.25);
                 all_pairs.resolve(&inputs, &AllRobots(n), 0.25);
                 proptest::prop_assert_eq!(with_index.decisions(), all_pairs.decisions());
+                proptest::prop_assert_eq!(wide_skin.decisions(), all_pairs.decisions());
                 proptest::prop_assert_eq!(with_index.largest_list(), all_pairs.largest_list());
                 proptest::prop_assert_eq!(
                     with_index.deadlocked_lists(),
@@ -1135,7 +1147,9 @@ mod tests {
                     let infl = (inputs[i].layer == Locomotion::Ground).then_some(0.45);
                     let a = with_index.steer(&inputs, i, &g, infl);
                     let b = all_pairs.steer(&inputs, i, &g, infl);
+                    let c = wide_skin.steer(&inputs, i, &g, infl);
                     proptest::prop_assert_eq!(a, b, "step {} robot {}", step, i);
+                    proptest::prop_assert_eq!(c, b, "step {} robot {} (1.5 m skin)", step, i);
                     commands[i] = a.unwrap_or(Vec2::ZERO);
                 }
                 // Drifts of up to about 1 m (the neighbour lists rebuilt every step) or 8 cm

@@ -119,7 +119,8 @@ impl World {
             scene,
             grid,
             planner: PathPlanner::new(),
-            resolver: Resolver::new(s.collision, nav.len()),
+            resolver: Resolver::new(s.collision, nav.len())
+                .for_control_steps(s.sim.control_steps()),
             neighbours,
             nav,
             robots,
