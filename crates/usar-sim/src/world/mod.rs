@@ -61,4 +61,4 @@ pub use path_following::{
 };
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use step::MOVED_TOLERANCE_M;
-pub use world::{World, WorldStats};
+pub use world::{CLEARANCE_CAP_MARGIN_M, World, WorldStats};
