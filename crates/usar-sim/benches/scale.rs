@@ -8,7 +8,7 @@
 //!
 //! A team of `n` is [`BASE`] with its kinds' counts (and per-task quotas) scaled to `n`; 12
 //! robots is `scenarios/paper.ron` itself. Prints one table in one run. Rates are per CPU
-//! second of the stepping thread (`/proc/thread-self/schedstat`), so other load on a shared
+//! second of the stepping thread (`clock_gettime`'s thread CPU clock), so other load on a shared
 //! machine does not count.
 //!
 //! Run in release: `cargo bench -p usar-sim --bench scale` (about a minute), or
@@ -211,14 +211,12 @@ fn peak_rss_mib() -> f64 {
         .map_or(0.0, |kb| kb / 1024.0)
 }
 
-/// CPU time of this thread so far, seconds: the first field of `/proc/thread-self/schedstat`
-/// (nanoseconds on a CPU), so other load on a shared machine does not count; wall time where
-/// that file is missing.
-fn cpu_s(wall0: Instant) -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or_else(|| wall0.elapsed().as_secs_f64(), |ns| ns * 1e-9)
+/// CPU time of this thread so far, seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, exact
+/// to the nanosecond: `/proc/thread-self/schedstat` moves only at scheduler ticks, 4 ms
+/// here), so other load on a shared machine does not count.
+fn cpu_s() -> f64 {
+    let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
 
 /// Steps per measured block: the logic and bare Rapier run in alternating blocks of this
@@ -242,7 +240,7 @@ fn time_steps(
     let mut go_on = true;
     while go_on && logic_done < steps && t0.elapsed().as_secs_f64() <= budget_s {
         let block = BLOCK_STEPS.min(steps - logic_done);
-        let c0 = cpu_s(t0);
+        let c0 = cpu_s();
         for _ in 0..block {
             go_on = logic();
             logic_done += 1;
@@ -250,20 +248,16 @@ fn time_steps(
                 break;
             }
         }
-        let c1 = cpu_s(t0);
+        let c1 = cpu_s();
         for _ in 0..block {
             bare();
         }
         bare_done += block;
-        let c2 = cpu_s(t0);
+        let c2 = cpu_s();
         logic_s += c1 - c0;
         bare_s += c2 - c1;
     }
-    // The kernel adds a running thread's CPU time at scheduler ticks: a measurement shorter
-    // than a tick can read 0, then the wall time stands in.
-    let wall = t0.elapsed().as_secs_f64();
-    let or_wall = |s: f64| if s > 0.0 { s } else { wall };
-    ((logic_done, or_wall(logic_s)), (bare_done, or_wall(bare_s)))
+    ((logic_done, logic_s), (bare_done, bare_s))
 }
 
 /// The same bodies in bare Rapier, each robot moving at its top speed towards its first
