@@ -57,7 +57,8 @@ mod world;
 
 pub use error::{NavError, WorldError};
 pub use path_following::{
-    CORNER_PASS_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M, STALL_PROGRESS_M, STALL_REPLAN_S,
+    CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
+    STALL_PROGRESS_M, STALL_REPLAN_S,
 };
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use step::MOVED_TOLERANCE_M;

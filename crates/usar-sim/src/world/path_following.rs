@@ -32,6 +32,10 @@ pub const CORNER_PASS_M: f32 = 2.0;
 pub const STALL_REPLAN_S: f64 = 3.0;
 /// Progress that restarts a ground robot's no-progress clock (see [`STALL_REPLAN_S`]), metres.
 pub const STALL_PROGRESS_M: f32 = 0.05;
+/// A detour first plans only to its rejoin point: the point of the robot's path this far
+/// beyond the farthest standing robot it goes round (path length from the robot, at least the
+/// straight distance to that robot's disc rim plus this), metres; see [`World::detour`].
+pub const DETOUR_REJOIN_BEYOND_M: f32 = 1.0;
 
 impl World {
     /// Inflation of robot `id`'s line-of-sight checks while following its path: body radius +
@@ -145,18 +149,71 @@ impl World {
         nav.progress_step = steps;
     }
 
-    /// Re-plans ground robot `id` from where it stands to its requested goal around the
-    /// robots of its layer standing still within its sensing range, or within its body radius
-    /// plus theirs plus its planning inflation whatever its sensing (no goal, goal reached, or
-    /// no intended motion; under `collision.hold_rule: Yield` also held or blocked at the last
-    /// step), each kept out to its body radius plus the robot's planning inflation
-    /// ([`super::navigation::PathPlanner::plan_around`]). On failure the path is kept.
-    /// Robots are found through the neighbour index (`O(robots nearby)`). Allocates nothing
-    /// once the scratch buffers have grown.
+    /// Re-plans ground robot `id` around the robots of its layer standing still within its
+    /// sensing range, or within its body radius plus theirs plus its planning inflation
+    /// whatever its sensing (no goal, goal reached, or no intended motion; under
+    /// `collision.hold_rule: Yield` also held or blocked at the last step), each kept out to
+    /// its body radius plus the robot's planning inflation
+    /// ([`super::navigation::PathPlanner::plan_around`]). A local detour first: from where it
+    /// stands to its path's point [`DETOUR_REJOIN_BEYOND_M`] beyond the farthest of those
+    /// robots ([`World::rejoin_point`]), then on along the rest of its path. Where the path
+    /// ends before such a point, or no local detour exists, it re-plans all the way to its
+    /// requested goal around them. On failure the path is kept. Robots are found through the
+    /// neighbour index (`O(robots nearby)`). Allocates nothing once the scratch buffers have
+    /// grown.
     fn detour(&mut self, id: usize) {
         let Some(requested) = self.nav[id].requested else {
             return;
         };
+        self.collect_standing(id);
+        if self.standing.is_empty() {
+            return;
+        }
+        let infl = self.plan_inflation(id);
+        let from = self.nav[id].pos;
+        if let Some((rejoin, next)) = self.rejoin_point(id) {
+            let query = PlanQuery {
+                from,
+                to: rejoin,
+                inflation_m: infl,
+            };
+            let found = self.planner.plan_around(
+                &self.grid,
+                self.arena,
+                query,
+                &self.standing,
+                &mut self.scratch,
+            );
+            if found.is_ok() {
+                let nav = &mut self.nav[id];
+                self.scratch.extend_from_slice(&nav.path[next..]);
+                std::mem::swap(&mut nav.path, &mut self.scratch);
+                nav.wp = 0;
+                nav.best_remaining = nav.remaining();
+                self.robots[id].counters.replans += 1;
+                return;
+            }
+        }
+        let query = PlanQuery {
+            from,
+            to: requested,
+            inflation_m: infl,
+        };
+        let found = self.planner.plan_around(
+            &self.grid,
+            self.arena,
+            query,
+            &self.standing,
+            &mut self.scratch,
+        );
+        if let Ok(eff) = found {
+            self.take_scratch_path(id, eff);
+        }
+    }
+
+    /// Fills `self.standing` with the robots ground robot `id`'s detour goes round (see
+    /// [`World::detour`]), in id order.
+    fn collect_standing(&mut self, id: usize) {
         let infl = self.plan_inflation(id);
         let me = &self.nav[id];
         let range = me.sensing * self.robots[id].sensing_factor as f32;
@@ -187,24 +244,42 @@ impl World {
                 });
             }
         }
-        if self.standing.is_empty() {
-            return;
+    }
+
+    /// Where robot `id`'s local detour rejoins its path: the first point along the path (from
+    /// the robot through its remaining waypoints) at least [`DETOUR_REJOIN_BEYOND_M`] beyond
+    /// the farthest rim of `self.standing` (path length from the robot) and outside every
+    /// standing disc, with the index of the first waypoint after it; `None` when the path
+    /// ends before such a point (the goal itself is then what a detour plans to).
+    fn rejoin_point(&self, id: usize) -> Option<(Vec2, usize)> {
+        let nav = &self.nav[id];
+        let beyond = self
+            .standing
+            .iter()
+            .map(|d| (d.center - nav.pos).length() + d.radius_m)
+            .fold(0.0f32, f32::max)
+            + DETOUR_REJOIN_BEYOND_M;
+        let clear = |p: Vec2| !self.standing.iter().any(|d| d.contains(p));
+        let mut at = nav.pos;
+        let mut walked = 0.0f32;
+        // The farthest stretch walked before the point is taken: it must lie `beyond` away
+        // and clear of the discs; each metre further is tried while a disc holds it.
+        let mut want = beyond;
+        for k in nav.wp..nav.path.len() {
+            let next = nav.path[k];
+            let leg = (next - at).length();
+            while walked + leg > want {
+                let p = at + (next - at) * ((want - walked) / leg);
+                if clear(p) {
+                    // The last waypoint is the goal: a point on the last leg rejoins it.
+                    return Some((p, k));
+                }
+                want += DETOUR_REJOIN_BEYOND_M;
+            }
+            walked += leg;
+            at = next;
         }
-        let query = PlanQuery {
-            from: me.pos,
-            to: requested,
-            inflation_m: infl,
-        };
-        let found = self.planner.plan_around(
-            &self.grid,
-            self.arena,
-            query,
-            &self.standing,
-            &mut self.scratch,
-        );
-        if let Ok(eff) = found {
-            self.take_scratch_path(id, eff);
-        }
+        None
     }
 
     /// Advances robot `id`'s waypoint past the corners it has passed: a corner is passed when
@@ -248,5 +323,106 @@ impl World {
             speed = speed.min(dist / self.control_period_s() as f32);
         }
         to_target * (speed / dist)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::{self, PointM, Scenario};
+
+    /// `scenarios/corridor.ron` (24 m x 3.4 m, no debris) with one robot per end: robot 0 at
+    /// the west end, robot 1 at the east end.
+    fn corridor() -> Scenario {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
+        let src = std::fs::read_to_string(path).expect("corridor.ron");
+        let mut spec = scenario::parse_spec(&src, path).expect("parses");
+        for (kind, task) in [(0, "easy"), (1, "hard")] {
+            spec.kinds[kind].count = 1;
+            spec.kinds[kind].quota.0.insert(task.into(), 1);
+        }
+        spec.validate(path).expect("valid")
+    }
+
+    /// Shortest distance from `c` to the segment `a`-`b`.
+    fn to_segment(c: Vec2, a: Vec2, b: Vec2) -> f32 {
+        let d = b - a;
+        let t = ((c - a).dot(d) / d.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+        (a + d * t - c).length()
+    }
+
+    /// A world where robot 0 drives east from (2, 1.7) to `goal` and robot 1 stands at
+    /// `parked`; robot 0's path and goal before any detour.
+    fn parked_in_the_way(goal: PointM, parked: PointM) -> (World, Vec<Vec2>, Option<Vec2>) {
+        let s = corridor();
+        let mut w = World::new(&s);
+        w.teleport(0, PointM::new(2.0, 1.7)).expect("in the arena");
+        w.teleport(1, parked).expect("in the arena");
+        w.set_goal(0, Some(goal)).expect("plans");
+        let nav = &w.nav[0];
+        let (path, goal) = (nav.path.clone(), nav.goal);
+        (w, path, goal)
+    }
+
+    /// Every leg of robot 0's path, from where it stands, keeps out of robot 1's keep-out disc
+    /// (its radius plus robot 0's planning inflation, less 1 mm).
+    fn clear_of_robot_1(w: &World) {
+        let keep_out = w.nav[1].radius + w.plan_inflation(0) - 1e-3;
+        let mut at = w.nav[0].pos;
+        for &p in &w.nav[0].path[w.nav[0].wp..] {
+            let d = to_segment(w.nav[1].pos, at, p);
+            assert!(d >= keep_out, "leg {at:?}-{p:?} passes {d} m from robot 1");
+            at = p;
+        }
+    }
+
+    #[test]
+    fn a_local_detour_rejoins_the_path_beyond_the_standing_robot() {
+        // Robot 1 stands 1.5 m ahead, 0.7 m right of robot 0's straight path to the east end
+        // (within robot 0's 2 m sensing range).
+        let (mut w, before, goal) =
+            parked_in_the_way(PointM::new(22.5, 1.7), PointM::new(3.5, 1.0));
+        assert_eq!(before.len(), 1, "a straight corridor path: {before:?}");
+        w.detour(0);
+        let nav = &w.nav[0];
+        assert_eq!(nav.goal, goal, "a local detour keeps the goal");
+        assert_eq!(nav.path.last(), before.last(), "and the rest of the path");
+        assert!(nav.path.len() >= 2, "{:?}", nav.path);
+        assert_eq!(w.robots[0].counters.replans, 1);
+        // It rejoins the straight path (y = 1.7) at least 1 m beyond robot 1's disc rim,
+        // measured along the path, and not much farther.
+        let rejoin = nav.path[nav.path.len() - 2];
+        let rim =
+            (w.nav[1].pos - Vec2::new(2.0, 1.7)).length() + w.nav[1].radius + w.plan_inflation(0);
+        let along = rejoin.x - 2.0;
+        assert!(
+            along >= rim + DETOUR_REJOIN_BEYOND_M - 0.3 && along <= rim + 3.0,
+            "rejoins at {rejoin:?}, {along} m along; rim {rim} m"
+        );
+        assert!((rejoin.y - 1.7).abs() <= 0.3, "{rejoin:?}");
+        clear_of_robot_1(&w);
+    }
+
+    impl World {
+        /// [`World::rejoin_point`] after collecting the standing robots, as a detour does.
+        fn rejoin_point_for_test(&mut self, id: usize) -> Option<(Vec2, usize)> {
+            self.collect_standing(id);
+            self.rejoin_point(id)
+        }
+    }
+
+    #[test]
+    fn a_detour_near_the_goal_plans_to_the_goal() {
+        // Robot 1 stands 1.5 m before the goal: no point of the path lies 1 m beyond its rim.
+        let goal = PointM::new(5.0, 1.7);
+        let (mut w, _, eff) = parked_in_the_way(goal, PointM::new(3.5, 1.0));
+        let s = w.nav[0].pos;
+        assert!((s - Vec2::new(2.0, 1.7)).length() < 1e-6);
+        assert_eq!(w.rejoin_point_for_test(0), None);
+        w.detour(0);
+        let nav = &w.nav[0];
+        assert_eq!(nav.goal, eff, "the same goal, planned afresh");
+        assert!(nav.path.len() >= 2, "a path round robot 1: {:?}", nav.path);
+        clear_of_robot_1(&w);
     }
 }
