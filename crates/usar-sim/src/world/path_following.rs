@@ -169,46 +169,37 @@ impl World {
         if self.standing.is_empty() {
             return;
         }
-        let infl = self.plan_inflation(id);
-        let from = self.nav[id].pos;
-        if let Some((rejoin, next)) = self.rejoin_point(id) {
-            let query = PlanQuery {
-                from,
-                to: rejoin,
-                inflation_m: infl,
-            };
-            let found = self.planner.plan_around(
-                &self.grid,
-                self.arena,
-                query,
-                &self.standing,
-                &mut self.scratch,
-            );
-            if found.is_ok() {
-                let nav = &mut self.nav[id];
-                self.scratch.extend_from_slice(&nav.path[next..]);
-                std::mem::swap(&mut nav.path, &mut self.scratch);
-                nav.wp = 0;
-                nav.best_remaining = nav.remaining();
-                self.robots[id].counters.replans += 1;
-                return;
-            }
+        if let Some((rejoin, next)) = self.rejoin_point(id)
+            && self.plan_detour(id, rejoin).is_ok()
+        {
+            let nav = &mut self.nav[id];
+            self.scratch.extend_from_slice(&nav.path[next..]);
+            std::mem::swap(&mut nav.path, &mut self.scratch);
+            nav.wp = 0;
+            nav.best_remaining = nav.remaining();
+            self.robots[id].counters.replans += 1;
+            return;
         }
+        if let Ok(eff) = self.plan_detour(id, requested) {
+            self.take_scratch_path(id, eff);
+        }
+    }
+
+    /// Plans robot `id` from where it stands to `to` round `self.standing` into the scratch
+    /// buffer ([`super::navigation::PathPlanner::plan_around`]); returns the effective goal.
+    fn plan_detour(&mut self, id: usize, to: Vec2) -> Result<Vec2, super::NavError> {
         let query = PlanQuery {
-            from,
-            to: requested,
-            inflation_m: infl,
+            from: self.nav[id].pos,
+            to,
+            inflation_m: self.plan_inflation(id),
         };
-        let found = self.planner.plan_around(
+        self.planner.plan_around(
             &self.grid,
             self.arena,
             query,
             &self.standing,
             &mut self.scratch,
-        );
-        if let Ok(eff) = found {
-            self.take_scratch_path(id, eff);
-        }
+        )
     }
 
     /// Fills `self.standing` with the robots ground robot `id`'s detour goes round (see
