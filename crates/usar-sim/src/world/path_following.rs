@@ -46,8 +46,9 @@ impl World {
 
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
     /// once it is reached; marks the goal reached within its tolerance, by default
-    /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]).
-    pub(super) fn update_intent(&mut self, id: usize) {
+    /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]); a ground robot
+    /// also checks its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`]).
+    pub(super) fn update_intent(&mut self, id: usize, check_due: bool) {
         let nav = &mut self.nav[id];
         nav.intent = Vec2::ZERO;
         let Some(goal) = nav.goal else {
@@ -62,9 +63,7 @@ impl World {
         }
         if nav.layer == Locomotion::Ground {
             self.watch_progress(id);
-            let k = self.control_steps;
-            let every = (PATH_CHECK_INTERVAL_STEPS / k).max(1);
-            if (self.stats.steps / k + id as u64).is_multiple_of(every) {
+            if check_due {
                 self.check_path(id);
             }
         }

@@ -66,6 +66,13 @@ pub struct World {
     pub(super) dt: f64,
     /// Steps per control period (`sim.control_period_s`, see [`World::control_steps`]), >= 1.
     pub(super) control_steps: u64,
+    /// Index of the next control step (a multiple of `control_steps`).
+    pub(super) next_control_step: u64,
+    /// Control steps taken before the current one.
+    pub(super) control_ticks: u64,
+    /// A ground robot checks its path every this many control steps (see
+    /// [`super::PATH_CHECK_INTERVAL_STEPS`]), >= 1.
+    pub(super) path_check_every: u64,
     /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
     /// every control step and after a teleport, not after the steps in between.
     pub(super) index_fresh: bool,
@@ -142,6 +149,9 @@ impl World {
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
             control_steps: s.sim.control_steps(),
+            next_control_step: 0,
+            control_ticks: 0,
+            path_check_every: (super::PATH_CHECK_INTERVAL_STEPS / s.sim.control_steps()).max(1),
             index_fresh: true,
             collision: s.collision,
             navigation: s.navigation,
@@ -430,7 +440,7 @@ impl World {
     /// robot's commanded velocity. The mission runs its decisions before a control step and
     /// its reviews (detection, phases) after the step before one.
     pub fn is_control_step(&self) -> bool {
-        self.stats.steps.is_multiple_of(self.control_steps)
+        self.stats.steps == self.next_control_step
     }
 
     /// World-level totals.
