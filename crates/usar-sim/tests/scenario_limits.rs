@@ -603,3 +603,24 @@ fn control_periods_of_whole_steps_are_accepted_and_run() {
     assert_eq!(s.sim.control_period_s, None);
     assert_eq!(s.sim.control_steps(), 1);
 }
+
+// A start touching debris is accepted as two touching starts are (`START_TOLERANCE`).
+
+#[test]
+fn a_start_touching_debris_is_accepted_and_one_overlapping_it_is_not() {
+    let debris = "        Circle(center_m: (21.0, 24.0), radius_m: 1.5),\n";
+    // Carrier 0 starts at (32.5, 3.0): a disc of 1.1 m at (31.0, 3.0) touches its 0.4 m body;
+    // in floats its centre is 0.3999999999999999 m from the disc.
+    let touching = paper_with(
+        debris,
+        &format!("{debris}        Circle(center_m: (31.0, 3.0), radius_m: 1.1),\n"),
+    );
+    let s = scenario::from_str(&touching, "t.ron").unwrap_or_else(|e| panic!("{e}"));
+    short_run(&s);
+    let overlapping = paper_with(
+        debris,
+        &format!("{debris}        Circle(center_m: (31.0, 3.0), radius_m: 1.1001),\n"),
+    );
+    let e = rejected(&overlapping, "kinds[0].starts");
+    assert!(e.to_string().contains("overlaps debris"), "{e}");
+}

@@ -694,14 +694,16 @@ fn protected_places(
     out
 }
 
-/// Relative tolerance of the start spacing rule: two starts at least `(1 - START_TOLERANCE)`
-/// times the sum of their body radii apart are accepted, so starts placed exactly one body
-/// apart (`0.8` m for two 0.4 m radii, which float rounding of the positions may turn into
-/// 0.79999999999999716 m) pass.
+/// Relative tolerance of the start rules: two starts at least `(1 - START_TOLERANCE)` times
+/// the sum of their body radii apart are accepted, so starts placed exactly one body apart
+/// (`0.8` m for two 0.4 m radii, which float rounding of the positions may turn into
+/// 0.79999999999999716 m) pass; likewise a ground robot's start at `(1 - START_TOLERANCE)`
+/// times its body radius from debris (a start touching a disc of radius 1.1 m at 1.5 m from
+/// its centre is 0.3999999999999999 m from it).
 pub const START_TOLERANCE: f64 = 1e-9;
 
 /// Ground robots' starts clear of all debris by their body radius; starts of robots on the
-/// same layer at least the sum of their radii apart (within [`START_TOLERANCE`]).
+/// same layer at least the sum of their radii apart (both within [`START_TOLERANCE`]).
 fn check_starts(
     ctx: &Ctx<'_>,
     starts: &[(Start, RobotStart)],
@@ -718,7 +720,7 @@ fn check_starts(
         for i in index.near(p, p, kind.body_radius_m) {
             let (d, name) = &debris[i];
             let dist = d.distance_to_point(&r.start_in_world);
-            if dist < kind.body_radius_m {
+            if dist < kind.body_radius_m * (1.0 - START_TOLERANCE) {
                 return Err(ctx.err(
                     s.path.clone(),
                     format!(
