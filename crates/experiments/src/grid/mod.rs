@@ -182,12 +182,19 @@ fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> 
     v.path
         .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
         .map_err(|e| anyhow!("--vary {}: {e}", brief(arg)))?;
-    let mut specs: Vec<ScenarioSpec> = Vec::with_capacity(v.values.len());
+    // Each value's spec, and its validated scenario where the value validates on its own (a
+    // value valid only with another --vary's value is compared by its spec alone): two
+    // spellings of one scenario (`Row(...)` and the `List([...])` it expands to) are one.
+    let mut seen: Vec<(ScenarioSpec, Option<Scenario>)> = Vec::with_capacity(v.values.len());
     for (k, value) in v.values.iter().enumerate() {
         let o = v.at(k);
         let spec = apply_overrides(base, std::slice::from_ref(&o))
             .map_err(|(_, e)| anyhow!("--vary {}: {e}", o.brief()))?;
-        if let Some(j) = specs.iter().position(|s| *s == spec) {
+        let scenario = spec.validate("--vary").ok();
+        let same = |(s, sc): &(ScenarioSpec, Option<Scenario>)| {
+            *s == spec || (sc.is_some() && *sc == scenario)
+        };
+        if let Some(j) = seen.iter().position(same) {
             bail!(
                 "--vary {}: values {} and {} give the same scenario",
                 brief(arg),
@@ -195,7 +202,7 @@ fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> 
                 brief(&value.text)
             );
         }
-        specs.push(spec);
+        seen.push((spec, scenario));
     }
     Ok(())
 }
@@ -348,6 +355,16 @@ mod tests {
         assert_eq!(
             err(&["mission.duration_s=60,60.0"]),
             "--vary mission.duration_s=60,60.0: values 60 and 60.0 give the same scenario"
+        );
+        // Two spellings of the same starts: the Row and the List it expands to.
+        assert_eq!(
+            err(&[
+                "kinds[0].starts=Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0)),List([(32.5, 3.0), (35.5, 3.0), (38.5, 3.0), (41.5, 3.0), (44.5, 3.0), (47.5, 3.0)])"
+            ]),
+            "--vary kinds[0].starts=Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0)... (146 \
+             characters): values Row(first_m: (32.5, 3.0), step_m: (3.0, 0.0)) and List([(32.5, \
+             3.0), (35.5, 3.0), (38.5, 3.0), (41.5, 3.0), (4... (84 characters) give the same \
+             scenario"
         );
         assert_eq!(
             err(&["mission.duration_s"]),
