@@ -42,6 +42,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
 }
 
+/// Whether [`write_atomic`] would write `path` (a regular file, nothing yet, a link to either,
+/// a FIFO or a character device), without writing anything.
+///
+/// # Errors
+/// As [`write_atomic`] before it writes: a folder, a block device or a socket, a link loop, or
+/// an I/O error reading what is there.
+pub fn check_writable(path: &Path) -> Result<()> {
+    target_of(path).map(|_| ())
+}
+
 /// How `path` is written.
 enum Target {
     /// A regular file (existing or not), at this path with every link resolved.

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use crate::analysis::Analysis;
-use crate::atomic::write_atomic;
+use crate::atomic::{check_writable, write_atomic};
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid::{Grid, GridCell};
 use crate::grid_outputs::csv::grid_csv;
@@ -29,42 +29,69 @@ use crate::sweep::{SweepConfig, SweepOutcome};
 /// written. `grid_metrics` chooses the metrics of `grid.md` and its figures (ignored without
 /// a grid).
 ///
+/// Every file is made twice: a first pass makes each one and checks that its path can be
+/// written ([`check_writable`]: not a folder, a socket, ...) without writing anything, the
+/// second writes them, each atomically ([`write_atomic`]). So a file that cannot be made or
+/// whose path cannot be written fails the call before any file changes, and the set is never
+/// half old and half new for those reasons; an I/O error during the writes (a full disk) can
+/// still leave the files before it new and the rest old.
+///
 /// # Errors
-/// An I/O error, or a figure plotters fails to draw.
+/// An I/O error, a path that cannot be written, or a figure plotters fails to draw.
 pub fn write_outputs(
     cfg: &SweepConfig,
     outcome: &SweepOutcome,
     analysis: &Analysis,
     grid_metrics: &[Metric],
 ) -> Result<Vec<PathBuf>> {
-    let mut files = Vec::new();
+    let mut check = Staged::Check;
+    make_outputs(cfg, outcome, analysis, grid_metrics, &mut check)?;
+    let mut write = Staged::Write(Vec::new());
+    make_outputs(cfg, outcome, analysis, grid_metrics, &mut write)?;
+    Ok(match write {
+        Staged::Write(files) => files,
+        Staged::Check => Vec::new(),
+    })
+}
+
+/// Makes every output file of the sweep and hands each to `staged`.
+fn make_outputs(
+    cfg: &SweepConfig,
+    outcome: &SweepOutcome,
+    analysis: &Analysis,
+    grid_metrics: &[Metric],
+    staged: &mut Staged,
+) -> Result<()> {
     let Some(grid) = &cfg.grid else {
-        write_cell(&cfg.out_dir, cfg, outcome, analysis, 0, None, &mut files)?;
-        return Ok(files);
+        return write_cell(&cfg.out_dir, cfg, outcome, analysis, 0, None, staged);
     };
     for cell in &grid.cells {
         let dir = cfg.out_dir.join(&cell.dir);
-        write_cell(
-            &dir,
-            cfg,
-            outcome,
-            analysis,
-            cell.index,
-            Some(cell),
-            &mut files,
-        )?;
+        write_cell(&dir, cfg, outcome, analysis, cell.index, Some(cell), staged)?;
         let ron = spec_to_ron(&cell.spec, &scenario_comments(cfg, outcome, cell))?;
-        put(&dir, "scenario.ron", ron.as_bytes(), &mut files)?;
+        put(&dir, "scenario.ron", ron.as_bytes(), staged)?;
     }
-    write_grid(cfg, grid, outcome, analysis, grid_metrics, &mut files)?;
-    Ok(files)
+    write_grid(cfg, grid, outcome, analysis, grid_metrics, staged)
 }
 
-fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut Vec<PathBuf>) -> Result<()> {
+/// What [`write_outputs`]' passes do with each file made.
+enum Staged {
+    /// Check that its path can be written; write nothing.
+    Check,
+    /// Write it; the paths written so far.
+    Write(Vec<PathBuf>),
+}
+
+fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut Staged) -> Result<()> {
     let p = dir.join(name);
-    write_atomic(&p, bytes)?;
-    files.push(p);
-    Ok(())
+    match files {
+        Staged::Check => check_writable(&p),
+        Staged::Write(written) => {
+            write_atomic(&p, bytes)?;
+            written.push(p);
+            Ok(())
+        }
+    }
 }
 
 /// One cell's `trials.csv`, `summary.csv`, figures and `report.md` into `dir`.
@@ -75,7 +102,7 @@ fn write_cell(
     analysis: &Analysis,
     cell: usize,
     grid_cell: Option<&GridCell>,
-    files: &mut Vec<PathBuf>,
+    files: &mut Staged,
 ) -> Result<()> {
     let a = &analysis.cells[cell];
     let results = &outcome.cells[cell].results;
@@ -135,7 +162,7 @@ fn write_grid(
     outcome: &SweepOutcome,
     analysis: &Analysis,
     metrics: &[Metric],
-    files: &mut Vec<PathBuf>,
+    files: &mut Staged,
 ) -> Result<()> {
     let dir = &cfg.out_dir;
     put(

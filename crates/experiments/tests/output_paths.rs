@@ -155,3 +155,51 @@ fn a_resumed_sweep_clears_stale_temporary_files_and_writes_through_links() {
     assert!(table.starts_with("scenario,method,trial,seed,"), "{table}");
     assert_eq!(table.lines().count(), 1 + 4);
 }
+
+#[test]
+fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("sweep");
+    let sweep = |extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            PAPER,
+            "--trials",
+            "1",
+            "--duration",
+            "5",
+            "--methods",
+            "dis",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        args.push("--out");
+        usar(&args, &[&out])
+    };
+    ok(&sweep(&[]));
+    // trials.csv (written first) marked, summary.csv (written after it) replaced by a folder.
+    fs::write(out.join("trials.csv"), "marked\n").unwrap();
+    fs::remove_file(out.join("summary.csv")).unwrap();
+    fs::create_dir(out.join("summary.csv")).unwrap();
+    let o = sweep(&["--resume"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("summary.csv") && err.contains("is a folder"),
+        "{err}"
+    );
+    assert_eq!(
+        fs::read_to_string(out.join("trials.csv")).unwrap(),
+        "marked\n",
+        "trials.csv was rewritten before the sweep found it could not write summary.csv"
+    );
+    // Once the folder is gone, the resume writes every file.
+    fs::remove_dir(out.join("summary.csv")).unwrap();
+    ok(&sweep(&["--resume"]));
+    assert!(
+        fs::read_to_string(out.join("trials.csv"))
+            .unwrap()
+            .starts_with("scenario,")
+    );
+    assert!(out.join("summary.csv").is_file());
+}
