@@ -3,8 +3,9 @@
 //! accounting), the same bodies stepped by bare Rapier (same colliders, integration parameters
 //! and static obstacles, each robot driven at its top speed towards its first goal, no logic;
 //! the two run in alternating blocks of 50 steps, so both see the same load of the machine),
-//! their ratio, simulated seconds per wall second with all logic, and the process's peak
-//! resident memory (`VmHWM` of `/proc/self/status`, after each team; teams run smallest first).
+//! their ratio, simulated seconds per wall second with all logic, the same with the robots'
+//! software run every step for a scenario with a control period (`sim.control_period_s`:
+//! `swarm-1000.ron` decides every 0.1 s), and the process's peak resident memory (`VmHWM` of `/proc/self/status`, after each team; teams run smallest first).
 //!
 //! A team of `n` is [`BASE`] with its kinds' counts (and per-task quotas) scaled to `n`; 12
 //! robots is `scenarios/paper.ron` itself. Prints one table in one run. Rates are per CPU
@@ -303,25 +304,46 @@ fn run_both(s: &Scenario, o: &Options) -> Result<(Timed, Timed), String> {
 }
 
 /// One measured team: robots, steps per CPU second with all logic and with bare Rapier, step
-/// length in seconds.
+/// length in seconds; for a scenario with a control period (`sim.control_period_s`) also the
+/// steps per CPU second with the robots' software run every step, and bare Rapier's rate
+/// measured beside that run.
 struct Row {
     robots: usize,
     logic: f64,
     bare: f64,
     dt_s: f64,
+    every_step: Option<(f64, f64)>,
 }
 
-/// Builds the team of `n` and measures it. Errors: as [`team`] and [`with_logic`].
+/// Steps per CPU second of what [`run_both`] timed (logic, bare).
+fn rates(((ls, lw), (bs, bw)): (Timed, Timed)) -> (f64, f64) {
+    (ls as f64 / lw, bs as f64 / bw)
+}
+
+/// Builds the team of `n` and measures it (and, with a control period, the same team with
+/// its software run every step). Errors: as [`team`] and [`run_both`].
 fn measure(n: usize, o: &Options) -> Result<Row, String> {
     let s = team(n, &o.base)?;
-    let ((ls, lw), (bs, bw)) = run_both(&s, o)?;
+    let (logic, bare) = rates(run_both(&s, o)?);
+    let every_step = match s.sim.control_period_s {
+        Some(_) => {
+            let mut each = s.clone();
+            each.sim.control_period_s = None;
+            Some(rates(run_both(&each, o)?))
+        }
+        None => None,
+    };
     Ok(Row {
         robots: n,
-        logic: ls as f64 / lw,
-        bare: bs as f64 / bw,
+        logic,
+        bare,
         dt_s: s.sim.dt_s.get(),
+        every_step,
     })
 }
+
+/// A curve of the figure: its label, colour and value of a row.
+type Series<'a> = (&'a str, plotters::style::RGBColor, &'a dyn Fn(&Row) -> f64);
 
 /// Draws `rows` as a log-log plot into the SVG file `path`.
 fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
@@ -332,7 +354,11 @@ fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
     let y_max = rows.iter().map(|r| r.bare.max(r.logic)).fold(1.0, f64::max) * 1.5;
     let y_min = rows
         .iter()
-        .map(|r| r.logic.min(r.bare))
+        .map(|r| {
+            r.logic
+                .min(r.bare)
+                .min(r.every_step.map_or(r.logic, |(l, _)| l))
+        })
         .fold(f64::MAX, f64::min)
         * 0.5;
     let mut chart = ChartBuilder::on(&root)
@@ -348,15 +374,24 @@ fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
         .x_label_formatter(&|v| format!("{v:.0}"))
         .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()?;
-    let series = [
-        ("all logic (Simulation::step)", RGBColor(31, 119, 180), true),
-        ("bare Rapier, same bodies", RGBColor(127, 127, 127), false),
+    let every_step = |r: &Row| r.every_step.map_or(r.logic, |(l, _)| l);
+    let series: [Series; 3] = [
+        (
+            "all logic, as the scenario (software every control period)",
+            RGBColor(31, 119, 180),
+            &|r| r.logic,
+        ),
+        (
+            "all logic, software every step",
+            RGBColor(255, 127, 14),
+            &every_step,
+        ),
+        ("bare Rapier, same bodies", RGBColor(127, 127, 127), &|r| {
+            r.bare
+        }),
     ];
-    for (label, colour, logic) in series {
-        let pts: Vec<(f64, f64)> = rows
-            .iter()
-            .map(|r| (r.robots as f64, if logic { r.logic } else { r.bare }))
-            .collect();
+    for (label, colour, value) in series {
+        let pts: Vec<(f64, f64)> = rows.iter().map(|r| (r.robots as f64, value(r))).collect();
         chart
             .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
             .label(label)
@@ -393,17 +428,21 @@ fn main() {
         o.base, o.method, o.steps, o.budget_s
     );
     println!(
-        "| robots | logic steps/s | bare Rapier steps/s | step cost logic/bare | sim-s per wall-s | peak RSS MiB |"
+        "| robots | logic steps/s | bare Rapier steps/s | step cost logic/bare | sim-s per wall-s | software every step: logic steps/s | bare steps/s | logic/bare | peak RSS MiB |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     for &n in &o.teams {
         let row = measure(n, &o).unwrap_or_else(|e| {
             eprintln!("error: {e}");
             std::process::exit(1);
         });
+        let every = row.every_step.map_or_else(
+            || "(no control period) | | |".to_string(),
+            |(l, b)| format!("{l:.0} | {b:.0} | {:.2} |", b / l),
+        );
         println!(
-            "| {n} | {:.0} | {:.0} | {:.2} | {:.1} | {:.0} |",
+            "| {n} | {:.0} | {:.0} | {:.2} | {:.1} | {every} {:.0} |",
             row.logic,
             row.bare,
             row.bare / row.logic,
