@@ -44,6 +44,27 @@ fn check_summarises_the_paper_scenario() {
 }
 
 #[test]
+fn check_gives_the_control_period_where_the_scenario_has_one() {
+    let second_line = |args: &[&str]| {
+        let o = usar(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .lines()
+            .nth(1)
+            .unwrap()
+            .to_string()
+    };
+    let line = second_line(&["check", PAPER, "--set", "sim.control_period_s=Some(0.1)"]);
+    assert!(
+        line.ends_with("; robots decide every 0.1 s (5 steps)"),
+        "{line}"
+    );
+    let line = second_line(&["check", PAPER]);
+    assert!(!line.contains("decide"), "{line}");
+}
+
+#[test]
 fn check_gives_the_trial_length_a_trial_runs() {
     let summary = |duration: &str| {
         let o = usar(["check", PAPER, "--set", duration]);

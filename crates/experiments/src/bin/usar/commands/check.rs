@@ -153,9 +153,17 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
             number_text(duration_s)
         )
     };
+    let control = match s.sim.control_period_s {
+        Some(p) => format!(
+            "; robots decide every {} s ({} steps)",
+            number_text(p.get()),
+            s.sim.control_steps()
+        ),
+        None => String::new(),
+    };
     writeln!(
         out,
-        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed {}",
+        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed {}{control}",
         s.arena.width_m,
         s.arena.height_m,
         s.arena.wall_thickness_m,
