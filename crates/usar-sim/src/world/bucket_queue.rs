@@ -62,6 +62,13 @@ impl BucketQueue {
         }
     }
 
+    /// Heap memory the queue holds, bytes: the bucket list and every bucket's capacity (a
+    /// bucket keeps the largest capacity it grew to). `O(max_step)`.
+    pub fn heap_bytes(&self) -> usize {
+        let items: usize = self.buckets.iter().map(Vec::capacity).sum();
+        self.buckets.capacity() * size_of::<Vec<u32>>() + items * size_of::<u32>()
+    }
+
     /// Number of items in the queue.
     #[cfg(test)]
     fn len(&self) -> usize {

@@ -67,6 +67,25 @@ impl DistanceField {
         }
     }
 
+    /// Heap memory a field of `grid` holds when made ([`DistanceField::new`]), bytes: a cost
+    /// (4 bytes) and a settled flag (1 byte) per cell, and the open set's bucket list (1,415
+    /// empty buckets). 80 MiB on a grid at the 2^24-cell limit
+    /// ([`crate::scenario::limits::MAX_NAV_CELLS`]).
+    pub fn new_heap_bytes(grid: &ClearanceGrid) -> usize {
+        let (nx, ny) = grid.dims();
+        let cells = nx as usize * ny as usize;
+        cells * (size_of::<u32>() + size_of::<bool>())
+            + (MAX_MOVE_COST as usize + 1) * size_of::<Vec<u32>>()
+    }
+
+    /// Heap memory the field holds now, bytes: [`DistanceField::new_heap_bytes`] plus what
+    /// its open set has grown to (at most a few bytes per cell of the search's frontier).
+    pub fn heap_bytes(&self) -> usize {
+        self.cost.capacity() * size_of::<u32>()
+            + self.settled.capacity() * size_of::<bool>()
+            + self.open.heap_bytes()
+    }
+
     /// Whether this is the field towards cell `goal` for inflation `inflation` metres.
     pub fn is_for(&self, goal: u32, inflation: f32) -> bool {
         self.goal == goal && self.inflation_bits == inflation.to_bits()
@@ -236,6 +255,24 @@ mod tests {
         assert!(!field.descend(&g, from, &mut path));
         assert!(path.is_empty());
         assert!(field.descend(&g, g.cell_index(Vec2::new(5.0, 5.0)), &mut path));
+    }
+
+    /// A new field holds what `new_heap_bytes` says (plus the one bucket its goal went
+    /// into); a fully expanded one holds more only by its open set's buckets.
+    #[test]
+    fn heap_bytes_count_the_cells_and_the_open_set() {
+        let g = small_grid();
+        let goal = g.cell_index(Vec2::new(1.0, 5.0));
+        let mut field = DistanceField::new(&g, goal, INFL);
+        let made = DistanceField::new_heap_bytes(&g);
+        assert_eq!(made, 24 * 24 * 5 + 1415 * size_of::<Vec<u32>>());
+        let first = field.heap_bytes();
+        assert!((made..=made + 64).contains(&first), "{first} of {made}");
+        // A cell inside the block: never reached, after a full expansion.
+        let blocked = g.cell_index(Vec2::new(4.5, 1.2));
+        assert_eq!(field.cost_from(&g, blocked), None);
+        let full = field.heap_bytes();
+        assert!((first..=made + 24 * 24 * 4 * 8).contains(&full), "{full}");
     }
 
     proptest! {

@@ -13,6 +13,9 @@
 //! - `grid_regions`: the grid's regions per inflation (cells grid moves join), so a search
 //!   between two regions fails without running.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
+//! - `shared_fields`: the planner's shared fields, the most recently used kept within a
+//!   memory budget.
+//! - `plan_cache`: the planner's plan cache, bounded in entries and bytes.
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
@@ -44,10 +47,12 @@ pub mod navigation;
 mod neighbour_lists;
 pub mod neighbours;
 mod path_following;
+mod plan_cache;
 mod planning;
 pub mod radiation;
 pub mod resolver;
 mod robot;
+mod shared_fields;
 mod step;
 #[expect(
     clippy::module_inception,

@@ -8,8 +8,6 @@
 //! plans with `i = body radius + navigation.clearance_m + cell / 2` (the half cell covers points
 //! of a free cell away from its centre).
 
-use std::collections::HashMap;
-
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::StaticObstacle;
@@ -19,6 +17,8 @@ use super::error::NavError;
 use super::grid_astar::GridAstar;
 use super::grid_moves::{MOVES, MoveTable, Moves};
 use super::grid_regions::GridRegions;
+use super::plan_cache::PlanCache;
+use super::shared_fields::SharedFields;
 use crate::scenario::Arena;
 use crate::scenario::in_field;
 
@@ -40,8 +40,12 @@ pub const LOS_SKIP_MARGIN_M: f32 = 1e-3;
 ///
 /// [`MAX_ARENA_SIDE_M`]: crate::scenario::limits::MAX_ARENA_SIDE_M
 pub const LOS_SKIP_REL: f32 = 16.0 * f32::EPSILON;
-/// Most entries the plan cache holds before it is cleared (bounded memory).
-const PLAN_CACHE_CAPACITY: usize = 4096;
+/// Most heap memory a [`PathPlanner`] keeps in shared distance fields between plans, bytes:
+/// 512 MiB, six fields of a grid at the 2^24-cell limit (80 MiB each, 5 bytes a cell), about
+/// 6,700 of an 80 m x 60 m arena at 0.25 m. Past it the least recently used fields are
+/// dropped and made again when next needed, with the same paths
+/// (`docs/world-model.md`, "Shared goals, shared fields").
+pub const SHARED_FIELDS_BUDGET_BYTES: usize = 512 << 20;
 
 /// Per-cell distance to the nearest static obstacle over the arena `[0, W] x [0, H]`.
 #[derive(Debug, Clone)]
@@ -262,27 +266,27 @@ impl ClearanceGrid {
     }
 }
 
-/// Cache key: inflation (f32 bits), start cell, goal cell, whether the goal is shared.
-type PlanKey = (u32, u32, u32, bool);
-
 /// How the planner finds a path to a goal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GoalKind {
     /// A goal of one robot (its start, a rescuee, a sweep waypoint): grid A*.
     Own,
     /// A goal many robots share (a task's goal point, a drop-off, the rest station): descent
-    /// of the goal's [`DistanceField`] for the robot's inflation, computed once and reused.
+    /// of the goal's [`DistanceField`] for the robot's inflation, computed once and reused
+    /// while the planner's field budget keeps it ([`SHARED_FIELDS_BUDGET_BYTES`]).
     Shared,
 }
 
 /// Grid planning with line-of-sight smoothing and a plan cache keyed by (inflation, start cell,
-/// goal cell, goal kind): A* for a robot's own goals, descent of a shared [`DistanceField`]
-/// (one per goal cell and inflation, kept for the planner's life) for shared goals.
-/// Deterministic: a cache hit returns exactly what planning would.
+/// goal cell, goal kind; at most 4,096 entries and 64 MiB, then cleared): A* for a robot's own
+/// goals, descent of a shared [`DistanceField`] (one per goal cell and inflation, the most
+/// recently used kept within [`SHARED_FIELDS_BUDGET_BYTES`]) for shared goals.
+/// Deterministic: a cache hit returns exactly what planning would, and a field dropped and made
+/// again gives the same paths, so neither bound changes a plan.
 #[derive(Debug, Clone, Default)]
 pub struct PathPlanner {
-    cache: HashMap<PlanKey, Result<Vec<u32>, NavError>>,
-    fields: Vec<DistanceField>,
+    cache: PlanCache,
+    fields: SharedFields,
     raw: Vec<u32>,
     discs: Vec<StandingDisc>,
     /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
@@ -417,9 +421,20 @@ impl Endpoints {
 }
 
 impl PathPlanner {
-    /// An empty planner.
+    /// An empty planner that keeps at most [`SHARED_FIELDS_BUDGET_BYTES`] of shared fields.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty planner that keeps at most `budget_bytes` of shared distance fields between
+    /// plans (any value: 0 keeps none, and every plan to a shared goal makes its field
+    /// afresh). A field larger than the budget is still made and used for the plan that asks
+    /// for it, then dropped. The budget changes how often fields are computed, never a plan.
+    pub fn with_field_budget(budget_bytes: usize) -> Self {
+        Self {
+            fields: SharedFields::new(budget_bytes),
+            ..Self::default()
+        }
     }
 
     /// Plans `query` (A* or a shared field, as `kind` says); writes the waypoints (the start
@@ -445,18 +460,20 @@ impl PathPlanner {
         let key = (inflation.to_bits(), start, goal, kind == GoalKind::Shared);
         // Failures are cached too: the grid never changes, so a search that found no path
         // finds none again (it would otherwise scan the whole reachable grid on every retry).
-        if !self.cache.contains_key(&key) {
-            let cells = match kind {
-                GoalKind::Own => self.search_own(grid, start, goal, inflation),
-                GoalKind::Shared => self.descend(grid, start, goal, inflation),
-            };
-            if self.cache.len() >= PLAN_CACHE_CAPACITY {
-                self.cache.clear();
-            }
-            self.cache.insert(key, cells);
+        if let Some(cached) = self.cache.get(&key) {
+            let cells = cached.as_ref().map_err(|e| *e)?;
+            return Ok(ends.write(grid, cells, out));
         }
-        let cells = self.cache[&key].as_ref().map_err(|e| *e)?;
-        Ok(ends.write(grid, cells, out))
+        let planned = match kind {
+            GoalKind::Own => self.search_own(grid, start, goal, inflation),
+            GoalKind::Shared => self.descend(grid, start, goal, inflation),
+        };
+        let written = match &planned {
+            Ok(cells) => Ok(ends.write(grid, cells, out)),
+            Err(e) => Err(*e),
+        };
+        self.cache.insert(key, planned);
+        written
     }
 
     /// A detour: plans like [`PathPlanner::plan`] with A* (never cached, never a shared field)
@@ -510,8 +527,9 @@ impl PathPlanner {
         Ok(ends.write(grid, &cells, out))
     }
 
-    /// Descent of the shared field towards `goal` for `inflation` (created on first use) plus
-    /// smoothing; returns smoothed cell indices from `start` to `goal` (both included).
+    /// Descent of the shared field towards `goal` for `inflation` (made if not kept, see
+    /// [`SharedFields`]) plus smoothing; returns smoothed cell indices from `start` to `goal`
+    /// (both included).
     fn descend(
         &mut self,
         grid: &ClearanceGrid,
@@ -519,14 +537,11 @@ impl PathPlanner {
         goal: u32,
         inflation: f32,
     ) -> Result<Vec<u32>, NavError> {
-        let k = match self.fields.iter().position(|f| f.is_for(goal, inflation)) {
-            Some(k) => k,
-            None => {
-                self.fields.push(DistanceField::new(grid, goal, inflation));
-                self.fields.len() - 1
-            }
-        };
-        if !self.fields[k].descend(grid, start, &mut self.raw) {
+        let raw = &mut self.raw;
+        let found = self
+            .fields
+            .with_field(grid, goal, inflation, |f| f.descend(grid, start, raw));
+        if !found {
             return Err(NavError::NoPath);
         }
         if self.raw.len() < 2 {
@@ -587,9 +602,28 @@ impl PathPlanner {
         self.astar_searches
     }
 
-    /// The shared fields built so far (one per goal cell and inflation).
-    pub fn fields(&self) -> &[DistanceField] {
-        &self.fields
+    /// The shared fields kept now (one per goal cell and inflation, at most
+    /// [`PathPlanner::field_budget_bytes`] of them together), least recently used first.
+    pub fn fields(&self) -> impl ExactSizeIterator<Item = &DistanceField> {
+        self.fields.iter()
+    }
+
+    /// Heap bytes the kept shared fields hold ([`DistanceField::heap_bytes`] summed, as at
+    /// each field's last use): at most [`PathPlanner::field_budget_bytes`] between plans.
+    pub fn field_bytes(&self) -> usize {
+        self.fields.held_bytes()
+    }
+
+    /// The shared fields' budget, bytes ([`SHARED_FIELDS_BUDGET_BYTES`] unless made with
+    /// [`PathPlanner::with_field_budget`]).
+    pub fn field_budget_bytes(&self) -> usize {
+        self.fields.budget_bytes()
+    }
+
+    /// Bytes the plan cache's entries hold (at most 64 MiB): each entry's fixed size plus 4
+    /// bytes per cell of its smoothed plan.
+    pub fn cache_bytes(&self) -> usize {
+        self.cache.bytes()
     }
 }
 
@@ -1178,6 +1212,7 @@ mod tests {
         assert_eq!(a, b);
         assert_eq!(first, second);
         assert_eq!(planner.cache.len(), 1);
+        assert!(planner.cache_bytes() > 0);
     }
 
     /// A robot touching the planner's robot on the straight way to the goal: the detour goes
@@ -1216,5 +1251,131 @@ mod tests {
             (path.last().copied().unwrap() - to).length() < 0.2,
             "{path:?}"
         );
+    }
+
+    /// Shared-goal plans of the queries `(x, y, goal, class)` (start, index into `goals`,
+    /// index into the inflations 0.6 and 0.35 m) by `planner`, with the waypoints.
+    type SharedPlan = (Result<Vec2, NavError>, Vec<Vec2>);
+
+    fn shared_plan(
+        planner: &mut PathPlanner,
+        g: &ClearanceGrid,
+        goal: Vec2,
+        (x, y, class): (f32, f32, usize),
+    ) -> SharedPlan {
+        let q = PlanQuery {
+            from: Vec2::new(x, y),
+            to: goal,
+            inflation_m: [INFL, 0.35][class % 2],
+        };
+        let mut out = Vec::new();
+        let found = planner.plan(g, ARENA, q, GoalKind::Shared, &mut out);
+        (found, out)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// A planner whose field budget keeps no field, one or two and a half (so fields are
+        /// dropped and made again, in every order of use) plans exactly what a planner that
+        /// keeps every field plans, over random debris, goals, starts and two clearance
+        /// classes; between plans its fields never hold more than the budget, as counted
+        /// from the fields themselves.
+        #[test]
+        fn a_field_budget_changes_no_plan_and_holds(
+            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.2), 0..6),
+            goals in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0), 1..6),
+            queries in proptest::collection::vec(
+                (0.0f32..10.0, 0.0f32..10.0, 0usize..6, 0usize..2),
+                1..40,
+            ),
+            halves in proptest::prop_oneof![
+                proptest::strategy::Just(0usize),
+                proptest::strategy::Just(2),
+                proptest::strategy::Just(5),
+            ],
+        ) {
+            let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            let g = grid(&statics);
+            let budget = DistanceField::new_heap_bytes(&g) * halves / 2;
+            let mut small = PathPlanner::with_field_budget(budget);
+            let mut unlimited = PathPlanner::with_field_budget(usize::MAX);
+            proptest::prop_assert_eq!(small.field_budget_bytes(), budget);
+            for &(x, y, k, class) in &queries {
+                let (gx, gy) = goals[k % goals.len()];
+                let goal = Vec2::new(gx, gy);
+                let ours = shared_plan(&mut small, &g, goal, (x, y, class));
+                let reference = shared_plan(&mut unlimited, &g, goal, (x, y, class));
+                proptest::prop_assert_eq!(ours, reference);
+                let held: usize = small.fields().map(DistanceField::heap_bytes).sum();
+                proptest::prop_assert_eq!(held, small.field_bytes());
+                proptest::prop_assert!(held <= budget, "{} bytes held, budget {}", held, budget);
+            }
+        }
+
+        /// A goal check from the regions ([`PathPlanner::connects`]) answers as a plan by a
+        /// shared field does: `Ok` exactly when the plan succeeds, the same error otherwise.
+        #[test]
+        fn connects_answers_as_a_shared_plan(
+            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..2.0), 0..8),
+            queries in proptest::collection::vec(
+                (0.0f32..10.0, 0.0f32..10.0, -0.5f32..10.5, -0.5f32..10.5),
+                1..20,
+            ),
+        ) {
+            let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            let g = grid(&statics);
+            let mut planner = PathPlanner::new();
+            for &(x, y, gx, gy) in &queries {
+                let q = PlanQuery {
+                    from: Vec2::new(x, y),
+                    to: Vec2::new(gx, gy),
+                    inflation_m: INFL,
+                };
+                let mut out = Vec::new();
+                let planned = planner.plan(&g, ARENA, q, GoalKind::Shared, &mut out).map(|_| ());
+                proptest::prop_assert_eq!(planner.connects(&g, ARENA, q), planned);
+            }
+        }
+    }
+
+    /// Twenty shared goals: a planner with the default budget keeps all twenty fields of this
+    /// small grid, one with a budget of three fields keeps at most three (the least recently
+    /// used dropped), and one whose budget is smaller than one field keeps none, each with the
+    /// same plans. The old planner kept every field for its whole life, whatever it held.
+    #[test]
+    fn the_fields_kept_stay_within_the_budget() {
+        let g = grid(&[disc(5.0, 5.0, 1.0), block(2.0, 8.0, 1.0, 0.5)]);
+        let one = DistanceField::new_heap_bytes(&g);
+        let mut planners = [
+            PathPlanner::new(),
+            PathPlanner::with_field_budget(3 * one + one / 2),
+            PathPlanner::with_field_budget(one / 2),
+        ];
+        let goals: Vec<Vec2> = (0..20)
+            .map(|k| Vec2::new(0.5 + 0.45 * k as f32, 3.0 + 0.3 * (k % 3) as f32))
+            .collect();
+        for (k, &goal) in goals.iter().enumerate() {
+            let from = (9.0, 9.0 - 0.1 * k as f32, 0);
+            let [a, b, c] = &mut planners;
+            let plans = [a, b, c].map(|p| shared_plan(p, &g, goal, from));
+            assert!(plans[0].0.is_ok(), "goal {goal:?}: {:?}", plans[0]);
+            assert_eq!(plans[1], plans[0], "goal {goal:?}");
+            assert_eq!(plans[2], plans[0], "goal {goal:?}");
+        }
+        let kept = planners.each_ref().map(|p| p.fields().len());
+        assert_eq!(kept, [20, 3, 0]);
+        for p in &planners {
+            assert!(
+                p.field_bytes() <= p.field_budget_bytes(),
+                "{}",
+                p.field_bytes()
+            );
+        }
+        assert_eq!(planners[0].field_budget_bytes(), SHARED_FIELDS_BUDGET_BYTES);
+        // The three kept are the three used last, oldest first.
+        let last: Vec<u32> = goals[17..].iter().map(|&p| g.cell_index(p)).collect();
+        let goals_kept: Vec<u32> = planners[1].fields().map(DistanceField::goal).collect();
+        assert_eq!(goals_kept, last);
     }
 }

@@ -1,0 +1,120 @@
+//! The planner's store of shared distance fields ([`DistanceField`]), one per shared goal cell
+//! and clearance class, held within a memory budget.
+//!
+//! A field holds 5 bytes per grid cell (80 MiB at the 2^24-cell limit) for as long as it is
+//! kept, and a scenario may share up to 64 task goals, 64 drop-offs and 256 rest stations
+//! among several clearance classes: kept for the planner's life, 16 goals on a 1,000 m x
+//! 1,000 m arena at 0.25 m took 2.5 GB, and 64 aborted on a failed allocation. So the store
+//! keeps the fields it used most recently and drops the least recently used one while the
+//! fields together hold more than the budget ([`SHARED_FIELDS_BUDGET_BYTES`] by default).
+//! The order is that of the uses, a list, never a hash map's, so eviction is deterministic;
+//! and a field is a pure function of (grid, goal cell, inflation) whose descents do not depend
+//! on earlier queries ([`super::distance_field`]), so a field dropped and made again gives the
+//! same paths: the budget changes how often a field is computed, never a path.
+//!
+//! A field larger than the whole budget (on a grid of more than 6.7 M cells under a budget of
+//! 32 MiB, say; never under the default budget, which holds more than six fields of the largest
+//! grid) is still made and used for the plan that asked for it, then dropped: the next plan to
+//! that goal makes it again. While one plan runs, the fields hold at most the larger of the
+//! budget and the one field in use, plus what that field's open set grows by during the plan;
+//! between plans, at most the budget.
+//!
+//! [`SHARED_FIELDS_BUDGET_BYTES`]: super::navigation::SHARED_FIELDS_BUDGET_BYTES
+
+use std::collections::VecDeque;
+
+use super::distance_field::DistanceField;
+use super::navigation::{ClearanceGrid, SHARED_FIELDS_BUDGET_BYTES};
+
+/// Shared distance fields within a memory budget, least recently used dropped first (see the
+/// module docs).
+#[derive(Debug, Clone)]
+pub(super) struct SharedFields {
+    /// (heap bytes at the field's last use, the field), least recently used first.
+    fields: VecDeque<(usize, DistanceField)>,
+    /// The sum of the kept fields' heap bytes.
+    held: usize,
+    /// Most heap bytes kept between uses.
+    budget: usize,
+}
+
+impl Default for SharedFields {
+    fn default() -> Self {
+        Self::new(SHARED_FIELDS_BUDGET_BYTES)
+    }
+}
+
+impl SharedFields {
+    /// An empty store that keeps at most `budget_bytes` of fields between uses (any value; 0
+    /// keeps none: every use makes its field afresh).
+    pub(super) fn new(budget_bytes: usize) -> Self {
+        Self {
+            fields: VecDeque::new(),
+            held: 0,
+            budget: budget_bytes,
+        }
+    }
+
+    /// The budget, bytes.
+    pub(super) fn budget_bytes(&self) -> usize {
+        self.budget
+    }
+
+    /// Heap bytes the kept fields hold (as counted at their last use).
+    pub(super) fn held_bytes(&self) -> usize {
+        self.held
+    }
+
+    /// The kept fields, least recently used first.
+    pub(super) fn iter(&self) -> impl ExactSizeIterator<Item = &DistanceField> {
+        self.fields.iter().map(|(_, f)| f)
+    }
+
+    /// Runs `use_field` on the field towards cell `goal` of `grid` for `inflation` metres (the
+    /// kept one, or a new one made after dropping the least recently used fields the new one
+    /// does not fit beside), then drops the least recently used fields until the budget holds
+    /// (the one just used too, last, if it alone exceeds the budget). Returns `use_field`'s
+    /// answer.
+    pub(super) fn with_field<R>(
+        &mut self,
+        grid: &ClearanceGrid,
+        goal: u32,
+        inflation: f32,
+        use_field: impl FnOnce(&mut DistanceField) -> R,
+    ) -> R {
+        let kept = self
+            .fields
+            .iter()
+            .position(|(_, f)| f.is_for(goal, inflation))
+            .and_then(|k| self.fields.remove(k));
+        let mut field = match kept {
+            Some((bytes, field)) => {
+                self.held -= bytes;
+                field
+            }
+            None => {
+                self.drop_until(
+                    self.budget
+                        .saturating_sub(DistanceField::new_heap_bytes(grid)),
+                );
+                DistanceField::new(grid, goal, inflation)
+            }
+        };
+        let answer = use_field(&mut field);
+        let bytes = field.heap_bytes();
+        self.held += bytes;
+        self.fields.push_back((bytes, field));
+        self.drop_until(self.budget);
+        answer
+    }
+
+    /// Drops the least recently used fields until they hold at most `limit` bytes.
+    fn drop_until(&mut self, limit: usize) {
+        while self.held > limit {
+            let Some((bytes, _)) = self.fields.pop_front() else {
+                break;
+            };
+            self.held -= bytes;
+        }
+    }
+}
