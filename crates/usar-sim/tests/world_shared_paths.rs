@@ -1,6 +1,6 @@
 //! Shared navigation: paths a ground robot takes from a shared distance field (to a task's
 //! goal point, a drop-off or the rest station) keep the body clear of every wall and debris
-//! block, from random starts in the shipped scenarios.
+//! block, from random starts in the shipped scenarios, and a goal check answers as the plan.
 
 use std::sync::LazyLock;
 
@@ -50,7 +50,11 @@ fn check_paths_from(s: &Scenario, fx: f64, fy: f64) -> Result<(), TestCaseError>
         }
         for goal in shared_goals(s) {
             w.teleport(id, start).unwrap();
-            if w.set_goal(id, Some(goal)).is_err() {
+            // The goal check (from the grid's regions) answers as the plan does.
+            let reachable = w.is_goal_reachable(id, goal);
+            let planned = w.set_goal(id, Some(goal));
+            prop_assert_eq!(reachable, planned.is_ok(), "{:?} from {:?}", goal, start);
+            if planned.is_err() {
                 continue;
             }
             let path: Vec<PointM> = std::iter::once(start).chain(w.waypoints(id)).collect();

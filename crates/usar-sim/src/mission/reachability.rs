@@ -64,13 +64,14 @@ impl fmt::Display for UnreachableGoal {
 ///
 /// Builds the trial's world ([`World::new`]) and plans with the same planner as a trial,
 /// from the starts, before any robot moves; other robots are not obstacles to the plan. Cost:
-/// one lookup per robot and goal, in the shared distance fields or (with
-/// `navigation.shared_goal_fields: false`) in the grid's regions, labelled once per
-/// clearance class in one pass over the grid.
+/// one lookup per robot and goal in the grid's regions, labelled once per clearance class in
+/// one pass over the grid (a path exists exactly when the planner's A* or shared distance
+/// field would find one; no field is made, so many shared goals on a large grid cost no
+/// memory per goal).
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
     let mut world = World::new(s);
-    // Every robot is checked: a shared goal by its distance field, any other goal from the
-    // grid's regions (`World::is_goal_reachable`). Robots go by body radius, so each
+    // Every robot and goal is checked from the grid's regions (`World::is_goal_reachable`).
+    // Robots go by body radius, so each
     // clearance class's regions are labelled once even when more classes than the planner
     // keeps labels for take turns.
     let mut ground: Vec<usize> = (0..s.robots.len())

@@ -32,12 +32,11 @@ impl World {
         plan_inflation_m(self.nav[id].radius, &self.navigation)
     }
 
-    /// The A* query robot `id` would plan `goal` with: `Some` for a ground robot and a goal
-    /// that is not a shared goal point, `None` otherwise (aerial robots fly straight, shared
-    /// goals descend their distance fields).
-    pub(super) fn own_goal_query(&self, id: usize, goal: Vec2) -> Option<PlanQuery> {
+    /// The grid query robot `id` would plan `goal` with: `Some` for a ground robot, `None`
+    /// for an aerial one (it flies straight).
+    pub(super) fn ground_query(&self, id: usize, goal: Vec2) -> Option<PlanQuery> {
         let nav = &self.nav[id];
-        (nav.layer == Locomotion::Ground && !self.shared_goals.contains(&goal)).then(|| PlanQuery {
+        (nav.layer == Locomotion::Ground).then(|| PlanQuery {
             from: nav.pos,
             to: goal,
             inflation_m: self.plan_inflation(id),
