@@ -12,10 +12,10 @@
 //! on earlier queries ([`super::distance_field`]), so a field dropped and made again gives the
 //! same paths: the budget changes how often a field is computed, never a path.
 //!
-//! A field larger than the whole budget (on a grid of more than 6.7 M cells under a budget of
-//! 32 MiB, say; never under the default budget, which holds more than six fields of the largest
-//! grid) is still made and used for the plan that asked for it, then dropped: the next plan to
-//! that goal makes it again. While one plan runs, the fields hold at most the larger of the
+//! A field larger than the whole budget (only under a budget below the default, e.g. 32 MiB
+//! on a grid of more than 6.8 M cells; the default holds six fields of the largest grid) is
+//! still made and used for the plan that asked for it, then dropped: the next plan to that
+//! goal makes it again. While one plan runs, the fields hold at most the larger of the
 //! budget and the one field in use, plus what that field's open set grows by during the plan;
 //! between plans, at most the budget.
 //!
