@@ -91,7 +91,7 @@ fn a_missing_scenario_fails_with_its_path() {
     assert!(!o.status.success());
     let e = stderr(&o);
     assert!(
-        e.contains("cannot load scenario") && e.contains("no-such.ron"),
+        e.starts_with("error: ") && e.contains("no-such.ron: cannot read scenario file"),
         "{e}"
     );
     assert!(!out.exists());

@@ -49,3 +49,63 @@ fn help_is_still_printed_whole() {
         "{text}"
     );
 }
+
+/// A scenario with a bad arena width, written to `dir` under `name`.
+fn bad_scenario(dir: &std::path::Path, name: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(
+        &p,
+        "Scenario(\n  name: \"x\",\n  arena: (width_m: -1.0, height_m: 5.0),\n)\n",
+    )
+    .expect("write");
+    p
+}
+
+#[test]
+fn every_command_gives_a_bad_scenario_as_file_line_col_field() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let p = bad_scenario(tmp.path(), "bad.ron");
+    let path = p.to_str().expect("utf-8");
+    let out = tmp.path().join("out").to_str().expect("utf-8").to_string();
+    let commands: [&[&str]; 5] = [
+        &["check", path],
+        &["run", path],
+        &["render", path, "--out", &out],
+        &["replay", path, "--out", &out],
+        &["sweep", path, "--out", &out],
+    ];
+    for args in commands {
+        let o = usar(args);
+        assert!(!o.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(
+            err,
+            format!("error: {path}:3:20: arena.width_m: expected a finite number > 0, found -1\n"),
+            "{args:?}"
+        );
+    }
+}
+
+#[test]
+fn a_path_with_a_line_break_is_escaped_in_a_one_line_error() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let p = bad_scenario(tmp.path(), "a\nb.ron");
+    let shown = p.to_str().expect("utf-8").replace('\n', "\\n");
+    for args in [vec!["check"], vec!["run"]] {
+        let o = common::usar(args.iter().map(std::ffi::OsStr::new).chain([p.as_os_str()]));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with(&format!("error: {shown}:3:20: arena.width_m:")),
+            "{err}"
+        );
+    }
+    let missing = tmp.path().join("no\nsuch.ron");
+    let o = common::usar([std::ffi::OsStr::new("run"), missing.as_os_str()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("no\\nsuch.ron: cannot read scenario file"),
+        "{err}"
+    );
+}

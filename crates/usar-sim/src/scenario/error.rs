@@ -7,7 +7,30 @@
 //! `origin:line:col: field.path: message`, for example
 //! `scenarios/bad.ron:12:5: kinds[0].quota: easy 3 + hard 2 = 5 but count is 6`.
 
+use std::borrow::Cow;
 use std::fmt;
+
+/// `text` as one line: every control character (a line feed, a tab, ...) and the Unicode line
+/// and paragraph separators written escaped (`\n`, `\u{2028}`), everything else as it is.
+/// Messages quote paths and values through it, so an error stays one line whatever a file's
+/// name holds.
+pub fn one_line(text: &str) -> Cow<'_, str> {
+    let breaks = |c: char| c.is_control() || matches!(c, '\u{2028}' | '\u{2029}');
+    if !text.chars().any(breaks) {
+        return Cow::Borrowed(text);
+    }
+    Cow::Owned(
+        text.chars()
+            .map(|c| {
+                if breaks(c) {
+                    c.escape_debug().to_string()
+                } else {
+                    c.to_string()
+                }
+            })
+            .collect(),
+    )
+}
 
 /// Where in a scenario source an error is: the origin (file name) and, when known, a 1-based
 /// line and column (columns count characters, as ron does).
@@ -21,9 +44,10 @@ pub struct SourceLocation {
 
 impl fmt::Display for SourceLocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let origin = one_line(&self.origin);
         match self.line_col {
-            Some((line, col)) => write!(f, "{}:{}:{}", self.origin, line, col),
-            None => f.write_str(&self.origin),
+            Some((line, col)) => write!(f, "{origin}:{line}:{col}"),
+            None => f.write_str(&origin),
         }
     }
 }
@@ -35,7 +59,7 @@ impl fmt::Display for SourceLocation {
 pub enum ScenarioError {
     /// The file could not be read. The I/O error is part of the one-line message (not also a
     /// `source()`, so a chain-printing caller does not repeat it).
-    #[error("{path}: cannot read scenario file: {error}")]
+    #[error("{}: cannot read scenario file: {error}", one_line(path))]
     Io {
         /// The path that was given.
         path: String,
@@ -134,5 +158,27 @@ mod tests {
         assert_eq!(e.to_string(), "x.ron:1:2: Expected comma");
         assert_eq!(e.line_col(), Some((1, 2)));
         assert_eq!(e.field(), None);
+    }
+
+    #[test]
+    fn a_path_with_line_breaks_is_shown_on_one_line() {
+        let e = ScenarioError::Invalid {
+            location: SourceLocation {
+                origin: "a\nb\u{2028}c\td.ron".into(),
+                line_col: Some((3, 20)),
+            },
+            field: "arena.width_m".into(),
+            message: "expected a finite number > 0, found -1".into(),
+        };
+        assert_eq!(
+            e.to_string(),
+            "a\\nb\\u{2028}c\\td.ron:3:20: arena.width_m: expected a finite number > 0, found -1"
+        );
+        let e = ScenarioError::Io {
+            path: "x\ny.ron".into(),
+            error: std::io::Error::from(std::io::ErrorKind::NotFound),
+        };
+        assert!(e.to_string().starts_with("x\\ny.ron: cannot read"), "{e}");
+        assert_eq!(one_line("plain/path.ron"), "plain/path.ron");
     }
 }

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario};
@@ -106,11 +106,9 @@ pub fn trace_trial(
 /// option, a failing trial, or an error writing the picture.
 pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
     let path = &args.scenario;
-    // The loader's message is complete (file:line:col, field, rule, or the I/O error); keep it
-    // as one line rather than repeating its source in the error chain.
-    let scenario = scenario::load(path)
-        .map_err(|e| anyhow!("{e}"))
-        .with_context(|| format!("cannot load scenario {}", path.display()))?;
+    // The loader's message is complete (file:line:col, field, rule, or the I/O error), as
+    // every other command prints it.
+    let scenario = scenario::load(path)?;
     let traces = if args.trace {
         Some(
             trace_trial(&scenario, &args.method, args.trial, args.duration)

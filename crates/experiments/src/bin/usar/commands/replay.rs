@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::mission::{Simulation, trial_seed};
 use usar_sim::scenario;
@@ -78,9 +78,7 @@ pub struct ReplayArgs {
 /// A bad scenario or option, a failing trial, or an error writing the page.
 pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     let path = &args.scenario;
-    let scenario = scenario::load(path)
-        .map_err(|e| anyhow!("{e}"))
-        .with_context(|| format!("cannot load scenario {}", path.display()))?;
+    let scenario = scenario::load(path)?;
     let mut builder = Simulation::builder(&scenario)
         .method_named(&args.method)
         .trial(args.trial.unwrap_or(0));
