@@ -125,6 +125,39 @@ fn several_rest_stations_load_and_the_nearest_is_chosen() {
     assert_eq!(one.nearest_rest_station(&p(0.0, 0.0)), 0);
 }
 
+/// A field error inside a single-circle rest station names the circle's type, as the list
+/// form's does (ron named the struct around it, `Scenario`).
+#[test]
+fn a_bad_field_of_one_rest_station_names_the_circle() {
+    let one = "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)";
+    for (to, field, words) in [
+        (
+            "rest_station: (colour: 1, center_m: (25.0, 2.0), radius_m: 1.0)",
+            "rest_station.colour",
+            "Unexpected field named `colour` in `CircleSpec`",
+        ),
+        (
+            "rest_station: (center_m: (25.0, 2.0))",
+            "rest_station.radius_m",
+            "missing field named `radius_m` in `CircleSpec`",
+        ),
+        (
+            "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0, radius_m: 2.0)",
+            "rest_station.radius_m",
+            "duplicate field named `radius_m` in `CircleSpec`",
+        ),
+        (
+            "rest_station: [(colour: 1, center_m: (25.0, 2.0), radius_m: 1.0)]",
+            "rest_station[0].colour",
+            "Unexpected field named `colour` in `CircleSpec`",
+        ),
+    ] {
+        let e = scenario::from_str(&broken(one, to), "t.ron").expect_err(to);
+        assert_eq!(e.field(), Some(field), "{e}");
+        assert!(e.to_string().contains(words), "{e}");
+    }
+}
+
 #[test]
 fn base_is_valid_and_defaults_apply() {
     let s = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));

@@ -163,7 +163,7 @@ fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, 
 /// Turns ron's error into a [`ScenarioError::Syntax`], adding the field path found at the
 /// error's position (`src` is the text `map` was built from). A number with a fraction where
 /// ron read an integer ([`integer_with_fraction`]) is reported at the number's start.
-fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> ScenarioError {
+fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> ScenarioError {
     let pos = e.span.start;
     let offset = map.offset_of(pos.line, pos.col);
     let here = map.path_at(offset);
@@ -175,6 +175,7 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
         }
         _ => here.map(str::to_owned),
     };
+    name_single_rest_station(&mut e.code, field.as_deref());
     let (line_col, message) = match integer_with_fraction(&e.code, src, offset) {
         Some((start, number)) => (
             map.line_col(start),
@@ -189,6 +190,26 @@ fn syntax_error(e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> Sc
         },
         field: field.filter(|f| !f.is_empty()),
         message,
+    }
+}
+
+/// A single-circle `rest_station` is read through a visitor (one circle or a list), so ron
+/// names the struct around it, `Scenario`, in a message about one of its fields; the list
+/// form's messages name `CircleSpec`, and so does this one's once fixed here. `field` is the
+/// field path of the error (`rest_station.colour`).
+fn name_single_rest_station(code: &mut RonError, field: Option<&str>) {
+    let in_station = field
+        .and_then(|f| f.strip_prefix("rest_station."))
+        .is_some_and(|name| !name.contains(['.', '[']));
+    if !in_station {
+        return;
+    }
+    if let RonError::NoSuchStructField { outer, .. }
+    | RonError::MissingStructField { outer, .. }
+    | RonError::DuplicateStructField { outer, .. } = code
+        && outer.as_deref() == Some("Scenario")
+    {
+        *outer = Some("CircleSpec".into());
     }
 }
 
