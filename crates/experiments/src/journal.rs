@@ -197,8 +197,9 @@ pub struct JournalContents {
     pub complete_bytes: u64,
 }
 
-/// The end of every message about a journal that cannot be used.
-const START_AFRESH: &str =
+/// The end of every message about a journal that cannot be used (a merge names the shard's
+/// own command instead: `crate::shard::merge`).
+pub(crate) const START_AFRESH: &str =
     "start the sweep afresh with --overwrite (in place of --resume), or move the journal away";
 
 /// The error for a damaged line (`line` is 1-based).

@@ -88,7 +88,7 @@ fn bad_replay_lists_are_refused_before_any_trial_runs() {
         ("eng:0", "the sweep runs no method \"eng\""),
         (
             "rne:2",
-            "trial 2 is out of range (the sweep runs trials 0..1)",
+            "trial 2 is out of range (the sweep runs trials 0 to 1)",
         ),
         ("rne", "expected METHOD:TRIAL"),
     ] {

@@ -339,3 +339,31 @@ fn an_edited_copy_of_another_shards_record_is_not_run_or_merged() {
     // Shard 0 holds the trial's record: the merge takes it and says nothing of the copy.
     assert_merges_without_warnings(&dir);
 }
+
+#[test]
+fn a_damaged_shard_journal_names_the_shards_command_to_run_it_again() {
+    let (_tmp, dir) = swept_in_two_shards();
+    // Line 2 of shard 1's journal is not a journal line at all (line 3 follows it).
+    let journal = dir.join("shards/1-of-2/journal.jsonl");
+    let mut lines = read_lines(&journal);
+    lines[1] = "not json".to_string();
+    write_lines(&journal, &lines);
+    let o = merge(&dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("journal.jsonl:2: not a valid journal line"),
+        "{err}"
+    );
+    assert!(
+        err.contains("run shard 1/2 again from scratch: usar sweep ")
+            && err.contains("--shard 1/2")
+            && err.trim_end().ends_with("--overwrite"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("in place of --resume"),
+        "usar merge has no --resume: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}

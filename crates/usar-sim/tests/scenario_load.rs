@@ -125,6 +125,21 @@ fn several_rest_stations_load_and_the_nearest_is_chosen() {
     assert_eq!(one.nearest_rest_station(&p(0.0, 0.0)), 0);
 }
 
+/// A syntax error outside every field (a file cut short at its start, no `Scenario(`) names
+/// the scenario as its field, so every error reads `file:line:col: field: message`.
+#[test]
+fn a_syntax_error_outside_every_field_names_the_scenario() {
+    for src in ["(", "", "Scenario", "Foo(name: \"x\")"] {
+        let e = scenario::from_str(src, "t.ron").expect_err(src);
+        assert_eq!(e.field(), Some("Scenario"), "{src:?}: {e}");
+        assert!(e.to_string().starts_with("t.ron:1:"), "{src:?}: {e}");
+        assert!(e.to_string().contains(": Scenario: "), "{src:?}: {e}");
+    }
+    // Inside a field, the field is named as before.
+    let e = scenario::from_str("Scenario(kinds: [", "t.ron").expect_err("cut short");
+    assert_eq!(e.field(), Some("kinds"), "{e}");
+}
+
 /// A field error inside a single-circle rest station names the circle's type, as the list
 /// form's does (ron named the struct around it, `Scenario`).
 #[test]

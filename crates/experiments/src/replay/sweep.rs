@@ -77,9 +77,13 @@ pub fn parse_replay_list(
                 ))
             })?;
         if k >= trials {
+            let runs = match trials {
+                0 => "no trial".to_string(),
+                1 => "trial 0 only".to_string(),
+                n => format!("trials 0 to {}", n - 1),
+            };
             return Err(bad(format!(
-                "trial {k} is out of range (the sweep runs trials 0..{})",
-                trials.saturating_sub(1)
+                "trial {k} is out of range (the sweep runs {runs})"
             )));
         }
         let r = ReplayRequest { method, trial: k };
@@ -350,7 +354,7 @@ mod tests {
                 .unwrap_err()
                 .to_string()
         };
-        assert!(err("rne:3").contains("trial 3 is out of range (the sweep runs trials 0..2)"));
+        assert!(err("rne:3").contains("trial 3 is out of range (the sweep runs trials 0 to 2)"));
         assert!(err("eng:0").contains("the sweep runs no method \"eng\""));
         assert!(err("foo:0").contains("no method"));
         assert!(err("rne").contains("expected METHOD:TRIAL"));

@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
@@ -179,7 +179,7 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
             let path = Journal::path_in(&sdir);
             // A journal killed before its header was whole holds no trial: as none.
             let contents = if something_at(&path) && !holds_no_line(&path) {
-                Some(read_journal(&path)?)
+                Some(read_journal(&path).map_err(|e| damaged_shard(e, shard, &sdir, dir))?)
             } else {
                 None
             };
@@ -190,6 +190,27 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
             })
         })
         .collect()
+}
+
+/// A shard journal that cannot be used: the journal's message, with its advice to run the
+/// sweep afresh (`--overwrite` in place of `--resume`, which `usar merge` does not have) made
+/// the shard's own command, from the shard's plan where it has one.
+fn damaged_shard(e: anyhow::Error, shard: Shard, shard_dir: &Path, dir: &Path) -> anyhow::Error {
+    let text = format!("{e:#}");
+    if !text.contains(crate::journal::START_AFRESH) {
+        return e;
+    }
+    let here = std::env::current_dir().ok();
+    let again = match SweepPlan::read(shard_dir) {
+        Ok(plan) => format!(
+            "run shard {shard} again from scratch: {} --overwrite",
+            plan.shard_command(shard, dir, here.as_deref())
+        ),
+        Err(_) => format!(
+            "run shard {shard} again from scratch with `usar sweep ... --shard {shard} --overwrite`"
+        ),
+    };
+    anyhow!("{}", text.replace(crate::journal::START_AFRESH, &again))
 }
 
 /// The header most shard journals have (ties: the one of the lowest shard); `None` when no

@@ -151,6 +151,7 @@ fn bare_to_json(t: &str, guide: Option<&Value>) -> Result<Value, String> {
             "false" => Ok(Value::Bool(false)),
             _ => Err(format!("expected true or false, found {}", brief(t))),
         },
+        Some(Value::Number(n)) if n.is_u64() => whole_number(t),
         Some(Value::Number(_)) => number(t),
         _ => match t {
             "true" => Ok(Value::Bool(true)),
@@ -159,6 +160,23 @@ fn bare_to_json(t: &str, guide: Option<&Value>) -> Result<Value, String> {
             _ => Ok(Value::String(t.to_string())),
         },
     }
+}
+
+/// A JSON unsigned integer from RON number text, for a field that holds one (a seed, a
+/// count): `0` to `u64::MAX`, else an error saying so (`18446744073709551616`, `-1` and `1.5`
+/// are not read as a float the field then refuses with serde's words).
+fn whole_number(t: &str) -> Result<Value, String> {
+    if let Ok(u) = t.parse::<u64>() {
+        return Ok(Value::from(u));
+    }
+    if t.parse::<f64>().is_err() {
+        return Err(format!("expected a number, found {}", brief(t)));
+    }
+    Err(format!(
+        "expected a whole number from 0 to {}, found {}",
+        u64::MAX,
+        brief(t)
+    ))
 }
 
 /// A JSON number from RON number text: an integer if it is one, else a finite float.

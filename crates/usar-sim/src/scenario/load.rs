@@ -188,7 +188,13 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
             origin: origin.to_owned(),
             line_col: Some(line_col),
         },
-        field: field.filter(|f| !f.is_empty()),
+        // An error outside every field (a file cut short, a missing `Scenario(`) is about the
+        // scenario as a whole.
+        field: Some(
+            field
+                .filter(|f| !f.is_empty())
+                .unwrap_or_else(|| "Scenario".into()),
+        ),
         message,
     }
 }

@@ -34,9 +34,7 @@ fn main() -> ExitCode {
         Err(e) => {
             // Not `eprintln!`, which panics (exit 101) when stderr is a closed pipe: the exit
             // status reports the failure whether or not the message could be written.
-            // One line whatever a path or value in it holds (a file named with a line break).
-            let text = usar_sim::scenario::one_line(&format!("{e:#}")).into_owned();
-            match writeln!(std::io::stderr(), "error: {text}") {
+            match writeln!(std::io::stderr(), "error: {e:#}") {
                 Ok(()) | Err(_) => ExitCode::FAILURE,
             }
         }
