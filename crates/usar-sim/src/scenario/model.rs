@@ -327,10 +327,22 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
 pub use rne_core::number_text;
 
 /// A count computed in `f64` as messages write it: as [`number_text`], or `more than 1.8e308`
-/// when it overflowed to infinity (a count is never negative).
+/// when it overflowed to infinity (a count is never negative); a count of 1e15 or more with
+/// three significant digits (`4e302`, not `3.9999999999999995e302`: its last digits are float
+/// rounding, not a count).
 pub(crate) fn count_text(v: f64) -> String {
     if v.is_infinite() {
         "more than 1.8e308".to_string()
+    } else if v.abs() >= 1e15 {
+        let s = format!("{v:.2e}");
+        // `4.00e302` -> `4e302`, `1.50e20` -> `1.5e20`.
+        match s.split_once('e') {
+            Some((mantissa, exp)) if mantissa.contains('.') => {
+                let m = mantissa.trim_end_matches('0').trim_end_matches('.');
+                format!("{m}e{exp}")
+            }
+            _ => s,
+        }
     } else {
         number_text(v)
     }
@@ -343,5 +355,19 @@ pub(crate) fn number_text_3dp(v: f64) -> String {
         format!("{v:.3}")
     } else {
         number_text(v)
+    }
+}
+
+#[cfg(test)]
+mod count_text_tests {
+    use super::count_text;
+
+    #[test]
+    fn large_counts_have_three_significant_digits() {
+        assert_eq!(count_text(3.9999999999999995e302), "4e302");
+        assert_eq!(count_text(1.5e20), "1.5e20");
+        assert_eq!(count_text(1.2345e16), "1.23e16");
+        assert_eq!(count_text(30_000.0), "30000");
+        assert_eq!(count_text(f64::INFINITY), "more than 1.8e308");
     }
 }

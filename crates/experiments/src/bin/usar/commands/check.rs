@@ -120,10 +120,37 @@ pub fn warn_about(origin: &str, s: &Scenario) {
     }
 }
 
+/// Decimals of the positions and distances the summary prints: 1 in an arena whose shorter
+/// side is 10 m or more, one more per factor of ten below that (3 for a 0.5 m arena, 4 for
+/// 8 cm), so that points a tenth of the arena's scale apart never print alike.
+fn decimals(s: &Scenario) -> usize {
+    decimals_for_side(s.arena.width().min(s.arena.height()))
+}
+
+/// [`decimals`] of an arena whose shorter side is `side_m` metres (> 0).
+fn decimals_for_side(side_m: f64) -> usize {
+    if side_m >= 10.0 {
+        1
+    } else {
+        1 + (10.0 / side_m).log10().ceil().clamp(0.0, 15.0) as usize
+    }
+}
+
+/// `v` metres with the summary's [`decimals`].
+fn metres(v: f64, decimals: usize) -> String {
+    format!("{v:.decimals$}")
+}
+
 /// `rest station (x, y) r R m`, or for several `rest stations: (x, y) r R m, ...`.
 fn rest_stations(s: &Scenario) -> String {
+    let d = decimals(s);
     let one = |c: &usar_sim::scenario::Circle| {
-        format!("({:.1}, {:.1}) r {} m", c.center.x, c.center.y, c.radius_m)
+        format!(
+            "({}, {}) r {} m",
+            metres(c.center.x, d),
+            metres(c.center.y, d),
+            c.radius_m
+        )
     };
     match s.rest_stations.as_slice() {
         [c] => format!("rest station {}", one(c)),
@@ -242,27 +269,29 @@ fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
             });
         let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
         let rank = order.iter().position(|&x| x == t).unwrap_or(0) + 1;
+        let m = |v: f64| metres(v, decimals(s));
+        let (area, goal, drop) = (&task.search_area, &task.goal, &task.drop_off);
         writeln!(
             out,
             "task {} (difficulty {}, #{rank} of {} from the hardest): {} rescuees in \
-             [{:.1}, {:.1}]-[{:.1}, {:.1}] m, goal ({:.1}, {:.1}), drop-off ({:.1}, {:.1}) r {} m; \
-             start->goal {:.1}-{:.1} m (mean {:.1})",
+             [{}, {}]-[{}, {}] m, goal ({}, {}), drop-off ({}, {}) r {} m; \
+             start->goal {}-{} m (mean {})",
             task.name,
             task.difficulty,
             s.tasks.len(),
             task.rescuees.len(),
-            task.search_area.min.x,
-            task.search_area.min.y,
-            task.search_area.max.x,
-            task.search_area.max.y,
-            task.goal.x,
-            task.goal.y,
-            task.drop_off.center.x,
-            task.drop_off.center.y,
-            task.drop_off.radius_m,
-            lo,
-            hi,
-            mean
+            m(area.min.x),
+            m(area.min.y),
+            m(area.max.x),
+            m(area.max.y),
+            m(goal.x),
+            m(goal.y),
+            m(drop.center.x),
+            m(drop.center.y),
+            drop.radius_m,
+            m(lo),
+            m(hi),
+            m(mean)
         )?;
     }
     Ok(())
@@ -274,16 +303,19 @@ fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         write!(out, " {:>12}", format!("->{} m", t.name))?;
     }
     writeln!(out)?;
+    let d = decimals(s);
     for (id, r) in s.robots.iter().enumerate() {
+        let (x, y) = (r.start_in_world.x, r.start_in_world.y);
         write!(
             out,
             "{:>3} {:<10} {:>14}",
             id,
             s.kind_of(id).name,
-            format!("({:.1}, {:.1})", r.start_in_world.x, r.start_in_world.y)
+            format!("({}, {})", metres(x, d), metres(y, d))
         )?;
         for t in &s.tasks {
-            write!(out, " {:>12.1}", nalgebra_dist(r.start_in_world, t.goal))?;
+            let dist = metres(nalgebra_dist(r.start_in_world, t.goal), d);
+            write!(out, " {dist:>12}")?;
         }
         writeln!(out)?;
     }
@@ -366,4 +398,24 @@ fn validate_overridden(
 /// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.
 fn short(x: f64) -> String {
     ((x * 1e4).round() / 1e4).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decimals_for_side, metres};
+
+    #[test]
+    fn small_arenas_print_positions_with_more_decimals() {
+        assert_eq!(decimals_for_side(80.0), 1);
+        assert_eq!(decimals_for_side(10.0), 1);
+        assert_eq!(decimals_for_side(9.9), 2);
+        assert_eq!(decimals_for_side(1.0), 2);
+        assert_eq!(decimals_for_side(0.5), 3);
+        assert_eq!(decimals_for_side(0.08), 4);
+        // Millimetre positions in an 8 cm arena print apart (they printed (0.0, 0.0)).
+        let d = decimals_for_side(0.08);
+        assert_eq!(metres(0.002, d), "0.0020");
+        assert_ne!(metres(0.002, d), metres(0.003, d));
+        assert_eq!(metres(32.5, decimals_for_side(80.0)), "32.5");
+    }
 }
