@@ -242,18 +242,18 @@ fn time_steps(
     while go_on && logic_done < steps && t0.elapsed().as_secs_f64() <= budget_s {
         let block = BLOCK_STEPS.min(steps - logic_done);
         let c0 = cpu_s();
-        for _ in 0..block {
+        let mut ran = 0;
+        while ran < block && go_on {
             go_on = logic();
-            logic_done += 1;
-            if !go_on {
-                break;
-            }
+            ran += 1;
         }
+        logic_done += ran;
         let c1 = cpu_s();
-        for _ in 0..block {
+        // As many bare steps as the logic ran in this block.
+        for _ in 0..ran {
             bare();
         }
-        bare_done += block;
+        bare_done += ran;
         let c2 = cpu_s();
         logic_s += c1 - c0;
         bare_s += c2 - c1;

@@ -15,6 +15,10 @@ fn with_period(per_side: usize, steps: Option<u32>) -> Scenario {
     s
 }
 
+/// [`fnv`] of the 8-robot corridor swap's first 1,500 steps ([`trajectory`]) without a control
+/// period.
+const GOLDEN_CORRIDOR_SWAP: u64 = 15_994_870_929_765_887_161;
+
 /// f32 bit patterns of every robot's position and velocity at every step of the corridor swap.
 fn trajectory(s: &Scenario, steps: usize) -> Vec<u32> {
     let mut w = World::new(s);
@@ -34,13 +38,30 @@ fn trajectory(s: &Scenario, steps: usize) -> Vec<u32> {
     bits
 }
 
+/// FNV-1a 64 of `bits` (little-endian bytes).
+fn fnv(bits: &[u32]) -> u64 {
+    bits.iter()
+        .flat_map(|b| b.to_le_bytes())
+        .fold(0xcbf2_9ce4_8422_2325, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+}
+
+/// The corridor swap without a control period, as the world stepped it before control periods
+/// existed (commit 99579e4: this checksum), and an explicit period of one step the same.
 #[test]
 fn a_period_of_one_step_is_the_model_without_a_period() {
     let none = with_period(4, None);
     let one = with_period(4, Some(1));
     assert_eq!(one.sim.control_steps(), 1);
+    let reference = trajectory(&none, 1500);
+    assert_eq!(
+        fnv(&reference),
+        GOLDEN_CORRIDOR_SWAP,
+        "the corridor swap without a control period moved"
+    );
     assert!(
-        trajectory(&none, 1500) == trajectory(&one, 1500),
+        reference == trajectory(&one, 1500),
         "a control period of one step changed the corridor swap"
     );
     assert!(
@@ -150,10 +171,11 @@ fn a_goal_is_not_overshot_on_the_last_leg_with_a_control_period() {
 
 #[test]
 fn spot_queries_between_control_steps_see_where_robots_are_now() {
-    // 25 steps per control period: at 1.5 m/s robot 0 drives 0.72 m before the neighbour index
-    // is rebuilt, more than its 0.4 m radius, so an index of the positions at the control step
-    // would answer wrongly.
-    let s = with_period(1, Some(25));
+    // 100 steps per control period: at 1.5 m/s robot 0 drives about 3 m before the neighbour
+    // index is rebuilt, farther than a cell of the index (2.26 m here) plus its 0.4 m radius,
+    // so an index of the positions at the control step would no longer find it near where it
+    // stands.
+    let s = with_period(1, Some(100));
     let mut w = World::new(&s);
     w.set_goal(0, Some(swap_goals(&s)[0])).expect("goal plans");
     let start = w.robot(0).position;
@@ -177,7 +199,7 @@ fn spot_queries_between_control_steps_see_where_robots_are_now() {
         );
     }
     assert!(
-        moved > 1.5 * radius,
+        moved > 2.26 + radius,
         "moved only {moved} m: the test shows nothing"
     );
 }

@@ -217,9 +217,11 @@ impl Simulation {
         self.steps_done >= self.total_steps
     }
 
-    /// Advances the trial by one step of `sim.dt_s`: regroups if a round is due, lets every
-    /// robot decide, steps the world, then accounts energy, HP, detections, pick-ups,
-    /// deliveries and arrivals. Does nothing once the trial is finished.
+    /// Advances the trial by one step of `sim.dt_s`: on a control step (every step without
+    /// `sim.control_period_s`) regroups if a round is due and lets every robot decide; steps
+    /// the world; accounts energy and HP; and after the step before a control step, and
+    /// after the last, reviews detections, pick-ups, deliveries and arrivals. Does nothing
+    /// once the trial is finished.
     ///
     /// # Errors
     /// [`MissionError::Grouping`] if the grouping method fails; [`MissionError::World`] if the

@@ -333,7 +333,7 @@ impl StandingDisc {
     }
 
     /// Whether segment `a`-`b` passes through the disc.
-    fn crosses(&self, a: Vec2, b: Vec2) -> bool {
+    pub(super) fn crosses(&self, a: Vec2, b: Vec2) -> bool {
         let d = b - a;
         let len2 = d.length_squared();
         let t = if len2 > 0.0 {
@@ -572,9 +572,10 @@ impl PathPlanner {
         found
     }
 
-    /// Whether [`PathPlanner::plan`] with [`GoalKind::Own`] would find a path for `query`,
-    /// answered from the grid's region labels (made once per inflation) instead of a search:
-    /// `Ok` exactly when that plan succeeds.
+    /// Whether [`PathPlanner::plan`] would find a path for `query`, with either
+    /// [`GoalKind`] (A* and a shared goal's distance field find a path exactly when start and
+    /// goal share a region), answered from the grid's region labels (made once per inflation)
+    /// instead of a search: `Ok` exactly when that plan succeeds.
     ///
     /// # Errors
     /// As [`PathPlanner::plan`].

@@ -1,5 +1,5 @@
-//! The neighbour index: a uniform grid over the arena per collision layer, rebuilt once per
-//! step, that answers every robot-robot query of the world and the mission layer ("which robots
+//! The neighbour index: a uniform grid over the arena per collision layer, rebuilt before
+//! every control step (every step without `sim.control_period_s`), that answers every robot-robot query of the world and the mission layer ("which robots
 //! of this layer may lie within `r` metres of `p`?") in time proportional to the robots nearby
 //! instead of the team size.
 //!

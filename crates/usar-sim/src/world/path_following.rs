@@ -34,7 +34,8 @@ pub const STALL_REPLAN_S: f64 = 3.0;
 pub const STALL_PROGRESS_M: f32 = 0.05;
 /// A detour first plans only to its rejoin point: the point of the robot's path this far
 /// beyond the farthest standing robot it goes round (path length from the robot, at least the
-/// straight distance to that robot's disc rim plus this), metres; see [`World::detour`].
+/// straight distance to that robot's disc rim plus this), metres (see `docs/world-model.md`,
+/// "Congestion").
 pub const DETOUR_REJOIN_BEYOND_M: f32 = 1.0;
 
 impl World {
@@ -168,8 +169,10 @@ impl World {
         if self.standing.is_empty() {
             return;
         }
+        // The local detour must end on the rejoin point itself: a goal the planner moved (to a
+        // free cell centre) would join the kept path by a leg nobody checked.
         if let Some((rejoin, next)) = self.rejoin_point(id)
-            && self.plan_detour(id, rejoin).is_ok()
+            && self.plan_detour(id, rejoin) == Ok(rejoin)
         {
             let nav = &mut self.nav[id];
             self.scratch.extend_from_slice(&nav.path[next..]);
@@ -240,8 +243,23 @@ impl World {
     /// the robot through its remaining waypoints) at least [`DETOUR_REJOIN_BEYOND_M`] beyond
     /// the farthest rim of `self.standing` (path length from the robot) and outside every
     /// standing disc, with the index of the first waypoint after it; `None` when the path
-    /// ends before such a point (the goal itself is then what a detour plans to).
+    /// ends before such a point, or when the path from that point on passes through a
+    /// standing disc (a path winding back past one): the whole path is then planned again.
     fn rejoin_point(&self, id: usize) -> Option<(Vec2, usize)> {
+        let (p, next) = self.first_point_beyond_standing(id)?;
+        let nav = &self.nav[id];
+        let mut at = p;
+        for &q in &nav.path[next..] {
+            if self.standing.iter().any(|d| d.crosses(at, q)) {
+                return None;
+            }
+            at = q;
+        }
+        Some((p, next))
+    }
+
+    /// The point of [`World::rejoin_point`] before its check of the rest of the path.
+    fn first_point_beyond_standing(&self, id: usize) -> Option<(Vec2, usize)> {
         let nav = &self.nav[id];
         let beyond = self
             .standing
@@ -399,6 +417,32 @@ mod tests {
             self.collect_standing(id);
             self.rejoin_point(id)
         }
+    }
+
+    #[test]
+    fn a_path_that_winds_back_past_the_standing_robot_is_planned_again_whole() {
+        let (mut w, _, _) = parked_in_the_way(PointM::new(22.5, 1.7), PointM::new(3.5, 1.0));
+        // A path east, then back west through robot 1's disc, then north.
+        let winding = vec![
+            Vec2::new(6.0, 1.7),
+            Vec2::new(3.5, 1.7),
+            Vec2::new(3.5, 3.0),
+        ];
+        w.nav[0].path.clone_from(&winding);
+        w.nav[0].wp = 0;
+        w.collect_standing(0);
+        assert!(
+            w.first_point_beyond_standing(0).is_some(),
+            "a point beyond robot 1"
+        );
+        assert_eq!(
+            w.rejoin_point(0),
+            None,
+            "the rest of the path passes robot 1"
+        );
+        // The straight path has a rejoin point.
+        w.nav[0].path = vec![Vec2::new(22.5, 1.7)];
+        assert!(w.rejoin_point(0).is_some());
     }
 
     #[test]

@@ -53,8 +53,9 @@ pub struct World {
     pub(super) grid: ClearanceGrid,
     pub(super) planner: PathPlanner,
     pub(super) resolver: Resolver,
-    /// Robot centres by layer (`nav[..].pos`), rebuilt after every step and teleport: every
-    /// robot-robot query goes through it.
+    /// Robot centres by layer (`nav[..].pos`), rebuilt before every control step and after a
+    /// teleport: every robot-robot query goes through it (between control steps the public
+    /// queries scan the robots instead, see `index_fresh`).
     pub(super) neighbours: NeighbourIndex,
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
@@ -201,7 +202,8 @@ impl World {
     /// instead of `navigation.waypoint_tolerance_m`: for a point the robot must pass closely,
     /// such as a turn of a blind search's sweep (`mission::sweep_waypoints`). The robot slows
     /// on its last leg so that it does not overshoot the goal (at most the remaining distance
-    /// per step), so it can meet a tolerance smaller than a step's travel. A tolerance below
+    /// per control period, `sim.control_period_s`, one step by default), so it can meet a
+    /// tolerance smaller than a period's travel. A tolerance below
     /// the arena's floor [`min_waypoint_tolerance_m`](crate::scenario::limits::min_waypoint_tolerance_m)
     /// (`f32` positions cannot resolve less), or NaN, is raised to that floor.
     ///
@@ -374,6 +376,9 @@ impl World {
         let state = &mut self.robots[id];
         state.position = to_point(p);
         state.velocity = Vector2::zeros();
+        // At rest without a goal until the next control step decides again.
+        state.held = false;
+        state.motion = super::robot::Motion::Idle;
         self.reindex();
         Ok(())
     }

@@ -181,11 +181,15 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         )
     };
     let control = match s.sim.control_period_s {
-        Some(p) => format!(
-            "; robots decide every {} s ({} steps)",
-            number_text(p.get()),
-            s.sim.control_steps()
-        ),
+        Some(p) => {
+            let k = s.sim.control_steps();
+            let steps = if k == 1 {
+                "1 step".to_string()
+            } else {
+                format!("{k} steps")
+            };
+            format!("; robots decide every {} s ({steps})", number_text(p.get()))
+        }
         None => String::new(),
     };
     writeln!(
