@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use anyhow::{Context, Result, bail};
+use usar_sim::scenario::path_text;
 
 /// Symbolic links followed at most when resolving a link whose target does not exist yet
 /// (as the kernel's own limit, `ELOOP`).
@@ -65,19 +66,19 @@ fn target_of(path: &Path) -> Result<Target> {
     match fs::metadata(path) {
         Ok(m) if m.is_file() => fs::canonicalize(path)
             .map(Target::Replace)
-            .with_context(|| format!("resolving {}", path.display())),
-        Ok(m) if m.is_dir() => bail!("{}: is a folder, not a file", path.display()),
+            .with_context(|| format!("resolving {}", path_text(path))),
+        Ok(m) if m.is_dir() => bail!("{}: is a folder, not a file", path_text(path)),
         Ok(m) => match special_kind(&m) {
             None => Ok(Target::Stream),
             Some(kind) => bail!(
                 "{}: is a {kind}; usar writes only regular files, FIFOs and character devices",
-                path.display()
+                path_text(path)
             ),
         },
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             resolve_missing(path).map(Target::Replace)
         }
-        Err(e) => Err(e).with_context(|| format!("cannot write {}", path.display())),
+        Err(e) => Err(e).with_context(|| format!("cannot write {}", path_text(path))),
     }
 }
 
@@ -112,7 +113,7 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
         match fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
                 let to = fs::read_link(&p)
-                    .with_context(|| format!("reading the link {}", p.display()))?;
+                    .with_context(|| format!("reading the link {}", path_text(&p)))?;
                 // A relative link is relative to the folder holding it; `join` keeps an
                 // absolute one as it is.
                 p = p.parent().map_or_else(|| to.clone(), |dir| dir.join(&to));
@@ -120,7 +121,7 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
             _ => return Ok(p),
         }
     }
-    bail!("{}: too many levels of symbolic links", path.display())
+    bail!("{}: too many levels of symbolic links", path_text(path))
 }
 
 /// Removes the temporary file it names when dropped, unless [`TempFile::keep`] was called:
@@ -153,7 +154,7 @@ fn create_temp(dir: &Path, name: &str) -> Result<(PathBuf, File)> {
         match OpenOptions::new().write(true).create_new(true).open(&tmp) {
             Ok(f) => return Ok((tmp, f)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && n < 1_000_000 => {}
-            Err(e) => return Err(e).with_context(|| format!("creating {}", tmp.display())),
+            Err(e) => return Err(e).with_context(|| format!("creating {}", path_text(&tmp))),
         }
     }
 }
@@ -165,10 +166,10 @@ fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    fs::create_dir_all(dir).with_context(|| format!("creating folder {}", dir.display()))?;
+    fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
     let name = target
         .file_name()
-        .with_context(|| format!("{} has no file name", target.display()))?
+        .with_context(|| format!("{} has no file name", path_text(target)))?
         .to_string_lossy();
     let (tmp, mut f) = create_temp(dir, &name)?;
     let guard = TempFile(Some(tmp.clone()));
@@ -178,16 +179,16 @@ fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
             let tmp_name = tmp.file_name().unwrap_or_default().to_string_lossy();
             format!(
                 "writing {} (its temporary file {tmp_name})",
-                target.display()
+                path_text(target)
             )
         })?;
     drop(f);
     if let Ok(old) = fs::metadata(target) {
         fs::set_permissions(&tmp, old.permissions())
-            .with_context(|| format!("setting the permissions of {}", tmp.display()))?;
+            .with_context(|| format!("setting the permissions of {}", path_text(&tmp)))?;
     }
     fs::rename(&tmp, target)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), target.display()))?;
+        .with_context(|| format!("renaming {} to {}", path_text(&tmp), path_text(target)))?;
     guard.keep();
     Ok(())
 }
@@ -197,10 +198,10 @@ fn write_directly(path: &Path, bytes: &[u8]) -> Result<()> {
     let mut f = OpenOptions::new()
         .write(true)
         .open(path)
-        .with_context(|| format!("opening {}", path.display()))?;
+        .with_context(|| format!("opening {}", path_text(path)))?;
     f.write_all(bytes)
         .and_then(|()| f.flush())
-        .with_context(|| format!("writing {}", path.display()))
+        .with_context(|| format!("writing {}", path_text(path)))
 }
 
 /// Whether `name` is the name of a temporary file of [`write_atomic`]:
@@ -242,15 +243,15 @@ pub(crate) fn remove_files_where(dir: &Path, matches: fn(&str) -> bool) -> Resul
     let entries = match fs::read_dir(dir) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e).with_context(|| format!("listing {}", dir.display())),
+        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(dir))),
     };
     let mut removed = Vec::new();
     for entry in entries {
-        let entry = entry.with_context(|| format!("listing {}", dir.display()))?;
+        let entry = entry.with_context(|| format!("listing {}", path_text(dir)))?;
         let is_file = entry.file_type().is_ok_and(|t| t.is_file());
         if is_file && entry.file_name().to_str().is_some_and(matches) {
             let p = entry.path();
-            fs::remove_file(&p).with_context(|| format!("removing {}", p.display()))?;
+            fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
             removed.push(p);
         }
     }

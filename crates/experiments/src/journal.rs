@@ -29,6 +29,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 use usar_sim::mission::TrialResult;
+use usar_sim::scenario::path_text;
 
 use crate::fingerprint::fnv1a64_hex;
 
@@ -207,20 +208,25 @@ fn damaged(path: &Path, line: usize) -> anyhow::Error {
     anyhow!(
         "{}:{line}: not a valid journal line; the journal is damaged: delete that line (a trial \
          it held runs again), or {START_AFRESH}",
-        path.display()
+        path_text(path)
     )
 }
 
 /// Parses and verifies the header line (the first line, as read) of the journal at `path`;
 /// returns the header and its checksum.
 fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> {
-    let not_a_header = || anyhow!("{}:1: not a journal header; {START_AFRESH}", path.display());
+    let not_a_header = || {
+        anyhow!(
+            "{}:1: not a journal header; {START_AFRESH}",
+            path_text(path)
+        )
+    };
     let line = std::str::from_utf8(line).map_err(|_| not_a_header())?;
     check_format(path, line)?;
     if !line.ends_with('\n') {
         bail!(
             "{}:1: the header line is cut short; {START_AFRESH}",
-            path.display()
+            path_text(path)
         );
     }
     let Ok(RawLine {
@@ -236,7 +242,7 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
         bail!(
             "{}:1: the header does not verify (edited?), so no record of the journal can be \
              trusted; {START_AFRESH}",
-            path.display()
+            path_text(path)
         );
     }
     let header = serde_json::from_str::<SweepHeader>(raw.get()).map_err(|_| not_a_header())?;
@@ -255,13 +261,13 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
 /// and names `--overwrite`).
 pub fn read_journal(path: &Path) -> Result<JournalContents> {
     check_regular_file(path)?;
-    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path_text(path)))?;
     let mut lines = bytes
         .split_inclusive(|&b| b == b'\n')
         .enumerate()
         .peekable();
     let Some((_, first)) = lines.next() else {
-        bail!("{}: empty journal (no header line)", path.display());
+        bail!("{}: empty journal (no header line)", path_text(path));
     };
     let (header, sum) = parse_header_line(path, first)?;
     let mut contents = JournalContents {
@@ -317,7 +323,7 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
         Some(f) if f != u64::from(JOURNAL_FORMAT) => bail!(
             "{}: journal format {f}, but this usar reads format {JOURNAL_FORMAT}; start afresh \
              with --overwrite, or choose another --out",
-            path.display()
+            path_text(path)
         ),
         _ => Ok(()),
     }
@@ -334,11 +340,11 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
 /// The first line of the regular file at `path`, with its newline if it has one.
 fn first_line(path: &Path) -> Result<Vec<u8>> {
     check_regular_file(path)?;
-    let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let file = File::open(path).with_context(|| format!("cannot read {}", path_text(path)))?;
     let mut first = Vec::new();
     BufReader::new(file)
         .read_until(b'\n', &mut first)
-        .with_context(|| format!("reading {}", path.display()))?;
+        .with_context(|| format!("reading {}", path_text(path)))?;
     Ok(first)
 }
 
@@ -397,13 +403,13 @@ fn check_regular_file(path: &Path) -> Result<()> {
         Ok(m) if m.is_file() => Ok(()),
         Ok(_) => bail!(
             "{}: not a regular file (a folder, FIFO or device); {START_AFRESH}",
-            path.display()
+            path_text(path)
         ),
         Err(_) if something_at(path) => bail!(
             "{}: a symbolic link to a missing file; {START_AFRESH}",
-            path.display()
+            path_text(path)
         ),
-        Err(e) => Err(e).with_context(|| format!("cannot read {}", path.display())),
+        Err(e) => Err(e).with_context(|| format!("cannot read {}", path_text(path))),
     }
 }
 
@@ -439,13 +445,13 @@ impl Journal {
     /// # Errors
     /// An existing journal, or an I/O error.
     pub fn create(dir: &Path, header: &SweepHeader) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", dir.display()))?;
+        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
         let path = Self::path_in(dir);
         let file = OpenOptions::new()
             .write(true)
             .create_new(true)
             .open(&path)
-            .with_context(|| format!("creating {}", path.display()))?;
+            .with_context(|| format!("creating {}", path_text(&path)))?;
         let json = serde_json::to_string(header).context("serialising the journal header")?;
         let header_sum = header_sum(&json);
         let mut j = Self {
@@ -477,20 +483,20 @@ impl Journal {
             bail!(
                 "--resume: {} was written by a sweep with other parameters ({}); run with \
                  another --out, or with --overwrite (in place of --resume) to start afresh",
-                path.display(),
+                path_text(&path),
                 header_diff(&contents.header, header)
             );
         }
         let file = OpenOptions::new()
             .write(true)
             .open(&path)
-            .with_context(|| format!("opening {}", path.display()))?;
+            .with_context(|| format!("opening {}", path_text(&path)))?;
         file.set_len(contents.complete_bytes)
-            .with_context(|| format!("truncating {}", path.display()))?;
+            .with_context(|| format!("truncating {}", path_text(&path)))?;
         let file = OpenOptions::new()
             .append(true)
             .open(&path)
-            .with_context(|| format!("opening {}", path.display()))?;
+            .with_context(|| format!("opening {}", path_text(&path)))?;
         let journal = Self {
             path,
             file,
@@ -518,7 +524,7 @@ impl Journal {
         if self.damaged {
             bail!(
                 "{}: an earlier line could not be written nor removed; not appending",
-                self.path.display()
+                path_text(&self.path)
             );
         }
         if let Err(e) = self.write_bytes(s.as_bytes()) {
@@ -532,7 +538,7 @@ impl Journal {
             {
                 self.damaged = true;
             }
-            return Err(e).with_context(|| format!("appending to {}", self.path.display()));
+            return Err(e).with_context(|| format!("appending to {}", path_text(&self.path)));
         }
         self.complete_bytes += s.len() as u64;
         Ok(())

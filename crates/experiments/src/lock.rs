@@ -15,6 +15,7 @@ use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
+use usar_sim::scenario::path_text;
 
 /// Name of the lock file in the output folder.
 pub const LOCK_FILE: &str = "sweep.lock";
@@ -35,14 +36,14 @@ impl OutputLock {
     /// The folder is locked by another sweep (`<dir> is in use by another sweep (pid N)`), the
     /// lock file is not a regular file (a link, a folder), or an I/O error.
     pub fn acquire(dir: &Path) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", dir.display()))?;
+        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
         let path = dir.join(LOCK_FILE);
         if let Ok(m) = fs::symlink_metadata(&path)
             && !m.is_file()
         {
             bail!(
                 "{} is not a regular file; remove it (it only holds the pid of a running sweep)",
-                path.display()
+                path_text(&path)
             );
         }
         // Not truncated before the lock is ours: the holder's pid must stay readable.
@@ -52,7 +53,7 @@ impl OutputLock {
             .create(true)
             .truncate(false)
             .open(&path)
-            .with_context(|| format!("opening {}", path.display()))?;
+            .with_context(|| format!("opening {}", path_text(&path)))?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
@@ -65,17 +66,17 @@ impl OutputLock {
                 bail!(
                     "{} is in use by another sweep ({holder}); wait for it to end, or choose \
                      another --out",
-                    dir.display()
+                    path_text(dir)
                 );
             }
             Err(TryLockError::Error(e)) => {
-                return Err(e).with_context(|| format!("locking {}", path.display()));
+                return Err(e).with_context(|| format!("locking {}", path_text(&path)));
             }
         }
         file.set_len(0)
             .and_then(|()| writeln!(file, "{}", std::process::id()))
             .and_then(|()| file.flush())
-            .with_context(|| format!("writing {}", path.display()))?;
+            .with_context(|| format!("writing {}", path_text(&path)))?;
         Ok(Self { path, _file: file })
     }
 

@@ -17,6 +17,7 @@ use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use usar_sim::scenario::path_text;
 
 use crate::atomic::{remove_files_where, remove_stale_temps};
 use crate::figures::FIGURES;
@@ -114,7 +115,7 @@ pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf
         match fs::remove_dir(&cell) {
             Ok(()) => {}
             Err(e) if e.kind() == ErrorKind::DirectoryNotEmpty => {}
-            Err(e) => return Err(e).with_context(|| format!("removing {}", cell.display())),
+            Err(e) => return Err(e).with_context(|| format!("removing {}", path_text(&cell))),
         }
     }
     Ok(removed)

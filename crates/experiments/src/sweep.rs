@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use usar_sim::mission::{TrialResult, trial_seed};
-use usar_sim::scenario::{Scenario, trial_steps};
+use usar_sim::scenario::{Scenario, path_text, trial_steps};
 
 use crate::atomic::remove_stale_temps;
 use crate::executor::{CellPlan, Job, Runner, execute};
@@ -459,7 +459,7 @@ fn warn_rejected(
         };
         crate::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
-            Journal::path_in(dir).display(),
+            path_text(&Journal::path_in(dir)),
             r.line,
             r.method,
             r.trial,
@@ -552,13 +552,14 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
     let path = Journal::path_in(dir);
     if holds_no_line(&path) {
         // An empty file, or a header cut short, holds no trial: nothing to resume or lose.
-        std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
+        std::fs::remove_file(&path).with_context(|| format!("removing {}", path_text(&path)))?;
     }
     if cfg.overwrite && !cfg.resume {
         // The earlier sweep's tables, figures and grid cells go with its journal.
         remove_previous_outputs(dir, &path)?;
         if something_at(&path) {
-            std::fs::remove_file(&path).with_context(|| format!("removing {}", path.display()))?;
+            std::fs::remove_file(&path)
+                .with_context(|| format!("removing {}", path_text(&path)))?;
         }
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
@@ -581,7 +582,7 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
             "{} already exists ({}): its trials cannot be continued by this build; pass \
              --overwrite to start afresh (or choose another --out, or run the build that \
              wrote it)",
-            path.display(),
+            path_text(&path),
             header_diff(&found, header)
         ),
         Ok(found) => format!(
@@ -594,7 +595,7 @@ fn open_journal(cfg: &SweepConfig, dir: &Path, header: &SweepHeader) -> Result<O
     bail!(
         "{} already exists ({why}): pass --resume to continue that sweep, or --overwrite to \
          start afresh (or choose another --out)",
-        path.display()
+        path_text(&path)
     )
 }
 
@@ -610,8 +611,8 @@ fn refuse_other_sweeps_shards(dir: &Path, header: &SweepHeader) -> Result<()> {
                 "{} is a shard's journal of another sweep ({why}), whose merge writes its files \
                  into {}: pass --overwrite to start afresh there (the merged files go, the \
                  shards stay), or choose another --out",
-                path.display(),
-                dir.display()
+                path_text(&path),
+                path_text(dir)
             );
         }
     }

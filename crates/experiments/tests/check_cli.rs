@@ -397,3 +397,134 @@ fn an_index_reaches_a_single_rest_station_as_element_0() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// The line every subcommand that reads a scenario prints for `bad` and the folder `dir`
+/// (outputs go there), by subcommand.
+fn load_errors(bad: &std::path::Path, dir: &std::path::Path) -> Vec<(&'static str, String)> {
+    let (file, out) = (bad.to_str().unwrap(), dir.join("out"));
+    let out = out.to_str().unwrap();
+    let runs: [(&str, Vec<&str>); 6] = [
+        ("check", vec!["check", file]),
+        ("run", vec!["run", file]),
+        ("sweep", vec!["sweep", file, "--trials", "1", "--out", out]),
+        ("render", vec!["render", file, "--out", out]),
+        ("replay", vec!["replay", file, "--out", out]),
+        (
+            "slurm",
+            vec![
+                "slurm", file, "--trials", "1", "--shards", "1", "--out", out,
+            ],
+        ),
+    ];
+    runs.into_iter()
+        .map(|(name, args)| {
+            let o = usar(&args);
+            assert!(!o.status.success(), "{name}");
+            (name, String::from_utf8_lossy(&o.stderr).into_owned())
+        })
+        .collect()
+}
+
+#[test]
+fn every_subcommand_prints_a_load_error_as_the_loader_writes_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bad = tmp.path().join("bad.ron");
+    let text = std::fs::read_to_string(PAPER).unwrap();
+    std::fs::write(
+        &bad,
+        text.replacen("duration_s: 600.0", "duration_s: -1.0", 1),
+    )
+    .unwrap();
+    let line = text
+        .lines()
+        .position(|l| l.contains("duration_s: 600.0"))
+        .unwrap()
+        + 1;
+    let col = text.lines().nth(line - 1).unwrap().find("600.0").unwrap() + 1;
+    let want = format!(
+        "error: {}:{line}:{col}: mission.duration_s: expected a finite number > 0, found -1\n",
+        bad.display()
+    );
+    for (name, err) in load_errors(&bad, tmp.path()) {
+        assert_eq!(err, want, "usar {name}");
+    }
+    let missing = tmp.path().join("missing.ron");
+    let want = format!(
+        "error: {}: cannot read scenario file: No such file or directory (os error 2)\n",
+        missing.display()
+    );
+    for (name, err) in load_errors(&missing, tmp.path()) {
+        assert_eq!(err, want, "usar {name}");
+    }
+}
+
+/// The stderr of `usar ARGS`, which must fail.
+fn failure(args: &[&str]) -> String {
+    let o = usar(args);
+    assert!(!o.status.success(), "{args:?}");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_line_break_in_a_path_is_escaped_in_every_message() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().display().to_string();
+    let text = std::fs::read_to_string(PAPER).unwrap();
+    let bad = tmp.path().join("a\nb.ron");
+    std::fs::write(
+        &bad,
+        text.replacen("duration_s: 600.0", "duration_s: -1.0", 1),
+    )
+    .unwrap();
+    let file = bad.to_str().unwrap();
+    let svg = tmp.path().join("x.svg");
+    for args in [
+        vec!["check", file],
+        vec!["run", file],
+        vec!["render", file, "--out", svg.to_str().unwrap()],
+    ] {
+        let err = failure(&args);
+        let head = format!("error: {dir}/a\\nb.ron:");
+        assert!(err.starts_with(&head), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+    let err = failure(&["check", &format!("{dir}/no\nsuch.ron")]);
+    assert_eq!(
+        err,
+        format!(
+            "error: {dir}/no\\nsuch.ron: cannot read scenario file: No such file or directory \
+             (os error 2)\n"
+        )
+    );
+    // Outputs: a folder that is a file, a file in it.
+    let taken = tmp.path().join("o\nut");
+    std::fs::write(&taken, "").unwrap();
+    let taken = taken.to_str().unwrap();
+    let json = format!("{taken}/x.json");
+    for args in [
+        vec![
+            "sweep",
+            PAPER,
+            "--trials",
+            "1",
+            "--duration",
+            "1",
+            "--out",
+            taken,
+        ],
+        vec!["run", PAPER, "--duration", "1", "--json", &json],
+    ] {
+        let err = failure(&args);
+        assert!(err.contains(&format!("{dir}/o\\nut")), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+    // Warnings name the scenario on one line too.
+    let split = tmp.path().join("split\narena.ron");
+    std::fs::copy(SPLIT_ARENA, &split).unwrap();
+    let o = usar(["check", split.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let head = format!("warning: {dir}/split\\narena.ron: tasks.hard.");
+    assert_eq!(err.lines().count(), 2, "{err}");
+    assert!(err.lines().all(|l| l.starts_with(&head)), "{err}");
+}

@@ -1,4 +1,7 @@
-//! The error type of `rne-core`.
+//! The error type of `rne-core`, and how every crate's messages write numbers, text and paths.
+
+use std::borrow::Cow;
+use std::path::Path;
 
 use thiserror::Error;
 
@@ -211,9 +214,53 @@ pub fn number_text(v: f64) -> String {
     }
 }
 
+/// `text` (a value or a path) as error and warning messages write it: a control character (a
+/// line break, a tab, an escape) or a Unicode line or paragraph separator escaped as Rust
+/// writes it (`\n`, `\t`, `\u{1b}`, `\u{2028}`), every other character as it is, so a message
+/// stays one line whatever a file name or a value holds. Escaping twice changes nothing.
+pub fn one_line_text(text: &str) -> Cow<'_, str> {
+    let breaks = |c: char| c.is_control() || matches!(c, '\u{2028}' | '\u{2029}');
+    if !text.chars().any(breaks) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if breaks(c) {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// `path` as error and warning messages write it: as [`Path::display`] shows it, escaped by
+/// [`one_line_text`] (a line break in a file name is written `\n`, so the message stays one
+/// line).
+pub fn path_text(path: &Path) -> String {
+    one_line_text(&path.display().to_string()).into_owned()
+}
+
 #[cfg(test)]
 mod tests {
-    use super::number_text;
+    use super::{number_text, one_line_text, path_text};
+
+    #[test]
+    fn text_and_paths_are_written_on_one_line() {
+        let cases = [
+            ("scenarios/paper.ron", "scenarios/paper.ron"),
+            ("a\nb.ron", "a\\nb.ron"),
+            ("tab\there\r", "tab\\there\\r"),
+            ("esc\u{1b}[1m", "esc\\u{1b}[1m"),
+            ("line\u{2028}sep", "line\\u{2028}sep"),
+            ("é \\ \"quoted\"", "é \\ \"quoted\""),
+        ];
+        for (text, shown) in cases {
+            assert_eq!(one_line_text(text), shown, "{text:?}");
+            assert_eq!(one_line_text(shown), shown, "escaping twice: {shown:?}");
+            assert_eq!(path_text(std::path::Path::new(text)), shown);
+        }
+    }
 
     #[test]
     fn numbers_are_plain_in_range_and_scientific_outside() {

@@ -39,7 +39,7 @@ pub use distribution::{
     Alignment, DEFAULT_RELATIVE_EPSILON, DISTRIBUTION_SUM_TOLERANCE, Distribution,
     DistributionOptions, Smoothing, group_distribution, needs_distribution,
 };
-pub use error::{Result, RneError, number_text};
+pub use error::{Result, RneError, number_text, one_line_text, path_text};
 pub use needs::{NeedsMatrix, NeedsVector, Weights};
 pub use rne::{LogBase, RneOptions, TrustModel, relative_entropy, rne};
 

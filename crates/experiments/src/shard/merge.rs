@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result, anyhow, bail};
+use usar_sim::scenario::path_text;
 
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
@@ -46,8 +47,8 @@ pub enum MergeError {
     #[error(
         "{}: no shards to merge (no folder {SHARDS_DIR}/<I>-of-<N>); run the shards first with \
          `usar sweep SCENARIO ... --shard I/N --out {}`",
-        dir.display(),
-        dir.display()
+        path_text(dir),
+        path_text(dir)
     )]
     NoShards {
         /// The output folder.
@@ -57,7 +58,7 @@ pub enum MergeError {
     #[error(
         "{}: shards of different splits ({}); a merge takes the shards of one split: move the \
          other folders away",
-        dir.display(),
+        path_text(dir),
         counts.iter().map(|n| format!("N = {n}")).collect::<Vec<_>>().join(", ")
     )]
     MixedSplits {
@@ -250,14 +251,14 @@ fn plan_and_header(
         bail!(
             "{}: no shard has both a journal and a {} (run the shards with `usar sweep ... \
              --shard I/N`)",
-            dir.join(SHARDS_DIR).display(),
+            path_text(&dir.join(SHARDS_DIR)),
             crate::shard::plan::PLAN_FILE
         );
     };
     let plan = SweepPlan::read(&first.dir)?;
     let config = plan
         .config(dir)
-        .with_context(|| format!("{}", SweepPlan::path_in(&first.dir).display()))?;
+        .with_context(|| path_text(&SweepPlan::path_in(&first.dir)).to_string())?;
     let mut header = header_of(&config)?;
     // The shards must share one build, not that of the binary that merges (which runs no
     // trial): the first shard's sets it.
@@ -272,12 +273,12 @@ fn plan_and_header(
     if let Some((shard, diff)) = odd_of(first) {
         // The plan does not give its own shard's header: the plan was edited.
         return Err(plan_mismatch(&first.dir, &diff)
-            .context(format!("shard {shard} ({})", first.dir.display())));
+            .context(format!("shard {shard} ({})", path_text(&first.dir))));
     }
     let odd: Vec<(Shard, String)> = shards
         .iter()
         .filter_map(|s| {
-            odd_of(s).map(|(shard, diff)| (shard, format!("{}: {diff}", s.dir.display())))
+            odd_of(s).map(|(shard, diff)| (shard, format!("{}: {diff}", path_text(&s.dir))))
         })
         .collect();
     if odd.is_empty() {
@@ -306,8 +307,8 @@ fn refuse_other_sweeps_journal(dir: &Path, header: &SweepHeader) -> Result<()> {
         "{} is the journal of another sweep than the shards' ({why}), whose files are in {}: \
          merging would mix the two; move that journal and its files away, or run the shards \
          with another --out",
-        path.display(),
-        dir.display()
+        path_text(&path),
+        path_text(dir)
     )
 }
 
@@ -331,9 +332,9 @@ fn unfinished(
                 shard: s.shard,
                 why: match Journal::path_in(&s.dir) {
                     p if something_at(&p) => {
-                        format!("its journal holds no trial ({})", p.display())
+                        format!("its journal holds no trial ({})", path_text(&p))
                     }
-                    p => format!("no journal ({})", p.display()),
+                    p => format!("no journal ({})", path_text(&p)),
                 },
             });
             continue;

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow};
 use serde::{Deserialize, Serialize};
-use usar_sim::scenario;
+use usar_sim::scenario::{self, path_text};
 
 use crate::atomic::write_atomic;
 use crate::grid::Grid;
@@ -68,8 +68,9 @@ impl SweepPlan {
     pub fn read(dir: &Path) -> Result<Self> {
         let path = Self::path_in(dir);
         let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        serde_json::from_str(&text).with_context(|| format!("{}: not a sweep plan", path.display()))
+            .with_context(|| format!("cannot read {}", path_text(&path)))?;
+        serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a sweep plan", path_text(&path)))
     }
 
     /// The sweep's configuration: the scenario from [`SweepPlan::scenario_text`], the grid
@@ -80,7 +81,7 @@ impl SweepPlan {
     /// A scenario or `--vary` that does not load (the messages of `usar sweep`), or a sweep
     /// above [`crate::sweep::MAX_SWEEP_TRIALS`] trials (refused before the grid is built).
     pub fn config(&self, out_dir: &Path) -> Result<SweepConfig> {
-        let origin = self.scenario_path.display().to_string();
+        let origin = path_text(&self.scenario_path);
         let scenario = scenario::from_str(&self.scenario_text, &origin)?;
         let grid = if self.vary.is_empty() {
             None
@@ -174,7 +175,7 @@ pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
     anyhow!(
         "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
          mixes two sweeps",
-        SweepPlan::path_in(dir).display()
+        path_text(&SweepPlan::path_in(dir))
     )
 }
 

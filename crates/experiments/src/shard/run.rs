@@ -11,6 +11,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use usar_sim::scenario::path_text;
 
 use crate::shard::{Shard, SweepPlan};
 
@@ -36,9 +37,9 @@ pub fn shard_folders(out_dir: &Path) -> Result<Vec<(Shard, PathBuf)>> {
     }
     let mut found = Vec::new();
     let entries =
-        std::fs::read_dir(&root).with_context(|| format!("reading {}", root.display()))?;
+        std::fs::read_dir(&root).with_context(|| format!("reading {}", path_text(&root)))?;
     for e in entries {
-        let e = e.with_context(|| format!("reading {}", root.display()))?;
+        let e = e.with_context(|| format!("reading {}", path_text(&root)))?;
         if let Some(s) = e.file_name().to_str().and_then(Shard::from_dir_name) {
             found.push((s, e.path()));
         }

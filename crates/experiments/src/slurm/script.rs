@@ -10,6 +10,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
+use usar_sim::scenario::path_text;
 
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
 
@@ -353,7 +354,7 @@ pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
     check_paths(job)?;
     let files = SlurmFiles::under(job.out_dir);
     std::fs::create_dir_all(&files.logs)
-        .with_context(|| format!("creating folder {}", files.logs.display()))?;
+        .with_context(|| format!("creating folder {}", path_text(&files.logs)))?;
     let scripts = [
         (&files.array, array_script(job)),
         (&files.merge, merge_script(job)),
@@ -370,7 +371,7 @@ pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
 fn make_executable(path: &Path) -> Result<()> {
     use std::os::unix::fs::PermissionsExt;
     std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755))
-        .with_context(|| format!("making {} executable", path.display()))
+        .with_context(|| format!("making {} executable", path_text(path)))
 }
 
 #[cfg(not(unix))]

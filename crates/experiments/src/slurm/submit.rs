@@ -6,6 +6,7 @@ use std::path::Path;
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+use usar_sim::scenario::path_text;
 
 use crate::slurm::SlurmFiles;
 
@@ -38,11 +39,11 @@ fn sbatch(sbatch: &Path, extra: &[String], script: &Path) -> Result<String> {
         .args(extra)
         .arg(script)
         .output()
-        .with_context(|| format!("running {}", sbatch.display()))?;
+        .with_context(|| format!("running {}", path_text(sbatch)))?;
     if !out.status.success() {
         bail!(
             "sbatch {} failed ({}): {}",
-            script.display(),
+            path_text(script),
             out.status,
             one_line(&String::from_utf8_lossy(&out.stderr))
         );
@@ -83,7 +84,7 @@ pub fn submit(files: &SlurmFiles, sbatch_program: &Path) -> Result<Submitted> {
         format!(
             "the array was submitted as job {array_job}, but not the merge; submit it by \
              hand once the array is done: sbatch {}",
-            files.merge.display()
+            path_text(&files.merge)
         )
     })?;
     Ok(Submitted {

@@ -21,7 +21,7 @@ mod value;
 use std::fmt;
 
 use serde_json::Value;
-use usar_sim::scenario::{ScenarioError, ScenarioSpec};
+use usar_sim::scenario::{ScenarioError, ScenarioSpec, one_line_text};
 
 pub use path::{FieldPath, Step};
 pub use split::split_top_level;
@@ -90,21 +90,12 @@ impl Override {
 pub const QUOTED_ARG_CHARS: usize = 80;
 
 /// `arg` (a `--set` or `--vary` argument, or a value) as an error message quotes it, control
-/// characters escaped: in full up to
+/// characters escaped ([`one_line_text`], as paths are): in full up to
 /// [`QUOTED_ARG_CHARS`] characters, else its first 60 and the length (`rest_station=[(center_m:
 /// ... (10412 characters)`), so that an error about a long value stays a short line.
 pub fn brief(arg: &str) -> String {
     // A control character is written escaped (`\n`), so the message stays one line.
-    let arg: String = arg
-        .chars()
-        .map(|c| {
-            if c.is_control() {
-                c.escape_debug().to_string()
-            } else {
-                c.to_string()
-            }
-        })
-        .collect();
+    let arg = one_line_text(arg).into_owned();
     let n = arg.chars().count();
     if n <= QUOTED_ARG_CHARS {
         arg

@@ -7,33 +7,13 @@
 //! `origin:line:col: field.path: message`, for example
 //! `scenarios/bad.ron:12:5: kinds[0].quota: easy 3 + hard 2 = 5 but count is 6`.
 
-use std::borrow::Cow;
 use std::fmt;
 
-/// `text` as one line: every control character (a line feed, a tab, ...) and the Unicode line
-/// and paragraph separators written escaped (`\n`, `\u{2028}`), everything else as it is.
-/// Messages quote paths and values through it, so an error stays one line whatever a file's
-/// name holds.
-pub fn one_line(text: &str) -> Cow<'_, str> {
-    let breaks = |c: char| c.is_control() || matches!(c, '\u{2028}' | '\u{2029}');
-    if !text.chars().any(breaks) {
-        return Cow::Borrowed(text);
-    }
-    Cow::Owned(
-        text.chars()
-            .map(|c| {
-                if breaks(c) {
-                    c.escape_debug().to_string()
-                } else {
-                    c.to_string()
-                }
-            })
-            .collect(),
-    )
-}
+use super::model::one_line_text;
 
 /// Where in a scenario source an error is: the origin (file name) and, when known, a 1-based
-/// line and column (columns count characters, as ron does).
+/// line and column (columns count characters, as ron does). Displayed as `origin:line:col`,
+/// the origin escaped by [`one_line_text`] (a line break in a file name is written `\n`).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SourceLocation {
     /// The file path or the name given to [`crate::scenario::from_str`].
@@ -44,10 +24,9 @@ pub struct SourceLocation {
 
 impl fmt::Display for SourceLocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let origin = one_line(&self.origin);
         match self.line_col {
-            Some((line, col)) => write!(f, "{origin}:{line}:{col}"),
-            None => f.write_str(&origin),
+            Some((line, col)) => write!(f, "{}:{}:{}", one_line_text(&self.origin), line, col),
+            None => f.write_str(&one_line_text(&self.origin)),
         }
     }
 }
@@ -59,7 +38,7 @@ impl fmt::Display for SourceLocation {
 pub enum ScenarioError {
     /// The file could not be read. The I/O error is part of the one-line message (not also a
     /// `source()`, so a chain-printing caller does not repeat it).
-    #[error("{}: cannot read scenario file: {error}", one_line(path))]
+    #[error("{}: cannot read scenario file: {error}", one_line_text(path))]
     Io {
         /// The path that was given.
         path: String,
@@ -179,6 +158,6 @@ mod tests {
             error: std::io::Error::from(std::io::ErrorKind::NotFound),
         };
         assert!(e.to_string().starts_with("x\\ny.ron: cannot read"), "{e}");
-        assert_eq!(one_line("plain/path.ron"), "plain/path.ron");
+        assert_eq!(one_line_text("plain/path.ron"), "plain/path.ron");
     }
 }

@@ -9,12 +9,12 @@ use ron::error::{Error as RonError, SpannedError};
 use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
-use super::model::{Scenario, number_text};
+use super::model::{Scenario, number_text, path_text};
 use super::spec::ScenarioSpec;
 use super::validate::{Ctx, validate};
 
 /// Loads and validates the scenario file at `path` (RON, format in `docs/scenario-format.md`).
-/// Errors name the path as given.
+/// Errors name the path as given ([`path_text`]: on one line).
 ///
 /// # Errors
 /// [`ScenarioError::Io`] if the file cannot be read, [`ScenarioError::Syntax`] for RON syntax
@@ -22,7 +22,7 @@ use super::validate::{Ctx, validate};
 /// broken rule (with field path and, where the field appears, line and column).
 pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
     let path = path.as_ref();
-    from_str(&read_source(path)?, &path.display().to_string())
+    from_str(&read_source(path)?, &path_text(path))
 }
 
 /// The text of the scenario file at `path`, as [`load`] reads it: at most
@@ -35,7 +35,7 @@ pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
 /// [`ScenarioError::Syntax`] at the line and column of the first byte that is not UTF-8.
 pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
     let path = path.as_ref();
-    let origin = path.display().to_string();
+    let origin = path_text(path);
     let io_error = |error| ScenarioError::Io {
         path: origin.clone(),
         error,

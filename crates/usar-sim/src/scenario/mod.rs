@@ -20,7 +20,7 @@ mod shape;
 mod spec;
 mod validate;
 
-pub use error::{ScenarioError, SourceLocation, one_line};
+pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
 pub use model::*;
 pub use numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};

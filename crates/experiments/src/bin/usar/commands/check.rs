@@ -8,7 +8,9 @@ use std::path::PathBuf;
 use anyhow::{Result, anyhow};
 use clap::Args;
 use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
-use usar_sim::scenario::{self, Debris, Locomotion, Scenario, ScenarioError, number_text};
+use usar_sim::scenario::{
+    self, Debris, Locomotion, Scenario, ScenarioError, number_text, path_text,
+};
 
 use experiments::fingerprint::scenario_hash;
 use experiments::spec_ron::spec_to_ron;
@@ -66,7 +68,7 @@ pub struct CheckArgs {
 /// unchanged; with it, a bad `--set` (`--set FIELD=VALUE: field.path: message`) or a rule the
 /// overridden file breaks ([`validate_overridden`]).
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
-    let origin = args.scenario.display().to_string();
+    let origin = path_text(&args.scenario);
     let overrides = args
         .set
         .iter()

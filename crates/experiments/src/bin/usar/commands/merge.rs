@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::Args;
+use usar_sim::scenario::path_text;
 
 use experiments::analysis::Analysis;
 use experiments::console::print_sweep;
@@ -50,7 +51,7 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     for (path, r) in &m.rejected {
         experiments::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); left out (trial {} #{} of cell {})",
-            path.display(),
+            path_text(path),
             r.line,
             r.method,
             r.trial,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::mission::Simulation;
-use usar_sim::scenario::{self, Scenario};
+use usar_sim::scenario::{self, Scenario, path_text};
 
 use experiments::render::{Trace, render_svg};
 
@@ -112,7 +112,7 @@ pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
     let traces = if args.trace {
         Some(
             trace_trial(&scenario, &args.method, args.trial, args.duration)
-                .with_context(|| format!("tracing a trial of {}", path.display()))?,
+                .with_context(|| format!("tracing a trial of {}", path_text(path)))?,
         )
     } else {
         None

@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::mission::{MissionError, Simulation, TrialBuilder, TrialResult, trial_steps};
-use usar_sim::scenario::{self, number_text};
+use usar_sim::scenario::{self, number_text, path_text};
 
 use experiments::atomic::write_atomic;
 use experiments::metrics::{Metric, Quantity, Scope};
@@ -75,7 +75,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         builder = builder.duration_s(d);
     }
     let mut sim = build_trial(builder)?;
-    super::check::warn_about(&args.scenario.display().to_string(), &scenario);
+    super::check::warn_about(&path_text(&args.scenario), &scenario);
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;

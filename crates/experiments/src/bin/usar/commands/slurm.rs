@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
+use usar_sim::scenario::path_text;
 
 use experiments::shard::shell_join;
 use experiments::slurm::{SlurmJob, SlurmOptions, submit, write_scripts};
@@ -77,7 +78,7 @@ pub struct SlurmArgs {
 /// `path` made absolute against the current folder (not resolved: links stay).
 fn absolute(path: &Path) -> Result<PathBuf> {
     std::path::absolute(path)
-        .with_context(|| format!("{}: cannot make it absolute", path.display()))
+        .with_context(|| format!("{}: cannot make it absolute", path_text(path)))
 }
 
 /// Runs `usar slurm`: checks the sweep, writes the scripts, prints (or runs) the submission.

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
-use usar_sim::scenario::{self, Scenario};
+use usar_sim::scenario::{self, Scenario, path_text};
 
 use experiments::analysis::Analysis;
 
@@ -212,7 +212,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
         return Ok(None);
     }
     experiments::sweep::check_grid_size(&args.vary, args.methods.len(), args.trials)?;
-    let origin = args.scenario.display().to_string();
+    let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
     Grid::build(&spec, &args.vary).map(Some)
@@ -333,7 +333,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     // Options first (a bad one is the only line), then what the scenario warns about.
     experiments::sweep::check_trial_count(&cfg)?;
     warn_about(
-        &cfg.scenario_path.display().to_string(),
+        &path_text(&cfg.scenario_path),
         &cfg.scenario,
         cfg.grid.as_ref(),
     );
