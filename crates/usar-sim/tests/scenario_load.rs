@@ -140,39 +140,6 @@ fn a_syntax_error_outside_every_field_names_the_scenario() {
     assert_eq!(e.field(), Some("kinds"), "{e}");
 }
 
-/// A field error inside a single-circle rest station names the circle's type, as the list
-/// form's does (ron named the struct around it, `Scenario`).
-#[test]
-fn a_bad_field_of_one_rest_station_names_the_circle() {
-    let one = "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)";
-    for (to, field, words) in [
-        (
-            "rest_station: (colour: 1, center_m: (25.0, 2.0), radius_m: 1.0)",
-            "rest_station.colour",
-            "Unexpected field named `colour` in `CircleSpec`",
-        ),
-        (
-            "rest_station: (center_m: (25.0, 2.0))",
-            "rest_station.radius_m",
-            "missing field named `radius_m` in `CircleSpec`",
-        ),
-        (
-            "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0, radius_m: 2.0)",
-            "rest_station.radius_m",
-            "duplicate field named `radius_m` in `CircleSpec`",
-        ),
-        (
-            "rest_station: [(colour: 1, center_m: (25.0, 2.0), radius_m: 1.0)]",
-            "rest_station[0].colour",
-            "Unexpected field named `colour` in `CircleSpec`",
-        ),
-    ] {
-        let e = scenario::from_str(&broken(one, to), "t.ron").expect_err(to);
-        assert_eq!(e.field(), Some(field), "{e}");
-        assert!(e.to_string().contains(words), "{e}");
-    }
-}
-
 #[test]
 fn base_is_valid_and_defaults_apply() {
     let s = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
@@ -890,4 +857,114 @@ fn a_huge_number_where_ron_wants_another_type_is_written_short() {
         "{msg}"
     );
     assert!(!msg.contains("0000000000"), "{msg}");
+}
+
+/// An unknown, missing or repeated field of a rest station is the station's, whether
+/// `rest_station` is one circle or a list: the field path and the type `CircleSpec` are named
+/// alike (ron read the single circle as a map and named the enclosing `Scenario`).
+#[test]
+fn a_field_error_of_the_one_rest_station_names_its_type_as_the_list_does() {
+    let one = "rest_station: (center_m: (25.0, 2.0), radius_m: 1.0)";
+    let cases = [
+        (
+            "radius_m: 1.0, colour: 1",
+            "colour",
+            "Unexpected field named `colour` in `CircleSpec`",
+        ),
+        (
+            "radius_m: 1.0, radius_m: 2.0",
+            "radius_m",
+            "duplicate field named `radius_m` in `CircleSpec`",
+        ),
+    ];
+    for (fields, field, msg) in cases {
+        for (form, path) in [
+            ("(CIRCLE)", "rest_station"),
+            ("[(CIRCLE)]", "rest_station[0]"),
+        ] {
+            let circle = format!("center_m: (25.0, 2.0), {fields}");
+            let to = format!("rest_station: {}", form.replace("CIRCLE", &circle));
+            let err = scenario::from_str(&broken(one, &to), "inline.ron").expect_err(&to);
+            assert_eq!(
+                err.field(),
+                Some(format!("{path}.{field}").as_str()),
+                "{err}"
+            );
+            assert!(err.to_string().contains(msg), "{err}");
+            assert!(!err.to_string().contains("Scenario"), "{err}");
+        }
+    }
+    for (to, path) in [
+        (
+            "rest_station: (center_m: (25.0, 2.0))",
+            "rest_station.radius_m",
+        ),
+        (
+            "rest_station: [(center_m: (25.0, 2.0))]",
+            "rest_station[0].radius_m",
+        ),
+    ] {
+        let err = scenario::from_str(&broken(one, to), "inline.ron").expect_err(to);
+        assert_eq!(err.field(), Some(path), "{err}");
+        let msg = "missing field named `radius_m` in `CircleSpec`";
+        assert!(err.to_string().contains(msg), "{err}");
+    }
+}
+
+/// A file cut short is reported where its text ends, with the bracket it leaves open and the
+/// field that bracket (or the value cut off) belongs to; an error before the cut stays ron's.
+#[test]
+fn a_file_cut_short_names_where_it_ends_and_the_bracket_left_open() {
+    let cut_paper = &BASE[..BASE.rfind(')').unwrap()];
+    let scenario_open = line_of(BASE, "Scenario(");
+    let end = (cut_paper.trim_end().lines().count(), {
+        let last = cut_paper.trim_end().lines().last().unwrap();
+        last.chars().count() + 1
+    });
+    let cases = [
+        (
+            "(",
+            "x.ron:1:2: Scenario: the file ends before its `(` at 1:1 is closed".to_string(),
+        ),
+        (
+            "Scenario(kinds: [",
+            "x.ron:1:18: kinds: the file ends before `[` at 1:17 is closed".into(),
+        ),
+        (
+            "Scenario(name: \"x\", arena: (width_m: 1",
+            "x.ron:1:39: arena.width_m: the file ends before `(` at 1:28 is closed".into(),
+        ),
+        (
+            "Scenario(name: \"x\", arena: ",
+            "x.ron:1:27: arena: the file ends before the scenario's `(` at 1:9 is closed".into(),
+        ),
+        (
+            cut_paper,
+            format!(
+                "x.ron:{}:{}: Scenario: the file ends before its `(` at {scenario_open}:{} is \
+                 closed",
+                end.0,
+                end.1,
+                BASE.lines()
+                    .nth(scenario_open - 1)
+                    .unwrap()
+                    .find('(')
+                    .unwrap()
+                    + 1
+            ),
+        ),
+        // Errors before the cut are ron's, where ron finds them.
+        (
+            "Scenario(name: \"x\", arena: (width_m: \"a\"",
+            "x.ron:1:37: arena.width_m: Expected float".into(),
+        ),
+        (
+            "Scenario(name: \"x), ",
+            "x.ron:1:16: name: Expected end of string".into(),
+        ),
+    ];
+    for (src, want) in cases {
+        let err = scenario::from_str(src, "x.ron").expect_err(src);
+        assert_eq!(err.to_string(), want, "{src:?}");
+    }
 }

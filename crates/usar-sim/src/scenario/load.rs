@@ -166,6 +166,16 @@ fn parse_with(src: &str, origin: &str, map: &SourceMap) -> Result<ScenarioSpec, 
 fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -> ScenarioError {
     let pos = e.span.start;
     let offset = map.offset_of(pos.line, pos.col);
+    if let Some((field, message)) = cut_short(src, offset, map) {
+        return ScenarioError::Syntax {
+            location: SourceLocation {
+                origin: origin.to_owned(),
+                line_col: Some(map.line_col(map.text_end())),
+            },
+            field: Some(field.unwrap_or_else(|| "Scenario".into())),
+            message,
+        };
+    }
     let here = map.path_at(offset);
     let field = match &e.code {
         RonError::NoSuchStructField { found, .. } => Some(child_path(here, found)),
@@ -197,6 +207,44 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
         ),
         message,
     }
+}
+
+/// The field and message for a file cut short: the text ends with brackets left open, and
+/// ron's error (at byte `offset` of `src`) is one the cut caused, which it says as "Unexpected
+/// end of RON" or as what it expected next (`Expected comma`) at the last character. The
+/// error is the cut's when closing the open brackets at the end moves ron's error further on
+/// (or away). The field is the innermost one still open at the error (none for the top-level
+/// value), the message says which bracket is left open; the caller reports it where the text
+/// ends. `None` for any other error, reported as ron gives it.
+fn cut_short(src: &str, offset: usize, map: &SourceMap) -> Option<(Option<String>, String)> {
+    let (path, open) = map.innermost_unclosed()?;
+    let mut completed = src.to_owned();
+    completed.extend(map.unclosed_closers());
+    if let Err(e) = ron::Options::default().from_str::<ScenarioSpec>(&completed) {
+        let moved = SourceMap::build(&completed).offset_of(e.span.start.line, e.span.start.col);
+        if moved <= offset {
+            return None;
+        }
+    }
+    // The field open at the error, when it lies inside the open bracket's (`arena: ` cut
+    // before its value is inside the scenario's `(`).
+    let field = match map.path_within(offset) {
+        Some(p) if p.len() > path.len() && p.starts_with(path) => p,
+        _ => path,
+    };
+    let (line, col) = map.line_col(open);
+    let bracket = src[open..].chars().next().unwrap_or('(');
+    // The scenario's own bracket: named by the field `Scenario` (the caller's) when no field is
+    // open, else in words.
+    let whose = match (path.is_empty(), field.is_empty()) {
+        (true, true) => "its ",
+        (true, false) => "the scenario's ",
+        _ => "",
+    };
+    Some((
+        (!field.is_empty()).then(|| field.to_owned()),
+        format!("the file ends before {whose}`{bracket}` at {line}:{col} is closed"),
+    ))
 }
 
 /// A single-circle `rest_station` is read through a visitor (one circle or a list), so ron

@@ -32,6 +32,9 @@ pub(crate) struct SourceMap {
     by_path: HashMap<String, usize>,
     /// Byte offset of the top-level value (`Scenario(`), if the source has one.
     root: Option<usize>,
+    /// The brackets the source leaves open where it ends, innermost first: the path of the
+    /// field or element each opens the value of, and its byte offset.
+    unclosed: Vec<(String, usize)>,
 }
 
 impl SourceMap {
@@ -44,6 +47,7 @@ impl SourceMap {
             pos: 0,
             entries: Vec::new(),
             depth: 0,
+            unclosed: Vec::new(),
         };
         sc.skip_ws_and_attributes();
         let root = (sc.pos < src.len()).then_some(sc.pos);
@@ -58,7 +62,32 @@ impl SourceMap {
             entries: sc.entries,
             by_path,
             root,
+            unclosed: sc.unclosed,
         }
+    }
+
+    /// The innermost bracket the source leaves open where it ends (a file cut short): the
+    /// path of the field or element whose value it opens (empty for the top-level value) and
+    /// its byte offset; `None` when the skim closed every bracket it met.
+    pub(crate) fn innermost_unclosed(&self) -> Option<(&str, usize)> {
+        self.unclosed.first().map(|(p, at)| (p.as_str(), *at))
+    }
+
+    /// The brackets that close [`SourceMap::innermost_unclosed`] and every bracket open
+    /// around it, innermost first: what completes a source cut short.
+    pub(crate) fn unclosed_closers(&self) -> impl Iterator<Item = char> + '_ {
+        self.unclosed
+            .iter()
+            .map(|&(_, at)| match self.src.as_bytes()[at] {
+                b'[' => ']',
+                b'{' => '}',
+                _ => ')',
+            })
+    }
+
+    /// The byte offset just past the source's last character that is not whitespace.
+    pub(crate) fn text_end(&self) -> usize {
+        self.src.trim_end().len()
     }
 
     /// Line and column (1-based, column in characters) of `path`, or of its nearest ancestor
@@ -160,6 +189,8 @@ struct Scanner<'a> {
     entries: Vec<Entry>,
     /// Brackets open at the cursor.
     depth: usize,
+    /// The brackets open where the text ended, innermost first ([`SourceMap::unclosed`]).
+    unclosed: Vec<(String, usize)>,
 }
 
 fn is_delim(b: u8) -> bool {
@@ -366,8 +397,12 @@ impl Scanner<'_> {
             return false;
         }
         self.depth += 1;
+        let open = self.pos;
         let ok = self.container_items(path, close);
         self.depth -= 1;
+        if !ok && self.pos >= self.s.len() {
+            self.unclosed.push((path.to_owned(), open));
+        }
         ok
     }
 
@@ -491,6 +526,17 @@ Scenario(
         let off = m.offset_of(6, 30);
         assert_eq!(m.path_at(off), Some("kinds[0].quota.easy"));
         assert_eq!(m.line_col(off), (6, 30));
+    }
+
+    #[test]
+    fn brackets_left_open_at_the_end_are_found_innermost_first() {
+        let m = SourceMap::build("Scenario(name: \"x\", kinds: [(count: 1");
+        assert_eq!(m.innermost_unclosed(), Some(("kinds[0]", 28)));
+        assert_eq!(m.unclosed.len(), 3);
+        assert_eq!(m.unclosed[2], (String::new(), 8));
+        assert_eq!(m.text_end(), 37);
+        assert_eq!(SourceMap::build(SRC).innermost_unclosed(), None);
+        assert_eq!(SourceMap::build("(a: [1, 2)").innermost_unclosed(), None);
     }
 
     #[test]
