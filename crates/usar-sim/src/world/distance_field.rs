@@ -13,7 +13,9 @@
 //! `scenarios/paper.ron` hug other sides of the debris and three of the nine calibration
 //! statistics, the HP ratios, leave their bands; diagonals first keeps all nine inside.) Settled costs are final and every
 //! such neighbour is settled before the cell itself, so a path does not depend on the order of
-//! earlier queries: deterministic.
+//! earlier queries: deterministic. A cell whose cost would pass `u32::MAX` (a path of over
+//! 4.29 million straight moves, see [`super::grid_astar`]) stays unreached, as A* finds no
+//! path to it.
 //!
 //! Source: E. W. Dijkstra, "A note on two problems in connexion with graphs", Numerische
 //! Mathematik 1 (1959); the shared-field idea is that of flow-field crowd navigation
@@ -108,10 +110,14 @@ impl DistanceField {
             }
             self.settled[u as usize] = true;
             for (v, w) in grid.successors(u, inflation) {
+                // A cost past `u32::MAX` leaves the cell unreached (module docs).
+                let Some(reached) = c.checked_add(w) else {
+                    continue;
+                };
                 let slot = &mut self.cost[v as usize];
-                if !self.settled[v as usize] && c + w < *slot {
-                    *slot = c + w;
-                    self.open.push(c + w, v);
+                if !self.settled[v as usize] && reached < *slot {
+                    *slot = reached;
+                    self.open.push(reached, v);
                 }
             }
         }

@@ -12,6 +12,13 @@
 //! same sequence of keys, and the heap gives the same entries back. Tested against
 //! `pathfinding::directed::astar::astar` on random grids.
 //!
+//! Costs are `u32`: a move that would take a path's cost past `u32::MAX` is not taken (the
+//! crate's sum would overflow), so a goal only that far away has no path, and an estimate
+//! past it counts as `u32::MAX`. Grid paths cost [`super::navigation::STRAIGHT_COST`] per
+//! straight move, so this is a path of over 4.29 million straight moves, beyond any open
+//! arena of the largest grid ([`crate::scenario::limits::MAX_NAV_CELLS`]): only a maze could
+//! need one.
+//!
 //! Reference: P. E. Hart, N. J. Nilsson and B. Raphael, "A formal basis for the heuristic
 //! determination of minimum cost paths", IEEE Trans. SSC 4(2), 1968; the order of
 //! operations is that of `pathfinding` 4.16 (`src/directed/astar.rs`).
@@ -97,14 +104,17 @@ impl GridAstar {
                 continue;
             }
             for (next, move_cost) in successors(cell) {
-                let new_cost = cost + move_cost;
+                // A path costing more than `u32::MAX` is no path (module docs).
+                let Some(new_cost) = cost.checked_add(move_cost) else {
+                    continue;
+                };
                 let n = next as usize;
                 if self.seen[n] == self.generation && self.cost[n] <= new_cost {
                     continue;
                 }
                 self.visit(next, new_cost, cell);
                 self.open.push(Open {
-                    estimated: new_cost + heuristic(next),
+                    estimated: new_cost.saturating_add(heuristic(next)),
                     cost: new_cost,
                     cell: next,
                 });
@@ -270,5 +280,20 @@ mod tests {
         assert_eq!(a.generation, 1);
         // An unreachable goal: no path.
         assert_eq!(a.search(4, 0, 3, |_| std::iter::empty(), |_| 0), None);
+    }
+
+    /// A goal whose path would cost more than `u32::MAX` has no path, and the search neither
+    /// wraps nor panics (a debug build panicked on the overflowing sum); a heuristic past
+    /// `u32::MAX` with the cost counts as `u32::MAX`.
+    #[test]
+    fn a_path_cost_past_u32_max_is_no_path() {
+        let half = u32::MAX / 2;
+        let line = move |c: u32| (c < 3).then_some((c + 1, half)).into_iter();
+        let mut a = GridAstar::default();
+        // Cell 2 costs 2 * half = u32::MAX - 1: still found.
+        assert_eq!(a.search(4, 0, 2, line, |_| 0), Some(vec![0, 1, 2]));
+        // Cell 3 would cost 3 * half: beyond u32, no path.
+        assert_eq!(a.search(4, 0, 3, line, |_| 0), None);
+        assert_eq!(a.search(4, 0, 2, line, |_| u32::MAX), Some(vec![0, 1, 2]));
     }
 }

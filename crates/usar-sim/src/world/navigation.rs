@@ -261,9 +261,19 @@ impl ClearanceGrid {
     pub(super) fn octile(&self, a: u32, b: u32) -> u32 {
         let dx = (a % self.nx).abs_diff(b % self.nx);
         let dy = (a / self.nx).abs_diff(b / self.nx);
-        let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
-        STRAIGHT_COST * hi + (DIAGONAL_COST - STRAIGHT_COST) * lo
+        octile_cost(dx, dy)
     }
+}
+
+/// Octile distance of a cell offset `(dx, dy)`, cells, in planner cost units:
+/// `STRAIGHT_COST * max + (DIAGONAL_COST - STRAIGHT_COST) * min`, the cost of the cheapest
+/// path without obstacles. At most `u32::MAX`: a longer distance counts as `u32::MAX`, as a
+/// path's cost past it does in A* ([`super::grid_astar`]).
+pub(super) fn octile_cost(dx: u32, dy: u32) -> u32 {
+    let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
+    let cost = u64::from(STRAIGHT_COST) * u64::from(hi)
+        + u64::from(DIAGONAL_COST - STRAIGHT_COST) * u64::from(lo);
+    u32::try_from(cost).unwrap_or(u32::MAX)
 }
 
 /// How the planner finds a path to a goal.
@@ -747,6 +757,21 @@ mod tests {
     use super::*;
     use crate::scenario::Positive;
     use crate::world::bodies::StaticShape;
+
+    /// The octile cost of the grid's far corners: exact while it fits a `u32`, `u32::MAX`
+    /// beyond (it wrapped, or panicked in a debug build, for a row of over 4.29 million cells).
+    #[test]
+    fn octile_costs_saturate_instead_of_wrapping() {
+        assert_eq!(octile_cost(0, 0), 0);
+        assert_eq!(
+            octile_cost(3, 1),
+            3 * STRAIGHT_COST + (DIAGONAL_COST - STRAIGHT_COST)
+        );
+        assert_eq!(octile_cost(1, 3), octile_cost(3, 1));
+        assert_eq!(octile_cost(4_000_000, 0), 4_000_000_000);
+        assert_eq!(octile_cost(5_000_000, 0), u32::MAX);
+        assert_eq!(octile_cost(u32::MAX, u32::MAX), u32::MAX);
+    }
 
     const CELL: f64 = 0.25;
     /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
