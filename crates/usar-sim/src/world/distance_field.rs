@@ -14,8 +14,7 @@
 //! statistics, the HP ratios, leave their bands; diagonals first keeps all nine inside.) Settled costs are final and every
 //! such neighbour is settled before the cell itself, so a path does not depend on the order of
 //! earlier queries: deterministic. A cell whose cost would pass `u32::MAX` (a path of over
-//! 4.29 million straight moves, see [`super::grid_astar`]) stays unreached, as A* finds no
-//! path to it.
+//! 4.29 million straight moves) stays unreached, as A* finds no path to it.
 //!
 //! Source: E. W. Dijkstra, "A note on two problems in connexion with graphs", Numerische
 //! Mathematik 1 (1959); the shared-field idea is that of flow-field crowd navigation
