@@ -34,8 +34,6 @@ impl World {
         let n = self.robots.len();
         if self.is_control_step() {
             self.control();
-            self.control_ticks += 1;
-            self.next_control_step += self.control_steps;
         }
         for id in 0..n {
             let state = &mut self.robots[id];
@@ -68,18 +66,13 @@ impl World {
     /// robot's command, motion and list flags (see [`World::step`]).
     fn control(&mut self) {
         let n = self.robots.len();
-        // Robot `id` checks its path when `(control_ticks + id)` is a multiple of
-        // `path_check_every`: `id mod every == due`, with `id mod every` counted up.
-        let every = self.path_check_every;
-        let due = (every - self.control_ticks % every) % every;
-        let mut id_mod = 0;
+        // Robot `id` checks its path when `tick + id` is a multiple of `path_check_every`
+        // (`tick` counts the control steps taken before this one).
+        let tick = self.stats.steps / self.control_steps;
         for id in 0..n {
-            self.update_intent(id, id_mod == due);
+            let check_due = (tick + id as u64).is_multiple_of(self.path_check_every);
+            self.update_intent(id, check_due);
             self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
-            id_mod += 1;
-            if id_mod == every {
-                id_mod = 0;
-            }
         }
         if self.collision.enabled {
             let period_s = self.control_period_s();

@@ -67,10 +67,6 @@ pub struct World {
     pub(super) dt: f64,
     /// Steps per control period (`sim.control_period_s`, see [`World::control_steps`]), >= 1.
     pub(super) control_steps: u64,
-    /// Index of the next control step (a multiple of `control_steps`).
-    pub(super) next_control_step: u64,
-    /// Control steps taken before the current one.
-    pub(super) control_ticks: u64,
     /// A ground robot checks its path every this many control steps (see
     /// [`super::PATH_CHECK_INTERVAL_STEPS`]), >= 1.
     pub(super) path_check_every: u64,
@@ -150,8 +146,6 @@ impl World {
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
             control_steps: s.sim.control_steps(),
-            next_control_step: 0,
-            control_ticks: 0,
             path_check_every: (super::PATH_CHECK_INTERVAL_STEPS / s.sim.control_steps()).max(1),
             index_fresh: true,
             collision: s.collision,
@@ -378,6 +372,7 @@ impl World {
         state.velocity = Vector2::zeros();
         // At rest without a goal until the next control step decides again.
         state.held = false;
+        state.in_collision_list = false;
         state.motion = super::robot::Motion::Idle;
         self.reindex();
         Ok(())
@@ -447,7 +442,7 @@ impl World {
     /// robot's commanded velocity. The mission runs its decisions before a control step and
     /// its reviews (detection, phases) after the step before one.
     pub fn is_control_step(&self) -> bool {
-        self.stats.steps == self.next_control_step
+        self.stats.steps.is_multiple_of(self.control_steps)
     }
 
     /// World-level totals.
