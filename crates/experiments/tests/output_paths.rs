@@ -181,6 +181,19 @@ fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
     fs::write(out.join("trials.csv"), "marked\n").unwrap();
     fs::remove_file(out.join("summary.csv")).unwrap();
     fs::create_dir(out.join("summary.csv")).unwrap();
+    let files = |dir: &std::path::Path| -> Vec<(std::ffi::OsString, Vec<u8>)> {
+        let mut v: Vec<_> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            // The lock records who held it last; every output file must stay as it was.
+            .filter(|p| p.is_file() && !p.ends_with("sweep.lock"))
+            .map(|p| (p.file_name().unwrap().to_owned(), fs::read(&p).unwrap()))
+            .collect();
+        v.sort();
+        v
+    };
+    let before = files(&out);
+    assert!(before.len() >= 6, "{} files", before.len());
     let o = sweep(&["--resume"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
@@ -193,6 +206,13 @@ fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
         "marked\n",
         "trials.csv was rewritten before the sweep found it could not write summary.csv"
     );
+    let after = files(&out);
+    let names =
+        |v: &[(std::ffi::OsString, Vec<u8>)]| v.iter().map(|f| f.0.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&after), names(&before));
+    for ((name, a), (_, b)) in after.iter().zip(&before) {
+        assert!(a == b, "{name:?} changed although the sweep wrote nothing");
+    }
     // Once the folder is gone, the resume writes every file.
     fs::remove_dir(out.join("summary.csv")).unwrap();
     ok(&sweep(&["--resume"]));

@@ -563,13 +563,18 @@ fn a_step_count_past_f64_is_said_in_words_not_inf() {
 
 #[test]
 fn a_control_period_that_is_no_whole_number_of_steps_is_an_error() {
-    for bad in ["0.01", "0.05", "0.1000001", "1e-300"] {
+    for (bad, says) in [
+        ("0.01", "shorter than one step"),
+        ("1e-300", "shorter than one step"),
+        ("0.05", "not a whole number of steps"),
+        ("0.1000001", "not a whole number of steps"),
+    ] {
         let src = paper_with(
             "sim: (dt_s: 0.02, seed: 2021)",
             &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({bad}))"),
         );
         let e = rejected(&src, "sim.control_period_s");
-        assert!(e.to_string().contains("control period"), "{bad}: {e}");
+        assert!(e.to_string().contains(says), "{bad}: {e}");
     }
 }
 

@@ -164,7 +164,8 @@ fn bare_to_json(t: &str, guide: Option<&Value>) -> Result<Value, String> {
 
 /// A JSON unsigned integer from RON number text, for a field that holds one (a seed, a
 /// count): `0` to `u64::MAX`, else an error saying so (`18446744073709551616`, `-1` and `1.5`
-/// are not read as a float the field then refuses with serde's words).
+/// are not read as a float the field then refuses with serde's words). A narrower field (a
+/// `u32`) refuses a larger whole number itself, with serde's words.
 fn whole_number(t: &str) -> Result<Value, String> {
     if let Ok(u) = t.parse::<u64>() {
         return Ok(Value::from(u));
@@ -172,9 +173,17 @@ fn whole_number(t: &str) -> Result<Value, String> {
     if t.parse::<f64>().is_err() {
         return Err(format!("expected a number, found {}", brief(t)));
     }
+    if t.bytes().all(|b| b.is_ascii_digit()) {
+        // Digits only, yet not a u64: past the widest field's range.
+        return Err(format!(
+            "expected a whole number of at most {}, found {}",
+            u64::MAX,
+            brief(t)
+        ));
+    }
+    // The field's own type may be narrower (a u32 count): no upper bound is claimed here.
     Err(format!(
-        "expected a whole number from 0 to {}, found {}",
-        u64::MAX,
+        "expected a whole number (0 or more), found {}",
         brief(t)
     ))
 }
