@@ -127,6 +127,7 @@ impl Grid {
                 scenario,
             });
         }
+        check_same_scenarios(&varies, args, &cells)?;
         Ok(Self { varies, cells })
     }
 
@@ -177,34 +178,61 @@ fn check_distinct(varies: &[Vary]) -> Result<()> {
 }
 
 /// The path names something, each value has the right type on the base spec, and no two
-/// values give the same spec.
+/// values give the same spec (two values that give the same scenario by different spellings
+/// are found on the built cells: [`check_same_scenarios`]).
 fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> Result<()> {
     v.path
         .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
         .map_err(|e| anyhow!("--vary {}: {e}", brief(arg)))?;
-    // Each value's spec, and its validated scenario where the value validates on its own (a
-    // value valid only with another --vary's value is compared by its spec alone): two
-    // spellings of one scenario (`Row(...)` and the `List([...])` it expands to) are one.
-    let mut seen: Vec<(ScenarioSpec, Option<Scenario>)> = Vec::with_capacity(v.values.len());
-    for (k, value) in v.values.iter().enumerate() {
+    let mut seen: Vec<ScenarioSpec> = Vec::with_capacity(v.values.len());
+    for k in 0..v.values.len() {
         let o = v.at(k);
         let spec = apply_overrides(base, std::slice::from_ref(&o))
             .map_err(|(_, e)| anyhow!("--vary {}: {e}", o.brief()))?;
-        let scenario = spec.validate("--vary").ok();
-        let same = |(s, sc): &(ScenarioSpec, Option<Scenario>)| {
-            *s == spec || (sc.is_some() && *sc == scenario)
-        };
-        if let Some(j) = seen.iter().position(same) {
-            bail!(
-                "--vary {}: values {} and {} give the same scenario",
-                brief(arg),
-                brief(&v.values[j].text),
-                brief(&value.text)
-            );
+        if let Some(j) = seen.iter().position(|s| *s == spec) {
+            return Err(same_scenario(arg, v, j, k));
         }
-        seen.push((spec, scenario));
+        seen.push(spec);
     }
     Ok(())
+}
+
+/// Refuses two values of one `--vary` that give the same validated scenario in every cell,
+/// whatever the other `--vary` values are: two spellings of one scenario (`Row(...)` and the
+/// `List([...])` it expands to) are one value. Two values that coincide only with some value
+/// of another `--vary` (a debris field's `seed: None` and `Some(s)` where `sim.seed` is `s`)
+/// are kept: the grid needs both.
+fn check_same_scenarios(varies: &[Vary], args: &[String], cells: &[GridCell]) -> Result<()> {
+    let mut stride = cells.len();
+    for (v, arg) in varies.iter().zip(args) {
+        let m = v.values.len();
+        stride /= m;
+        // Cell `hi * m * stride + pick * stride + lo` holds value `pick` of this --vary.
+        let starts = || {
+            (0..cells.len() / (m * stride))
+                .flat_map(|hi| (0..stride).map(move |lo| hi * m * stride + lo))
+        };
+        for k in 1..m {
+            for j in 0..k {
+                let same = starts()
+                    .all(|c| cells[c + j * stride].scenario == cells[c + k * stride].scenario);
+                if same {
+                    return Err(same_scenario(arg, v, j, k));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The error for values `j` and `k` of `--vary` `arg` that give the same scenario.
+fn same_scenario(arg: &str, v: &Vary, j: usize, k: usize) -> anyhow::Error {
+    anyhow!(
+        "--vary {}: values {} and {} give the same scenario",
+        brief(arg),
+        brief(&v.values[j].text),
+        brief(&v.values[k].text)
+    )
 }
 
 #[cfg(test)]
@@ -318,6 +346,37 @@ mod tests {
                  tasks[1].goal_m: task \"easy\": goal (58, 44) is 0.000 m from debris[0]"
             ),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn values_that_give_one_scenario_only_with_some_other_value_are_kept() {
+        // paper.ron's debris_fields[0] has seed Some(2021) and sim.seed is 2021: seed None
+        // (sim.seed + 0) is the same field there, another with sim.seed 7.
+        assert_eq!(
+            err(&["debris_fields[0].seed=None,Some(2021)"]),
+            "--vary debris_fields[0].seed=None,Some(2021): values None and Some(2021) give the \
+             same scenario"
+        );
+        let g = build(&["debris_fields[0].seed=None,Some(2021)", "sim.seed=2021,7"]).unwrap();
+        let values: Vec<Vec<String>> = g.cells.iter().map(GridCell::values).collect();
+        assert_eq!(
+            values,
+            [
+                ["None", "2021"],
+                ["None", "7"],
+                ["Some(2021)", "2021"],
+                ["Some(2021)", "7"]
+            ]
+        );
+        assert!(g.cells[0].scenario == g.cells[2].scenario);
+        assert!(g.cells[1].scenario != g.cells[3].scenario);
+        // Whichever --vary comes first.
+        assert!(build(&["sim.seed=2021,7", "debris_fields[0].seed=None,Some(2021)"]).is_ok());
+        // Equal in every cell: refused, with another --vary beside it.
+        assert_eq!(
+            err(&["sim.seed=2021,7", "mission.duration_s=60,60.0"]),
+            "--vary mission.duration_s=60,60.0: values 60 and 60.0 give the same scenario"
         );
     }
 
