@@ -321,8 +321,8 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
         .and_then(|v| v.get("header")?.get("format")?.as_u64());
     match format {
         Some(f) if f != u64::from(JOURNAL_FORMAT) => bail!(
-            "{}: journal format {f}, but this usar reads format {JOURNAL_FORMAT}; start afresh \
-             with --overwrite, or choose another --out",
+            "{}: journal format {f}, but this usar reads format {JOURNAL_FORMAT}; \
+             {START_AFRESH}",
             path_text(path)
         ),
         _ => Ok(()),

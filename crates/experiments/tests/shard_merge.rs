@@ -367,3 +367,33 @@ fn a_damaged_shard_journal_names_the_shards_command_to_run_it_again() {
     );
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
+
+#[test]
+fn a_shard_journal_of_another_format_names_the_shards_command_on_one_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A line break in the output folder's name, which the shard's command holds.
+    let dir = tmp.path().join("s\nt");
+    ok(&sweep(&dir, &["--shard", "0/2"]));
+    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let journal = dir.join("shards/1-of-2/journal.jsonl");
+    let mut lines = read_lines(&journal);
+    let format = "{\"header\":{\"format\":";
+    assert!(lines[0].starts_with(format), "{}", lines[0]);
+    lines[0] = lines[0].replacen(format, "{\"header\":{\"format\":1", 1);
+    write_lines(&journal, &lines);
+    let o = merge(&dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("journal format 1"), "{err}");
+    assert!(
+        err.contains("run shard 1/2 again from scratch: usar sweep ")
+            && err.contains("--shard 1/2")
+            && err.trim_end().ends_with("--overwrite"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("--resume") && !err.contains("another --out"),
+        "usar merge has neither --resume nor --out: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result, anyhow, bail};
-use usar_sim::scenario::path_text;
+use usar_sim::scenario::{one_line_text, path_text};
 
 use crate::atomic::remove_stale_temps;
 use crate::journal::{
@@ -211,7 +211,11 @@ fn damaged_shard(e: anyhow::Error, shard: Shard, shard_dir: &Path, dir: &Path) -
             "run shard {shard} again from scratch with `usar sweep ... --shard {shard} --overwrite`"
         ),
     };
-    anyhow!("{}", text.replace(crate::journal::START_AFRESH, &again))
+    // The command holds the scenario's and the folder's paths: one line whatever they hold.
+    anyhow!(
+        "{}",
+        text.replace(crate::journal::START_AFRESH, &one_line_text(&again))
+    )
 }
 
 /// The header most shard journals have (ties: the one of the lowest shard); `None` when no
