@@ -320,8 +320,30 @@ mod tests {
         let (_, e) = set(&["sim.seed=18446744073709551616"]).unwrap_err();
         assert_eq!(
             e,
-            "sim.seed: expected a whole number of at most 18446744073709551615, found \
-             18446744073709551616"
+            "sim.seed: expected a whole number, found 18446744073709551616, too large for this \
+             field"
+        );
+        // A u32 field names no u64 bound, past u64 or past u32.
+        let (_, e) = set(&["kinds[0].carrying_capacity=99999999999999999999"]).unwrap_err();
+        assert_eq!(
+            e,
+            "kinds[0].carrying_capacity: expected a whole number, found 99999999999999999999, \
+             too large for this field"
+        );
+        for whole in ["1e3", "5.0", "-0"] {
+            let (_, e) = set(&[&format!("kinds[0].carrying_capacity={whole}")]).unwrap_err();
+            assert_eq!(
+                e,
+                format!(
+                    "kinds[0].carrying_capacity: expected a whole number in digits only (no \
+                     point, sign or exponent), found {whole}"
+                )
+            );
+        }
+        let (_, e) = set(&["kinds[0].carrying_capacity=4294967296"]).unwrap_err();
+        assert!(
+            e.starts_with("kinds[0].carrying_capacity: ") && e.contains("u32"),
+            "{e}"
         );
         let (_, e) = set(&["kinds[0].carrying_capacity=-1"]).unwrap_err();
         assert_eq!(
