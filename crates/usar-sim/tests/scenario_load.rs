@@ -138,6 +138,25 @@ fn a_syntax_error_outside_every_field_names_the_scenario() {
     // Inside a field, the field is named as before.
     let e = scenario::from_str("Scenario(kinds: [", "t.ron").expect_err("cut short");
     assert_eq!(e.field(), Some("kinds"), "{e}");
+    // A byte that is not UTF-8 names the field whose value it is in, else the scenario.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.ron");
+    for (bytes, field) in [
+        (&b"Scenario(\xff"[..], "Scenario"),
+        (b"\xff", "Scenario"),
+        (b"Scenario(name: \"a\xffb\")", "Scenario"),
+        (b"Scenario(kinds: [(name: \"a\xff", "kinds[0]"),
+        (b"Scenario(mission: (duration_s: 6\xff", "mission"),
+    ] {
+        std::fs::write(&path, bytes).unwrap();
+        let e = scenario::load(&path).expect_err("not UTF-8");
+        assert_eq!(e.field(), Some(field), "{bytes:?}: {e}");
+        assert!(
+            e.to_string()
+                .contains(&format!(": {field}: byte 0xff is not UTF-8")),
+            "{e}"
+        );
+    }
 }
 
 #[test]

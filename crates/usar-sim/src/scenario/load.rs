@@ -75,13 +75,24 @@ fn utf8<'a>(bytes: &'a [u8], origin: &str) -> Result<&'a str, ScenarioError> {
                 origin: origin.to_owned(),
                 line_col: Some((line, col)),
             },
-            field: None,
+            field: Some(field_open_at_end(std::str::from_utf8(valid).unwrap_or(""))),
             message: format!(
                 "byte 0x{:02x} is not UTF-8; scenario files are UTF-8 text",
                 bytes[e.valid_up_to()]
             ),
         }
     })
+}
+
+/// The field whose value `prefix` (the valid text before a bad byte) leaves open: the
+/// innermost bracket's field or element (`kinds[0]`), else `Scenario`.
+fn field_open_at_end(prefix: &str) -> String {
+    let prefix = normalised_source(prefix);
+    let map = SourceMap::build(&prefix);
+    match map.innermost_unclosed() {
+        Some((path, _)) if !path.is_empty() => path.to_owned(),
+        _ => "Scenario".to_owned(),
+    }
 }
 
 /// `src` without a leading UTF-8 byte-order mark (U+FEFF, which some editors write): ron
