@@ -10,7 +10,8 @@ use ron::ser::PrettyConfig;
 use usar_sim::scenario::ScenarioSpec;
 
 /// `spec` as the text of a scenario file, `Scenario( ... )`, after `comments` (one `// `
-/// line each; line breaks inside a comment start a new comment line).
+/// line each; line breaks inside a comment, `\n`, `\r\n` or a bare `\r`, start a new comment
+/// line).
 ///
 /// # Errors
 /// A serialisation error from ron (not expected for a spec).
@@ -21,7 +22,13 @@ pub fn spec_to_ron(spec: &ScenarioSpec, comments: &[String]) -> Result<String> {
         .separate_tuple_members(false);
     let body = ron::ser::to_string_pretty(spec, config).context("writing the scenario as RON")?;
     let mut text = String::new();
-    for line in comments.iter().flat_map(|c| c.lines()) {
+    // The loader ends a line at a bare `\r` too (old Mac endings): such a comment would
+    // leave its tail outside the comment.
+    for line in comments
+        .iter()
+        .flat_map(|c| c.lines())
+        .flat_map(|l| l.split('\r'))
+    {
         text.push_str("// ");
         text.push_str(line);
         text.push('\n');
@@ -67,6 +74,18 @@ mod tests {
                 from_str(src, name).unwrap()
             );
         }
+    }
+
+    #[test]
+    fn a_bare_carriage_return_in_a_comment_stays_in_the_comment() {
+        // A cell's comment holds the scenario's path, which may hold any character.
+        let spec = parse_spec(PAPER, "paper.ron").unwrap();
+        let text = spec_to_ron(&spec, &["Cell 0 of a\rb.ron: x\r\ny".into()]).unwrap();
+        assert!(
+            text.starts_with("// Cell 0 of a\n// b.ron: x\n// y\nScenario(\n"),
+            "{text}"
+        );
+        assert_eq!(parse_spec(&text, "back.ron").unwrap(), spec);
     }
 
     #[test]
