@@ -11,7 +11,8 @@
 //! now were within `q + 2 d` at the epoch (triangle inequality; the factor and the term cover
 //! `f32` rounding), so each is on the other's list. When the test fails for any layer (or the
 //! team's size or a robot's layer changed, or a position is not finite) every list is rebuilt
-//! from the caller's [`NeighbourQuery`] with `B = Q + NEIGHBOUR_LIST_SKIN_M`, `Q` the largest
+//! from the caller's [`NeighbourQuery`] with `B = Q + s`, `s` the skin ([`skin_for_control_steps`]:
+//! [`NEIGHBOUR_LIST_SKIN_M`] per step of the control period, at most three), `Q` the largest
 //! `q` of the layer seen so far. The lists hold every robot within the step's query radius (not
 //! necessarily every robot a fresh query returns: those also include a thin band beyond the
 //! radius), in another order. The query radius (the resolver's reach) bounds every pair that
@@ -22,10 +23,11 @@
 //! `Q` only grows: a step with a much larger reach (a speed or sensing spike) makes every later
 //! list longer (slower, still exact).
 //!
-//! Cost: a check per step, `O(n)`; a rebuild, one query per robot. Robots of `swarm-1000.ron`
-//! drive at up to 2.5 m/s, 5 cm per step, so with the default skin lists last about five steps
-//! or more: a 300 s trial (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000
-//! times (counted with a temporary print in the rebuild).
+//! Cost: a check per resolver run, `O(n)`; a rebuild, one query per robot. Robots of
+//! `swarm-1000.ron` drive at up to 2.5 m/s, 25 cm per 0.1 s control period, and its lists have
+//! the 1.5 m skin; with the software at every step (0.5 m skin, 5 cm per step) a 300 s trial
+//! (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000 times (counted with a
+//! temporary print in the rebuild), about every five to seven steps.
 //!
 //! Reference: L. Verlet, "Computer 'experiments' on classical fluids. I. Thermodynamical
 //! properties of Lennard-Jones molecules", Phys. Rev. 159, 98 (1967).
