@@ -11,6 +11,9 @@
 //! | a FIFO or a character device (`/dev/null`, `/dev/stdout` on a terminal or pipe) | written directly with a plain write, never replaced (a FIFO waits for its reader) |
 //! | a folder, a block device or a socket | refused with a one-line error; nothing is written |
 //!
+//! [`FileSet`] writes several files as a set: every temporary file first, then every rename, so
+//! an error before the renames leaves every file of the set as it was.
+//!
 //! A temporary file is named `.<name>.tmp-<pid>-<n>` ([`is_temp_name`]) and is removed when the
 //! write fails (a full disk, a failed rename) or panics. Only a kill leaves one behind:
 //! [`remove_stale_temps`] clears a folder of them (a sweep does so in its output folder on
@@ -41,16 +44,6 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         Target::Replace(target) => replace_via_temp(&target, bytes),
         Target::Stream => write_directly(path, bytes),
     }
-}
-
-/// Whether [`write_atomic`] would write `path` (a regular file, nothing yet, a link to either,
-/// a FIFO or a character device), without writing anything.
-///
-/// # Errors
-/// As [`write_atomic`] before it writes: a folder, a block device or a socket, a link loop, or
-/// an I/O error reading what is there.
-pub fn check_writable(path: &Path) -> Result<()> {
-    target_of(path).map(|_| ())
 }
 
 /// How `path` is written.
@@ -129,9 +122,16 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
 struct TempFile(Option<PathBuf>);
 
 impl TempFile {
-    /// The file was renamed into place: nothing to remove.
-    fn keep(mut self) {
+    /// Renames the temporary file over `target`; on failure it is removed (dropped).
+    fn rename_to(mut self, target: &Path) -> Result<()> {
+        let Some(tmp) = self.0.as_deref() else {
+            return Ok(());
+        };
+        fs::rename(tmp, target)
+            .with_context(|| format!("renaming {} to {}", path_text(tmp), path_text(target)))?;
+        // Renamed into place: nothing to remove.
         self.0 = None;
+        Ok(())
     }
 }
 
@@ -159,9 +159,92 @@ fn create_temp(dir: &Path, name: &str) -> Result<(PathBuf, File)> {
     }
 }
 
+/// Files written as a set: [`FileSet::stage`] writes each file's bytes to a temporary file
+/// next to it (flushed to disk) and [`FileSet::commit`] renames them all into place, in the
+/// order staged. An error while staging (a folder in the way, a read-only folder, a full
+/// disk) leaves every file of the set as it was, and dropping the set before its commit
+/// removes every temporary file. Only a failed rename during the commit (not expected once
+/// the temporary file exists in the same folder) can leave the files before it new and the
+/// rest old. FIFOs and character devices are not replaced but written directly, at the
+/// commit. Each path is handled as [`write_atomic`] handles it.
+#[derive(Default)]
+pub struct FileSet {
+    staged: Vec<StagedFile>,
+}
+
+/// One file of a [`FileSet`].
+enum StagedFile {
+    /// A temporary file (removed on drop unless renamed) and the file it replaces.
+    Temp {
+        tmp: TempFile,
+        target: PathBuf,
+        path: PathBuf,
+    },
+    /// A FIFO or character device and the bytes it gets at the commit.
+    Stream { path: PathBuf, bytes: Vec<u8> },
+}
+
+impl FileSet {
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Stages `bytes` for `path`: written to a temporary file next to what `path` resolves to
+    /// (parent folders created), or kept for a FIFO or character device.
+    ///
+    /// # Errors
+    /// As [`write_atomic`]: a folder, a block device or a socket, a link loop, or an I/O
+    /// error; the temporary file of this path is removed, the set's others stay staged.
+    pub fn stage(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
+        let file = match target_of(path)? {
+            Target::Replace(target) => StagedFile::Temp {
+                tmp: write_temp(&target, bytes)?,
+                target,
+                path: path.to_path_buf(),
+            },
+            Target::Stream => StagedFile::Stream {
+                path: path.to_path_buf(),
+                bytes: bytes.to_vec(),
+            },
+        };
+        self.staged.push(file);
+        Ok(())
+    }
+
+    /// Renames every staged file into place (and writes the streams), in the order staged;
+    /// returns the paths as given to [`FileSet::stage`].
+    ///
+    /// # Errors
+    /// A failed rename or stream write, naming the file; the temporary files not yet renamed
+    /// are removed.
+    pub fn commit(self) -> Result<Vec<PathBuf>> {
+        let mut paths = Vec::with_capacity(self.staged.len());
+        for file in self.staged {
+            match file {
+                StagedFile::Temp { tmp, target, path } => {
+                    tmp.rename_to(&target)?;
+                    paths.push(path);
+                }
+                StagedFile::Stream { path, bytes } => {
+                    write_directly(&path, &bytes)?;
+                    paths.push(path);
+                }
+            }
+        }
+        Ok(paths)
+    }
+}
+
 /// Writes `bytes` to a temporary file next to `target` and renames it over `target`; the
 /// temporary file is removed if anything fails.
 fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
+    write_temp(target, bytes)?.rename_to(target)
+}
+
+/// Writes `bytes` to a new temporary file next to `target` (creating its folders), flushed to
+/// disk and with `target`'s permissions if it exists; removed when the guard is dropped.
+fn write_temp(target: &Path, bytes: &[u8]) -> Result<TempFile> {
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -187,10 +270,7 @@ fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
         fs::set_permissions(&tmp, old.permissions())
             .with_context(|| format!("setting the permissions of {}", path_text(&tmp)))?;
     }
-    fs::rename(&tmp, target)
-        .with_context(|| format!("renaming {} to {}", path_text(&tmp), path_text(target)))?;
-    guard.keep();
-    Ok(())
+    Ok(guard)
 }
 
 /// Writes `bytes` to an existing FIFO or device as it is (no temporary file, no rename).
@@ -280,6 +360,34 @@ pub(crate) mod tests {
         write_atomic(&path, b"second").unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "second");
         assert_eq!(names(path.parent().unwrap()), ["out.txt"]);
+    }
+
+    #[test]
+    fn a_file_set_changes_nothing_until_its_commit() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.csv"), dir.path().join("sub/b.csv"));
+        write_atomic(&a, b"old a").unwrap();
+        let mut set = FileSet::new();
+        set.stage(&a, b"new a").unwrap();
+        set.stage(&b, b"new b").unwrap();
+        // Staged: the old file as it was, the new one not there, two temporary files.
+        assert_eq!(fs::read_to_string(&a).unwrap(), "old a");
+        assert!(!b.exists());
+        assert_eq!(names(dir.path()).len(), 3, "{:?}", names(dir.path()));
+        assert_eq!(set.commit().unwrap(), [a.clone(), b.clone()]);
+        assert_eq!(fs::read_to_string(&a).unwrap(), "new a");
+        assert_eq!(fs::read_to_string(&b).unwrap(), "new b");
+        assert_eq!(names(dir.path()), ["a.csv", "sub"]);
+        assert_eq!(names(&dir.path().join("sub")), ["b.csv"]);
+        // A set dropped after an error while staging: nothing changed, nothing left.
+        let mut set = FileSet::new();
+        set.stage(&a, b"newer a").unwrap();
+        fs::create_dir(dir.path().join("c.csv")).unwrap();
+        let e = set.stage(&dir.path().join("c.csv"), b"c").unwrap_err();
+        assert!(format!("{e:#}").contains("is a folder"), "{e:#}");
+        drop(set);
+        assert_eq!(fs::read_to_string(&a).unwrap(), "new a");
+        assert_eq!(names(dir.path()), ["a.csv", "c.csv", "sub"]);
     }
 
     #[test]

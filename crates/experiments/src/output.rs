@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use crate::analysis::Analysis;
-use crate::atomic::{check_writable, write_atomic};
+use crate::atomic::FileSet;
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid::{Grid, GridCell};
 use crate::grid_outputs::csv::grid_csv;
@@ -29,12 +29,10 @@ use crate::sweep::{SweepConfig, SweepOutcome};
 /// written. `grid_metrics` chooses the metrics of `grid.md` and its figures (ignored without
 /// a grid).
 ///
-/// Every file is made twice: a first pass makes each one and checks that its path can be
-/// written ([`check_writable`]: not a folder, a socket, ...) without writing anything, the
-/// second writes them, each atomically ([`write_atomic`]). So a file that cannot be made or
-/// whose path cannot be written fails the call before any file changes, and the set is never
-/// half old and half new for those reasons; an I/O error during the writes (a full disk) can
-/// still leave the files before it new and the rest old.
+/// The files are written as one [`FileSet`]: every file is made and staged in a temporary
+/// file beside it, then all are renamed into place. So a file that cannot be made, a path
+/// that cannot be written (a folder, a socket, a read-only folder) or a full disk fails the
+/// call with every file as it was: the set is never half old and half new.
 ///
 /// # Errors
 /// An I/O error, a path that cannot be written, or a figure plotters fails to draw.
@@ -44,54 +42,33 @@ pub fn write_outputs(
     analysis: &Analysis,
     grid_metrics: &[Metric],
 ) -> Result<Vec<PathBuf>> {
-    let mut check = Staged::Check;
-    make_outputs(cfg, outcome, analysis, grid_metrics, &mut check)?;
-    let mut write = Staged::Write(Vec::new());
-    make_outputs(cfg, outcome, analysis, grid_metrics, &mut write)?;
-    Ok(match write {
-        Staged::Write(files) => files,
-        Staged::Check => Vec::new(),
-    })
+    let mut files = FileSet::new();
+    make_outputs(cfg, outcome, analysis, grid_metrics, &mut files)?;
+    files.commit()
 }
 
-/// Makes every output file of the sweep and hands each to `staged`.
+/// Makes every output file of the sweep and stages each in `files`.
 fn make_outputs(
     cfg: &SweepConfig,
     outcome: &SweepOutcome,
     analysis: &Analysis,
     grid_metrics: &[Metric],
-    staged: &mut Staged,
+    files: &mut FileSet,
 ) -> Result<()> {
     let Some(grid) = &cfg.grid else {
-        return write_cell(&cfg.out_dir, cfg, outcome, analysis, 0, None, staged);
+        return write_cell(&cfg.out_dir, cfg, outcome, analysis, 0, None, files);
     };
     for cell in &grid.cells {
         let dir = cfg.out_dir.join(&cell.dir);
-        write_cell(&dir, cfg, outcome, analysis, cell.index, Some(cell), staged)?;
+        write_cell(&dir, cfg, outcome, analysis, cell.index, Some(cell), files)?;
         let ron = spec_to_ron(&cell.spec, &scenario_comments(cfg, outcome, cell))?;
-        put(&dir, "scenario.ron", ron.as_bytes(), staged)?;
+        put(&dir, "scenario.ron", ron.as_bytes(), files)?;
     }
-    write_grid(cfg, grid, outcome, analysis, grid_metrics, staged)
+    write_grid(cfg, grid, outcome, analysis, grid_metrics, files)
 }
 
-/// What [`write_outputs`]' passes do with each file made.
-enum Staged {
-    /// Check that its path can be written; write nothing.
-    Check,
-    /// Write it; the paths written so far.
-    Write(Vec<PathBuf>),
-}
-
-fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut Staged) -> Result<()> {
-    let p = dir.join(name);
-    match files {
-        Staged::Check => check_writable(&p),
-        Staged::Write(written) => {
-            write_atomic(&p, bytes)?;
-            written.push(p);
-            Ok(())
-        }
-    }
+fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut FileSet) -> Result<()> {
+    files.stage(&dir.join(name), bytes)
 }
 
 /// One cell's `trials.csv`, `summary.csv`, figures and `report.md` into `dir`.
@@ -102,7 +79,7 @@ fn write_cell(
     analysis: &Analysis,
     cell: usize,
     grid_cell: Option<&GridCell>,
-    files: &mut Staged,
+    files: &mut FileSet,
 ) -> Result<()> {
     let a = &analysis.cells[cell];
     let results = &outcome.cells[cell].results;
@@ -162,7 +139,7 @@ fn write_grid(
     outcome: &SweepOutcome,
     analysis: &Analysis,
     metrics: &[Metric],
-    files: &mut Staged,
+    files: &mut FileSet,
 ) -> Result<()> {
     let dir = &cfg.out_dir;
     put(

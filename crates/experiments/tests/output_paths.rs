@@ -156,8 +156,23 @@ fn a_resumed_sweep_clears_stale_temporary_files_and_writes_through_links() {
     assert_eq!(table.lines().count(), 1 + 4);
 }
 
-#[test]
-fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
+/// The regular files of `dir` but the lock (which records who held it last), with their
+/// bytes, by name.
+fn files_of(dir: &Path) -> Vec<(std::ffi::OsString, Vec<u8>)> {
+    let mut v: Vec<_> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file() && !p.ends_with("sweep.lock"))
+        .map(|p| (p.file_name().unwrap().to_owned(), fs::read(&p).unwrap()))
+        .collect();
+    v.sort();
+    v
+}
+
+/// A sweep of `out` whose `summary.csv` `block` makes unwritable: the resume fails with an
+/// error holding `what`, every other file (trials.csv, written before summary.csv, marked)
+/// stays as it was and no temporary file is left; once `unblock` ran, the resume writes them.
+fn unwritable_summary_leaves_the_set(block: fn(&Path), what: &str, unblock: fn(&Path)) {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("sweep");
     let sweep = |extra: &[&str]| {
@@ -177,44 +192,28 @@ fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
         usar(&args, &[&out])
     };
     ok(&sweep(&[]));
-    // trials.csv (written first) marked, summary.csv (written after it) replaced by a folder.
     fs::write(out.join("trials.csv"), "marked\n").unwrap();
     fs::remove_file(out.join("summary.csv")).unwrap();
-    fs::create_dir(out.join("summary.csv")).unwrap();
-    let files = |dir: &std::path::Path| -> Vec<(std::ffi::OsString, Vec<u8>)> {
-        let mut v: Vec<_> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            // The lock records who held it last; every output file must stay as it was.
-            .filter(|p| p.is_file() && !p.ends_with("sweep.lock"))
-            .map(|p| (p.file_name().unwrap().to_owned(), fs::read(&p).unwrap()))
-            .collect();
-        v.sort();
-        v
-    };
-    let before = files(&out);
+    block(&out);
+    let before = files_of(&out);
     assert!(before.len() >= 6, "{} files", before.len());
     let o = sweep(&["--resume"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("summary.csv") && err.contains("is a folder"),
-        "{err}"
-    );
+    assert!(err.contains(what), "{err}");
     assert_eq!(
         fs::read_to_string(out.join("trials.csv")).unwrap(),
         "marked\n",
         "trials.csv was rewritten before the sweep found it could not write summary.csv"
     );
-    let after = files(&out);
+    let after = files_of(&out);
     let names =
         |v: &[(std::ffi::OsString, Vec<u8>)]| v.iter().map(|f| f.0.clone()).collect::<Vec<_>>();
     assert_eq!(names(&after), names(&before));
     for ((name, a), (_, b)) in after.iter().zip(&before) {
         assert!(a == b, "{name:?} changed although the sweep wrote nothing");
     }
-    // Once the folder is gone, the resume writes every file.
-    fs::remove_dir(out.join("summary.csv")).unwrap();
+    unblock(&out);
     ok(&sweep(&["--resume"]));
     assert!(
         fs::read_to_string(out.join("trials.csv"))
@@ -222,4 +221,22 @@ fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
             .starts_with("scenario,")
     );
     assert!(out.join("summary.csv").is_file());
+}
+
+#[test]
+fn a_sweep_output_that_cannot_be_written_leaves_every_other_file_as_it_was() {
+    // A folder where summary.csv goes: refused before any file is made.
+    unwritable_summary_leaves_the_set(
+        |out| fs::create_dir(out.join("summary.csv")).unwrap(),
+        "is a folder",
+        |out| fs::remove_dir(out.join("summary.csv")).unwrap(),
+    );
+    // A link to a file in a folder that cannot be made (procfs refuses it, to root too):
+    // found only when the file is written, still before any file changes.
+    #[cfg(target_os = "linux")]
+    unwritable_summary_leaves_the_set(
+        |out| symlink("/proc/usar-no-such/summary.csv", out.join("summary.csv")).unwrap(),
+        "/proc/usar-no-such",
+        |out| fs::remove_file(out.join("summary.csv")).unwrap(),
+    );
 }
