@@ -56,23 +56,48 @@ struct Options {
     svg: Option<String>,
 }
 
+/// Ends the bench with a one-line error about option `name`.
+fn refuse(name: &str, why: &str) -> ! {
+    eprintln!("error: scale bench: {name}: {why}");
+    std::process::exit(2)
+}
+
 fn options() -> Options {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let value = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1).cloned())
+        let i = args.iter().position(|a| a == name)?;
+        match args.get(i + 1) {
+            Some(v) => Some(v.clone()),
+            None => refuse(name, "expected a value after it"),
+        }
     };
+    // A positive number, or the default when the option is absent.
+    fn positive<T: std::str::FromStr + PartialOrd + Default>(
+        name: &str,
+        v: Option<String>,
+        default: T,
+    ) -> T {
+        let Some(v) = v else { return default };
+        match v.trim().parse::<T>() {
+            Ok(x) if x > T::default() => x,
+            _ => refuse(name, &format!("expected a number > 0, found {v:?}")),
+        }
+    }
     let quick = args.iter().any(|a| a == "--quick");
+    let teams = value("--teams").map(|v| {
+        v.split(',')
+            .map(|t| positive("--teams", Some(t.to_owned()), 0usize))
+            .collect()
+    });
     Options {
         base: value("--base").unwrap_or_else(|| path(BASE)),
         method: value("--method").unwrap_or_else(|| "dis".into()),
-        steps: value("--steps")
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(if quick { 20 } else { 1500 }),
-        budget_s: value("--budget-s")
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(if quick { 5.0 } else { 20.0 }),
+        steps: positive("--steps", value("--steps"), if quick { 20 } else { 1500 }),
+        budget_s: positive(
+            "--budget-s",
+            value("--budget-s"),
+            if quick { 5.0 } else { 20.0 },
+        ),
         // Relative to the workspace root (cargo runs benches in the crate's folder).
         svg: value("--svg").map(|f| {
             if std::path::Path::new(&f).is_absolute() {
@@ -81,15 +106,13 @@ fn options() -> Options {
                 path(&f)
             }
         }),
-        teams: value("--teams")
-            .map(|v| v.split(',').filter_map(|t| t.trim().parse().ok()).collect())
-            .unwrap_or_else(|| {
-                if quick {
-                    vec![12, 100]
-                } else {
-                    vec![12, 100, 300, 1000]
-                }
-            }),
+        teams: teams.unwrap_or_else(|| {
+            if quick {
+                vec![12, 100]
+            } else {
+                vec![12, 100, 300, 1000]
+            }
+        }),
     }
 }
 
