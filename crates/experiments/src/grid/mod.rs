@@ -8,9 +8,13 @@
 
 pub mod names;
 
+use std::collections::HashMap;
+
 use anyhow::{Result, anyhow, bail};
 use serde_json::Value;
 use usar_sim::scenario::{Scenario, ScenarioSpec};
+
+use crate::fingerprint::scenario_hash;
 
 use crate::sweep::MAX_SWEEP_TRIALS;
 use crate::vary::{Override, Vary, apply_overrides, brief, rule_error, spec_json};
@@ -177,47 +181,56 @@ fn check_distinct(varies: &[Vary]) -> Result<()> {
     Ok(())
 }
 
-/// The path names something, each value has the right type on the base spec, and no two
-/// values give the same spec (two values that give the same scenario by different spellings
-/// are found on the built cells: [`check_same_scenarios`]).
+/// The path names something and each value has the right type on the base spec (values
+/// that give the same scenario are found on the built cells: [`check_same_scenarios`]).
 fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> Result<()> {
     v.path
         .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
         .map_err(|e| anyhow!("--vary {}: {e}", brief(arg)))?;
-    let mut seen: Vec<ScenarioSpec> = Vec::with_capacity(v.values.len());
     for k in 0..v.values.len() {
         let o = v.at(k);
-        let spec = apply_overrides(base, std::slice::from_ref(&o))
+        apply_overrides(base, std::slice::from_ref(&o))
             .map_err(|(_, e)| anyhow!("--vary {}: {e}", o.brief()))?;
-        if let Some(j) = seen.iter().position(|s| *s == spec) {
-            return Err(same_scenario(arg, v, j, k));
-        }
-        seen.push(spec);
     }
     Ok(())
 }
 
 /// Refuses two values of one `--vary` that give the same validated scenario in every cell,
-/// whatever the other `--vary` values are: two spellings of one scenario (`Row(...)` and the
-/// `List([...])` it expands to) are one value. Two values that coincide only with some value
-/// of another `--vary` (a debris field's `seed: None` and `Some(s)` where `sim.seed` is `s`)
-/// are kept: the grid needs both.
+/// whatever the other `--vary` values are: `60` and `60.0`, or two spellings of one scenario
+/// (`Row(...)` and the `List([...])` it expands to), are one value. Two values that coincide
+/// only with some value of another `--vary` (a debris field's `seed: None` and `Some(s)`
+/// where `sim.seed` is `s`) are kept: the grid needs both.
+///
+/// Linear in the cells: each cell's [`scenario_hash`] once, then per `--vary` a map from a
+/// value's cells' hashes to the value; equal hashes are confirmed on the scenarios.
 fn check_same_scenarios(varies: &[Vary], args: &[String], cells: &[GridCell]) -> Result<()> {
+    let hashes: Vec<String> = cells
+        .iter()
+        .map(|c| scenario_hash(&c.scenario))
+        .collect::<Result<_>>()?;
     let mut stride = cells.len();
     for (v, arg) in varies.iter().zip(args) {
         let m = v.values.len();
         stride /= m;
         // Cell `hi * m * stride + pick * stride + lo` holds value `pick` of this --vary.
-        let starts = || {
+        let cells_of = |pick: usize| {
             (0..cells.len() / (m * stride))
-                .flat_map(|hi| (0..stride).map(move |lo| hi * m * stride + lo))
+                .flat_map(move |hi| (0..stride).map(move |lo| (hi * m + pick) * stride + lo))
         };
-        for k in 1..m {
-            for j in 0..k {
-                let same = starts()
-                    .all(|c| cells[c + j * stride].scenario == cells[c + k * stride].scenario);
-                if same {
+        let mut first: HashMap<Vec<&str>, usize> = HashMap::with_capacity(m);
+        for k in 0..m {
+            let key: Vec<&str> = cells_of(k).map(|c| hashes[c].as_str()).collect();
+            match first.get(&key) {
+                Some(&j)
+                    if cells_of(j)
+                        .zip(cells_of(k))
+                        .all(|(a, b)| cells[a].scenario == cells[b].scenario) =>
+                {
                     return Err(same_scenario(arg, v, j, k));
+                }
+                Some(_) => {}
+                None => {
+                    first.insert(key, k);
                 }
             }
         }
