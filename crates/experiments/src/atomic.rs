@@ -221,16 +221,10 @@ impl FileSet {
     pub fn commit(self) -> Result<Vec<PathBuf>> {
         let mut paths = Vec::with_capacity(self.staged.len());
         for file in self.staged {
-            match file {
-                StagedFile::Temp { tmp, target, path } => {
-                    tmp.rename_to(&target)?;
-                    paths.push(path);
-                }
-                StagedFile::Stream { path, bytes } => {
-                    write_directly(&path, &bytes)?;
-                    paths.push(path);
-                }
-            }
+            paths.push(match file {
+                StagedFile::Temp { tmp, target, path } => tmp.rename_to(&target).map(|()| path),
+                StagedFile::Stream { path, bytes } => write_directly(&path, &bytes).map(|()| path),
+            }?);
         }
         Ok(paths)
     }

@@ -163,9 +163,9 @@ fn bare_to_json(t: &str, guide: Option<&Value>) -> Result<Value, String> {
 }
 
 /// A JSON unsigned integer from RON number text, for a field that holds one (a seed, a
-/// count): `0` to `u64::MAX`, else an error saying what it found (`18446744073709551616`, `-1` and `1.5`
-/// are not read as a float the field then refuses with serde's words). A narrower field (a
-/// `u32`) refuses a larger whole number itself, with serde's words.
+/// count): `0` to `u64::MAX`, else an error saying what it found (`18446744073709551616`,
+/// `-1`, `1.5` and `1e3` are not read as a float the field then refuses with serde's words).
+/// A narrower field (a `u32`) refuses a larger whole number itself, with serde's words.
 fn whole_number(t: &str) -> Result<Value, String> {
     if let Ok(u) = t.parse::<u64>() {
         return Ok(Value::from(u));
@@ -173,26 +173,22 @@ fn whole_number(t: &str) -> Result<Value, String> {
     let Ok(x) = t.parse::<f64>() else {
         return Err(format!("expected a number, found {}", brief(t)));
     };
-    if x >= 0.0 && x.fract() == 0.0 && !t.bytes().all(|b| b.is_ascii_digit()) {
-        // `1e3`, `5.0`, `-0`: whole, but a scenario file takes such a field in digits only.
-        return Err(format!(
-            "expected a whole number in digits only (no point, sign or exponent), found {}",
-            brief(t)
-        ));
-    }
-    if t.bytes().all(|b| b.is_ascii_digit()) {
+    Err(if t.bytes().all(|b| b.is_ascii_digit()) {
         // Digits only, yet not a u64: past the widest field's range. The field may be
         // narrower (a u32 count), so no bound is named.
-        return Err(format!(
+        format!(
             "expected a whole number, found {}, too large for this field",
             brief(t)
-        ));
-    }
-    // The field's own type may be narrower (a u32 count): no upper bound is claimed here.
-    Err(format!(
-        "expected a whole number (0 or more), found {}",
-        brief(t)
-    ))
+        )
+    } else if x >= 0.0 && x.fract() == 0.0 {
+        // `1e3`, `5.0`, `-0`: whole, but a scenario file takes such a field in digits only.
+        format!(
+            "expected a whole number in digits only (no point, sign or exponent), found {}",
+            brief(t)
+        )
+    } else {
+        format!("expected a whole number (0 or more), found {}", brief(t))
+    })
 }
 
 /// A JSON number from RON number text: an integer if it is one, else a finite float.

@@ -1,7 +1,8 @@
 //! The neighbour index: a uniform grid over the arena per collision layer, rebuilt before
-//! every control step (every step without `sim.control_period_s`), that answers every robot-robot query of the world and the mission layer ("which robots
-//! of this layer may lie within `r` metres of `p`?") in time proportional to the robots nearby
-//! instead of the team size.
+//! every control step (every step without `sim.control_period_s`), that answers every
+//! robot-robot query of the world and the mission layer ("which robots of this layer may lie
+//! within `r` metres of `p`?") in time proportional to the robots nearby instead of the team
+//! size.
 //!
 //! Each layer (ground, aerial) has its own grid, because robots only interact within a layer
 //! (see [`crate::world::bodies::robot_groups`]) and the layers' interaction distances differ

@@ -382,8 +382,8 @@ impl Resolver {
     /// the robots at `inputs[..].pos` (the world's [`super::neighbours::NeighbourIndex`], or
     /// [`super::neighbours::AllRobots`] for the all-pairs scan: same result); `dt` is the time
     /// since the last call, seconds (the world's control period: the step without
-    /// `sim.control_period_s`). `O(n k)` for `k` robots within a robot's interaction distance, plus the
-    /// follower rounds (rule 3).
+    /// `sim.control_period_s`). `O(n k)` for `k` robots within a robot's interaction
+    /// distance, plus the follower rounds (rule 3).
     pub fn resolve(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery, dt: f64) {
         self.measure_bounds(inputs);
         let query = self.layer_reach(inputs);
