@@ -220,10 +220,7 @@ fn the_shard_that_ran_another_sweep_is_named_and_its_command_mends_the_split() {
 
 #[test]
 fn an_edited_plan_is_named_as_such() {
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("s");
-    ok(&sweep(&dir, &["--shard", "0/2"]));
-    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let (_tmp, dir) = swept_in_two_shards();
     let plan = dir.join("shards/0-of-2/plan.json");
     let text = std::fs::read_to_string(&plan).unwrap();
     assert!(text.contains("\"trials\": 3"), "{text}");
@@ -275,11 +272,36 @@ fn edited(line: &str) -> String {
 
 /// Both shards of a 2-way split swept into `<tmp>/s`.
 fn swept_in_two_shards() -> (tempfile::TempDir, std::path::PathBuf) {
+    swept_in_two_shards_into("s")
+}
+
+/// As [`swept_in_two_shards`], into a folder of the temporary folder named `name`.
+fn swept_in_two_shards_into(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("s");
+    let dir = tmp.path().join(name);
     ok(&sweep(&dir, &["--shard", "0/2"]));
     ok(&sweep(&dir, &["--shard", "1/2"]));
     (tmp, dir)
+}
+
+/// `usar merge dir` fails with one line that ends in shard 1/2's own command with
+/// `--overwrite` and suggests no option merge lacks; returns the message.
+fn refused_naming_shard_1s_command(dir: &Path) -> String {
+    let o = merge(dir);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("run shard 1/2 again from scratch: usar sweep ")
+            && err.contains("--shard 1/2")
+            && err.trim_end().ends_with("--overwrite"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("--resume") && !err.contains("another --out"),
+        "usar merge has neither --resume nor --out: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    err
 }
 
 /// `usar merge dir` succeeds and warns of no journal line.
@@ -348,52 +370,23 @@ fn a_damaged_shard_journal_names_the_shards_command_to_run_it_again() {
     let mut lines = read_lines(&journal);
     lines[1] = "not json".to_string();
     write_lines(&journal, &lines);
-    let o = merge(&dir);
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = refused_naming_shard_1s_command(&dir);
     assert!(
         err.contains("journal.jsonl:2: not a valid journal line"),
         "{err}"
     );
-    assert!(
-        err.contains("run shard 1/2 again from scratch: usar sweep ")
-            && err.contains("--shard 1/2")
-            && err.trim_end().ends_with("--overwrite"),
-        "{err}"
-    );
-    assert!(
-        !err.contains("in place of --resume"),
-        "usar merge has no --resume: {err}"
-    );
-    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
 
 #[test]
 fn a_shard_journal_of_another_format_names_the_shards_command_on_one_line() {
-    let tmp = tempfile::tempdir().unwrap();
     // A line break in the output folder's name, which the shard's command holds.
-    let dir = tmp.path().join("s\nt");
-    ok(&sweep(&dir, &["--shard", "0/2"]));
-    ok(&sweep(&dir, &["--shard", "1/2"]));
+    let (_tmp, dir) = swept_in_two_shards_into("s\nt");
     let journal = dir.join("shards/1-of-2/journal.jsonl");
     let mut lines = read_lines(&journal);
     let format = "{\"header\":{\"format\":";
     assert!(lines[0].starts_with(format), "{}", lines[0]);
     lines[0] = lines[0].replacen(format, "{\"header\":{\"format\":1", 1);
     write_lines(&journal, &lines);
-    let o = merge(&dir);
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = refused_naming_shard_1s_command(&dir);
     assert!(err.contains("journal format 1"), "{err}");
-    assert!(
-        err.contains("run shard 1/2 again from scratch: usar sweep ")
-            && err.contains("--shard 1/2")
-            && err.trim_end().ends_with("--overwrite"),
-        "{err}"
-    );
-    assert!(
-        !err.contains("--resume") && !err.contains("another --out"),
-        "usar merge has neither --resume nor --out: {err}"
-    );
-    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
