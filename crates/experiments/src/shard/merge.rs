@@ -262,7 +262,7 @@ fn plan_and_header(
     let plan = SweepPlan::read(&first.dir)?;
     let config = plan
         .config(dir)
-        .with_context(|| path_text(&SweepPlan::path_in(&first.dir)).to_string())?;
+        .with_context(|| path_text(&SweepPlan::path_in(&first.dir)))?;
     let mut header = header_of(&config)?;
     // The shards must share one build, not that of the binary that merges (which runs no
     // trial): the first shard's sets it.
