@@ -1,0 +1,122 @@
+//! `convergence.svg`: the loss of each evaluation (dots; +inf as triangles along the top)
+//! and the best loss so far (a step line) against the evaluation index, on a `log10(1 +
+//! loss)` axis so that a loss of 0 is shown (plotters, plain SVG text, as the sweep's
+//! figures).
+
+use anyhow::Result;
+use plotters::prelude::*;
+
+use super::outcome::CalibrationOutcome;
+use crate::figures::{FIGURE_SIZE, draw_err};
+use crate::table::num;
+
+/// The axis value of `loss`: `log10(1 + loss)` (0 for 0).
+fn axis(loss: f64) -> f64 {
+    loss.ln_1p() / std::f64::consts::LN_10
+}
+
+/// The loss at axis value `y` (the inverse of [`axis`]).
+fn loss_at(y: f64) -> f64 {
+    (y * std::f64::consts::LN_10).exp_m1()
+}
+
+/// The SVG text of `convergence.svg`.
+///
+/// # Errors
+/// If plotters fails to draw.
+pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
+    let losses: Vec<f64> = o.evaluations.iter().map(|e| e.loss).collect();
+    let mut best = f64::INFINITY;
+    let best_so_far: Vec<f64> = losses
+        .iter()
+        .map(|&l| {
+            best = best.min(l);
+            best
+        })
+        .collect();
+    let top = losses
+        .iter()
+        .filter(|l| l.is_finite())
+        .map(|&l| axis(l))
+        .fold(0.0f64, f64::max);
+    let y_max = if top > 0.0 { top * 1.12 } else { 1.0 };
+    let n = losses.len().max(1) as f64;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, FIGURE_SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!("Calibration of {}: loss per evaluation", o.header.scenario),
+                ("sans-serif", 20),
+            )
+            .margin(16)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(-0.5f64..(n - 0.5), 0.0..y_max)
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("evaluation")
+            .y_desc("loss (log scale of 1 + loss)")
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|y| num(loss_at(*y)))
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 15))
+            .light_line_style(RGBColor(238, 238, 238))
+            .draw()
+            .map_err(draw_err)?;
+        let finite = losses
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.is_finite())
+            .map(|(i, &l)| Circle::new((i as f64, axis(l)), 3, RGBColor(150, 150, 150).filled()));
+        chart.draw_series(finite).map_err(draw_err)?;
+        let failed = losses
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| !l.is_finite())
+            .map(|(i, _)| {
+                TriangleMarker::new((i as f64, y_max * 0.97), 5, RGBColor(213, 94, 0).filled())
+            });
+        chart.draw_series(failed).map_err(draw_err)?;
+        let mut steps: Vec<(f64, f64)> = Vec::new();
+        for (i, &b) in best_so_far.iter().enumerate() {
+            if b.is_finite() {
+                if let Some(&(_, y)) = steps.last() {
+                    steps.push((i as f64, y));
+                }
+                steps.push((i as f64, axis(b)));
+            }
+        }
+        chart
+            .draw_series(LineSeries::new(
+                steps,
+                RGBColor(0, 114, 178).stroke_width(2),
+            ))
+            .map_err(draw_err)?;
+        root.draw(&Text::new(
+            "dots: each evaluation; line: best so far; triangles at the top: +inf (a failed \
+             trial, a broken rule or an undefined statistic)",
+            (16, FIGURE_SIZE.1 as i32 - 14),
+            ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90)),
+        ))
+        .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_axis_shows_zero_and_inverts() {
+        assert_eq!(axis(0.0), 0.0);
+        assert!((axis(9.0) - 1.0).abs() < 1e-12);
+        for l in [0.0, 0.01, 1.0, 123.4] {
+            assert!((loss_at(axis(l)) - l).abs() <= 1e-9 * l.max(1.0), "{l}");
+        }
+    }
+}
