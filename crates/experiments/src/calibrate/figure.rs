@@ -5,19 +5,23 @@
 
 use anyhow::Result;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::outcome::CalibrationOutcome;
 use crate::figures::{FIGURE_SIZE, draw_err};
-use crate::table::num;
 
 /// The axis value of `loss`: `log10(1 + loss)` (0 for 0).
 fn axis(loss: f64) -> f64 {
     loss.ln_1p() / std::f64::consts::LN_10
 }
 
-/// The loss at axis value `y` (the inverse of [`axis`]).
-fn loss_at(y: f64) -> f64 {
-    (y * std::f64::consts::LN_10).exp_m1()
+/// A tick's label: `0`, `1`, `10`, ..., `1e6` from a million on.
+fn num_tick(l: f64) -> String {
+    if l >= 1e6 {
+        format!("{l:e}")
+    } else {
+        format!("{l}")
+    }
 }
 
 /// The SVG text of `convergence.svg`.
@@ -58,14 +62,38 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
         chart
             .configure_mesh()
             .x_desc("evaluation")
-            .y_desc("loss (log scale of 1 + loss)")
+            .y_desc("loss (axis: log of 1 + loss)")
             .x_label_formatter(&|x| format!("{x:.0}"))
-            .y_label_formatter(&|y| num(loss_at(*y)))
+            .y_labels(0)
+            .disable_y_mesh()
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 15))
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(draw_err)?;
+        // Ticks at 0 and the powers of ten: what a reader compares losses by.
+        let ticks = std::iter::once(0.0)
+            .chain((0..12).map(|k| 10f64.powi(k)))
+            .filter(|&l| axis(l) <= y_max);
+        for l in ticks {
+            let y = axis(l);
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(-0.5, y), (n - 0.5, y)],
+                    RGBColor(220, 220, 220),
+                )))
+                .map_err(draw_err)?;
+            let (px, py) = chart.backend_coord(&(-0.5, y));
+            root.draw(&Text::new(
+                num_tick(l),
+                (px - 8, py),
+                ("sans-serif", 13)
+                    .into_font()
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Right, VPos::Center)),
+            ))
+            .map_err(draw_err)?;
+        }
         let finite = losses
             .iter()
             .enumerate()
@@ -95,9 +123,19 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
                 RGBColor(0, 114, 178).stroke_width(2),
             ))
             .map_err(draw_err)?;
+        if let Some(b) = o.evaluations.get(o.best).filter(|e| e.loss.is_finite()) {
+            let at = (o.best as f64, axis(b.loss));
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    at,
+                    6,
+                    RGBColor(0, 114, 178).stroke_width(2),
+                )))
+                .map_err(draw_err)?;
+        }
         root.draw(&Text::new(
-            "dots: each evaluation; line: best so far; triangles at the top: +inf (a failed \
-             trial, a broken rule or an undefined statistic)",
+            "dots: each evaluation; line: best so far; ring: the best; triangles at the top: +inf \
+             (a failed trial, a broken rule or an undefined statistic)",
             (16, FIGURE_SIZE.1 as i32 - 14),
             ("sans-serif", 12).into_font().color(&RGBColor(90, 90, 90)),
         ))
@@ -112,11 +150,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_axis_shows_zero_and_inverts() {
+    fn the_axis_shows_zero_and_ticks_read_plainly() {
         assert_eq!(axis(0.0), 0.0);
         assert!((axis(9.0) - 1.0).abs() < 1e-12);
-        for l in [0.0, 0.01, 1.0, 123.4] {
-            assert!((loss_at(axis(l)) - l).abs() <= 1e-9 * l.max(1.0), "{l}");
-        }
+        assert!((axis(99.0) - 2.0).abs() < 1e-12);
+        assert_eq!(num_tick(0.0), "0");
+        assert_eq!(num_tick(1000.0), "1000");
+        assert_eq!(num_tick(1e7), "1e7");
     }
 }

@@ -166,8 +166,9 @@ impl FreeField {
     ///
     /// # Errors
     /// A path that names nothing (the `--vary` message, listing the fields there are), a
-    /// field that is not a number (a list, a string, a whole-number count), or one a number
-    /// cannot be written into.
+    /// field that is not a number (a list, a string, a whole-number count), or one that takes
+    /// none of the range's ends nor its middle (the middle's error; a range the field takes
+    /// in part is accepted, its other values run as failed evaluations).
     pub fn base_value(&self, base: &ScenarioSpec) -> Result<Option<f64>, FreeError> {
         let fail = |message: String| FreeError {
             arg: brief(&self.to_string()),
@@ -191,7 +192,12 @@ impl FreeField {
                 _ => Err("is not a number; --free fits real-valued fields only".into()),
             })
             .map_err(fail)?;
-        apply_overrides(base, &[self.override_for(self.midpoint())]).map_err(|(_, e)| fail(e))?;
+        // The field takes numbers when it takes one of the range's (values it refuses run as
+        // failed evaluations); when it takes none, the middle's error says why.
+        let takes = |x: f64| apply_overrides(base, &[self.override_for(x)]).map_err(|(_, e)| e);
+        if takes(self.lo).is_err() && takes(self.hi).is_err() {
+            takes(self.midpoint()).map_err(fail)?;
+        }
         let first = found.first().copied().flatten();
         Ok(first.filter(|x| found.iter().all(|y| *y == Some(*x))))
     }
@@ -382,6 +388,13 @@ mod tests {
         );
         let e = base("tasks.hard.goal_m=1..5").unwrap_err().to_string();
         assert!(e.contains("tasks.hard.goal_m: is not a number"), "{e}");
+        // A range the field takes in part is accepted; one it takes nowhere is not.
+        assert_eq!(base("mission.pickup_s=-1..2"), Ok(Some(1.2)));
+        let e = base("mission.pickup_s=-3..-1").unwrap_err().to_string();
+        assert!(
+            e.starts_with("--free mission.pickup_s=-3..-1: mission.pickup_s: "),
+            "{e}"
+        );
     }
 
     #[test]

@@ -72,7 +72,8 @@ pub struct CalibrationOutcome {
     pub statistics: Vec<TargetCheck>,
     /// The best loss.
     pub loss: f64,
-    /// Whether every statistic lies in its band at the best values (loss 0).
+    /// Whether the best values satisfy every target: loss 0 (every statistic in its band,
+    /// every trial run to its end).
     pub admissible: bool,
     /// Why the search stopped.
     pub stop: StopReason,

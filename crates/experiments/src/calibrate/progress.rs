@@ -100,8 +100,8 @@ impl Display {
                     .map(|(f, x)| format!("{f}={x}"))
                     .collect();
                 let line = format!(
-                    "evaluation {}{}: loss {} at {}",
-                    e.index + 1,
+                    "evaluation #{}{}: loss {} at {}",
+                    e.index,
                     if new { "" } else { " (from the trace)" },
                     loss_text(e.loss),
                     values.join(" ")

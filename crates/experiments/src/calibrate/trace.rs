@@ -73,21 +73,6 @@ pub struct TraceHeader {
 /// Human-readable list of the fields where two headers differ: `trace has trials 2 vs 3,
 /// digits 4 vs 5`.
 pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
-    let mut d = Vec::new();
-    let mut diff = |name: &str, a: String, b: String| {
-        if a != b {
-            d.push(format!("{name} {a} vs {b}"));
-        }
-    };
-    diff("format", old.format.to_string(), new.format.to_string());
-    diff("version", old.version.clone(), new.version.clone());
-    diff("build", old.build.clone(), new.build.clone());
-    diff("scenario", old.scenario.clone(), new.scenario.clone());
-    diff(
-        "scenario hash",
-        old.scenario_hash.clone(),
-        new.scenario_hash.clone(),
-    );
     let list = |xs: Vec<String>| format!("[{}]", xs.join(", "));
     let targets = |h: &TraceHeader| {
         list(
@@ -97,23 +82,49 @@ pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
                 .collect(),
         )
     };
-    diff("targets", targets(old), targets(new));
     let free = |h: &TraceHeader| list(h.free.iter().map(|f| f.to_string()).collect());
-    diff("free fields", free(old), free(new));
-    diff(
-        "methods",
-        list(old.methods.clone()),
-        list(new.methods.clone()),
-    );
-    diff("trials", old.trials.to_string(), new.trials.to_string());
-    diff("seed", old.base_seed.to_string(), new.base_seed.to_string());
+    let build = |h: &TraceHeader| {
+        if h.build.is_empty() {
+            "unrecorded".to_owned()
+        } else {
+            h.build.clone()
+        }
+    };
     let duration = |h: &TraceHeader| {
         h.duration_s
             .map_or("(scenario's)".into(), |x| x.to_string())
     };
-    diff("duration", duration(old), duration(new));
-    diff("digits", old.digits.to_string(), new.digits.to_string());
-    diff("search", old.search.clone(), new.search.clone());
+    let fields: [(&str, String, String); 13] = [
+        ("format", old.format.to_string(), new.format.to_string()),
+        ("version", old.version.clone(), new.version.clone()),
+        ("build", build(old), build(new)),
+        ("scenario", old.scenario.clone(), new.scenario.clone()),
+        (
+            "scenario hash",
+            old.scenario_hash.clone(),
+            new.scenario_hash.clone(),
+        ),
+        ("targets", targets(old), targets(new)),
+        ("free fields", free(old), free(new)),
+        (
+            "methods",
+            list(old.methods.clone()),
+            list(new.methods.clone()),
+        ),
+        ("trials", old.trials.to_string(), new.trials.to_string()),
+        ("seed", old.base_seed.to_string(), new.base_seed.to_string()),
+        ("duration", duration(old), duration(new)),
+        ("digits", old.digits.to_string(), new.digits.to_string()),
+        ("search", old.search.clone(), new.search.clone()),
+    ];
+    let d: Vec<String> = fields
+        .iter()
+        .filter(|(_, a, b)| a != b)
+        .map(|(name, a, b)| match *name {
+            "build" => format!("build {a} vs {b} (another build of usar may simulate differently)"),
+            _ => format!("{name} {a} vs {b}"),
+        })
+        .collect();
     format!("trace has {}", d.join(", "))
 }
 
