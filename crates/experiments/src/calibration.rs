@@ -123,6 +123,11 @@ mod tests {
         for (row, (name, stat, value)) in rows.iter().zip(expected) {
             assert_eq!((row.0.as_str(), row.1.as_str(), row.2), (name, stat, value));
         }
+    }
+
+    #[test]
+    fn the_paper_targets_have_their_bands_and_tasks() {
+        let t = paper_targets().targets();
         let bands: Vec<String> = t.iter().map(|t| t.band.to_string()).collect();
         assert_eq!(
             bands,

@@ -17,7 +17,7 @@ pub enum Band {
 
 impl Band {
     /// Half the band's width: `w`, or `(high - low) / 2` (the unit of the loss, see
-    /// [`super::loss`]).
+    /// [`super::loss()`]).
     pub fn half_width(&self) -> f64 {
         match *self {
             Band::PlusMinus(w) => w,

@@ -32,7 +32,7 @@ pub struct Evaluation {
     /// Each target's statistic, in target order (NaN when undefined or not run).
     #[serde(with = "float_text::vec")]
     pub statistics: Vec<f64>,
-    /// The loss ([`super::loss`]): 0 when every statistic is in its band, +inf when a trial
+    /// The loss ([`super::loss()`]): 0 when every statistic is in its band, +inf when a trial
     /// failed, the scenario broke a rule, or a statistic is NaN or infinite.
     #[serde(with = "float_text")]
     pub loss: f64,

@@ -4,6 +4,8 @@
 //! figures).
 
 use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -24,20 +26,15 @@ fn num_tick(l: f64) -> String {
     }
 }
 
+/// A chart on an SVG string with numeric axes.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
 /// The SVG text of `convergence.svg`.
 ///
 /// # Errors
 /// If plotters fails to draw.
 pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
     let losses: Vec<f64> = o.evaluations.iter().map(|e| e.loss).collect();
-    let mut best = f64::INFINITY;
-    let best_so_far: Vec<f64> = losses
-        .iter()
-        .map(|&l| {
-            best = best.min(l);
-            best
-        })
-        .collect();
     let top = losses
         .iter()
         .filter(|l| l.is_finite())
@@ -71,68 +68,9 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
             .light_line_style(RGBColor(238, 238, 238))
             .draw()
             .map_err(draw_err)?;
-        // Ticks at 0 and the powers of ten: what a reader compares losses by.
-        let ticks = std::iter::once(0.0)
-            .chain((0..12).map(|k| 10f64.powi(k)))
-            .filter(|&l| axis(l) <= y_max);
-        for l in ticks {
-            let y = axis(l);
-            chart
-                .draw_series(std::iter::once(PathElement::new(
-                    vec![(-0.5, y), (n - 0.5, y)],
-                    RGBColor(220, 220, 220),
-                )))
-                .map_err(draw_err)?;
-            let (px, py) = chart.backend_coord(&(-0.5, y));
-            root.draw(&Text::new(
-                num_tick(l),
-                (px - 8, py),
-                ("sans-serif", 13)
-                    .into_font()
-                    .color(&BLACK)
-                    .pos(Pos::new(HPos::Right, VPos::Center)),
-            ))
-            .map_err(draw_err)?;
-        }
-        let finite = losses
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| l.is_finite())
-            .map(|(i, &l)| Circle::new((i as f64, axis(l)), 3, RGBColor(150, 150, 150).filled()));
-        chart.draw_series(finite).map_err(draw_err)?;
-        let failed = losses
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| !l.is_finite())
-            .map(|(i, _)| {
-                TriangleMarker::new((i as f64, y_max * 0.97), 5, RGBColor(213, 94, 0).filled())
-            });
-        chart.draw_series(failed).map_err(draw_err)?;
-        let mut steps: Vec<(f64, f64)> = Vec::new();
-        for (i, &b) in best_so_far.iter().enumerate() {
-            if b.is_finite() {
-                if let Some(&(_, y)) = steps.last() {
-                    steps.push((i as f64, y));
-                }
-                steps.push((i as f64, axis(b)));
-            }
-        }
-        chart
-            .draw_series(LineSeries::new(
-                steps,
-                RGBColor(0, 114, 178).stroke_width(2),
-            ))
-            .map_err(draw_err)?;
-        if let Some(b) = o.evaluations.get(o.best).filter(|e| e.loss.is_finite()) {
-            let at = (o.best as f64, axis(b.loss));
-            chart
-                .draw_series(std::iter::once(Circle::new(
-                    at,
-                    6,
-                    RGBColor(0, 114, 178).stroke_width(2),
-                )))
-                .map_err(draw_err)?;
-        }
+        ticks(&mut chart, &root, y_max, n)?;
+        points(&mut chart, &losses, y_max)?;
+        best_line(&mut chart, &losses, o.best)?;
         root.draw(&Text::new(
             "dots: each evaluation; line: best so far; ring: the best; triangles at the top: +inf \
              (a failed trial, a broken rule or an undefined statistic)",
@@ -143,6 +81,88 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
+}
+
+/// Horizontal lines and labels at a loss of 0 and the powers of ten below `y_max` (axis
+/// units), across `n` evaluations: what a reader compares losses by.
+fn ticks(
+    chart: &mut Chart<'_, '_>,
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    y_max: f64,
+    n: f64,
+) -> Result<()> {
+    let levels = std::iter::once(0.0)
+        .chain((0..12).map(|k| 10f64.powi(k)))
+        .filter(|&l| axis(l) <= y_max);
+    for l in levels {
+        let y = axis(l);
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(-0.5, y), (n - 0.5, y)],
+                RGBColor(220, 220, 220),
+            )))
+            .map_err(draw_err)?;
+        let (px, py) = chart.backend_coord(&(-0.5, y));
+        root.draw(&Text::new(
+            num_tick(l),
+            (px - 8, py),
+            ("sans-serif", 13)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Right, VPos::Center)),
+        ))
+        .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+/// A dot per finite loss, a triangle along the top (at `y_max`) per infinite one.
+fn points(chart: &mut Chart<'_, '_>, losses: &[f64], y_max: f64) -> Result<()> {
+    let finite = losses
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.is_finite())
+        .map(|(i, &l)| Circle::new((i as f64, axis(l)), 3, RGBColor(150, 150, 150).filled()));
+    chart.draw_series(finite).map_err(draw_err)?;
+    let failed = losses
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| !l.is_finite())
+        .map(|(i, _)| {
+            TriangleMarker::new((i as f64, y_max * 0.97), 5, RGBColor(213, 94, 0).filled())
+        });
+    chart.draw_series(failed).map_err(draw_err)?;
+    Ok(())
+}
+
+/// The best loss so far as a step line (from the first finite loss on), and a ring around
+/// evaluation `best`.
+fn best_line(chart: &mut Chart<'_, '_>, losses: &[f64], best: usize) -> Result<()> {
+    let mut so_far = f64::INFINITY;
+    let mut steps: Vec<(f64, f64)> = Vec::new();
+    for (i, &l) in losses.iter().enumerate() {
+        so_far = so_far.min(l);
+        if so_far.is_finite() {
+            if let Some(&(_, y)) = steps.last() {
+                steps.push((i as f64, y));
+            }
+            steps.push((i as f64, axis(so_far)));
+        }
+    }
+    let blue = RGBColor(0, 114, 178);
+    chart
+        .draw_series(LineSeries::new(steps, blue.stroke_width(2)))
+        .map_err(draw_err)?;
+    if let Some(&l) = losses.get(best).filter(|l| l.is_finite()) {
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                (best as f64, axis(l)),
+                6,
+                blue.stroke_width(2),
+            )))
+            .map_err(draw_err)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -4,8 +4,7 @@
 
 use std::fmt::Write;
 
-use super::outcome::{CalibrationOutcome, TargetCheck};
-use super::outputs::{FIGURE_FILE, TRACE_CSV_FILE, trials_text};
+use super::outcome::{CalibrationOutcome, FIGURE_FILE, TRACE_CSV_FILE, TargetCheck};
 use super::progress::loss_text;
 use crate::table::num;
 
@@ -25,7 +24,7 @@ pub fn calibration_md(o: &CalibrationOutcome) -> String {
         h.scenario_hash,
         o.targets_origin,
         h.targets.len(),
-        trials_text(o),
+        o.trials_text(),
         h.digits,
         h.search,
         o.max_evals,

@@ -4,15 +4,15 @@
 //! A calibration ([`calibrate`], set up by [`CalibrationSetup`]) searches the free fields
 //! ([`FreeField`], `--free FIELD=LO..HI[:log]`) with Nelder-Mead ([`optimizer`]) on
 //! normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
-//! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss`]
+//! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss()`]
 //! against the [`Targets`] (`TARGETS.ron`, [`targets`]). Every evaluation is appended to
 //! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
 //! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
 //! `calibration.md` and `convergence.svg`.
 //!
-//! Files depend one way: metric_ref, band -> statistic -> source_map, targets -> loss, free,
-//! float_text -> setup -> evaluate -> optimizer, trace, progress -> searcher, outcome ->
-//! figure, markdown, outputs, summary -> run.
+//! Files depend one way (each imports only from those before it): band, metric_ref,
+//! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, trace,
+//! outcome, figure, progress, markdown, outputs, searcher, run, summary.
 
 pub mod band;
 pub mod evaluate;

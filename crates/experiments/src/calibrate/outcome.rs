@@ -10,6 +10,18 @@ use super::optimizer::StopReason;
 use super::targets::Target;
 use super::trace::TraceHeader;
 
+/// The calibrated scenario, written at the end.
+pub const CALIBRATED_FILE: &str = "calibrated.ron";
+/// Every evaluation, one row each.
+pub const TRACE_CSV_FILE: &str = "trace.csv";
+/// The report.
+pub const REPORT_FILE: &str = "calibration.md";
+/// The best loss against the evaluations.
+pub const FIGURE_FILE: &str = "convergence.svg";
+/// The files `super::outputs::write_outputs` writes, in that order (`--overwrite` removes
+/// them).
+pub const OUTPUT_FILES: [&str; 4] = [CALIBRATED_FILE, TRACE_CSV_FILE, REPORT_FILE, FIGURE_FILE];
+
 /// One target with a statistic's value and whether it lies in the band.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TargetCheck {
@@ -104,6 +116,21 @@ impl CalibrationOutcome {
     /// The best values, in free-field order.
     pub fn best_values(&self) -> &[f64] {
         &self.best().values
+    }
+
+    /// What the trials of each evaluation were: `RNE, DIS x 10 trials of 600 s, base seed
+    /// 2021` (`the scenario's length` without a set duration).
+    pub fn trials_text(&self) -> String {
+        let h = &self.header;
+        let length = h
+            .duration_s
+            .map_or("the scenario's length".into(), |d| format!("{d} s"));
+        format!(
+            "{} x {} trials of {length}, base seed {}",
+            h.methods.join(", "),
+            h.trials,
+            h.base_seed
+        )
     }
 }
 

@@ -9,20 +9,11 @@ use anyhow::{Context, Result};
 
 use super::figure::convergence_svg;
 use super::markdown::calibration_md;
-use super::outcome::CalibrationOutcome;
+use super::outcome::{
+    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, REPORT_FILE, TRACE_CSV_FILE,
+};
 use crate::atomic::FileSet;
 use crate::spec_ron::spec_to_ron;
-
-/// The calibrated scenario.
-pub const CALIBRATED_FILE: &str = "calibrated.ron";
-/// Every evaluation, one row each.
-pub const TRACE_CSV_FILE: &str = "trace.csv";
-/// The report.
-pub const REPORT_FILE: &str = "calibration.md";
-/// The best loss against the evaluations.
-pub const FIGURE_FILE: &str = "convergence.svg";
-/// The files [`write_outputs`] writes, in that order (`--overwrite` removes them).
-pub const OUTPUT_FILES: [&str; 4] = [CALIBRATED_FILE, TRACE_CSV_FILE, REPORT_FILE, FIGURE_FILE];
 
 /// Writes the outputs of `o` into `dir` as one set; returns their paths.
 ///
@@ -42,20 +33,6 @@ pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>>
 /// (`0.0055`, `14`, `NaN`, `inf`).
 fn exact(x: f64) -> String {
     format!("{x}")
-}
-
-/// What the trials of each evaluation were: `RNE, DIS x 10 trials of 600 s, base seed 2021`.
-pub(crate) fn trials_text(o: &CalibrationOutcome) -> String {
-    let h = &o.header;
-    let length = h
-        .duration_s
-        .map_or("the scenario's length".into(), |d| format!("{d} s"));
-    format!(
-        "{} x {} trials of {length}, base seed {}",
-        h.methods.join(", "),
-        h.trials,
-        h.base_seed
-    )
 }
 
 /// The text of `calibrated.ron`: a header comment (the command, the date, the base scenario
@@ -100,7 +77,7 @@ pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
     }
     c.push(format!(
         "Statistics at these values ({}, pooled over methods):",
-        trials_text(o)
+        o.trials_text()
     ));
     for s in &o.statistics {
         c.push(format!(

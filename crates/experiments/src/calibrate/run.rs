@@ -8,10 +8,10 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::path_text;
 
-use super::evaluate::Evaluator;
-use super::optimizer::{INITIAL_STEP, OUTSIDE_PENALTY, STALL_LIMIT, nelder_mead};
-use super::outcome::{CalibrationOutcome, CheckOutcome, best_index, target_checks};
-use super::outputs::{OUTPUT_FILES, write_outputs};
+use super::evaluate::{Evaluation, Evaluator};
+use super::optimizer::{INITIAL_STEP, OUTSIDE_PENALTY, STALL_LIMIT, StopReason, nelder_mead};
+use super::outcome::{CalibrationOutcome, CheckOutcome, OUTPUT_FILES, best_index, target_checks};
+use super::outputs::write_outputs;
 use super::progress::{Display, Progress};
 use super::searcher::{Searcher, key};
 use super::setup::{CalibrationSetup, Checked};
@@ -75,8 +75,64 @@ pub fn calibrate(
         .zip(&checked.base_values)
         .map(|(f, base)| f.start(*base))
         .collect();
+    let search = search(setup, &evaluator, trace, recorded, &starts, &progress, t0)?;
+    let evaluations = search.sequence;
+    let best = best_index(&evaluations).context("no evaluation ran")?;
+    let (best_spec, best_scenario) = evaluator
+        .scenario_at(&evaluations[best].values)
+        .map_err(|e| anyhow!("no evaluated point gives a valid scenario; the best one: {e}"))?;
+    let check = (setup.check_trials > 0).then(|| unseen(setup, &evaluator, &best_scenario));
+    let mut outcome = CalibrationOutcome {
+        header,
+        origin: setup.origin.clone(),
+        targets_origin: setup.targets.origin().to_owned(),
+        command: setup.command.clone(),
+        date: setup.date.clone().unwrap_or_else(|| {
+            humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+        }),
+        loss: evaluations[best].loss,
+        admissible: evaluations[best].loss == 0.0,
+        statistics: target_checks(setup.targets.targets(), &evaluations[best].statistics),
+        best,
+        evaluations,
+        best_spec,
+        best_scenario,
+        stop: search.stop,
+        ran: search.ran,
+        reused: search.reused,
+        max_evals: setup.max_evals,
+        starts,
+        threads: checked.threads,
+        wall_s: 0.0,
+        check,
+        files: vec![Trace::path_in(dir)],
+    };
+    outcome.wall_s = t0.elapsed().as_secs_f64();
+    outcome.files.extend(write_outputs(&outcome, dir)?);
+    Ok(outcome)
+}
+
+/// What the search did.
+struct Searched {
+    sequence: Vec<Evaluation>,
+    stop: StopReason,
+    ran: usize,
+    reused: usize,
+}
+
+/// Runs the search from the free values `starts`, with the `recorded` evaluations of an
+/// earlier run as a cache and every new one appended to `trace`.
+fn search(
+    setup: &CalibrationSetup,
+    evaluator: &Evaluator<'_>,
+    trace: Trace,
+    recorded: Vec<Evaluation>,
+    starts: &[f64],
+    progress: &Progress,
+    t0: Instant,
+) -> Result<Searched> {
     let mut searcher = Searcher {
-        evaluator: &evaluator,
+        evaluator,
         free: &setup.free,
         digits: setup.digits,
         cache: recorded
@@ -88,7 +144,7 @@ pub fn calibrate(
         trace,
         max_evals: setup.max_evals,
         deadline: setup.max_time.map(|d| t0 + d),
-        display: Display::new(&progress, setup.max_evals),
+        display: Display::new(progress, setup.max_evals),
         ran: 0,
         reused: 0,
         error: None,
@@ -96,7 +152,7 @@ pub fn calibrate(
     let u0: Vec<f64> = setup
         .free
         .iter()
-        .zip(&starts)
+        .zip(starts)
         .map(|(f, &x)| f.to_unit(x))
         .collect();
     let stop = nelder_mead(&u0, &mut searcher);
@@ -104,49 +160,27 @@ pub fn calibrate(
     if let Some(e) = searcher.error {
         return Err(e.context("the trace could not be written; the calibration stopped"));
     }
-    let evaluations = searcher.sequence;
-    let best = best_index(&evaluations).context("no evaluation ran")?;
-    let (best_spec, best_scenario) = evaluator
-        .scenario_at(&evaluations[best].values)
-        .map_err(|e| anyhow!("no evaluated point gives a valid scenario; the best one: {e}"))?;
-    let check = (setup.check_trials > 0).then(|| {
-        let set = evaluator.run(&best_scenario, setup.check_seed, setup.check_trials);
-        CheckOutcome {
-            seed: setup.check_seed,
-            trials: setup.check_trials,
-            statistics: target_checks(setup.targets.targets(), &setup.targets.values(&set.results)),
-            failures: set.failures,
-        }
-    });
-    let statistics = target_checks(setup.targets.targets(), &evaluations[best].statistics);
-    let mut outcome = CalibrationOutcome {
-        header,
-        origin: setup.origin.clone(),
-        targets_origin: setup.targets.origin().to_owned(),
-        command: setup.command.clone(),
-        date: setup.date.clone().unwrap_or_else(|| {
-            humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
-        }),
-        loss: evaluations[best].loss,
-        admissible: evaluations[best].loss == 0.0,
-        statistics,
-        best,
-        evaluations,
-        best_spec,
-        best_scenario,
+    Ok(Searched {
+        sequence: searcher.sequence,
         stop,
         ran: searcher.ran,
         reused: searcher.reused,
-        max_evals: setup.max_evals,
-        starts,
-        threads: checked.threads,
-        wall_s: 0.0,
-        check,
-        files: vec![Trace::path_in(dir)],
-    };
-    outcome.wall_s = t0.elapsed().as_secs_f64();
-    outcome.files.extend(write_outputs(&outcome, dir)?);
-    Ok(outcome)
+    })
+}
+
+/// The statistics of `scenario` on the unseen trials of `setup.check_seed`.
+fn unseen(
+    setup: &CalibrationSetup,
+    evaluator: &Evaluator<'_>,
+    scenario: &usar_sim::scenario::Scenario,
+) -> CheckOutcome {
+    let set = evaluator.run(scenario, setup.check_seed, setup.check_trials);
+    CheckOutcome {
+        seed: setup.check_seed,
+        trials: setup.check_trials,
+        statistics: target_checks(setup.targets.targets(), &setup.targets.values(&set.results)),
+        failures: set.failures,
+    }
 }
 
 /// The search's description in the header: its kind and constants.
@@ -183,7 +217,7 @@ fn open_trace(
     dir: &Path,
     header: &TraceHeader,
     overwrite: bool,
-) -> Result<(Trace, Vec<super::evaluate::Evaluation>)> {
+) -> Result<(Trace, Vec<Evaluation>)> {
     let path = Trace::path_in(dir);
     // An empty trace, or one killed while it wrote its header, holds nothing to lose.
     let outputs = if overwrite {
