@@ -53,7 +53,8 @@ header comment has the command, the date and every statistic), trace.csv, calibr
 convergence.svg, written together at the end. Running the same command again replays the
 search from trace.jsonl and runs only new points (a larger --max-evals continues a search); a
 trace of another calibration is refused (--overwrite starts afresh). The date is the system
-clock's (UTC), or SOURCE_DATE_EPOCH when set. Same inputs, same files on any --threads.
+clock's (UTC), or SOURCE_DATE_EPOCH when set. Same inputs, same trace.csv and calibrated
+scenario on any --threads and after any interruption.
 
 TARGETS.ron (default: the paper's twelve targets, scenarios/paper-targets.ron, built in):
   Targets(targets: [
