@@ -25,8 +25,8 @@ use crate::lock::OutputLock;
 /// bands of `setup.targets`, writing into `dir`: `trace.jsonl` (every evaluation, as it
 /// ends), then `calibrated.ron`, `trace.csv`, `calibration.md` and `convergence.svg`.
 ///
-/// Same inputs, same sequence of evaluated points and same files (but the dates and timings
-/// of `calibration.md`), on any thread count. Running it again on a folder holding the trace
+/// Same inputs, same sequence of evaluated points and same files on any thread count (but
+/// the date, unless `setup.date` sets it, and the timings in `calibration.md`). Running it again on a folder holding the trace
 /// of the same calibration replays the search with the recorded evaluations and runs only new
 /// points (so a killed calibration continues, and a larger `max_evals` extends one); a trace
 /// of another calibration is refused unless `setup.overwrite`. The folder is locked while it

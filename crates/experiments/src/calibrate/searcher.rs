@@ -83,6 +83,8 @@ impl Objective for Searcher<'_> {
                 let mut e = self.evaluator.evaluate(&values);
                 e.index = index;
                 if let Err(err) = self.trace.append(&e) {
+                    // The search only knows reasons to stop; the caller sees `error` first
+                    // and fails with it, whatever reason is given here.
                     self.error = Some(err);
                     return Err(StopReason::Stalled);
                 }
