@@ -1,6 +1,7 @@
 //! The calibrated paper mission: a whole paper sweep (4 methods x 10 trials x 600 s of
 //! scenarios/paper.ron, the sweep's default seeds) lands inside every band of the calibration
-//! targets (experiments::calibration::TARGETS, docs/calibration.md), pooled over all methods.
+//! targets (scenarios/paper-targets.ron, experiments::calibration::paper_targets,
+//! docs/calibration.md), pooled over all methods.
 
 use experiments::calibration::check;
 use integration_tests::{method, paper};
@@ -27,10 +28,7 @@ fn a_paper_sweep_lies_inside_every_calibration_band() {
         .iter()
         .map(|(t, x)| {
             let mark = if t.holds(*x) { "ok" } else { "OUT" };
-            format!(
-                "{}: {x:.3} (target {} ± {}) {mark}",
-                t.label, t.value, t.band
-            )
+            format!("{}: {x:.3} (target {}) {mark}", t.name, t.describe())
         })
         .collect();
     assert!(

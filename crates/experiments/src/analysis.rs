@@ -52,7 +52,7 @@ pub struct CellAnalysis {
     /// Completed-round lengths over all methods (label `all`), then per method.
     pub rounds: Vec<RoundStats>,
     /// The calibration targets with this cell's statistics pooled over all its trials, in
-    /// [`calibration::TARGETS`] order (see `docs/calibration.md`).
+    /// the order of [`calibration::paper_targets`] (see `docs/calibration.md`).
     pub pooled: Vec<(Target, f64)>,
 }
 

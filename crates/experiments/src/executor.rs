@@ -214,8 +214,9 @@ fn run_job(
 }
 
 /// Runs one trial, turning errors and panics into `Err(message)`. `tick(n)` is called every
-/// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken.
-fn run_trial(
+/// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken. (A calibration runs its
+/// trials through it too: `crate::calibrate::evaluate`.)
+pub(crate) fn run_trial(
     plan: &CellPlan<'_>,
     runner: &Runner<'_>,
     job: &Job,

@@ -155,8 +155,9 @@ pub fn record_sum(header_sum: &str, record_json: &str) -> String {
     fnv1a64_hex(format!("{header_sum}:{record_json}").as_bytes())
 }
 
-/// A journal line: `{"<kind>":<json>,"sum":"<sum>"}` and its newline.
-fn journal_line(kind: &str, json: &str, sum: &str) -> String {
+/// A journal line: `{"<kind>":<json>,"sum":"<sum>"}` and its newline (a calibration's trace,
+/// `crate::calibrate::trace`, writes its lines the same way).
+pub(crate) fn journal_line(kind: &str, json: &str, sum: &str) -> String {
     format!("{{\"{kind}\":{json},\"sum\":\"{sum}\"}}\n")
 }
 

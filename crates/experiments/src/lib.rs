@@ -16,6 +16,7 @@
 
 pub mod analysis;
 pub mod atomic;
+pub mod calibrate;
 pub mod calibration;
 pub mod claims;
 pub mod console;

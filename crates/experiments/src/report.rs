@@ -192,9 +192,10 @@ fn results(r: &mut String, a: &CellAnalysis) {
 fn pooled(r: &mut String, a: &CellAnalysis) {
     let _ = write!(
         r,
-        "### Pooled statistics\n\nOver all trials of all methods, as ratios of means: the \
-         method-independent statistics `scenarios/paper.ron` is calibrated against (the \
-         authors' results sheet; `docs/calibration.md`). "
+        "### Pooled statistics\n\nOver all trials of all methods (means, ratios of means and \
+         pooled within-method standard deviations): the method-independent statistics \
+         `scenarios/paper.ron` is calibrated against (the authors' results sheet; \
+         `scenarios/paper-targets.ron`, `docs/calibration.md`). "
     );
     if !calibration::applies_to(&a.tasks) {
         r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
@@ -213,8 +214,8 @@ fn pooled(r: &mut String, a: &CellAnalysis) {
         };
         let _ = writeln!(
             r,
-            "| {} | {}{mark} | {} | ± {} |",
-            t.label,
+            "| {} | {}{mark} | {} | {} |",
+            t.name,
             num(*x),
             t.value,
             t.band

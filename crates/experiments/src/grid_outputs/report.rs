@@ -169,9 +169,10 @@ fn pooled(r: &mut String, input: &GridReportInput<'_>) {
     let h = &input.outcome.header;
     let _ = write!(
         r,
-        "## Pooled statistics\n\nPer cell, over all trials of all methods (ratios of means): \
-         the method-independent statistics `scenarios/paper.ron` is calibrated against \
-         (`docs/calibration.md`). "
+        "## Pooled statistics\n\nPer cell, over all trials of all methods (means, ratios of \
+         means and pooled within-method standard deviations): the method-independent \
+         statistics `scenarios/paper.ron` is calibrated against (`scenarios/paper-targets.ron`, \
+         `docs/calibration.md`). "
     );
     let tasks = input
         .analysis
@@ -186,9 +187,10 @@ fn pooled(r: &mut String, input: &GridReportInput<'_>) {
         r,
         "The targets are in the header; `!` marks a value outside its band.\n"
     );
-    let labels: Vec<String> = calibration::TARGETS
+    let labels: Vec<String> = calibration::paper_targets()
+        .targets()
         .iter()
-        .map(|t| format!("{} ({} ± {})", t.label, t.value, t.band))
+        .map(|t| format!("{} ({})", t.name, t.describe()))
         .collect();
     table_head(r, &h.grid.fields, &labels);
     for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {

@@ -35,7 +35,11 @@ Examples:
   usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003
 
   # On a Slurm cluster: a job array of 8 shards and a merge job (see docs/cluster.md)
-  usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 8 --submit";
+  usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 8 --submit
+
+  # Fit scenario fields to the authors' statistics (see docs/calibration.md)
+  usar calibrate scenarios/paper.ron --targets scenarios/paper-targets.ron \\
+      --free mission.hp_pct_per_step_in_radiation=0.002..0.02:log --out results/calibrate-paper";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]
@@ -65,6 +69,8 @@ pub enum Command {
     Merge(commands::merge::MergeArgs),
     /// Run a sweep on a Slurm cluster: a job array of shards and a chained merge job.
     Slurm(commands::slurm::SlurmArgs),
+    /// Fit scenario fields (`--free`) so that a sweep's statistics fall in target bands.
+    Calibrate(commands::calibrate::CalibrateArgs),
 }
 
 /// Runs the parsed command, writing its report to `out`.
@@ -81,5 +87,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
         Command::Sweep(args) => commands::sweep::run(&args, out),
         Command::Merge(args) => commands::merge::run(&args, out),
         Command::Slurm(args) => commands::slurm::run(&args, out),
+        Command::Calibrate(args) => commands::calibrate::run(&args, out),
     }
 }

@@ -1,5 +1,6 @@
 //! The `usar` subcommands, one module each.
 
+pub mod calibrate;
 pub mod check;
 pub mod merge;
 pub mod render;

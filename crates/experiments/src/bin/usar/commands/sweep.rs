@@ -238,20 +238,7 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
             bail!("--fail-trial {m}:{k} names no trial of this sweep");
         }
     }
-    let threads = match all.threads {
-        Some(0) => bail!("--threads must be at least 1"),
-        Some(n) if n > max_threads() => {
-            experiments::console::warn(format!(
-                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
-                 cores: using {}",
-                max_threads() / MAX_THREADS_PER_CORE,
-                max_threads()
-            ));
-            max_threads()
-        }
-        Some(n) => n,
-        None => std::thread::available_parallelism().map_or(1, usize::from),
-    };
+    let threads = threads_of(all.threads)?;
     let grid = grid_of(args)?;
     if let Some(d) = args.duration {
         warn_if_rounded(d, &scenario, grid.as_ref());
@@ -275,6 +262,28 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         hooks: test_hooks(fail, all.stop_after),
         shard: shard_run(all)?,
         scenario,
+    })
+}
+
+/// The worker threads of `--threads`: all cores when not given; more than
+/// [`max_threads`] are capped there with a warning.
+///
+/// # Errors
+/// `--threads 0`.
+pub fn threads_of(requested: Option<usize>) -> Result<usize> {
+    Ok(match requested {
+        Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > max_threads() => {
+            experiments::console::warn(format!(
+                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
+                 cores: using {}",
+                max_threads() / MAX_THREADS_PER_CORE,
+                max_threads()
+            ));
+            max_threads()
+        }
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, usize::from),
     })
 }
 

@@ -1,0 +1,101 @@
+//! The loss a calibration minimises: the sum over targets of `(distance outside the band /
+//! the band's half-width)^2`. Exactly 0 when every statistic lies in its band; +inf when one
+//! is NaN or infinite (never NaN, never a crash).
+
+use super::targets::Target;
+
+/// One target's share of the loss for statistic `x`: `(distance outside / half-width)^2`, 0
+/// inside the band (and only there: a distance so small that its square underflows counts
+/// as the smallest positive number), +inf for a NaN or infinite `x`.
+pub fn target_loss(target: &Target, x: f64) -> f64 {
+    let d = target.band.distance_outside(target.value, x);
+    if !d.is_finite() {
+        return f64::INFINITY;
+    }
+    let share = (d / target.band.half_width()).powi(2);
+    if d > 0.0 {
+        share.max(f64::MIN_POSITIVE)
+    } else {
+        share
+    }
+}
+
+/// The loss of statistics `values` (one per target, in target order): the sum of
+/// [`target_loss`]; in `[0, +inf]`.
+///
+/// # Panics
+/// If `values` and `targets` differ in length (a programming error).
+pub fn loss(targets: &[Target], values: &[f64]) -> f64 {
+    assert_eq!(targets.len(), values.len(), "one value per target");
+    targets
+        .iter()
+        .zip(values)
+        .map(|(t, &x)| target_loss(t, x))
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::calibrate::band::Band;
+    use crate::calibrate::metric_ref::MetricRef;
+    use crate::calibrate::statistic::Statistic;
+
+    fn target(value: f64, band: Band) -> Target {
+        Target {
+            name: "t".into(),
+            statistic: Statistic::Mean(MetricRef("rounds".into())),
+            value,
+            band,
+        }
+    }
+
+    #[test]
+    fn zero_inside_squared_half_widths_outside_inf_for_nan() {
+        let ts = [
+            target(6.2, Band::PlusMinus(0.5)),
+            target(4.69, Band::Between(3.0, 7.0)),
+        ];
+        assert_eq!(loss(&ts, &[6.2, 3.0]), 0.0);
+        assert_eq!(loss(&ts, &[6.7, 7.0]), 0.0);
+        // 1 half-width above the first band (0.5), 2 half-widths (4) below the second.
+        let l = loss(&ts, &[7.2, -1.0]);
+        assert!((l - (1.0 + 4.0)).abs() < 1e-9, "{l}");
+        assert_eq!(loss(&ts, &[f64::NAN, 5.0]), f64::INFINITY);
+        assert_eq!(loss(&ts, &[6.2, f64::NEG_INFINITY]), f64::INFINITY);
+        assert_eq!(target_loss(&ts[0], 1e300), f64::INFINITY);
+    }
+
+    proptest! {
+        /// The loss is 0 exactly when every statistic holds, positive otherwise, never NaN.
+        #[test]
+        fn loss_is_zero_iff_every_statistic_is_in_its_band(
+            bands in prop::collection::vec((-100.0f64..100.0, 0.001f64..50.0, any::<bool>()), 1..6),
+            xs in prop::collection::vec(prop_oneof![
+                8 => -200.0f64..200.0,
+                1 => Just(f64::NAN),
+                1 => Just(f64::INFINITY),
+            ], 6),
+        ) {
+            let ts: Vec<Target> = bands
+                .iter()
+                .map(|&(v, w, between)| {
+                    let band = if between {
+                        Band::Between(v - w, v + 2.0 * w)
+                    } else {
+                        Band::PlusMinus(w)
+                    };
+                    target(v, band)
+                })
+                .collect();
+            let xs = &xs[..ts.len()];
+            let l = loss(&ts, xs);
+            prop_assert!(!l.is_nan());
+            prop_assert!(l >= 0.0);
+            let all_hold = ts.iter().zip(xs).all(|(t, &x)| t.holds(x));
+            prop_assert_eq!(l == 0.0, all_hold);
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! `usar calibrate`: fit free scenario fields so that statistics of a sweep of the scenario
+//! fall inside the bands of a targets file.
+//!
+//! A calibration ([`calibrate`], set up by [`CalibrationSetup`]) searches the free fields
+//! ([`FreeField`], `--free FIELD=LO..HI[:log]`) with Nelder-Mead ([`optimizer`]) on
+//! normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
+//! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss()`]
+//! against the [`Targets`] (`TARGETS.ron`, [`targets`]). Every evaluation is appended to
+//! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
+//! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
+//! `calibration.md` and `convergence.svg`.
+//!
+//! Files depend one way (each imports only from those before it): band, metric_ref,
+//! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, trace,
+//! outcome, figure, progress, markdown, outputs, searcher, run, summary.
+
+pub mod band;
+pub mod evaluate;
+pub mod figure;
+pub mod float_text;
+pub mod free;
+pub mod loss;
+pub mod markdown;
+pub mod metric_ref;
+pub mod optimizer;
+pub mod outcome;
+pub mod outputs;
+pub mod progress;
+mod run;
+mod searcher;
+pub mod setup;
+mod source_map;
+pub mod statistic;
+pub mod summary;
+pub mod targets;
+pub mod trace;
+
+pub use band::Band;
+pub use evaluate::{Evaluation, Evaluator, TrialSet};
+pub use free::{FreeError, FreeField, parse_free, round_significant};
+pub use loss::{loss, target_loss};
+pub use metric_ref::MetricRef;
+pub use optimizer::StopReason;
+pub use outcome::{CalibrationOutcome, CheckOutcome, TargetCheck};
+pub use progress::{EvaluationHook, Progress};
+pub use run::calibrate;
+pub use setup::{CalibrationSetup, Checked, SetupError};
+pub use statistic::Statistic;
+pub use summary::summary_text;
+pub use targets::{Target, Targets, TargetsError};

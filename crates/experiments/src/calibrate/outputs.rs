@@ -1,0 +1,116 @@
+//! The files a calibration writes at its end, as one set through [`crate::atomic::FileSet`]
+//! (every file complete or none changed): `calibrated.ron` (the base scenario with the best
+//! values, [`crate::spec_ron::spec_to_ron`], after a header comment), `trace.csv` (one row per
+//! evaluation), `calibration.md` (`super::markdown`) and `convergence.svg` (`super::figure`).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+
+use super::figure::convergence_svg;
+use super::markdown::calibration_md;
+use super::outcome::{
+    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, REPORT_FILE, TRACE_CSV_FILE,
+};
+use crate::atomic::FileSet;
+use crate::spec_ron::spec_to_ron;
+
+/// Writes the outputs of `o` into `dir` as one set; returns their paths.
+///
+/// # Errors
+/// A path that cannot be written (a folder in the way, a full disk): no file of the set
+/// changes then.
+pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut set = FileSet::new();
+    set.stage(&dir.join(CALIBRATED_FILE), calibrated_ron(o)?.as_bytes())?;
+    set.stage(&dir.join(TRACE_CSV_FILE), trace_csv(o)?.as_bytes())?;
+    set.stage(&dir.join(REPORT_FILE), calibration_md(o).as_bytes())?;
+    set.stage(&dir.join(FIGURE_FILE), convergence_svg(o)?.as_bytes())?;
+    set.commit()
+}
+
+/// A free value, or a statistic, as the files write it: Rust's shortest round-trip form
+/// (`0.0055`, `14`, `NaN`, `inf`).
+fn exact(x: f64) -> String {
+    format!("{x}")
+}
+
+/// The text of `calibrated.ron`: a header comment (the command, the date, the base scenario
+/// and targets, the search's end, the best values and every statistic with its band and
+/// whether it holds), then the scenario.
+///
+/// # Errors
+/// A spec ron cannot write (not expected).
+pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
+    let h = &o.header;
+    let best = o.best();
+    let mut c = vec![
+        format!("Calibrated by usar calibrate on {} (UTC):", o.date),
+        format!("  {}", o.command),
+        format!(
+            "Base scenario: {} (scenario hash {}); targets: {}",
+            o.origin, h.scenario_hash, o.targets_origin
+        ),
+        format!(
+            "Search: {} evaluations, stopped because {}; best: evaluation #{}, loss {}{}",
+            o.evaluations.len(),
+            o.stop,
+            best.index,
+            exact(o.loss),
+            if o.admissible {
+                " (every statistic in its band)"
+            } else {
+                " (NOT every statistic in its band)"
+            }
+        ),
+        "Free fields (value; range):".into(),
+    ];
+    for (f, x) in h.free.iter().zip(&best.values) {
+        let scale = if f.log { ", log scale" } else { "" };
+        c.push(format!(
+            "  {} = {} ({}..{}{scale})",
+            f.field,
+            exact(*x),
+            f.lo,
+            f.hi
+        ));
+    }
+    c.push(format!(
+        "Statistics at these values ({}, pooled over methods):",
+        o.trials_text()
+    ));
+    for s in &o.statistics {
+        c.push(format!(
+            "  {}: {} (target {}): {}",
+            s.target.name,
+            exact(s.value),
+            s.target.describe(),
+            if s.holds { "in" } else { "OUT" }
+        ));
+    }
+    spec_to_ron(&o.best_spec, &c)
+}
+
+/// The text of `trace.csv`: columns `index`, each free field, each target's name, `loss`,
+/// `message`; one row per evaluation in order; numbers in their shortest round-trip form.
+///
+/// # Errors
+/// A CSV error (not expected).
+pub fn trace_csv(o: &CalibrationOutcome) -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let mut head = vec!["index".to_string()];
+    head.extend(o.header.free.iter().map(|f| f.field.clone()));
+    head.extend(o.header.targets.iter().map(|t| t.name.clone()));
+    head.extend(["loss".to_string(), "message".to_string()]);
+    w.write_record(&head)?;
+    for e in &o.evaluations {
+        let mut row = vec![e.index.to_string()];
+        row.extend(e.values.iter().map(|&x| exact(x)));
+        row.extend(e.statistics.iter().map(|&x| exact(x)));
+        row.push(exact(e.loss));
+        row.push(e.message.clone().unwrap_or_default());
+        w.write_record(&row)?;
+    }
+    let bytes = w.into_inner().context("writing trace.csv")?;
+    String::from_utf8(bytes).context("trace.csv is not UTF-8")
+}

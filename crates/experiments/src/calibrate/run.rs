@@ -1,0 +1,265 @@
+//! [`calibrate`]: check the setup, lock the output folder, open (or continue) the trace,
+//! search, check the best values on unseen trials, write the outputs.
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, Result, anyhow, bail};
+use usar_sim::scenario::path_text;
+
+use super::evaluate::{Evaluation, Evaluator};
+use super::optimizer::{INITIAL_STEP, OUTSIDE_PENALTY, STALL_LIMIT, StopReason, nelder_mead};
+use super::outcome::{CalibrationOutcome, CheckOutcome, OUTPUT_FILES, best_index, target_checks};
+use super::outputs::write_outputs;
+use super::progress::{Display, Progress};
+use super::searcher::{Searcher, key};
+use super::setup::{CalibrationSetup, Checked};
+use super::trace::{TRACE_FORMAT, Trace, TraceHeader, header_diff, read_trace};
+use crate::atomic::remove_stale_temps;
+use crate::fingerprint::scenario_hash;
+use crate::journal::{holds_no_line, something_at};
+use crate::lock::OutputLock;
+
+/// Fits the free fields of `setup.base` so that the statistics of its trials fall inside the
+/// bands of `setup.targets`, writing into `dir`: `trace.jsonl` (every evaluation, as it
+/// ends), then `calibrated.ron`, `trace.csv`, `calibration.md` and `convergence.svg`.
+///
+/// Same inputs, same sequence of evaluated points and same files on any thread count (but
+/// the date, unless `setup.date` sets it, and the timings in `calibration.md`). Running it again on a folder holding the trace
+/// of the same calibration replays the search with the recorded evaluations and runs only new
+/// points (so a killed calibration continues, and a larger `max_evals` extends one); a trace
+/// of another calibration is refused unless `setup.overwrite`. The folder is locked while it
+/// runs (`crate::lock`).
+///
+/// ```no_run
+/// use std::path::Path;
+/// use experiments::calibrate::{CalibrationSetup, FreeField, Progress, Targets, calibrate};
+///
+/// let text = std::fs::read_to_string("scenarios/paper.ron")?;
+/// let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron")?;
+/// let targets = Targets::load(Path::new("scenarios/paper-targets.ron"))?;
+/// let free = vec![FreeField::parse("mission.pickup_s=0.8..1.6")?];
+/// let setup = CalibrationSetup {
+///     methods: vec!["rne".into(), "dis".into()],
+///     trials: 4,
+///     max_evals: 12,
+///     check_trials: 0,
+///     ..CalibrationSetup::new(base, "scenarios/paper.ron", targets, free)
+/// };
+/// let outcome = calibrate(&setup, Path::new("results/calibrate-pickup"), Progress::off())?;
+/// println!("pickup_s = {} (loss {})", outcome.best_values()[0], outcome.loss);
+/// # Ok::<(), anyhow::Error>(())
+/// ```
+///
+/// # Errors
+/// A setup that does not fit its scenario ([`CalibrationSetup::check`]), a folder locked by
+/// another run, a trace that cannot be continued (another calibration's, edited, damaged), an
+/// I/O error, or no evaluated point giving a valid scenario. Failing or panicking trials and
+/// free values that break a rule are not errors: their evaluation's loss is +inf.
+pub fn calibrate(
+    setup: &CalibrationSetup,
+    dir: &Path,
+    progress: Progress,
+) -> Result<CalibrationOutcome> {
+    let t0 = Instant::now();
+    let checked = setup.check()?;
+    let header = header_of(setup, &checked)?;
+    let _lock = OutputLock::acquire(dir)?;
+    remove_stale_temps(dir)?;
+    let (trace, recorded) = open_trace(dir, &header, setup.overwrite)?;
+    let evaluator = Evaluator::new(setup, &checked)?;
+    let starts: Vec<f64> = setup
+        .free
+        .iter()
+        .zip(&checked.base_values)
+        .map(|(f, base)| f.start(*base))
+        .collect();
+    let search = search(setup, &evaluator, trace, recorded, &starts, &progress, t0)?;
+    let evaluations = search.sequence;
+    let best = best_index(&evaluations).context("no evaluation ran")?;
+    let (best_spec, best_scenario) = evaluator
+        .scenario_at(&evaluations[best].values)
+        .map_err(|e| anyhow!("no evaluated point gives a valid scenario; the best one: {e}"))?;
+    let check = (setup.check_trials > 0).then(|| unseen(setup, &evaluator, &best_scenario));
+    let mut outcome = CalibrationOutcome {
+        header,
+        origin: setup.origin.clone(),
+        targets_origin: setup.targets.origin().to_owned(),
+        command: setup.command.clone(),
+        date: setup.date.clone().unwrap_or_else(|| {
+            humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+        }),
+        loss: evaluations[best].loss,
+        admissible: evaluations[best].loss == 0.0,
+        statistics: target_checks(setup.targets.targets(), &evaluations[best].statistics),
+        best,
+        evaluations,
+        best_spec,
+        best_scenario,
+        stop: search.stop,
+        ran: search.ran,
+        reused: search.reused,
+        max_evals: setup.max_evals,
+        starts,
+        threads: checked.threads,
+        wall_s: 0.0,
+        check,
+        files: vec![Trace::path_in(dir)],
+    };
+    outcome.wall_s = t0.elapsed().as_secs_f64();
+    outcome.files.extend(write_outputs(&outcome, dir)?);
+    Ok(outcome)
+}
+
+/// What the search did.
+struct Searched {
+    sequence: Vec<Evaluation>,
+    stop: StopReason,
+    ran: usize,
+    reused: usize,
+}
+
+/// Runs the search from the free values `starts`, with the `recorded` evaluations of an
+/// earlier run as a cache and every new one appended to `trace`.
+fn search(
+    setup: &CalibrationSetup,
+    evaluator: &Evaluator<'_>,
+    trace: Trace,
+    recorded: Vec<Evaluation>,
+    starts: &[f64],
+    progress: &Progress,
+    t0: Instant,
+) -> Result<Searched> {
+    let mut searcher = Searcher {
+        evaluator,
+        free: &setup.free,
+        digits: setup.digits,
+        cache: recorded
+            .into_iter()
+            .map(|e| (key(&e.values), e))
+            .collect::<HashMap<_, _>>(),
+        sequence: Vec::new(),
+        positions: HashMap::new(),
+        trace,
+        max_evals: setup.max_evals,
+        deadline: setup.max_time.map(|d| t0 + d),
+        display: Display::new(progress, setup.max_evals),
+        ran: 0,
+        reused: 0,
+        error: None,
+    };
+    let u0: Vec<f64> = setup
+        .free
+        .iter()
+        .zip(starts)
+        .map(|(f, &x)| f.to_unit(x))
+        .collect();
+    let stop = nelder_mead(&u0, &mut searcher);
+    searcher.display.finish();
+    if let Some(e) = searcher.error {
+        return Err(e.context("the trace could not be written; the calibration stopped"));
+    }
+    Ok(Searched {
+        sequence: searcher.sequence,
+        stop,
+        ran: searcher.ran,
+        reused: searcher.reused,
+    })
+}
+
+/// The statistics of `scenario` on the unseen trials of `setup.check_seed`.
+fn unseen(
+    setup: &CalibrationSetup,
+    evaluator: &Evaluator<'_>,
+    scenario: &usar_sim::scenario::Scenario,
+) -> CheckOutcome {
+    let set = evaluator.run(scenario, setup.check_seed, setup.check_trials);
+    CheckOutcome {
+        seed: setup.check_seed,
+        trials: setup.check_trials,
+        statistics: target_checks(setup.targets.targets(), &setup.targets.values(&set.results)),
+        failures: set.failures,
+    }
+}
+
+/// The search's description in the header: its kind and constants.
+fn search_text() -> String {
+    format!(
+        "Nelder-Mead (argmin) on [0, 1]^d: initial step {INITIAL_STEP}, outside penalty \
+         {OUTSIDE_PENALTY}, stall limit {STALL_LIMIT}"
+    )
+}
+
+/// The trace header of `setup`.
+fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader> {
+    Ok(TraceHeader {
+        format: TRACE_FORMAT,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        build: crate::report::software_build().to_owned(),
+        scenario: checked.scenario.name.clone(),
+        scenario_hash: scenario_hash(&checked.scenario)?,
+        targets: setup.targets.targets().to_vec(),
+        free: setup.free.clone(),
+        methods: checked.methods.clone(),
+        trials: setup.trials,
+        base_seed: setup.base_seed,
+        duration_s: setup.duration_s,
+        digits: setup.digits,
+        search: search_text(),
+    })
+}
+
+/// Opens the trace in `dir` for the calibration with `header`: a new one, or the same
+/// calibration's (its verified evaluations returned). With `overwrite`, a trace there and
+/// the outputs beside it are removed first.
+fn open_trace(
+    dir: &Path,
+    header: &TraceHeader,
+    overwrite: bool,
+) -> Result<(Trace, Vec<Evaluation>)> {
+    let path = Trace::path_in(dir);
+    // An empty trace, or one killed while it wrote its header, holds nothing to lose.
+    let outputs = if overwrite {
+        OUTPUT_FILES.as_slice()
+    } else {
+        &[]
+    };
+    if overwrite || holds_no_line(&path) {
+        for name in std::iter::once(&super::trace::TRACE_FILE).chain(outputs) {
+            let p = dir.join(name);
+            if p.symlink_metadata()
+                .is_ok_and(|m| m.is_file() || m.is_symlink())
+            {
+                std::fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
+            }
+        }
+    }
+    if !something_at(&path) {
+        return Ok((Trace::create(dir, header)?, Vec::new()));
+    }
+    if !path.is_file() {
+        bail!(
+            "{}: not a regular file; remove it, or choose another --out",
+            path_text(&path)
+        );
+    }
+    let contents = read_trace(&path)?;
+    if &contents.header != header {
+        bail!(
+            "{} holds another calibration ({}): pass --overwrite to start afresh, or choose \
+             another --out",
+            path_text(&path),
+            header_diff(&contents.header, header)
+        );
+    }
+    for line in &contents.rejected {
+        crate::console::warn(format!(
+            "warning: {}:{line}: evaluation does not verify (edited?); its point runs again \
+             if the search comes to it",
+            path_text(&path)
+        ));
+    }
+    let trace = Trace::resume(&path, &contents)?;
+    Ok((trace, contents.evaluations))
+}

@@ -1,0 +1,234 @@
+//! What a calibration needs ([`CalibrationSetup`], with the defaults of `usar calibrate`) and
+//! the checks made before anything runs ([`CalibrationSetup::check`]).
+
+use std::time::Duration;
+
+use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
+
+use super::free::{FreeError, FreeField, check_distinct};
+use super::targets::{Targets, TargetsError};
+use crate::method_factory::{MethodFactory, canonical_method, trust_model};
+use crate::sweep::{MAX_SWEEP_TRIALS, max_threads};
+
+/// Trials per method and evaluation by default (10, as a sweep).
+pub const DEFAULT_TRIALS: u32 = 10;
+/// Significant digits of the free values by default (4).
+pub const DEFAULT_DIGITS: u32 = 4;
+/// Evaluations at most by default (60).
+pub const DEFAULT_MAX_EVALS: usize = 60;
+/// Trials per method of the check on unseen trials by default (30).
+pub const DEFAULT_CHECK_TRIALS: u32 = 30;
+/// Base seed of the check on unseen trials by default (7, the seed `docs/calibration.md`
+/// checks `paper.ron` with), or 8 when the calibration itself uses 7
+/// ([`default_check_seed`]).
+pub const DEFAULT_CHECK_SEED: u64 = 7;
+
+/// The check's default base seed for a calibration with `base_seed`: [`DEFAULT_CHECK_SEED`],
+/// or the next one when the calibration uses it (the check must see other trials).
+pub fn default_check_seed(base_seed: u64) -> u64 {
+    if base_seed == DEFAULT_CHECK_SEED {
+        DEFAULT_CHECK_SEED + 1
+    } else {
+        DEFAULT_CHECK_SEED
+    }
+}
+
+/// Everything a calibration needs. [`CalibrationSetup::new`] gives the defaults of `usar
+/// calibrate`; set the fields that differ. See [`super::calibrate`] for an example.
+#[derive(Debug, Clone)]
+pub struct CalibrationSetup {
+    /// The scenario whose free fields are fitted (unvalidated spec, as parsed).
+    pub base: ScenarioSpec,
+    /// Where it came from (a file path, for messages and the outputs).
+    pub origin: String,
+    /// What the statistics must satisfy.
+    pub targets: Targets,
+    /// The fields fitted and their ranges (at least one, each once).
+    pub free: Vec<FreeField>,
+    /// Method names as `method_factory` takes them (built-ins `rne`, `dis`, `eng`, `hp_dis`);
+    /// at least one, each once.
+    pub methods: Vec<String>,
+    /// Builds each trial's grouping method from its name (default: the built-ins).
+    pub method_factory: MethodFactory,
+    /// Trials per method in each evaluation (>= 1; default [`DEFAULT_TRIALS`]).
+    pub trials: u32,
+    /// Base seed: trial `k` of every method and every evaluation starts from
+    /// `trial_seed(base_seed, k)` (common random numbers). Default: the scenario's `sim.seed`.
+    pub base_seed: u64,
+    /// Simulated length of each trial, seconds (> 0); `None`: the scenario's
+    /// `mission.duration_s` (at each point, should that field be free).
+    pub duration_s: Option<f64>,
+    /// Significant digits the free values are rounded to before they are evaluated (1 to 17;
+    /// default [`DEFAULT_DIGITS`]).
+    pub digits: u32,
+    /// Most evaluations in the search's sequence, reused ones included (>= 1; default
+    /// [`DEFAULT_MAX_EVALS`]). Not part of the calibration's identity: a resume may raise it.
+    pub max_evals: usize,
+    /// Wall-clock budget of this run: no new evaluation starts once it is spent (`None`: no
+    /// limit). Not part of the calibration's identity.
+    pub max_time: Option<Duration>,
+    /// Worker threads for the trials (>= 1; capped at [`max_threads`] and the trials of an
+    /// evaluation).
+    pub threads: usize,
+    /// Base seed of the check of the best values on unseen trials (default
+    /// [`default_check_seed`] of the scenario's seed).
+    pub check_seed: u64,
+    /// Trials per method of that check (0 skips it; default [`DEFAULT_CHECK_TRIALS`]).
+    pub check_trials: u32,
+    /// Discard a trace of another calibration (and its outputs) in the output folder instead
+    /// of refusing to start.
+    pub overwrite: bool,
+    /// How the calibration was asked for, quoted in `calibrated.ron` and `calibration.md`
+    /// (`usar calibrate` puts its command line; default a description of the call).
+    pub command: String,
+    /// The time stamp of the outputs (default `None`: the system clock, UTC, to the second).
+    pub date: Option<String>,
+}
+
+impl CalibrationSetup {
+    /// The defaults of `usar calibrate` for fitting `free` in `base` (read from `origin`) to
+    /// `targets`: the four built-in methods, [`DEFAULT_TRIALS`] trials, the scenario's
+    /// `sim.seed`, each trial as long as its `mission.duration_s`, [`DEFAULT_DIGITS`] digits,
+    /// [`DEFAULT_MAX_EVALS`] evaluations, no time limit, all cores, a check on
+    /// [`DEFAULT_CHECK_TRIALS`] unseen trials per method, no overwrite, the system clock.
+    pub fn new(
+        base: ScenarioSpec,
+        origin: impl Into<String>,
+        targets: Targets,
+        free: Vec<FreeField>,
+    ) -> Self {
+        let origin = origin.into();
+        let seed = base.sim.seed;
+        Self {
+            command: format!("experiments::calibrate::calibrate of {origin}"),
+            origin,
+            targets,
+            free,
+            methods: rne_core::grouping::METHOD_NAMES
+                .iter()
+                .map(|m| m.to_string())
+                .collect(),
+            method_factory: MethodFactory::builtin(),
+            trials: DEFAULT_TRIALS,
+            base_seed: seed,
+            duration_s: None,
+            digits: DEFAULT_DIGITS,
+            max_evals: DEFAULT_MAX_EVALS,
+            max_time: None,
+            threads: std::thread::available_parallelism().map_or(1, usize::from),
+            check_seed: default_check_seed(seed),
+            check_trials: DEFAULT_CHECK_TRIALS,
+            overwrite: false,
+            date: None,
+            base,
+        }
+    }
+
+    /// Checks the setup before anything runs: the options, the base scenario (validated),
+    /// the targets against its tasks, the free fields against its spec, the methods.
+    ///
+    /// # Errors
+    /// One line: an option out of range (naming its `usar calibrate` flag), a base scenario
+    /// that breaks a rule, a target metric naming a task the scenario lacks (naming the
+    /// target), a free field that names nothing, is not a real number, or is given twice, an
+    /// unknown or repeated method.
+    pub fn check(&self) -> Result<Checked, SetupError> {
+        let bad = |m: String| Err(SetupError::Invalid(m));
+        if self.trials == 0 {
+            return bad("--trials must be at least 1".into());
+        }
+        if !(1..=17).contains(&self.digits) {
+            return bad(format!("--digits must be 1 to 17, found {}", self.digits));
+        }
+        if self.max_evals == 0 {
+            return bad("--max-evals must be at least 1".into());
+        }
+        if self.threads == 0 {
+            return bad("--threads must be at least 1".into());
+        }
+        if let Some(d) = self.duration_s
+            && !(d.is_finite() && d > 0.0)
+        {
+            return bad(format!("--duration must be a finite number > 0, found {d}"));
+        }
+        if self.free.is_empty() {
+            return bad("no free field: give at least one --free FIELD=LO..HI".into());
+        }
+        let total = self.methods.len().saturating_mul(self.trials as usize);
+        if total > MAX_SWEEP_TRIALS {
+            return bad(format!(
+                "{} method(s) x {} trials make {total} trials per evaluation, more than the \
+                 limit of {MAX_SWEEP_TRIALS}",
+                self.methods.len(),
+                self.trials
+            ));
+        }
+        let scenario = self.base.validate(&self.origin)?;
+        self.targets.check_tasks(&scenario.task_names())?;
+        check_distinct(&self.free)?;
+        let base_values = self
+            .free
+            .iter()
+            .map(|f| f.base_value(&self.base))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Checked {
+            methods: self.canonical_methods(&scenario)?,
+            threads: self.threads.min(max_threads()),
+            scenario,
+            base_values,
+        })
+    }
+
+    /// The methods' canonical (upper-case) names.
+    fn canonical_methods(&self, scenario: &Scenario) -> Result<Vec<String>, SetupError> {
+        if self.methods.is_empty() {
+            return Err(SetupError::Invalid(
+                "no method: give at least one in --methods".into(),
+            ));
+        }
+        let model = trust_model(scenario).map_err(|e| SetupError::Invalid(format!("{e:#}")))?;
+        let mut names: Vec<String> = Vec::new();
+        for m in &self.methods {
+            let name = canonical_method(m, &self.method_factory, &model)
+                .map_err(|e| SetupError::Invalid(format!("--methods: {e:#}")))?;
+            if names.contains(&name) {
+                return Err(SetupError::Invalid(format!(
+                    "--methods: {name} is given twice"
+                )));
+            }
+            names.push(name);
+        }
+        Ok(names)
+    }
+}
+
+/// A setup checked by [`CalibrationSetup::check`].
+#[derive(Debug, Clone)]
+pub struct Checked {
+    /// The base scenario, validated.
+    pub scenario: Scenario,
+    /// The methods' canonical (upper-case) names, in order.
+    pub methods: Vec<String>,
+    /// The value of each free field in the base scenario, when it has one (see
+    /// [`FreeField::base_value`]).
+    pub base_values: Vec<Option<f64>>,
+    /// Worker threads, capped at [`max_threads`].
+    pub threads: usize,
+}
+
+/// Why a calibration cannot start: one line.
+#[derive(Debug, thiserror::Error)]
+pub enum SetupError {
+    /// The base scenario breaks a rule.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// A target does not fit the scenario.
+    #[error(transparent)]
+    Targets(#[from] TargetsError),
+    /// A free field does not fit the scenario, or is given twice.
+    #[error(transparent)]
+    Free(#[from] FreeError),
+    /// An option out of range, or a method that is unknown or repeated.
+    #[error("{0}")]
+    Invalid(String),
+}

@@ -1,0 +1,233 @@
+//! The statistics a target constrains, computed from a set of trials pooled over methods
+//! (every trial weighs the same, whatever its method): `Mean`, `RatioOfMeans`, `MeanOfRatios`
+//! and `PooledSd` of `trials.csv` metrics ([`MetricRef`]).
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+use usar_sim::mission::TrialResult;
+
+use super::metric_ref::MetricRef;
+
+/// A statistic of a set of trials, as written in a targets file (`Mean("rounds")`,
+/// `RatioOfMeans("rescued_easy", "rescued_hard")`).
+///
+/// A trial where a metric is undefined (a cost per rescuee without rescuees) is left out of
+/// that metric's mean; no defined value at all gives NaN. A ratio with a zero denominator is
+/// infinite or NaN, as IEEE division gives; so is a mean of ratios with such a ratio in it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Statistic {
+    /// The mean of the metric over the trials.
+    Mean(MetricRef),
+    /// The mean of the first metric over the mean of the second (each over the trials where
+    /// it is defined).
+    RatioOfMeans(MetricRef, MetricRef),
+    /// The mean over the trials (where both are defined) of the first metric over the second.
+    MeanOfRatios(MetricRef, MetricRef),
+    /// The pooled within-method standard deviation: `sqrt(mean over methods of each method's
+    /// sample variance (n - 1))`; NaN unless every method has at least 2 trials defining it.
+    PooledSd(MetricRef),
+}
+
+impl Statistic {
+    /// The metrics it reads, in the order written.
+    pub fn metrics(&self) -> Vec<&MetricRef> {
+        match self {
+            Statistic::Mean(m) | Statistic::PooledSd(m) => vec![m],
+            Statistic::RatioOfMeans(a, b) | Statistic::MeanOfRatios(a, b) => vec![a, b],
+        }
+    }
+
+    /// Its value over `results` (pooled over methods; `results` may come in any order, the
+    /// per-method groups of `PooledSd` are taken by [`TrialResult::method`]). NaN for no
+    /// results.
+    pub fn value(&self, results: &[TrialResult]) -> f64 {
+        match self {
+            Statistic::Mean(m) => mean(results.iter().filter_map(|r| m.value(r))),
+            Statistic::RatioOfMeans(a, b) => {
+                mean(results.iter().filter_map(|r| a.value(r)))
+                    / mean(results.iter().filter_map(|r| b.value(r)))
+            }
+            Statistic::MeanOfRatios(a, b) => mean(
+                results
+                    .iter()
+                    .filter_map(|r| Some(a.value(r)? / b.value(r)?)),
+            ),
+            Statistic::PooledSd(m) => pooled_sd(results, m),
+        }
+    }
+}
+
+impl fmt::Display for Statistic {
+    /// As written in a targets file, without quotes: `RatioOfMeans(rescued_easy, rescued_hard)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Statistic::Mean(m) => write!(f, "Mean({m})"),
+            Statistic::RatioOfMeans(a, b) => write!(f, "RatioOfMeans({a}, {b})"),
+            Statistic::MeanOfRatios(a, b) => write!(f, "MeanOfRatios({a}, {b})"),
+            Statistic::PooledSd(m) => write!(f, "PooledSd({m})"),
+        }
+    }
+}
+
+/// The arithmetic mean of `xs`, NaN for none.
+fn mean(xs: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    if n == 0 { f64::NAN } else { sum / n as f64 }
+}
+
+/// `sqrt(mean over methods of the sample variance of `metric` among that method's trials)`,
+/// methods in order of first appearance; NaN when a method has fewer than 2 defined values or
+/// there are no results.
+fn pooled_sd(results: &[TrialResult], metric: &MetricRef) -> f64 {
+    let mut methods: Vec<&str> = Vec::new();
+    for r in results {
+        if !methods.contains(&r.method.as_str()) {
+            methods.push(&r.method);
+        }
+    }
+    let variances = methods.iter().map(|&method| {
+        let xs: Vec<f64> = results
+            .iter()
+            .filter(|r| r.method == method)
+            .filter_map(|r| metric.value(r))
+            .collect();
+        if xs.len() < 2 {
+            return f64::NAN;
+        }
+        let m = xs.iter().sum::<f64>() / xs.len() as f64;
+        xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (xs.len() - 1) as f64
+    });
+    mean(variances).sqrt()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A trial of `method` with tasks `hard`, `easy` (in that order, as in paper.ron).
+    pub(crate) fn trial(
+        method: &str,
+        rounds: usize,
+        (easy, hard): (u32, u32),
+        energy: (f64, f64),
+        hp: (f64, f64),
+    ) -> TrialResult {
+        TrialResult {
+            scenario: "t".into(),
+            method: method.into(),
+            trial: 0,
+            seed: 0,
+            duration_s: 600.0,
+            tasks: vec!["hard".into(), "easy".into()],
+            rescued: vec![hard, easy],
+            energy_spent_pct: vec![energy.1, energy.0],
+            hp_lost_pct: vec![hp.1, hp.0],
+            rounds: vec![
+                usar_sim::mission::RoundRecord {
+                    start_s: 0.0,
+                    end_s: 1.0,
+                    completed: true,
+                    groups: vec![vec![], vec![]],
+                    rescued: vec![0, 0],
+                };
+                rounds
+            ],
+            robots: vec![],
+        }
+    }
+
+    fn m(name: &str) -> MetricRef {
+        MetricRef(name.into())
+    }
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * b.abs().max(1.0)
+    }
+
+    #[test]
+    fn means_and_ratios_pool_every_trial_alike() {
+        let r = [
+            trial("A", 6, (90, 60), (400.0, 500.0), (40.0, 300.0)),
+            trial("B", 4, (70, 40), (300.0, 400.0), (20.0, 200.0)),
+        ];
+        let value = |s: Statistic| s.value(&r);
+        assert!(close(value(Statistic::Mean(m("rounds"))), 5.0));
+        assert!(close(value(Statistic::Mean(m("rescued_total"))), 130.0));
+        assert!(close(
+            value(Statistic::RatioOfMeans(
+                m("rescued_easy"),
+                m("rescued_hard")
+            )),
+            80.0 / 50.0
+        ));
+        // Per trial 90/60 = 1.5 and 70/40 = 1.75.
+        assert!(close(
+            value(Statistic::MeanOfRatios(
+                m("rescued_easy"),
+                m("rescued_hard")
+            )),
+            1.625
+        ));
+        assert!(close(
+            value(Statistic::RatioOfMeans(
+                m("hp_hard_pct"),
+                m("energy_hard_pct")
+            )),
+            250.0 / 450.0
+        ));
+        assert!(value(Statistic::Mean(m("rounds"))).is_finite());
+        assert!(Statistic::Mean(m("rounds")).value(&[]).is_nan());
+        // A task the trials lack makes the statistic undefined.
+        assert!(value(Statistic::Mean(m("rescued_medium"))).is_nan());
+        // A zero denominator: IEEE division.
+        let zero = [trial("A", 1, (5, 0), (1.0, 1.0), (1.0, 1.0))];
+        assert_eq!(
+            Statistic::RatioOfMeans(m("rescued_easy"), m("rescued_hard")).value(&zero),
+            f64::INFINITY
+        );
+        assert_eq!(
+            Statistic::MeanOfRatios(m("rescued_easy"), m("rescued_hard")).value(&zero),
+            f64::INFINITY
+        );
+        // Undefined per-trial values are left out: no hard rescuees, no hard cost per rescuee.
+        let mixed = [zero[0].clone(), r[0].clone()];
+        assert!(close(
+            Statistic::Mean(m("energy_per_hard_rescuee_pct")).value(&mixed),
+            500.0 / 60.0
+        ));
+    }
+
+    #[test]
+    fn pooled_sd_is_the_root_of_the_mean_within_method_variance() {
+        // Method A: rescued_total 100, 110, 120 (variance 100); B: 150, 154 (variance 8).
+        let t = |method, easy| trial(method, 1, (easy, 50), (1.0, 1.0), (1.0, 1.0));
+        let r = [t("A", 50), t("B", 100), t("A", 60), t("B", 104), t("A", 70)];
+        let sd = Statistic::PooledSd(m("rescued_total")).value(&r);
+        assert!(close(sd, (108.0f64 / 2.0).sqrt()), "{sd}");
+        // A method with one trial: undefined.
+        assert!(
+            Statistic::PooledSd(m("rescued_total"))
+                .value(&r[..4])
+                .is_finite()
+        );
+        assert!(
+            Statistic::PooledSd(m("rescued_total"))
+                .value(&r[..3])
+                .is_nan()
+        );
+        assert!(Statistic::PooledSd(m("rescued_total")).value(&[]).is_nan());
+    }
+
+    #[test]
+    fn statistics_print_as_written_without_quotes() {
+        assert_eq!(
+            Statistic::RatioOfMeans(m("rescued_easy"), m("rescued_hard")).to_string(),
+            "RatioOfMeans(rescued_easy, rescued_hard)"
+        );
+        assert_eq!(
+            Statistic::PooledSd(m("rescued_total")).to_string(),
+            "PooledSd(rescued_total)"
+        );
+    }
+}

@@ -1,0 +1,401 @@
+//! Calibration targets and the `TARGETS.ron` file that holds them.
+//!
+//! ```ron
+//! Targets(
+//!     targets: [
+//!         // Source: ... (a comment per target)
+//!         (name: "rounds per trial", statistic: Mean("rounds"), value: 6.2, band: PlusMinus(0.6)),
+//!         (name: "pooled SD of total rescuees", statistic: PooledSd("rescued_total"),
+//!          value: 4.69, band: Between(3.0, 7.0)),
+//!     ],
+//! )
+//! ```
+//!
+//! Each target names a [`Statistic`] of a set of trials (metrics by their `trials.csv`
+//! column names), the value it should have and the [`Band`] it must fall in. Errors are one
+//! line naming the file, line, column and field: `paper-targets.ron:12:9:
+//! targets[3].statistic: unknown metric "rescued_eazy" (metrics: ...)`.
+
+use std::io::Read;
+use std::path::Path;
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+use usar_sim::mission::TrialResult;
+use usar_sim::scenario::{SourceLocation, path_text};
+
+use super::band::Band;
+use super::source_map::SourceMap;
+use super::statistic::Statistic;
+
+/// Longest targets file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
+/// instead of read into memory.
+pub const MAX_TARGETS_BYTES: u64 = 1 << 20;
+
+/// One target: a statistic, the value it should have, and the band it must fall in.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Target {
+    /// What it is, for tables (`rounds per trial`); unique within a file, not empty.
+    pub name: String,
+    /// The statistic, computed over a set of trials pooled over methods.
+    pub statistic: Statistic,
+    /// The value it should have (finite; inside the band).
+    pub value: f64,
+    /// Where the statistic is accepted.
+    pub band: Band,
+}
+
+impl Target {
+    /// Whether `x` lies in the band (boundaries included; never for NaN).
+    pub fn holds(&self, x: f64) -> bool {
+        self.band.holds(self.value, x)
+    }
+
+    /// The value and band as a table shows them: `6.2 ± 0.6`, `4.69 in [3, 7]`.
+    pub fn describe(&self) -> String {
+        match self.band {
+            Band::PlusMinus(_) => format!("{} {}", self.value, self.band),
+            Band::Between(..) => format!("{} in {}", self.value, self.band),
+        }
+    }
+
+    /// The statistic over `results` ([`Statistic::value`]).
+    pub fn value_of(&self, results: &[TrialResult]) -> f64 {
+        self.statistic.value(results)
+    }
+}
+
+/// Why targets could not be read or used: one line, `origin[:line:col]: [field: ]message`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
+pub struct TargetsError {
+    /// The file (as given) and, when known, the line and column.
+    pub location: SourceLocation,
+    /// The field the error is about (`targets[3].statistic`), when known.
+    pub field: Option<String>,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// A checked list of targets (at least one, names unique, every band usable, every metric
+/// name a `trials.csv` column for some task names), with where it came from.
+#[derive(Debug, Clone)]
+pub struct Targets {
+    origin: String,
+    targets: Vec<Target>,
+    map: Option<Arc<SourceMap>>,
+}
+
+impl PartialEq for Targets {
+    /// The same targets, wherever they were read from.
+    fn eq(&self, other: &Self) -> bool {
+        self.targets == other.targets
+    }
+}
+
+/// The file's top level, `Targets(targets: [...])`.
+#[derive(Deserialize)]
+#[serde(rename = "Targets", deny_unknown_fields)]
+struct TargetsFile {
+    targets: Vec<Target>,
+}
+
+impl Targets {
+    /// Checks `targets` (named `origin` in errors; no line numbers).
+    ///
+    /// # Errors
+    /// As [`Targets::parse`] for the checks after parsing.
+    pub fn new(targets: Vec<Target>, origin: &str) -> Result<Self, TargetsError> {
+        let t = Self {
+            origin: origin.to_owned(),
+            targets,
+            map: None,
+        };
+        t.check()?;
+        Ok(t)
+    }
+
+    /// Parses and checks the RON text `src` of a targets file named `origin` in errors (a
+    /// leading byte-order mark is skipped).
+    ///
+    /// # Errors
+    /// RON syntax or shape (unknown field or statistic, missing field), with ron's line and
+    /// column; no targets; an empty or duplicate name; an unknown metric (the message lists
+    /// the metric names); a value that is not finite; a `PlusMinus` half-width that is not
+    /// finite and > 0; a `Between` with bounds not finite or `low >= high`; a value outside
+    /// its own `Between` band. Each names the line, column and field.
+    pub fn parse(src: &str, origin: &str) -> Result<Self, TargetsError> {
+        let src = src.strip_prefix('\u{feff}').unwrap_or(src);
+        let map = Arc::new(SourceMap::build(src));
+        let file: TargetsFile = ron::Options::default().from_str(src).map_err(|e| {
+            let offset = map.offset_of(e.span.start.line, e.span.start.col);
+            TargetsError {
+                location: SourceLocation {
+                    origin: origin.to_owned(),
+                    line_col: Some((e.span.start.line, e.span.start.col)),
+                },
+                field: map.path_at(offset).map(str::to_owned),
+                message: e.code.to_string(),
+            }
+        })?;
+        let t = Self {
+            origin: origin.to_owned(),
+            targets: file.targets,
+            map: Some(map),
+        };
+        t.check()?;
+        Ok(t)
+    }
+
+    /// Reads and parses the targets file at `path` (named in errors as given).
+    ///
+    /// # Errors
+    /// The file cannot be read, is longer than [`MAX_TARGETS_BYTES`] or is not UTF-8; else as
+    /// [`Targets::parse`].
+    pub fn load(path: &Path) -> Result<Self, TargetsError> {
+        let origin = path_text(path);
+        let fail = |message: String| TargetsError {
+            location: SourceLocation {
+                origin: origin.clone(),
+                line_col: None,
+            },
+            field: None,
+            message,
+        };
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MAX_TARGETS_BYTES + 1).read_to_end(&mut bytes))
+            .map_err(|e| fail(format!("cannot read targets file: {e}")))?;
+        if bytes.len() as u64 > MAX_TARGETS_BYTES {
+            return Err(fail(format!(
+                "longer than the limit of {MAX_TARGETS_BYTES} bytes for a targets file"
+            )));
+        }
+        let text = String::from_utf8(bytes)
+            .map_err(|_| fail("not UTF-8 text; a targets file is RON text".into()))?;
+        Self::parse(&text, &origin)
+    }
+
+    /// The targets, in file order.
+    pub fn targets(&self) -> &[Target] {
+        &self.targets
+    }
+
+    /// Where they were read from (a path as given, or the origin given to [`Targets::new`]).
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// Checks that every metric of every target exists for a scenario with task names
+    /// `tasks` (a calibration does this before it runs anything).
+    ///
+    /// # Errors
+    /// The first metric naming a task not in `tasks`, at the target's statistic, naming the
+    /// target and the scenario's tasks.
+    pub fn check_tasks(&self, tasks: &[String]) -> Result<(), TargetsError> {
+        for (i, t) in self.targets.iter().enumerate() {
+            for m in t.statistic.metrics() {
+                m.resolve(tasks).map_err(|e| {
+                    self.error(
+                        &format!("targets[{i}].statistic"),
+                        format!("target {:?}: {e}", t.name),
+                    )
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether every metric of every target exists for task names `tasks`.
+    pub fn apply_to(&self, tasks: &[String]) -> bool {
+        self.check_tasks(tasks).is_ok()
+    }
+
+    /// Each target's statistic over `results`, in target order.
+    pub fn values(&self, results: &[TrialResult]) -> Vec<f64> {
+        self.targets.iter().map(|t| t.value_of(results)).collect()
+    }
+
+    /// An error about `field`, placed where the field is in the file when known.
+    fn error(&self, field: &str, message: String) -> TargetsError {
+        TargetsError {
+            location: SourceLocation {
+                origin: self.origin.clone(),
+                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
+            },
+            field: Some(field.to_owned()),
+            message,
+        }
+    }
+
+    /// The checks after parsing (see [`Targets::parse`]).
+    fn check(&self) -> Result<(), TargetsError> {
+        if self.targets.is_empty() {
+            return Err(self.error("targets", "no targets: give at least one".into()));
+        }
+        for (i, t) in self.targets.iter().enumerate() {
+            let at = |field: &str| format!("targets[{i}].{field}");
+            if t.name.trim().is_empty() {
+                return Err(self.error(&at("name"), "empty name: say what the target is".into()));
+            }
+            if let Some(j) = self.targets[..i].iter().position(|o| o.name == t.name) {
+                return Err(self.error(
+                    &at("name"),
+                    format!("duplicate name {:?} (targets[{j}] has it too)", t.name),
+                ));
+            }
+            for m in t.statistic.metrics() {
+                m.task().map_err(|e| self.error(&at("statistic"), e))?;
+            }
+            if !t.value.is_finite() {
+                return Err(self.error(
+                    &at("value"),
+                    format!("expected a finite number, found {}", t.value),
+                ));
+            }
+            if let Some(p) = t.band.problem(t.value) {
+                return Err(self.error(&at("band"), p));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "// Targets of a test\nTargets(\n    targets: [\n        \
+        (name: \"rounds\", statistic: Mean(\"rounds\"), value: 6.2, band: PlusMinus(0.6)),\n        \
+        (name: \"easy / hard\", statistic: RatioOfMeans(\"rescued_easy\", \"rescued_hard\"),\n         \
+        value: 1.36, band: PlusMinus(0.2)),\n        \
+        (name: \"sd\", statistic: PooledSd(\"rescued_total\"), value: 4.69, band: Between(3.0, 7.0)),\n    \
+        ],\n)\n";
+
+    fn err(src: &str) -> String {
+        Targets::parse(src, "t.ron").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_good_file_parses_in_order() {
+        let t = Targets::parse(GOOD, "t.ron").unwrap();
+        let names: Vec<&str> = t.targets().iter().map(|t| t.name.as_str()).collect();
+        assert_eq!(names, ["rounds", "easy / hard", "sd"]);
+        assert_eq!(t.targets()[2].band, Band::Between(3.0, 7.0));
+        assert_eq!(t.targets()[0].describe(), "6.2 ± 0.6");
+        assert_eq!(t.targets()[2].describe(), "4.69 in [3, 7]");
+        assert!(t.targets()[0].holds(6.8) && !t.targets()[0].holds(6.81));
+        assert_eq!(t.origin(), "t.ron");
+        // The struct name is optional, as in any RON file, and a byte-order mark is skipped.
+        let bare = GOOD.replace("Targets(", "(");
+        assert_eq!(Targets::parse(&format!("\u{feff}{bare}"), "u").unwrap(), t);
+        let tasks = vec!["hard".to_string(), "easy".to_string()];
+        assert!(t.apply_to(&tasks));
+    }
+
+    #[test]
+    fn every_error_names_line_column_and_field() {
+        let cases = [
+            (
+                GOOD.replace("Mean(\"rounds\")", "Median(\"rounds\")"),
+                "t.ron:4:37: targets[0].statistic: Unexpected variant named `Median` in enum \
+                 `Statistic`",
+            ),
+            (
+                GOOD.replace("value: 6.2,", "value: 6.2, weight: 2,"),
+                "t.ron:4:65: targets[0].weight: Unexpected field named `weight` in `Target`",
+            ),
+            (
+                GOOD.replace("\"rescued_easy\"", "\"rescuedeasy\""),
+                "t.ron:5:31: targets[1].statistic: unknown metric \"rescuedeasy\"",
+            ),
+            (
+                GOOD.replace("\"rounds\")", "\"round\")"),
+                "t.ron:4:26: targets[0].statistic: unknown metric \"round\" (metrics: \
+                 rescued_total, rescued_<task>,",
+            ),
+            (
+                GOOD.replace("PlusMinus(0.6)", "PlusMinus(0.0)"),
+                "t.ron:4:65: targets[0].band: PlusMinus(0): the half-width must be a finite \
+                 number > 0",
+            ),
+            (
+                GOOD.replace("PlusMinus(0.6)", "PlusMinus(inf)"),
+                "t.ron:4:65: targets[0].band: PlusMinus(inf): the half-width must be",
+            ),
+            (
+                GOOD.replace("Between(3.0, 7.0)", "Between(7.0, 3.0)"),
+                "t.ron:7:73: targets[2].band: Between(7, 3): the low bound must be below the \
+                 high one",
+            ),
+            (
+                GOOD.replace("Between(3.0, 7.0)", "Between(5.0, 7.0)"),
+                "t.ron:7:73: targets[2].band: the target's value 4.69 lies outside its own band",
+            ),
+            (
+                GOOD.replace("value: 6.2", "value: NaN"),
+                "t.ron:4:53: targets[0].value: expected a finite number, found NaN",
+            ),
+            (
+                GOOD.replace("name: \"sd\"", "name: \"rounds\""),
+                "t.ron:7:10: targets[2].name: duplicate name \"rounds\" (targets[0] has it too)",
+            ),
+            (
+                GOOD.replace("name: \"sd\"", "name: \" \""),
+                "t.ron:7:10: targets[2].name: empty name",
+            ),
+            (
+                "Targets(targets: [])".to_string(),
+                "t.ron:1:9: targets: no targets: give at least one",
+            ),
+            (
+                GOOD.replace("],\n)", "],\n"),
+                "t.ron:8:7: Unexpected end of RON",
+            ),
+        ];
+        for (src, says) in cases {
+            let e = err(&src);
+            assert!(
+                e.starts_with(says),
+                "{e}\nexpected it to start with\n{says}"
+            );
+            assert!(!e.contains('\n'), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_missing_task_names_the_target() {
+        let t = Targets::parse(GOOD, "t.ron").unwrap();
+        let tasks = vec!["hard".to_string(), "medium".to_string()];
+        let e = t.check_tasks(&tasks).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "t.ron:5:31: targets[1].statistic: target \"easy / hard\": metric \"rescued_easy\" \
+             is about task \"easy\", which the scenario does not have (its tasks: hard, medium)"
+        );
+        assert!(!t.apply_to(&tasks));
+        // Targets made in code have no line numbers.
+        let made = Targets::new(t.targets().to_vec(), "<code>").unwrap();
+        let e = made.check_tasks(&tasks).unwrap_err().to_string();
+        assert!(e.starts_with("<code>: targets[1].statistic: target"), "{e}");
+        assert!(Targets::new(vec![], "<code>").is_err());
+    }
+
+    #[test]
+    fn an_unreadable_or_huge_file_is_one_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let missing = dir.path().join("none.ron");
+        let e = Targets::load(&missing).unwrap_err().to_string();
+        assert!(e.contains("none.ron: cannot read targets file: "), "{e}");
+        let path = dir.path().join("t.ron");
+        std::fs::write(&path, GOOD).unwrap();
+        assert_eq!(Targets::load(&path).unwrap().targets().len(), 3);
+        std::fs::write(&path, b"\xff\xfe").unwrap();
+        let e = Targets::load(&path).unwrap_err().to_string();
+        assert!(
+            e.ends_with("t.ron: not UTF-8 text; a targets file is RON text"),
+            "{e}"
+        );
+    }
+}

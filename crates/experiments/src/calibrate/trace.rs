@@ -1,0 +1,437 @@
+//! The trace of a calibration: `trace.jsonl` in its output folder, one JSON object per line,
+//! checksummed as the sweep journal's lines are ([`crate::journal::header_sum`],
+//! [`crate::journal::record_sum`]).
+//!
+//! The first line is the [`TraceHeader`] (what identifies the calibration: scenario hash,
+//! targets, free fields and ranges, methods, trials, seed, duration, digits, build), every
+//! later line one [`Evaluation`], appended and flushed as it ends:
+//!
+//! ```text
+//! {"header":{"format":1,...},"sum":"<16 hex digits>"}
+//! {"eval":{"index":0,"values":[0.0055,14],...},"sum":"<16 hex digits>"}
+//! ```
+//!
+//! Running the same calibration again reads the trace and replays the (deterministic)
+//! search with the recorded evaluations as a cache keyed by the exact free values, so only
+//! new points run. A last line cut short by a kill is dropped; a record that does not verify
+//! is left out (its point runs again); a header that does not verify, or a damaged line
+//! before the last, is refused.
+
+use std::fs::{self, File, OpenOptions};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use usar_sim::scenario::path_text;
+
+use super::evaluate::Evaluation;
+use super::free::FreeField;
+use super::targets::Target;
+use crate::journal::{header_sum, journal_line, record_sum};
+
+/// File name of the trace in the output folder.
+pub const TRACE_FILE: &str = "trace.jsonl";
+
+/// Format of the trace's lines; bumped when they change shape.
+pub const TRACE_FORMAT: u32 = 1;
+
+/// What identifies a calibration: a trace is continued only by a calibration with an equal
+/// header.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TraceHeader {
+    /// [`TRACE_FORMAT`].
+    pub format: u32,
+    /// Version of the `experiments` crate.
+    pub version: String,
+    /// The build of `usar` ([`crate::report::software_build`]): another may simulate
+    /// differently.
+    pub build: String,
+    /// The base scenario's name.
+    pub scenario: String,
+    /// [`crate::fingerprint::scenario_hash`] of the validated base scenario.
+    pub scenario_hash: String,
+    /// The targets, in order.
+    pub targets: Vec<Target>,
+    /// The free fields and their ranges, in order.
+    pub free: Vec<FreeField>,
+    /// The methods, canonical names, in order.
+    pub methods: Vec<String>,
+    /// Trials per method and evaluation.
+    pub trials: u32,
+    /// Base seed.
+    pub base_seed: u64,
+    /// Trial length, seconds; `None`: each point's `mission.duration_s`.
+    pub duration_s: Option<f64>,
+    /// Significant digits of the free values.
+    pub digits: u32,
+    /// The search and its constants (`super::optimizer`).
+    pub search: String,
+}
+
+/// Human-readable list of the fields where two headers differ: `trace has trials 2 vs 3,
+/// digits 4 vs 5`.
+pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
+    let list = |xs: Vec<String>| format!("[{}]", xs.join(", "));
+    let targets = |h: &TraceHeader| {
+        list(
+            h.targets
+                .iter()
+                .map(|t| format!("{}: {} {}", t.name, t.statistic, t.describe()))
+                .collect(),
+        )
+    };
+    let free = |h: &TraceHeader| list(h.free.iter().map(|f| f.to_string()).collect());
+    let build = |h: &TraceHeader| {
+        if h.build.is_empty() {
+            "unrecorded".to_owned()
+        } else {
+            h.build.clone()
+        }
+    };
+    let duration = |h: &TraceHeader| {
+        h.duration_s
+            .map_or("(scenario's)".into(), |x| x.to_string())
+    };
+    let fields: [(&str, String, String); 13] = [
+        ("format", old.format.to_string(), new.format.to_string()),
+        ("version", old.version.clone(), new.version.clone()),
+        ("build", build(old), build(new)),
+        ("scenario", old.scenario.clone(), new.scenario.clone()),
+        (
+            "scenario hash",
+            old.scenario_hash.clone(),
+            new.scenario_hash.clone(),
+        ),
+        ("targets", targets(old), targets(new)),
+        ("free fields", free(old), free(new)),
+        (
+            "methods",
+            list(old.methods.clone()),
+            list(new.methods.clone()),
+        ),
+        ("trials", old.trials.to_string(), new.trials.to_string()),
+        ("seed", old.base_seed.to_string(), new.base_seed.to_string()),
+        ("duration", duration(old), duration(new)),
+        ("digits", old.digits.to_string(), new.digits.to_string()),
+        ("search", old.search.clone(), new.search.clone()),
+    ];
+    let d: Vec<String> = fields
+        .iter()
+        .filter(|(_, a, b)| a != b)
+        .map(|(name, a, b)| match *name {
+            "build" => format!("build {a} vs {b} (another build of usar may simulate differently)"),
+            _ => format!("{name} {a} vs {b}"),
+        })
+        .collect();
+    format!("trace has {}", d.join(", "))
+}
+
+/// One line as read back: the header's or the evaluation's JSON as written, and its sum.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLine<'a> {
+    #[serde(borrow, default)]
+    header: Option<&'a RawValue>,
+    #[serde(borrow, default)]
+    eval: Option<&'a RawValue>,
+    #[serde(default)]
+    sum: Option<String>,
+}
+
+/// A trace read from a file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TraceContents {
+    /// Its header.
+    pub header: TraceHeader,
+    /// Its complete evaluations that verify, in file order.
+    pub evaluations: Vec<Evaluation>,
+    /// Line numbers (1-based) of complete evaluation lines that do not verify.
+    pub rejected: Vec<usize>,
+    /// Bytes of the header and complete lines (what is left once a cut last line is dropped).
+    pub complete_bytes: u64,
+    header_sum: String,
+}
+
+/// What to say about a trace that cannot be used.
+const START_AFRESH: &str = "start afresh with --overwrite, or choose another --out";
+
+/// Reads and verifies the trace at `path`.
+///
+/// # Errors
+/// An unreadable file, a missing header, a header that does not verify or is of another
+/// format, or a damaged line other than the last; each names `--overwrite`.
+pub fn read_trace(path: &Path) -> Result<TraceContents> {
+    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path_text(path)))?;
+    let damaged = |line: usize, what: &str| {
+        anyhow!(
+            "{}:{line}: {what}; delete that line (its point runs again), or {START_AFRESH}",
+            path_text(path)
+        )
+    };
+    let mut lines = bytes
+        .split_inclusive(|&b| b == b'\n')
+        .enumerate()
+        .peekable();
+    let Some((_, first)) = lines.next().filter(|(_, l)| l.ends_with(b"\n")) else {
+        bail!(
+            "{}: no complete header line; {START_AFRESH}",
+            path_text(path)
+        );
+    };
+    let not_header = || anyhow!("{}:1: not a trace header; {START_AFRESH}", path_text(path));
+    let text = std::str::from_utf8(first).map_err(|_| not_header())?;
+    let Ok(RawLine {
+        header: Some(raw),
+        eval: None,
+        sum,
+    }) = serde_json::from_str::<RawLine<'_>>(text.trim_end())
+    else {
+        return Err(not_header());
+    };
+    let hsum = header_sum(raw.get());
+    if sum.as_deref() != Some(hsum.as_str()) {
+        bail!(
+            "{}:1: the header does not verify (edited?); {START_AFRESH}",
+            path_text(path)
+        );
+    }
+    let format = serde_json::from_str::<serde_json::Value>(raw.get())
+        .ok()
+        .and_then(|v| v.get("format")?.as_u64());
+    if format != Some(u64::from(TRACE_FORMAT)) {
+        bail!(
+            "{}: trace format {}, but this usar reads format {TRACE_FORMAT}; {START_AFRESH}",
+            path_text(path),
+            format.map_or("unknown".into(), |f| f.to_string())
+        );
+    }
+    let header: TraceHeader = serde_json::from_str(raw.get()).map_err(|_| not_header())?;
+    let mut c = TraceContents {
+        header,
+        evaluations: Vec::new(),
+        rejected: Vec::new(),
+        complete_bytes: first.len() as u64,
+        header_sum: hsum,
+    };
+    while let Some((i, line)) = lines.next() {
+        if lines.peek().is_none() && !line.ends_with(b"\n") {
+            break; // cut short by a kill
+        }
+        let text = std::str::from_utf8(line).map_err(|_| damaged(i + 1, "not UTF-8"))?;
+        c.complete_bytes += line.len() as u64;
+        if text.trim().is_empty() {
+            continue;
+        }
+        let Ok(RawLine {
+            header: None,
+            eval: Some(raw),
+            sum,
+        }) = serde_json::from_str::<RawLine<'_>>(text.trim_end())
+        else {
+            return Err(damaged(i + 1, "not a valid trace line"));
+        };
+        let e: Evaluation = serde_json::from_str(raw.get())
+            .map_err(|_| damaged(i + 1, "not a valid trace line"))?;
+        if sum.as_deref() == Some(record_sum(&c.header_sum, raw.get()).as_str()) {
+            c.evaluations.push(e);
+        } else {
+            c.rejected.push(i + 1);
+        }
+    }
+    Ok(c)
+}
+
+/// An open trace, appending one flushed line per evaluation.
+#[derive(Debug)]
+pub struct Trace {
+    path: PathBuf,
+    file: File,
+    header_sum: String,
+}
+
+impl Trace {
+    /// The trace's path in `dir`.
+    pub fn path_in(dir: &Path) -> PathBuf {
+        dir.join(TRACE_FILE)
+    }
+
+    /// Starts a new trace in `dir` with `header` (refused if one is there).
+    ///
+    /// # Errors
+    /// An existing trace, or an I/O error.
+    pub fn create(dir: &Path, header: &TraceHeader) -> Result<Self> {
+        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
+        let path = Self::path_in(dir);
+        let file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&path)
+            .with_context(|| format!("creating {}", path_text(&path)))?;
+        let json = serde_json::to_string(header).context("serialising the trace header")?;
+        let mut t = Self {
+            path,
+            file,
+            header_sum: header_sum(&json),
+        };
+        let line = journal_line("header", &json, &t.header_sum);
+        t.write(&line)?;
+        Ok(t)
+    }
+
+    /// Continues the trace `contents` was read from, at `path`: a last line cut short is cut
+    /// off the file.
+    ///
+    /// # Errors
+    /// An I/O error.
+    pub fn resume(path: &Path, contents: &TraceContents) -> Result<Self> {
+        let file = OpenOptions::new()
+            .write(true)
+            .open(path)
+            .with_context(|| format!("opening {}", path_text(path)))?;
+        file.set_len(contents.complete_bytes)
+            .with_context(|| format!("truncating {}", path_text(path)))?;
+        drop(file);
+        let file = OpenOptions::new()
+            .append(true)
+            .open(path)
+            .with_context(|| format!("opening {}", path_text(path)))?;
+        Ok(Self {
+            path: path.to_owned(),
+            file,
+            header_sum: contents.header_sum.clone(),
+        })
+    }
+
+    /// Appends `e` as one checksummed line and flushes it.
+    ///
+    /// # Errors
+    /// An I/O error.
+    pub fn append(&mut self, e: &Evaluation) -> Result<()> {
+        let json = serde_json::to_string(e).context("serialising an evaluation")?;
+        let line = journal_line("eval", &json, &record_sum(&self.header_sum, &json));
+        self.write(&line)
+    }
+
+    fn write(&mut self, line: &str) -> Result<()> {
+        self.file
+            .write_all(line.as_bytes())
+            .and_then(|()| self.file.flush())
+            .with_context(|| format!("appending to {}", path_text(&self.path)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::calibrate::band::Band;
+    use crate::calibrate::metric_ref::MetricRef;
+    use crate::calibrate::statistic::Statistic;
+
+    pub(crate) fn header() -> TraceHeader {
+        TraceHeader {
+            format: TRACE_FORMAT,
+            version: "0.1.0".into(),
+            build: "abc".into(),
+            scenario: "paper".into(),
+            scenario_hash: "0123456789abcdef".into(),
+            targets: vec![Target {
+                name: "rounds".into(),
+                statistic: Statistic::Mean(MetricRef("rounds".into())),
+                value: 6.2,
+                band: Band::PlusMinus(0.6),
+            }],
+            free: vec![FreeField::parse("mission.pickup_s=0.5..2").unwrap()],
+            methods: vec!["RNE".into()],
+            trials: 2,
+            base_seed: 2021,
+            duration_s: Some(20.0),
+            digits: 4,
+            search: "test".into(),
+        }
+    }
+
+    fn eval(index: usize, x: f64) -> Evaluation {
+        Evaluation {
+            index,
+            values: vec![x],
+            statistics: vec![if index == 1 { f64::NAN } else { 6.0 }],
+            loss: if index == 1 { f64::INFINITY } else { 0.0 },
+            message: (index == 1).then(|| "failed".to_string()),
+            trials_ok: 2,
+            wall_s: 0.5,
+        }
+    }
+
+    fn same(a: &Evaluation, b: &Evaluation) -> bool {
+        serde_json::to_string(a).unwrap() == serde_json::to_string(b).unwrap()
+    }
+
+    #[test]
+    fn evaluations_come_back_and_a_cut_last_line_is_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut t = Trace::create(dir.path(), &header()).unwrap();
+        for i in 0..3 {
+            t.append(&eval(i, 1.0 + i as f64)).unwrap();
+        }
+        drop(t);
+        let path = Trace::path_in(dir.path());
+        let whole = fs::read(&path).unwrap();
+        let mut cut = whole.clone();
+        cut.extend_from_slice(b"{\"eval\":{\"index\":3,\"val");
+        fs::write(&path, &cut).unwrap();
+        let c = read_trace(&path).unwrap();
+        assert_eq!(c.header, header());
+        assert_eq!(c.evaluations.len(), 3);
+        assert!(same(&c.evaluations[1], &eval(1, 2.0)));
+        assert_eq!(c.complete_bytes, whole.len() as u64);
+        let mut t = Trace::resume(&path, &c).unwrap();
+        assert_eq!(fs::read(&path).unwrap(), whole);
+        t.append(&eval(3, 4.0)).unwrap();
+        drop(t);
+        assert_eq!(read_trace(&path).unwrap().evaluations.len(), 4);
+    }
+
+    #[test]
+    fn edits_are_caught_by_the_sums() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut t = Trace::create(dir.path(), &header()).unwrap();
+        t.append(&eval(0, 1.0)).unwrap();
+        t.append(&eval(2, 3.0)).unwrap();
+        drop(t);
+        let path = Trace::path_in(dir.path());
+        let text = fs::read_to_string(&path).unwrap();
+        // An edited loss: that evaluation is left out, the others stay.
+        fs::write(&path, text.replacen("\"loss\":0.0", "\"loss\":0.5", 1)).unwrap();
+        let c = read_trace(&path).unwrap();
+        assert_eq!(c.rejected, vec![2]);
+        assert_eq!(c.evaluations.len(), 1);
+        // An edited header: refused.
+        fs::write(&path, text.replace("\"trials\":2", "\"trials\":3")).unwrap();
+        let e = format!("{:#}", read_trace(&path).unwrap_err());
+        assert!(
+            e.contains("trace.jsonl:1: the header does not verify (edited?)"),
+            "{e}"
+        );
+        assert!(e.contains("--overwrite"), "{e}");
+        // A damaged line in the middle: refused by line number.
+        let mut lines: Vec<&str> = text.lines().collect();
+        lines[1] = "garbage";
+        fs::write(&path, lines.join("\n") + "\n").unwrap();
+        let e = format!("{:#}", read_trace(&path).unwrap_err());
+        assert!(e.contains("trace.jsonl:2: not a valid trace line"), "{e}");
+    }
+
+    #[test]
+    fn headers_differ_in_words() {
+        let mut other = header();
+        other.trials = 3;
+        other.free = vec![FreeField::parse("mission.pickup_s=0.5..3").unwrap()];
+        assert_eq!(
+            header_diff(&header(), &other),
+            "trace has free fields [mission.pickup_s=0.5..2] vs [mission.pickup_s=0.5..3], \
+             trials 2 vs 3"
+        );
+    }
+}

@@ -1,0 +1,189 @@
+//! `experiments::calibrate::calibrate` as a library call (the multiverse command runs one per
+//! universe): progress off, any folder; failing trials and broken rules are evaluations with
+//! an infinite loss, not errors; loss 0 stops the search; a larger budget continues it.
+
+use std::path::Path;
+use std::sync::{Arc, Mutex};
+
+use experiments::calibrate::{
+    CalibrationSetup, Checked, Evaluator, FreeField, Progress, StopReason, Targets, calibrate,
+};
+use experiments::sweep::MethodFactory;
+use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+
+const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+
+/// Targets every short paper run meets (bands wide open) but for `rescued` rescuees per
+/// trial, within 1.
+fn targets(rescued: Option<f64>) -> Targets {
+    let mut text = String::from(
+        "Targets(targets: [(name: \"rounds\", statistic: Mean(\"rounds\"), value: 1.0, band: \
+         Between(0.0, 100.0))",
+    );
+    if let Some(r) = rescued {
+        text.push_str(&format!(
+            ", (name: \"rescuees\", statistic: Mean(\"rescued_total\"), value: {r:?}, band: \
+             PlusMinus(1.0))"
+        ));
+    }
+    text.push_str("])");
+    Targets::parse(&text, "test targets").unwrap()
+}
+
+/// A short calibration of `free` in paper.ron: RNE, 1 trial of 40 s per evaluation, no check.
+fn setup(free: &[&str], targets: Targets, max_evals: usize) -> CalibrationSetup {
+    let text = std::fs::read_to_string(PAPER).unwrap();
+    let base = usar_sim::scenario::parse_spec(&text, "paper.ron").unwrap();
+    let free = free.iter().map(|f| FreeField::parse(f).unwrap()).collect();
+    CalibrationSetup {
+        methods: vec!["rne".into()],
+        trials: 1,
+        duration_s: Some(40.0),
+        max_evals,
+        check_trials: 0,
+        threads: 2,
+        date: Some("2000-01-01T00:00:00Z".into()),
+        ..CalibrationSetup::new(base, "paper.ron", targets, free)
+    }
+}
+
+/// A grouping method that panics when asked to group.
+struct Boom;
+
+impl GroupingMethod for Boom {
+    fn name(&self) -> &str {
+        "boom"
+    }
+
+    fn assign(&self, _: &GroupingRequest) -> rne_core::Result<Assignment> {
+        panic!("boom on purpose")
+    }
+}
+
+#[test]
+fn loss_zero_stops_at_once_and_writes_every_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = setup(&["mission.pickup_s=0.5..2"], targets(None), 10);
+    let o = calibrate(&s, dir.path(), Progress::off()).unwrap();
+    assert_eq!(o.stop, StopReason::TargetReached);
+    assert_eq!((o.evaluations.len(), o.ran, o.reused), (1, 1, 0));
+    assert!(o.admissible && o.loss == 0.0);
+    // The start is the scenario's own value.
+    assert_eq!(o.best_values(), [1.2]);
+    assert_eq!(o.best_spec.mission.pickup_s.get(), 1.2);
+    assert!(o.check.is_none());
+    let names: Vec<String> = o
+        .files
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "trace.jsonl",
+            "calibrated.ron",
+            "trace.csv",
+            "calibration.md",
+            "convergence.svg"
+        ]
+    );
+    assert!(
+        o.files
+            .iter()
+            .all(|p| p.starts_with(dir.path()) && p.is_file())
+    );
+}
+
+#[test]
+fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = setup(&["mission.pickup_s=0.5..2"], targets(None), 2);
+    s.methods = vec!["rne".into(), "boom".into()];
+    s.method_factory = MethodFactory::new(|name, model| match name {
+        "boom" => Ok(Box::new(Boom) as Box<dyn GroupingMethod>),
+        other => MethodFactory::builtin().build(other, model),
+    });
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let hook_seen = Arc::clone(&seen);
+    let progress = Progress {
+        on_evaluated: Some(Arc::new(move |e, n| {
+            hook_seen.lock().unwrap().push((e.index, n));
+        })),
+        ..Progress::off()
+    };
+    let o = calibrate(&s, dir.path(), progress).unwrap();
+    assert_eq!(o.evaluations.len(), 2);
+    for e in &o.evaluations {
+        assert_eq!(e.loss, f64::INFINITY);
+        assert_eq!(e.trials_ok, 1, "RNE's trial ran");
+        let m = e.message.as_deref().unwrap();
+        assert!(
+            m.starts_with("1 of 2 trials failed: BOOM trial 0 (seed ")
+                && m.contains("panicked: boom on purpose"),
+            "{m}"
+        );
+        // The statistics of the trials that ran are kept.
+        assert_eq!(e.statistics.len(), 1);
+        assert!(e.statistics[0].is_finite());
+    }
+    assert!(!o.admissible);
+    assert_eq!(*seen.lock().unwrap(), [(0, 1), (1, 2)]);
+    let csv = std::fs::read_to_string(dir.path().join("trace.csv")).unwrap();
+    assert!(
+        csv.contains(",inf,1 of 2 trials failed: BOOM trial 0"),
+        "{csv}"
+    );
+}
+
+#[test]
+fn values_that_break_a_rule_are_failed_evaluations_not_an_abort() {
+    let s = setup(&["arena.width_m=10..20"], targets(None), 3);
+    let checked: Checked = s.check().unwrap();
+    let evaluator = Evaluator::new(&s, &checked).unwrap();
+    let e = evaluator.evaluate(&[12.0]);
+    assert_eq!(e.loss, f64::INFINITY);
+    assert_eq!(e.trials_ok, 0);
+    assert!(e.statistics[0].is_nan());
+    let m = e.message.unwrap();
+    assert!(m.starts_with("--free arena.width_m=12: "), "{m}");
+    // Every point breaks it: the search runs its budget, then says no point is valid.
+    let dir = tempfile::tempdir().unwrap();
+    let err = calibrate(&s, dir.path(), Progress::off()).unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(
+        msg.starts_with(
+            "no evaluated point gives a valid scenario; the best one: --free arena.width_m="
+        ),
+        "{msg}"
+    );
+    let trace = std::fs::read_to_string(dir.path().join("trace.jsonl")).unwrap();
+    assert_eq!(trace.lines().count(), 1 + 3);
+}
+
+#[test]
+fn a_larger_budget_continues_the_same_search() {
+    let free = [
+        "mission.pickup_s=0.5..2",
+        "mission.search_time_budget_s=8..30",
+    ];
+    // 30 rescuees are out of reach in 40 s: the search runs its whole budget.
+    let short = setup(&free, targets(Some(300.0)), 3);
+    let long = setup(&free, targets(Some(300.0)), 5);
+    let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let first = calibrate(&short, a.path(), Progress::off()).unwrap();
+    assert_eq!((first.stop, first.ran), (StopReason::MaxEvals, 3));
+    let more = calibrate(&long, a.path(), Progress::off()).unwrap();
+    let fresh = calibrate(&long, b.path(), Progress::off()).unwrap();
+    assert_eq!((more.ran, more.reused), (2, 3));
+    assert_eq!(fresh.ran, 5);
+    let rows = |o: &experiments::calibrate::CalibrationOutcome| -> Vec<(Vec<f64>, String)> {
+        o.evaluations
+            .iter()
+            .map(|e| (e.values.clone(), format!("{:?}", e.statistics)))
+            .collect()
+    };
+    assert_eq!(rows(&more), rows(&fresh));
+    assert_eq!(rows(&first)[..], rows(&fresh)[..3]);
+    let csv = |d: &Path| std::fs::read(d.join("trace.csv")).unwrap();
+    assert!(csv(a.path()) == csv(b.path()));
+}
