@@ -109,6 +109,7 @@ fn a_calibration_writes_its_files_and_the_best_values_reproduce_its_statistics()
         "trace.csv",
         "calibration.md",
         "convergence.svg",
+        "statistics.svg",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
@@ -175,6 +176,7 @@ fn a_calibration_writes_its_files_and_the_best_values_reproduce_its_statistics()
         "## Best values",
         "## Unseen trials",
         "convergence.svg",
+        "statistics.svg",
     ] {
         assert!(md.contains(part), "{part} missing from calibration.md");
     }

@@ -4,7 +4,9 @@
 
 use std::fmt::Write;
 
-use super::outcome::{CalibrationOutcome, FIGURE_FILE, TRACE_CSV_FILE, TargetCheck};
+use super::outcome::{
+    CalibrationOutcome, FIGURE_FILE, STATISTICS_FIGURE_FILE, TRACE_CSV_FILE, TargetCheck,
+};
 use super::progress::loss_text;
 use crate::table::num;
 
@@ -81,6 +83,12 @@ pub fn calibration_md(o: &CalibrationOutcome) -> String {
          `{TRACE_CSV_FILE}`.\n"
     );
     let _ = writeln!(r, "## Convergence\n\n![Best loss so far]({FIGURE_FILE})\n");
+    let _ = writeln!(
+        r,
+        "Each target's statistic at every evaluation, its band shaded (a target never in its \
+         band while the others are conflicts with them under these free fields):\n\n\
+         ![Statistics per evaluation]({STATISTICS_FIGURE_FILE})\n"
+    );
     unseen(&mut r, o);
     r
 }

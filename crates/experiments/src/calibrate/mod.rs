@@ -8,11 +8,11 @@
 //! against the [`Targets`] (`TARGETS.ron`, [`targets`]). Every evaluation is appended to
 //! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
 //! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
-//! `calibration.md` and `convergence.svg`.
+//! `calibration.md`, `convergence.svg` and `statistics.svg`.
 //!
 //! Files depend one way (each imports only from those before it): band, metric_ref,
 //! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, trace,
-//! outcome, figure, progress, markdown, outputs, searcher, run, summary.
+//! outcome, figure, targets_figure, progress, markdown, outputs, searcher, run, summary.
 
 pub mod band;
 pub mod evaluate;
@@ -33,6 +33,7 @@ mod source_map;
 pub mod statistic;
 pub mod summary;
 pub mod targets;
+pub mod targets_figure;
 pub mod trace;
 
 pub use band::Band;

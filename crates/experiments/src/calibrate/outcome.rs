@@ -18,9 +18,17 @@ pub const TRACE_CSV_FILE: &str = "trace.csv";
 pub const REPORT_FILE: &str = "calibration.md";
 /// The best loss against the evaluations.
 pub const FIGURE_FILE: &str = "convergence.svg";
+/// Each target's statistic against the evaluations, its band shaded.
+pub const STATISTICS_FIGURE_FILE: &str = "statistics.svg";
 /// The files `super::outputs::write_outputs` writes, in that order (`--overwrite` removes
 /// them).
-pub const OUTPUT_FILES: [&str; 4] = [CALIBRATED_FILE, TRACE_CSV_FILE, REPORT_FILE, FIGURE_FILE];
+pub const OUTPUT_FILES: [&str; 5] = [
+    CALIBRATED_FILE,
+    TRACE_CSV_FILE,
+    REPORT_FILE,
+    FIGURE_FILE,
+    STATISTICS_FIGURE_FILE,
+];
 
 /// One target with a statistic's value and whether it lies in the band.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,8 @@
 //! The files a calibration writes at its end, as one set through [`crate::atomic::FileSet`]
 //! (every file complete or none changed): `calibrated.ron` (the base scenario with the best
 //! values, [`crate::spec_ron::spec_to_ron`], after a header comment), `trace.csv` (one row per
-//! evaluation), `calibration.md` (`super::markdown`) and `convergence.svg` (`super::figure`).
+//! evaluation), `calibration.md` (`super::markdown`), `convergence.svg` (`super::figure`) and
+//! `statistics.svg` (`super::targets_figure`).
 
 use std::path::{Path, PathBuf};
 
@@ -10,8 +11,10 @@ use anyhow::{Context, Result};
 use super::figure::convergence_svg;
 use super::markdown::calibration_md;
 use super::outcome::{
-    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, REPORT_FILE, TRACE_CSV_FILE,
+    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, REPORT_FILE, STATISTICS_FIGURE_FILE,
+    TRACE_CSV_FILE,
 };
+use super::targets_figure::statistics_svg;
 use crate::atomic::FileSet;
 use crate::spec_ron::spec_to_ron;
 
@@ -26,6 +29,10 @@ pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>>
     set.stage(&dir.join(TRACE_CSV_FILE), trace_csv(o)?.as_bytes())?;
     set.stage(&dir.join(REPORT_FILE), calibration_md(o).as_bytes())?;
     set.stage(&dir.join(FIGURE_FILE), convergence_svg(o)?.as_bytes())?;
+    set.stage(
+        &dir.join(STATISTICS_FIGURE_FILE),
+        statistics_svg(o)?.as_bytes(),
+    )?;
     set.commit()
 }
 

@@ -23,7 +23,8 @@ use crate::lock::OutputLock;
 
 /// Fits the free fields of `setup.base` so that the statistics of its trials fall inside the
 /// bands of `setup.targets`, writing into `dir`: `trace.jsonl` (every evaluation, as it
-/// ends), then `calibrated.ron`, `trace.csv`, `calibration.md` and `convergence.svg`.
+/// ends), then `calibrated.ron`, `trace.csv`, `calibration.md`, `convergence.svg` and
+/// `statistics.svg`.
 ///
 /// Same inputs, same sequence of evaluated points and same files on any thread count (but
 /// the date, unless `setup.date` sets it, and the timings in `calibration.md`). Running it again on a folder holding the trace

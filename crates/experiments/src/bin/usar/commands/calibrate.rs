@@ -49,8 +49,9 @@ Option<f64> such as mission.search_time_budget_s included).
 
 Output folder (default results/calibrate-<scenario name>/): trace.jsonl (every evaluation,
 appended as it ends, checksummed), then calibrated.ron (the scenario with the best values; its
-header comment has the command, the date and every statistic), trace.csv, calibration.md and
-convergence.svg, written together at the end. Running the same command again replays the
+header comment has the command, the date and every statistic), trace.csv, calibration.md,
+convergence.svg (the loss) and statistics.svg (each target's statistic per evaluation, its
+band shaded), written together at the end. Running the same command again replays the
 search from trace.jsonl and runs only new points (a larger --max-evals continues a search); a
 trace of another calibration is refused (--overwrite starts afresh). The date is the system
 clock's (UTC), or SOURCE_DATE_EPOCH when set. Same inputs, same trace.csv and calibrated

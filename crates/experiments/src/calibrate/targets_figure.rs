@@ -1,0 +1,150 @@
+//! `statistics.svg`: one small panel per target, its statistic at every evaluation (dots)
+//! against the evaluation index, with the target's band shaded and the best evaluation
+//! ringed. It shows which targets a search reaches and which it never does: two targets that
+//! are never in their bands at the same evaluation conflict under the free fields searched
+//! (plotters, plain SVG text, as the other figures).
+
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::outcome::CalibrationOutcome;
+use super::targets::Target;
+use crate::figures::draw_err;
+
+/// Panels per row.
+const COLUMNS: usize = 4;
+/// Size of one panel, pixels.
+const PANEL: (u32, u32) = (300, 190);
+
+/// The SVG text of `statistics.svg` for `o` (a panel per target, in the targets file's
+/// order).
+///
+/// # Errors
+/// If plotters fails to draw.
+pub fn statistics_svg(o: &CalibrationOutcome) -> Result<String> {
+    let targets = &o.header.targets;
+    let rows = targets.len().div_ceil(COLUMNS).max(1);
+    let size = (PANEL.0 * COLUMNS as u32, PANEL.1 * rows as u32 + 40);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let (title, body) = root.split_vertically(40);
+        title
+            .titled(
+                &format!(
+                    "Calibration of {}: each target's statistic per evaluation \
+                     (band shaded, best ringed)",
+                    o.header.scenario
+                ),
+                ("sans-serif", 17),
+            )
+            .map_err(draw_err)?;
+        let panels = body.split_evenly((rows, COLUMNS));
+        for (k, (target, area)) in targets.iter().zip(&panels).enumerate() {
+            let values: Vec<f64> = o.evaluations.iter().map(|e| e.statistics[k]).collect();
+            panel(area, target, &values, o.best)?;
+        }
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+/// The y range of a panel: the band and every finite value, with a margin.
+fn y_range(target: &Target, values: &[f64]) -> (f64, f64) {
+    let (lo, hi) = target.band.bounds(target.value);
+    let (mut min, mut max) = (lo.min(target.value), hi.max(target.value));
+    for &x in values.iter().filter(|x| x.is_finite()) {
+        min = min.min(x);
+        max = max.max(x);
+    }
+    let pad = ((max - min) * 0.08).max(1e-9);
+    (min - pad, max + pad)
+}
+
+/// One target's panel on `area`.
+fn panel(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    target: &Target,
+    values: &[f64],
+    best: usize,
+) -> Result<()> {
+    let n = values.len().max(1) as f64;
+    let (y0, y1) = y_range(target, values);
+    let mut chart = ChartBuilder::on(area)
+        .caption(&target.name, ("sans-serif", 13))
+        .margin(6)
+        .x_label_area_size(18)
+        .y_label_area_size(44)
+        .build_cartesian_2d(-0.5f64..(n - 0.5), y0..y1)
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .x_labels(4)
+        .y_labels(4)
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|y| format!("{y:.3}"))
+        .label_style(("sans-serif", 10))
+        .disable_mesh()
+        .draw()
+        .map_err(draw_err)?;
+    let (lo, hi) = target.band.bounds(target.value);
+    let band = RGBColor(0, 158, 115).mix(0.18);
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(-0.5, lo.max(y0)), (n - 0.5, hi.min(y1))],
+            band.filled(),
+        )))
+        .map_err(draw_err)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(-0.5, target.value), (n - 0.5, target.value)],
+            RGBColor(0, 158, 115),
+        )))
+        .map_err(draw_err)?;
+    let dots = values
+        .iter()
+        .enumerate()
+        .filter(|(_, x)| x.is_finite())
+        .map(|(i, &x)| {
+            let c = if target.holds(x) {
+                RGBColor(0, 114, 178)
+            } else {
+                RGBColor(150, 150, 150)
+            };
+            Circle::new((i as f64, x), 2, c.filled())
+        });
+    chart.draw_series(dots).map_err(draw_err)?;
+    if let Some(&x) = values.get(best).filter(|x| x.is_finite()) {
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                (best as f64, x),
+                5,
+                RGBColor(213, 94, 0).stroke_width(2),
+            )))
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::calibrate::metric_ref::MetricRef;
+    use crate::calibrate::{Band, Statistic};
+
+    #[test]
+    fn a_panel_spans_its_band_and_every_finite_value() {
+        let t = Target {
+            name: "t".into(),
+            statistic: Statistic::Mean(MetricRef("rounds".into())),
+            value: 6.0,
+            band: Band::PlusMinus(1.0),
+        };
+        let (lo, hi) = y_range(&t, &[f64::NAN, 2.0, f64::INFINITY, 6.5]);
+        assert!(lo < 2.0 && hi > 7.0 && hi < 8.0, "{lo}..{hi}");
+        let (lo, hi) = y_range(&t, &[]);
+        assert!(lo < 5.0 && hi > 7.0, "{lo}..{hi}");
+    }
+}
