@@ -72,7 +72,7 @@ fn lower_hp_means_lower_speed() {
     let (low, _) = run(60.0);
     assert!((full - v_max).abs() < 0.02 * v_max, "{full}");
     assert!(
-        (low - hp_factor(60.0, paper().mission.min_hp_factor.get()) * v_max).abs() < 0.02 * v_max,
+        (low - hp_factor(&paper().mission, 60.0) * v_max).abs() < 0.02 * v_max,
         "{low}"
     );
     assert!(low < full);
@@ -364,11 +364,7 @@ fn the_needs_vector_follows_the_robot_state() {
     let v = now.as_slice();
     assert!((v[entry::ENG] - kind.energy_needs_full * r.energy_pct / 100.0).abs() < 1e-12);
     assert!((v[entry::HP] - kind.hp_needs_full * r.hp_pct / 100.0).abs() < 1e-12);
-    assert!(
-        (v[entry::V] - kind.max_speed_m_per_s * hp_factor(r.hp_pct, s.mission.min_hp_factor.get()))
-            .abs()
-            < 1e-12
-    );
+    assert!((v[entry::V] - kind.max_speed_m_per_s * hp_factor(&s.mission, r.hp_pct)).abs() < 1e-12);
     assert_eq!(v[entry::CAP], f64::from(r.capacity_free));
     assert!(
         v[entry::CAP] < before.as_slice()[entry::CAP],

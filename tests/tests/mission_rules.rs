@@ -420,7 +420,9 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
         (top, s.kind_of(0).max_speed_m_per_s)
     };
     let (floored, v_max) = top(0.2);
-    assert!((hp_factor(5.0, 0.2) - 0.2).abs() < 1e-12);
+    let mut floor = paper().mission;
+    floor.min_hp_factor = 0.2.try_into().unwrap();
+    assert!((hp_factor(&floor, 5.0) - 0.2).abs() < 1e-12);
     assert!(
         (floored - 0.2 * v_max).abs() < 0.02 * v_max,
         "{floored} vs {}",

@@ -230,6 +230,7 @@ fn shipped() -> Vec<Vec<u8>> {
     [
         "paper.ron",
         "paper-v0.ron",
+        "paper-v1.ron",
         "corridor.ron",
         "debris-crossing.ron",
         "three-tasks.ron",

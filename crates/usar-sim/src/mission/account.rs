@@ -10,14 +10,18 @@ use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::Phase;
 use super::state::MissionState;
-use crate::scenario::{LoadOnLeave, Locomotion, PointM, Refresh, Scenario};
+use crate::scenario::{
+    LeaveWhenLow, LoadOnLeave, Locomotion, MissionParams, PointM, Refresh, Scenario, SearchClock,
+};
 use crate::world::World;
 
 /// Accounts the step just taken for every robot, in id order: energy (per moving step and per
-/// metre moved) and HP (per step in radiation) every step; with `review` (after the step
-/// before a control step, `sim.control_period_s`, and after the last step: every step without
-/// a control period) also detections of its group, its phase, and a leave for the rest
-/// station when energy or HP fell below its threshold.
+/// metre moved) and HP (per step in radiation, both per-step rates scaled to the step's length,
+/// [`MissionParams::per_paper_step`]) every step; with `review` (after the step before a
+/// control step, `sim.control_period_s`, and after the last step: every step without a control
+/// period) also detections of its group, its phase, and a leave for the rest station when
+/// energy or HP fell below its threshold (at once, or back at its start:
+/// `mission.leave_when_low`).
 ///
 /// # Errors
 /// [`MissionError::World`] if the world refuses a command (a bug).
@@ -29,6 +33,8 @@ pub(crate) fn account(
 ) -> Result<(), MissionError> {
     let m = &scenario.mission;
     let dt = scenario.sim.dt_s.get();
+    let energy_per_moving_step = MissionParams::per_paper_step(m.energy_pct_per_moving_step, dt);
+    let hp_per_step = MissionParams::per_paper_step(m.hp_pct_per_step_in_radiation, dt);
     let now = world.time_s();
     for id in 0..st.robots.len() {
         let w = world.robot(id);
@@ -42,13 +48,13 @@ pub(crate) fn account(
         let rad = world.radiation_factor(id);
         let r = &mut st.robots[id];
         if moved {
-            let cost = m.energy_pct_per_moving_step.get() + m.energy_pct_per_m.get() * step_m;
+            let cost = energy_per_moving_step + m.energy_pct_per_m.get() * step_m;
             let spent = cost.min(r.energy_pct);
             r.energy_pct -= spent;
             st.recorder.energy(id, r.task, spent);
         }
         if rad > 0.0 {
-            let lost = (m.hp_pct_per_step_in_radiation.get() * rad).min(r.hp_pct);
+            let lost = (hp_per_step * rad).min(r.hp_pct);
             r.hp_pct -= lost;
             st.recorder.hp(id, r.task, lost, dt);
         }
@@ -58,17 +64,15 @@ pub(crate) fn account(
         if let Some(t) = r.task
             && r.is_on_task()
         {
-            let f = hp_factor(r.hp_pct, m.min_hp_factor.get());
+            let f = hp_factor(m, r.hp_pct);
             let range = radius + scenario.kind_of(id).observing_range_m * f;
             st.fields[t].detect(&pos, range);
         }
         advance_phase(scenario, world, st, id, pos, reached, now)?;
         let r = &st.robots[id];
-        let (low_energy, low_hp) = (
-            r.energy_pct < m.low_energy_pct.get(),
-            r.hp_pct < m.low_hp_pct.get(),
-        );
-        if !r.is_resting() && (low_energy || low_hp) {
+        let (low_energy, low_hp) = r.low_levels(m);
+        let may_leave = m.leave_when_low == LeaveWhenLow::AtOnce || r.phase == Phase::AtStart;
+        if !r.is_resting() && (low_energy || low_hp) && may_leave {
             let kind = MissionEventKind::LeftForRest { low_energy, low_hp };
             st.events
                 .push(MissionEvent::of_robot(now, id, r.task, kind));
@@ -96,10 +100,15 @@ fn advance_phase(
                 try_pick_up(scenario, world, st, id, t, pos, reached)?;
             }
             let in_area = scenario.tasks[t].search_area.contains(&pos);
-            if in_area && scenario.kind_of(id).locomotion == Locomotion::Ground {
+            let first_arrival = scenario.mission.search_clock == SearchClock::FirstArrival;
+            if first_arrival && in_area && scenario.kind_of(id).locomotion == Locomotion::Ground {
                 st.search_started_s[t].get_or_insert(now);
             }
+            // Within reach of the area, a robot can rescue at its edge without entering it.
+            let reach =
+                scenario.kind_of(id).body_radius_m + scenario.navigation.waypoint_tolerance_m.get();
             let r = &mut st.robots[id];
+            r.reached_area |= scenario.tasks[t].search_area.distance_to(&pos) <= reach;
             if r.phase == Phase::ToSearchArea && (reached || in_area) {
                 r.phase = Phase::Searching;
                 if r.claim.is_none() {
@@ -223,7 +232,7 @@ fn try_pick_up(
     r.claim = None;
     r.capacity_free -= 1;
     r.load.push(i);
-    st.recorder.picked_up(id);
+    st.recorder.picked_up(id, t);
     let kind = MissionEventKind::PickedUp { rescuee: i };
     st.events
         .push(MissionEvent::of_robot(world.time_s(), id, Some(t), kind));

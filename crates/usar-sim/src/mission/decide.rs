@@ -8,7 +8,9 @@ use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
 use super::state::{LeaveFigures, MissionState};
-use crate::scenario::{Locomotion, PointM, Rect, Role, Scenario, SweepPattern};
+use crate::scenario::{
+    CollisionPriority, Locomotion, PointM, Rect, Role, Scenario, SearchClock, SweepPattern,
+};
 use crate::world::{World, WorldError};
 
 /// A claim on a rescuee is given up when the robot has not come `CLAIM_PROGRESS_M` closer to
@@ -28,17 +30,19 @@ pub(crate) fn decide(
     st: &mut MissionState,
 ) -> Result<(), MissionError> {
     gather_leave_figures(scenario, st);
+    if scenario.mission.search_clock == SearchClock::LastArrival {
+        start_search_clocks_of_assembled_groups(world, st);
+    }
     for t in 0..scenario.tasks.len() {
         if group_should_leave(scenario, world, st, t) {
             leave_search_area(scenario, world, st, t)?;
         }
     }
-    let min_factor = scenario.mission.min_hp_factor.get();
     tally_tasks(scenario, st);
     for id in 0..st.robots.len() {
         let kind = scenario.kind_of(id);
         let r = &st.robots[id];
-        let f = hp_factor(r.hp_pct, min_factor);
+        let f = hp_factor(&scenario.mission, r.hp_pct);
         let blind = r.task.is_some_and(|t| !st.tally.observer[t]);
         let penalty = if blind {
             scenario.mission.no_observer_speed_factor.get()
@@ -47,7 +51,12 @@ pub(crate) fn decide(
         };
         world.set_speed_factor(id, f * penalty)?;
         world.set_sensing_factor(id, f)?;
-        world.set_priority_key(id, r.energy_pct)?;
+        let key = match scenario.collision.priority {
+            CollisionPriority::LowestEnergy => r.energy_pct,
+            CollisionPriority::LowestHp => r.hp_pct,
+            CollisionPriority::RobotId => 0.0,
+        };
+        world.set_priority_key(id, key)?;
         if kind.locomotion == Locomotion::Ground && r.is_on_task() {
             decide_ground_on_task(scenario, world, st, id, blind)?;
         }
@@ -96,6 +105,7 @@ fn gather_leave_figures(scenario: &Scenario, st: &mut MissionState) {
             continue;
         }
         f.any_on_task = true;
+        f.all_arrived &= r.reached_area;
         let kind = scenario.kind_of(r.id);
         if kind.locomotion == Locomotion::Ground {
             f.free_capacity = f.free_capacity.saturating_add(r.capacity_free);
@@ -103,6 +113,17 @@ fn gather_leave_figures(scenario: &Scenario, st: &mut MissionState) {
         }
         if kind.role == Role::Observer && r.phase == Phase::ToSearchArea {
             f.observer_arriving = true;
+        }
+    }
+}
+
+/// Starts the search clock of every task whose members have all reached its search area now
+/// (`mission.search_clock: LastArrival`), if it is not running yet. Reads `st.tally.leave`.
+fn start_search_clocks_of_assembled_groups(world: &World, st: &mut MissionState) {
+    let now = world.time_s();
+    for (clock, f) in st.search_started_s.iter_mut().zip(&st.tally.leave) {
+        if f.any_on_task && f.all_arrived {
+            clock.get_or_insert(now);
         }
     }
 }

@@ -85,7 +85,7 @@ pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
         kind: scenario.robots[r.id].kind,
         needs: needs_vector(
             kind,
-            scenario.mission.min_hp_factor.get(),
+            &scenario.mission,
             r.hp_pct,
             r.energy_pct,
             kind.rescuing_resources,

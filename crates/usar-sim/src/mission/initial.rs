@@ -5,7 +5,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::scenario::{ClampedNormal, Scenario};
+use crate::scenario::{ClampedNormal, MAX_REDRAWS, OutsideRange, Scenario};
 
 /// Seed of trial `trial` (0-based) of a sweep whose base seed is `base_seed`: the SplitMix64
 /// finaliser of `base_seed + trial`, so neighbouring trials get unrelated streams.
@@ -33,18 +33,27 @@ pub struct InitialLevels {
 /// Draws every robot's starting energy and HP for a trial seeded with `seed`.
 ///
 /// Robots are drawn in id order; for each robot, energy first, then HP, each from the
-/// scenario's [`ClampedNormal`] (paper: N(80 %, 20 %) and N(90 %, 10 %)) and clamped to its
-/// `[min_pct, max_pct]`. The generator is ChaCha8 seeded with `seed`, so the stream is the same
-/// on every platform. Returns one entry per robot, indexed by robot id.
+/// scenario's [`ClampedNormal`] (paper: N(80 %, 20 %) and N(90 %, 10 %)) and kept in its
+/// `[min_pct, max_pct]`: clamped, or drawn again (`outside_range: Redraw`, at most
+/// [`MAX_REDRAWS`] draws, then clamped). The generator is ChaCha8 seeded with `seed`, so the
+/// stream is the same on every platform. Returns one entry per robot, indexed by robot id.
 pub fn draw_initial_levels(scenario: &Scenario, seed: u64) -> Vec<InitialLevels> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut draw = |d: &ClampedNormal| {
-        // std_dev >= 0 and finite were validated, so Normal::new cannot fail.
         // mean finite and std_dev >= 0 by their types, so Normal::new cannot fail; were it to,
         // the mean is drawn.
         let (mean, sd) = (d.mean_pct.get(), d.std_dev_pct.get());
-        let x = Normal::new(mean, sd).map_or(mean, |n| n.sample(&mut rng));
-        x.clamp(d.min_pct.get(), d.max_pct.get())
+        let (lo, hi) = (d.min_pct.get(), d.max_pct.get());
+        let mut x = Normal::new(mean, sd).map_or(mean, |n| n.sample(&mut rng));
+        if d.outside_range == OutsideRange::Redraw {
+            for _ in 1..MAX_REDRAWS {
+                if (lo..=hi).contains(&x) {
+                    break;
+                }
+                x = Normal::new(mean, sd).map_or(mean, |n| n.sample(&mut rng));
+            }
+        }
+        x.clamp(lo, hi)
     };
     (0..scenario.robots.len())
         .map(|_| {

@@ -3,7 +3,7 @@
 
 use rne_core::NeedsVector;
 
-use crate::scenario::RobotKind;
+use crate::scenario::{HpEffect, MissionParams, RobotKind};
 
 /// Index of each entry of the needs vector, in the paper's order (Eqs. 19-21).
 pub mod entry {
@@ -24,19 +24,35 @@ pub mod entry {
 }
 
 /// How HP scales a robot's speed, sensing range and observing range (paper, section VI.B:
-/// "the lower its HP, the smaller its velocity, sensing, and observing range").
+/// "the lower its HP, the smaller its velocity, sensing, and observing range"), in `[0, 1]`.
 ///
-/// The paper gives no function; we use the linear one `f(hp) = hp_pct / 100`, clamped to
-/// `[min_factor, 1]`: a robot at 90 % HP moves at 90 % of its kind's top speed, and no robot
-/// drops below `min_factor` (`mission.min_hp_factor`, in `[0, 1]`; 0 lets a robot at 0 % HP
-/// stop dead). See `docs/mission-model.md`.
-pub fn hp_factor(hp_pct: f64, min_factor: f64) -> f64 {
-    (hp_pct / 100.0).clamp(0.0, 1.0).max(min_factor)
+/// The paper gives no function; `mission.hp_effect` chooses one ([`HpEffect`]):
+/// - `Linear` (default): `f(hp) = hp_pct / 100` clamped to `[min_hp_factor, 1]`: a robot at
+///   90 % HP moves at 90 % of its kind's top speed, and none drops below
+///   `mission.min_hp_factor` (0 lets a robot at 0 % HP stop dead);
+/// - `Threshold { below_pct, factor }`: 1 while `hp_pct >= below_pct`, else `factor`;
+/// - `NoEffect`: 1.
+///
+/// See `docs/mission-model.md`.
+pub fn hp_factor(mission: &MissionParams, hp_pct: f64) -> f64 {
+    match mission.hp_effect {
+        HpEffect::Linear => (hp_pct / 100.0)
+            .clamp(0.0, 1.0)
+            .max(mission.min_hp_factor.get()),
+        HpEffect::Threshold { below_pct, factor } => {
+            if hp_pct >= below_pct.get() {
+                1.0
+            } else {
+                factor.get()
+            }
+        }
+        HpEffect::NoEffect => 1.0,
+    }
 }
 
 /// The needs vector of a robot of `kind` at `hp_pct` and `energy_pct` (both in `[0, 100]`),
 /// with `resources` rescuing resources and `capacity` free carrying capacity left, under the
-/// HP effect floor `min_hp_factor` (see [`hp_factor`]).
+/// mission's HP effect (see [`hp_factor`]).
 ///
 /// Entries (paper, Eqs. 19-21, ratios of section VI.B through the kind's fields):
 /// `hp = hp_needs_full * hp_pct/100`, `v = max_speed_m_per_s * f(hp)`,
@@ -50,13 +66,13 @@ pub fn hp_factor(hp_pct: f64, min_factor: f64) -> f64 {
 /// keeps both finite. The kind must be validated (its fields finite and positive).
 pub fn needs_vector(
     kind: &RobotKind,
-    min_hp_factor: f64,
+    mission: &MissionParams,
     hp_pct: f64,
     energy_pct: f64,
     resources: u32,
     capacity: u32,
 ) -> NeedsVector {
-    let f = hp_factor(hp_pct, min_hp_factor);
+    let f = hp_factor(mission, hp_pct);
     let values = vec![
         kind.hp_needs_full * hp_pct.clamp(0.0, 100.0) / 100.0,
         kind.max_speed_m_per_s * f,

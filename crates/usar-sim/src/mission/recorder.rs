@@ -4,7 +4,7 @@
 
 use super::metrics::{RobotMetrics, RoundRecord, TrialResult};
 use super::robot::MissionRobot;
-use crate::scenario::Scenario;
+use crate::scenario::{RescuedAt, Scenario};
 use crate::world::World;
 
 /// Running counts of one trial: per robot, per task (by task id) and per round. Energy and HP
@@ -22,6 +22,7 @@ pub struct Recorder {
     hp_by_task: Vec<f64>,
     rescued: Vec<u32>,
     rounds: Vec<RoundRecord>,
+    rescued_at: RescuedAt,
 }
 
 impl Recorder {
@@ -40,6 +41,7 @@ impl Recorder {
             hp_by_task: vec![0.0; k],
             rescued: vec![0; k],
             rounds: Vec::new(),
+            rescued_at: scenario.mission.rescued_at,
         }
     }
 
@@ -67,15 +69,27 @@ impl Recorder {
         }
     }
 
-    /// Robot `id` picked a rescuee up.
-    pub fn picked_up(&mut self, id: usize) {
+    /// Robot `id` picked a rescuee of task `t` up (in the current round); it counts as rescued
+    /// now under `mission.rescued_at: PickUp`.
+    pub fn picked_up(&mut self, id: usize, t: usize) {
         self.robots[id].picked_up += 1;
+        if self.rescued_at == RescuedAt::PickUp {
+            self.rescue(t, 1);
+        }
     }
 
-    /// Robot `id` delivered `n` rescuees of task `t` (in the current round).
+    /// Robot `id` delivered `n` rescuees of task `t` (in the current round); they count as
+    /// rescued now under `mission.rescued_at: DropOff`.
     pub fn delivered(&mut self, id: usize, t: usize, n: u32) {
-        self.rescued[t] += n;
         self.robots[id].delivered += n;
+        if self.rescued_at == RescuedAt::DropOff {
+            self.rescue(t, n);
+        }
+    }
+
+    /// Counts `n` rescuees for task `t` and the current round.
+    fn rescue(&mut self, t: usize, n: u32) {
+        self.rescued[t] += n;
         if let Some(round) = self.rounds.last_mut() {
             round.rescued[t] += n;
         }

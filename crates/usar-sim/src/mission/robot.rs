@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::scenario::MissionParams;
+
 /// What a robot is doing in the mission.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Phase {
@@ -67,6 +69,11 @@ pub struct MissionRobot {
     /// While the robot is rescuing its claimed rescuee (standing within reach for
     /// `mission.pickup_s`): when the rescue is done, seconds since the trial start.
     pub picking_until_s: Option<f64>,
+    /// Whether the robot has come within reach of its task's search area this round (its body
+    /// radius plus `navigation.waypoint_tolerance_m`, the distance at which it rescues: a robot
+    /// can rescue at the area's edge without entering it); reset when a round groups it. The
+    /// search clock of `mission.search_clock: LastArrival` waits for every member's.
+    pub reached_area: bool,
 }
 
 impl MissionRobot {
@@ -78,6 +85,15 @@ impl MissionRobot {
                 self.phase,
                 Phase::ToRest | Phase::Recharging { .. } | Phase::RestToStart
             )
+    }
+
+    /// Whether its energy is below `mission.low_energy_pct` and whether its HP is below
+    /// `mission.low_hp_pct` (either sends it to the rest station, paper section VI.B).
+    pub fn low_levels(&self, mission: &MissionParams) -> (bool, bool) {
+        (
+            self.energy_pct < mission.low_energy_pct.get(),
+            self.hp_pct < mission.low_hp_pct.get(),
+        )
     }
 
     /// Whether the robot is in its group's search phase (on the way, searching or waiting).

@@ -7,16 +7,17 @@ use super::error::MissionError;
 use super::events::{MissionEvent, MissionEventKind};
 use super::goals::send;
 use super::grouping::group_available;
-use super::robot::Phase;
+use super::robot::{MissionRobot, Phase};
 use super::state::MissionState;
-use crate::scenario::{Locomotion, RoundStart, Scenario};
+use crate::scenario::{LeaveWhenLow, Locomotion, RoundStart, Scenario, SearchClock};
 use crate::world::World;
 
 /// Starts a round if one is due: the robots at their start positions (all of them under
 /// `round_start: AllBack`, else at least one) are grouped by `method`; every member gets its
 /// task, full capacity and resources, its start on the blind-search pattern, and its goal (the
 /// task's goal point for ground robots, the search area's centre for aerial ones). Each task's
-/// rescuee map is forgotten and its search clock reset.
+/// rescuee map is forgotten and its search clock reset (started now under `mission.search_clock:
+/// RoundStart`).
 ///
 /// # Errors
 /// As [`group_available`], and [`MissionError::World`] from the world.
@@ -26,12 +27,16 @@ pub(crate) fn start_round(
     st: &mut MissionState,
     method: &dyn GroupingMethod,
 ) -> Result<(), MissionError> {
+    // A robot waiting at its start joins the round; under `leave_when_low: AfterTrip` one below
+    // a threshold does not (it leaves for the rest station at the next review), so a round
+    // never groups a robot that is due for the rest station.
+    let after_trip = scenario.mission.leave_when_low == LeaveWhenLow::AfterTrip;
+    let joins = |r: &MissionRobot| {
+        let (low_energy, low_hp) = r.low_levels(&scenario.mission);
+        r.phase == Phase::AtStart && !(after_trip && (low_energy || low_hp))
+    };
     // Counted first: no allocation on the steps where no round starts.
-    let at_start = st
-        .robots
-        .iter()
-        .filter(|r| r.phase == Phase::AtStart)
-        .count();
+    let at_start = st.robots.iter().filter(|r| joins(r)).count();
     let everyone_back = at_start == st.robots.len();
     if at_start == 0 || (scenario.mission.round_start == RoundStart::AllBack && !everyone_back) {
         return Ok(());
@@ -39,14 +44,17 @@ pub(crate) fn start_round(
     let available: Vec<usize> = st
         .robots
         .iter()
-        .filter(|r| r.phase == Phase::AtStart)
+        .filter(|r| joins(r))
         .map(|r| r.id)
         .collect();
     let groups = group_available(scenario, method, &st.robots, &available)?;
     for field in &mut st.fields {
         field.forget();
     }
-    st.search_started_s.fill(None);
+    // The search clock of each task runs from the round's start, or from its group's first
+    // ground member entering the search area (set by the accounting system).
+    let clock = (scenario.mission.search_clock == SearchClock::RoundStart).then(|| world.time_s());
+    st.search_started_s.fill(clock);
     for (t, ids) in groups.iter().enumerate() {
         let task = &scenario.tasks[t];
         let sweep_len = st.sweeps[t].len().max(1);
@@ -60,6 +68,7 @@ pub(crate) fn start_round(
             r.claim = None;
             r.sweep_next = ordinal * sweep_len / ids.len();
             r.sweep_visited = 0;
+            r.reached_area = false;
             let target = match kind.locomotion {
                 Locomotion::Ground => task.goal,
                 Locomotion::Aerial => task.search_area.center(),

@@ -159,7 +159,7 @@ impl Simulation {
         let r = &self.state.robots[id];
         needs_vector(
             self.scenario.kind_of(id),
-            self.scenario.mission.min_hp_factor.get(),
+            &self.scenario.mission,
             r.hp_pct,
             r.energy_pct,
             r.resources,

@@ -63,6 +63,8 @@ pub(crate) struct LeaveFigures {
     pub(crate) observer_arriving: bool,
     /// Every ground member in the search phase waits.
     pub(crate) ground_all_waiting: bool,
+    /// Every member in the search phase has entered the search area this round.
+    pub(crate) all_arrived: bool,
 }
 
 impl Default for LeaveFigures {
@@ -74,6 +76,7 @@ impl Default for LeaveFigures {
             free_capacity: 0,
             observer_arriving: false,
             ground_all_waiting: true,
+            all_arrived: true,
         }
     }
 }
@@ -103,6 +106,7 @@ impl MissionState {
                     sweep_visited: 0,
                     leaving: false,
                     picking_until_s: None,
+                    reached_area: false,
                 }
             })
             .collect();

@@ -7,6 +7,7 @@
 //! file, line, column and field path. The file format is documented in
 //! `docs/scenario-format.md`.
 
+pub mod choices;
 mod error;
 mod generate;
 mod index;
@@ -20,6 +21,7 @@ mod shape;
 mod spec;
 mod validate;
 
+pub use choices::*;
 pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
 pub use model::*;

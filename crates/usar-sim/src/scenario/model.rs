@@ -183,6 +183,13 @@ impl Rect {
     pub fn center(&self) -> PointM {
         nalgebra::center(&self.min, &self.max)
     }
+
+    /// Euclidean distance from `p` to the rectangle, metres (0 inside or on its boundary).
+    pub fn distance_to(&self, p: &PointM) -> f64 {
+        let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
+        let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
+        dx.hypot(dy)
+    }
 }
 
 /// One task of the mission (paper, sections IV-V): a search area holding rescuees, a goal point
@@ -369,5 +376,24 @@ mod count_text_tests {
         assert_eq!(count_text(1.2345e16), "1.23e16");
         assert_eq!(count_text(30_000.0), "30000");
         assert_eq!(count_text(f64::INFINITY), "more than 1.8e308");
+    }
+}
+
+#[cfg(test)]
+mod rect_tests {
+    use super::{PointM, Rect};
+
+    #[test]
+    fn distance_to_a_rectangle_is_zero_inside_and_euclidean_outside() {
+        let r = Rect {
+            min: PointM::new(0.0, 0.0),
+            max: PointM::new(4.0, 2.0),
+        };
+        let d = |x, y| r.distance_to(&PointM::new(x, y));
+        assert_eq!(d(1.0, 1.0), 0.0);
+        assert_eq!(d(4.0, 2.0), 0.0);
+        assert!((d(5.0, 1.0) - 1.0).abs() < 1e-12);
+        assert!((d(1.0, -0.5) - 0.5).abs() < 1e-12);
+        assert!((d(7.0, 6.0) - 5.0).abs() < 1e-12);
     }
 }

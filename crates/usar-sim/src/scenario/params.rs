@@ -8,7 +8,17 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::choices::{
+    AwayQuotas, CollisionPriority, HpEffect, LeaveWhenLow, LoadOnLeave, OutsideRange,
+    RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart, SearchClock, SweepPattern,
+};
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
+
+/// The paper's "step", seconds: Unity's fixed step of 1/50 s, the unit of the paper's per-step
+/// costs (section VI.B). The per-step rates of [`MissionParams`] are quoted per such a step
+/// and scaled by `sim.dt_s / PAPER_STEP_S` on a step of another length, so that the physics do
+/// not depend on the step ([`MissionParams::per_paper_step`]).
+pub const PAPER_STEP_S: f64 = 0.02;
 
 /// The walled rectangular field `[0, width_m] x [0, height_m]` (world frame: origin at the
 /// bottom-left inner corner, x right, y up).
@@ -41,102 +51,9 @@ impl Arena {
     }
 }
 
-/// How the doses of overlapping radiation zones combine at a point (paper silent; see
-/// `docs/mission-model.md`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum RadiationOverlap {
-    /// The doses of all zones containing the point add (default: the authors' Unity scene
-    /// applies damage once per overlapping radiation trigger per physics step).
-    #[default]
-    Sum,
-    /// Only the strongest zone counts.
-    Max,
-}
-
-/// How a radiation zone's dose varies with the distance `d` from its centre, inside its radius
-/// `r` (paper silent; see `docs/mission-model.md`). Outside the disc the dose is 0.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum RadiationFalloff {
-    /// The full `dose_rate_factor` everywhere inside the disc (default).
-    #[default]
-    Uniform,
-    /// `dose_rate_factor * (1 - d / r)`: the full factor at the source, 0 at the rim (a third
-    /// of the uniform dose on average over the disc).
-    Linear,
-}
-
-/// When a new round may start (paper, section VI.B: "After each round, when all agents are
-/// back to the initial position, the whole group members will regroup").
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum RoundStart {
-    /// As soon as the previous round's groups are back; robots away at the rest station (or on
-    /// their way back from it) sit the round out and quotas shrink by `away_quotas` (default).
-    #[default]
-    Available,
-    /// Only when every robot of the team is back at its start position: every round groups the
-    /// whole team with the full quotas (`away_quotas` never applies).
-    AllBack,
-}
-
-/// Which tasks' quotas shrink when robots of a kind are away at a round's start (paper silent;
-/// see `docs/mission-model.md`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum AwayQuotas {
-    /// The tasks are filled from the hardest down; the easiest take what is left (default).
-    #[default]
-    HardestFirst,
-    /// The tasks are filled from the easiest up; the hardest take what is left.
-    EasiestFirst,
-    /// The shortfall is shared: one robot at a time is taken from the task whose quota is
-    /// currently largest (ties: from the easiest of them).
-    Even,
-}
-
-/// What becomes of the rescuees a robot carries when it leaves its task for the rest station
-/// (paper silent; see `docs/mission-model.md`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum LoadOnLeave {
-    /// They are dropped and lost for the trial (default).
-    #[default]
-    Abandon,
-    /// They are put back where they were found and wait again (known to nobody).
-    ReturnToArea,
-    /// The robot first drives to its task's drop-off and delivers them (they count for the
-    /// task), then goes to the rest station.
-    DeliverFirst,
-}
-
-/// The lawn-mower pattern of a blind group's search (paper silent; see `mission::sweep_waypoints`
-/// and "Searching" in `docs/mission-model.md`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum SweepPattern {
-    /// Each row runs from the search area's left edge to its right edge, and a robot turns at
-    /// a row's end itself, not within `navigation.waypoint_tolerance_m` of it: the robot
-    /// passes within `sweep_spacing_m / 2` of every point of the area (default).
-    #[default]
-    EdgeToEdge,
-    /// The pattern before 2026-11-24, kept so that `scenarios/paper-v0.ron` reproduces its
-    /// commit: a row ends at the centre of its outer columns, a robot turns within the
-    /// waypoint tolerance of it, and the pattern's last waypoint is assigned but not driven
-    /// to. It misses rescuees in a strip up to `sweep_spacing_m / 2 + waypoint_tolerance_m`
-    /// wide along the area's left and right edges.
-    CentreToCentre,
-}
-
-/// What a stay at the rest station restores (paper: "recharging its energy (or for refreshing
-/// its health HP)"; see `docs/mission-model.md`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Refresh {
-    /// Energy and HP both to 100 % (default).
-    #[default]
-    Both,
-    /// Only the level(s) below their threshold (`low_energy_pct`, `low_hp_pct`) when the robot
-    /// arrived, to 100 %.
-    LowOnly,
-}
-
-/// A normal distribution `N(mean_pct, std_dev_pct)` clamped to `[min_pct, max_pct]`, for the
-/// initial energy and HP levels (validation also checks `min_pct <= max_pct`).
+/// A normal distribution `N(mean_pct, std_dev_pct)` kept inside `[min_pct, max_pct]` (clamped,
+/// or drawn again: `outside_range`), for the initial energy and HP levels (validation also
+/// checks `min_pct <= max_pct`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ClampedNormal {
@@ -150,6 +67,9 @@ pub struct ClampedNormal {
     /// Highest value a draw is clamped to, percent, in `[min_pct, 100]`; default 100.
     #[serde(default = "ClampedNormal::hundred")]
     pub max_pct: Percent,
+    /// What happens to a draw outside `[min_pct, max_pct]`; default `Clamp`.
+    #[serde(default)]
+    pub outside_range: OutsideRange,
 }
 
 impl ClampedNormal {
@@ -173,6 +93,7 @@ impl ClampedNormal {
             std_dev_pct: NonNegative::known(0.0),
             min_pct: Percent::known(0.0),
             max_pct: Percent::known(100.0),
+            outside_range: OutsideRange::Clamp,
         })
     }
 
@@ -183,6 +104,7 @@ impl ClampedNormal {
             std_dev_pct: NonNegative::known(std_dev_pct),
             min_pct: Percent::known(0.0),
             max_pct: Percent::known(100.0),
+            outside_range: OutsideRange::Clamp,
         }
     }
 }
@@ -196,13 +118,17 @@ impl ClampedNormal {
 pub struct MissionParams {
     /// Trial length, seconds, > 0; default 600 (paper).
     pub duration_s: Positive,
-    /// Energy spent on each step the robot moves, percent, >= 0; default 0.0045 (paper).
+    /// Energy spent on each paper step ([`PAPER_STEP_S`], 1/50 s) in which the robot moves,
+    /// percent, >= 0; default 0.0045 (paper). A simulation step of another length is charged
+    /// `energy_pct_per_moving_step * sim.dt_s / PAPER_STEP_S` (0.225 % per second of moving).
     pub energy_pct_per_moving_step: NonNegative,
     /// Energy spent per metre moved, percent per metre, >= 0; default 0 (adds to
     /// `energy_pct_per_moving_step`; the authors' Unity code charges `energy -= distance * k`).
     pub energy_pct_per_m: NonNegative,
-    /// HP lost per step inside a radiation zone of dose factor 1, percent, >= 0; default 0.0003
-    /// (paper).
+    /// HP lost per paper step ([`PAPER_STEP_S`], 1/50 s) inside a radiation zone of dose factor
+    /// 1, percent, >= 0; default 0.0003 (paper: 0.015 % per second, 0.9 % per minute). A
+    /// simulation step of another length is charged `hp_pct_per_step_in_radiation * sim.dt_s /
+    /// PAPER_STEP_S`.
     pub hp_pct_per_step_in_radiation: NonNegative,
     /// How overlapping zones combine; default `Sum`.
     pub radiation_overlap: RadiationOverlap,
@@ -218,6 +144,8 @@ pub struct MissionParams {
     /// ground member entered it, > 0, written `Some(14.0)`; default `None` (no limit: the group
     /// leaves only when full, out of resources, or when nothing more is to be found).
     pub search_time_budget_s: Option<Positive>,
+    /// When the search time budget starts to run; default `FirstArrival`.
+    pub search_clock: SearchClock,
     /// What a stay at the rest station restores; default `Both`.
     pub refresh: Refresh,
     /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
@@ -227,8 +155,11 @@ pub struct MissionParams {
     /// The blind search's pattern; default `EdgeToEdge` (`CentreToCentre` is the defective
     /// pattern of the model before 2026-11-24).
     pub sweep_pattern: SweepPattern,
-    /// Smallest factor HP scales speed, sensing and observing range by, in `[0, 1]`; default 0
-    /// (the factor is `hp_pct / 100`, so a robot at 0 % HP stops; see `mission::hp_factor`).
+    /// How HP scales speed, sensing and observing range; default `Linear`.
+    pub hp_effect: HpEffect,
+    /// Smallest factor HP scales speed, sensing and observing range by under `hp_effect:
+    /// Linear`, in `[0, 1]`; default 0 (the factor is `hp_pct / 100`, so a robot at 0 % HP
+    /// stops; see `mission::hp_factor`).
     pub min_hp_factor: Fraction,
     /// Time a ground robot stands at a rescuee to rescue it (secure and load it), seconds,
     /// >= 0; default 0 (at once).
@@ -237,6 +168,10 @@ pub struct MissionParams {
     pub low_energy_pct: Percent,
     /// Below this HP a robot leaves its task to refresh, percent; default 30 (paper).
     pub low_hp_pct: Percent,
+    /// When a robot below `low_energy_pct` or `low_hp_pct` leaves; default `AtOnce`.
+    pub leave_when_low: LeaveWhenLow,
+    /// When a rescuee counts as rescued; default `DropOff`.
+    pub rescued_at: RescuedAt,
     /// Time spent at the rest station, seconds, >= 0; default 30 (paper).
     pub recharge_s: NonNegative,
     /// Speed factor of a group without an observer, in `(0, 1]`; default 0.7 (paper: "decrease
@@ -261,18 +196,31 @@ impl Default for MissionParams {
             away_quotas: AwayQuotas::default(),
             load_on_leave: LoadOnLeave::default(),
             search_time_budget_s: None,
+            search_clock: SearchClock::FirstArrival,
             refresh: Refresh::default(),
             sweep_spacing_m: None,
             sweep_pattern: SweepPattern::default(),
+            hp_effect: HpEffect::Linear,
             min_hp_factor: Fraction::known(0.0),
             pickup_s: NonNegative::known(0.0),
             low_energy_pct: Percent::known(30.0),
             low_hp_pct: Percent::known(30.0),
+            leave_when_low: LeaveWhenLow::AtOnce,
+            rescued_at: RescuedAt::DropOff,
             recharge_s: NonNegative::known(30.0),
             no_observer_speed_factor: Factor::known(0.7),
             initial_energy: ClampedNormal::known(80.0, 20.0),
             initial_hp: ClampedNormal::known(90.0, 10.0),
         }
+    }
+}
+
+impl MissionParams {
+    /// A per-paper-step rate (`energy_pct_per_moving_step`, `hp_pct_per_step_in_radiation`) as
+    /// charged on one simulation step of `dt_s` seconds: `rate * dt_s / PAPER_STEP_S` (exactly
+    /// `rate` at `dt_s = 0.02`).
+    pub fn per_paper_step(rate: NonNegative, dt_s: f64) -> f64 {
+        rate.get() * (dt_s / PAPER_STEP_S)
     }
 }
 
@@ -352,6 +300,9 @@ pub struct CollisionParams {
     pub deadlock_after_s: Positive,
     /// Who in a collision list is held; default [`HoldRule::ListHead`] (the paper's).
     pub hold_rule: HoldRule,
+    /// The order of a collision list: which need ranks a robot; default
+    /// [`CollisionPriority::LowestEnergy`].
+    pub priority: CollisionPriority,
 }
 
 impl Default for CollisionParams {
@@ -362,6 +313,7 @@ impl Default for CollisionParams {
             safety_margin_m: NonNegative::known(0.2),
             deadlock_after_s: Positive::known(2.0),
             hold_rule: HoldRule::ListHead,
+            priority: CollisionPriority::LowestEnergy,
         }
     }
 }

@@ -725,6 +725,7 @@ mod tests {
             safety_margin_m: NonNegative::new(0.2).unwrap(),
             deadlock_after_s: Positive::new(2.0).unwrap(),
             hold_rule: HoldRule::ListHead,
+            ..CollisionParams::default()
         }
     }
 
