@@ -9,13 +9,15 @@ use usar_sim::scenario::{Scenario, ScenarioSpec};
 
 use super::axes::{Axes, AxesError};
 use super::record::UniverseRecord;
-use super::universe::{Sample, Universe, UniverseError, factorial_size, select, shard_of};
+use super::universe::{
+    Sample, Universe, UniverseError, check_shards, factorial_size, select, shard_of,
+};
 use super::validate::check_axes;
 use crate::calibrate::setup::DEFAULT_DIGITS;
 use crate::calibrate::{CalibrationSetup, EvaluationHook, FreeField, SetupError, Targets};
 use crate::method_factory::MethodFactory;
 use crate::shard::Shard;
-use crate::sweep::{SweepHooks, check_shard_count, check_sweep_size};
+use crate::sweep::{SweepHooks, check_sweep_size};
 
 /// Comparison trials per method and universe by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;
@@ -208,9 +210,7 @@ impl MultiverseSetup {
         let sizes = self.axes.sizes();
         let universes = select(&sizes, self.sample)?;
         if let Some(s) = self.shard {
-            check_shard_count(&format!("--shard {s}"), s.count, universes.len()).map_err(|e| {
-                MultiverseError::Invalid(format!("{e:#}").replace("trial(s)", "universe(s)"))
-            })?;
+            check_shards(&format!("--shard {s}"), s.count, universes.len())?;
         }
         Ok(CheckedMultiverse {
             scenario: checked.scenario,

@@ -64,6 +64,18 @@ pub enum UniverseError {
     /// `--sample 0`.
     #[error("--sample must be at least 1")]
     EmptySample,
+    /// More shards than universes (`--shard I/N`, `usar slurm --shards N`): a shard without
+    /// a universe would be one more job to run and wait for.
+    #[error(
+        "{option}: the multiverse runs {universes} universe(s), so at most {universes} shards \
+         have work; split it into at most {universes}"
+    )]
+    TooManyShards {
+        /// The flag as given (`--shard 0/5`, `--shards 5`).
+        option: String,
+        /// Universes the multiverse runs.
+        universes: usize,
+    },
     /// `--sample N` above the factorial's size.
     #[error(
         "--sample {n}: the axes make only {total} universes (the full factorial); give at most \
@@ -138,6 +150,21 @@ pub fn select(sizes: &[usize], sample: Option<Sample>) -> Result<Vec<Universe>, 
             choices: choices_at(sizes, index),
         })
         .collect())
+}
+
+/// Refuses a split into more shards than the `universes` a multiverse runs; `option` names
+/// the flag (`--shard 0/5`, `--shards 5`).
+///
+/// # Errors
+/// [`UniverseError::TooManyShards`] when `shards > universes`.
+pub fn check_shards(option: &str, shards: usize, universes: usize) -> Result<(), UniverseError> {
+    if shards > universes {
+        return Err(UniverseError::TooManyShards {
+            option: option.to_string(),
+            universes,
+        });
+    }
+    Ok(())
 }
 
 /// The positions (into `count` selected universes) that `shard` runs: universe `j` goes to
@@ -226,6 +253,12 @@ mod tests {
         assert_eq!(
             select(&[usize::MAX, 3], Some(Sample { n: 3, seed: 1 })).unwrap_err(),
             UniverseError::Overflow
+        );
+        assert!(check_shards("--shards 4", 4, 4).is_ok());
+        assert_eq!(
+            check_shards("--shard 0/5", 5, 4).unwrap_err().to_string(),
+            "--shard 0/5: the multiverse runs 4 universe(s), so at most 4 shards have work; \
+             split it into at most 4"
         );
     }
 

@@ -206,12 +206,11 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     };
     let out_dir = absolute(&out_dir)?;
     let checked = setup.check()?;
-    experiments::sweep::check_shard_count(
+    experiments::multiverse::universe::check_shards(
         &format!("--shards {}", args.shards),
         args.shards,
         checked.universes.len(),
-    )
-    .map_err(|e| anyhow::anyhow!("{}", format!("{e:#}").replace("trial(s)", "universe(s)")))?;
+    )?;
     let plan = MultiversePlan::of(&setup, &checked, &out_dir)?;
     write_and_submit(args, &plan, &out_dir, out)
 }
