@@ -90,24 +90,9 @@ fn one_line_error(o: &Output, parts: &[&str]) {
     }
 }
 
-#[test]
-fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
-    let tmp = tempfile::tempdir().unwrap();
-    let summary = ok(&multiverse_in(tmp.path(), &[]));
-    assert!(
-        summary.contains("4 of 4 universes (4 run now, 0 from earlier runs)"),
-        "{summary}"
-    );
-    assert!(
-        summary.contains("admissible: 2/4 (50 %); invalid 1, failed 0"),
-        "{summary}"
-    );
-    let out = tmp.path().join("out");
-    for f in TOP_FILES.iter().filter(|f| f.ends_with(".svg")) {
-        assert!(read_text(&out.join(f)).starts_with("<svg"), "{f}");
-    }
-    // multiverse.csv: a universe row each, then per method x metric and per claim for every
-    // universe whose comparison ran (not the invalid one).
+/// Checks `multiverse.csv` in `out`: a universe row each, then per method x metric and per
+/// claim for every universe whose comparison ran (not the invalid one).
+fn check_csv(out: &Path) {
     let mut csv = csv::Reader::from_path(out.join("multiverse.csv")).unwrap();
     let header: Vec<String> = csv.headers().unwrap().iter().map(String::from).collect();
     assert_eq!(
@@ -148,6 +133,25 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
     assert!(claims.iter().all(|r| {
         ["holds", "not significant", "does not hold", "not tested"].contains(&&r[col("verdict")])
     }));
+}
+
+#[test]
+fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let summary = ok(&multiverse_in(tmp.path(), &[]));
+    assert!(
+        summary.contains("4 of 4 universes (4 run now, 0 from earlier runs)"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("admissible: 2/4 (50 %); invalid 1, failed 0"),
+        "{summary}"
+    );
+    let out = tmp.path().join("out");
+    for f in TOP_FILES.iter().filter(|f| f.ends_with(".svg")) {
+        assert!(read_text(&out.join(f)).starts_with("<svg"), "{f}");
+    }
+    check_csv(&out);
     let md = read_text(&out.join("multiverse.md"));
     assert!(md.contains("2/4 (50 %) admissible"), "{md}");
     assert!(

@@ -74,6 +74,13 @@ fn set_up(r: &mut String, plan: &MultiversePlan, count: usize) {
         id.trials,
         id.seed,
     );
+    axes_and_targets(r, plan);
+}
+
+/// The axes with the paper's words and each alternative's overrides, the free fields and the
+/// targets.
+fn axes_and_targets(r: &mut String, plan: &MultiversePlan) {
+    let id = &plan.identity;
     let _ = writeln!(r, "### Axes (`{}`)\n", plan.axes_path);
     let _ = writeln!(r, "| axis | the paper | alternatives |\n|---|---|---|");
     for a in &id.axes.axes {

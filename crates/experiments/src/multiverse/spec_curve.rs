@@ -31,6 +31,18 @@ const ROW_H: u32 = 16;
 /// Width of the label area left of both panels, pixels.
 const LABEL_W: u32 = 230;
 
+/// Longest row label of the dot matrix, characters: what fits in [`LABEL_W`] at 12 px.
+const LABEL_CHARS: usize = 34;
+
+/// `text` cut to `max` characters, the last one an ellipsis when it is cut.
+fn short(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(max.saturating_sub(1)).collect();
+    format!("{head}…")
+}
+
 /// The file name of the figure of `claim`: `spec_curve_<id>.svg`.
 pub fn spec_curve_file(claim: &Claim) -> String {
     format!("spec_curve_{}.svg", claim.id)
@@ -245,7 +257,7 @@ fn draw_matrix(
             let y = -(row as f64);
             let (px, py) = chart.backend_coord(&(-0.5, y));
             root.draw(&Text::new(
-                format!("{}: {}", axis.name, alt.name),
+                short(&format!("{}: {}", axis.name, alt.name), LABEL_CHARS),
                 (px - 8, py),
                 font(12).pos(Pos::new(HPos::Right, VPos::Center)),
             ))
@@ -333,6 +345,8 @@ mod tests {
         assert!(svg.contains("a: a1") && svg.contains("b: b2"));
         assert!(svg.contains("2 of 3 universes shown"), "caption");
         assert!(svg.contains("1 not admissible"));
+        assert_eq!(short("abc", 3), "abc");
+        assert_eq!(short("abcd", 3), "ab…");
         // A claim no universe has an effect for still gives a figure.
         let empty = spec_curve_svg(&plan(), &records, &CLAIMS[1]).unwrap();
         assert!(empty.contains("no admissible universe with an effect"));
