@@ -438,6 +438,12 @@ Axes(
         );
         let blank = "Axes(axes: [(name: \" \", alternatives: [(name: \"x\")])])";
         assert!(err(blank).contains("axes[0].name: empty axis name"));
+        let tab = "Axes(axes: [(name: \"a\\tb\", alternatives: [(name: \"x\")])])";
+        assert!(
+            err(tab).contains("axes[0].name: axis name \"a\\tb\" holds a control character"),
+            "{}",
+            err(tab)
+        );
         let column = "Axes(axes: [(name: \"loss\", alternatives: [(name: \"x\")])])";
         assert!(
             err(column).contains("\"loss\" is a column of multiverse.csv already"),
@@ -471,12 +477,20 @@ Axes(
     }
 
     #[test]
-    fn a_missing_file_is_one_line() {
+    fn a_file_that_cannot_be_read_as_text_is_one_line() {
         let e = Axes::load(Path::new("/no/such/axes.ron"))
             .unwrap_err()
             .to_string();
         assert!(
             e.starts_with("/no/such/axes.ron: cannot read axes file: "),
+            "{e}"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let bytes = dir.path().join("bytes.ron");
+        std::fs::write(&bytes, [b'A', 0xff, b'(']).unwrap();
+        let e = Axes::load(&bytes).unwrap_err().to_string();
+        assert!(
+            e.ends_with("bytes.ron: not UTF-8 text; an axes file is RON text"),
             "{e}"
         );
     }

@@ -15,7 +15,6 @@ use super::spec_curve::spec_curve_file;
 use super::tally::{Tally, VerdictCount, share};
 use crate::calibrate::progress::loss_text;
 use crate::claims::CLAIMS;
-use crate::table::sig6;
 
 /// `text` as a table cell: `|` escaped, line breaks as spaces.
 fn cell(text: &str) -> String {
@@ -244,7 +243,7 @@ fn universes(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) 
         let values: Vec<String> = (0..id.free.len())
             .map(|i| {
                 cal.and_then(|c| c.values.get(i))
-                    .map_or(String::new(), |&x| sig6(x))
+                    .map_or(String::new(), |&x| x.to_string())
             })
             .collect();
         let _ = writeln!(
@@ -287,8 +286,8 @@ mod tests {
             "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",
             "| b2 | 0 | 0/0 |",
             "![Claim 4b: RNE has the lowest HP cost per rescuee in the hard task](spec_curve_4b.svg)",
-            "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25000 | 0.00300000 | ok |  |",
-            "| [u005](universes/u005/) | a1 | b2 | no | 0.400 | 1.25000 | 0.00300000 | failed | comparison: 1 of 4 trials failed \\| x |",
+            "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25 | 0.003 | ok |  |",
+            "| [u005](universes/u005/) | a1 | b2 | no | 0.400 | 1.25 | 0.003 | failed | comparison: 1 of 4 trials failed \\| x |",
         ] {
             assert!(md.contains(part), "missing {part:?} in\n{md}");
         }
