@@ -133,8 +133,8 @@ fn claims(r: &mut String, t: &Tally) {
     let _ = writeln!(r, "## Admissible universes\n");
     let _ = writeln!(
         r,
-        "{} admissible; {} not admissible ({} of them invalid: their choices break a rule; {} \
-         failed: run the command again to retry them).\n",
+        "{} admissible, {} not admissible; {} invalid (their choices break a rule), {} failed \
+         (run the command again to retry them).\n",
         share(t.admissible, t.universes),
         t.universes - t.admissible,
         t.invalid,
@@ -280,7 +280,7 @@ mod tests {
             "| a | \"x\" (I) | **a0**: the base scenario's values; **a1**: `mission.pickup_s=2` |",
             "- `--free mission.hp_pct_per_step_in_radiation=0.001..0.02:log`",
             "| rounds | `Mean(rounds)` | 6 ± 1 |",
-            "1/2 (50 %) admissible; 1 not admissible (0 of them invalid",
+            "1/2 (50 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
             "| (1) RNE rescues the most in total | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
             "### b\n\n| alternative | admissible universes | (1) holds |",
             "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",

@@ -31,6 +31,9 @@ const ROW_H: u32 = 16;
 /// Width of the label area left of both panels, pixels.
 const LABEL_W: u32 = 230;
 
+/// Width of the effect axis's ticks and title, pixels (the rest of [`LABEL_W`] is margin, so
+/// that both panels' plotting areas start at the same x).
+const TICKS_W: u32 = 80;
 /// Longest row label of the dot matrix, characters: what fits in [`LABEL_W`] at 12 px.
 const LABEL_CHARS: usize = 34;
 
@@ -185,8 +188,9 @@ fn draw_effects(root: &Root<'_>, area: &Root<'_>, pts: &[Point<'_>], n: f64) -> 
     let mut chart = ChartBuilder::on(area)
         .margin_right(16)
         .margin_top(6)
+        .margin_left(LABEL_W - TICKS_W)
         .x_label_area_size(8)
-        .y_label_area_size(LABEL_W)
+        .y_label_area_size(TICKS_W)
         .build_cartesian_2d(-0.5f64..(n - 0.5), lo..hi)
         .map_err(draw_err)?;
     chart
