@@ -2,7 +2,8 @@
 //! `tests/data/`: 2 x 2 universes, one invalid, one not admissible; two methods, 2 trials of
 //! 60 s, calibrations of 1 trial per method and at most 3 evaluations) write consistent files,
 //! continue after kills with the same files as an uninterrupted run on another thread count,
-//! give the same files sharded and merged, and refuse bad input in one line.
+//! record failing trials in their universes and retry them on a rerun, give the same files
+//! sharded and merged, write Slurm scripts, and refuse bad input in one line.
 
 mod common;
 
@@ -205,6 +206,42 @@ fn a_killed_multiverse_resumes_to_the_files_of_an_uninterrupted_run_on_another_t
         "{summary}"
     );
     assert_same_files(&whole.join("out"), &k);
+}
+
+#[test]
+fn failing_trials_fail_their_universes_only_and_a_rerun_retries_them() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (whole, failing) = (tmp.path().join("whole"), tmp.path().join("failing"));
+    std::fs::create_dir_all(&whole).unwrap();
+    std::fs::create_dir_all(&failing).unwrap();
+    ok(&multiverse_in(&whole, &[]));
+    let o = multiverse_in(&failing, &["--fail-trial", "dis:1"]);
+    let e = stderr(&o);
+    assert!(!o.status.success());
+    assert!(
+        e.contains(
+            "error: 3 of 4 universes failed: u000 (comparison: 1 of 4 trials failed: DIS trial 1: "
+        ),
+        "{e}"
+    );
+    assert!(
+        e.contains("run the same command again to retry them"),
+        "{e}"
+    );
+    // The files are written, with the failures: the invalid universe is not one of them.
+    let csv = read_text(&failing.join("out/multiverse.csv"));
+    let failed = csv
+        .lines()
+        .filter(|l| l.contains(",failed,universe,"))
+        .count();
+    assert_eq!(failed, 3, "{csv}");
+    assert!(csv.contains(",invalid,universe,"));
+    let summary = ok(&multiverse_in(&failing, &[]));
+    assert!(
+        summary.contains("(3 run now, 1 from earlier runs)"),
+        "{summary}"
+    );
+    assert_same_files(&whole.join("out"), &failing.join("out"));
 }
 
 #[test]

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, path_text};
@@ -22,7 +22,7 @@ use experiments::multiverse::{
 use experiments::shard::Shard;
 use experiments::sweep::{SweepHooks, default_out_dir};
 
-use super::test_hooks::STOP_EXIT_CODE;
+use super::test_hooks::{STOP_EXIT_CODE, test_hooks};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -172,6 +172,19 @@ pub struct MultiverseArgs {
     /// and comparison trials in all.
     #[arg(long, value_name = "N", hide = true)]
     pub stop_after: Option<usize>,
+
+    /// Test hook: make comparison trial K of METHOD panic half-way in every universe
+    /// (repeatable).
+    #[arg(long, value_name = "METHOD:K", hide = true)]
+    pub fail_trial: Vec<String>,
+}
+
+/// `--fail-trial METHOD:K`: the method's canonical (upper-case) name and the trial.
+fn parse_fail(spec: &str) -> Result<(String, u32)> {
+    let parsed = spec
+        .rsplit_once(':')
+        .and_then(|(m, k)| Some((m.trim().to_uppercase(), k.trim().parse().ok()?)));
+    parsed.with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))
 }
 
 /// The setup of `spec` with `threads` worker threads, run as `shard`.
@@ -254,6 +267,14 @@ pub fn run(args: &MultiverseArgs, out: &mut dyn Write) -> Result<()> {
     setup.overwrite = args.overwrite;
     if let Some(limit) = args.stop_after {
         setup.hooks = stop_hooks(limit);
+    }
+    if !args.fail_trial.is_empty() {
+        let fail = args
+            .fail_trial
+            .iter()
+            .map(|s| parse_fail(s))
+            .collect::<Result<Vec<_>>>()?;
+        setup.hooks.sweep.trial_observer = test_hooks(fail, None).trial_observer;
     }
     let dir = match &args.spec.out {
         Some(d) => d.clone(),
