@@ -43,6 +43,11 @@ replay-screenshot:
 swarm-bound:
     cargo test --release -p integration-tests --test swarm -- --ignored
 
+# The comparison in every combination of the paper's open choices, each calibrated first
+# (docs/multiverse.md; the axes are scenarios/paper-axes.ron).
+multiverse *ARGS:
+    {{usar}} multiverse scenarios/paper.ron --axes scenarios/paper-axes.ron --targets scenarios/paper-targets.ron --free 'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' --free 'mission.search_time_budget_s=6..30' --sample 64 --out results/multiverse-paper {{ARGS}}
+
 # RNE trust values of the paper's Example 1.
 trust:
     {{usar}} trust --weights 6,4,2 --needs 86,120,30 --needs 20,30,10 --needs 80,115,25

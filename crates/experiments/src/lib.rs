@@ -12,7 +12,9 @@
 //! Module dependencies go one way: vary, grid -> sweep (with executor, journal) -> analysis
 //! (with claims, metrics, stats) -> outputs. A sweep holds the [`lock`] on its output folder
 //! while it runs and writes; every output file goes through [`atomic`]. A [`replay`] records
-//! one trial while it runs and writes it as a page that plays it in a browser.
+//! one trial while it runs and writes it as a page that plays it in a browser. [`calibrate`]
+//! fits free scenario fields to target bands, and [`multiverse`] runs the calibrated
+//! comparison in every combination of the paper's open choices.
 
 pub mod analysis;
 pub mod atomic;
@@ -29,6 +31,7 @@ pub mod journal;
 pub mod lock;
 pub mod method_factory;
 pub mod metrics;
+pub mod multiverse;
 pub mod output;
 pub mod render;
 pub mod replay;

@@ -80,6 +80,54 @@ impl OutputLock {
         Ok(Self { path, _file: file })
     }
 
+    /// Creates `dir` if needed and takes a shared lock on it ([`std::fs::File::try_lock_shared`]
+    /// on [`LOCK_FILE`]): several holders of shared locks run side by side (the shards of a
+    /// multiverse, each also holding the exclusive lock of its own shard folder), while an
+    /// exclusive holder ([`OutputLock::acquire`]: a run without shards, a merge) excludes
+    /// them and is excluded by them. Never waits; the file's pid is left as it is.
+    ///
+    /// # Errors
+    /// The folder is locked exclusively by another run (`<dir> is in use by another run
+    /// (pid N)`), the lock file is not a regular file, or an I/O error.
+    pub fn acquire_shared(dir: &Path) -> Result<Self> {
+        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
+        let path = dir.join(LOCK_FILE);
+        if let Ok(m) = fs::symlink_metadata(&path)
+            && !m.is_file()
+        {
+            bail!(
+                "{} is not a regular file; remove it (it only holds the pid of a running sweep)",
+                path_text(&path)
+            );
+        }
+        let mut file = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .with_context(|| format!("opening {}", path_text(&path)))?;
+        match file.try_lock_shared() {
+            Ok(()) => Ok(Self { path, _file: file }),
+            Err(TryLockError::WouldBlock) => {
+                let mut text = String::new();
+                let holder = match file.read_to_string(&mut text) {
+                    Ok(_) => text.trim().parse::<u32>().ok(),
+                    Err(_) => None,
+                }
+                .map_or_else(|| "pid unknown".to_string(), |pid| format!("pid {pid}"));
+                bail!(
+                    "{} is in use by another run ({holder}) that writes the whole folder; wait \
+                     for it to end, or choose another --out",
+                    path_text(dir)
+                )
+            }
+            Err(TryLockError::Error(e)) => {
+                Err(e).with_context(|| format!("locking {}", path_text(&path)))
+            }
+        }
+    }
+
     /// Path of the lock file.
     pub fn path(&self) -> &Path {
         &self.path
@@ -115,6 +163,25 @@ mod tests {
             fs::read_to_string(again.path()).unwrap(),
             format!("{}\n", std::process::id())
         );
+    }
+
+    #[test]
+    fn shared_locks_go_together_and_exclude_an_exclusive_one() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = OutputLock::acquire_shared(dir.path()).unwrap();
+        let b = OutputLock::acquire_shared(dir.path()).unwrap();
+        let e = format!("{:#}", OutputLock::acquire(dir.path()).unwrap_err());
+        assert!(e.contains("is in use by another sweep"), "{e}");
+        drop((a, b));
+        let x = OutputLock::acquire(dir.path()).unwrap();
+        let e = format!("{:#}", OutputLock::acquire_shared(dir.path()).unwrap_err());
+        assert!(
+            e.contains("is in use by another run")
+                && e.contains(&format!("pid {}", std::process::id())),
+            "{e}"
+        );
+        drop(x);
+        assert!(OutputLock::acquire_shared(dir.path()).is_ok());
     }
 
     #[cfg(unix)]

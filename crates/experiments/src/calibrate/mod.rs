@@ -29,7 +29,7 @@ pub mod progress;
 mod run;
 mod searcher;
 pub mod setup;
-mod source_map;
+pub(crate) mod source_map;
 pub mod statistic;
 pub mod summary;
 pub mod targets;

@@ -1,5 +1,6 @@
 //! A sweep on a Slurm cluster (`usar slurm`): a job array whose task I runs shard I of the
-//! sweep (`usar sweep ... --shard I/N`, [`crate::shard`]), and a merge job (`usar merge`)
+//! sweep (`usar sweep ... --shard I/N`, [`crate::shard`]; or of a multiverse, `usar
+//! multiverse ... --shard I/N`, [`crate::multiverse`]), and a merge job (`usar merge`)
 //! chained to it with `--dependency=afterok`. [`script`] writes the files, [`mod@submit`] submits
 //! them with `sbatch`.
 
@@ -7,7 +8,7 @@ pub mod script;
 pub mod submit;
 
 pub use script::{
-    SLURM_DIR, SlurmFiles, SlurmJob, SlurmOptions, array_script, check_options, merge_script,
-    submit_script, write_scripts,
+    SLURM_DIR, ShardedWork, SlurmFiles, SlurmJob, SlurmOptions, array_script, check_options,
+    merge_script, submit_script, write_scripts,
 };
 pub use submit::{Submitted, parse_job_id, submit};

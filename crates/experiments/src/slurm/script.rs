@@ -1,6 +1,7 @@
 //! The files `usar slurm` writes into `<out>/slurm/`: an sbatch script for a job array (one
-//! task per shard of the sweep), an sbatch script for the merge, and `submit.sh`, which submits
-//! both with the merge chained to the array by `--dependency=afterok`.
+//! task per shard of the sweep or multiverse, [`ShardedWork`]), an sbatch script for the
+//! merge, and `submit.sh`, which submits both with the merge chained to the array by
+//! `--dependency=afterok`.
 //!
 //! The scripts are plain and commented so that a user can edit them (a module to load, a
 //! quality of service, another time limit). Reference: Slurm's `sbatch(1)` (job arrays,
@@ -13,6 +14,40 @@ use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
+
+/// What the tasks of a Slurm array run, shard by shard: a sweep ([`SweepPlan`], `usar sweep
+/// ... --shard I/N`) or a multiverse (`crate::multiverse::MultiversePlan`, `usar multiverse
+/// ... --shard I/N`); the merge job runs `usar merge OUT` for both.
+pub trait ShardedWork {
+    /// The `usar` subcommand each task runs: `sweep` or `multiverse`. It also names the
+    /// array's script (`<subcommand>.sbatch`) and its logs.
+    fn subcommand(&self) -> &'static str;
+    /// The scenario file as named on the command line (relative to the working folder).
+    fn scenario_file(&self) -> PathBuf;
+    /// The options after the scenario that repeat the work (without `--shard`, `--out`,
+    /// `--threads`).
+    fn work_options(&self) -> Vec<String>;
+    /// What the merge writes, in words, for the scripts' comments.
+    fn merged_files(&self) -> &'static str;
+}
+
+impl ShardedWork for SweepPlan {
+    fn subcommand(&self) -> &'static str {
+        "sweep"
+    }
+
+    fn scenario_file(&self) -> PathBuf {
+        self.scenario_path.clone()
+    }
+
+    fn work_options(&self) -> Vec<String> {
+        self.sweep_options()
+    }
+
+    fn merged_files(&self) -> &'static str {
+        "trials.csv, summary.csv, the figures and report.md"
+    }
+}
 
 /// Name of the folder, under the sweep's output folder, that holds the Slurm files.
 pub const SLURM_DIR: &str = "slurm";
@@ -38,10 +73,10 @@ pub struct SlurmOptions {
 }
 
 /// Everything the scripts are made from.
-#[derive(Debug, Clone)]
+#[derive(Clone, Copy)]
 pub struct SlurmJob<'a> {
-    /// The sweep (scenario and options).
-    pub plan: &'a SweepPlan,
+    /// The sweep or multiverse (scenario and options).
+    pub plan: &'a dyn ShardedWork,
     /// The sweep's output folder, as the jobs should name it (absolute is safest).
     pub out_dir: &'a Path,
     /// The folder the jobs `cd` into first: where the scenario path of the plan is valid.
@@ -52,10 +87,23 @@ pub struct SlurmJob<'a> {
     pub options: &'a SlurmOptions,
 }
 
+impl std::fmt::Debug for SlurmJob<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SlurmJob")
+            .field("work", &self.plan.subcommand())
+            .field("scenario", &self.plan.scenario_file())
+            .field("out_dir", &self.out_dir)
+            .field("workdir", &self.workdir)
+            .field("usar", &self.usar)
+            .field("options", &self.options)
+            .finish()
+    }
+}
+
 /// The paths of the written files.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SlurmFiles {
-    /// `<out>/slurm/sweep.sbatch`: the job array.
+    /// `<out>/slurm/sweep.sbatch` (`multiverse.sbatch` for a multiverse): the job array.
     pub array: PathBuf,
     /// `<out>/slurm/merge.sbatch`: the merge.
     pub merge: PathBuf,
@@ -66,11 +114,17 @@ pub struct SlurmFiles {
 }
 
 impl SlurmFiles {
-    /// The paths under `out_dir/slurm/`.
+    /// The paths of a sweep's files under `out_dir/slurm/`.
     pub fn under(out_dir: &Path) -> Self {
+        Self::of(out_dir, "sweep")
+    }
+
+    /// The paths under `out_dir/slurm/` of the work whose tasks run `usar <subcommand>`: the
+    /// array is `<subcommand>.sbatch`.
+    pub fn of(out_dir: &Path, subcommand: &str) -> Self {
         let d = out_dir.join(SLURM_DIR);
         Self {
-            array: d.join("sweep.sbatch"),
+            array: d.join(format!("{subcommand}.sbatch")),
             merge: d.join("merge.sbatch"),
             submit: d.join("submit.sh"),
             logs: d.join("logs"),
@@ -157,8 +211,9 @@ fn is_slurm_memory(m: &str) -> bool {
 /// # Errors
 /// The first such path, naming its option, in one line.
 pub fn check_paths(job: &SlurmJob<'_>) -> Result<()> {
+    let scenario = job.plan.scenario_file();
     let paths = [
-        ("the scenario path", job.plan.scenario_path.as_path()),
+        ("the scenario path", scenario.as_path()),
         ("--out", job.out_dir),
         ("the current folder", job.workdir),
         ("the usar executable's path", job.usar),
@@ -220,20 +275,21 @@ fn resource_lines(s: &mut String, o: &SlurmOptions) {
 pub fn array_script(job: &SlurmJob<'_>) -> String {
     let o = job.options;
     let n = o.shards;
-    let files = SlurmFiles::under(job.out_dir);
+    let work = job.plan.subcommand();
+    let files = SlurmFiles::of(job.out_dir, work);
     let name = job_name(job.plan);
     let mut s = String::from("#!/bin/bash\n");
     let _ = write!(
         s,
-        "# The sweep of {scenario} as a Slurm job array of {n} tasks, written by `usar slurm`.\n\
-         # Task I runs shard I/{n} of the sweep (a fixed, balanced share of its trials) into\n\
+        "# The {work} of {scenario} as a Slurm job array of {n} tasks, written by `usar slurm`.\n\
+         # Task I runs shard I/{n} of the {work} (a fixed, balanced share of its work) into\n\
          # {out}/shards/; when every task has succeeded, merge.sbatch (chained to this array\n\
          # by submit.sh with --dependency=afterok) writes the tables, figures and report.\n\
          # A task that failed or ran out of time: submit that task again with\n\
          #   sbatch --array=I {array}\n\
          # (it continues its journal), then the merge: sbatch {merge}\n\
          # Edit freely: the #SBATCH lines are sbatch options (man sbatch).\n",
-        scenario = job.plan.scenario_path.display(),
+        scenario = job.plan.scenario_file().display(),
         out = job.out_dir.display(),
         array = files.array.display(),
         merge = files.merge.display(),
@@ -251,14 +307,14 @@ pub fn array_script(job: &SlurmJob<'_>) -> String {
         }
     }
     resource_lines(&mut s, o);
-    let log = files.logs.join("sweep-%A_%a.out");
+    let log = files.logs.join(format!("{work}-%A_%a.out"));
     let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
     let mut words = vec![
         job.usar.display().to_string(),
-        "sweep".to_string(),
-        job.plan.scenario_path.display().to_string(),
+        work.to_string(),
+        job.plan.scenario_file().display().to_string(),
     ];
-    words.extend(job.plan.sweep_options());
+    words.extend(job.plan.work_options());
     words.extend(["--out".to_string(), job.out_dir.display().to_string()]);
     let _ = write!(
         s,
@@ -276,16 +332,18 @@ pub fn array_script(job: &SlurmJob<'_>) -> String {
 
 /// The merge job's script: `usar merge <out>` on one CPU.
 pub fn merge_script(job: &SlurmJob<'_>) -> String {
-    let files = SlurmFiles::under(job.out_dir);
+    let work = job.plan.subcommand();
+    let files = SlurmFiles::of(job.out_dir, work);
     let mut s = String::from("#!/bin/bash\n");
     let _ = write!(
         s,
-        "# Merges the {n} shards of the sweep of {scenario} into {out}: trials.csv,\n\
-         # summary.csv, the figures and report.md, the same as the sweep on one machine.\n\
+        "# Merges the {n} shards of the {work} of {scenario} into {out}:\n\
+         # {merged}, the same as the {work} on one machine.\n\
          # submit.sh submits it with --dependency=afterok:<array job id>, so it starts once\n\
          # every task of the array has succeeded. By hand: sbatch {merge}\n",
         n = job.options.shards,
-        scenario = job.plan.scenario_path.display(),
+        merged = job.plan.merged_files(),
+        scenario = job.plan.scenario_file().display(),
         out = job.out_dir.display(),
         merge = files.merge.display(),
     );
@@ -307,10 +365,10 @@ pub fn merge_script(job: &SlurmJob<'_>) -> String {
 /// `submit.sh`: submits the array, then the merge chained to it with
 /// `--dependency=afterok:<array job id>`, and prints both job ids.
 pub fn submit_script(job: &SlurmJob<'_>) -> String {
-    let files = SlurmFiles::under(job.out_dir);
+    let files = SlurmFiles::of(job.out_dir, job.plan.subcommand());
     format!(
         "#!/bin/sh\n\
-         # Submits the job array of the sweep's shards, then the merge, which waits until every\n\
+         # Submits the job array of the shards, then the merge, which waits until every\n\
          # task of the array has succeeded (afterok). Written by `usar slurm`.\n\
          set -eu\n\
          array=$(sbatch --parsable {array})\n\
@@ -324,9 +382,9 @@ pub fn submit_script(job: &SlurmJob<'_>) -> String {
 
 /// `usar-<scenario name>`, with characters other than ASCII letters, digits, `-`, `_` and `.`
 /// replaced by `_`.
-fn job_name(plan: &SweepPlan) -> String {
+fn job_name(plan: &dyn ShardedWork) -> String {
     let stem = plan
-        .scenario_path
+        .scenario_file()
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "sweep".into());
@@ -352,7 +410,7 @@ fn job_name(plan: &SweepPlan) -> String {
 pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
     check_options(job.options)?;
     check_paths(job)?;
-    let files = SlurmFiles::under(job.out_dir);
+    let files = SlurmFiles::of(job.out_dir, job.plan.subcommand());
     std::fs::create_dir_all(&files.logs)
         .with_context(|| format!("creating folder {}", path_text(&files.logs)))?;
     let scripts = [

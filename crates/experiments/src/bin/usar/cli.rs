@@ -39,7 +39,14 @@ Examples:
 
   # Fit scenario fields to the authors' statistics (see docs/calibration.md)
   usar calibrate scenarios/paper.ron --targets scenarios/paper-targets.ron \\
-      --free mission.hp_pct_per_step_in_radiation=0.002..0.02:log --out results/calibrate-paper";
+      --free mission.hp_pct_per_step_in_radiation=0.002..0.02:log --out results/calibrate-paper
+
+  # The comparison in every combination of the paper's open choices, each calibrated first
+  # (see docs/multiverse.md)
+  usar multiverse scenarios/paper.ron --axes scenarios/paper-axes.ron \\
+      --targets scenarios/paper-targets.ron \\
+      --free 'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' \\
+      --free 'mission.search_time_budget_s=6..30' --sample 64 --out results/multiverse-paper";
 
 /// `usar`: RNE trust between robots and groups, and USAR multi-robot experiments.
 #[derive(Debug, Parser)]
@@ -71,6 +78,8 @@ pub enum Command {
     Slurm(commands::slurm::SlurmArgs),
     /// Fit scenario fields (`--free`) so that a sweep's statistics fall in target bands.
     Calibrate(commands::calibrate::CalibrateArgs),
+    /// The comparison in every combination of the paper's open choices, each calibrated.
+    Multiverse(commands::multiverse::MultiverseArgs),
 }
 
 /// Runs the parsed command, writing its report to `out`.
@@ -88,5 +97,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<()> {
         Command::Merge(args) => commands::merge::run(&args, out),
         Command::Slurm(args) => commands::slurm::run(&args, out),
         Command::Calibrate(args) => commands::calibrate::run(&args, out),
+        Command::Multiverse(args) => commands::multiverse::run(&args, out),
     }
 }

@@ -167,7 +167,7 @@ fn targets_of(path: Option<&Path>) -> Result<Targets> {
 
 /// The date of the outputs: `SOURCE_DATE_EPOCH` (seconds since 1970, the reproducible-builds
 /// convention) when set, else `None` (the system clock).
-fn source_date() -> Result<Option<String>> {
+pub fn source_date() -> Result<Option<String>> {
     let Ok(text) = std::env::var("SOURCE_DATE_EPOCH") else {
         return Ok(None);
     };

@@ -1,5 +1,7 @@
 //! `usar merge DIR`: combines the journals of a sharded sweep's shards (`usar sweep ...
-//! --shard I/N --out DIR`) into the files one sweep on one machine writes.
+//! --shard I/N --out DIR`) into the files one sweep on one machine writes; for a multiverse's
+//! folder (`usar multiverse ... --shard I/N --out DIR`), its universes' records into its top
+//! files.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -10,6 +12,7 @@ use usar_sim::scenario::path_text;
 
 use experiments::analysis::Analysis;
 use experiments::console::print_sweep;
+use experiments::multiverse::{is_multiverse_dir, merge_multiverse, summary_text};
 use experiments::output::write_outputs;
 use experiments::shard::merge_shards;
 
@@ -24,19 +27,28 @@ Examples:
   usar sweep scenarios/paper.ron --trials 20 --shard 3/4 --out results/big
   usar merge results/big
 
+  # The shards of a multiverse (usar multiverse ... --shard I/N --out results/mv)
+  usar merge results/mv
+
 Reads DIR/shards/<I>-of-<N>/journal.jsonl of every shard and writes into DIR what `usar sweep`
 writes there (trials.csv, summary.csv, the figures and report.md; with --vary the cell folders,
 grid.csv and grid.md); the CSV files are byte-identical to those of the same sweep run on one
 machine. A shard with no journal, or with trials it has not run, stops the merge: the message
 names it and gives the `usar sweep ... --shard I/N` command that runs it (again). Failed trials
 are reported the same way after the files are written (non-zero exit status). See
-docs/cluster.md.";
+docs/cluster.md.
+
+A multiverse's folder (one with multiverse.json at its top or in its shard folders) is merged
+from its universes' records: once every universe of the plan has its universes/<id>/
+universe.json, DIR gets multiverse.csv, multiverse.md and the specification curves, the same
+bytes as `usar multiverse` without --shard writes; otherwise the missing universes are listed
+with the commands that run them. See docs/multiverse.md.";
 
 /// Arguments of `usar merge`.
 #[derive(Debug, Clone, Args)]
 #[command(after_help = EXAMPLES)]
 pub struct MergeArgs {
-    /// The sweep's output folder (the --out of its shards).
+    /// The sweep's (or multiverse's) output folder (the --out of its shards).
     #[arg(value_name = "DIR")]
     pub dir: PathBuf,
 }
@@ -47,6 +59,16 @@ pub struct MergeArgs {
 /// Missing or unfinished shards (named, with the commands to run them), journals of
 /// different sweeps, an I/O error, or failed trials (after the files are written).
 pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
+    if is_multiverse_dir(&args.dir) {
+        let here = std::env::current_dir().ok();
+        let o = merge_multiverse(&args.dir, here.as_deref())?;
+        out.write_all(summary_text(&o, &args.dir).as_bytes())?;
+        return super::multiverse::failed_universes(
+            &o,
+            "run the shards that hold them again (or the command without --shard, which runs \
+             only what is missing or failed), then merge again",
+        );
+    }
     let m = merge_shards(&args.dir)?;
     for (path, r) in &m.rejected {
         experiments::console::warn(format!(

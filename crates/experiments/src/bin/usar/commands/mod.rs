@@ -3,6 +3,7 @@
 pub mod calibrate;
 pub mod check;
 pub mod merge;
+pub mod multiverse;
 pub mod render;
 pub mod replay;
 pub mod run;

@@ -1,6 +1,6 @@
-//! `usar slurm`: writes the sbatch scripts that run a sweep on a Slurm cluster as a job array
-//! of shards plus a chained merge job, prints how to submit them, and with `--submit` submits
-//! them.
+//! `usar slurm`: writes the sbatch scripts that run a sweep (or, with `--axes`, a
+//! multiverse) on a Slurm cluster as a job array of shards plus a chained merge job, prints
+//! how to submit them, and with `--submit` submits them.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -9,11 +9,16 @@ use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::scenario::path_text;
 
+use experiments::multiverse::MultiversePlan;
+use experiments::multiverse::setup::{
+    DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
+};
 use experiments::shard::shell_join;
-use experiments::slurm::{SlurmJob, SlurmOptions, submit, write_scripts};
+use experiments::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
 use experiments::sweep::default_out_dir;
 use usar_sim::scenario;
 
+use super::multiverse::MultiverseSpecArgs;
 use super::sweep::SweepSpecArgs;
 
 const EXAMPLES: &str = "\
@@ -29,8 +34,17 @@ Examples:
   # The same, submitted at once (sbatch must be on the PATH)
   usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 100 --submit
 
+  # A multiverse (usar multiverse) instead of a sweep: --axes, --targets and --free make it
+  # one; 64 universes on 16 tasks of 4 CPUs
+  usar slurm scenarios/paper.ron --axes scenarios/paper-axes.ron \\
+      --targets scenarios/paper-targets.ron \\
+      --free 'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' \\
+      --free 'mission.search_time_budget_s=6..30' --sample 64 \\
+      --out results/multiverse-paper --shards 16 --cpus-per-task 4 --time 12:00:00
+
 Task I of the array runs `usar sweep SCENARIO <options> --shard I/N --threads
-$SLURM_CPUS_PER_TASK`; the merge job runs `usar merge OUT` once every task has succeeded
+$SLURM_CPUS_PER_TASK` (with --axes: `usar multiverse ...`, its script multiverse.sbatch); the
+merge job runs `usar merge OUT` once every task has succeeded
 (--dependency=afterok). Logs go to OUT/slurm/logs/. The scripts are plain and commented: edit
 them as your cluster needs (modules, QOS), then run OUT/slurm/submit.sh. A failed task: submit
 it again with `sbatch --array=I OUT/slurm/sweep.sbatch` (it continues its journal), then
@@ -73,6 +87,58 @@ pub struct SlurmArgs {
     /// Submit the array and the merge with sbatch (which must be on the PATH).
     #[arg(long)]
     pub submit: bool,
+
+    /// A multiverse instead of a sweep (`usar multiverse`'s options).
+    #[command(flatten)]
+    pub multiverse: SlurmMultiverseArgs,
+}
+
+/// The options of `usar multiverse` that `usar slurm` takes besides the sweep's (`--axes`
+/// makes the job a multiverse; `--methods`, `--trials`, `--seed`, `--duration` and `--out`
+/// are shared).
+#[derive(Debug, Clone, Args)]
+pub struct SlurmMultiverseArgs {
+    /// Run a multiverse over this axes file (usar multiverse --axes) instead of a sweep.
+    #[arg(
+        long,
+        value_name = "AXES.ron",
+        conflicts_with_all = ["vary", "grid_metrics"],
+        requires_all = ["targets", "free"]
+    )]
+    pub axes: Option<PathBuf>,
+
+    /// With --axes: the targets file each universe is calibrated to.
+    #[arg(long, value_name = "TARGETS.ron", requires = "axes")]
+    pub targets: Option<PathBuf>,
+
+    /// With --axes: a field each universe's calibration fits (repeatable).
+    #[arg(
+        long,
+        value_name = "FIELD=LO..HI[:log]",
+        requires = "axes",
+        allow_hyphen_values = true
+    )]
+    pub free: Vec<String>,
+
+    /// With --axes: trials per method of each calibration evaluation.
+    #[arg(long, value_name = "N", requires = "axes", default_value_t = DEFAULT_CALIBRATION_TRIALS)]
+    pub calibration_trials: u32,
+
+    /// With --axes: base seed of the calibrations; default --seed.
+    #[arg(long, value_name = "SEED", requires = "axes")]
+    pub calibration_seed: Option<u64>,
+
+    /// With --axes: most evaluations of each calibration.
+    #[arg(long, value_name = "N", requires = "axes", default_value_t = DEFAULT_MAX_EVALS)]
+    pub max_evals: usize,
+
+    /// With --axes: run N universes drawn from the full factorial.
+    #[arg(long, value_name = "N", requires = "axes")]
+    pub sample: Option<usize>,
+
+    /// With --axes: seed of --sample's draw.
+    #[arg(long, value_name = "S", requires = "sample", default_value_t = DEFAULT_SAMPLE_SEED)]
+    pub sample_seed: u64,
 }
 
 /// `path` made absolute against the current folder (not resolved: links stay).
@@ -81,12 +147,17 @@ fn absolute(path: &Path) -> Result<PathBuf> {
         .with_context(|| format!("{}: cannot make it absolute", path_text(path)))
 }
 
-/// Runs `usar slurm`: checks the sweep, writes the scripts, prints (or runs) the submission.
+/// Runs `usar slurm`: checks the sweep (or multiverse), writes the scripts, prints (or runs)
+/// the submission.
 ///
 /// # Errors
-/// A sweep that would not run (bad scenario, `--vary`, methods), bad Slurm options, an I/O
-/// error, or with `--submit` an `sbatch` that is missing or refuses a script.
+/// A sweep or multiverse that would not run (bad scenario, `--vary`, axes, methods), bad
+/// Slurm options, an I/O error, or with `--submit` an `sbatch` that is missing or refuses a
+/// script.
 pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
+    if args.multiverse.axes.is_some() {
+        return run_multiverse(args, out);
+    }
     let plan = args.spec.plan()?;
     let out_dir = match &args.spec.out {
         Some(o) => o.clone(),
@@ -105,6 +176,53 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         args.shards,
         experiments::sweep::trial_count(&cfg),
     )?;
+    write_and_submit(args, &plan, &out_dir, out)
+}
+
+/// `usar slurm --axes ...`: checks the multiverse as `usar multiverse` would, then writes
+/// (and submits) its scripts.
+fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
+    let (s, m) = (&args.spec, &args.multiverse);
+    let spec = MultiverseSpecArgs {
+        scenario: s.scenario.clone(),
+        axes: m.axes.clone().unwrap_or_default(),
+        targets: m.targets.clone().unwrap_or_default(),
+        free: m.free.clone(),
+        methods: s.methods.clone(),
+        trials: s.trials,
+        seed: s.seed,
+        duration: s.duration,
+        calibration_trials: m.calibration_trials,
+        calibration_seed: m.calibration_seed,
+        max_evals: m.max_evals,
+        sample: m.sample,
+        sample_seed: m.sample_seed,
+        out: s.out.clone(),
+    };
+    let setup = super::multiverse::setup_of(&spec, 1, None)?;
+    let out_dir = match &s.out {
+        Some(o) => o.clone(),
+        None => super::multiverse::default_dir(&setup)?,
+    };
+    let out_dir = absolute(&out_dir)?;
+    let checked = setup.check()?;
+    experiments::multiverse::universe::check_shards(
+        &format!("--shards {}", args.shards),
+        args.shards,
+        checked.universes.len(),
+    )?;
+    let plan = MultiversePlan::of(&setup, &checked, &out_dir)?;
+    write_and_submit(args, &plan, &out_dir, out)
+}
+
+/// Writes the scripts of `work` into `out_dir/slurm/`, then prints how to submit them or,
+/// with `--submit`, submits them.
+fn write_and_submit(
+    args: &SlurmArgs,
+    work: &dyn ShardedWork,
+    out_dir: &Path,
+    out: &mut dyn Write,
+) -> Result<()> {
     let workdir = std::env::current_dir().context("reading the current folder")?;
     let usar = std::env::current_exe().context("finding the usar executable")?;
     let options = SlurmOptions {
@@ -116,8 +234,8 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         account: args.account.clone(),
     };
     let job = SlurmJob {
-        plan: &plan,
-        out_dir: &out_dir,
+        plan: work,
+        out_dir,
         workdir: &workdir,
         usar: &usar,
         options: &options,

@@ -1,0 +1,308 @@
+//! `usar multiverse`: the paper's method comparison in every combination of its open choices
+//! (`experiments::multiverse`), each calibrated to the targets first.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use rne_core::grouping::METHOD_NAMES;
+use usar_sim::scenario::{self, path_text};
+
+use experiments::calibrate::{Targets, parse_free};
+use experiments::multiverse::setup::{
+    DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED, DEFAULT_TRIALS,
+};
+use experiments::multiverse::{
+    Axes, MultiverseHooks, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
+    summary_text,
+};
+use experiments::shard::Shard;
+use experiments::sweep::{SweepHooks, default_out_dir};
+
+use super::test_hooks::{STOP_EXIT_CODE, test_hooks};
+
+const EXAMPLES: &str = "\
+Examples:
+  # The paper: 64 universes drawn from the factorial of the axes, each calibrated (HP damage
+  # rate and search budget) to the paper's targets, then RNE, DIS, ENG, HP_DIS x 10 trials
+  usar multiverse scenarios/paper.ron --axes scenarios/paper-axes.ron \\
+      --targets scenarios/paper-targets.ron \\
+      --free 'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' \\
+      --free 'mission.search_time_budget_s=6..30' --sample 64 --out results/multiverse-paper
+
+  # A quick look: every universe, two methods, short trials and a small calibration budget
+  usar multiverse scenarios/paper.ron --axes my-axes.ron --targets my-targets.ron \\
+      --free 'mission.search_time_budget_s=6..30' --methods rne,dis --trials 3 --duration 120 \\
+      --calibration-trials 2 --max-evals 8 --out /tmp/mv
+
+  # On several machines: shard I of 4 each, then the merge (or: usar slurm ... --axes ...)
+  usar multiverse scenarios/paper.ron --axes my-axes.ron --targets my-targets.ron \\
+      --free 'mission.search_time_budget_s=6..30' --shard 0/4 --out results/mv
+  usar merge results/mv
+
+A universe takes one alternative of each axis of AXES.ron (the full factorial, first axis
+slowest, or --sample N of it drawn without replacement with --sample-seed):
+  Axes(axes: [
+      (name: \"hp effect\",
+       paper: \"\\\"the lower its HP, the smaller its velocity, sensing, and observing range\\\" (VI.B)\",
+       alternatives: [
+           (name: \"linear\", set: [\"mission.hp_effect=Linear\"]),
+           (name: \"threshold\", set: [\"mission.hp_effect=Threshold(below_pct: 50.0, factor: 0.6)\"]),
+           (name: \"none\", set: [\"mission.hp_effect=NoEffect\"]),
+       ]),
+  ])
+An alternative is a list of FIELD=VALUE overrides (as --set takes them); every alternative is
+checked against the scenario before anything runs, and no axis may set a --free field.
+
+In each universe the --free fields are calibrated to TARGETS.ron as `usar calibrate` does
+(--calibration-trials per method and evaluation, at most --max-evals evaluations); the universe
+is admissible when every target's statistic lies in its band (loss 0). Then every method runs
+--trials trials on the calibrated scenario (trial k from seed trial_seed(SEED, k) in every
+universe), and each of the paper's claims gets its verdict (one-sided Welch tests, as in a
+sweep's report) and its effect: the subject minus its strongest rival, > 0 in the claim's
+direction, with a 95 % Welch confidence interval.
+
+Output folder (default results/multiverse-<scenario name>/): universes/<id>/ per universe
+(scenario.ron, calibration/, comparison/, universe.json), then multiverse.csv (long form: a row
+per universe, per universe x method x metric, per universe x claim), multiverse.md and
+spec_curve_<claim>.svg (a specification curve per claim). Running the same command again
+continues: finished universes are not run again, a universe stopped half-way continues its
+calibration and comparison, failed ones are retried. A folder holding a multiverse of other
+parameters is refused (--overwrite starts afresh). Same inputs, same multiverse.csv,
+multiverse.md and figures on any --threads, resumed, or sharded and merged. See
+docs/multiverse.md.";
+
+/// The arguments of `usar multiverse` that decide what it runs.
+#[derive(Debug, Clone, Args)]
+pub struct MultiverseSpecArgs {
+    /// The base scenario file (RON), e.g. scenarios/paper.ron.
+    #[arg(value_name = "SCENARIO")]
+    pub scenario: PathBuf,
+
+    /// The axes file (RON, see below): the open choices and their alternatives.
+    #[arg(long, value_name = "AXES.ron")]
+    pub axes: PathBuf,
+
+    /// The targets file each universe is calibrated to (RON, as `usar calibrate --targets`).
+    #[arg(long, value_name = "TARGETS.ron")]
+    pub targets: PathBuf,
+
+    /// A field each universe's calibration fits and its range: FIELD=LO..HI, or
+    /// FIELD=LO..HI:log (LO > 0); repeatable, each field once, none set by an axis.
+    #[arg(
+        long,
+        value_name = "FIELD=LO..HI[:log]",
+        required = true,
+        allow_hyphen_values = true
+    )]
+    pub free: Vec<String>,
+
+    /// Grouping methods, comma-separated: rne, dis, eng, hp_dis.
+    #[arg(long, value_name = "NAME,..", value_delimiter = ',', default_values_t = METHOD_NAMES.map(String::from))]
+    pub methods: Vec<String>,
+
+    /// Comparison trials per method in each universe.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_TRIALS)]
+    pub trials: u32,
+
+    /// Base seed of the comparison's trials; default the scenario's sim.seed.
+    #[arg(long, value_name = "SEED")]
+    pub seed: Option<u64>,
+
+    /// Length of every trial, seconds (> 0); default each universe's mission.duration_s.
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
+    pub duration: Option<f64>,
+
+    /// Trials per method of each calibration evaluation.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_CALIBRATION_TRIALS)]
+    pub calibration_trials: u32,
+
+    /// Base seed of the calibrations' trials; default --seed.
+    #[arg(long, value_name = "SEED")]
+    pub calibration_seed: Option<u64>,
+
+    /// Most evaluations of each universe's calibration.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_EVALS)]
+    pub max_evals: usize,
+
+    /// Run N universes drawn without replacement from the full factorial (default: all).
+    #[arg(long, value_name = "N")]
+    pub sample: Option<usize>,
+
+    /// Seed of --sample's draw.
+    #[arg(long, value_name = "S", default_value_t = DEFAULT_SAMPLE_SEED, requires = "sample")]
+    pub sample_seed: u64,
+
+    /// Output folder; default `results/multiverse-<scenario name>/`. Locked while it runs.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Arguments of `usar multiverse`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = EXAMPLES)]
+pub struct MultiverseArgs {
+    /// What to run.
+    #[command(flatten)]
+    pub spec: MultiverseSpecArgs,
+
+    /// Worker threads (>= 1) of each calibration and comparison; default all cores. Never
+    /// changes a result.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+
+    /// Discard a multiverse already in the output folder (its universes and files) and start
+    /// afresh (other files stay).
+    #[arg(long, conflicts_with = "shard")]
+    pub overwrite: bool,
+
+    /// No progress bar and no line per universe.
+    #[arg(long, short)]
+    pub quiet: bool,
+
+    /// Run only shard I of N (I from 0): a fixed, balanced share of the universes. No top
+    /// files are written; once every shard is done, `usar merge OUT` writes them.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+
+    /// Test hook: exit abruptly (status 75, no output files) after N calibration evaluations
+    /// and comparison trials in all.
+    #[arg(long, value_name = "N", hide = true)]
+    pub stop_after: Option<usize>,
+
+    /// Test hook: make comparison trial K of METHOD panic half-way in every universe
+    /// (repeatable).
+    #[arg(long, value_name = "METHOD:K", hide = true)]
+    pub fail_trial: Vec<String>,
+}
+
+/// `--fail-trial METHOD:K`: the method's canonical (upper-case) name and the trial.
+fn parse_fail(spec: &str) -> Result<(String, u32)> {
+    let parsed = spec
+        .rsplit_once(':')
+        .and_then(|(m, k)| Some((m.trim().to_uppercase(), k.trim().parse().ok()?)));
+    parsed.with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))
+}
+
+/// The setup of `spec` with `threads` worker threads, run as `shard`.
+///
+/// # Errors
+/// A scenario, axes file, targets file or `--free` that cannot be read or parsed.
+pub fn setup_of(
+    spec: &MultiverseSpecArgs,
+    threads: usize,
+    shard: Option<Shard>,
+) -> Result<MultiverseSetup> {
+    let origin = path_text(&spec.scenario);
+    let text = scenario::read_source(&spec.scenario)?;
+    let base = scenario::parse_spec(&text, &origin)?;
+    let axes = Axes::load(&spec.axes)?;
+    let targets = Targets::load(&spec.targets)?;
+    let free = parse_free(&spec.free)?;
+    let seed = spec.seed.unwrap_or(base.sim.seed);
+    Ok(MultiverseSetup {
+        methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
+        trials: spec.trials,
+        seed,
+        duration_s: spec.duration,
+        calibration_trials: spec.calibration_trials,
+        calibration_seed: spec.calibration_seed.unwrap_or(seed),
+        max_evals: spec.max_evals,
+        sample: spec.sample.map(|n| Sample {
+            n,
+            seed: spec.sample_seed,
+        }),
+        threads,
+        shard,
+        date: super::calibrate::source_date()?,
+        ..MultiverseSetup::new(base, origin, axes, targets, free)
+    })
+}
+
+/// The default output folder: `results/multiverse-<scenario name>/` (the name made safe as
+/// for a sweep's folder).
+pub fn default_dir(setup: &MultiverseSetup) -> Result<PathBuf> {
+    let scenario = setup.base.validate(&setup.origin)?;
+    let name = default_out_dir(&scenario)
+        .file_name()
+        .map_or("scenario".into(), |n| n.to_string_lossy().into_owned());
+    Ok(Path::new("results").join(format!("multiverse-{name}")))
+}
+
+/// `--stop-after N`: hooks that exit the process abruptly once N calibration evaluations and
+/// comparison trials (counted together) are recorded.
+fn stop_hooks(limit: usize) -> MultiverseHooks {
+    let count = Arc::new(AtomicUsize::new(0));
+    let stop = move || {
+        let n = count.fetch_add(1, Ordering::SeqCst) + 1;
+        if n >= limit {
+            experiments::console::warn(format!("--stop-after {n}: stopping abruptly"));
+            std::process::exit(STOP_EXIT_CODE);
+        }
+    };
+    let again = stop.clone();
+    MultiverseHooks {
+        calibration: Some(Arc::new(move |_, _| stop())),
+        sweep: SweepHooks {
+            trial_observer: None,
+            on_journaled: Some(Arc::new(move |_, _| again())),
+        },
+        universe_done: None,
+    }
+}
+
+/// Runs `usar multiverse`: run (or continue) the universes, write the top files, print the
+/// summary.
+///
+/// # Errors
+/// A bad scenario, axes file, targets file, `--free` or option; an output folder holding
+/// another multiverse or locked by another run; an I/O error; or failed universes (after the
+/// others have run and the files are written).
+pub fn run(args: &MultiverseArgs, out: &mut dyn Write) -> Result<()> {
+    let shard: Option<Shard> = args.shard.as_deref().map(str::parse).transpose()?;
+    let mut setup = setup_of(&args.spec, super::sweep::threads_of(args.threads)?, shard)?;
+    setup.overwrite = args.overwrite;
+    if let Some(limit) = args.stop_after {
+        setup.hooks = stop_hooks(limit);
+    }
+    if !args.fail_trial.is_empty() {
+        let fail = args
+            .fail_trial
+            .iter()
+            .map(|s| parse_fail(s))
+            .collect::<Result<Vec<_>>>()?;
+        setup.hooks.sweep.trial_observer = test_hooks(fail, None).trial_observer;
+    }
+    let dir = match &args.spec.out {
+        Some(d) => d.clone(),
+        None => default_dir(&setup)?,
+    };
+    let progress = if args.quiet {
+        MultiverseProgress::off()
+    } else {
+        MultiverseProgress::terminal()
+    };
+    let o = run_multiverse(&setup, &dir, progress)?;
+    out.write_all(summary_text(&o, &dir).as_bytes())?;
+    failed_universes(&o, "run the same command again to retry them")
+}
+
+/// The error listing failed universes, if any, ending with `retry` (how to retry them).
+pub fn failed_universes(o: &experiments::multiverse::MultiverseOutcome, retry: &str) -> Result<()> {
+    let failed: Vec<String> = o
+        .failed()
+        .map(|r| format!("{} ({})", r.id, r.message.as_deref().unwrap_or("failed")))
+        .collect();
+    if failed.is_empty() {
+        return Ok(());
+    }
+    bail!(
+        "{} of {} universes failed: {}. The others are in the files; {retry}",
+        failed.len(),
+        o.records.len(),
+        failed.join("; ")
+    )
+}

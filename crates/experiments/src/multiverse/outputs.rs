@@ -1,0 +1,52 @@
+//! The files at the top of a multiverse's output folder, made from its plan and records and
+//! written as one [`FileSet`] (every file staged in a temporary file, then all renamed):
+//! `multiverse.csv`, one `spec_curve_<claim>.svg` per claim, and `multiverse.md`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+
+use super::csv::multiverse_csv;
+use super::markdown::multiverse_md;
+use super::plan::MultiversePlan;
+use super::record::UniverseRecord;
+use super::spec_curve::{spec_curve_file, spec_curve_svg};
+use crate::atomic::FileSet;
+use crate::claims::CLAIMS;
+
+/// The long-form table.
+pub const CSV_FILE: &str = "multiverse.csv";
+/// The report.
+pub const REPORT_FILE: &str = "multiverse.md";
+
+/// The names of every file [`write_outputs`] writes, in that order.
+pub fn output_files() -> Vec<String> {
+    let mut out = vec![CSV_FILE.to_string()];
+    out.extend(CLAIMS.iter().map(spec_curve_file));
+    out.push(REPORT_FILE.to_string());
+    out
+}
+
+/// Writes `multiverse.csv`, the specification curves and `multiverse.md` of `records` (every
+/// universe of the plan, in universe order) into `dir`; returns their paths.
+///
+/// # Errors
+/// An I/O error, a path that cannot be written, or a figure plotters fails to draw; no file
+/// is changed then.
+pub fn write_outputs(
+    plan: &MultiversePlan,
+    records: &[UniverseRecord],
+    dir: &Path,
+) -> Result<Vec<PathBuf>> {
+    let mut files = FileSet::new();
+    files.stage(&dir.join(CSV_FILE), &multiverse_csv(plan, records)?)?;
+    for c in &CLAIMS {
+        let svg = spec_curve_svg(plan, records, c)?;
+        files.stage(&dir.join(spec_curve_file(c)), svg.as_bytes())?;
+    }
+    files.stage(
+        &dir.join(REPORT_FILE),
+        multiverse_md(plan, records).as_bytes(),
+    )?;
+    files.commit()
+}

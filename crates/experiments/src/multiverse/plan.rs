@@ -1,0 +1,409 @@
+//! The plan of a multiverse, `multiverse.json`: what it runs ([`MultiverseIdentity`]: the
+//! base scenario's hash, the axes, targets, free fields, methods, trials, seeds, budget,
+//! sample and the build of `usar`) and how it was asked for (the paths as given, the working
+//! folder, the output folder). A run writes it at the top of its output folder (a shard into
+//! its shard folder, `shards/<I>-of-<N>/`); a run finds a plan of another identity there and
+//! refuses (or with `--overwrite` starts afresh); `usar merge` rebuilds the outputs from it
+//! and the universes' records, and names the commands that run missing shards.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use serde::{Deserialize, Serialize};
+use usar_sim::scenario::path_text;
+
+use super::axes::Axes;
+use super::setup::{CheckedMultiverse, MultiverseSetup};
+use super::universe::{Sample, Universe, factorial_size, select};
+use crate::atomic::write_atomic;
+use crate::calibrate::{FreeField, Target};
+use crate::fingerprint::{fnv1a64_hex, scenario_hash};
+use crate::shard::{Shard, shell_join};
+use crate::slurm::ShardedWork;
+
+/// The plan's file name.
+pub const PLAN_FILE: &str = "multiverse.json";
+
+/// The plan's format (1); another format is another multiverse.
+pub const PLAN_FORMAT: u32 = 1;
+
+/// What a multiverse runs: two runs with equal identities make the same universes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MultiverseIdentity {
+    /// [`PLAN_FORMAT`].
+    pub format: u32,
+    /// The version of `usar`.
+    pub version: String,
+    /// The build of `usar` (`git describe`, [`crate::report::software_build`]): another build
+    /// may simulate differently.
+    pub build: String,
+    /// The base scenario's name.
+    pub scenario: String,
+    /// The base scenario's hash ([`crate::fingerprint::scenario_hash`]).
+    pub scenario_hash: String,
+    /// The axes.
+    pub axes: Axes,
+    /// The calibration targets.
+    pub targets: Vec<Target>,
+    /// The free fields.
+    pub free: Vec<FreeField>,
+    /// The methods, upper case, in order.
+    pub methods: Vec<String>,
+    /// Comparison trials per method.
+    pub trials: u32,
+    /// Base seed of the comparison.
+    pub seed: u64,
+    /// Trial length, seconds (`None`: each universe's `mission.duration_s`).
+    pub duration_s: Option<f64>,
+    /// Trials per method of each calibration evaluation.
+    pub calibration_trials: u32,
+    /// Base seed of the calibrations.
+    pub calibration_seed: u64,
+    /// Most evaluations per calibration.
+    pub max_evals: usize,
+    /// Significant digits of the calibrated values.
+    pub digits: u32,
+    /// The sample of universes (`None`: the full factorial).
+    pub sample: Option<Sample>,
+}
+
+/// A multiverse's plan: its identity and how it was asked for.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MultiversePlan {
+    /// What it runs.
+    pub identity: MultiverseIdentity,
+    /// The base scenario's path as given.
+    pub scenario_path: String,
+    /// The axes file's path as given.
+    pub axes_path: String,
+    /// The targets file's path as given.
+    pub targets_path: String,
+    /// The output folder as given.
+    pub out: PathBuf,
+    /// The folder the paths are relative to (absolute), when known.
+    pub working_dir: Option<PathBuf>,
+}
+
+impl MultiversePlan {
+    /// The plan of `setup` (checked as `checked`) writing into `out`.
+    ///
+    /// # Errors
+    /// The scenario cannot be serialised for its hash (not expected).
+    pub fn of(setup: &MultiverseSetup, checked: &CheckedMultiverse, out: &Path) -> Result<Self> {
+        Ok(Self {
+            identity: MultiverseIdentity {
+                format: PLAN_FORMAT,
+                version: env!("CARGO_PKG_VERSION").to_string(),
+                build: crate::report::software_build().to_owned(),
+                scenario: checked.scenario.name.clone(),
+                scenario_hash: scenario_hash(&checked.scenario)?,
+                axes: setup.axes.clone(),
+                targets: setup.targets.targets().to_vec(),
+                free: setup.free.clone(),
+                methods: checked.methods.clone(),
+                trials: setup.trials,
+                seed: setup.seed,
+                duration_s: setup.duration_s,
+                calibration_trials: setup.calibration_trials,
+                calibration_seed: setup.calibration_seed,
+                max_evals: setup.max_evals,
+                digits: setup.digits,
+                sample: setup.sample,
+            },
+            scenario_path: setup.origin.clone(),
+            axes_path: setup.axes.origin().to_owned(),
+            targets_path: setup.targets.origin().to_owned(),
+            out: out.to_path_buf(),
+            working_dir: setup.working_dir.clone(),
+        })
+    }
+
+    /// The identity's checksum: FNV-1a 64 of its JSON ([`fnv1a64_hex`]); records verify
+    /// against it.
+    pub fn identity_sum(&self) -> String {
+        let json = serde_json::to_string(&self.identity).unwrap_or_default();
+        fnv1a64_hex(json.as_bytes())
+    }
+
+    /// The plan's path in `dir`.
+    pub fn path_in(dir: &Path) -> PathBuf {
+        dir.join(PLAN_FILE)
+    }
+
+    /// Writes the plan as `dir/multiverse.json` (pretty JSON, atomically).
+    ///
+    /// # Errors
+    /// An I/O error.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        let json = serde_json::to_string_pretty(self).context("serialising the plan")?;
+        write_atomic(&Self::path_in(dir), format!("{json}\n").as_bytes())
+    }
+
+    /// Reads `dir/multiverse.json`; `None` when there is none.
+    ///
+    /// # Errors
+    /// An unreadable file, or one that is not a multiverse plan.
+    pub fn read(dir: &Path) -> Result<Option<Self>> {
+        let path = Self::path_in(dir);
+        if !crate::journal::something_at(&path) {
+            return Ok(None);
+        }
+        let text = std::fs::read_to_string(&path)
+            .with_context(|| format!("cannot read {}", path_text(&path)))?;
+        let plan = serde_json::from_str(&text).with_context(|| {
+            format!(
+                "{}: not a multiverse plan (edited, or of another version of usar); pass \
+                 --overwrite to start afresh, or choose another --out",
+                path_text(&path)
+            )
+        })?;
+        Ok(Some(plan))
+    }
+
+    /// The size of the full factorial.
+    pub fn factorial(&self) -> u64 {
+        factorial_size(&self.identity.axes.sizes()).unwrap_or(0)
+    }
+
+    /// The universes the multiverse runs, in index order (empty if the plan's axes or sample
+    /// are refused, which a written plan's never are).
+    pub fn universes(&self) -> Vec<Universe> {
+        select(&self.identity.axes.sizes(), self.identity.sample).unwrap_or_default()
+    }
+
+    /// The options after `SCENARIO` that repeat this multiverse (every one written out, so
+    /// that the command does not depend on defaults).
+    pub fn options(&self) -> Vec<String> {
+        let id = &self.identity;
+        let mut a = vec!["--axes".to_string(), self.axes_path.clone()];
+        a.extend(["--targets".to_string(), self.targets_path.clone()]);
+        for f in &id.free {
+            a.extend(["--free".to_string(), f.to_string()]);
+        }
+        a.extend(["--methods".to_string(), id.methods.join(",").to_lowercase()]);
+        a.extend(["--trials".to_string(), id.trials.to_string()]);
+        a.extend(["--seed".to_string(), id.seed.to_string()]);
+        if let Some(d) = id.duration_s {
+            a.extend(["--duration".to_string(), d.to_string()]);
+        }
+        a.extend([
+            "--calibration-trials".to_string(),
+            id.calibration_trials.to_string(),
+            "--calibration-seed".to_string(),
+            id.calibration_seed.to_string(),
+            "--max-evals".to_string(),
+            id.max_evals.to_string(),
+        ]);
+        if let Some(s) = id.sample {
+            a.extend([
+                "--sample".to_string(),
+                s.n.to_string(),
+                "--sample-seed".to_string(),
+                s.seed.to_string(),
+            ]);
+        }
+        a
+    }
+
+    /// `usar multiverse SCENARIO <options> [--shard I/N] --out OUT` for a POSIX shell, with
+    /// the paths as given (see [`MultiversePlan::shard_command`] for another folder).
+    pub fn command(&self, shard: Option<Shard>) -> String {
+        self.command_at(shard, &self.out, None)
+    }
+
+    /// The command that runs (or continues) `shard` into `out_dir` as shown in the folder
+    /// `here`: when that is not [`MultiversePlan::working_dir`], the file paths and `out_dir`
+    /// are made absolute so that it runs from anywhere.
+    pub fn shard_command(&self, shard: Shard, out_dir: &Path, here: Option<&Path>) -> String {
+        self.command_at(Some(shard), out_dir, here)
+    }
+
+    /// The command that runs `shard` (or, for `None`, every universe) into `out_dir`, shown
+    /// in the folder `here` (see [`MultiversePlan::shard_command`]).
+    pub fn command_at(&self, shard: Option<Shard>, out_dir: &Path, here: Option<&Path>) -> String {
+        let moved = match (&self.working_dir, here) {
+            (Some(wd), Some(here)) if wd != here => Some((wd, here)),
+            _ => None,
+        };
+        let file = |p: &str| match moved {
+            Some((wd, _)) => wd.join(p).display().to_string(),
+            None => p.to_string(),
+        };
+        let mut plan = self.clone();
+        plan.axes_path = file(&self.axes_path);
+        plan.targets_path = file(&self.targets_path);
+        let mut words = vec![
+            "usar".to_string(),
+            "multiverse".to_string(),
+            file(&self.scenario_path),
+        ];
+        words.extend(plan.options());
+        if let Some(s) = shard {
+            words.extend(["--shard".to_string(), s.to_string()]);
+        }
+        let out = match moved {
+            Some((_, here)) => here.join(out_dir),
+            None => out_dir.to_path_buf(),
+        };
+        words.extend(["--out".to_string(), out.display().to_string()]);
+        shell_join(&words)
+    }
+}
+
+impl ShardedWork for MultiversePlan {
+    fn subcommand(&self) -> &'static str {
+        "multiverse"
+    }
+
+    fn scenario_file(&self) -> PathBuf {
+        PathBuf::from(&self.scenario_path)
+    }
+
+    fn work_options(&self) -> Vec<String> {
+        self.options()
+    }
+
+    fn merged_files(&self) -> &'static str {
+        "multiverse.csv, multiverse.md and the specification curves"
+    }
+}
+
+/// What differs between two identities, for a refusal: `trials 2 vs 10, axes differ`
+/// (values of up to 40 characters are shown, longer ones only named).
+pub fn identity_diff(old: &MultiverseIdentity, new: &MultiverseIdentity) -> String {
+    let (a, b) = (
+        serde_json::to_value(old).unwrap_or_default(),
+        serde_json::to_value(new).unwrap_or_default(),
+    );
+    let (Some(a), Some(b)) = (a.as_object(), b.as_object()) else {
+        return "another multiverse".into();
+    };
+    let diffs: Vec<String> = a
+        .iter()
+        .filter(|(k, v)| b.get(*k) != Some(*v))
+        .map(|(k, v)| {
+            let (x, y) = (
+                v.to_string(),
+                b.get(k).map_or("none".into(), |w| w.to_string()),
+            );
+            if x.len() <= 40 && y.len() <= 40 {
+                format!("{k} {x} vs {y}")
+            } else {
+                format!("{k} differ")
+            }
+        })
+        .collect();
+    if diffs.is_empty() {
+        "the same multiverse".into()
+    } else {
+        diffs.join(", ")
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::calibrate::{Band, Statistic, Target};
+
+    /// A plan over two axes (2 and 3 alternatives) with two free fields.
+    pub(crate) fn plan() -> MultiversePlan {
+        let src = "Axes(axes: [\n  (name: \"a\", paper: \"\\\"x\\\" (I)\", alternatives: [(name: \"a0\"), \
+                   (name: \"a1\", set: [\"mission.pickup_s=2\"])]),\n  (name: \"b\", \
+                   alternatives: [(name: \"b0\"), (name: \"b1\", set: [\"mission.recharge_s=3\"]), \
+                   (name: \"b2\", set: [\"mission.recharge_s=4\"])]),\n])";
+        let axes = Axes::parse(src, "axes.ron").unwrap();
+        MultiversePlan {
+            identity: MultiverseIdentity {
+                format: PLAN_FORMAT,
+                version: "0.1.0".into(),
+                build: "abc".into(),
+                scenario: "paper".into(),
+                scenario_hash: "0123456789abcdef".into(),
+                axes,
+                targets: vec![Target {
+                    name: "rounds".into(),
+                    statistic: Statistic::Mean(crate::calibrate::MetricRef("rounds".into())),
+                    value: 6.0,
+                    band: Band::PlusMinus(1.0),
+                }],
+                free: vec![
+                    FreeField::parse("mission.energy_pct_per_m=0.05..0.2").unwrap(),
+                    FreeField::parse("mission.hp_pct_per_step_in_radiation=0.001..0.02:log")
+                        .unwrap(),
+                ],
+                methods: vec!["RNE".into(), "DIS".into()],
+                trials: 2,
+                seed: 2021,
+                duration_s: Some(30.0),
+                calibration_trials: 1,
+                calibration_seed: 2021,
+                max_evals: 3,
+                digits: 4,
+                sample: None,
+            },
+            scenario_path: "scenarios/paper.ron".into(),
+            axes_path: "my axes.ron".into(),
+            targets_path: "t.ron".into(),
+            out: "out".into(),
+            working_dir: Some("/home/me".into()),
+        }
+    }
+
+    #[test]
+    fn the_command_repeats_the_multiverse() {
+        let p = plan();
+        assert_eq!(
+            p.command(None),
+            "usar multiverse scenarios/paper.ron --axes 'my axes.ron' --targets t.ron --free \
+             'mission.energy_pct_per_m=0.05..0.2' --free \
+             'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' --methods 'rne,dis' \
+             --trials 2 --seed 2021 --duration 30 --calibration-trials 1 --calibration-seed \
+             2021 --max-evals 3 --out out"
+        );
+        let s = Shard::new(1, 2).unwrap();
+        let elsewhere = p.shard_command(s, Path::new("out"), Some(Path::new("/tmp")));
+        assert!(
+            elsewhere.starts_with("usar multiverse /home/me/scenarios/paper.ron --axes '/home/me/my axes.ron' --targets /home/me/t.ron"),
+            "{elsewhere}"
+        );
+        assert!(
+            elsewhere.ends_with("--shard 1/2 --out /tmp/out"),
+            "{elsewhere}"
+        );
+        assert!(
+            p.shard_command(s, Path::new("out"), Some(Path::new("/home/me")))
+                .ends_with("--shard 1/2 --out out")
+        );
+    }
+
+    #[test]
+    fn a_plan_reads_back_and_diffs_name_what_changed() {
+        let dir = tempfile::tempdir().unwrap();
+        assert!(MultiversePlan::read(dir.path()).unwrap().is_none());
+        let p = plan();
+        p.write(dir.path()).unwrap();
+        let back = MultiversePlan::read(dir.path()).unwrap().unwrap();
+        assert_eq!(back, p);
+        assert_eq!(back.identity_sum(), p.identity_sum());
+        assert_eq!(p.universes().len(), 6);
+        assert_eq!(p.factorial(), 6);
+        let mut q = p.identity.clone();
+        q.trials = 10;
+        q.axes.axes[0].paper = "y".repeat(50);
+        assert_eq!(
+            identity_diff(&p.identity, &q),
+            "axes differ, trials 2 vs 10"
+        );
+        assert_ne!(
+            MultiversePlan {
+                identity: q,
+                ..p.clone()
+            }
+            .identity_sum(),
+            p.identity_sum()
+        );
+        std::fs::write(MultiversePlan::path_in(dir.path()), "{").unwrap();
+        let e = format!("{:#}", MultiversePlan::read(dir.path()).unwrap_err());
+        assert!(e.contains("not a multiverse plan"), "{e}");
+    }
+}

@@ -1,0 +1,283 @@
+//! What one universe produced ([`UniverseRecord`]), kept as `universes/<id>/universe.json`
+//! once the universe is done: the data `multiverse.csv`, `multiverse.md` and the figures are
+//! made from, so that a resumed, sharded or merged multiverse writes the same files as one
+//! uninterrupted run.
+//!
+//! The file is one line, `{"universe":{...},"sum":"<16 hex digits>"}`, written atomically;
+//! `sum` is [`crate::journal::record_sum`] of the multiverse's identity sum
+//! ([`super::plan::MultiversePlan::identity_sum`]) and the record's JSON as written, so a
+//! record verifies only for the multiverse that wrote it (an edited record, or one left by a
+//! multiverse of other parameters, does not, and its universe runs again). Numbers that may
+//! not be finite are written as `"NaN"`, `"inf"` ([`crate::calibrate::float_text`]).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use usar_sim::scenario::path_text;
+
+use super::effect::ClaimEffect;
+use crate::atomic::write_atomic;
+use crate::calibrate::{StopReason, float_text};
+use crate::journal::{journal_line, record_sum};
+
+/// The record's file name in a universe's folder.
+pub const RECORD_FILE: &str = "universe.json";
+
+/// How a universe ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Calibrated and compared, every trial run (admissible or not: see
+    /// [`UniverseRecord::admissible`]).
+    Ok,
+    /// Its choices make a scenario that breaks a rule: nothing ran (not retried; the message
+    /// says which rule).
+    Invalid,
+    /// The calibration stopped with an error, or comparison trials failed: run again, the
+    /// universe is retried (its calibration trace and sweep journal keep what was done).
+    Failed,
+}
+
+impl Status {
+    /// The status as `multiverse.csv` and `multiverse.md` write it: `ok`, `invalid`,
+    /// `failed`.
+    pub fn word(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::Invalid => "invalid",
+            Status::Failed => "failed",
+        }
+    }
+}
+
+/// What the calibration of a universe found.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CalibrationResult {
+    /// The best loss (0: every target's statistic in its band; +inf: every point failed).
+    #[serde(with = "float_text")]
+    pub loss: f64,
+    /// The best values of the free fields, in `--free` order.
+    pub values: Vec<f64>,
+    /// Each target's statistic at the best values, in target order (NaN when undefined).
+    #[serde(with = "float_text::vec")]
+    pub statistics: Vec<f64>,
+    /// Evaluations in the search's sequence.
+    pub evaluations: usize,
+    /// Why the search stopped.
+    pub stop: StopReason,
+}
+
+/// One method's summary of one metric in a universe's comparison (as `summary.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MetricSummary {
+    /// The method, upper case.
+    pub method: String,
+    /// The metric's name (`rescued_total`, `hp_per_hard_rescuee_pct`; summary.csv's).
+    pub metric: String,
+    /// Values (successful trials where the metric is defined).
+    pub n: usize,
+    /// Their mean (NaN without values).
+    #[serde(with = "float_text")]
+    pub mean: f64,
+    /// Their sample standard deviation (NaN with fewer than two).
+    #[serde(with = "float_text")]
+    pub sd: f64,
+}
+
+/// What the comparison of a universe found.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ComparisonResult {
+    /// Successful trials.
+    pub trials_ok: usize,
+    /// Failed trials.
+    pub trials_failed: usize,
+    /// Per method (in `--methods` order) and metric (in `summary.csv` order).
+    pub metrics: Vec<MetricSummary>,
+    /// Per claim of [`crate::claims::CLAIMS`], in that order.
+    pub claims: Vec<ClaimEffect>,
+}
+
+/// What one universe produced.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UniverseRecord {
+    /// Index in the full factorial ([`super::universe::Universe::index`]).
+    pub index: u64,
+    /// The folder name (`u007`).
+    pub id: String,
+    /// The alternative taken on each axis, in axis order.
+    pub choices: Vec<usize>,
+    /// How it ended.
+    pub status: Status,
+    /// Why it is invalid or failed (one line per problem, `; `-joined); `None` when ok.
+    pub message: Option<String>,
+    /// The calibration's result, when it ran to its end.
+    pub calibration: Option<CalibrationResult>,
+    /// The comparison's result, when it ran.
+    pub comparison: Option<ComparisonResult>,
+}
+
+impl UniverseRecord {
+    /// Whether the universe is admissible: its calibration reached every band (loss 0).
+    pub fn admissible(&self) -> bool {
+        self.calibration.as_ref().is_some_and(|c| c.loss == 0.0)
+    }
+
+    /// The effect of the claim with id `claim`, when the comparison ran.
+    pub fn claim(&self, claim: &str) -> Option<&ClaimEffect> {
+        self.comparison
+            .as_ref()?
+            .claims
+            .iter()
+            .find(|c| c.claim == claim)
+    }
+
+    /// The path of the record in the universe folder `dir`.
+    pub fn path_in(dir: &Path) -> PathBuf {
+        dir.join(RECORD_FILE)
+    }
+
+    /// Writes the record into the universe folder `dir`, atomically, checksummed with the
+    /// multiverse's `identity_sum`.
+    ///
+    /// # Errors
+    /// An I/O error.
+    pub fn write(&self, dir: &Path, identity_sum: &str) -> Result<()> {
+        let json = serde_json::to_string(self).context("serialising a universe record")?;
+        let line = journal_line("universe", &json, &record_sum(identity_sum, &json));
+        write_atomic(&Self::path_in(dir), line.as_bytes())
+    }
+
+    /// Reads the record of the universe folder `dir` for the multiverse with `identity_sum`.
+    pub fn read(dir: &Path, identity_sum: &str) -> RecordRead {
+        let path = Self::path_in(dir);
+        let text = match std::fs::read_to_string(&path) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return RecordRead::Missing,
+            Err(e) => {
+                return RecordRead::Unusable(format!("cannot read {}: {e}", path_text(&path)));
+            }
+        };
+        match parse(&text, identity_sum) {
+            Some(r) => RecordRead::Done(Box::new(r)),
+            None => RecordRead::Unusable(format!(
+                "{} does not verify (edited, or written by another multiverse)",
+                path_text(&path)
+            )),
+        }
+    }
+}
+
+/// The record on one line `text`, when it verifies for `identity_sum`.
+fn parse(text: &str, identity_sum: &str) -> Option<UniverseRecord> {
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Line<'a> {
+        #[serde(borrow)]
+        universe: &'a RawValue,
+        sum: String,
+    }
+    let line: Line<'_> = serde_json::from_str(text.trim_end()).ok()?;
+    if line.sum != record_sum(identity_sum, line.universe.get()) {
+        return None;
+    }
+    serde_json::from_str(line.universe.get()).ok()
+}
+
+/// A universe's record as found in its folder.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RecordRead {
+    /// No record: the universe has not finished.
+    Missing,
+    /// A record that verifies.
+    Done(Box<UniverseRecord>),
+    /// A record that cannot be used (unreadable, damaged, edited, another multiverse's):
+    /// why, in one line. The universe runs again.
+    Unusable(String),
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A finished, admissible universe with one metric and one claim.
+    pub(crate) fn record(index: u64, choices: &[usize], loss: f64) -> UniverseRecord {
+        UniverseRecord {
+            index,
+            id: format!("u{index:03}"),
+            choices: choices.to_vec(),
+            status: Status::Ok,
+            message: None,
+            calibration: Some(CalibrationResult {
+                loss,
+                values: vec![1.25, 0.003],
+                statistics: vec![6.0, f64::NAN],
+                evaluations: 4,
+                stop: StopReason::TargetReached,
+            }),
+            comparison: Some(ComparisonResult {
+                trials_ok: 4,
+                trials_failed: 0,
+                metrics: vec![MetricSummary {
+                    method: "RNE".into(),
+                    metric: "rescued_total".into(),
+                    n: 2,
+                    mean: 150.5,
+                    sd: f64::NAN,
+                }],
+                claims: vec![ClaimEffect {
+                    claim: "1".into(),
+                    verdict: "holds".into(),
+                    rival: Some("DIS".into()),
+                    effect: 2.5,
+                    ci_low: 0.5,
+                    ci_high: 4.5,
+                    p: 0.01,
+                }],
+            }),
+        }
+    }
+
+    #[test]
+    fn a_record_reads_back_exactly_and_only_for_its_multiverse() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(UniverseRecord::read(dir.path(), "abc"), RecordRead::Missing);
+        let r = record(3, &[1, 0], f64::INFINITY);
+        r.write(dir.path(), "abc").unwrap();
+        match UniverseRecord::read(dir.path(), "abc") {
+            RecordRead::Done(back) => {
+                assert_eq!(back.choices, r.choices);
+                assert!(back.calibration.as_ref().unwrap().loss.is_infinite());
+                assert!(back.calibration.as_ref().unwrap().statistics[1].is_nan());
+                assert!(!back.admissible());
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            UniverseRecord::read(dir.path(), "abd"),
+            RecordRead::Unusable(m) if m.contains("does not verify")
+        ));
+        // An edited number no longer verifies.
+        let path = UniverseRecord::path_in(dir.path());
+        let text = std::fs::read_to_string(&path)
+            .unwrap()
+            .replace("150.5", "160.5");
+        std::fs::write(&path, text).unwrap();
+        assert!(matches!(
+            UniverseRecord::read(dir.path(), "abc"),
+            RecordRead::Unusable(_)
+        ));
+    }
+
+    #[test]
+    fn admissible_means_loss_zero() {
+        assert!(record(0, &[0], 0.0).admissible());
+        assert!(!record(0, &[0], 0.5).admissible());
+        let mut r = record(0, &[0], 0.0);
+        r.calibration = None;
+        assert!(!r.admissible());
+        assert_eq!(record(0, &[0], 0.0).claim("1").unwrap().effect, 2.5);
+        assert!(record(0, &[0], 0.0).claim("2").is_none());
+    }
+}

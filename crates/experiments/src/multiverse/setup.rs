@@ -1,0 +1,264 @@
+//! What a multiverse needs ([`MultiverseSetup`], with the defaults of `usar multiverse`) and
+//! the checks made before anything runs ([`MultiverseSetup::check`]).
+
+use std::fmt;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use usar_sim::scenario::{Scenario, ScenarioSpec};
+
+use super::axes::{Axes, AxesError};
+use super::record::UniverseRecord;
+use super::universe::{
+    Sample, Universe, UniverseError, check_shards, factorial_size, select, shard_of,
+};
+use super::validate::check_axes;
+use crate::calibrate::setup::DEFAULT_DIGITS;
+use crate::calibrate::{CalibrationSetup, EvaluationHook, FreeField, SetupError, Targets};
+use crate::method_factory::MethodFactory;
+use crate::shard::Shard;
+use crate::sweep::{SweepHooks, check_sweep_size};
+
+/// Comparison trials per method and universe by default (10, as a sweep).
+pub const DEFAULT_TRIALS: u32 = 10;
+/// Trials per method of each calibration evaluation by default (5).
+pub const DEFAULT_CALIBRATION_TRIALS: u32 = 5;
+/// Evaluations of each universe's calibration at most by default (30).
+pub const DEFAULT_MAX_EVALS: usize = 30;
+/// Seed of `--sample`'s draw by default (0).
+pub const DEFAULT_SAMPLE_SEED: u64 = 0;
+
+/// Called once per universe this run finishes, with its record and how many this run has
+/// finished so far (1, 2, ...).
+pub type UniverseHook = Arc<dyn Fn(&UniverseRecord, usize) + Send + Sync>;
+
+/// Extension points (default: none). `usar multiverse`'s hidden `--stop-after N` (its tests'
+/// stand-in for a kill) is built on the first two.
+#[derive(Clone, Default)]
+pub struct MultiverseHooks {
+    /// Called after each new calibration evaluation is in its trace.
+    pub calibration: Option<EvaluationHook>,
+    /// A step observer per comparison trial and a call per journaled comparison trial.
+    pub sweep: SweepHooks,
+    /// Called after each universe's record is written.
+    pub universe_done: Option<UniverseHook>,
+}
+
+impl fmt::Debug for MultiverseHooks {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("MultiverseHooks")
+            .field("calibration", &self.calibration.is_some())
+            .field("sweep", &self.sweep)
+            .field("universe_done", &self.universe_done.is_some())
+            .finish()
+    }
+}
+
+/// Everything a multiverse needs. [`MultiverseSetup::new`] gives the defaults of `usar
+/// multiverse`; set the fields that differ. See [`super::run_multiverse`] for an example.
+#[derive(Debug, Clone)]
+pub struct MultiverseSetup {
+    /// The base scenario every universe starts from (unvalidated spec, as parsed).
+    pub base: ScenarioSpec,
+    /// Where it came from (a path as given: messages, reports and the commands they suggest).
+    pub origin: String,
+    /// The axes; a universe takes one alternative of each.
+    pub axes: Axes,
+    /// What each universe's calibration must reach (admissible: every band, loss 0).
+    pub targets: Targets,
+    /// The fields each universe's calibration fits, with their ranges (at least one, each
+    /// once, none set by an axis).
+    pub free: Vec<FreeField>,
+    /// Method names as `method_factory` takes them (built-ins `rne`, `dis`, `eng`,
+    /// `hp_dis`), for the calibration and the comparison; at least one, each once.
+    pub methods: Vec<String>,
+    /// Builds each trial's grouping method from its name (default: the built-ins).
+    pub method_factory: MethodFactory,
+    /// Comparison trials per method and universe (>= 1; default [`DEFAULT_TRIALS`]).
+    pub trials: u32,
+    /// Base seed of the comparison: trial `k` of every method in every universe starts from
+    /// `trial_seed(seed, k)` (common random numbers). Default: the base scenario's
+    /// `sim.seed`.
+    pub seed: u64,
+    /// Simulated length of every trial (calibration and comparison), seconds (> 0); `None`:
+    /// each universe's `mission.duration_s`.
+    pub duration_s: Option<f64>,
+    /// Trials per method of each calibration evaluation (>= 1; default
+    /// [`DEFAULT_CALIBRATION_TRIALS`]).
+    pub calibration_trials: u32,
+    /// Base seed of the calibrations' trials (default: [`MultiverseSetup::seed`], so the
+    /// comparison's first trials are the calibration's).
+    pub calibration_seed: u64,
+    /// Most evaluations of each calibration (>= 1; default [`DEFAULT_MAX_EVALS`]).
+    pub max_evals: usize,
+    /// Significant digits of the calibrated values (1 to 17; default
+    /// [`DEFAULT_DIGITS`]).
+    pub digits: u32,
+    /// `--sample N --sample-seed S`: run `N` universes drawn from the factorial (`None`: all
+    /// of them).
+    pub sample: Option<Sample>,
+    /// Worker threads for each calibration's and comparison's trials (>= 1). Never changes
+    /// a result.
+    pub threads: usize,
+    /// Run one shard's universes only (`--shard I/N`; `None`: all).
+    pub shard: Option<Shard>,
+    /// Discard a multiverse of other parameters in the output folder (and its universes)
+    /// instead of refusing to start.
+    pub overwrite: bool,
+    /// The folder the run's relative paths are relative to (for the commands messages
+    /// suggest; default the current folder).
+    pub working_dir: Option<PathBuf>,
+    /// The time stamp of each calibration's outputs (default `None`: the system clock).
+    pub date: Option<String>,
+    /// Extension points (default none).
+    pub hooks: MultiverseHooks,
+}
+
+impl MultiverseSetup {
+    /// The defaults of `usar multiverse` for `axes` over `base` (read from `origin`),
+    /// calibrating `free` to `targets`: the four built-in methods, [`DEFAULT_TRIALS`]
+    /// comparison trials, the scenario's `sim.seed` for both seeds, each universe's
+    /// `mission.duration_s`, [`DEFAULT_CALIBRATION_TRIALS`] trials per evaluation and at most
+    /// [`DEFAULT_MAX_EVALS`] evaluations, every universe, all cores, no shard, no overwrite,
+    /// the current folder, the system clock, no hooks.
+    pub fn new(
+        base: ScenarioSpec,
+        origin: impl Into<String>,
+        axes: Axes,
+        targets: Targets,
+        free: Vec<FreeField>,
+    ) -> Self {
+        let seed = base.sim.seed;
+        Self {
+            origin: origin.into(),
+            axes,
+            targets,
+            free,
+            methods: rne_core::grouping::METHOD_NAMES
+                .iter()
+                .map(|m| m.to_string())
+                .collect(),
+            method_factory: MethodFactory::builtin(),
+            trials: DEFAULT_TRIALS,
+            seed,
+            duration_s: None,
+            calibration_trials: DEFAULT_CALIBRATION_TRIALS,
+            calibration_seed: seed,
+            max_evals: DEFAULT_MAX_EVALS,
+            digits: DEFAULT_DIGITS,
+            sample: None,
+            threads: std::thread::available_parallelism().map_or(1, usize::from),
+            shard: None,
+            overwrite: false,
+            working_dir: std::env::current_dir().ok(),
+            date: None,
+            hooks: MultiverseHooks::default(),
+            base,
+        }
+    }
+
+    /// The calibration of one universe: `spec` (the base with the universe's choices, read
+    /// from `origin`), fitted with this setup's targets, free fields, methods and budget,
+    /// no check on unseen trials, described by `command`.
+    pub fn calibration_setup(
+        &self,
+        spec: ScenarioSpec,
+        origin: String,
+        command: String,
+    ) -> CalibrationSetup {
+        CalibrationSetup {
+            methods: self.methods.clone(),
+            method_factory: self.method_factory.clone(),
+            trials: self.calibration_trials,
+            base_seed: self.calibration_seed,
+            duration_s: self.duration_s,
+            digits: self.digits,
+            max_evals: self.max_evals,
+            max_time: None,
+            threads: self.threads,
+            check_trials: 0,
+            overwrite: false,
+            command,
+            date: self.date.clone(),
+            ..CalibrationSetup::new(spec, origin, self.targets.clone(), self.free.clone())
+        }
+    }
+
+    /// Checks the setup before anything runs: the options, the base scenario (validated),
+    /// the targets and free fields against it, the methods, the axes against it and the free
+    /// fields, the universes (count, sample) and the shard.
+    ///
+    /// # Errors
+    /// One line: an option out of range (naming its flag), what
+    /// [`CalibrationSetup::check`] refuses for the base scenario, what the axes file's
+    /// checks refuse ([`check_axes`]), too many universes or a sample larger than the
+    /// factorial, or a shard count above the universes to run.
+    pub fn check(&self) -> Result<CheckedMultiverse, MultiverseError> {
+        let bad = |m: String| Err(MultiverseError::Invalid(m));
+        if self.trials == 0 {
+            return bad("--trials must be at least 1".into());
+        }
+        if self.calibration_trials == 0 {
+            return bad("--calibration-trials must be at least 1".into());
+        }
+        check_sweep_size(1, self.methods.len(), self.trials)
+            .map_err(|e| MultiverseError::Invalid(format!("{e:#}")))?;
+        let calibration =
+            self.calibration_setup(self.base.clone(), self.origin.clone(), String::new());
+        let checked = calibration.check()?;
+        check_axes(&self.axes, &self.base, &self.origin, &self.free)?;
+        let sizes = self.axes.sizes();
+        let universes = select(&sizes, self.sample)?;
+        if let Some(s) = self.shard {
+            check_shards(&format!("--shard {s}"), s.count, universes.len())?;
+        }
+        Ok(CheckedMultiverse {
+            scenario: checked.scenario,
+            methods: checked.methods,
+            factorial: factorial_size(&sizes)?,
+            universes,
+        })
+    }
+}
+
+/// A setup checked by [`MultiverseSetup::check`].
+#[derive(Debug, Clone)]
+pub struct CheckedMultiverse {
+    /// The base scenario, validated.
+    pub scenario: Scenario,
+    /// The methods' canonical (upper-case) names, in order.
+    pub methods: Vec<String>,
+    /// The size of the full factorial.
+    pub factorial: u64,
+    /// The universes the multiverse runs (all shards), in index order.
+    pub universes: Vec<Universe>,
+}
+
+impl CheckedMultiverse {
+    /// The positions (into [`CheckedMultiverse::universes`]) of the universes `shard` runs
+    /// (every one without a shard).
+    pub fn own(&self, shard: Option<Shard>) -> Vec<usize> {
+        match shard {
+            Some(s) => shard_of(self.universes.len(), s),
+            None => (0..self.universes.len()).collect(),
+        }
+    }
+}
+
+/// Why a multiverse cannot start: one line.
+#[derive(Debug, thiserror::Error)]
+pub enum MultiverseError {
+    /// The base scenario, the targets, the free fields or the methods (as a calibration
+    /// checks them).
+    #[error(transparent)]
+    Calibration(#[from] SetupError),
+    /// The axes file does not fit the scenario or the free fields.
+    #[error(transparent)]
+    Axes(#[from] AxesError),
+    /// Too many universes, or a bad sample.
+    #[error(transparent)]
+    Universes(#[from] UniverseError),
+    /// An option out of range.
+    #[error("{0}")]
+    Invalid(String),
+}

@@ -1,0 +1,134 @@
+//! Counts over the universes' records: how many are admissible, and how often each claim
+//! holds (is not significant, does not hold) among the admissible universes, in all and per
+//! alternative of each axis. `multiverse.md` and the terminal summary show them.
+
+use super::record::{Status, UniverseRecord};
+use crate::claims::{CLAIMS, Verdict};
+
+/// The verdicts a claim got in some universes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct VerdictCount {
+    /// Universes counted (each has one verdict, or none when its comparison did not run).
+    pub universes: usize,
+    /// Where the claim holds.
+    pub holds: usize,
+    /// Where it is not significant.
+    pub not_significant: usize,
+    /// Where it does not hold.
+    pub does_not_hold: usize,
+    /// Where it was not tested, does not apply, or no comparison ran.
+    pub other: usize,
+}
+
+impl VerdictCount {
+    /// Counts the verdict of claim `claim` in `record`.
+    pub fn add(&mut self, record: &UniverseRecord, claim: &str) {
+        self.universes += 1;
+        let words = record.claim(claim).map(|c| c.verdict.as_str());
+        match words {
+            Some(w) if w == Verdict::Holds.words() => self.holds += 1,
+            Some(w) if w == Verdict::NotSignificant.words() => self.not_significant += 1,
+            Some(w) if w == Verdict::DoesNotHold.words() => self.does_not_hold += 1,
+            _ => self.other += 1,
+        }
+    }
+}
+
+/// `k/n (p %)`, or `0/0` for none: a share as the report writes it.
+pub fn share(k: usize, n: usize) -> String {
+    if n == 0 {
+        "0/0".into()
+    } else {
+        format!("{k}/{n} ({:.0} %)", 100.0 * k as f64 / n as f64)
+    }
+}
+
+/// The counts of a multiverse.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Tally {
+    /// Universes with a record.
+    pub universes: usize,
+    /// Admissible universes.
+    pub admissible: usize,
+    /// Universes whose choices break a rule.
+    pub invalid: usize,
+    /// Universes that failed (calibration error or failed trials).
+    pub failed: usize,
+    /// Per claim of [`CLAIMS`], the verdicts among the admissible universes.
+    pub claims: Vec<VerdictCount>,
+    /// Per axis, per alternative, per claim: the verdicts among the admissible universes
+    /// that take the alternative (`by_alternative[axis][alt][claim]`).
+    pub by_alternative: Vec<Vec<Vec<VerdictCount>>>,
+}
+
+impl Tally {
+    /// Counts `records` of a multiverse whose axes have `sizes` alternatives.
+    pub fn of(records: &[UniverseRecord], sizes: &[usize]) -> Self {
+        let blank = vec![VerdictCount::default(); CLAIMS.len()];
+        let mut t = Self {
+            universes: records.len(),
+            admissible: 0,
+            invalid: 0,
+            failed: 0,
+            claims: blank.clone(),
+            by_alternative: sizes.iter().map(|&k| vec![blank.clone(); k]).collect(),
+        };
+        for r in records {
+            match r.status {
+                Status::Invalid => t.invalid += 1,
+                Status::Failed => t.failed += 1,
+                Status::Ok => {}
+            }
+            if !r.admissible() {
+                continue;
+            }
+            t.admissible += 1;
+            for (c, claim) in CLAIMS.iter().enumerate() {
+                t.claims[c].add(r, claim.id);
+                for (axis, &alt) in r.choices.iter().enumerate() {
+                    if let Some(count) = t.by_alternative.get_mut(axis).and_then(|a| a.get_mut(alt))
+                    {
+                        count[c].add(r, claim.id);
+                    }
+                }
+            }
+        }
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::multiverse::record::tests::record;
+
+    #[test]
+    fn only_admissible_universes_count_for_the_claims() {
+        let mut a = record(0, &[0, 1], 0.0);
+        let b = record(1, &[1, 1], 0.0);
+        let c = record(2, &[1, 0], 2.0);
+        if let Some(cmp) = a.comparison.as_mut() {
+            cmp.claims[0].verdict = "does not hold".into();
+        }
+        let mut d = record(3, &[0, 0], 0.0);
+        d.status = Status::Invalid;
+        d.calibration = None;
+        d.comparison = None;
+        let t = Tally::of(&[a, b, c, d], &[2, 2]);
+        assert_eq!(
+            (t.universes, t.admissible, t.invalid, t.failed),
+            (4, 2, 1, 0)
+        );
+        let one = t.claims[0];
+        assert_eq!((one.universes, one.holds, one.does_not_hold), (2, 1, 1));
+        // Claim 2 has no effect in these records: counted as other.
+        assert_eq!(t.claims[1].other, 2);
+        // Axis 0: alternative 0 is taken by a (does not hold), 1 by b (holds).
+        assert_eq!(t.by_alternative[0][0][0].does_not_hold, 1);
+        assert_eq!(t.by_alternative[0][1][0].holds, 1);
+        assert_eq!(t.by_alternative[1][0][0].universes, 0);
+        assert_eq!(t.by_alternative[1][1][0].universes, 2);
+        assert_eq!(share(1, 3), "1/3 (33 %)");
+        assert_eq!(share(0, 0), "0/0");
+    }
+}
