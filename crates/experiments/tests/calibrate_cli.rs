@@ -347,3 +347,31 @@ fn bad_input_gives_one_line_errors() {
         assert!(err.starts_with(says), "{err}\nshould start with\n{says}");
     }
 }
+
+#[test]
+fn report_only_names_a_target_of_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("never");
+    let o = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .current_dir(tmp.path())
+        .args(["calibrate", PAPER, "--free", "mission.pickup_s=0.5..2"])
+        .args([
+            "--report-only",
+            "pooled SD of all rescuees",
+            "--out",
+            text(&out),
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(!out.exists());
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with(
+            "error: scenarios/paper-targets.ron (built in): --report-only \"pooled SD of all \
+             rescuees\": no target has that name (targets: \"rounds per trial\""
+        ),
+        "{err}"
+    );
+}

@@ -1,6 +1,7 @@
 //! The loss a calibration minimises: the sum over targets of `(distance outside the band /
 //! the band's half-width)^2`. Exactly 0 when every statistic lies in its band; +inf when one
-//! is NaN or infinite (never NaN, never a crash).
+//! is NaN or infinite (never NaN, never a crash). Targets marked
+//! [`Target::report_only`] add nothing.
 
 use super::targets::Target;
 
@@ -8,6 +9,9 @@ use super::targets::Target;
 /// inside the band (and only there: a distance so small that its square underflows counts
 /// as the smallest positive number), +inf for a NaN or infinite `x`.
 pub fn target_loss(target: &Target, x: f64) -> f64 {
+    if target.report_only {
+        return 0.0;
+    }
     let d = target.band.distance_outside(target.value, x);
     if !d.is_finite() {
         return f64::INFINITY;
@@ -21,7 +25,7 @@ pub fn target_loss(target: &Target, x: f64) -> f64 {
 }
 
 /// The loss of statistics `values` (one per target, in target order): the sum of
-/// [`target_loss`]; in `[0, +inf]`.
+/// [`target_loss`] (0 for a report-only target); in `[0, +inf]`.
 ///
 /// # Panics
 /// If `values` and `targets` differ in length (a programming error).
@@ -49,7 +53,21 @@ mod tests {
             statistic: Statistic::Mean(MetricRef("rounds".into())),
             value,
             band,
+            report_only: false,
         }
+    }
+
+    #[test]
+    fn a_report_only_target_adds_nothing_to_the_loss() {
+        let mut t = target(6.2, Band::PlusMinus(0.5));
+        assert!((target_loss(&t, 8.2) - 9.0).abs() < 1e-9);
+        t.report_only = true;
+        assert_eq!(target_loss(&t, 8.2), 0.0);
+        assert_eq!(target_loss(&t, f64::NAN), 0.0);
+        assert_eq!(
+            loss(&[t, target(1.0, Band::PlusMinus(1.0))], &[99.0, 1.5]),
+            0.0
+        );
     }
 
     #[test]

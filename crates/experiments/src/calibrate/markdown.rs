@@ -127,7 +127,12 @@ fn table(r: &mut String, rows: &[TargetCheck]) {
             num(c.value),
             c.target.value,
             c.target.band,
-            if c.holds { "in" } else { "**out**" }
+            match (c.holds, c.target.report_only) {
+                (true, false) => "in",
+                (false, false) => "**out**",
+                (true, true) => "in (reported only)",
+                (false, true) => "**out** (reported only)",
+            }
         );
     }
     r.push('\n');

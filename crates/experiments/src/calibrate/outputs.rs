@@ -92,7 +92,7 @@ pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
             s.target.name,
             exact(s.value),
             s.target.describe(),
-            if s.holds { "in" } else { "OUT" }
+            s.target.mark(s.value)
         ));
     }
     spec_to_ron(&o.best_spec, &c)

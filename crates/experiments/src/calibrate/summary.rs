@@ -78,7 +78,7 @@ fn table(r: &mut String, rows: &[TargetCheck]) {
             num(c.value),
             c.target.value,
             c.target.band.to_string(),
-            if c.holds { "in" } else { "OUT" }
+            c.target.mark(c.value)
         );
     }
 }

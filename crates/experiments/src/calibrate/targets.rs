@@ -44,12 +44,28 @@ pub struct Target {
     pub value: f64,
     /// Where the statistic is accepted.
     pub band: Band,
+    /// Computed and reported (with whether it lies in its band) but left out of the loss and
+    /// so of admissibility: a target known to conflict with the others, or one watched only
+    /// (`report_only: true` in the file, or `--report-only NAME`); default `false`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub report_only: bool,
 }
 
 impl Target {
     /// Whether `x` lies in the band (boundaries included; never for NaN).
     pub fn holds(&self, x: f64) -> bool {
         self.band.holds(self.value, x)
+    }
+
+    /// `in` or `OUT` for statistic `x` ([`Target::holds`]), followed by `(reported)` for a
+    /// [`Target::report_only`] target: how the tables mark it.
+    pub fn mark(&self, x: f64) -> &'static str {
+        match (self.holds(x), self.report_only) {
+            (true, false) => "in",
+            (false, false) => "OUT",
+            (true, true) => "in (reported)",
+            (false, true) => "OUT (reported)",
+        }
     }
 
     /// The value and band as a table shows them: `6.2 ± 0.6`, `4.69 in [3, 7]`.
@@ -180,6 +196,42 @@ impl Targets {
     /// The targets, in file order.
     pub fn targets(&self) -> &[Target] {
         &self.targets
+    }
+
+    /// Marks the targets called `names` [`Target::report_only`] (`--report-only NAME`).
+    ///
+    /// # Errors
+    /// A name no target has (the message lists the names there are), or every target left
+    /// out of the loss (nothing would be fitted).
+    pub fn set_report_only(&mut self, names: &[String]) -> Result<(), TargetsError> {
+        let fail = |message: String| TargetsError {
+            location: SourceLocation {
+                origin: self.origin.clone(),
+                line_col: None,
+            },
+            field: None,
+            message,
+        };
+        for name in names {
+            let Some(i) = self.targets.iter().position(|t| &t.name == name) else {
+                let known: Vec<String> = self
+                    .targets
+                    .iter()
+                    .map(|t| format!("{:?}", t.name))
+                    .collect();
+                return Err(fail(format!(
+                    "--report-only {name:?}: no target has that name (targets: {})",
+                    known.join(", ")
+                )));
+            };
+            self.targets[i].report_only = true;
+        }
+        if self.targets.iter().all(|t| t.report_only) {
+            return Err(fail(
+                "every target is report-only (--report-only): at least one must be fitted".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// Where they were read from (a path as given, or the origin given to [`Targets::new`]).
@@ -362,6 +414,33 @@ mod tests {
             );
             assert!(!e.contains('\n'), "{e}");
         }
+    }
+
+    #[test]
+    fn targets_are_made_report_only_by_name_or_in_the_file() {
+        let mut t = Targets::parse(GOOD, "t.ron").unwrap();
+        t.set_report_only(&["sd".into()]).unwrap();
+        let only: Vec<bool> = t.targets().iter().map(|t| t.report_only).collect();
+        assert_eq!(only, [false, false, true]);
+        assert_eq!(t.targets()[2].mark(9.0), "OUT (reported)");
+        assert_eq!(t.targets()[0].mark(6.2), "in");
+        let e = t.set_report_only(&["SD".into()]).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "t.ron: --report-only \"SD\": no target has that name (targets: \"rounds\", \
+             \"easy / hard\", \"sd\")"
+        );
+        let e = t
+            .set_report_only(&["rounds".into(), "easy / hard".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at least one must be fitted"), "{e}");
+        let in_file = GOOD.replace(
+            "Between(3.0, 7.0))",
+            "Between(3.0, 7.0), report_only: true)",
+        );
+        let t = Targets::parse(&in_file, "t.ron").unwrap();
+        assert!(t.targets()[2].report_only && !t.targets()[0].report_only);
     }
 
     #[test]

@@ -141,6 +141,7 @@ mod tests {
             statistic: Statistic::Mean(MetricRef("rounds".into())),
             value: 6.0,
             band: Band::PlusMinus(1.0),
+            report_only: false,
         };
         let (lo, hi) = y_range(&t, &[f64::NAN, 2.0, f64::INFINITY, 6.5]);
         assert!(lo < 2.0 && hi > 7.0 && hi < 8.0, "{lo}..{hi}");

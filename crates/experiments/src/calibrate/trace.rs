@@ -341,6 +341,7 @@ mod tests {
                 statistic: Statistic::Mean(MetricRef("rounds".into())),
                 value: 6.2,
                 band: Band::PlusMinus(0.6),
+                report_only: false,
             }],
             free: vec![FreeField::parse("mission.pickup_s=0.5..2").unwrap()],
             methods: vec!["RNE".into()],

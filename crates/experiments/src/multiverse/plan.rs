@@ -177,6 +177,9 @@ impl MultiversePlan {
         let id = &self.identity;
         let mut a = vec!["--axes".to_string(), self.axes_path.clone()];
         a.extend(["--targets".to_string(), self.targets_path.clone()]);
+        for t in id.targets.iter().filter(|t| t.report_only) {
+            a.extend(["--report-only".to_string(), t.name.clone()]);
+        }
         for f in &id.free {
             a.extend(["--free".to_string(), f.to_string()]);
         }
@@ -325,6 +328,7 @@ pub(crate) mod tests {
                     statistic: Statistic::Mean(crate::calibrate::MetricRef("rounds".into())),
                     value: 6.0,
                     band: Band::PlusMinus(1.0),
+                    report_only: false,
                 }],
                 free: vec![
                     FreeField::parse("mission.energy_pct_per_m=0.05..0.2").unwrap(),

@@ -81,6 +81,12 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "TARGETS.ron")]
     pub targets: Option<PathBuf>,
 
+    /// The name of a target to compute and report but leave out of the loss (and so out of
+    /// what "every band holds" means): a target known to conflict with the others, or one
+    /// only watched; repeatable. A file can mark one with `report_only: true`.
+    #[arg(long = "report-only", value_name = "NAME")]
+    pub report_only: Vec<String>,
+
     /// A field to fit and its range: FIELD=LO..HI, or FIELD=LO..HI:log for a log scale (LO >
     /// 0); repeatable, each field once.
     #[arg(
@@ -184,7 +190,8 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
-    let targets = targets_of(args.targets.as_deref())?;
+    let mut targets = targets_of(args.targets.as_deref())?;
+    targets.set_report_only(&args.report_only)?;
     let free = parse_free(&args.free)?;
     let seed = args.seed.unwrap_or(base.sim.seed);
     let command = shell_join(

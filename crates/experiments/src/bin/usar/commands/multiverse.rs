@@ -90,6 +90,12 @@ pub struct MultiverseSpecArgs {
     #[arg(long, value_name = "TARGETS.ron")]
     pub targets: PathBuf,
 
+    /// The name of a target to compute and report but leave out of the loss (and so out of
+    /// what makes a universe admissible): a target known to conflict with the others, or one
+    /// only watched; repeatable. A file can mark one with `report_only: true`.
+    #[arg(long = "report-only", value_name = "NAME")]
+    pub report_only: Vec<String>,
+
     /// A field each universe's calibration fits and its range: FIELD=LO..HI, or
     /// FIELD=LO..HI:log (LO > 0); repeatable, each field once, none set by an axis.
     #[arg(
@@ -200,7 +206,8 @@ pub fn setup_of(
     let text = scenario::read_source(&spec.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
     let axes = Axes::load(&spec.axes)?;
-    let targets = Targets::load(&spec.targets)?;
+    let mut targets = Targets::load(&spec.targets)?;
+    targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);
     Ok(MultiverseSetup {

@@ -111,6 +111,11 @@ pub struct SlurmMultiverseArgs {
     #[arg(long, value_name = "TARGETS.ron", requires = "axes")]
     pub targets: Option<PathBuf>,
 
+    /// With --axes: a target reported but left out of the loss and admissibility
+    /// (repeatable; as `usar multiverse --report-only`).
+    #[arg(long = "report-only", value_name = "NAME", requires = "axes")]
+    pub report_only: Vec<String>,
+
     /// With --axes: a field each universe's calibration fits (repeatable).
     #[arg(
         long,
@@ -187,6 +192,7 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         scenario: s.scenario.clone(),
         axes: m.axes.clone().unwrap_or_default(),
         targets: m.targets.clone().unwrap_or_default(),
+        report_only: m.report_only.clone(),
         free: m.free.clone(),
         methods: s.methods.clone(),
         trials: s.trials,
