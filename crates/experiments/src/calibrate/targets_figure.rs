@@ -1,8 +1,9 @@
-//! `statistics.svg`: one small panel per target, its statistic at every evaluation (dots)
-//! against the evaluation index, with the target's band shaded and the best evaluation
-//! ringed. It shows which targets a search reaches and which it never does: two targets that
-//! are never in their bands at the same evaluation conflict under the free fields searched
-//! (plotters, plain SVG text, as the other figures).
+//! Small multiples of target statistics: one panel per target, its statistic at each point
+//! (dots: blue in the band, grey out of it) against the point's index, with the target's
+//! band shaded and one point ringed. A calibration draws it over its evaluations
+//! (`statistics.svg`: which targets a search reaches and which it never does; two targets
+//! never in their bands at the same evaluation conflict under the free fields searched), a
+//! multiverse over its universes (plotters, plain SVG text, as the other figures).
 
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -17,34 +18,53 @@ const COLUMNS: usize = 4;
 /// Size of one panel, pixels.
 const PANEL: (u32, u32) = (300, 190);
 
-/// The SVG text of `statistics.svg` for `o` (a panel per target, in the targets file's
-/// order).
+/// The SVG text of `statistics.svg` for `o`: [`targets_svg`] over its evaluations, the best
+/// ringed.
 ///
 /// # Errors
 /// If plotters fails to draw.
 pub fn statistics_svg(o: &CalibrationOutcome) -> Result<String> {
-    let targets = &o.header.targets;
+    let values: Vec<Vec<f64>> = (0..o.header.targets.len())
+        .map(|k| o.evaluations.iter().map(|e| e.statistics[k]).collect())
+        .collect();
+    targets_svg(
+        &format!(
+            "Calibration of {}: each target's statistic per evaluation (band shaded, best \
+             ringed)",
+            o.header.scenario
+        ),
+        &o.header.targets,
+        &values,
+        Some(o.best),
+    )
+}
+
+/// A panel per target of `targets` (in order), titled `title`: `values[k][i]` is target `k`'s
+/// statistic at point `i` (NaN and infinite values are left out); point `ring`, if any, is
+/// ringed in every panel.
+///
+/// # Errors
+/// If plotters fails to draw.
+///
+/// # Panics
+/// If `values` has fewer rows than `targets` (a programming error).
+pub fn targets_svg(
+    title: &str,
+    targets: &[Target],
+    values: &[Vec<f64>],
+    ring: Option<usize>,
+) -> Result<String> {
     let rows = targets.len().div_ceil(COLUMNS).max(1);
     let size = (PANEL.0 * COLUMNS as u32, PANEL.1 * rows as u32 + 40);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
-        let (title, body) = root.split_vertically(40);
-        title
-            .titled(
-                &format!(
-                    "Calibration of {}: each target's statistic per evaluation \
-                     (band shaded, best ringed)",
-                    o.header.scenario
-                ),
-                ("sans-serif", 17),
-            )
-            .map_err(draw_err)?;
+        let (head, body) = root.split_vertically(40);
+        head.titled(title, ("sans-serif", 17)).map_err(draw_err)?;
         let panels = body.split_evenly((rows, COLUMNS));
         for (k, (target, area)) in targets.iter().zip(&panels).enumerate() {
-            let values: Vec<f64> = o.evaluations.iter().map(|e| e.statistics[k]).collect();
-            panel(area, target, &values, o.best)?;
+            panel(area, target, &values[k], ring)?;
         }
         root.present().map_err(draw_err)?;
     }
@@ -68,7 +88,7 @@ fn panel(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     target: &Target,
     values: &[f64],
-    best: usize,
+    ring: Option<usize>,
 ) -> Result<()> {
     let n = values.len().max(1) as f64;
     let (y0, y1) = y_range(target, values);
@@ -116,10 +136,13 @@ fn panel(
             Circle::new((i as f64, x), 2, c.filled())
         });
     chart.draw_series(dots).map_err(draw_err)?;
-    if let Some(&x) = values.get(best).filter(|x| x.is_finite()) {
+    if let Some((i, &x)) = ring.and_then(|i| values.get(i).map(|x| (i, x))) {
+        if !x.is_finite() {
+            return Ok(());
+        }
         chart
             .draw_series(std::iter::once(Circle::new(
-                (best as f64, x),
+                (i as f64, x),
                 5,
                 RGBColor(213, 94, 0).stroke_width(2),
             )))

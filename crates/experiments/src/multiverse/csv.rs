@@ -6,8 +6,11 @@
 //! ci_high, p, rival, message` ([`super::columns`]). Each universe has one row with `row =
 //! universe` (its status and message), one `row = metric` per method x metric of its
 //! comparison (`method, metric, n, mean, sd`, as `summary.csv`) and one `row = claim` per
-//! claim of [`crate::claims::CLAIMS`] (`claim, verdict, effect, ci_low, ci_high, p, rival`);
-//! every row repeats the universe's columns up to `status`. Cells a row does not use are
+//! claim of [`crate::claims::CLAIMS`] (`claim, verdict, effect, ci_low, ci_high, p, rival`)
+//! and one `row = target` per calibration target (`metric` the target's name, `mean` its
+//! statistic over the comparison's trials, `verdict` `in`, `OUT`, `in (reported)` or `OUT
+//! (reported)` as [`crate::calibrate::Target::mark`]); every row repeats the universe's
+//! columns up to `status`. Cells a row does not use are
 //! empty; so are undefined numbers (NaN), while an infinite loss is `inf`. Universes come in
 //! index order, methods in `--methods` order, metrics in `summary.csv` order. Numbers are
 //! written in their shortest round-trip form: the file depends on the records alone.
@@ -109,6 +112,17 @@ pub fn multiverse_csv(plan: &MultiversePlan, records: &[UniverseRecord]) -> Resu
                 ],
             ))?;
         }
+        for (t, &x) in plan.identity.targets.iter().zip(&cmp.targets) {
+            w.write_record(row(
+                &ctx,
+                &[
+                    ("row", "target".into()),
+                    ("metric", t.name.clone()),
+                    ("mean", num(x)),
+                    ("verdict", t.mark(x).into()),
+                ],
+            ))?;
+        }
         for c in &cmp.claims {
             w.write_record(row(
                 &ctx,
@@ -136,7 +150,7 @@ mod tests {
     use crate::multiverse::record::tests::record;
 
     #[test]
-    fn rows_per_universe_metric_and_claim_with_the_universes_columns() {
+    fn rows_per_universe_metric_target_and_claim_with_the_universes_columns() {
         let p = plan();
         let mut invalid = record(4, &[1, 1], 0.0);
         invalid.status = Status::Invalid;
@@ -161,15 +175,20 @@ mod tests {
             lines[2],
             "u001,a0,b1,true,0,1.25,0.003,ok,metric,RNE,rescued_total,2,150.5,,,,,,,,,"
         );
+        // The target's statistic over the comparison, marked as the tables mark it.
         assert_eq!(
             lines[3],
-            "u001,a0,b1,true,0,1.25,0.003,ok,claim,,,,,,1,holds,2.5,0.5,4.5,0.01,DIS,"
+            "u001,a0,b1,true,0,1.25,0.003,ok,target,,rounds,,148,,,OUT,,,,,,"
         );
         assert_eq!(
             lines[4],
+            "u001,a0,b1,true,0,1.25,0.003,ok,claim,,,,,,1,holds,2.5,0.5,4.5,0.01,DIS,"
+        );
+        assert_eq!(
+            lines[5],
             "u004,a1,b1,false,,,,invalid,universe,,,,,,,,,,,,,\"set mission.pickup_s=2: rule, with a comma\""
         );
-        assert_eq!(lines.len(), 5);
+        assert_eq!(lines.len(), 6);
         let columns = lines[0].split(',').count();
         let mut r = csv::Reader::from_reader(text.as_bytes());
         for rec in r.records() {

@@ -1,6 +1,7 @@
 //! `multiverse.md`: the command, the set-up (axes with the paper's words, free fields,
 //! targets, trials), the admissible share, per claim the share of admissible universes where
-//! it holds (is not significant, does not hold), a table per axis (per alternative, the share
+//! it holds (is not significant, does not hold), each target's statistic across the universes,
+//! a table per axis (per alternative, the share
 //! of its admissible universes where each claim holds), the figures, and every universe
 //! (choices, admissible, loss, calibrated values, status and message).
 //!
@@ -16,6 +17,9 @@ use super::tally::{Tally, VerdictCount, share};
 use crate::calibrate::progress::loss_text;
 use crate::claims::CLAIMS;
 
+/// The figure of each target's statistic per universe (`super::outputs` draws it).
+pub const TARGETS_FIGURE_FILE: &str = "targets.svg";
+
 /// `text` as a table cell: `|` escaped, line breaks as spaces.
 fn cell(text: &str) -> String {
     text.replace('|', "\\|").replace(['\n', '\r'], " ")
@@ -28,6 +32,7 @@ pub fn multiverse_md(plan: &MultiversePlan, records: &[UniverseRecord]) -> Strin
     let _ = writeln!(r, "# Multiverse: {}\n", plan.identity.scenario);
     set_up(&mut r, plan, records.len());
     claims(&mut r, &tally);
+    targets(&mut r, plan, records);
     by_axis(&mut r, plan, &tally);
     figures(&mut r);
     universes(&mut r, plan, records);
@@ -196,6 +201,61 @@ fn by_axis(r: &mut String, plan: &MultiversePlan, t: &Tally) {
         }
         let _ = writeln!(r);
     }
+}
+
+/// Per target, the compared universes whose statistic (over the comparison's trials) lies in
+/// its band, and the figure of every universe's statistic.
+fn targets(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) {
+    let _ = writeln!(
+        r,
+        "## The targets across the universes
+"
+    );
+    let _ = writeln!(
+        r,
+        "Each target's statistic over each compared universe's comparison trials (at its \
+         calibrated values): the universes in its band. Report-only targets are not part of \
+         admissibility.\n"
+    );
+    let _ = writeln!(
+        r,
+        "| target | band | universes in band | lowest | highest |"
+    );
+    let _ = writeln!(r, "|---|---|---|---|---|");
+    for (k, t) in plan.identity.targets.iter().enumerate() {
+        let xs: Vec<f64> = records
+            .iter()
+            .filter_map(|u| u.comparison.as_ref()?.targets.get(k).copied())
+            .filter(|x| x.is_finite())
+            .collect();
+        let inside = xs.iter().filter(|&&x| t.holds(x)).count();
+        let (lo, hi) = xs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let (lo, hi) = if xs.is_empty() {
+            (String::new(), String::new())
+        } else {
+            (format!("{lo:.3}"), format!("{hi:.3}"))
+        };
+        let name = if t.report_only {
+            format!("{} (report only)", t.name)
+        } else {
+            t.name.clone()
+        };
+        let _ = writeln!(
+            r,
+            "| {} | {} | {} | {lo} | {hi} |",
+            cell(&name),
+            cell(&t.describe()),
+            share(inside, xs.len())
+        );
+    }
+    let _ = writeln!(
+        r,
+        "\n![Each target's statistic per universe]({TARGETS_FIGURE_FILE})\n"
+    );
 }
 
 /// The specification curves.

@@ -1,17 +1,19 @@
 //! The files at the top of a multiverse's output folder, made from its plan and records and
 //! written as one [`FileSet`] (every file staged in a temporary file, then all renamed):
-//! `multiverse.csv`, one `spec_curve_<claim>.svg` per claim, and `multiverse.md`.
+//! `multiverse.csv`, one `spec_curve_<claim>.svg` per claim, `targets.svg` (each target's
+//! statistic per universe, over the comparison's trials) and `multiverse.md`.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 
 use super::csv::multiverse_csv;
-use super::markdown::multiverse_md;
+use super::markdown::{TARGETS_FIGURE_FILE, multiverse_md};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
 use super::spec_curve::{spec_curve_file, spec_curve_svg};
 use crate::atomic::FileSet;
+use crate::calibrate::targets_figure::targets_svg;
 use crate::claims::CLAIMS;
 
 /// The long-form table.
@@ -23,6 +25,7 @@ pub const REPORT_FILE: &str = "multiverse.md";
 pub fn output_files() -> Vec<String> {
     let mut out = vec![CSV_FILE.to_string()];
     out.extend(CLAIMS.iter().map(spec_curve_file));
+    out.push(TARGETS_FIGURE_FILE.to_string());
     out.push(REPORT_FILE.to_string());
     out
 }
@@ -45,8 +48,44 @@ pub fn write_outputs(
         files.stage(&dir.join(spec_curve_file(c)), svg.as_bytes())?;
     }
     files.stage(
+        &dir.join(TARGETS_FIGURE_FILE),
+        targets_figure(plan, records)?.as_bytes(),
+    )?;
+    files.stage(
         &dir.join(REPORT_FILE),
         multiverse_md(plan, records).as_bytes(),
     )?;
     files.commit()
+}
+
+/// `targets.svg`: a panel per target, its statistic over each compared universe's trials (in
+/// universe order; NaN for a universe not compared), its band shaded.
+///
+/// # Errors
+/// If plotters fails to draw.
+fn targets_figure(plan: &MultiversePlan, records: &[UniverseRecord]) -> Result<String> {
+    let targets = &plan.identity.targets;
+    let values: Vec<Vec<f64>> = (0..targets.len())
+        .map(|k| {
+            records
+                .iter()
+                .map(|r| {
+                    r.comparison
+                        .as_ref()
+                        .and_then(|c| c.targets.get(k).copied())
+                        .unwrap_or(f64::NAN)
+                })
+                .collect()
+        })
+        .collect();
+    targets_svg(
+        &format!(
+            "Multiverse of {}: each target's statistic per universe (x: universe in order; \
+             comparison trials, calibrated values)",
+            plan.identity.scenario
+        ),
+        targets,
+        &values,
+        None,
+    )
 }

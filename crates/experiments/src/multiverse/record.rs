@@ -97,6 +97,10 @@ pub struct ComparisonResult {
     pub metrics: Vec<MetricSummary>,
     /// Per claim of [`crate::claims::CLAIMS`], in that order.
     pub claims: Vec<ClaimEffect>,
+    /// Each target's statistic over the comparison's trials (more trials than a calibration
+    /// evaluation holds), in target order (NaN when undefined).
+    #[serde(with = "float_text::vec")]
+    pub targets: Vec<f64>,
 }
 
 /// What one universe produced.
@@ -235,6 +239,7 @@ pub(crate) mod tests {
                     ci_high: 4.5,
                     p: 0.01,
                 }],
+                targets: vec![148.0],
             }),
         }
     }

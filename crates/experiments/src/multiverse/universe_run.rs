@@ -28,7 +28,7 @@ use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::analysis::{Analysis, CellAnalysis};
 use crate::atomic::{remove_stale_temps, write_atomic};
-use crate::calibrate::{CalibrationOutcome, Progress, calibrate};
+use crate::calibrate::{CalibrationOutcome, Progress, Target, calibrate};
 use crate::output::write_outputs;
 use crate::spec_ron::spec_to_ron;
 use crate::sweep::{SweepConfig, SweepOutcome, run_sweep};
@@ -170,7 +170,11 @@ impl UniverseRun<'_> {
         };
         match compare(&cfg) {
             Ok((o, analysis)) => {
-                record.comparison = Some(comparison_result(&o, &analysis.cells[0]));
+                record.comparison = Some(comparison_result(
+                    &o,
+                    &analysis.cells[0],
+                    self.setup.targets.targets(),
+                ));
                 let failures: Vec<String> = o
                     .failures()
                     .map(|f| format!("{} trial {}: {}", f.method, f.trial, f.message))
@@ -212,8 +216,9 @@ fn calibration_result(c: &CalibrationOutcome) -> CalibrationResult {
     }
 }
 
-/// What the record keeps of a comparison: every method x metric summary and every claim.
-fn comparison_result(o: &SweepOutcome, a: &CellAnalysis) -> ComparisonResult {
+/// What the record keeps of a comparison: every method x metric summary, every claim, and
+/// each of `targets`' statistics over its trials.
+fn comparison_result(o: &SweepOutcome, a: &CellAnalysis, targets: &[Target]) -> ComparisonResult {
     let metrics = a
         .methods
         .iter()
@@ -235,6 +240,10 @@ fn comparison_result(o: &SweepOutcome, a: &CellAnalysis) -> ComparisonResult {
         trials_failed: o.cells[0].failures.len(),
         metrics,
         claims: a.claims.iter().map(claim_effect).collect(),
+        targets: targets
+            .iter()
+            .map(|t| t.value_of(&o.cells[0].results))
+            .collect(),
     }
 }
 
