@@ -84,13 +84,41 @@ fn loss_zero_stops_at_once_and_writes_every_file() {
             "calibrated.ron",
             "trace.csv",
             "calibration.md",
-            "convergence.svg"
+            "convergence.svg",
+            "statistics.svg"
         ]
     );
     assert!(
         o.files
             .iter()
             .all(|p| p.starts_with(dir.path()) && p.is_file())
+    );
+}
+
+#[test]
+fn start_mid_starts_at_the_middle_of_the_range_and_is_another_calibration() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = CalibrationSetup {
+        start_mid: true,
+        ..setup(&["mission.pickup_s=0.5..2"], targets(None), 10)
+    };
+    let o = calibrate(&s, dir.path(), Progress::off()).unwrap();
+    assert_eq!(o.best_values(), [1.25]);
+    assert!(
+        o.header.search.ends_with("start: the ranges' middles"),
+        "{}",
+        o.header.search
+    );
+    // The same folder refuses the calibration that starts from the scenario's values.
+    let e = calibrate(
+        &setup(&["mission.pickup_s=0.5..2"], targets(None), 10),
+        dir.path(),
+        Progress::off(),
+    )
+    .unwrap_err();
+    assert!(
+        format!("{e:#}").contains("holds another calibration"),
+        "{e:#}"
     );
 }
 

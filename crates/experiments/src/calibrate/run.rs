@@ -74,7 +74,13 @@ pub fn calibrate(
         .free
         .iter()
         .zip(&checked.base_values)
-        .map(|(f, base)| f.start(*base))
+        .map(|(f, base)| {
+            if setup.start_mid {
+                f.midpoint()
+            } else {
+                f.start(*base)
+            }
+        })
         .collect();
     let search = search(setup, &evaluator, trace, recorded, &starts, &progress, t0)?;
     let evaluations = search.sequence;
@@ -207,7 +213,11 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         base_seed: setup.base_seed,
         duration_s: setup.duration_s,
         digits: setup.digits,
-        search: search_text(),
+        search: if setup.start_mid {
+            format!("{}; start: the ranges' middles", search_text())
+        } else {
+            search_text()
+        },
     })
 }
 

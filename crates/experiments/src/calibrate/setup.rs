@@ -78,6 +78,10 @@ pub struct CalibrationSetup {
     /// Discard a trace of another calibration (and its outputs) in the output folder instead
     /// of refusing to start.
     pub overwrite: bool,
+    /// Start the search at the middle of each free range ([`super::FreeField::midpoint`])
+    /// instead of the scenario's own values (default `false`): a fit that does not depend on
+    /// the values the file holds (`--start-mid`). Part of the calibration's identity.
+    pub start_mid: bool,
     /// How the calibration was asked for, quoted in `calibrated.ron` and `calibration.md`
     /// (`usar calibrate` puts its command line; default a description of the call).
     pub command: String,
@@ -119,6 +123,7 @@ impl CalibrationSetup {
             check_seed: default_check_seed(seed),
             check_trials: DEFAULT_CHECK_TRIALS,
             overwrite: false,
+            start_mid: false,
             date: None,
             base,
         }

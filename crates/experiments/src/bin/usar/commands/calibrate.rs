@@ -87,6 +87,11 @@ pub struct CalibrateArgs {
     #[arg(long = "report-only", value_name = "NAME")]
     pub report_only: Vec<String>,
 
+    /// Start the search at the middle of each free range (geometric for a log range) instead
+    /// of the scenario's own values: a fit that does not depend on the values the file holds.
+    #[arg(long)]
+    pub start_mid: bool,
+
     /// A field to fit and its range: FIELD=LO..HI, or FIELD=LO..HI:log for a log scale (LO >
     /// 0); repeatable, each field once.
     #[arg(
@@ -211,6 +216,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
         check_seed: args.check_seed.unwrap_or(default_check_seed(seed)),
         check_trials: args.check_trials,
         overwrite: args.overwrite,
+        start_mid: args.start_mid,
         command,
         date: source_date()?,
         ..CalibrationSetup::new(base, origin, targets, free)
