@@ -7,7 +7,7 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use common::{STOPPED, ok, read, read_text, stderr, usar_in};
@@ -53,6 +53,15 @@ const TOP_FILES: [&str; 7] = [
     "spec_curve_4a.svg",
     "spec_curve_4b.svg",
 ];
+
+/// Two empty working folders `names` under `root`, for two runs to compare.
+fn working_dirs(root: &Path, names: [&str; 2]) -> [PathBuf; 2] {
+    names.map(|n| {
+        let d = root.join(n);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    })
+}
 
 /// `usar multiverse CORRIDOR OPTIONS --out out EXTRA` in `cwd`.
 fn multiverse_in(cwd: &Path, extra: &[&str]) -> Output {
@@ -187,9 +196,7 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
 #[test]
 fn a_killed_multiverse_resumes_to_the_files_of_an_uninterrupted_run_on_another_thread_count() {
     let tmp = tempfile::tempdir().unwrap();
-    let (whole, killed) = (tmp.path().join("whole"), tmp.path().join("killed"));
-    std::fs::create_dir_all(&whole).unwrap();
-    std::fs::create_dir_all(&killed).unwrap();
+    let [whole, killed] = working_dirs(tmp.path(), ["whole", "killed"]);
     ok(&multiverse_in(&whole, &["--threads", "2"]));
     // Calibration evaluations and comparison trials count together: 3 stops in u000's
     // comparison; 4 more (7) at u001's last calibration evaluation, before its outputs.
@@ -213,9 +220,7 @@ fn a_killed_multiverse_resumes_to_the_files_of_an_uninterrupted_run_on_another_t
 #[test]
 fn failing_trials_fail_their_universes_only_and_a_rerun_retries_them() {
     let tmp = tempfile::tempdir().unwrap();
-    let (whole, failing) = (tmp.path().join("whole"), tmp.path().join("failing"));
-    std::fs::create_dir_all(&whole).unwrap();
-    std::fs::create_dir_all(&failing).unwrap();
+    let [whole, failing] = working_dirs(tmp.path(), ["whole", "failing"]);
     ok(&multiverse_in(&whole, &[]));
     let o = multiverse_in(&failing, &["--fail-trial", "dis:1"]);
     let e = stderr(&o);
@@ -249,9 +254,7 @@ fn failing_trials_fail_their_universes_only_and_a_rerun_retries_them() {
 #[test]
 fn shards_merged_give_the_files_of_one_run() {
     let tmp = tempfile::tempdir().unwrap();
-    let (one, split) = (tmp.path().join("one"), tmp.path().join("split"));
-    std::fs::create_dir_all(&one).unwrap();
-    std::fs::create_dir_all(&split).unwrap();
+    let [one, split] = working_dirs(tmp.path(), ["one", "split"]);
     ok(&multiverse_in(&one, &[]));
     let shard = ok(&multiverse_in(&split, &["--shard", "1/2"]));
     assert!(

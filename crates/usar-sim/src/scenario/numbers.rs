@@ -44,7 +44,7 @@ macro_rules! bounded {
                 } else {
                     Err(RangeError(format!(
                         concat!("expected ", $expect, ", found {}"),
-                        super::model::number_text(value)
+                        rne_core::number_text(value)
                     )))
                 }
             }
