@@ -8,6 +8,7 @@
 //! `docs/scenario-format.md`.
 
 pub mod choices;
+mod context;
 mod error;
 mod generate;
 mod index;

@@ -9,9 +9,10 @@
 //! positions against debris (ground robots) and against each other (same locomotion);
 //! rescuees; radiation zones; cross-field parameter rules.
 
-use nalgebra::{Point2, Vector2};
+use nalgebra::Vector2;
 
-use super::error::{ScenarioError, SourceLocation};
+use super::context::{Ctx, R, disc_inside, fmt_arena, fmt_pt};
+use super::error::ScenarioError;
 use super::generate::{
     Protected, Start, debris_index, expand_rescuees, generate_debris_field, start_positions,
 };
@@ -19,166 +20,13 @@ use super::limits::{
     MAX_DEBRIS, MAX_RESCUEES, MAX_REST_STATIONS, check_derived, check_kind, check_lists,
     check_sweeps,
 };
-use super::locate::SourceMap;
 use super::model::{
     Circle, Debris, Locomotion, PointM, RadiationZone, Rect, RobotKind, RobotStart, Scenario, Task,
     number_text, number_text_3dp,
 };
 use super::params::{Arena, ClampedNormal};
 use super::shape::DebrisShape;
-use super::spec::{
-    CircleSpec, DebrisSpec, KindSpec, RectSpec, RestStationsSpec, ScenarioSpec, TaskSpec, XyM,
-};
-
-pub(crate) type R<T> = Result<T, ScenarioError>;
-
-/// Error context: the origin name and, when validating a file's text, its source map.
-pub(crate) struct Ctx<'a> {
-    pub(crate) origin: &'a str,
-    pub(crate) map: Option<&'a SourceMap>,
-}
-
-impl Ctx<'_> {
-    /// An [`ScenarioError::Invalid`] at `field` (positioned at the field or its nearest
-    /// ancestor in the source).
-    pub(crate) fn err(
-        &self,
-        field: impl Into<String>,
-        message: impl Into<String>,
-    ) -> ScenarioError {
-        let field = field.into();
-        ScenarioError::Invalid {
-            location: SourceLocation {
-                origin: self.origin.to_owned(),
-                line_col: self.map.and_then(|m| m.line_col_of(&field)),
-            },
-            field,
-            message: message.into(),
-        }
-    }
-
-    fn finite(&self, field: &str, v: f64) -> R<f64> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.err(field, format!("expected a finite number, found {v}")))
-        }
-    }
-
-    pub(crate) fn non_negative(&self, field: &str, v: f64) -> R<f64> {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err(self.err(
-                field,
-                format!("expected a finite number >= 0, found {}", number_text(v)),
-            ))
-        }
-    }
-
-    pub(crate) fn in_range(&self, field: &str, v: f64, lo: f64, hi: f64) -> R<f64> {
-        if v.is_finite() && v >= lo && v <= hi {
-            Ok(v)
-        } else {
-            Err(self.err(
-                field,
-                format!(
-                    "expected a number in [{}, {}], found {}",
-                    number_text(lo),
-                    number_text(hi),
-                    number_text(v)
-                ),
-            ))
-        }
-    }
-
-    pub(crate) fn point(&self, field: &str, xy: &XyM) -> R<PointM> {
-        if xy.iter().all(|v| v.is_finite()) {
-            Ok(Point2::new(xy[0], xy[1]))
-        } else {
-            Err(self.err(
-                field,
-                format!("expected finite coordinates, found ({}, {})", xy[0], xy[1]),
-            ))
-        }
-    }
-
-    fn point_in_arena(&self, field: &str, xy: &XyM, arena: &Arena) -> R<PointM> {
-        let p = self.point(field, xy)?;
-        if arena.contains(&p) {
-            Ok(p)
-        } else {
-            Err(self.err(
-                field,
-                format!(
-                    "point {} is outside the arena {}",
-                    fmt_pt(&p),
-                    fmt_arena(arena)
-                ),
-            ))
-        }
-    }
-
-    pub(crate) fn rect_in_arena(&self, field: &str, spec: &RectSpec, arena: &Arena) -> R<Rect> {
-        let min = self.point(&format!("{field}.min_m"), &spec.min_m)?;
-        let max = self.point(&format!("{field}.max_m"), &spec.max_m)?;
-        if !(max.x > min.x && max.y > min.y) {
-            return Err(self.err(
-                field,
-                format!(
-                    "expected max_m > min_m in both coordinates, found min_m {} and max_m {}",
-                    fmt_pt(&min),
-                    fmt_pt(&max)
-                ),
-            ));
-        }
-        if !(arena.contains(&min) && arena.contains(&max)) {
-            return Err(self.err(
-                field,
-                format!(
-                    "rectangle {} - {} is not inside the arena {}",
-                    fmt_pt(&min),
-                    fmt_pt(&max),
-                    fmt_arena(arena)
-                ),
-            ));
-        }
-        Ok(Rect { min, max })
-    }
-
-    fn circle_in_arena(&self, field: &str, spec: &CircleSpec, arena: &Arena) -> R<Circle> {
-        let center = self.point(&format!("{field}.center_m"), &spec.center_m)?;
-        let radius_m = spec.radius_m.get();
-        if !disc_inside(arena, &center, radius_m) {
-            return Err(self.err(
-                field,
-                format!(
-                    "circle at {} with radius {} m is not inside the arena {}",
-                    fmt_pt(&center),
-                    number_text(radius_m),
-                    fmt_arena(arena)
-                ),
-            ));
-        }
-        Ok(Circle { center, radius_m })
-    }
-}
-
-pub(crate) fn fmt_pt(p: &PointM) -> String {
-    format!("({}, {})", number_text(p.x), number_text(p.y))
-}
-
-fn fmt_arena(a: &Arena) -> String {
-    format!(
-        "[0, {}] x [0, {}] m",
-        number_text(a.width()),
-        number_text(a.height())
-    )
-}
-
-fn disc_inside(arena: &Arena, c: &PointM, r: f64) -> bool {
-    c.x - r >= 0.0 && c.y - r >= 0.0 && c.x + r <= arena.width() && c.y + r <= arena.height()
-}
+use super::spec::{CircleSpec, DebrisSpec, KindSpec, RestStationsSpec, ScenarioSpec, TaskSpec};
 
 impl ScenarioSpec {
     /// Checks every rule and builds the validated [`Scenario`] (grid layouts, start rows and
