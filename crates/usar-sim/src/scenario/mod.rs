@@ -7,6 +7,15 @@
 //! file, line, column and field path. The file format is documented in
 //! `docs/scenario-format.md`.
 
+mod check_clear_places;
+mod check_debris;
+mod check_kinds;
+mod check_names;
+mod check_params;
+mod check_radiation;
+mod check_rest_stations;
+mod check_starts;
+mod check_tasks;
 pub mod choices;
 mod context;
 mod error;
@@ -22,6 +31,8 @@ mod shape;
 mod spec;
 mod validate;
 
+pub use check_names::RESERVED_TASK_NAME;
+pub use check_starts::START_TOLERANCE;
 pub use choices::*;
 pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
@@ -31,5 +42,3 @@ pub use params::*;
 pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;
-pub use validate::RESERVED_TASK_NAME;
-pub use validate::START_TOLERANCE;
