@@ -36,6 +36,7 @@ mod simulation;
 mod state;
 mod sweep;
 
+pub use crate::scenario::{sweep_point_count, sweep_spacing_m};
 pub use decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 pub use error::MissionError;
 pub use events::{MissionEvent, MissionEventKind};
@@ -50,4 +51,4 @@ pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
 pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};
 pub use state::MissionState;
-pub use sweep::{sweep_point_count, sweep_spacing_m, sweep_waypoints};
+pub use sweep::sweep_waypoints;
