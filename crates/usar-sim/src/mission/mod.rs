@@ -32,9 +32,9 @@ mod rescue_capacity;
 mod rescuees;
 mod robot;
 mod rounds;
+mod search_pattern;
 mod simulation;
 mod state;
-mod sweep;
 
 pub use crate::scenario::{sweep_point_count, sweep_spacing_m};
 pub use decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
@@ -49,6 +49,6 @@ pub use recorder::{Recorder, TrialInfo};
 pub use rescue_capacity::{NoRescue, TaskWithoutRescue, tasks_without_rescue};
 pub use rescuees::{RescueeField, RescueeStatus};
 pub use robot::{MissionRobot, Phase};
+pub use search_pattern::sweep_waypoints;
 pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};
 pub use state::MissionState;
-pub use sweep::sweep_waypoints;

@@ -6,7 +6,7 @@ use super::initial::InitialLevels;
 use super::recorder::Recorder;
 use super::rescuees::RescueeField;
 use super::robot::{MissionRobot, Phase};
-use super::sweep::sweep_waypoints;
+use super::search_pattern::sweep_waypoints;
 use crate::scenario::{PointM, Scenario, sweep_spacing_m};
 
 /// Everything the mission layer knows about a trial besides the world: the team, the rescuees

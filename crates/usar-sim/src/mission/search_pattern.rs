@@ -1,5 +1,10 @@
-//! The blind search of a group without an observer: a lawn-mower pattern over its search area
+//! The blind search's route: the waypoints of a lawn-mower search pattern over a search area
 //! (paper, section IV: without an observer a group searches on its own, 30 % slower).
+//!
+//! A search pattern, not an experiment sweep. The pattern's row spacing and waypoint count
+//! ([`sweep_spacing_m`](crate::scenario::sweep_spacing_m), [`sweep_point_count`]) are
+//! scenario data, defined in `scenario::search_pattern` (validation bounds them) and
+//! re-exported by this module's parent.
 
 use crate::scenario::{PointM, Rect, SweepPattern, sweep_point_count};
 
