@@ -28,6 +28,7 @@ pub mod combinations;
 pub mod distribution;
 pub mod error;
 pub mod grouping;
+pub mod message_text;
 pub mod needs;
 pub mod rne;
 mod vector_newtype;
@@ -39,7 +40,8 @@ pub use distribution::{
     Alignment, DEFAULT_RELATIVE_EPSILON, DISTRIBUTION_SUM_TOLERANCE, Distribution,
     DistributionOptions, Smoothing, group_distribution, needs_distribution,
 };
-pub use error::{Result, RneError, number_text, one_line_text, path_text};
+pub use error::{Result, RneError};
+pub use message_text::{number_text, one_line_text, path_text};
 pub use needs::{NeedsMatrix, NeedsVector, Weights};
 pub use rne::{LogBase, RneOptions, TrustModel, relative_entropy, rne};
 

@@ -90,7 +90,7 @@ impl fmt::Display for LogBase {
         if *self == Self::E {
             write!(f, "e")
         } else {
-            write!(f, "{}", crate::error::number_text(self.0))
+            write!(f, "{}", crate::message_text::number_text(self.0))
         }
     }
 }

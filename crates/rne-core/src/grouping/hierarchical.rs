@@ -10,6 +10,7 @@ use crate::grouping::method::GroupingMethod;
 use crate::grouping::outcome::HierarchicalOutcome;
 use crate::grouping::request::GroupingRequest;
 use crate::grouping::robot::RobotSnapshot;
+use crate::grouping::score_tie::beats;
 use crate::grouping::split_heuristic::heuristic_split;
 use crate::grouping::split_scorer::SplitScorer;
 use crate::needs::{NeedsMatrix, NeedsVector};
@@ -18,14 +19,6 @@ use crate::rne::TrustModel;
 /// Default of [`HierarchicalRne::exact_split_limit`]: 200,000 splits per kind (a kind of up
 /// to 20 robots is always split exactly: `C(20, 10) / 2 = 92,378`).
 pub const DEFAULT_EXACT_SPLIT_LIMIT: u64 = 200_000;
-
-/// Relative tolerance under which two scores count as tied (the earlier candidate wins).
-pub(crate) const TIE_TOLERANCE: f64 = 1e-12;
-
-/// `true` if `candidate` beats `best` by more than the tie tolerance.
-pub(crate) fn beats(candidate: f64, best: f64) -> bool {
-    candidate > best + TIE_TOLERANCE * best.abs().max(1.0)
-}
 
 /// RNE trust-based grouping, paper Algorithm 1 (with Algorithms 2-4), generalised to `K`
 /// tasks by recursive bisection down the difficulty order.

@@ -17,6 +17,7 @@ mod ranked;
 mod registry;
 mod request;
 mod robot;
+mod score_tie;
 mod split_heuristic;
 mod split_scorer;
 mod two_way;

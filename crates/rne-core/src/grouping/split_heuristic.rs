@@ -2,7 +2,7 @@
 //! pairwise swaps (Kernighan-Lin style) until no swap increases the between-RNE `J`.
 
 use crate::combinations::Bipartition;
-use crate::grouping::hierarchical::beats;
+use crate::grouping::score_tie::beats;
 use crate::grouping::split_scorer::{Scratch, SplitScorer};
 
 /// Kinds of up to this many robots improve every initial split by swaps; larger kinds only

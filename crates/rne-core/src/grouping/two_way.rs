@@ -2,10 +2,11 @@
 //! kinds, assign) on a (sub)team with two sides, the hardest remaining task and the rest.
 
 use crate::error::{Result, RneError};
-use crate::grouping::hierarchical::{HierarchicalRne, beats};
+use crate::grouping::hierarchical::HierarchicalRne;
 use crate::grouping::outcome::Bisection;
 use crate::grouping::request::GroupingRequest;
 use crate::grouping::robot::RobotSnapshot;
+use crate::grouping::score_tie::beats;
 
 /// The side of a bisection a subgroup is bound for. With two tasks, `Rest` is the paper's
 /// easy task and `Task` its hard task.

@@ -285,7 +285,7 @@ fn sweep_stalled(now: f64, r: &mut MissionRobot, d: f64) -> bool {
 /// left or right edge, is reached only at it (the world's smallest tolerance,
 /// [`World::set_goal_within`]); every other waypoint within `navigation.waypoint_tolerance_m`.
 /// A robot that turned within the tolerance of a row's end cut the corner and missed rescuees
-/// along the edges (see [`sweep_waypoints`](super::sweep::sweep_waypoints)).
+/// along the edges (see [`sweep_waypoints`](super::search_pattern::sweep_waypoints)).
 fn next_sweep_waypoint(
     world: &mut World,
     st: &mut MissionState,

@@ -6,8 +6,8 @@ use super::initial::InitialLevels;
 use super::recorder::Recorder;
 use super::rescuees::RescueeField;
 use super::robot::{MissionRobot, Phase};
-use super::sweep::{sweep_spacing_m, sweep_waypoints};
-use crate::scenario::{PointM, Scenario};
+use super::search_pattern::sweep_waypoints;
+use crate::scenario::{PointM, Scenario, sweep_spacing_m};
 
 /// Everything the mission layer knows about a trial besides the world: the team, the rescuees
 /// of each task, the blind-search patterns, the rounds and the metrics so far. Per-task vectors

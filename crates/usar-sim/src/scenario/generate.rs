@@ -7,13 +7,13 @@ use nalgebra::{Point2, Vector2};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::context::{Ctx, R, fmt_pt};
 use super::index::BoxIndex;
 use super::limits::MAX_DEBRIS;
 use super::model::{Circle, Debris, PointM, Rect, RobotKind, number_text};
 use super::params::Arena;
 use super::shape::DebrisShape;
 use super::spec::{DebrisFieldSpec, DebrisShapeSpec, RescueeLayoutSpec, StartsSpec, XyM};
-use super::validate::{Ctx, R, fmt_pt};
 
 /// Most rescuees one grid layout may expand to.
 pub(crate) const MAX_GRID_POINTS: usize = 1_000_000;

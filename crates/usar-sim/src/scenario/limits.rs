@@ -7,10 +7,11 @@
 //! Source: issue 11 (hardening), classes 1-3; the numbers are engineering choices well above
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
+use super::context::{Ctx, R};
 use super::model::{Locomotion, RobotKind, Scenario, count_text, number_text};
 use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimParams};
+use super::search_pattern::{sweep_point_count, sweep_spacing_m};
 use super::spec::KindSpec;
-use super::validate::{Ctx, R};
 
 /// Longest scenario file, bytes (64 MiB): the shipped 1,000-robot scenario is under 10 KB,
 /// and a file listing every start, debris shape and rescuee up to [`MAX_ROBOTS`],
@@ -28,7 +29,7 @@ pub const MAX_ROBOTS: usize = 10_000;
 /// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).
 pub const MAX_RESCUEES: usize = 1_000_000;
 /// Most waypoints of a blind group's lawn-mower sweep over one search area
-/// (`mission::sweep_point_count`: about `(width / spacing) * (height / spacing)`).
+/// ([`sweep_point_count`]: about `(width / spacing) * (height / spacing)`).
 pub const MAX_SWEEP_POINTS: f64 = 1_000_000.0;
 /// Most debris shapes, listed and generated together.
 pub const MAX_DEBRIS: usize = 10_000;
@@ -325,14 +326,13 @@ fn check_closing_speeds(ctx: &Ctx<'_>, kinds: &[RobotKind], dt_s: f64) -> R<()> 
     Ok(())
 }
 
-/// Every task's blind-search sweep (`mission::sweep_waypoints` at `mission::sweep_spacing_m`)
+/// Every task's blind-search sweep (`mission::sweep_waypoints` at [`sweep_spacing_m`])
 /// against [`MAX_SWEEP_POINTS`]; blamed on `mission.sweep_spacing_m` when the file sets it,
 /// else on the `observing_range_m` of the ground kind whose detection width sets the default.
 pub(crate) fn check_sweeps(ctx: &Ctx<'_>, s: &Scenario) -> R<()> {
-    let spacing_m = crate::mission::sweep_spacing_m(s);
+    let spacing_m = sweep_spacing_m(s);
     for t in &s.tasks {
-        let points =
-            crate::mission::sweep_point_count(&t.search_area, spacing_m, s.mission.sweep_pattern);
+        let points = sweep_point_count(&t.search_area, spacing_m, s.mission.sweep_pattern);
         if points > MAX_SWEEP_POINTS {
             let field = match s.mission.sweep_spacing_m {
                 Some(_) => "mission.sweep_spacing_m".to_owned(),

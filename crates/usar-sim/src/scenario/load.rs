@@ -6,12 +6,13 @@ use std::path::Path;
 
 use ron::error::{Error as RonError, SpannedError};
 
+use super::context::Ctx;
 use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
 use super::model::{Scenario, number_text, path_text};
 use super::spec::ScenarioSpec;
-use super::validate::{Ctx, validate};
+use super::validate::validate;
 
 /// Loads and validates the scenario file at `path` (RON, format in `docs/scenario-format.md`).
 /// Errors name the path as given ([`path_text`]: on one line).

@@ -150,7 +150,7 @@ pub struct MissionParams {
     pub refresh: Refresh,
     /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
     /// default `None`: the narrowest ground detection width `2 * (body_radius_m +
-    /// observing_range_m)` (see `mission::sweep_spacing_m`), so a sweep covers the area.
+    /// observing_range_m)` (see `scenario::sweep_spacing_m`), so a sweep covers the area.
     pub sweep_spacing_m: Option<Positive>,
     /// The blind search's pattern; default `EdgeToEdge` (`CentreToCentre` is the defective
     /// pattern of the model before 2026-11-24).
@@ -224,6 +224,16 @@ impl MissionParams {
     }
 }
 
+/// Default of `navigation.stall_replan_s`: a ground robot with a goal, outside every collision
+/// list, whose remaining path length has not fallen [`STALL_PROGRESS_M`] below its best value
+/// for this long re-plans around the robots standing within its sensing range (a detour),
+/// seconds. (Robots in a list are left to the resolver's deadlock rotation.) Used by the
+/// world's path following; re-exported as `world::STALL_REPLAN_S`.
+pub const STALL_REPLAN_S: f64 = 3.0;
+/// Progress that restarts a ground robot's no-progress clock (see [`STALL_REPLAN_S`]), metres.
+/// Used by the world's path following; re-exported as `world::STALL_PROGRESS_M`.
+pub const STALL_PROGRESS_M: f32 = 0.05;
+
 /// Path planning of ground robots over an occupancy grid.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -248,7 +258,7 @@ pub struct NavigationParams {
     /// A ground robot outside every collision list whose remaining path has not shortened for
     /// this long re-plans around the robots standing near it (a detour), seconds, > 0;
     /// `None` switches detours off (the model `paper.ron` was calibrated with); default
-    /// `Some(3.0)` ([`crate::world::STALL_REPLAN_S`]).
+    /// `Some(3.0)` ([`STALL_REPLAN_S`]).
     pub stall_replan_s: Option<Positive>,
 }
 
@@ -259,7 +269,7 @@ impl Default for NavigationParams {
             clearance_m: NonNegative::known(0.1),
             waypoint_tolerance_m: Positive::known(0.3),
             shared_goal_fields: true,
-            stall_replan_s: Some(Positive::known(crate::world::STALL_REPLAN_S)),
+            stall_replan_s: Some(Positive::known(STALL_REPLAN_S)),
         }
     }
 }

@@ -25,13 +25,9 @@ pub const PATH_CHECK_MAX_M: f32 = 4.0;
 /// perpendicular to the next leg and in sight of the next waypoint, counts the corner as
 /// passed, metres.
 pub const CORNER_PASS_M: f32 = 2.0;
-/// Default of `navigation.stall_replan_s`: a ground robot with a goal, outside every collision
-/// list, whose remaining path length has not fallen [`STALL_PROGRESS_M`] below its best value
-/// for this long re-plans around the robots standing within its sensing range (a detour),
-/// seconds. (Robots in a list are left to the resolver's deadlock rotation.)
-pub const STALL_REPLAN_S: f64 = 3.0;
-/// Progress that restarts a ground robot's no-progress clock (see [`STALL_REPLAN_S`]), metres.
-pub const STALL_PROGRESS_M: f32 = 0.05;
+/// The no-progress clock of detours: its default length and the progress that restarts it,
+/// scenario defaults (defined in `scenario::params`, re-exported here and by `world`).
+pub use crate::scenario::{STALL_PROGRESS_M, STALL_REPLAN_S};
 /// A detour first plans only to its rejoin point: the point of the robot's path this far
 /// beyond the farthest standing robot it goes round (path length from the robot, at least the
 /// straight distance to that robot's disc rim plus this), metres (see `docs/world-model.md`,

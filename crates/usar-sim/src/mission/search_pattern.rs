@@ -1,7 +1,12 @@
-//! The blind search of a group without an observer: a lawn-mower pattern over its search area
+//! The blind search's route: the waypoints of a lawn-mower search pattern over a search area
 //! (paper, section IV: without an observer a group searches on its own, 30 % slower).
+//!
+//! A search pattern, not an experiment sweep. The pattern's row spacing and waypoint count
+//! ([`sweep_spacing_m`](crate::scenario::sweep_spacing_m), [`sweep_point_count`]) are
+//! scenario data, defined in `scenario::search_pattern` (validation bounds them) and
+//! re-exported by this module's parent.
 
-use crate::scenario::{Locomotion, PointM, Rect, Scenario, SweepPattern};
+use crate::scenario::{PointM, Rect, SweepPattern, sweep_point_count};
 
 /// Blind-search waypoints over a search area: a lawn-mower pattern of `ceil(height /
 /// spacing_m)` rows (at least 1) at the centres of equal horizontal strips, alternating
@@ -57,38 +62,6 @@ pub fn sweep_waypoints(area: &Rect, spacing_m: f64, pattern: SweepPattern) -> Ve
         }
     }
     out
-}
-
-/// How many waypoints [`sweep_waypoints`] makes over `area` at `spacing_m`: `(ceil(width /
-/// spacing_m) + 1) * ceil(height / spacing_m)` for `EdgeToEdge`, `ceil(width / spacing_m) *
-/// ceil(height / spacing_m)` for `CentreToCentre`, each ceiling at least 1; an `f64` so that
-/// it cannot overflow (`inf` or `NaN` for a spacing that is not finite and `> 0`).
-pub fn sweep_point_count(area: &Rect, spacing_m: f64, pattern: SweepPattern) -> f64 {
-    let (w, h) = (area.max.x - area.min.x, area.max.y - area.min.y);
-    let cols = (w / spacing_m).ceil().max(1.0);
-    let per_row = match pattern {
-        SweepPattern::EdgeToEdge => cols + 1.0,
-        SweepPattern::CentreToCentre => cols,
-    };
-    per_row * (h / spacing_m).ceil().max(1.0)
-}
-
-/// The spacing of a scenario's blind-search rows, metres: `mission.sweep_spacing_m` if set,
-/// otherwise the narrowest detection width of its ground kinds, `2 * (body_radius_m +
-/// observing_range_m)` (at full HP), so that a sweep detects every rescuee of the area.
-pub fn sweep_spacing_m(scenario: &Scenario) -> f64 {
-    scenario.mission.sweep_spacing_m.map_or_else(
-        || {
-            scenario
-                .kinds
-                .iter()
-                .filter(|k| k.locomotion == Locomotion::Ground)
-                .map(|k| 2.0 * (k.body_radius_m + k.observing_range_m))
-                .fold(f64::INFINITY, f64::min)
-                .min(f64::MAX)
-        },
-        |s| s.get(),
-    )
 }
 
 #[cfg(test)]

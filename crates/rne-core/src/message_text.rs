@@ -1,0 +1,90 @@
+//! How every crate's messages write numbers, text and paths: short, on one line, whatever an
+//! input holds.
+//!
+//! [`number_text`] switches to scientific notation outside `[1e-6, 1e15)`; [`one_line_text`]
+//! and [`path_text`] escape line breaks and control characters. The error types of every crate
+//! of the workspace ([`crate::RneError`], the scenario's and the experiments' errors) and their
+//! warnings write values with these.
+
+use std::borrow::Cow;
+use std::path::Path;
+
+/// `v` as error and warning messages write a number: plainly (`0.5`, `600`) when its
+/// magnitude is in `[1e-6, 1e15)` or it is zero, else in scientific notation (`1e300`, not 301
+/// digits; `1e-320`, not 320; `-inf`, `NaN`), so a message stays one short line whatever number
+/// an input holds. Used by every crate of the workspace (`usar_sim::scenario` re-exports it).
+pub fn number_text(v: f64) -> String {
+    if v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// `text` (a value or a path) as error and warning messages write it: a control character (a
+/// line break, a tab, an escape) or a Unicode line or paragraph separator escaped as Rust
+/// writes it (`\n`, `\t`, `\u{1b}`, `\u{2028}`), every other character as it is, so a message
+/// stays one line whatever a file name or a value holds. Escaping twice changes nothing.
+pub fn one_line_text(text: &str) -> Cow<'_, str> {
+    let breaks = |c: char| c.is_control() || matches!(c, '\u{2028}' | '\u{2029}');
+    if !text.chars().any(breaks) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if breaks(c) {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// `path` as error and warning messages write it: as [`Path::display`] shows it, escaped by
+/// [`one_line_text`] (a line break in a file name is written `\n`, so the message stays one
+/// line).
+pub fn path_text(path: &Path) -> String {
+    one_line_text(&path.display().to_string()).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{number_text, one_line_text, path_text};
+
+    #[test]
+    fn text_and_paths_are_written_on_one_line() {
+        let cases = [
+            ("scenarios/paper.ron", "scenarios/paper.ron"),
+            ("a\nb.ron", "a\\nb.ron"),
+            ("tab\there\r", "tab\\there\\r"),
+            ("esc\u{1b}[1m", "esc\\u{1b}[1m"),
+            ("line\u{2028}sep", "line\\u{2028}sep"),
+            ("é \\ \"quoted\"", "é \\ \"quoted\""),
+        ];
+        for (text, shown) in cases {
+            assert_eq!(one_line_text(text), shown, "{text:?}");
+            assert_eq!(one_line_text(shown), shown, "escaping twice: {shown:?}");
+            assert_eq!(path_text(std::path::Path::new(text)), shown);
+        }
+    }
+
+    #[test]
+    fn numbers_are_plain_in_range_and_scientific_outside() {
+        let cases = [
+            (0.5, "0.5"),
+            (600.0, "600"),
+            (0.0, "0"),
+            (-0.0, "-0"),
+            (1e-6, "0.000001"),
+            (1e15, "1e15"),
+            (1e300, "1e300"),
+            (-1e-320, "-1e-320"),
+            (f64::INFINITY, "inf"),
+            (f64::NAN, "NaN"),
+        ];
+        for (v, text) in cases {
+            assert_eq!(number_text(v), text, "{v}");
+        }
+    }
+}
