@@ -34,8 +34,8 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::clearance_grid::ClearanceGrid;
 use super::conflicts::ConflictGraph;
-use super::navigation::ClearanceGrid;
 use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
 use crate::scenario::{CollisionParams, HoldRule, Locomotion};

@@ -11,12 +11,14 @@ use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav::Nav;
 
-use super::navigation::{ClearanceGrid, PathPlanner, StandingDisc};
+use super::clearance_grid::ClearanceGrid;
 use super::neighbours::NeighbourIndex;
+use super::path_planner::PathPlanner;
 use super::planning::{PlanInto, plan_inflation_m};
 use super::radiation::{self, DoseRule};
 use super::resolver::{Resolver, ResolverInput};
 use super::robot::RobotState;
+use super::standing_disc::StandingDisc;
 use crate::scenario::{
     CollisionParams, Locomotion, NavigationParams, PointM, RadiationZone, Scenario,
 };
