@@ -29,12 +29,17 @@
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
+//! - `resolver_input`: what the resolver knows about one robot this step.
+//! - `collision_course`: the resolver's "about to collide" test of two moving discs.
+//! - `union_find`: union-find over robot ids, the collision lists as its components.
+//! - `steering`: rule 5's candidate headings and static look-ahead.
 //! - [`radiation`]: radiation zones.
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
-//! - `nav`: the per-robot navigation state (path, current waypoint, intent).
-//! - `planning`: planning glue between a robot and the [`path_planner`] (goals, goal
-//!   checks, re-plans).
+//! - `nav_state`: the per-robot navigation state (path, current waypoint, intent).
+//! - `plan_into`: where a robot's plan is written (its path, or the world's scratch buffer).
+//! - `robot_planning`: a robot's plans ([`World`]'s planning function over the
+//!   [`path_planner`]: goals, goal checks, re-plans).
 //! - `path_following`: a robot's intended velocity from its path (corner passing, the periodic
 //!   line-of-sight check and re-plan).
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
@@ -44,6 +49,7 @@
 pub mod bodies;
 mod bucket_queue;
 pub mod clearance_grid;
+mod collision_course;
 mod conflicts;
 mod disc_mask;
 pub mod distance_field;
@@ -52,21 +58,25 @@ mod grid_astar;
 mod grid_moves;
 mod grid_regions;
 mod grid_search;
-mod nav;
+mod nav_state;
 mod neighbour_lists;
 pub mod neighbours;
 mod path_following;
 pub mod path_planner;
 mod path_smoothing;
 mod plan_cache;
+mod plan_into;
 pub mod plan_query;
-mod planning;
 pub mod radiation;
 pub mod resolver;
+mod resolver_input;
 mod robot;
+mod robot_planning;
 mod shared_fields;
 pub mod standing_disc;
+mod steering;
 mod step;
+mod union_find;
 #[expect(
     clippy::module_inception,
     reason = "the World type's own file, as in rapier; private, so no world::world path"

@@ -8,8 +8,8 @@
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
+use super::plan_into::PlanInto;
 use super::plan_query::PlanQuery;
-use super::planning::PlanInto;
 use super::robot::Motion;
 use super::standing_disc::StandingDisc;
 use super::world::World;

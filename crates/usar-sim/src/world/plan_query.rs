@@ -1,11 +1,12 @@
-//! One planning query of a ground robot and its endpoints snapped to free cells of the
-//! clearance grid, and the waypoints a plan between them writes.
+//! One planning query of a ground robot (and the inflation a robot of a given radius plans
+//! with), its endpoints snapped to free cells of the clearance grid, and the waypoints a plan
+//! between them writes.
 
 use parry2d::math::Vector as Vec2;
 
 use super::clearance_grid::ClearanceGrid;
 use super::error::NavError;
-use crate::scenario::in_field;
+use crate::scenario::{NavigationParams, in_field};
 
 /// One planning query of a ground robot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,6 +18,13 @@ pub struct PlanQuery {
     /// Planning inflation: a cell is free when its clearance is at least this, metres (> 0;
     /// the world uses body radius + `navigation.clearance_m` + half a cell).
     pub inflation_m: f32,
+}
+
+/// Inflation a robot of body radius `radius_m` plans with: `radius_m +
+/// navigation.clearance_m + navigation.grid_cell_m / 2`, metres, in `f32` (see
+/// [`super::clearance_grid`]).
+pub(super) fn plan_inflation_m(radius_m: f32, navigation: &NavigationParams) -> f32 {
+    radius_m + navigation.clearance_m.get() as f32 + 0.5 * navigation.grid_cell_m.get() as f32
 }
 
 /// Start and goal of a plan after snapping (see

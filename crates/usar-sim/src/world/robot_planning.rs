@@ -1,30 +1,15 @@
-//! Planning glue between a robot and the [`super::path_planner`] planner: the inflation a robot
-//! plans with, and one planning function for goals, goal checks and re-plans.
+//! A robot's plans: the inflation and grid query it plans with, and [`World::plan`], one
+//! planning function for goals, goal checks and re-plans (the [`super::path_planner`] for
+//! ground robots, a straight line for aerial ones).
 
 use parry2d::math::Vector as Vec2;
 
 use super::error::NavError;
 use super::path_planner::GoalKind;
-use super::plan_query::PlanQuery;
+use super::plan_into::PlanInto;
+use super::plan_query::{PlanQuery, plan_inflation_m};
 use super::world::World;
-use crate::scenario::{Locomotion, NavigationParams, in_field};
-
-/// Where [`World::plan`] writes the waypoints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum PlanInto {
-    /// Into the robot's path, from its first waypoint (the robot follows the plan).
-    Path,
-    /// Into the world's scratch buffer (a goal check, or a re-plan that replaces the path only
-    /// when it succeeds); the robot is not changed.
-    Scratch,
-}
-
-/// Inflation a robot of body radius `radius_m` plans with: `radius_m +
-/// navigation.clearance_m + navigation.grid_cell_m / 2`, metres, in `f32` (see
-/// [`super::path_planner`]).
-pub(super) fn plan_inflation_m(radius_m: f32, navigation: &NavigationParams) -> f32 {
-    radius_m + navigation.clearance_m.get() as f32 + 0.5 * navigation.grid_cell_m.get() as f32
-}
+use crate::scenario::{Locomotion, in_field};
 
 impl World {
     /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
