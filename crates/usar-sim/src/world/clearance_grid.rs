@@ -1,11 +1,11 @@
-//! The clearance grid: per cell, the distance from the cell centre to the nearest wall or
-//! debris surface (capped), built with parry2d point-distance queries.
+//! The clearance grid: each cell's capped distance to the nearest wall or debris.
 //!
-//! A cell is *free* for inflation `i` when that distance is `>= i`; the world plans with
-//! `i = body radius + navigation.clearance_m + cell / 2` (the half cell covers points of a free
-//! cell away from its centre). The grid answers the planner's cell queries: free cells, grid
-//! moves (tabulated per inflation, `grid_moves`), the nearest free cell, octile distances and
-//! line of sight.
+//! Built with parry2d point-distance queries from the cell centres. A cell is *free* for
+//! inflation `i` when that distance is `>= i`; the world plans with `i = body radius +
+//! navigation.clearance_m + cell / 2` (the half cell covers points of a free cell away from
+//! its centre). The grid answers the planner's cell queries: free cells, grid moves
+//! (tabulated per inflation, `grid_moves`), the nearest free cell, octile distances and line
+//! of sight.
 
 use parry2d::math::Vector as Vec2;
 

@@ -1,5 +1,6 @@
-//! The resolver's "about to collide" test of two moving discs (rules 1, 3 and 5 of
-//! [`super::resolver`]).
+//! The "about to collide" test of two moving discs.
+//!
+//! Rules 1, 3 and 5 of the collision resolver ([`super::resolver`]) all ask it.
 
 use parry2d::math::Vector as Vec2;
 

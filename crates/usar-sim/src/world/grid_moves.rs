@@ -1,3 +1,5 @@
+//! The grid moves out of a cell and their costs, as bit masks tabulated per inflation.
+//!
 //! The grid moves out of a cell as an 8-bit mask, and a table of every cell's mask for one
 //! inflation, built once: grid searches (A* detours, distance fields, their descents) then
 //! read one byte per expanded cell instead of testing up to twelve neighbour clearances.

@@ -1,5 +1,8 @@
-//! One grid search of the planner: A* from a start cell to a goal cell (outside the discs of
-//! robots standing in the way, for a detour), then greedy line-of-sight smoothing.
+//! One smoothed grid search: A* between two cells, optionally outside standing robots.
+//!
+//! The planner's search for a robot's own goal and for a detour: A* from a start cell to a goal
+//! cell (outside the discs of robots standing in the way, for a detour), then greedy
+//! line-of-sight smoothing.
 
 use super::clearance_grid::ClearanceGrid;
 use super::disc_mask::DiscMask;

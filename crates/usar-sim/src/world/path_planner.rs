@@ -1,6 +1,8 @@
-//! The path planner of ground robots: a plan cache, grid A* (`grid_search`) for a
-//! robot's own goals and detours, and descents of shared distance fields
-//! ([`super::distance_field`]) for goals many robots share, each smoothed by line of sight.
+//! The path planner of ground robots ([`PathPlanner`]).
+//!
+//! A plan cache, grid A* (`grid_search`) for a robot's own goals and detours, and descents of
+//! shared distance fields ([`super::distance_field`]) for goals many robots share, each
+//! smoothed by line of sight.
 
 use parry2d::math::Vector as Vec2;
 

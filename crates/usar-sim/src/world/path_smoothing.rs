@@ -1,6 +1,7 @@
-//! Line-of-sight smoothing of a raw grid path: greedy (from each anchor, the farthest visible
-//! cell) for A* plans, galloping (`O(log L)` sight checks per leg) for descents of shared
-//! distance fields.
+//! Line-of-sight smoothing of a raw grid path.
+//!
+//! Greedy (from each anchor, the farthest visible cell) for A* plans; galloping (`O(log L)`
+//! sight checks per leg) for descents of shared distance fields.
 
 use parry2d::math::Vector as Vec2;
 

@@ -1,6 +1,7 @@
-//! One planning query of a ground robot (and the inflation a robot of a given radius plans
-//! with), its endpoints snapped to free cells of the clearance grid, and the waypoints a plan
-//! between them writes.
+//! One planning query of a ground robot and its endpoints snapped to free cells.
+//!
+//! Also the inflation a robot of a given radius plans with, and the waypoints a plan between
+//! the snapped endpoints writes.
 
 use parry2d::math::Vector as Vec2;
 

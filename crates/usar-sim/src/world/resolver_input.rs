@@ -1,5 +1,6 @@
-//! What the collision resolver knows about one robot this step ([`ResolverInput`]), and the
-//! slot of a robot's layer in the resolver's per-layer arrays.
+//! What the collision resolver knows about one robot this step ([`ResolverInput`]).
+//!
+//! Also the slot of a robot's layer in the resolver's per-layer arrays.
 
 use parry2d::math::Vector as Vec2;
 

@@ -1,6 +1,7 @@
-//! A robot's plans: the inflation and grid query it plans with, and [`World::plan`], one
-//! planning function for goals, goal checks and re-plans (the [`super::path_planner`] for
-//! ground robots, a straight line for aerial ones).
+//! A robot's plans: [`World::plan`] and the inflation and grid query it plans with.
+//!
+//! One planning function for goals, goal checks and re-plans: the [`super::path_planner`] for
+//! ground robots, a straight line for aerial ones.
 
 use parry2d::math::Vector as Vec2;
 

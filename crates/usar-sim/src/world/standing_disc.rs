@@ -1,5 +1,6 @@
-//! A robot standing in the way of a detour, as a keep-out disc: the point and segment tests a
-//! detour's cells and smoothed legs must pass.
+//! A robot standing in the way of a detour, as a keep-out disc.
+//!
+//! The point and segment tests a detour's cells and smoothed legs must pass.
 
 use parry2d::math::Vector as Vec2;
 

@@ -1,5 +1,8 @@
-//! Rule 5's candidate headings: the turns a moving robot's intent is deflected by, in the
-//! order they are tried, and how far a deflected heading is checked against walls and debris.
+//! Rule 5's candidate headings and its look-ahead against walls and debris.
+//!
+//! The turns a moving robot's intent is deflected by, in the order they are tried, and how
+//! far a deflected heading is checked against walls and debris (the turn itself is
+//! `Resolver::steer`).
 
 /// Step between candidate steering headings, radians (15 degrees).
 pub const STEER_ANGLE_STEP_RAD: f32 = std::f32::consts::PI / 12.0;

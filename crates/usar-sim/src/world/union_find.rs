@@ -1,6 +1,7 @@
-//! Union-find over robot ids whose components are the collision lists: the smaller id is the
-//! root, and each component's members are linked in a cycle so they can be listed without a
-//! scan of all robots.
+//! Union-find over robot ids whose components are the collision lists.
+//!
+//! The smaller id is the root, and each component's members are linked in a cycle so they can
+//! be listed without a scan of all robots.
 
 /// The root of `i`'s component (path halving).
 pub(super) fn find(parent: &mut [usize], mut i: usize) -> usize {
