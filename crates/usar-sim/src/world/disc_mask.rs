@@ -2,13 +2,14 @@
 //! grid whose centre lies inside one of the robots standing in the way
 //! ([`StandingDisc`]).
 //!
-//! A detour ([`super::navigation::PathPlanner::plan_around`]) used to test each successor cell
+//! A detour ([`super::path_planner::PathPlanner::plan_around`]) used to test each successor cell
 //! against every standing disc, `O(expanded cells x 8 x discs)`; the mask makes that test one
 //! array read, for `O(discs x cells per disc)` marking first. A cell is marked exactly when
 //! `StandingDisc::contains` holds for its centre (the same `f32` test), so A* sees the same
 //! successors in the same order and finds the same path.
 
-use super::navigation::{ClearanceGrid, StandingDisc};
+use super::clearance_grid::ClearanceGrid;
+use super::standing_disc::StandingDisc;
 
 /// Marked cells of one grid, by generation stamp: `stamp[c] == current` marks cell `c`, so a
 /// new marking costs the discs' cells, not a clear of the grid. Empty (no memory) until the

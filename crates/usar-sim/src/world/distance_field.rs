@@ -2,7 +2,7 @@
 //! every ground robot of one clearance class heading to that goal takes its path from.
 //!
 //! The field is Dijkstra's algorithm run backwards from the goal over the same 8-connected,
-//! no-corner-cutting moves and integer costs as the planner's A* ([`super::navigation`]), so a
+//! no-corner-cutting moves and integer costs as the planner's A* ([`super::path_planner`]), so a
 //! cell's field cost equals A*'s optimal cost from that cell to the goal. It is computed lazily:
 //! a query expands the search only until the queried cell is settled, and later queries resume
 //! it, so a field costs at most one full Dijkstra over the free cells, however many robots use
@@ -21,7 +21,8 @@
 //! (Treuille, Cooper and Popovic, "Continuum crowds", SIGGRAPH 2006).
 
 use super::bucket_queue::BucketQueue;
-use super::navigation::{ClearanceGrid, DIAGONAL_COST, STRAIGHT_COST};
+use super::clearance_grid::ClearanceGrid;
+use super::grid_moves::{DIAGONAL_COST, STRAIGHT_COST};
 
 /// The largest move cost, the bucket queue's window.
 const MAX_MOVE_COST: u32 = if DIAGONAL_COST > STRAIGHT_COST {

@@ -14,7 +14,7 @@
 //!
 //! Costs are `u32`: a move that would take a path's cost past `u32::MAX` is not taken (the
 //! crate's sum would overflow), so a goal only that far away has no path, and an estimate
-//! past it counts as `u32::MAX`. Grid paths cost [`super::navigation::STRAIGHT_COST`] per
+//! past it counts as `u32::MAX`. Grid paths cost [`super::grid_moves::STRAIGHT_COST`] per
 //! straight move, so this is a path of over 4.29 million straight moves, beyond any open
 //! arena of the largest grid ([`crate::scenario::limits::MAX_NAV_CELLS`]): only a maze could
 //! need one.

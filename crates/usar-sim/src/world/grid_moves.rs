@@ -1,13 +1,18 @@
+//! The grid moves out of a cell and their costs, as bit masks tabulated per inflation.
+//!
 //! The grid moves out of a cell as an 8-bit mask, and a table of every cell's mask for one
 //! inflation, built once: grid searches (A* detours, distance fields, their descents) then
 //! read one byte per expanded cell instead of testing up to twelve neighbour clearances.
 //!
 //! Bit `b` of a mask is the move `MOVES[b]`; a mask's moves come out in ascending bit order,
-//! which is the order [`super::navigation::ClearanceGrid::successors`] documents (east, west,
+//! which is the order [`super::clearance_grid::ClearanceGrid::successors`] documents (east, west,
 //! north, south, then north-east, north-west, south-east, south-west), so a table changes no
 //! search result.
 
-use super::navigation::{DIAGONAL_COST, STRAIGHT_COST};
+/// A* cost of a straight grid move (a diagonal costs [`DIAGONAL_COST`]).
+pub const STRAIGHT_COST: u32 = 1000;
+/// A* cost of a diagonal grid move (~ sqrt(2) * [`STRAIGHT_COST`]).
+pub const DIAGONAL_COST: u32 = 1414;
 
 /// The eight grid moves in successor order: (dx, dy, cost in planner cost units).
 pub(super) const MOVES: [(i64, i64, u32); 8] = [

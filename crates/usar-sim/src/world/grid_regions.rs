@@ -1,7 +1,7 @@
 //! The navigation grid's regions at one inflation: the sets of free cells that grid moves
 //! ([`ClearanceGrid::successors`]) join, labelled once by a flood fill: after the first A*
 //! that finds no path, or for the first goal check
-//! ([`super::navigation::PathPlanner::connects`]). Two cells in different
+//! ([`super::path_planner::PathPlanner::connects`]). Two cells in different
 //! regions have no path between them, so a search between them is known to fail without
 //! running it; without the labels an A* to a walled-in goal visits every cell of the start's
 //! region, which takes seconds on a grid near the 2^24-cell limit, for every robot sent there.
@@ -9,7 +9,7 @@
 //! The moves are symmetric, so a region is exactly the set of cells A* can reach from any of
 //! its cells: the labels answer "does a path exist" as the search would, never otherwise.
 
-use super::navigation::ClearanceGrid;
+use super::clearance_grid::ClearanceGrid;
 
 /// Most inflations whose labels are kept at once (4 bytes a cell each: 64 MiB at the largest
 /// grid); labelling a fifth drops the least recently used, labelled again if needed.
@@ -115,7 +115,8 @@ mod tests {
     use super::*;
     use crate::scenario::{Arena, Positive};
     use crate::world::bodies::{StaticObstacle, StaticShape};
-    use crate::world::navigation::{GoalKind, PathPlanner, PlanQuery};
+    use crate::world::path_planner::{GoalKind, PathPlanner};
+    use crate::world::plan_query::PlanQuery;
 
     /// A 10 x 10 m grid of 0.25 m cells, clearance capped at 2 m, with (when `boxed`) a
     /// closed square of walls 0.5 m thick, 3 m across, around (7.5, 7.5).

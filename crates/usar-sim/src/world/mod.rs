@@ -2,14 +2,22 @@
 //!
 //! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
-//! - [`navigation`]: clearance grid (parry2d distance queries), grid A*, path smoothing.
+//! - [`clearance_grid`]: the clearance grid (parry2d distance queries): free cells, grid
+//!   moves, nearest free cell, line of sight.
+//! - [`standing_disc`]: a robot standing in the way of a detour, as a keep-out disc.
+//! - [`plan_query`]: one planning query and its endpoints snapped to free cells.
+//! - `path_smoothing`: line-of-sight smoothing of raw grid paths (greedy and galloping).
+//! - `grid_search`: one smoothed A* search between two cells (outside standing discs).
+//! - [`path_planner`]: the path planner (plan cache, A* for own goals and detours, shared
+//!   distance fields for shared goals).
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - `neighbour_lists`: the resolver's neighbour lists, kept over several steps (Verlet
 //!   lists).
 //! - `disc_mask`: the grid cells a detour's A* may not enter (robots standing in the way).
 //! - `grid_astar`: grid A* over dense per-cell arrays (the `pathfinding` crate's search order).
-//! - `grid_moves`: a cell's grid moves as a bit mask, tabulated per inflation.
+//! - `grid_moves`: a cell's grid moves and their costs, as a bit mask tabulated per
+//!   inflation.
 //! - `grid_regions`: the grid's regions per inflation (cells grid moves join), so a search
 //!   between two regions fails without running.
 //! - [`distance_field`]: shared distance fields (one per shared goal and clearance class).
@@ -21,12 +29,17 @@
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
+//! - `resolver_input`: what the resolver knows about one robot this step.
+//! - `collision_course`: the resolver's "about to collide" test of two moving discs.
+//! - `union_find`: union-find over robot ids, the collision lists as its components.
+//! - `steering`: rule 5's candidate headings and static look-ahead.
 //! - [`radiation`]: radiation zones.
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
-//! - `nav`: the per-robot navigation state (path, current waypoint, intent).
-//! - `planning`: planning glue between a robot and the [`navigation`] planner (goals, goal
-//!   checks, re-plans).
+//! - `nav_state`: the per-robot navigation state (path, current waypoint, intent).
+//! - `plan_into`: where a robot's plan is written (its path, or the world's scratch buffer).
+//! - `robot_planning`: a robot's plans ([`World`]'s planning function over the
+//!   [`path_planner`]: goals, goal checks, re-plans).
 //! - `path_following`: a robot's intended velocity from its path (corner passing, the periodic
 //!   line-of-sight check and re-plan).
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
@@ -35,6 +48,8 @@
 
 pub mod bodies;
 mod bucket_queue;
+pub mod clearance_grid;
+mod collision_course;
 mod conflicts;
 mod disc_mask;
 pub mod distance_field;
@@ -42,18 +57,26 @@ mod error;
 mod grid_astar;
 mod grid_moves;
 mod grid_regions;
-mod nav;
-pub mod navigation;
+mod grid_search;
+mod nav_state;
 mod neighbour_lists;
 pub mod neighbours;
 mod path_following;
+pub mod path_planner;
+mod path_smoothing;
 mod plan_cache;
-mod planning;
+mod plan_into;
+pub mod plan_query;
 pub mod radiation;
 pub mod resolver;
+mod resolver_input;
 mod robot;
+mod robot_planning;
 mod shared_fields;
+pub mod standing_disc;
+mod steering;
 mod step;
+mod union_find;
 #[expect(
     clippy::module_inception,
     reason = "the World type's own file, as in rapier; private, so no world::world path"
@@ -66,5 +89,6 @@ pub use path_following::{
     STALL_PROGRESS_M, STALL_REPLAN_S,
 };
 pub use robot::{Motion, RobotCounters, RobotState};
+pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;
 pub use step::MOVED_TOLERANCE_M;
 pub use world::{CLEARANCE_CAP_MARGIN_M, World, WorldStats};

@@ -35,7 +35,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::neighbours::NeighbourQuery;
-use super::resolver::{ResolverInput, layer_slot};
+use super::resolver_input::{ResolverInput, layer_slot};
 use crate::scenario::Locomotion;
 
 /// Skin added to a layer's largest query radius when the lists are rebuilt, with the resolver

@@ -8,9 +8,10 @@
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
-use super::navigation::{PlanQuery, StandingDisc};
-use super::planning::PlanInto;
+use super::plan_into::PlanInto;
+use super::plan_query::PlanQuery;
 use super::robot::Motion;
+use super::standing_disc::StandingDisc;
 use super::world::World;
 use crate::scenario::{HoldRule, Locomotion};
 
@@ -150,7 +151,7 @@ impl World {
     /// whatever its sensing (no goal, goal reached, or no intended motion; under
     /// `collision.hold_rule: Yield` also held or blocked at the last step), each kept out to
     /// its body radius plus the robot's planning inflation
-    /// ([`super::navigation::PathPlanner::plan_around`]). A local detour first: from where it
+    /// ([`super::path_planner::PathPlanner::plan_around`]). A local detour first: from where it
     /// stands to its path's point [`DETOUR_REJOIN_BEYOND_M`] beyond the farthest of those
     /// robots ([`World::rejoin_point`]), then on along the rest of its path. Where the path
     /// ends before such a point, or no local detour exists, it re-plans all the way to its
@@ -184,7 +185,7 @@ impl World {
     }
 
     /// Plans robot `id` from where it stands to `to` round `self.standing` into the scratch
-    /// buffer ([`super::navigation::PathPlanner::plan_around`]); returns the effective goal.
+    /// buffer ([`super::path_planner::PathPlanner::plan_around`]); returns the effective goal.
     fn plan_detour(&mut self, id: usize, to: Vec2) -> Result<Vec2, super::NavError> {
         let query = PlanQuery {
             from: self.nav[id].pos,

@@ -34,46 +34,24 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::clearance_grid::ClearanceGrid;
+pub use super::collision_course::about_to_collide;
 use super::conflicts::ConflictGraph;
-use super::navigation::ClearanceGrid;
 use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
-use crate::scenario::{CollisionParams, HoldRule, Locomotion};
+pub use super::resolver_input::ResolverInput;
+use super::resolver_input::layer_slot;
+use super::steering::steer_turns;
+pub use super::steering::{
+    STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
+};
+use super::union_find::{find, union};
+use crate::scenario::{CollisionParams, HoldRule};
 
 /// Progress (decrease of the remaining path length below its best value since the stall timer
 /// last restarted) below which a list member counts as "not moved" for deadlock detection,
 /// metres.
 pub const DEADLOCK_PROGRESS_TOLERANCE_M: f32 = 0.05;
-/// Step between candidate steering headings, radians (15 degrees).
-pub const STEER_ANGLE_STEP_RAD: f32 = std::f32::consts::PI / 12.0;
-/// Number of candidate deflections per side (8 x 15 = 120 degrees).
-pub const STEER_STEPS_PER_SIDE: u32 = 8;
-/// How far ahead a deflected heading is checked against walls and debris, metres (at most).
-pub const STEER_STATIC_LOOKAHEAD_M: f32 = 0.25;
-/// Gap to walls and debris a deflected heading must keep (beyond the body radius), metres.
-pub const STEER_STATIC_GAP_M: f32 = 0.05;
-
-/// What the resolver needs to know about one robot this step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ResolverInput {
-    /// Position, metres.
-    pub pos: Vec2,
-    /// Intended velocity (path following, before avoidance), metres per second.
-    pub intent: Vec2,
-    /// Body radius, metres.
-    pub radius: f32,
-    /// Effective sensing range, metres.
-    pub sensing: f32,
-    /// Collision layer.
-    pub layer: Locomotion,
-    /// Goal set and not reached.
-    pub active: bool,
-    /// Priority key: lower goes first, ties by id.
-    pub key: f64,
-    /// Remaining path length to the goal (distance to the current waypoint plus the rest of
-    /// the path), metres; progress for deadlock detection is its decrease.
-    pub remaining: f32,
-}
 
 /// The resolver's decision for one robot this step.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -146,63 +124,6 @@ pub struct Resolver {
     decisions: Vec<Decision>,
     deadlocked_lists: u64,
     largest_list: usize,
-}
-
-/// Whether two discs moving with relative position `r = p_j - p_i` and relative velocity
-/// `v = v_j - v_i` approach each other and come closer than `clear` within `horizon` seconds.
-pub fn about_to_collide(r: Vec2, v: Vec2, clear: f32, horizon: f32) -> bool {
-    let rv = r.dot(v);
-    if rv >= 0.0 {
-        return false;
-    }
-    let t = (-rv / v.length_squared()).min(horizon);
-    (r + v * t).length_squared() < clear * clear
-}
-
-/// The candidate turns of rule 5 in the order they are tried, as `(sin, cos)` of
-/// `sign * k * STEER_ANGLE_STEP_RAD` for `k` in `1..=STEER_STEPS_PER_SIDE` and `sign` in
-/// `[-1, 1]` (right side first): computed once, the same `f32` values as computing them per
-/// robot and step.
-fn steer_turns() -> &'static [(f32, f32)] {
-    static TURNS: std::sync::OnceLock<Vec<(f32, f32)>> = std::sync::OnceLock::new();
-    TURNS.get_or_init(|| {
-        (1..=STEER_STEPS_PER_SIDE)
-            .flat_map(|k| {
-                [-1.0f32, 1.0].map(|sign| (sign * k as f32 * STEER_ANGLE_STEP_RAD).sin_cos())
-            })
-            .collect()
-    })
-}
-
-/// Index of a layer in per-layer arrays: ground 0, aerial 1.
-pub(super) fn layer_slot(layer: Locomotion) -> usize {
-    match layer {
-        Locomotion::Ground => 0,
-        Locomotion::Aerial => 1,
-    }
-}
-
-fn find(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    i
-}
-
-/// Unites the components of `a` and `b`; `next` links each component's members in a cycle
-/// (spliced here), so a component's members can be listed without a scan of all robots.
-fn union(parent: &mut [usize], size: &mut [usize], next: &mut [usize], a: usize, b: usize) -> bool {
-    let (ra, rb) = (find(parent, a), find(parent, b));
-    if ra == rb {
-        return false;
-    }
-    // Deterministic: the smaller id becomes the root.
-    let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-    parent[hi] = lo;
-    size[lo] += size[hi];
-    next.swap(lo, hi);
-    true
 }
 
 impl Resolver {
@@ -689,7 +610,7 @@ mod tests {
     use parry2d::shape::Cuboid;
 
     use super::*;
-    use crate::scenario::{Arena, NonNegative, Positive};
+    use crate::scenario::{Arena, Locomotion, NonNegative, Positive};
     use crate::world::bodies::{StaticObstacle, StaticShape};
     use crate::world::neighbours::{AllRobots, NeighbourIndex};
     use proptest::strategy::Strategy;

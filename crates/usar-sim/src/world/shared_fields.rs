@@ -18,13 +18,20 @@
 //! goal makes it again. While one plan runs, the fields hold at most the larger of the
 //! budget and the one field in use, plus what that field's open set grows by during the plan;
 //! between plans, at most the budget.
-//!
-//! [`SHARED_FIELDS_BUDGET_BYTES`]: super::navigation::SHARED_FIELDS_BUDGET_BYTES
 
 use std::collections::VecDeque;
 
+use super::clearance_grid::ClearanceGrid;
 use super::distance_field::DistanceField;
-use super::navigation::{ClearanceGrid, SHARED_FIELDS_BUDGET_BYTES};
+
+/// Most heap memory a [`PathPlanner`] keeps in shared distance fields between plans, bytes:
+/// 512 MiB, six fields of a grid at the 2^24-cell limit (80 MiB each, 5 bytes a cell), about
+/// 6,700 of an 80 m x 60 m arena at 0.25 m. Past it the least recently used fields are
+/// dropped and made again when next needed, with the same paths
+/// (`docs/world-model.md`, "Shared goals, shared fields").
+///
+/// [`PathPlanner`]: super::path_planner::PathPlanner
+pub const SHARED_FIELDS_BUDGET_BYTES: usize = 512 << 20;
 
 /// Shared distance fields within a memory budget, least recently used dropped first (see the
 /// module docs).

@@ -6,8 +6,8 @@ use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
-use super::resolver::STEER_STATIC_GAP_M;
 use super::robot::Motion;
+use super::steering::STEER_STATIC_GAP_M;
 use super::world::World;
 use crate::scenario::Locomotion;
 

@@ -1,7 +1,7 @@
 //! [`World`]: the physical world of one USAR trial and the API the mission layer drives
 //! (goals, speed, sensing and priority settings, teleports, read-only state and queries).
 //!
-//! The step itself is in `step.rs`, planning glue in `planning.rs`, path following in
+//! The step itself is in `step.rs`, a robot's plans in `robot_planning.rs`, path following in
 //! `path_following.rs`.
 
 use nalgebra::Vector2;
@@ -9,14 +9,18 @@ use parry2d::math::Vector as Vec2;
 
 use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
 use super::error::{NavError, WorldError};
-use super::nav::Nav;
+use super::nav_state::Nav;
 
-use super::navigation::{ClearanceGrid, PathPlanner, StandingDisc};
+use super::clearance_grid::ClearanceGrid;
 use super::neighbours::NeighbourIndex;
-use super::planning::{PlanInto, plan_inflation_m};
+use super::path_planner::PathPlanner;
+use super::plan_into::PlanInto;
+use super::plan_query::plan_inflation_m;
 use super::radiation::{self, DoseRule};
-use super::resolver::{Resolver, ResolverInput};
+use super::resolver::Resolver;
+use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
+use super::standing_disc::StandingDisc;
 use crate::scenario::{
     CollisionParams, Locomotion, NavigationParams, PointM, RadiationZone, Scenario,
 };

@@ -4,7 +4,7 @@
 use parry2d::math::Vector as Vec2;
 use rapier2d::prelude::RigidBodyHandle;
 
-use super::resolver::ResolverInput;
+use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
 use crate::scenario::{Locomotion, RobotKind};
 

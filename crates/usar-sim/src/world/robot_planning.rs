@@ -1,33 +1,20 @@
-//! Planning glue between a robot and the [`super::navigation`] planner: the inflation a robot
-//! plans with, and one planning function for goals, goal checks and re-plans.
+//! A robot's plans: [`World::plan`] and the inflation and grid query it plans with.
+//!
+//! One planning function for goals, goal checks and re-plans: the [`super::path_planner`] for
+//! ground robots, a straight line for aerial ones.
 
 use parry2d::math::Vector as Vec2;
 
 use super::error::NavError;
-use super::navigation::{GoalKind, PlanQuery};
+use super::path_planner::GoalKind;
+use super::plan_into::PlanInto;
+use super::plan_query::{PlanQuery, plan_inflation_m};
 use super::world::World;
-use crate::scenario::{Locomotion, NavigationParams, in_field};
-
-/// Where [`World::plan`] writes the waypoints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum PlanInto {
-    /// Into the robot's path, from its first waypoint (the robot follows the plan).
-    Path,
-    /// Into the world's scratch buffer (a goal check, or a re-plan that replaces the path only
-    /// when it succeeds); the robot is not changed.
-    Scratch,
-}
-
-/// Inflation a robot of body radius `radius_m` plans with: `radius_m +
-/// navigation.clearance_m + navigation.grid_cell_m / 2`, metres, in `f32` (see
-/// [`super::navigation`]).
-pub(super) fn plan_inflation_m(radius_m: f32, navigation: &NavigationParams) -> f32 {
-    radius_m + navigation.clearance_m.get() as f32 + 0.5 * navigation.grid_cell_m.get() as f32
-}
+use crate::scenario::{Locomotion, in_field};
 
 impl World {
     /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
-    /// metres (see [`super::navigation`]).
+    /// metres (see [`super::path_planner`]).
     pub(super) fn plan_inflation(&self, id: usize) -> f32 {
         plan_inflation_m(self.nav[id].radius, &self.navigation)
     }
@@ -44,7 +31,7 @@ impl World {
     }
 
     /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
-    /// goal. Ground robots plan on the clearance grid ([`super::navigation::PathPlanner::plan`],
+    /// goal. Ground robots plan on the clearance grid ([`super::path_planner::PathPlanner::plan`],
     /// inflation [`World::plan_inflation`]): a goal that is one of the scenario's shared goal
     /// points (a task's goal point or drop-off centre, the rest-station centre, compared
     /// exactly at physics precision) by descent of its shared distance field, any other goal by
