@@ -1,78 +1,18 @@
-//! The plan of a sharded sweep: what `usar sweep` was asked to run (the scenario file's text
-//! and the sweep options), kept as `plan.json` in every shard's folder so that `usar merge`
-//! can rebuild the sweep's configuration, and so that messages can give the exact command
-//! that runs a shard again.
+//! The sweep configuration a shard's plan rebuilds (`usar merge`): the plan's scenario, grid
+//! and options as a [`SweepConfig`] ([`SweepPlan::config`]).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use anyhow::{Context, Result, anyhow};
-use serde::{Deserialize, Serialize};
+use anyhow::Result;
 use usar_sim::scenario::{self, path_text};
 
-use crate::atomic::write_atomic;
-use crate::grid::Grid;
-use crate::shard::Shard;
-use crate::sweep::{MethodFactory, SweepConfig};
-
-/// File name of the plan in a shard's folder.
-pub const PLAN_FILE: &str = "plan.json";
-
-/// The options of `usar sweep` that decide what a sweep runs (not how: threads, resume and
-/// progress are left out), with the scenario file's text.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SweepPlan {
-    /// The scenario file as it was named on the command line (relative to the folder the
-    /// command ran in); used in reports and in the commands messages suggest.
-    pub scenario_path: PathBuf,
-    /// The scenario file's text when the shard ran (what `usar merge` loads, so that a later
-    /// edit of the file cannot change a merge; the journal's scenario hashes guard the rest).
-    pub scenario_text: String,
-    /// The `--vary` arguments, in order (empty: no grid).
-    pub vary: Vec<String>,
-    /// The `--methods` names, in order, as given.
-    pub methods: Vec<String>,
-    /// `--trials` (>= 1).
-    pub trials: u32,
-    /// `--seed`; `None`: the scenario's `sim.seed`.
-    pub seed: Option<u64>,
-    /// `--duration`, seconds; `None`: each cell's `mission.duration_s`.
-    pub duration_s: Option<f64>,
-    /// `--grid-metrics` (empty: the default metrics).
-    pub grid_metrics: Vec<String>,
-    /// The folder the shard's command ran in, absolute: [`SweepPlan::shard_command`] run from
-    /// another folder makes the scenario path absolute against it. `None` when unknown (a
-    /// plan written before this field existed, or no current folder).
-    #[serde(default)]
-    pub working_dir: Option<PathBuf>,
-}
+use crate::data::config::SweepConfig;
+use crate::data::grid_cells::Grid;
+use crate::data::sweep_plan::SweepPlan;
+use crate::method_factory::MethodFactory;
+use crate::sweep::check_grid_size;
 
 impl SweepPlan {
-    /// Path of the plan in the folder `dir`.
-    pub fn path_in(dir: &Path) -> PathBuf {
-        dir.join(PLAN_FILE)
-    }
-
-    /// Writes the plan as `dir/plan.json` (pretty JSON, atomically).
-    ///
-    /// # Errors
-    /// An I/O error.
-    pub fn write(&self, dir: &Path) -> Result<()> {
-        let json = serde_json::to_string_pretty(self).context("serialising the sweep plan")?;
-        write_atomic(&Self::path_in(dir), format!("{json}\n").as_bytes())
-    }
-
-    /// Reads `dir/plan.json`.
-    ///
-    /// # Errors
-    /// A missing or unreadable file, or one that is not a plan.
-    pub fn read(dir: &Path) -> Result<Self> {
-        let path = Self::path_in(dir);
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path_text(&path)))?;
-        serde_json::from_str(&text)
-            .with_context(|| format!("{}: not a sweep plan", path_text(&path)))
-    }
-
     /// The sweep's configuration: the scenario from [`SweepPlan::scenario_text`], the grid
     /// of [`SweepPlan::vary`], the built-in methods, output folder `out_dir`, one thread, no
     /// progress bar, no resume or overwrite, no hooks, no shard.
@@ -86,7 +26,7 @@ impl SweepPlan {
         let grid = if self.vary.is_empty() {
             None
         } else {
-            crate::sweep::check_grid_size(&self.vary, self.methods.len(), self.trials)?;
+            check_grid_size(&self.vary, self.methods.len(), self.trials)?;
             let spec = scenario::parse_spec(&self.scenario_text, &origin)?;
             Some(Grid::build(&spec, &self.vary)?)
         };
@@ -102,130 +42,5 @@ impl SweepPlan {
             progress: false,
             ..SweepConfig::new(scenario, &self.scenario_path)
         })
-    }
-
-    /// The options after `SCENARIO` that repeat this sweep: `--methods`, `--trials`, then
-    /// `--seed`, `--duration`, each `--vary` and `--grid-metrics` when given. Numbers are
-    /// written so that they parse back to the same value.
-    pub fn sweep_options(&self) -> Vec<String> {
-        let mut a = vec![
-            "--methods".to_string(),
-            self.methods.join(","),
-            "--trials".to_string(),
-            self.trials.to_string(),
-        ];
-        if let Some(seed) = self.seed {
-            a.extend(["--seed".to_string(), seed.to_string()]);
-        }
-        if let Some(d) = self.duration_s {
-            a.extend(["--duration".to_string(), d.to_string()]);
-        }
-        for v in &self.vary {
-            a.extend(["--vary".to_string(), v.clone()]);
-        }
-        if !self.grid_metrics.is_empty() {
-            a.extend(["--grid-metrics".to_string(), self.grid_metrics.join(",")]);
-        }
-        a
-    }
-
-    /// The shell command that runs (or continues) `shard` of this sweep into `out_dir`:
-    /// `usar sweep SCENARIO <options> --shard I/N --out DIR`, every word quoted for a POSIX
-    /// shell where it needs it.
-    ///
-    /// `out_dir` is relative to `here`, the folder the command is shown in, and so is the
-    /// command when `here` is [`SweepPlan::working_dir`] (or that is unknown); otherwise the
-    /// scenario path and `out_dir` are made absolute, so that the command runs from any
-    /// folder.
-    pub fn shard_command(&self, shard: Shard, out_dir: &Path, here: Option<&Path>) -> String {
-        let (scenario, out) = match (&self.working_dir, here) {
-            (Some(wd), Some(here)) if wd != here => {
-                (wd.join(&self.scenario_path), here.join(out_dir))
-            }
-            _ => (self.scenario_path.clone(), out_dir.to_path_buf()),
-        };
-        let mut words = vec![
-            "usar".to_string(),
-            "sweep".to_string(),
-            scenario.display().to_string(),
-        ];
-        words.extend(self.sweep_options());
-        words.extend([
-            "--shard".to_string(),
-            shard.to_string(),
-            "--out".to_string(),
-            out.display().to_string(),
-        ]);
-        shell_join(&words)
-    }
-}
-
-/// `words` joined by spaces, each quoted for a POSIX shell where it needs it
-/// (`shlex::try_quote`; a word with a NUL byte, which no shell can pass, is written as is).
-pub fn shell_join(words: &[String]) -> String {
-    words
-        .iter()
-        .map(|w| shlex::try_quote(w).map_or_else(|_| w.clone(), |q| q.into_owned()))
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-/// The error for a plan that a shard's journal does not match.
-pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
-    anyhow!(
-        "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
-         mixes two sweeps",
-        path_text(&SweepPlan::path_in(dir))
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn plan(working_dir: Option<&str>) -> SweepPlan {
-        SweepPlan {
-            scenario_path: "scenarios/my paper.ron".into(),
-            scenario_text: String::new(),
-            vary: Vec::new(),
-            methods: vec!["rne".into(), "dis".into()],
-            trials: 2,
-            seed: None,
-            duration_s: None,
-            grid_metrics: Vec::new(),
-            working_dir: working_dir.map(PathBuf::from),
-        }
-    }
-
-    #[test]
-    fn a_command_shown_in_another_folder_than_the_shards_has_absolute_paths() {
-        let shard = Shard::new(1, 2).unwrap();
-        let relative = "usar sweep 'scenarios/my paper.ron' --methods 'rne,dis' --trials 2 \
-                        --shard 1/2 --out 'out dir'";
-        let out = Path::new("out dir");
-        // Shown where the shard ran, or with either folder unknown: as the shard was run.
-        let here = Some(Path::new("/home/me"));
-        assert_eq!(
-            plan(Some("/home/me")).shard_command(shard, out, here),
-            relative
-        );
-        assert_eq!(plan(None).shard_command(shard, out, here), relative);
-        assert_eq!(
-            plan(Some("/home/me")).shard_command(shard, out, None),
-            relative
-        );
-        assert_eq!(
-            plan(Some("/home/me")).shard_command(shard, out, Some(Path::new("/tmp"))),
-            "usar sweep '/home/me/scenarios/my paper.ron' --methods 'rne,dis' --trials 2 \
-             --shard 1/2 --out '/tmp/out dir'"
-        );
-    }
-
-    #[test]
-    fn a_plan_without_a_working_dir_still_reads() {
-        let mut json = serde_json::to_value(plan(Some("/x"))).unwrap();
-        json.as_object_mut().unwrap().remove("working_dir");
-        let read: SweepPlan = serde_json::from_value(json).unwrap();
-        assert_eq!(read, plan(None));
     }
 }
