@@ -4,11 +4,11 @@
 //!
 //! Which jobs a shard runs ([`crate::data::shard_split`]), where it keeps its journal and plan
 //! ([`crate::data::shard_folders`]) and what the sweep was asked to run
-//! ([`crate::data::sweep_plan`]) are the sweep's data, re-exported here; [`plan`] rebuilds the
+//! ([`crate::data::sweep_plan`]) are the sweep's data, re-exported here; [`plan_config`] rebuilds the
 //! sweep's configuration from a plan, and [`merge`] combines the shards' journals.
 
 pub mod merge;
-pub mod plan;
+pub mod plan_config;
 
 pub use crate::data::shard_folders::{SHARDS_DIR, ShardRun, shard_dir, shard_folders};
 pub use crate::data::shard_split::{

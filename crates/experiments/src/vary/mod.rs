@@ -6,13 +6,13 @@
 //! `tasks.hard.goal_m`), with `[*]` for every element of a list
 //! (`radiation_zones[*].dose_rate_factor`). Values are RON ([`RonValue`]).
 //!
-//! An override is applied to a parsed [`ScenarioSpec`] through its JSON form: the spec is
+//! An override is applied to a parsed [`ScenarioSpec`](usar_sim::scenario::ScenarioSpec) through its JSON form: the spec is
 //! serialised with `serde_json::to_value` (so fields the file omits are there with their
 //! defaults and can be varied too), the path is walked and its value replaced (converted
 //! guided by the JSON shape of the value it replaces), and the JSON is deserialised back into
-//! a [`ScenarioSpec`], which checks the types. Nothing here knows the scenario's fields: a
+//! a [`ScenarioSpec`](usar_sim::scenario::ScenarioSpec), which checks the types. Nothing here knows the scenario's fields: a
 //! field added to the spec can be varied without a change here. Rules (ranges, geometry) are
-//! checked afterwards by [`ScenarioSpec::validate`], as for a file.
+//! checked afterwards by [`ScenarioSpec::validate`](usar_sim::scenario::ScenarioSpec::validate), as for a file.
 
 mod apply;
 mod field_override;
