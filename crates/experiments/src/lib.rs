@@ -6,7 +6,7 @@
 //! A sweep runs, analysis judges, outputs write: [`sweep::run_sweep`] runs the trials (of
 //! every cell of a [`grid`] built from `--vary` overrides, [`vary`]) into the [`journal`] and
 //! returns data ([`data`]); [`analysis::Analysis`] computes the statistics and [`claims`] once
-//! per cell; [`output::write_outputs`] writes the CSV files ([`summary`],
+//! per cell; [`output::write_outputs`] writes the CSV files ([`csv_tables`],
 //! [`grid_outputs::grid_csv`]), figures ([`figures`], [`grid_outputs::grid_figures`]) and
 //! reports ([`report`], [`grid_outputs::grid_md`]), and [`console`] the terminal summary, all
 //! from that analysis. A sweep holds the [`lock`] on its output folder while it runs and
@@ -25,7 +25,7 @@
 //! 4. run: `executor`, [`stale_outputs`], [`sweep`], [`shard`], [`slurm`];
 //! 5. fit: [`calibrate`], [`calibration`];
 //! 6. analyse: [`claims`], [`analysis`];
-//! 7. write: [`summary`], [`figures`], [`report`], [`grid_outputs`], [`console`],
+//! 7. write: [`csv_tables`], [`figures`], [`report`], [`grid_outputs`], [`console`],
 //!    [`output`], [`render`], [`replay`];
 //! 8. study: [`multiverse`].
 
@@ -60,12 +60,12 @@ pub mod analysis;
 pub mod claims;
 // 7. write
 pub mod console;
+pub mod csv_tables;
 pub mod figures;
 pub mod grid_outputs;
 pub mod output;
 pub mod render;
 pub mod replay;
 pub mod report;
-pub mod summary;
 // 8. study
 pub mod multiverse;
