@@ -9,9 +9,13 @@ use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
 use crate::claims::ClaimCheck;
+use crate::data::config::SweepConfig;
+use crate::data::outcome::{JournalUse, SweepOutcome};
 use crate::metrics::{Metric, Quantity, Scope};
-use crate::sweep::{JournalUse, SweepConfig, SweepOutcome};
 use crate::table::{mean_sd, pval, sig3};
+
+/// Re-exported from [`crate::stderr`], where it lives below every module that warns.
+pub use crate::stderr::warn;
 
 /// Columns of the one-cell table: rescuees in total and per task, then the energy and HP cost
 /// per rescuee of the hardest task; each with its heading.
@@ -35,18 +39,6 @@ fn columns(a: &CellAnalysis) -> Vec<(Metric, String)> {
         ));
     }
     out
-}
-
-/// Prints one line on stderr: a warning, or a failed trial's message while a sweep goes on.
-///
-/// Unlike `eprintln!`, it does not panic (exit status 101) when stderr cannot be written, for
-/// example when it is `/dev/full` or a pipe whose reader has gone: a warning that cannot be
-/// shown has nowhere else to go, and the command's own outcome and exit status stay what they
-/// would have been. Errors that end a command are printed by `main`, which exits 1 either way.
-pub fn warn(line: impl std::fmt::Display) {
-    match writeln!(std::io::stderr(), "{line}") {
-        Ok(()) | Err(_) => {}
-    }
 }
 
 /// Writes the summary of a finished sweep to `out`.

@@ -4,74 +4,18 @@
 //! no fonts are needed to write them.
 
 use crate::analysis::CellAnalysis;
+pub use crate::chart::{FIGURE_SIZE, method_color};
+use crate::chart::{draw_err, legend_entry};
+pub use crate::data::figure_list::{FIGURES, FigureSpec};
 use crate::metrics::{Metric, Quantity, Scope};
 use crate::stats::Summary;
-use anyhow::{Result, anyhow};
-use plotters::coord::Shift;
+use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-/// Width and height of each figure, pixels.
-pub const FIGURE_SIZE: (u32, u32) = (820, 440);
 /// Width of the legend strip at the right of each figure, pixels.
 const LEGEND_W: u32 = 110;
-
-/// One figure: file name, title, y-axis label and the quantity shown for each task and the
-/// total.
-#[derive(Debug, Clone, Copy)]
-pub struct FigureSpec {
-    /// File name in the output folder.
-    pub file: &'static str,
-    /// Title drawn above the chart.
-    pub title: &'static str,
-    /// Y-axis label.
-    pub y_label: &'static str,
-    /// The quantity drawn, per task and in total.
-    pub quantity: Quantity,
-}
-
-/// The three figures of a sweep: (a) rescuees, (b) energy cost per rescuee, (c) HP cost per
-/// rescuee.
-pub const FIGURES: [FigureSpec; 3] = [
-    FigureSpec {
-        file: "fig3a_rescuees.svg",
-        title: "(a) Rescuees per trial",
-        y_label: "rescuees",
-        quantity: Quantity::Rescued,
-    },
-    FigureSpec {
-        file: "fig3b_energy_per_rescuee.svg",
-        title: "(b) Energy cost per rescuee",
-        y_label: "energy per rescuee (% points)",
-        quantity: Quantity::EnergyPerRescuee,
-    },
-    FigureSpec {
-        file: "fig3c_hp_per_rescuee.svg",
-        title: "(c) HP cost per rescuee",
-        y_label: "HP per rescuee (% points)",
-        quantity: Quantity::HpPerRescuee,
-    },
-];
-
-/// Colour of the `i`-th method's bars (colour-blind-safe palette, Okabe-Ito).
-pub fn method_color(i: usize) -> RGBColor {
-    const PALETTE: [RGBColor; 8] = [
-        RGBColor(0, 114, 178),
-        RGBColor(230, 159, 0),
-        RGBColor(0, 158, 115),
-        RGBColor(204, 121, 167),
-        RGBColor(86, 180, 233),
-        RGBColor(213, 94, 0),
-        RGBColor(240, 228, 66),
-        RGBColor(0, 0, 0),
-    ];
-    PALETTE[i % PALETTE.len()]
-}
-
-pub(crate) fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("drawing a figure: {e:?}")
-}
 
 /// The groups of a figure for `tasks` (`<name> task` each, then `total`) and their metrics.
 fn groups(quantity: Quantity, tasks: &[String]) -> Vec<(String, Metric)> {
@@ -146,27 +90,6 @@ fn draw_method(
         });
     chart.draw_series(errors).map_err(draw_err)?;
     Ok(())
-}
-
-/// The `i`-th legend entry (top left of `area`, one line each): a `color` swatch and `name`.
-pub(crate) fn legend_entry(
-    area: &DrawingArea<SVGBackend<'_>, Shift>,
-    i: usize,
-    name: &str,
-    color: RGBColor,
-) -> Result<()> {
-    let y = 60 + 26 * i as i32;
-    area.draw(&Rectangle::new([(8, y - 7), (24, y + 7)], color.filled()))
-        .map_err(draw_err)?;
-    area.draw(&Text::new(
-        name,
-        (32, y),
-        ("sans-serif", 15)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Left, VPos::Center)),
-    ))
-    .map_err(draw_err)
 }
 
 /// Draws `spec` from a cell's analysis (methods in sweep order; a group per task of the cell,

@@ -14,15 +14,15 @@ use anyhow::Result;
 
 use crate::analysis::Analysis;
 use crate::atomic::FileSet;
+use crate::csv_tables::{summary_csv, trials_csv, trials_long_csv};
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid::{Grid, GridCell};
-use crate::grid_outputs::csv::grid_csv;
-use crate::grid_outputs::figures::{figure_file, grid_figure_svg};
-use crate::grid_outputs::report::{GridReportInput, grid_md};
+use crate::grid_outputs::grid_csv::grid_csv;
+use crate::grid_outputs::grid_figures::{figure_file, grid_figure_svg};
+use crate::grid_outputs::grid_md::{GridReportInput, grid_md};
 use crate::metrics::Metric;
 use crate::report::{ReportInput, report_md};
 use crate::spec_ron::spec_to_ron;
-use crate::summary::{summary_csv, trials_csv, trials_long_csv};
 use crate::sweep::{SweepConfig, SweepOutcome};
 
 /// Writes every output file of the sweep into `cfg.out_dir`; returns their paths in the order

@@ -11,31 +11,12 @@ use usar_sim::scenario::Scenario;
 use crate::analysis::CellAnalysis;
 use crate::calibration;
 use crate::claims::{ALPHA, Verdict};
-use crate::figures::FIGURES;
-use crate::grid::GridCell;
-use crate::sweep::SweepOutcome;
+use crate::data::figure_list::FIGURES;
+use crate::data::grid_cells::GridCell;
+use crate::data::outcome::SweepOutcome;
+pub use crate::data::software::{software_build, software_version};
+use crate::data::trial_length::simulated_length_s;
 use crate::table::{mean_sd, num, pval};
-
-/// Software version written into reports: the crate version, plus the commit
-/// (`git describe --always --dirty`, recorded by `build.rs` at build time, or taken from
-/// `USAR_GIT_DESCRIBE` in the build environment).
-pub fn software_version() -> String {
-    match software_build() {
-        g if !g.is_empty() => format!("usar {} ({g})", env!("CARGO_PKG_VERSION")),
-        _ => format!(
-            "usar {} (commit not recorded: built outside a git checkout)",
-            env!("CARGO_PKG_VERSION")
-        ),
-    }
-}
-
-/// The build of this `usar`: `git describe --always --dirty` at build time, with `+` and 8
-/// hex digits of a hash of the uncommitted changes when the checkout was dirty (recorded by
-/// `build.rs`), or `USAR_GIT_DESCRIBE` from the build environment; empty when built outside
-/// a git checkout. A sweep's journal records it ([`crate::journal::SweepHeader::build`]).
-pub fn software_build() -> &'static str {
-    option_env!("USAR_GIT_DESCRIBE").unwrap_or("")
-}
 
 /// What [`report_md`] needs.
 #[derive(Debug)]
@@ -121,7 +102,7 @@ fn setup(r: &mut String, input: &ReportInput<'_>) {
         r,
         "- Trials: {} per method, {} s of simulated time each.",
         h.trials,
-        crate::sweep::simulated_length_s(cell.duration_s, s.sim.dt_s.get())
+        simulated_length_s(cell.duration_s, s.sim.dt_s.get())
     );
     let _ = writeln!(
         r,

@@ -20,10 +20,10 @@ use anyhow::{Context, Result};
 use usar_sim::scenario::path_text;
 
 use crate::atomic::{remove_files_where, remove_stale_temps};
-use crate::figures::FIGURES;
+use crate::data::figure_list::FIGURES;
+use crate::data::shard_folders::shard_folders;
 use crate::grid::names::{cell_dir, field_labels};
 use crate::journal::{GridHeader, Journal, read_header_unverified};
-use crate::shard::shard_folders;
 use crate::vary::FieldPath;
 
 /// Tables and the report of one cell (or of the output folder without a grid).

@@ -18,7 +18,8 @@ use usar_sim::scenario::{Scenario, ScenarioSpec, trial_steps};
 use super::float_text;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
-use crate::executor::{CellPlan, Job, Runner, SweepHooks, run_trial};
+use crate::data::hooks::SweepHooks;
+use crate::executor::{CellPlan, Job, Runner, run_trial};
 use crate::method_factory::trust_model;
 use crate::vary::{Override, apply_overrides, rule_error};
 

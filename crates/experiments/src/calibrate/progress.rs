@@ -106,7 +106,7 @@ impl Display {
                     loss_text(e.loss),
                     values.join(" ")
                 );
-                self.pb.suspend(|| crate::console::warn(line));
+                self.pb.suspend(|| crate::stderr::warn(line));
             }
         }
         self.pb

@@ -203,7 +203,7 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
     Ok(TraceHeader {
         format: TRACE_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
-        build: crate::report::software_build().to_owned(),
+        build: crate::data::software::software_build().to_owned(),
         scenario: checked.scenario.name.clone(),
         scenario_hash: scenario_hash(&checked.scenario)?,
         targets: setup.targets.targets().to_vec(),
@@ -265,7 +265,7 @@ fn open_trace(
         );
     }
     for line in &contents.rejected {
-        crate::console::warn(format!(
+        crate::stderr::warn(format!(
             "warning: {}:{line}: evaluation does not verify (edited?); its point runs again \
              if the search comes to it",
             path_text(&path)

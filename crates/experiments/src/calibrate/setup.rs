@@ -7,8 +7,8 @@ use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 use super::free::{FreeError, FreeField, check_distinct};
 use super::targets::{Targets, TargetsError};
+use crate::data::limits::{MAX_SWEEP_TRIALS, max_threads};
 use crate::method_factory::{MethodFactory, canonical_method, trust_model};
-use crate::sweep::{MAX_SWEEP_TRIALS, max_threads};
 
 /// Trials per method and evaluation by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;

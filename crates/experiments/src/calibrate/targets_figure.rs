@@ -11,7 +11,7 @@ use plotters::prelude::*;
 
 use super::outcome::CalibrationOutcome;
 use super::targets::Target;
-use crate::figures::draw_err;
+use crate::chart::draw_err;
 
 /// Panels per row.
 const COLUMNS: usize = 4;

@@ -20,7 +20,7 @@ use anyhow::{Context, Result};
 use super::columns::{LEADING, MIDDLE, TRAILING};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::summary::stat_cell;
+use crate::csv_tables::stat_cell;
 
 /// A number for the file: shortest round-trip form, `inf`/`-inf`, empty for NaN.
 fn num(x: f64) -> String {

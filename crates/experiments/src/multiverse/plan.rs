@@ -94,7 +94,7 @@ impl MultiversePlan {
             identity: MultiverseIdentity {
                 format: PLAN_FORMAT,
                 version: env!("CARGO_PKG_VERSION").to_string(),
-                build: crate::report::software_build().to_owned(),
+                build: crate::data::software::software_build().to_owned(),
                 scenario: checked.scenario.name.clone(),
                 scenario_hash: scenario_hash(&checked.scenario)?,
                 axes: setup.axes.clone(),

@@ -72,7 +72,7 @@ impl Display {
         self.pb.inc(1);
         if self.lines && new {
             let line = universe_line(plan, r);
-            self.pb.suspend(|| crate::console::warn(line));
+            self.pb.suspend(|| crate::stderr::warn(line));
         }
     }
 

@@ -142,7 +142,7 @@ fn run_universes(
                 continue;
             }
             RecordRead::Unusable(why) => {
-                crate::console::warn(format!("warning: {why}; universe {id} runs again"));
+                crate::stderr::warn(format!("warning: {why}; universe {id} runs again"));
             }
             RecordRead::Done(_) | RecordRead::Missing => {}
         }

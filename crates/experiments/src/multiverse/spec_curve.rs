@@ -17,8 +17,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
+use crate::chart::{draw_err, method_color};
 use crate::claims::{Claim, Verdict};
-use crate::figures::{draw_err, method_color};
 
 /// Width of the figure, pixels.
 const WIDTH: u32 = 900;

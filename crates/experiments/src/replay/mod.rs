@@ -13,7 +13,7 @@
 //! - [`replay_html`], [`write_replay`] (`page.rs`): the page, from `template.html`,
 //!   `replay.css` and `replay.js` beside this file.
 //! - [`record_trial`] (`trial.rs`): run one trial and record it.
-//! - [`ReplayRequest`], [`SweepReplays`] (`sweep.rs`): replays of chosen trials of a sweep.
+//! - [`ReplayRequest`], [`SweepReplays`] (`sweep_replays.rs`): replays of chosen trials of a sweep.
 
 mod channels;
 mod encoding;
@@ -23,7 +23,7 @@ mod page;
 mod recorder;
 mod recording;
 mod sampling;
-mod sweep;
+mod sweep_replays;
 mod trial;
 
 pub use channels::{
@@ -42,5 +42,5 @@ pub use page::{
 pub use recorder::ReplayRecorder;
 pub use recording::{Recording, RescueeChange};
 pub use sampling::{DEFAULT_HZ, SampleClock};
-pub use sweep::{ReplayRequest, SweepReplays, WrittenReplay, parse_replay_list};
+pub use sweep_replays::{ReplayRequest, SweepReplays, WrittenReplay, parse_replay_list};
 pub use trial::{ReplayTrial, record_trial};

@@ -19,14 +19,14 @@ use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::{one_line_text, path_text};
 
 use crate::atomic::remove_stale_temps;
+use crate::data::shard_folders::{SHARDS_DIR, shard_dir, shard_folders};
+use crate::data::shard_split::{Shard, job_costs_ms, split, sweep_jobs};
+use crate::data::sweep_plan::{PLAN_FILE, SweepPlan};
 use crate::journal::{
     Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
     other_sweeps, read_journal, something_at,
 };
 use crate::lock::OutputLock;
-use crate::shard::plan::plan_mismatch;
-use crate::shard::spec::{job_costs_ms, sweep_jobs};
-use crate::shard::{SHARDS_DIR, Shard, SweepPlan, shard_dir, shard_folders, split};
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome, cells_from_records, header_of};
 
 /// A shard that is not done.
@@ -256,7 +256,7 @@ fn plan_and_header(
             "{}: no shard has both a journal and a {} (run the shards with `usar sweep ... \
              --shard I/N`)",
             path_text(&dir.join(SHARDS_DIR)),
-            crate::shard::plan::PLAN_FILE
+            PLAN_FILE
         );
     };
     let plan = SweepPlan::read(&first.dir)?;
@@ -476,4 +476,13 @@ fn failed_shards(header: &SweepHeader, count: usize, records: &[TrialRecord]) ->
         .into_iter()
         .filter_map(|i| Shard::new(i, count).ok())
         .collect()
+}
+
+/// The error for a plan that a shard's journal does not match.
+pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
+    anyhow!(
+        "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
+         mixes two sweeps",
+        path_text(&SweepPlan::path_in(dir))
+    )
 }

@@ -2,15 +2,17 @@
 //! machines) and merged back (`usar merge DIR`) into the same files a sweep on one machine
 //! writes.
 //!
-//! [`spec`] says which jobs a shard runs, [`run`] where it keeps its journal and plan,
-//! [`plan`] what the sweep was asked to run, and [`merge`] combines the shards' journals.
+//! Which jobs a shard runs ([`crate::data::shard_split`]), where it keeps its journal and plan
+//! ([`crate::data::shard_folders`]) and what the sweep was asked to run
+//! ([`crate::data::sweep_plan`]) are the sweep's data, re-exported here; [`plan_config`] rebuilds the
+//! sweep's configuration from a plan, and [`merge`] combines the shards' journals.
 
 pub mod merge;
-pub mod plan;
-pub mod run;
-pub mod spec;
+pub mod plan_config;
 
+pub use crate::data::shard_folders::{SHARDS_DIR, ShardRun, shard_dir, shard_folders};
+pub use crate::data::shard_split::{
+    MAX_SHARDS, Shard, ShardError, job_costs_ms, split, sweep_jobs,
+};
+pub use crate::data::sweep_plan::{PLAN_FILE, SweepPlan, shell_join};
 pub use merge::{MergeError, Merged, merge_shards};
-pub use plan::{SweepPlan, shell_join};
-pub use run::{SHARDS_DIR, ShardRun, shard_dir, shard_folders};
-pub use spec::{MAX_SHARDS, Shard, ShardError, split};

@@ -7,6 +7,7 @@ use clap::Parser;
 use clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand;
 mod cli;
 mod commands;
+mod shared;
 
 use cli::{Cli, run};
 

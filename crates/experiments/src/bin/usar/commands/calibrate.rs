@@ -2,26 +2,38 @@
 //! scenario fall inside the bands of a targets file (`experiments::calibrate`).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::time::{Duration, SystemTime};
 
-use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+
+use std::sync::Arc;
+
+use std::time::Duration;
+
+use anyhow::Result;
+
 use clap::Args;
+
 use rne_core::grouping::METHOD_NAMES;
+
 use usar_sim::scenario::{self, path_text};
 
 use experiments::calibrate::setup::{
     DEFAULT_CHECK_TRIALS, DEFAULT_DIGITS, DEFAULT_MAX_EVALS, DEFAULT_TRIALS, default_check_seed,
 };
+
 use experiments::calibrate::{
     CalibrationSetup, Progress, Targets, calibrate, parse_free, summary_text,
 };
+
 use experiments::calibration::{PAPER_TARGETS_ORIGIN, PAPER_TARGETS_RON};
+
 use experiments::shard::shell_join;
+
 use experiments::sweep::default_out_dir;
 
-use super::test_hooks::STOP_EXIT_CODE;
+use crate::shared::source_date::source_date;
+use crate::shared::sweep_spec::threads_of;
+use crate::shared::test_hooks::STOP_EXIT_CODE;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -176,20 +188,6 @@ fn targets_of(path: Option<&Path>) -> Result<Targets> {
     })
 }
 
-/// The date of the outputs: `SOURCE_DATE_EPOCH` (seconds since 1970, the reproducible-builds
-/// convention) when set, else `None` (the system clock).
-pub fn source_date() -> Result<Option<String>> {
-    let Ok(text) = std::env::var("SOURCE_DATE_EPOCH") else {
-        return Ok(None);
-    };
-    let secs: u64 = text
-        .trim()
-        .parse()
-        .with_context(|| format!("SOURCE_DATE_EPOCH {text:?} is not a number of seconds"))?;
-    let at = SystemTime::UNIX_EPOCH + Duration::from_secs(secs);
-    Ok(Some(humantime::format_rfc3339_seconds(at).to_string()))
-}
-
 /// The calibration's setup from the arguments.
 fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let origin = path_text(&args.scenario);
@@ -212,7 +210,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
         digits: args.digits,
         max_evals: args.max_evals,
         max_time: args.max_time,
-        threads: super::sweep::threads_of(args.threads)?,
+        threads: threads_of(args.threads)?,
         check_seed: args.check_seed.unwrap_or(default_check_seed(seed)),
         check_trials: args.check_trials,
         overwrite: args.overwrite,

@@ -3,18 +3,24 @@
 //! error.
 
 use std::io::Write;
+
 use std::path::PathBuf;
 
 use anyhow::{Result, anyhow};
+
 use clap::Args;
-use usar_sim::mission::{tasks_without_rescue, unreachable_goals};
+
 use usar_sim::scenario::{
     self, Debris, Locomotion, Scenario, ScenarioError, number_text, path_text,
 };
 
 use experiments::fingerprint::scenario_hash;
+
 use experiments::spec_ron::spec_to_ron;
+
 use experiments::vary::{Override, apply_overrides, brief, rule_error, touching};
+
+use crate::shared::scenario_warnings::warn_about;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -33,6 +39,7 @@ Examples:
   usar check results/grid/c01_hp_pct_per_step_in_radiation=0.003/scenario.ron --hash
 
 An invalid file prints the loader's error as `file:line:col: field.path: message` on stderr;
+
 a bad --set as `--set FIELD=VALUE: field.path: message`.";
 
 /// Arguments of `usar check`.
@@ -102,24 +109,6 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
     }
     Ok(())
-}
-
-/// The warnings about a valid scenario `s`, one line each without the `warning: ORIGIN: `
-/// head: the tasks no group can rescue from ([`tasks_without_rescue`]), then the goals some
-/// robots cannot reach from their starts ([`unreachable_goals`]).
-pub fn scenario_warnings(s: &Scenario) -> Vec<String> {
-    let idle = tasks_without_rescue(s).into_iter().map(|t| t.to_string());
-    idle.chain(unreachable_goals(s).iter().map(ToString::to_string))
-        .collect()
-}
-
-/// Warns on stderr, one line each, about [`scenario_warnings`] of `s`: `warning: ORIGIN:
-/// tasks.hard.goal_m (6.0, 16.0): no path ...`. The scenario stays valid (a trial runs; such
-/// tasks yield nothing, such robots stand still).
-pub fn warn_about(origin: &str, s: &Scenario) {
-    for w in scenario_warnings(s) {
-        experiments::console::warn(format!("warning: {origin}: {w}"));
-    }
 }
 
 /// Decimals of the positions and distances the summary prints: 1 in an arena whose shorter

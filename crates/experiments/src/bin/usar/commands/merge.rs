@@ -16,7 +16,8 @@ use experiments::multiverse::{is_multiverse_dir, merge_multiverse, summary_text}
 use experiments::output::write_outputs;
 use experiments::shard::merge_shards;
 
-use super::sweep::grid_metrics;
+use crate::shared::multiverse_spec::failed_universes;
+use crate::shared::sweep_spec::grid_metrics;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -63,7 +64,7 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
         let here = std::env::current_dir().ok();
         let o = merge_multiverse(&args.dir, here.as_deref())?;
         out.write_all(summary_text(&o, &args.dir).as_bytes())?;
-        return super::multiverse::failed_universes(
+        return failed_universes(
             &o,
             "run the shards that hold them again (or the command without --shard, which runs \
              only what is missing or failed), then merge again",

@@ -9,5 +9,4 @@ pub mod replay;
 pub mod run;
 pub mod slurm;
 pub mod sweep;
-pub mod test_hooks;
 pub mod trust;

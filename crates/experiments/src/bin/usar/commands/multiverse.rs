@@ -2,27 +2,24 @@
 //! (`experiments::multiverse`), each calibrated to the targets first.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+
 use std::sync::Arc;
+
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
+
 use clap::Args;
-use rne_core::grouping::METHOD_NAMES;
-use usar_sim::scenario::{self, path_text};
 
-use experiments::calibrate::{Targets, parse_free};
-use experiments::multiverse::setup::{
-    DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED, DEFAULT_TRIALS,
-};
-use experiments::multiverse::{
-    Axes, MultiverseHooks, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
-    summary_text,
-};
+use experiments::multiverse::{MultiverseHooks, MultiverseProgress, run_multiverse, summary_text};
+
 use experiments::shard::Shard;
-use experiments::sweep::{SweepHooks, default_out_dir};
 
-use super::test_hooks::{STOP_EXIT_CODE, test_hooks};
+use experiments::sweep::SweepHooks;
+
+use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, failed_universes, setup_of};
+use crate::shared::sweep_spec::threads_of;
+use crate::shared::test_hooks::{STOP_EXIT_CODE, test_hooks};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -75,78 +72,6 @@ parameters is refused (--overwrite starts afresh). Same inputs, same multiverse.
 multiverse.md and figures on any --threads, resumed, or sharded and merged. See
 docs/multiverse.md.";
 
-/// The arguments of `usar multiverse` that decide what it runs.
-#[derive(Debug, Clone, Args)]
-pub struct MultiverseSpecArgs {
-    /// The base scenario file (RON), e.g. scenarios/paper.ron.
-    #[arg(value_name = "SCENARIO")]
-    pub scenario: PathBuf,
-
-    /// The axes file (RON, see below): the open choices and their alternatives.
-    #[arg(long, value_name = "AXES.ron")]
-    pub axes: PathBuf,
-
-    /// The targets file each universe is calibrated to (RON, as `usar calibrate --targets`).
-    #[arg(long, value_name = "TARGETS.ron")]
-    pub targets: PathBuf,
-
-    /// The name of a target to compute and report but leave out of the loss (and so out of
-    /// what makes a universe admissible): a target known to conflict with the others, or one
-    /// only watched; repeatable. A file can mark one with `report_only: true`.
-    #[arg(long = "report-only", value_name = "NAME")]
-    pub report_only: Vec<String>,
-
-    /// A field each universe's calibration fits and its range: FIELD=LO..HI, or
-    /// FIELD=LO..HI:log (LO > 0); repeatable, each field once, none set by an axis.
-    #[arg(
-        long,
-        value_name = "FIELD=LO..HI[:log]",
-        required = true,
-        allow_hyphen_values = true
-    )]
-    pub free: Vec<String>,
-
-    /// Grouping methods, comma-separated: rne, dis, eng, hp_dis.
-    #[arg(long, value_name = "NAME,..", value_delimiter = ',', default_values_t = METHOD_NAMES.map(String::from))]
-    pub methods: Vec<String>,
-
-    /// Comparison trials per method in each universe.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_TRIALS)]
-    pub trials: u32,
-
-    /// Base seed of the comparison's trials; default the scenario's sim.seed.
-    #[arg(long, value_name = "SEED")]
-    pub seed: Option<u64>,
-
-    /// Length of every trial, seconds (> 0); default each universe's mission.duration_s.
-    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
-    pub duration: Option<f64>,
-
-    /// Trials per method of each calibration evaluation.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_CALIBRATION_TRIALS)]
-    pub calibration_trials: u32,
-
-    /// Base seed of the calibrations' trials; default --seed.
-    #[arg(long, value_name = "SEED")]
-    pub calibration_seed: Option<u64>,
-
-    /// Most evaluations of each universe's calibration.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_EVALS)]
-    pub max_evals: usize,
-
-    /// Run N universes drawn without replacement from the full factorial (default: all).
-    #[arg(long, value_name = "N")]
-    pub sample: Option<usize>,
-
-    /// Seed of --sample's draw.
-    #[arg(long, value_name = "S", default_value_t = DEFAULT_SAMPLE_SEED, requires = "sample")]
-    pub sample_seed: u64,
-
-    /// Output folder; default `results/multiverse-<scenario name>/`. Locked while it runs.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-}
-
 /// Arguments of `usar multiverse`.
 #[derive(Debug, Clone, Args)]
 #[command(after_help = EXAMPLES)]
@@ -193,52 +118,6 @@ fn parse_fail(spec: &str) -> Result<(String, u32)> {
     parsed.with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))
 }
 
-/// The setup of `spec` with `threads` worker threads, run as `shard`.
-///
-/// # Errors
-/// A scenario, axes file, targets file or `--free` that cannot be read or parsed.
-pub fn setup_of(
-    spec: &MultiverseSpecArgs,
-    threads: usize,
-    shard: Option<Shard>,
-) -> Result<MultiverseSetup> {
-    let origin = path_text(&spec.scenario);
-    let text = scenario::read_source(&spec.scenario)?;
-    let base = scenario::parse_spec(&text, &origin)?;
-    let axes = Axes::load(&spec.axes)?;
-    let mut targets = Targets::load(&spec.targets)?;
-    targets.set_report_only(&spec.report_only)?;
-    let free = parse_free(&spec.free)?;
-    let seed = spec.seed.unwrap_or(base.sim.seed);
-    Ok(MultiverseSetup {
-        methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
-        trials: spec.trials,
-        seed,
-        duration_s: spec.duration,
-        calibration_trials: spec.calibration_trials,
-        calibration_seed: spec.calibration_seed.unwrap_or(seed),
-        max_evals: spec.max_evals,
-        sample: spec.sample.map(|n| Sample {
-            n,
-            seed: spec.sample_seed,
-        }),
-        threads,
-        shard,
-        date: super::calibrate::source_date()?,
-        ..MultiverseSetup::new(base, origin, axes, targets, free)
-    })
-}
-
-/// The default output folder: `results/multiverse-<scenario name>/` (the name made safe as
-/// for a sweep's folder).
-pub fn default_dir(setup: &MultiverseSetup) -> Result<PathBuf> {
-    let scenario = setup.base.validate(&setup.origin)?;
-    let name = default_out_dir(&scenario)
-        .file_name()
-        .map_or("scenario".into(), |n| n.to_string_lossy().into_owned());
-    Ok(Path::new("results").join(format!("multiverse-{name}")))
-}
-
 /// `--stop-after N`: hooks that exit the process abruptly once N calibration evaluations and
 /// comparison trials (counted together) are recorded.
 fn stop_hooks(limit: usize) -> MultiverseHooks {
@@ -270,7 +149,7 @@ fn stop_hooks(limit: usize) -> MultiverseHooks {
 /// others have run and the files are written).
 pub fn run(args: &MultiverseArgs, out: &mut dyn Write) -> Result<()> {
     let shard: Option<Shard> = args.shard.as_deref().map(str::parse).transpose()?;
-    let mut setup = setup_of(&args.spec, super::sweep::threads_of(args.threads)?, shard)?;
+    let mut setup = setup_of(&args.spec, threads_of(args.threads)?, shard)?;
     setup.overwrite = args.overwrite;
     if let Some(limit) = args.stop_after {
         setup.hooks = stop_hooks(limit);
@@ -295,21 +174,4 @@ pub fn run(args: &MultiverseArgs, out: &mut dyn Write) -> Result<()> {
     let o = run_multiverse(&setup, &dir, progress)?;
     out.write_all(summary_text(&o, &dir).as_bytes())?;
     failed_universes(&o, "run the same command again to retry them")
-}
-
-/// The error listing failed universes, if any, ending with `retry` (how to retry them).
-pub fn failed_universes(o: &experiments::multiverse::MultiverseOutcome, retry: &str) -> Result<()> {
-    let failed: Vec<String> = o
-        .failed()
-        .map(|r| format!("{} ({})", r.id, r.message.as_deref().unwrap_or("failed")))
-        .collect();
-    if failed.is_empty() {
-        return Ok(());
-    }
-    bail!(
-        "{} of {} universes failed: {}. The others are in the files; {retry}",
-        failed.len(),
-        o.records.len(),
-        failed.join("; ")
-    )
 }

@@ -78,8 +78,8 @@ pub fn trace_trial(
     if let Some(d) = duration_s {
         builder = builder.duration_s(d);
     }
-    let mut sim = crate::commands::run::build_trial(builder)?;
-    crate::commands::run::warn_if_rounded(duration_s, &sim);
+    let mut sim = crate::shared::trial_build::build_trial(builder)?;
+    crate::shared::trial_build::warn_if_rounded(duration_s, &sim);
     let every = ((TRACE_SAMPLE_S / scenario.sim.dt_s.get()).round() as u64).max(1);
     let sample = |sim: &Simulation, traces: &mut [Trace]| {
         for (id, t) in traces.iter_mut().enumerate() {

@@ -91,8 +91,8 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(d) = args.duration {
         builder = builder.duration_s(d);
     }
-    let sim = crate::commands::run::build_trial(builder)?;
-    crate::commands::run::warn_if_rounded(args.duration, &sim);
+    let sim = crate::shared::trial_build::build_trial(builder)?;
+    crate::shared::trial_build::warn_if_rounded(args.duration, &sim);
     let clock =
         experiments::replay::SampleClock::new(args.hz, scenario.sim.dt_s.get(), sim.progress().1)
             .context("--hz")?;

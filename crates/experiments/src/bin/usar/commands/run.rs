@@ -2,17 +2,27 @@
 //! as JSON.
 
 use std::io::Write;
+
 use std::path::PathBuf;
+
 use std::time::Instant;
 
 use anyhow::{Context, Result};
+
 use clap::Args;
-use usar_sim::mission::{MissionError, Simulation, TrialBuilder, TrialResult, trial_steps};
-use usar_sim::scenario::{self, number_text, path_text};
+
+use usar_sim::mission::{Simulation, TrialResult};
+
+use usar_sim::scenario::{self, path_text};
 
 use experiments::atomic::write_atomic;
+
 use experiments::metrics::{Metric, Quantity, Scope};
+
 use experiments::table::num;
+
+use crate::shared::scenario_warnings::warn_about;
+use crate::shared::trial_build::{build_trial, warn_if_rounded};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -75,7 +85,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         builder = builder.duration_s(d);
     }
     let mut sim = build_trial(builder)?;
-    super::check::warn_about(&path_text(&args.scenario), &scenario);
+    warn_about(&path_text(&args.scenario), &scenario);
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
     let result = sim.run_to_end().context("the trial failed")?;
@@ -95,57 +105,6 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out, "wrote {}", path.display())?;
     }
     Ok(())
-}
-
-/// Builds the trial, with the flag a builder error is about as its context: `--method` for an
-/// unknown or failing grouping method, `--duration` for a bad trial length.
-///
-/// # Errors
-/// The builder's [`MissionError`], with that context.
-pub fn build_trial(builder: TrialBuilder<'_>) -> Result<Simulation> {
-    builder.build().map_err(|e| {
-        let flag = match e {
-            MissionError::Method(_) | MissionError::Grouping { .. } => "--method",
-            MissionError::Duration(_) => "--duration",
-            MissionError::World(_) => "the trial",
-        };
-        anyhow::Error::new(e).context(flag)
-    })
-}
-
-/// Warns on stderr when the trial does not run the `requested` length exactly: a length that
-/// is not a whole number of steps is rounded up to one (shorter than one step: one step).
-pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
-    if let Some(d) = requested
-        && let Some(w) = rounding_warning(d, sim.scenario().sim.dt_s.get())
-    {
-        experiments::console::warn(w);
-    }
-}
-
-/// The warning for a `--duration` of `requested_s` seconds at step `dt_s` when the trial runs
-/// another length (its steps times `dt_s`, see `usar_sim::mission::trial_steps`), naming the
-/// length actually run; `None` when it runs `requested_s` (within 1e-9 relative) or when the
-/// length is refused anyway (the caller reports that error).
-pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
-    let steps = trial_steps(requested_s, dt_s).ok()?;
-    let actual_s = experiments::sweep::simulated_length_s(requested_s, dt_s);
-    if actual_s == requested_s {
-        return None;
-    }
-    let why = if requested_s < dt_s {
-        "is shorter than one step"
-    } else {
-        "is not a whole number of steps"
-    };
-    Some(format!(
-        "warning: --duration {} s {why} of {} s (sim.dt_s): the trial runs {} s ({steps} \
-         step{})",
-        number_text(requested_s),
-        number_text(dt_s),
-        number_text(actual_s),
-        if steps == 1 { "" } else { "s" }
-    ))
 }
 
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the

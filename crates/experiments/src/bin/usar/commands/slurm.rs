@@ -18,8 +18,8 @@ use experiments::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scri
 use experiments::sweep::default_out_dir;
 use usar_sim::scenario;
 
-use super::multiverse::MultiverseSpecArgs;
-use super::sweep::SweepSpecArgs;
+use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, setup_of};
+use crate::shared::sweep_spec::{SweepSpecArgs, warn_if_rounded};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -174,7 +174,7 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     let header = experiments::sweep::header_of(&cfg)?;
     experiments::sweep::check_config(&cfg, &header)?;
     if let Some(d) = args.spec.duration {
-        super::sweep::warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
+        warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
     }
     experiments::sweep::check_shard_count(
         &format!("--shards {}", args.shards),
@@ -205,10 +205,10 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         sample_seed: m.sample_seed,
         out: s.out.clone(),
     };
-    let setup = super::multiverse::setup_of(&spec, 1, None)?;
+    let setup = setup_of(&spec, 1, None)?;
     let out_dir = match &s.out {
         Some(o) => o.clone(),
-        None => super::multiverse::default_dir(&setup)?,
+        None => default_dir(&setup)?,
     };
     let out_dir = absolute(&out_dir)?;
     let checked = setup.check()?;

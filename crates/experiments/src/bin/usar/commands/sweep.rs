@@ -4,25 +4,34 @@
 //! `grid.md` for a grid).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+
+use std::path::Path;
 
 use anyhow::{Context, Result, bail};
+
 use clap::Args;
-use rne_core::grouping::METHOD_NAMES;
+
 use usar_sim::scenario::{self, Scenario, path_text};
 
 use experiments::analysis::Analysis;
 
-use super::test_hooks::test_hooks;
+use crate::shared::scenario_warnings::{scenario_warnings, warn_about as warn_about_scenario};
+use crate::shared::sweep_spec::{SweepSpecArgs, grid_metrics, threads_of, warn_if_rounded};
+use crate::shared::test_hooks::test_hooks;
+
 use experiments::console::print_sweep;
+
 use experiments::grid::Grid;
-use experiments::metrics::{Metric, Quantity, Scope};
+
 use experiments::output::write_outputs;
+
 use experiments::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
-use experiments::shard::{Shard, ShardRun, SweepPlan, shell_join};
+
+use experiments::shard::{Shard, ShardRun, shell_join};
+
 use experiments::sweep::{
-    MAX_THREADS_PER_CORE, MethodFactory, SweepConfig, SweepOutcome, canonical_method,
-    default_out_dir, max_threads, run_sweep, trust_model,
+    MethodFactory, SweepConfig, SweepOutcome, canonical_method, default_out_dir, run_sweep,
+    trust_model,
 };
 
 const EXAMPLES: &str = "\
@@ -67,48 +76,6 @@ record is reported by line and its trial runs again; an edited header is refused
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
-
-/// The arguments of `usar sweep` that decide what the sweep runs (shared with `usar slurm`).
-#[derive(Debug, Clone, Args)]
-pub struct SweepSpecArgs {
-    /// The scenario file (RON), e.g. scenarios/paper.ron.
-    #[arg(value_name = "SCENARIO")]
-    pub scenario: PathBuf,
-
-    /// Grouping methods, comma-separated: rne, dis, eng, hp_dis.
-    #[arg(long, value_name = "NAME,..", value_delimiter = ',', default_values_t = METHOD_NAMES.map(String::from))]
-    pub methods: Vec<String>,
-
-    /// Trials per method.
-    #[arg(long, value_name = "N", default_value_t = 10)]
-    pub trials: u32,
-
-    /// Base seed of the starting teams; default the scenario's sim.seed.
-    #[arg(long, value_name = "SEED")]
-    pub seed: Option<u64>,
-
-    /// Length of each trial, seconds (> 0); default the scenario's mission.duration_s.
-    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
-    pub duration: Option<f64>,
-
-    /// Vary a scenario field: run the sweep once per value, in a grid over every --vary
-    /// (repeatable; the first varies slowest). FIELD is a path such as
-    /// `mission.duration_s`, `kinds[0].count` or `radiation_zones[*].radius_m`; values are RON.
-    /// The scenario file must be valid on its own; each cell is validated with its values.
-    #[arg(long, value_name = "FIELD=V1,V2,..", allow_hyphen_values = true)]
-    pub vary: Vec<String>,
-
-    /// Metrics of grid.md and its figures (names as in summary.csv); default
-    /// rescued_total,rescued_hard,rescued_easy.
-    #[arg(long, value_name = "NAME,..", value_delimiter = ',', requires = "vary")]
-    pub grid_metrics: Vec<String>,
-
-    /// Output folder; default `results/<scenario name>/`. Locked while the sweep runs (a
-    /// second sweep into it is refused, naming the holder's pid). Output files that are
-    /// symlinks are followed and stay symlinks; a FIFO or character device is written directly.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-}
 
 /// Arguments of `usar sweep`.
 #[derive(Debug, Clone, Args)]
@@ -176,35 +143,6 @@ fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)>
     Ok((canonical_method(m, &MethodFactory::builtin(), model)?, k))
 }
 
-/// The metrics named by `--grid-metrics` for a scenario with tasks `tasks`, or the default
-/// ones (rescuees in total and per task).
-///
-/// # Errors
-/// An unknown name (the message lists the valid ones).
-pub fn grid_metrics(names: &[String], tasks: &[String]) -> Result<Vec<Metric>> {
-    if names.is_empty() {
-        let mut out = vec![Metric::new(Quantity::Rescued, Scope::Total)];
-        out.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
-        return Ok(out);
-    }
-    names
-        .iter()
-        .map(|n| {
-            Metric::parse(n.trim(), tasks).with_context(|| {
-                let valid: Vec<String> = Metric::all(tasks.len())
-                    .iter()
-                    .map(|m| m.name(tasks))
-                    .collect();
-                format!(
-                    "--grid-metrics: unknown metric {:?} (metrics: {})",
-                    n.trim(),
-                    valid.join(", ")
-                )
-            })
-        })
-        .collect()
-}
-
 /// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`. A grid
 /// that would make the sweep larger than its limit is refused before any cell is built.
 fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
@@ -265,37 +203,15 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     })
 }
 
-/// The worker threads of `--threads`: all cores when not given; more than
-/// [`max_threads`] are capped there with a warning.
-///
-/// # Errors
-/// `--threads 0`.
-pub fn threads_of(requested: Option<usize>) -> Result<usize> {
-    Ok(match requested {
-        Some(0) => bail!("--threads must be at least 1"),
-        Some(n) if n > max_threads() => {
-            experiments::console::warn(format!(
-                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
-                 cores: using {}",
-                max_threads() / MAX_THREADS_PER_CORE,
-                max_threads()
-            ));
-            max_threads()
-        }
-        Some(n) => n,
-        None => std::thread::available_parallelism().map_or(1, usize::from),
-    })
-}
-
-/// [`super::check::warn_about`] the scenario, or the cells of a grid: each warning once, with
+/// [`warn_about_scenario`] the scenario, or the cells of a grid: each warning once, with
 /// the cells it holds for (`(cells 0, 2)`, or `(every cell)`).
 fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
     let Some(g) = grid else {
-        return super::check::warn_about(origin, scenario);
+        return warn_about_scenario(origin, scenario);
     };
     let mut found: Vec<(String, Vec<usize>)> = Vec::new();
     for (i, c) in g.cells.iter().enumerate() {
-        for text in super::check::scenario_warnings(&c.scenario) {
+        for text in scenario_warnings(&c.scenario) {
             match found.iter_mut().find(|(t, _)| *t == text) {
                 Some((_, cells)) => cells.push(i),
                 None => found.push((text, vec![i])),
@@ -310,22 +226,6 @@ fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
             format!("cells {}", list.join(", "))
         };
         experiments::console::warn(format!("warning: {origin} ({at}): {text}"));
-    }
-}
-
-/// Warns once per distinct step (`sim.dt_s` of the scenario or of a grid's cells) when the
-/// `--duration` of `requested_s` seconds is not a whole number of steps of it.
-pub(crate) fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
-    let mut steps: Vec<f64> = match grid {
-        Some(g) => g.cells.iter().map(|c| c.scenario.sim.dt_s.get()).collect(),
-        None => vec![scenario.sim.dt_s.get()],
-    };
-    steps.sort_by(f64::total_cmp);
-    steps.dedup();
-    for dt_s in steps {
-        if let Some(w) = super::run::rounding_warning(requested_s, dt_s) {
-            experiments::console::warn(w);
-        }
     }
 }
 
@@ -398,27 +298,6 @@ fn shard_run(args: &SweepArgs) -> Result<Option<ShardRun>> {
         shard: text.parse()?,
         plan: args.spec.plan()?,
     }))
-}
-
-impl SweepSpecArgs {
-    /// The sweep's plan: the scenario file's text and these options.
-    ///
-    /// # Errors
-    /// The scenario file cannot be read.
-    pub fn plan(&self) -> Result<SweepPlan> {
-        let scenario_text = scenario::read_source(&self.scenario)?;
-        Ok(SweepPlan {
-            scenario_path: self.scenario.clone(),
-            scenario_text,
-            vary: self.vary.clone(),
-            methods: self.methods.iter().map(|m| m.trim().to_string()).collect(),
-            trials: self.trials,
-            seed: self.seed,
-            duration_s: self.duration,
-            grid_metrics: self.grid_metrics.clone(),
-            working_dir: std::env::current_dir().ok(),
-        })
-    }
 }
 
 /// What a shard did, and what to do next.

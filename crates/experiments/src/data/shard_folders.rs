@@ -13,7 +13,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use usar_sim::scenario::path_text;
 
-use crate::shard::{Shard, SweepPlan};
+use crate::data::shard_split::Shard;
+use crate::data::sweep_plan::SweepPlan;
 
 /// Name of the folder, under a sweep's output folder, that holds the shards' folders.
 pub const SHARDS_DIR: &str = "shards";

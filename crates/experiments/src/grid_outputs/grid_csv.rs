@@ -3,8 +3,8 @@
 use anyhow::{Context, Result};
 
 use crate::analysis::Analysis;
+use crate::csv_tables::stat_cell;
 use crate::journal::SweepHeader;
-use crate::summary::stat_cell;
 
 /// `grid.csv`: one column per varied field (named by its path, holding the cell's value as
 /// written), then `method, metric, n, mean, sd, ci95_low, ci95_high`; one row per cell (in

@@ -5,14 +5,12 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
-use usar_sim::scenario::{self, path_text};
+use usar_sim::scenario::path_text;
 
 use crate::atomic::write_atomic;
-use crate::grid::Grid;
-use crate::shard::Shard;
-use crate::sweep::{MethodFactory, SweepConfig};
+use crate::data::shard_split::Shard;
 
 /// File name of the plan in a shard's folder.
 pub const PLAN_FILE: &str = "plan.json";
@@ -71,37 +69,6 @@ impl SweepPlan {
             .with_context(|| format!("cannot read {}", path_text(&path)))?;
         serde_json::from_str(&text)
             .with_context(|| format!("{}: not a sweep plan", path_text(&path)))
-    }
-
-    /// The sweep's configuration: the scenario from [`SweepPlan::scenario_text`], the grid
-    /// of [`SweepPlan::vary`], the built-in methods, output folder `out_dir`, one thread, no
-    /// progress bar, no resume or overwrite, no hooks, no shard.
-    ///
-    /// # Errors
-    /// A scenario or `--vary` that does not load (the messages of `usar sweep`), or a sweep
-    /// above [`crate::sweep::MAX_SWEEP_TRIALS`] trials (refused before the grid is built).
-    pub fn config(&self, out_dir: &Path) -> Result<SweepConfig> {
-        let origin = path_text(&self.scenario_path);
-        let scenario = scenario::from_str(&self.scenario_text, &origin)?;
-        let grid = if self.vary.is_empty() {
-            None
-        } else {
-            crate::sweep::check_grid_size(&self.vary, self.methods.len(), self.trials)?;
-            let spec = scenario::parse_spec(&self.scenario_text, &origin)?;
-            Some(Grid::build(&spec, &self.vary)?)
-        };
-        Ok(SweepConfig {
-            grid,
-            methods: self.methods.clone(),
-            method_factory: MethodFactory::builtin(),
-            trials: self.trials,
-            base_seed: self.seed.unwrap_or(scenario.sim.seed),
-            duration_s: self.duration_s,
-            threads: 1,
-            out_dir: out_dir.to_path_buf(),
-            progress: false,
-            ..SweepConfig::new(scenario, &self.scenario_path)
-        })
     }
 
     /// The options after `SCENARIO` that repeat this sweep: `--methods`, `--trials`, then
@@ -168,15 +135,6 @@ pub fn shell_join(words: &[String]) -> String {
         .map(|w| shlex::try_quote(w).map_or_else(|_| w.clone(), |q| q.into_owned()))
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-/// The error for a plan that a shard's journal does not match.
-pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
-    anyhow!(
-        "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
-         mixes two sweeps",
-        path_text(&SweepPlan::path_in(dir))
-    )
 }
 
 #[cfg(test)]

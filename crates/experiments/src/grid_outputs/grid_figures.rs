@@ -15,7 +15,7 @@ use plotters::style::colors::colormaps::ViridisRGB;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::analysis::Analysis;
-use crate::figures::{FIGURE_SIZE, draw_err, legend_entry, method_color};
+use crate::chart::{FIGURE_SIZE, draw_err, legend_entry, method_color};
 use crate::journal::SweepHeader;
 use crate::metrics::Metric;
 use crate::stats::Summary;

@@ -2,7 +2,7 @@
 //! shards.
 //!
 //! The split is deterministic and balanced: the jobs are taken in the canonical order of
-//! [`crate::sweep::job_list`] (trial-major, then cell, then method) and each goes to the shard
+//! [`job_list`] (trial-major, then cell, then method) and each goes to the shard
 //! with the least simulated time so far (ties to the lowest index). With equal trial lengths
 //! that is round robin, so shard sizes differ by at most one job; with cells of different
 //! trial lengths (`--vary mission.duration_s=...`) it balances simulated seconds. Every split
@@ -11,8 +11,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::data::jobs::{JobId, job_list};
 use crate::journal::SweepHeader;
-use crate::sweep::{JobId, job_list};
 
 /// The most shards a sweep may be split into (a guard against typos such as `--shard 0/40000000`).
 pub const MAX_SHARDS: usize = 100_000;

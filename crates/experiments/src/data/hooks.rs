@@ -1,0 +1,58 @@
+//! The extension points of a sweep ([`SweepHooks`]): a step observer per trial and a call per
+//! journaled record, and the key of the trial they are called for.
+
+use std::fmt;
+use std::sync::Arc;
+
+use usar_sim::mission::StepObserver;
+
+use crate::journal::TrialRecord;
+
+/// Which trial of a sweep a hook is called for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TrialKey {
+    /// Grid cell index (0 without a grid).
+    pub cell: usize,
+    /// The method's canonical (upper-case) name, e.g. `RNE`.
+    pub method: String,
+    /// Trial index, `0..trials`.
+    pub trial: u32,
+    /// The trial's seed.
+    pub seed: u64,
+}
+
+/// Makes a [`StepObserver`] for a trial about to run, or `None` to leave it unobserved.
+pub type TrialObserverFactory =
+    Arc<dyn Fn(&TrialKey) -> Option<Box<dyn StepObserver>> + Send + Sync>;
+
+/// Called after a trial's record is in the journal, with the record and how many records this
+/// run has journaled so far (1, 2, ...).
+pub type JournaledHook = Arc<dyn Fn(&TrialRecord, usize) + Send + Sync>;
+
+/// Extension points of a sweep; none by default.
+///
+/// Both are called on the worker thread of the trial. A panic inside `trial_observer` or the
+/// observer it makes fails that trial only (its record says "panicked: ..."), as a panicking
+/// grouping method does. `on_journaled` is called with the journal locked, so its calls come
+/// in journal order and never overlap.
+///
+/// Uses: record the robot paths of chosen trials during a sweep (`trial_observer`), report
+/// progress to a scheduler or stop a process at a checkpoint (`on_journaled`). The `usar`
+/// binary's hidden `--fail-trial` and `--stop-after` options, which its tests use to make a
+/// trial fail and to simulate a killed sweep, are built on them.
+#[derive(Clone, Default)]
+pub struct SweepHooks {
+    /// Makes each trial's step observer.
+    pub trial_observer: Option<TrialObserverFactory>,
+    /// Sees each journaled record.
+    pub on_journaled: Option<JournaledHook>,
+}
+
+impl fmt::Debug for SweepHooks {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SweepHooks")
+            .field("trial_observer", &self.trial_observer.is_some())
+            .field("on_journaled", &self.on_journaled.is_some())
+            .finish()
+    }
+}

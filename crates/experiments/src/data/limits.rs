@@ -1,0 +1,75 @@
+//! The limits of a sweep: its most trials in all and its most worker threads, and the checks
+//! that refuse a sweep above them (or split into more shards than it has trials) in one line.
+
+use anyhow::{Result, bail};
+
+/// Most worker threads per available core: a sweep never runs more than
+/// `MAX_THREADS_PER_CORE` x [`std::thread::available_parallelism`] threads ([`max_threads`]).
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// The most worker threads a sweep uses on this machine: [`MAX_THREADS_PER_CORE`] x the
+/// available parallelism (1 when that is unknown).
+pub fn max_threads() -> usize {
+    MAX_THREADS_PER_CORE * std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// The worker threads a sweep with `jobs` jobs to run uses when `requested` threads are asked
+/// for: at least 1, at most `max` (see [`max_threads`]) and at most `jobs`.
+pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
+    requested.min(max).min(jobs).max(1)
+}
+
+/// Most trials one sweep may hold: grid cells x methods x trials, all shards together
+/// (1,000,000). A sweep keeps a few hundred bytes per trial in memory (its job list, records
+/// and tables), so the limit keeps a mistyped `--trials` a one-line error instead of an
+/// allocation failure; a larger study is several sweeps (for example one per `--seed`).
+pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
+
+/// Refuses `cells` grid cells x `methods` methods x `trials` trials (saturating) above
+/// [`MAX_SWEEP_TRIALS`]: the check of [`check_trial_count`](crate::sweep::check_trial_count) and [`check_grid_size`](crate::sweep::check_grid_size).
+///
+/// # Errors
+/// The three counts, their product and the limit, when the product is above it.
+pub fn check_sweep_size(cells: usize, methods: usize, trials: u32) -> Result<()> {
+    let total = cells
+        .saturating_mul(methods)
+        .saturating_mul(trials as usize);
+    if total > MAX_SWEEP_TRIALS {
+        bail!(
+            "the sweep's {cells} cell(s) x {methods} method(s) x {trials} trials make {total} \
+             trials, more than the limit of {MAX_SWEEP_TRIALS} per sweep"
+        );
+    }
+    Ok(())
+}
+
+/// Refuses a split into more shards than the sweep has trials (`total`): a shard without a
+/// trial would be one more job to run, and to wait for, with nothing to do. `option` names
+/// the flag in the message (`--shard 3/50`, `--shards 50`).
+///
+/// # Errors
+/// `shards > total`, naming the most shards the sweep can use.
+pub fn check_shard_count(option: &str, shards: usize, total: usize) -> Result<()> {
+    if shards > total {
+        bail!(
+            "{option}: the sweep has {total} trial(s), so at most {total} shards have work; \
+             split it into at most {total}"
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threads_are_capped_at_the_maximum_and_the_job_count() {
+        assert_eq!(effective_threads(100_000, 8, 1_000), 8);
+        assert_eq!(effective_threads(100_000, 8, 3), 3);
+        assert_eq!(effective_threads(2, 8, 1_000), 2);
+        assert_eq!(effective_threads(2, 8, 0), 1);
+        assert_eq!(effective_threads(0, 8, 5), 1);
+        assert!(max_threads() >= MAX_THREADS_PER_CORE);
+    }
+}

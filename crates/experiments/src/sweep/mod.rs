@@ -1,0 +1,37 @@
+//! A sweep: every grouping method for every trial of every grid cell, in parallel, with a
+//! journal that makes it resumable. [`run_sweep`] runs and returns data only; the analysis
+//! ([`crate::analysis`]) judges it and [`crate::output`] writes the files.
+//!
+//! A sweep without `--vary` is a grid of one cell, the scenario itself. Trial `k` of every
+//! method and every cell starts from the same team (seed `trial_seed(base_seed, k)`: common
+//! random numbers). Each finished trial is appended to the journal ([`crate::journal`]) as soon
+//! as it ends; a resume reruns only trials with no successful record. All jobs of all cells
+//! go through one thread pool; results are sorted by cell, method order and trial, so they do
+//! not depend on thread count, completion order or interruptions.
+//!
+//! The sweep's plan and outcome types, limits and output names are data ([`crate::data`]);
+//! they are re-exported here at their old paths. [`checks`] refuses a sweep before it runs,
+//! [`header`] makes its journal header, `open_journal` opens the journal, [`run`] runs the
+//! jobs and `records` sorts the records into per-cell outcomes.
+
+pub mod checks;
+pub mod header;
+mod open_journal;
+mod records;
+pub mod run;
+
+pub use crate::data::config::SweepConfig;
+pub use crate::data::hooks::{JournaledHook, SweepHooks, TrialKey, TrialObserverFactory};
+pub use crate::data::jobs::{JobId, job_list};
+pub use crate::data::limits::{
+    MAX_SWEEP_TRIALS, MAX_THREADS_PER_CORE, check_shard_count, check_sweep_size, effective_threads,
+    max_threads,
+};
+pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir};
+pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};
+pub use crate::data::trial_length::simulated_length_s;
+pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
+pub use checks::{check_config, check_grid_size, check_trial_count, trial_count};
+pub use header::header_of;
+pub(crate) use records::cells_from_records;
+pub use run::run_sweep;
