@@ -17,13 +17,15 @@
 mod apply;
 mod field_override;
 mod path;
+mod quoted_arg;
 mod split;
 mod value;
 mod value_list;
 
 pub use apply::{apply_overrides, rule_error, spec_from_json, spec_json, touching};
-pub use field_override::{FieldValue, Override, QUOTED_ARG_CHARS, brief};
+pub use field_override::{FieldValue, Override};
 pub use path::{FieldPath, Step};
+pub use quoted_arg::{QUOTED_ARG_CHARS, brief};
 pub use split::split_top_level;
 pub use value::{Args, RonValue};
 pub use value_list::Vary;

@@ -62,6 +62,7 @@ mod nav_state;
 mod neighbour_lists;
 pub mod neighbours;
 mod path_following;
+mod path_following_params;
 pub mod path_planner;
 mod path_smoothing;
 mod plan_cache;
@@ -84,7 +85,7 @@ mod union_find;
 mod world;
 
 pub use error::{NavError, WorldError};
-pub use path_following::{
+pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
     STALL_PROGRESS_M, STALL_REPLAN_S,
 };

@@ -2,38 +2,21 @@
 //! at top speed times the speed factor, slowing only to stop on the goal), with corner passing
 //! and, for ground robots, the periodic line-of-sight check that skips visible waypoints and
 //! re-plans when the current one is hidden, and the detour: a ground robot outside collision
-//! lists that makes no progress along its path for [`STALL_REPLAN_S`] re-plans around the
-//! robots standing near it.
+//! lists that makes no progress along its path for [`STALL_REPLAN_S`](super::STALL_REPLAN_S)
+//! re-plans around the robots standing near it.
 
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
+use super::path_following_params::{
+    CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_MAX_M, STALL_PROGRESS_M,
+};
 use super::plan_into::PlanInto;
 use super::plan_query::PlanQuery;
 use super::robot::Motion;
 use super::standing_disc::StandingDisc;
 use super::world::World;
 use crate::scenario::{HoldRule, Locomotion};
-
-/// Ground robots re-check the line of sight to their current waypoint every this many steps
-/// (staggered by id) and re-plan when it is blocked; with a control period of `k` steps
-/// (`sim.control_period_s`), every `max(1, 10 / k)` control steps (integer division), so
-/// about as often in time.
-pub const PATH_CHECK_INTERVAL_STEPS: u64 = 10;
-/// Longest stretch of the line of sight checked by the periodic path check, metres.
-pub const PATH_CHECK_MAX_M: f32 = 4.0;
-/// A ground robot within this distance of a path corner, beyond the line through the corner
-/// perpendicular to the next leg and in sight of the next waypoint, counts the corner as
-/// passed, metres.
-pub const CORNER_PASS_M: f32 = 2.0;
-/// The no-progress clock of detours: its default length and the progress that restarts it,
-/// scenario defaults (defined in `scenario::params`, re-exported here and by `world`).
-pub use crate::scenario::{STALL_PROGRESS_M, STALL_REPLAN_S};
-/// A detour first plans only to its rejoin point: the point of the robot's path this far
-/// beyond the farthest standing robot it goes round (path length from the robot, at least the
-/// straight distance to that robot's disc rim plus this), metres (see `docs/world-model.md`,
-/// "Congestion").
-pub const DETOUR_REJOIN_BEYOND_M: f32 = 1.0;
 
 impl World {
     /// Inflation of robot `id`'s line-of-sight checks while following its path: body radius +
@@ -45,7 +28,7 @@ impl World {
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
     /// once it is reached; marks the goal reached within its tolerance, by default
     /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]); a ground robot
-    /// also checks its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`]).
+    /// also checks its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`](super::PATH_CHECK_INTERVAL_STEPS)).
     pub(super) fn update_intent(&mut self, id: usize, check_due: bool) {
         let nav = &mut self.nav[id];
         nav.intent = Vec2::ZERO;
@@ -118,8 +101,9 @@ impl World {
     }
 
     /// The no-progress clock of ground robot `id` (`navigation.stall_replan_s`, default
-    /// [`STALL_REPLAN_S`]): restarts on progress, and under `collision.hold_rule: ListHead`
-    /// while the robot was in a collision list at the last step; when it runs out, the robot
+    /// [`STALL_REPLAN_S`](super::STALL_REPLAN_S)): restarts on progress, and under
+    /// `collision.hold_rule: ListHead` while the robot was in a collision list at the last
+    /// step; when it runs out, the robot
     /// takes a detour ([`World::detour`]) and the clock restarts. (Under `Yield` a list member
     /// stuck in a jam no rotation clears, e.g. robots meeting head-on in a gap between debris,
     /// detours too.)

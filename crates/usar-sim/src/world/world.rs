@@ -72,7 +72,7 @@ pub struct World {
     /// Steps per control period (`sim.control_period_s`, see [`World::control_steps`]), >= 1.
     pub(super) control_steps: u64,
     /// A ground robot checks its path every this many control steps (see
-    /// [`super::PATH_CHECK_INTERVAL_STEPS`]), >= 1.
+    /// [`super::path_following_params::PATH_CHECK_INTERVAL_STEPS`]), >= 1.
     pub(super) path_check_every: u64,
     /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
     /// every control step and after a teleport, not after the steps in between.
@@ -150,7 +150,9 @@ impl World {
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
             control_steps: s.sim.control_steps(),
-            path_check_every: (super::PATH_CHECK_INTERVAL_STEPS / s.sim.control_steps()).max(1),
+            path_check_every: (super::path_following_params::PATH_CHECK_INTERVAL_STEPS
+                / s.sim.control_steps())
+            .max(1),
             index_fresh: true,
             collision: s.collision,
             navigation: s.navigation,
