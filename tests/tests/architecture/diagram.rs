@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use crate::imports::imports;
 use crate::modules::ModuleTree;
-use crate::rules::{CrateLayout, code_lines};
+use crate::rules::CrateLayout;
 
 /// The marker lines between which docs/architecture.md holds the figure.
 pub const BEGIN: &str = "<!-- layers: written by the architecture test, do not edit -->";
@@ -14,16 +14,15 @@ pub const BEGIN: &str = "<!-- layers: written by the architecture test, do not e
 pub const END: &str = "<!-- end of layers -->";
 
 /// One Mermaid flowchart per crate: a box per layer (bottom first), a node per top-level module
-/// with its file count and code lines, an arrow per module that imports from another.
+/// with its file count, an arrow per module that imports from another. (No line counts: the
+/// figure changes with the layers and the files, not with every edit.)
 pub fn figure(crates: &[(&CrateLayout, &ModuleTree)]) -> String {
     let mut out = String::new();
     for (layout, tree) in crates {
-        let mut files: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+        let mut files: BTreeMap<String, usize> = BTreeMap::new();
         for f in &tree.files {
             if let Some(top) = f.module.first() {
-                let e = files.entry(top.clone()).or_default();
-                e.0 += 1;
-                e.1 += code_lines(&f.text, &f.test_lines);
+                *files.entry(top.clone()).or_default() += 1;
             }
         }
         let mut arrows: BTreeSet<(String, String)> = BTreeSet::new();
@@ -49,10 +48,10 @@ pub fn figure(crates: &[(&CrateLayout, &ModuleTree)]) -> String {
                 depth + 1
             );
             for m in *layer {
-                let (n, lines) = files.get(*m).copied().unwrap_or_default();
+                let n = files.get(*m).copied().unwrap_or_default();
                 let _ = writeln!(
                     out,
-                    "    {}[\"{m}<br/>{n} file{}, {lines} lines\"]",
+                    "    {}[\"{m}<br/>{n} file{}\"]",
                     id(m),
                     if n == 1 { "" } else { "s" }
                 );
