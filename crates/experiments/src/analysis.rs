@@ -99,7 +99,14 @@ impl CellAnalysis {
                 trials: results.iter().filter(|r| &r.method == m).count(),
                 metrics: metrics
                     .iter()
-                    .map(|metric| Summary::of(&values_of(results, m, *metric)))
+                    .map(|metric| {
+                        let values = values_of(results, m, *metric);
+                        if metric.quantity.is_non_negative() {
+                            Summary::of_non_negative(&values)
+                        } else {
+                            Summary::of(&values)
+                        }
+                    })
                     .collect(),
             })
             .collect();

@@ -36,6 +36,23 @@ pub enum Quantity {
     MeanRound,
 }
 
+impl Quantity {
+    /// Whether the quantity can never be negative, so that its confidence intervals stop at 0
+    /// ([`Summary::of_non_negative`](crate::stats::Summary::of_non_negative)). Every quantity
+    /// measured now is a count, a cost or a length of time; a new quantity must say.
+    pub fn is_non_negative(self) -> bool {
+        match self {
+            Quantity::Rescued
+            | Quantity::Energy
+            | Quantity::Hp
+            | Quantity::EnergyPerRescuee
+            | Quantity::HpPerRescuee
+            | Quantity::Rounds
+            | Quantity::MeanRound => true,
+        }
+    }
+}
+
 /// One metric of a trial: a quantity over a scope. The quantities measured per trial
 /// ([`Quantity::Rounds`], [`Quantity::MeanRound`]) have scope [`Scope::Total`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

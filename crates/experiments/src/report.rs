@@ -135,7 +135,8 @@ fn results(r: &mut String, a: &CellAnalysis) {
     let _ = writeln!(
         r,
         "Mean ± standard deviation over trials, then the 95 % confidence interval of the mean \
-         (Student's t). Costs are in percent points summed over the robots of a task's group; \
+         (Student's t, its lower end clipped at 0: every metric is a count, a cost or a time). \
+         Costs are in percent points summed over the robots of a task's group; \
          per-rescuee costs average over the trials that rescued at least one (n shown when \
          fewer than all). The same numbers are in `summary.csv`, every trial in `trials.csv`.\n"
     );

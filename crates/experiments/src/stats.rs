@@ -27,6 +27,9 @@ pub struct Summary {
     /// Half width of the 95 % confidence interval of the mean, `t(0.975, n-1) sd / sqrt(n)`;
     /// NaN when `n < 2`.
     pub ci95: f64,
+    /// Smallest value the quantity can take: the interval's lower end never goes below it
+    /// (`f64::NEG_INFINITY` for [`Summary::of`], 0 for [`Summary::of_non_negative`]).
+    pub floor: f64,
 }
 
 impl Default for Summary {
@@ -37,15 +40,17 @@ impl Default for Summary {
 }
 
 impl Summary {
-    /// Summarises `xs`.
+    /// Summarises `xs`, a sample of a quantity of any sign.
     pub fn of(xs: &[f64]) -> Self {
         let n = xs.len();
+        let floor = f64::NEG_INFINITY;
         if n == 0 {
             return Self {
                 n,
                 mean: f64::NAN,
                 sd: f64::NAN,
                 ci95: f64::NAN,
+                floor,
             };
         }
         let mean = xs.iter().sum::<f64>() / n as f64;
@@ -55,6 +60,7 @@ impl Summary {
                 mean,
                 sd: f64::NAN,
                 ci95: f64::NAN,
+                floor,
             };
         }
         let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
@@ -65,12 +71,26 @@ impl Summary {
             mean,
             sd,
             ci95: t * sd / (n as f64).sqrt(),
+            floor,
         }
     }
 
-    /// Lower end of the 95 % confidence interval.
+    /// Summarises `xs`, a sample of a quantity that cannot be negative (a count, a cost, a
+    /// duration): as [`Summary::of`], but the interval's lower end is clipped at 0, so that
+    /// `rescued 0.5 [-5.85, 6.85]` (n = 2) reads `[0, 6.85]`. The clipped Student's t interval
+    /// is the t interval intersected with the quantity's range; it covers the mean at least as
+    /// often as the t interval does.
+    pub fn of_non_negative(xs: &[f64]) -> Self {
+        Self {
+            floor: 0.0,
+            ..Self::of(xs)
+        }
+    }
+
+    /// Lower end of the 95 % confidence interval, not below [`Summary::floor`].
     pub fn ci_low(&self) -> f64 {
-        self.mean - self.ci95
+        let low = self.mean - self.ci95;
+        if low < self.floor { self.floor } else { low }
     }
 
     /// Upper end of the 95 % confidence interval.
@@ -221,6 +241,16 @@ mod tests {
         // t(0.975, 3) = 3.182446305
         assert!((s.ci95 - 3.182_446_305 * 1.290_994_448_7 / 2.0).abs() < 1e-6);
         assert!(Summary::of(&[]).mean.is_nan());
+        // A count's interval stops at 0; one of any sign does not.
+        let counts = Summary::of_non_negative(&[0.0, 1.0]);
+        assert!((Summary::of(&[0.0, 1.0]).ci_low() - (0.5 - 6.353_102)).abs() < 1e-5);
+        assert_eq!(counts.ci_low(), 0.0);
+        assert!((counts.ci_high() - (0.5 + 6.353_102)).abs() < 1e-5);
+        assert!(Summary::of_non_negative(&[]).ci_low().is_nan());
+        assert_eq!(
+            Summary::of_non_negative(&[4.0, 5.0, 6.0]).ci_low(),
+            Summary::of(&[4.0, 5.0, 6.0]).ci_low()
+        );
         assert!(Summary::of(&[1.0]).sd.is_nan());
     }
 

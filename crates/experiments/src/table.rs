@@ -124,12 +124,13 @@ pub fn num(x: f64) -> String {
     }
 }
 
-/// Formats a p-value.
+/// Formats a p-value for reading: three decimals (`0.044`), `< 0.001` below that (also for an
+/// exact 0, which a degenerate test can give; it was printed `0.0e0`), `n/a` when undefined.
 pub fn pval(p: f64) -> String {
     if !p.is_finite() {
         "n/a".to_string()
     } else if p < 0.001 {
-        format!("{p:.1e}")
+        "< 0.001".to_string()
     } else {
         format!("{p:.3}")
     }
@@ -150,6 +151,16 @@ pub fn mean_sd(s: &Summary) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn p_values_read_as_three_decimals_or_below_a_thousandth() {
+        assert_eq!(pval(0.0), "< 0.001");
+        assert_eq!(pval(1.1e-4), "< 0.001");
+        assert_eq!(pval(0.001), "0.001");
+        assert_eq!(pval(0.0443), "0.044");
+        assert_eq!(pval(1.0), "1.000");
+        assert_eq!(pval(f64::NAN), "n/a");
+    }
 
     #[test]
     fn six_significant_digits() {

@@ -121,6 +121,23 @@ fn end_to_end(file: &str, tasks: &[&str]) {
         );
         assert!(report.contains(&format!("rescued_{t}")) || report.contains(t));
     }
+    // Every metric is a count, a cost or a time: no confidence interval goes below 0, although
+    // two 60 s trials give wide ones (a regression: `rescued_easy 0.500 [-5.85, 6.85]`).
+    let lows: Vec<f64> = report
+        .lines()
+        .filter(|l| l.starts_with("| "))
+        .flat_map(|l| l.split(" [").skip(1))
+        .map(|c| c.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(!lows.is_empty(), "report.md has intervals:\n{report}");
+    assert!(lows.iter().all(|&x| x >= 0.0), "{lows:?}\n{report}");
+    for row in summary.lines().skip(1) {
+        let low = row.split(',').nth(6).unwrap();
+        assert!(
+            low.is_empty() || low.parse::<f64>().unwrap() >= 0.0,
+            "{row}"
+        );
+    }
     // The paper's calibration statistics need tasks named easy and hard: without them the
     // report says so instead of marking nine n/a values **out**.
     let paper_tasks = tasks.contains(&"easy") && tasks.contains(&"hard");

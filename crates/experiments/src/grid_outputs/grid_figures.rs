@@ -473,6 +473,7 @@ mod tests {
             mean: 1.0,
             sd: 1.0,
             ci95: ci,
+            floor: f64::NEG_INFINITY,
         };
         let stats = [s(1.0), s(f64::NAN), s(1.0), s(1.0)];
         assert_eq!(band_runs(&[0, 1, 2, 3], &stats), vec![vec![0], vec![2, 3]]);
