@@ -42,6 +42,11 @@ fn run_prints_metrics_and_writes_json() {
     assert_eq!(r.seed, usar_sim::mission::trial_seed(2021, 1));
     assert_eq!(r.robots.len(), 12);
     assert!((r.duration_s - 30.0).abs() < 1e-9);
+    // The round table numbers rounds from 1, as the replay page does ("Round 1 of n").
+    let header = out.lines().position(|l| l.contains("start s")).unwrap();
+    let first = out.lines().nth(header + 1).unwrap();
+    assert!(!r.rounds.is_empty());
+    assert_eq!(first.split_whitespace().next(), Some("1"), "{out}");
 }
 
 #[test]

@@ -179,11 +179,12 @@ fn print_rounds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
         write!(out, " {t:>5}")?;
     }
     writeln!(out, "  groups ({})", r.tasks.join(" | "))?;
+    // Rounds are numbered from 1, as on the replay page.
     for (i, rd) in r.rounds.iter().enumerate() {
         write!(
             out,
             "{:>5} {:>9.2} {:>9.2} {:>9.2} {:>10}",
-            i,
+            i + 1,
             rd.start_s,
             rd.end_s,
             rd.end_s - rd.start_s,
