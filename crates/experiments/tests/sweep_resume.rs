@@ -39,12 +39,16 @@ fn resumed_sweep_matches_uninterrupted_one() {
     assert!(!parts.join("trials.csv").exists());
     assert_eq!(journal_trials(&parts), 1);
 
-    // Running again with other parameters and without --resume refuses to touch the journal.
+    // Running again with other parameters and without --resume refuses to touch the journal,
+    // and suggests what works: not `--resume` with these parameters (it would be refused too).
     let o = sweep(&parts, &["--seed", "9"]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("--resume") && err.contains("--overwrite") && err.contains("seed 2021 vs 9"),
+        err.contains("run it with its own parameters (and --resume)")
+            && err.contains("pass --overwrite")
+            && err.contains("seed 2021 vs 9")
+            && !err.contains("pass --resume"),
         "{err}"
     );
     assert_eq!(journal_trials(&parts), 1);

@@ -95,9 +95,10 @@ pub(crate) fn open_journal(
         // It cannot be continued: its own message says how to start afresh.
         Err(e) => return Err(e),
     };
+    // --resume with these parameters would be refused too: say what works.
     bail!(
-        "{} already exists ({why}): pass --resume to continue that sweep, or --overwrite to \
-         start afresh (or choose another --out)",
+        "{} already exists ({why}): to continue that sweep, run it with its own parameters \
+         (and --resume); to start afresh with these, pass --overwrite, or choose another --out",
         path_text(&path)
     )
 }
