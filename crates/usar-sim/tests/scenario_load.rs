@@ -246,6 +246,20 @@ fn inline_cases() -> Vec<Case> {
             "Unexpected field named `max_speed`",
         ),
         (
+            "misspelt field",
+            broken("max_speed_m_per_s: 1.5", "max_sped_m_per_s: 1.5"),
+            "kinds[0].max_sped_m_per_s",
+            Some("max_sped_m_per_s: 1.5"),
+            "`starts` instead; did you mean `max_speed_m_per_s`?",
+        ),
+        (
+            "misspelt task in a quota",
+            broken("quota: (easy: 1, hard: 1)", "quota: (easy: 1, hrad: 1)"),
+            "kinds[0].quota",
+            Some("quota: (easy: 1, hrad: 1)"),
+            "no task is called \"hrad\" (tasks: \"hard\", \"easy\"); did you mean `hard`?",
+        ),
+        (
             "missing field",
             broken("            sensing_range_m: 2.0,\n", ""),
             "kinds[0].sensing_range_m",

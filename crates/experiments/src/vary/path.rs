@@ -15,6 +15,7 @@
 use std::fmt;
 
 use serde_json::Value;
+use usar_sim::scenario::did_you_mean;
 
 /// One step of a [`FieldPath`].
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -208,8 +209,9 @@ fn set_at(
             None => {
                 let fields: Vec<&str> = map.keys().map(String::as_str).collect();
                 Err(format!(
-                    "no field {name:?} in {shown} (fields: {})",
-                    fields.join(", ")
+                    "no field {name:?} in {shown} (fields: {}){}",
+                    fields.join(", "),
+                    did_you_mean(name, fields.iter().copied())
                 ))
             }
         },
@@ -482,6 +484,11 @@ mod tests {
             (
                 "nope",
                 "no field \"nope\" in the scenario (fields: mission, kinds, zones, empty, seed)",
+            ),
+            (
+                "mission.duraton_s",
+                "no field \"duraton_s\" in mission (fields: duration_s, low_hp_pct); did you \
+                 mean `duration_s`?",
             ),
             (
                 "zones[5].r",

@@ -6,6 +6,7 @@ use super::context::{Ctx, R};
 use super::limits::check_kind;
 use super::model::RobotKind;
 use super::spec::{KindSpec, TaskSpec};
+use super::suggest::did_you_mean;
 
 /// Kinds: names unique and non-empty, at least one robot each, quotas naming known tasks and
 /// adding up to the count (a task a kind's quota does not name gets none of it).
@@ -69,7 +70,11 @@ fn quotas_by_task(ctx: &Ctx<'_>, path: &str, s: &KindSpec, tasks: &[TaskSpec]) -
     {
         return Err(ctx.err(
             path,
-            format!("no task is called {unknown:?} (tasks: {})", names()),
+            format!(
+                "no task is called {unknown:?} (tasks: {}){}",
+                names(),
+                did_you_mean(unknown, tasks.iter().map(|t| t.name.as_str()))
+            ),
         ));
     }
     let quota: Vec<usize> = tasks

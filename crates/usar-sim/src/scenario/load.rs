@@ -12,6 +12,7 @@ use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
 use super::model::{Scenario, number_text, path_text};
 use super::spec::ScenarioSpec;
+use super::suggest::did_you_mean;
 use super::validate::validate;
 
 /// Loads and validates the scenario file at `path` (RON, format in `docs/scenario-format.md`).
@@ -203,7 +204,10 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
             map.line_col(start),
             format!("expected an integer, found `{number}`"),
         ),
-        None => ((pos.line, pos.col), short_numbers(&e.code.to_string())),
+        None => (
+            (pos.line, pos.col),
+            short_numbers(&e.code.to_string()) + &suggestion(&e.code),
+        ),
     };
     ScenarioError::Syntax {
         location: SourceLocation {
@@ -257,6 +261,19 @@ fn cut_short(src: &str, offset: usize, map: &SourceMap) -> Option<(Option<String
         (!field.is_empty()).then(|| field.to_owned()),
         format!("the file ends before {whose}`{bracket}` at {line}:{col} is closed"),
     ))
+}
+
+/// "did you mean ...?" for an unknown field or variant whose name is near a valid one.
+fn suggestion(code: &RonError) -> String {
+    match code {
+        RonError::NoSuchStructField {
+            expected, found, ..
+        }
+        | RonError::NoSuchEnumVariant {
+            expected, found, ..
+        } => did_you_mean(found, expected.iter().copied()),
+        _ => String::new(),
+    }
 }
 
 /// A single-circle `rest_station` is read through a visitor (one circle or a list), so ron

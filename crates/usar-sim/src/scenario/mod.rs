@@ -30,6 +30,7 @@ pub mod params;
 mod search_pattern;
 mod shape;
 mod spec;
+mod suggest;
 mod validate;
 
 pub use check_names::RESERVED_TASK_NAME;
@@ -44,3 +45,4 @@ pub use search_pattern::{sweep_point_count, sweep_spacing_m};
 pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;
+pub use suggest::{SUGGEST_SIMILARITY, did_you_mean, nearest_name};
