@@ -197,3 +197,9 @@ pub fn longest_stall(s: &Scenario, name: &str, trial: u32) -> (LongestStall, Vec
     let rounds = result.rounds.iter().map(|r| r.end_s - r.start_s).collect();
     (monitor.longest, rounds)
 }
+
+/// The code blocks of `docs/library.md`, compiled and run as doctests
+/// (`cargo test -p integration-tests --doc`), so the page shows the API as it is.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/library.md")]
+pub struct LibraryDoc;
