@@ -3,12 +3,16 @@
 //! writes what it shows (robot positions at that time, errors it caught) into
 //! `#replay-state`.
 //!
-//! Without chromium these tests fail, saying how to install it (`apt-get install -y
-//! chromium`), unless `USAR_SKIP_BROWSER_TESTS=1`. `USAR_WRITE_SCREENSHOT=PATH` makes
-//! `readme_screenshot` write the README's picture (the paper's trial 0 at 118 s) to PATH.
+//! Without chromium these tests are skipped with a one-line notice on the terminal (how to
+//! install it: `apt-get install -y chromium`), so `cargo test --workspace` passes on a machine
+//! with only the Rust toolchain; with `USAR_REQUIRE_BROWSER=1` (CI sets it) a missing browser
+//! is a failure instead. `USAR_SKIP_BROWSER_TESTS=1` skips them even with a browser.
+//! `readme_screenshot` (ignored by default) writes the README's picture (the paper's trial 0 at
+//! 118 s) to `USAR_WRITE_SCREENSHOT=PATH`: `just replay-screenshot`.
 
 mod common;
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -29,11 +33,11 @@ fn scenario_path(name: &str) -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios")).join(name)
 }
 
-/// The browser to drive, or `None` when the tests are skipped. Panics with the install hint
-/// when chromium is missing and not skipped.
+/// The browser to drive, or `None` when the tests are skipped (with a notice). Panics with the
+/// install hint when chromium is missing and `USAR_REQUIRE_BROWSER=1`.
 fn browser() -> Option<PathBuf> {
     if std::env::var("USAR_SKIP_BROWSER_TESTS").is_ok_and(|v| v == "1") {
-        eprintln!("USAR_SKIP_BROWSER_TESTS=1: skipping the browser test");
+        notice("USAR_SKIP_BROWSER_TESTS=1: skipping the replay browser test");
         return None;
     }
     let candidates = ["chromium", "chromium-browser"];
@@ -42,14 +46,24 @@ fn browser() -> Option<PathBuf> {
         .into_iter()
         .chain(candidates.iter().filter_map(|c| which(c)))
         .find(|p| p.is_file());
+    let hint = "the replay browser tests need Debian's chromium: install it with `apt-get \
+                install -y chromium` (or set USAR_CHROMIUM=/path/to/chromium)";
     match found {
         Some(p) => Some(p),
-        None => panic!(
-            "chromium not found: the replay browser tests need Debian's chromium; install it \
-             with `apt-get install -y chromium` (or set USAR_CHROMIUM=/path/to/chromium, or \
-             USAR_SKIP_BROWSER_TESTS=1 to skip these tests)"
-        ),
+        None if std::env::var("USAR_REQUIRE_BROWSER").is_ok_and(|v| v == "1") => {
+            panic!("chromium not found and USAR_REQUIRE_BROWSER=1: {hint}")
+        }
+        None => {
+            notice(&format!("skipping: chromium not found; {hint}"));
+            None
+        }
     }
+}
+
+/// Writes one line to the terminal even while the test harness captures the output (it
+/// captures `print!` and `eprint!`, not writes to the standard error stream itself).
+fn notice(line: &str) {
+    let _ = writeln!(std::io::stderr(), "note: {line}");
 }
 
 fn which(name: &str) -> Option<PathBuf> {
@@ -312,15 +326,16 @@ fn pages_of_three_tasks_and_a_thousand_robots_load_cleanly() {
     }
 }
 
-/// Writes the README's picture when `USAR_WRITE_SCREENSHOT=PATH` is set (`just
-/// replay-screenshot`): trial 0 of the paper's mission with RNE, at 118 s, robot 3 selected.
+/// The README's picture: trial 0 of the paper's mission with RNE, at 118 s, robot 3 selected,
+/// written to `USAR_WRITE_SCREENSHOT=PATH` (else to a temporary file, checked and dropped).
+/// Ignored by default (it draws a large page); `just replay-screenshot` runs it.
 #[test]
+#[ignore = "draws the README's picture: just replay-screenshot"]
 fn readme_screenshot() {
-    let Some(target) = std::env::var_os("USAR_WRITE_SCREENSHOT") else {
-        return;
-    };
     let Some(chromium) = browser() else { return };
     let dir = tempfile::tempdir().expect("temp dir");
+    let target = std::env::var_os("USAR_WRITE_SCREENSHOT")
+        .map_or_else(|| dir.path().join("replay.png"), PathBuf::from);
     let page = dir.path().join("paper.html");
     usar_replay("paper.ron", &["--method", "rne", "--trial", "0"], &page);
     let png = PathBuf::from(target);
