@@ -338,7 +338,7 @@ fn readme_screenshot() {
         .map_or_else(|| dir.path().join("replay.png"), PathBuf::from);
     let page = dir.path().join("paper.html");
     usar_replay("paper.ron", &["--method", "rne", "--trial", "0"], &page);
-    let png = PathBuf::from(target);
+    let png = target;
     screenshot(&chromium, &page, "t=118&robot=3", &png, (1440, 1120));
     let (_, _, rgba) = decode_png(&png);
     assert!(colour_stats(&rgba).0 > 200);
