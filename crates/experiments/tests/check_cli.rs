@@ -44,6 +44,44 @@ fn check_summarises_the_paper_scenario() {
 }
 
 #[test]
+fn a_large_team_is_summarised_per_kind_and_listed_with_robots() {
+    let swarm = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenarios/swarm-1000.ron"
+    );
+    let o = usar(["check", swarm]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("starts by kind (1000 robots"), "{out}");
+    // A few lines per kind, not a thousand robot rows before the verdict.
+    assert!(
+        out.lines().count() < 80,
+        "{} lines:\n{out}",
+        out.lines().count()
+    );
+    let carriers = out
+        .lines()
+        .skip_while(|l| !l.starts_with("starts by kind"))
+        .find(|l| l.starts_with("carrier "))
+        .expect("a carrier row under the starts by kind");
+    assert_eq!(
+        carriers.split_whitespace().nth(1),
+        Some("500"),
+        "{carriers}"
+    );
+    assert!(carriers.contains(".."), "ranges in {carriers}");
+    let o = usar(["check", swarm, "--robots"]);
+    let listed = String::from_utf8_lossy(&o.stdout);
+    assert!(listed.lines().count() > 1000 && !listed.contains("starts by kind"));
+    // The paper's 12 robots keep their table.
+    let paper = String::from_utf8_lossy(&usar(["check", PAPER]).stdout).to_string();
+    assert!(
+        paper.contains(" 11 observer") && !paper.contains("starts by kind"),
+        "{paper}"
+    );
+}
+
+#[test]
 fn check_gives_the_control_period_where_the_scenario_has_one() {
     let second_line = |args: &[&str]| {
         let o = usar(args);

@@ -64,7 +64,16 @@ pub struct CheckArgs {
     /// Print only the scenario hash.
     #[arg(long)]
     pub hash: bool,
+
+    /// Print the per-robot table (start and distance to each task's goal) even for a team of
+    /// more than 50 robots, which otherwise get a summary per kind.
+    #[arg(long)]
+    pub robots: bool,
 }
+
+/// Teams of at most this many robots get the per-robot table in `usar check`'s summary; larger
+/// ones a summary per kind (counts, start extent, distance ranges), unless `--robots`.
+pub const ROBOTS_TABLE_MAX: usize = 50;
 
 /// Runs `usar check`. A valid scenario with tasks no group can rescue from or goals some
 /// robots cannot reach also gets one warning line each on stderr ([`warn_about`]); the exit
@@ -103,7 +112,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         }
         write!(out, "{}", spec_to_ron(spec, &comments)?)?;
     } else {
-        summarise(&s, out)?;
+        summarise(&s, args.robots || s.robots.len() <= ROBOTS_TABLE_MAX, out)?;
         writeln!(out, "scenario hash {hash}")?;
         let sets: Vec<String> = overrides.iter().map(|o| format!(" --set {o}")).collect();
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
@@ -153,12 +162,13 @@ fn rest_stations(s: &Scenario) -> String {
 }
 
 /// Prints a summary of a valid scenario: arena and timing, the kinds with their quota per
-/// task, the tasks (hardest first marked by their difficulty), every robot's start and its
-/// distance to each task's goal, debris, radiation and the rest station.
+/// task, the tasks (hardest first marked by their difficulty), with `per_robot` every
+/// robot's start and its distance to each task's goal (else the starts summarised per kind),
+/// debris, radiation and the rest station.
 ///
 /// # Errors
 /// An I/O error writing to `out`.
-pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<()> {
     writeln!(out, "scenario {}: {}", s.name, s.description)?;
     let (dt_s, duration_s) = (s.sim.dt_s.get(), s.mission.duration_s.get());
     // What a trial runs: whole steps (usar run, sweep and replay report this length).
@@ -196,8 +206,62 @@ pub fn summarise(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     )?;
     kinds_table(s, out)?;
     tasks_table(s, out)?;
-    robots_table(s, out)?;
+    if per_robot {
+        robots_table(s, out)?;
+    } else {
+        starts_by_kind(s, out)?;
+    }
     adversaries(s, out)
+}
+
+/// Per kind: the count, the extent of the start positions and the range of distances from a
+/// start to each task's goal (straight line), metres: the team's layout in a few lines.
+fn starts_by_kind(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+    let d = decimals(s);
+    write!(
+        out,
+        "\nstarts by kind ({} robots; the per-robot table: --robots)\n{:<10} {:>6} {:>20} {:>20}",
+        s.robots.len(),
+        "kind",
+        "count",
+        "x range (m)",
+        "y range (m)"
+    )?;
+    for t in &s.tasks {
+        write!(out, " {:>18}", format!("->{} m", t.name))?;
+    }
+    writeln!(out)?;
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+        format!("{}..{}", metres(lo, d), metres(hi, d))
+    };
+    for (k, kind) in s.kinds.iter().enumerate() {
+        let starts: Vec<scenario::PointM> = s
+            .robots
+            .iter()
+            .filter(|r| r.kind == k)
+            .map(|r| r.start_in_world)
+            .collect();
+        if starts.is_empty() {
+            continue;
+        }
+        write!(
+            out,
+            "{:<10} {:>6} {:>20} {:>20}",
+            kind.name,
+            starts.len(),
+            range(&mut starts.iter().map(|p| p.x)),
+            range(&mut starts.iter().map(|p| p.y))
+        )?;
+        for t in &s.tasks {
+            let dist = range(&mut starts.iter().map(|&p| nalgebra_dist(p, t.goal)));
+            write!(out, " {dist:>18}")?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
 }
 
 fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
