@@ -203,3 +203,13 @@ pub fn longest_stall(s: &Scenario, name: &str, trial: u32) -> (LongestStall, Vec
 #[cfg(doctest)]
 #[doc = include_str!("../../docs/library.md")]
 pub struct LibraryDoc;
+
+/// The code blocks of the crates' own READMEs (what crates.io shows), run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../crates/rne-core/README.md")]
+pub struct RneCoreReadme;
+
+/// See [`RneCoreReadme`].
+#[cfg(doctest)]
+#[doc = include_str!("../../crates/usar-sim/README.md")]
+pub struct UsarSimReadme;
