@@ -260,11 +260,12 @@ pub(super) fn octile_cost(dx: u32, dy: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use parry2d::math::Pose;
-    use parry2d::shape::{Ball, Cuboid};
+    use parry2d::shape::Cuboid;
 
     use super::*;
     use crate::scenario::Positive;
     use crate::world::bodies::StaticShape;
+    use crate::world::test_grids::*;
 
     /// The octile cost of the grid's far corners: exact while it fits a `u32`, `u32::MAX`
     /// beyond (it wrapped, or panicked in a debug build, for a row of over 4.29 million cells).
@@ -279,44 +280,6 @@ mod tests {
         assert_eq!(octile_cost(4_000_000, 0), 4_000_000_000);
         assert_eq!(octile_cost(5_000_000, 0), u32::MAX);
         assert_eq!(octile_cost(u32::MAX, u32::MAX), u32::MAX);
-    }
-
-    const CELL: f64 = 0.25;
-    /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
-    const INFL: f32 = 0.6;
-
-    fn block(cx: f32, cy: f32, hx: f32, hy: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    fn disc(cx: f32, cy: f32, r: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Ball(Ball::new(r)),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
-    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
-        let arena = Arena {
-            width_m: Positive::new(10.0).unwrap(),
-            height_m: Positive::new(10.0).unwrap(),
-            wall_thickness_m: Positive::new(0.5).unwrap(),
-        };
-        ClearanceGrid::build(&arena, statics, CELL, 2.0)
-    }
-
-    /// Exact distance from `p` to the nearest of `statics`.
-    fn exact(statics: &[StaticObstacle], p: Vec2) -> f32 {
-        statics
-            .iter()
-            .map(|o| o.distance_to_point(p))
-            .fold(f32::INFINITY, f32::min)
     }
 
     /// The successors of cell `idx` by their definition: the free neighbours in the order

@@ -65,34 +65,10 @@ pub(super) fn search(
 
 #[cfg(test)]
 mod tests {
-    use parry2d::math::{Pose, Vector as Vec2};
-    use parry2d::shape::Ball;
+    use parry2d::math::Vector as Vec2;
 
     use super::*;
-    use crate::scenario::{Arena, Positive};
-    use crate::world::bodies::{StaticObstacle, StaticShape};
-
-    const CELL: f64 = 0.25;
-    /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
-    const INFL: f32 = 0.6;
-
-    fn disc(cx: f32, cy: f32, r: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Ball(Ball::new(r)),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
-    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
-        let arena = Arena {
-            width_m: Positive::new(10.0).unwrap(),
-            height_m: Positive::new(10.0).unwrap(),
-            wall_thickness_m: Positive::new(0.5).unwrap(),
-        };
-        ClearanceGrid::build(&arena, statics, CELL, 2.0)
-    }
+    use crate::world::test_grids::*;
 
     proptest::proptest! {
         /// A detour's search answers as plain A* over the cells outside the standing discs

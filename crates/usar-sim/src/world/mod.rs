@@ -77,6 +77,8 @@ mod shared_fields;
 pub mod standing_disc;
 mod steering;
 mod step;
+#[cfg(test)]
+mod test_grids;
 mod union_find;
 #[expect(
     clippy::module_inception,

@@ -265,51 +265,13 @@ impl PathPlanner {
 
 #[cfg(test)]
 mod tests {
-    use parry2d::math::Pose;
-    use parry2d::shape::{Ball, Cuboid};
 
     use super::*;
-    use crate::scenario::{Arena, Positive};
-    use crate::world::bodies::{StaticObstacle, StaticShape};
+    use crate::world::test_grids::*;
 
-    const CELL: f64 = 0.25;
-    /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
-    const INFL: f32 = 0.6;
+    use crate::world::bodies::StaticObstacle;
+
     const ARENA: (f32, f32) = (10.0, 10.0);
-
-    fn block(cx: f32, cy: f32, hx: f32, hy: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    fn disc(cx: f32, cy: f32, r: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Ball(Ball::new(r)),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
-    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
-        let arena = Arena {
-            width_m: Positive::new(f64::from(ARENA.0)).unwrap(),
-            height_m: Positive::new(f64::from(ARENA.1)).unwrap(),
-            wall_thickness_m: Positive::new(0.5).unwrap(),
-        };
-        ClearanceGrid::build(&arena, statics, CELL, 2.0)
-    }
-
-    /// Exact distance from `p` to the nearest of `statics`.
-    fn exact(statics: &[StaticObstacle], p: Vec2) -> f32 {
-        statics
-            .iter()
-            .map(|o| o.distance_to_point(p))
-            .fold(f32::INFINITY, f32::min)
-    }
 
     /// Plans `from` -> `to`; returns the waypoints with `from` prepended, or the error.
     fn plan(g: &ClearanceGrid, from: Vec2, to: Vec2) -> Result<Vec<Vec2>, NavError> {

@@ -76,42 +76,11 @@ pub(super) fn smooth_galloping(grid: &ClearanceGrid, raw: &[u32], inflation: f32
 
 #[cfg(test)]
 mod tests {
-    use parry2d::math::Pose;
-    use parry2d::shape::Cuboid;
 
     use super::*;
-    use crate::scenario::{Arena, Positive};
-    use crate::world::bodies::{StaticObstacle, StaticShape};
+    use crate::world::test_grids::*;
 
-    const CELL: f64 = 0.25;
-    /// Planning inflation of the tests, metres (a 0.4 m body, 0.075 m clearance, half a cell).
-    const INFL: f32 = 0.6;
-
-    fn block(cx: f32, cy: f32, hx: f32, hy: f32) -> StaticObstacle {
-        StaticObstacle {
-            shape: StaticShape::Cuboid(Cuboid::new(Vec2::new(hx, hy))),
-            pose: Pose::translation(cx, cy),
-            is_wall: false,
-        }
-    }
-
-    /// A 10 m x 10 m grid of 0.25 m cells, clearance capped at 2 m.
-    fn grid(statics: &[StaticObstacle]) -> ClearanceGrid {
-        let arena = Arena {
-            width_m: Positive::new(10.0).unwrap(),
-            height_m: Positive::new(10.0).unwrap(),
-            wall_thickness_m: Positive::new(0.5).unwrap(),
-        };
-        ClearanceGrid::build(&arena, statics, CELL, 2.0)
-    }
-
-    /// Exact distance from `p` to the nearest of `statics`.
-    fn exact(statics: &[StaticObstacle], p: Vec2) -> f32 {
-        statics
-            .iter()
-            .map(|o| o.distance_to_point(p))
-            .fold(f32::INFINITY, f32::min)
-    }
+    use crate::world::bodies::StaticObstacle;
 
     /// Every point of every leg (sampled each centimetre) keeps at least `min` metres from
     /// `statics`.
