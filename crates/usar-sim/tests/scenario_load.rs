@@ -225,6 +225,13 @@ type Case = (
 fn inline_cases() -> Vec<Case> {
     vec![
         (
+            "an empty quota is named by its brackets, not as a RON unit",
+            broken("quota: (easy: 1, hard: 1)", "quota: ()"),
+            "kinds[0].quota",
+            Some("quota: ()"),
+            "but found `()` (an empty value) instead",
+        ),
+        (
             "quota sum",
             broken("quota: (easy: 1, hard: 1)", "quota: (easy: 1, hard: 2)"),
             "kinds[0].quota",

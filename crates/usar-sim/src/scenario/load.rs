@@ -11,6 +11,7 @@ use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
 use super::model::{Scenario, number_text, path_text};
+use super::plain_words::plain_words;
 use super::spec::ScenarioSpec;
 use super::suggest::did_you_mean;
 use super::validate::validate;
@@ -199,6 +200,7 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
         _ => here.map(str::to_owned),
     };
     name_single_rest_station(&mut e.code, field.as_deref());
+    plain_words(&mut e.code);
     let (line_col, message) = match integer_with_fraction(&e.code, src, offset) {
         Some((start, number)) => (
             map.line_col(start),

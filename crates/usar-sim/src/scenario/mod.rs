@@ -27,6 +27,7 @@ mod locate;
 mod model;
 pub mod numbers;
 pub mod params;
+mod plain_words;
 mod search_pattern;
 mod shape;
 mod spec;
