@@ -83,14 +83,20 @@ pub(crate) fn in_field<T: PartialOrd + Default>(x: T, y: T, w: T, h: T) -> bool 
     in_span(x, w) && in_span(y, h)
 }
 
-/// A robot's role in the mission (paper, section IV).
+/// A robot's role in the mission (paper, section IV). Only `Observer` changes behaviour: a
+/// group with an observer in it sees (its ground members go for the rescuees the group has
+/// found, at full speed), a group without one searches blind (lawn-mower pattern, speeds times
+/// `mission.no_observer_speed_factor`). What a robot carries or brings is its kind's
+/// `carrying_capacity` and `rescuing_resources`, whatever its role (`docs/scenario-format.md`,
+/// "What `role` and `locomotion` change").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Role {
-    /// Carries rescuees (large carrying capacity).
+    /// Carries rescuees (paper: large carrying capacity). A label: behaviour as `Supplier`.
     Carrier,
-    /// Brings rescuing resources shared with the group.
+    /// Brings rescuing resources shared with the group (paper). A label: behaviour as
+    /// `Carrier`.
     Supplier,
-    /// Aerial scout with a very long observing range; finds rescuees for its group.
+    /// Scout (paper: aerial, with a very long observing range). Its group is not blind.
     Observer,
 }
 
@@ -98,9 +104,11 @@ pub enum Role {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Locomotion {
     /// Drives on the ground: collides with walls, debris and other ground robots, plans around
-    /// debris.
+    /// debris, takes part in collision avoidance (Algorithm 5). Only ground robots pick up and
+    /// carry rescuees.
     Ground,
     /// Flies: passes over debris and ground robots, flies straight, avoids other aerial robots.
+    /// Finds rescuees for its group but never carries one.
     Aerial,
 }
 

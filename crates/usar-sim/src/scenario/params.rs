@@ -120,7 +120,9 @@ pub struct MissionParams {
     pub duration_s: Positive,
     /// Energy spent on each paper step ([`PAPER_STEP_S`], 1/50 s) in which the robot moves,
     /// percent, >= 0; default 0.0045 (paper). A simulation step of another length is charged
-    /// `energy_pct_per_moving_step * sim.dt_s / PAPER_STEP_S` (0.225 % per second of moving).
+    /// `energy_pct_per_moving_step * sim.dt_s / PAPER_STEP_S`. The default is 0.225 % per
+    /// second of moving, 13.5 % per minute: from 80 % to `low_energy_pct` (30 %) in about
+    /// 3 min 40 s of moving.
     pub energy_pct_per_moving_step: NonNegative,
     /// Energy spent per metre moved, percent per metre, >= 0; default 0 (adds to
     /// `energy_pct_per_moving_step`; the authors' Unity code charges `energy -= distance * k`).
@@ -128,7 +130,9 @@ pub struct MissionParams {
     /// HP lost per paper step ([`PAPER_STEP_S`], 1/50 s) inside a radiation zone of dose factor
     /// 1, percent, >= 0; default 0.0003 (paper: 0.015 % per second, 0.9 % per minute). A
     /// simulation step of another length is charged `hp_pct_per_step_in_radiation * sim.dt_s /
-    /// PAPER_STEP_S`.
+    /// PAPER_STEP_S`. A value `x` costs `3000 x` % HP per minute at dose 1: the default is
+    /// nearly harmless (over an hour from 90 % to `low_hp_pct`, 30 %); paper.ron's 0.0055 is
+    /// 16.5 % per minute (90 % to 30 % in about 3 min 40 s at dose 1).
     pub hp_pct_per_step_in_radiation: NonNegative,
     /// How overlapping zones combine; default `Sum`.
     pub radiation_overlap: RadiationOverlap,
@@ -416,5 +420,31 @@ impl NeedsWeights {
             self.hp, self.v, self.sen, self.eng, self.res, self.cap, self.obs,
         ]
         .map(Positive::get)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Percent per minute charged by a per-paper-step `rate` on 0.02 s and 0.1 s steps alike.
+    fn pct_per_minute(rate: NonNegative) -> [f64; 2] {
+        [0.02, 0.1].map(|dt_s| MissionParams::per_paper_step(rate, dt_s) * 60.0 / dt_s)
+    }
+
+    /// The effects the docs state for the defaults (`docs/scenario-format.md`, Mission).
+    #[test]
+    fn default_costs_are_those_the_docs_state_per_minute() {
+        let m = MissionParams::default();
+        for got in pct_per_minute(m.energy_pct_per_moving_step) {
+            assert!((got - 13.5).abs() < 1e-9, "energy {got} % per minute");
+        }
+        for got in pct_per_minute(m.hp_pct_per_step_in_radiation) {
+            assert!((got - 0.9).abs() < 1e-9, "HP {got} % per minute");
+        }
+        // paper.ron's HP rate, 16.5 % per minute: 3000 x.
+        for got in pct_per_minute(NonNegative::known(0.0055)) {
+            assert!((got - 16.5).abs() < 1e-9, "paper HP {got} % per minute");
+        }
     }
 }
