@@ -7,6 +7,8 @@ use clap::Parser;
 use clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand;
 mod cli;
 mod commands;
+#[cfg(test)]
+mod doc_commands;
 mod shared;
 
 use cli::{Cli, run};
