@@ -16,8 +16,9 @@ use usar_sim::mission::TrialResult;
 pub use crate::calibrate::Target;
 use crate::calibrate::Targets;
 
-/// The text of `scenarios/paper-targets.ron`.
-pub const PAPER_TARGETS_RON: &str = include_str!("../../../scenarios/paper-targets.ron");
+/// The text of `scenarios/paper-targets.ron` (read through the crate's
+/// `data/paper-targets.ron`, a link to it, so the packaged crate carries the file).
+pub const PAPER_TARGETS_RON: &str = include_str!("../data/paper-targets.ron");
 
 /// The name [`paper_targets`] gives its origin: `scenarios/paper-targets.ron`.
 pub const PAPER_TARGETS_ORIGIN: &str = "scenarios/paper-targets.ron";
