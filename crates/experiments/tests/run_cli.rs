@@ -35,8 +35,18 @@ fn run_prints_metrics_and_writes_json() {
     ] {
         assert!(out.contains(needle), "{needle} missing in\n{out}");
     }
-    let r: usar_sim::mission::TrialResult =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let text = std::fs::read_to_string(&json).unwrap();
+    let r: usar_sim::mission::TrialResult = serde_json::from_str(&text).unwrap();
+    // Each task's figures by name, and the totals, beside the TrialResult's vectors.
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for (t, name) in r.tasks.iter().enumerate() {
+        let task = &v["by_task"][name.as_str()];
+        assert_eq!(task["rescued"], r.rescued[t], "{name}");
+        assert_eq!(task["energy_spent_pct"], r.energy_spent_pct[t], "{name}");
+        assert_eq!(task["hp_lost_pct"], r.hp_lost_pct[t], "{name}");
+    }
+    assert_eq!(v["total"]["rescued"], r.rescued_total());
+    assert_eq!(v["total"]["hp_lost_pct"], r.hp_total_pct());
     assert_eq!(r.method, "HP_DIS");
     assert_eq!(r.trial, 1);
     assert_eq!(r.seed, usar_sim::mission::trial_seed(2021, 1));
