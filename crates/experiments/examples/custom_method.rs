@@ -36,7 +36,7 @@ fn main() -> Result<()> {
 
     // The new method: hierarchical RNE grouping (Algorithm 1) on sorted needs distributions
     // (Algorithm 4). Every other name falls back to the built-ins.
-    let factory = MethodFactory::new(|name, model: &TrustModel| match name {
+    let factory = MethodFactory::new(|name, model: &TrustModel, ctx| match name {
         "rne_sorted" => {
             let options = RneOptions {
                 alignment: Alignment::Sorted,
@@ -46,7 +46,7 @@ fn main() -> Result<()> {
             Ok(Box::new(Named("rne_sorted", HierarchicalRne::new(sorted)))
                 as Box<dyn GroupingMethod>)
         }
-        other => MethodFactory::builtin().build(other, model),
+        other => MethodFactory::builtin().build(other, model, ctx),
     });
 
     let cfg = SweepConfig {

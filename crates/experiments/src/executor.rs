@@ -16,7 +16,7 @@ use usar_sim::scenario::Scenario;
 
 use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::journal::{Journal, Outcome, TrialRecord};
-use crate::method_factory::MethodFactory;
+use crate::method_factory::{MethodFactory, TrialContext};
 
 /// How to run a sweep's jobs.
 pub(crate) struct Runner<'a> {
@@ -39,11 +39,11 @@ pub(crate) struct Job {
     pub(crate) cell: usize,
     /// The method's name as given to the factory.
     pub(crate) method_arg: String,
-    /// The method's canonical (upper-case) name.
+    /// The method's display name (`GroupingMethod::display_name`, as written).
     pub(crate) method: String,
     /// Trial index.
     pub(crate) trial: u32,
-    /// The trial's seed.
+    /// The trial's seed (`trial_seed(base_seed, trial)`).
     pub(crate) seed: u64,
 }
 
@@ -184,7 +184,11 @@ pub(crate) fn run_trial(
         });
         let method = runner
             .factory
-            .build(&job.method_arg, &plan.model)
+            .build(
+                &job.method_arg,
+                &plan.model,
+                &TrialContext::new(job.trial, job.seed),
+            )
             .map_err(|e| e.to_string())?;
         let mut sim = Simulation::builder(plan.scenario)
             .method(method)

@@ -59,7 +59,7 @@ pub struct SweepHeader {
     pub build: String,
     /// Name of the scenario the grid was built from.
     pub scenario: String,
-    /// Grouping methods, upper case, in sweep order.
+    /// Grouping methods (display names, as written), in sweep order.
     pub methods: Vec<String>,
     /// Trials per method and cell.
     pub trials: u32,
@@ -108,7 +108,7 @@ pub enum Outcome {
 pub struct TrialRecord {
     /// Grid cell index, 0-based (into [`GridHeader::cells`]).
     pub cell: usize,
-    /// Grouping method, upper case.
+    /// Grouping method (display name, as written).
     pub method: String,
     /// Trial index, 0-based.
     pub trial: u32,

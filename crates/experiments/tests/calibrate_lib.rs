@@ -127,9 +127,9 @@ fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
     let dir = tempfile::tempdir().unwrap();
     let mut s = setup(&["mission.pickup_s=0.5..2"], targets(None), 2);
     s.methods = vec!["rne".into(), "boom".into()];
-    s.method_factory = MethodFactory::new(|name, model| match name {
+    s.method_factory = MethodFactory::new(|name, model, ctx| match name {
         "boom" => Ok(Box::new(Boom) as Box<dyn GroupingMethod>),
-        other => MethodFactory::builtin().build(other, model),
+        other => MethodFactory::builtin().build(other, model, ctx),
     });
     let seen = Arc::new(Mutex::new(Vec::new()));
     let hook_seen = Arc::clone(&seen);
@@ -146,7 +146,7 @@ fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
         assert_eq!(e.trials_ok, 1, "RNE's trial ran");
         let m = e.message.as_deref().unwrap();
         assert!(
-            m.starts_with("1 of 2 trials failed: BOOM trial 0 (seed ")
+            m.starts_with("1 of 2 trials failed: boom trial 0 (seed ")
                 && m.contains("panicked: boom on purpose"),
             "{m}"
         );
@@ -158,7 +158,7 @@ fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
     assert_eq!(*seen.lock().unwrap(), [(0, 1), (1, 2)]);
     let csv = std::fs::read_to_string(dir.path().join("trace.csv")).unwrap();
     assert!(
-        csv.contains(",inf,1 of 2 trials failed: BOOM trial 0"),
+        csv.contains(",inf,1 of 2 trials failed: boom trial 0"),
         "{csv}"
     );
 }

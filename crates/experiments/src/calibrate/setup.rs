@@ -184,7 +184,7 @@ impl CalibrationSetup {
         })
     }
 
-    /// The methods' canonical (upper-case) names.
+    /// The methods' display names (as written; see [`canonical_method`]).
     fn canonical_methods(&self, scenario: &Scenario) -> Result<Vec<String>, SetupError> {
         if self.methods.is_empty() {
             return Err(SetupError::Invalid(
@@ -194,7 +194,7 @@ impl CalibrationSetup {
         let model = trust_model(scenario).map_err(|e| SetupError::Invalid(format!("{e:#}")))?;
         let mut names: Vec<String> = Vec::new();
         for m in &self.methods {
-            let name = canonical_method(m, &self.method_factory, &model)
+            let name = canonical_method(m, &self.method_factory, &model, self.base_seed)
                 .map_err(|e| SetupError::Invalid(format!("--methods: {e:#}")))?;
             if names.contains(&name) {
                 return Err(SetupError::Invalid(format!(
@@ -212,7 +212,7 @@ impl CalibrationSetup {
 pub struct Checked {
     /// The base scenario, validated.
     pub scenario: Scenario,
-    /// The methods' canonical (upper-case) names, in order.
+    /// The methods' display names (as written; see [`canonical_method`]), in order.
     pub methods: Vec<String>,
     /// The value of each free field in the base scenario, when it has one (see
     /// [`FreeField::base_value`]).

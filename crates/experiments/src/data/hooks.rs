@@ -13,7 +13,7 @@ use crate::journal::TrialRecord;
 pub struct TrialKey {
     /// Grid cell index (0 without a grid).
     pub cell: usize,
-    /// The method's canonical (upper-case) name, e.g. `RNE`.
+    /// The method's display name, e.g. `RNE` or `hp_sort`.
     pub method: String,
     /// Trial index, `0..trials`.
     pub trial: u32,

@@ -14,7 +14,7 @@ use crate::lock::OutputLock;
 pub struct Failure {
     /// Grid cell index.
     pub cell: usize,
-    /// Method, upper case.
+    /// Method (display name).
     pub method: String,
     /// Trial index.
     pub trial: u32,

@@ -24,7 +24,7 @@ pub struct ClaimEffect {
     /// The verdict in words ([`crate::claims::Verdict::words`]: `holds`, `not significant`,
     /// `does not hold`, `not tested`, `not applicable`).
     pub verdict: String,
-    /// The strongest rival (upper case), `None` when no other method has a value.
+    /// The strongest rival (display name), `None` when no other method has a value.
     pub rival: Option<String>,
     /// Subject minus rival, signed so that > 0 is the claim's direction; units of the
     /// claim's metric (rescuees, percent points). NaN without a subject or rival value.

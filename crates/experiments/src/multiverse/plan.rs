@@ -47,7 +47,7 @@ pub struct MultiverseIdentity {
     pub targets: Vec<Target>,
     /// The free fields.
     pub free: Vec<FreeField>,
-    /// The methods, upper case, in order.
+    /// The methods' display names, in order.
     pub methods: Vec<String>,
     /// Comparison trials per method.
     pub trials: u32,

@@ -72,7 +72,7 @@ pub struct CalibrationResult {
 /// One method's summary of one metric in a universe's comparison (as `summary.csv`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MetricSummary {
-    /// The method, upper case.
+    /// The method's display name.
     pub method: String,
     /// The metric's name (`rescued_total`, `hp_per_hard_rescuee_pct`; summary.csv's).
     pub metric: String,

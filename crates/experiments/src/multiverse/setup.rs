@@ -226,7 +226,7 @@ impl MultiverseSetup {
 pub struct CheckedMultiverse {
     /// The base scenario, validated.
     pub scenario: Scenario,
-    /// The methods' canonical (upper-case) names, in order.
+    /// The methods' display names (as written; see `canonical_method`), in order.
     pub methods: Vec<String>,
     /// The size of the full factorial.
     pub factorial: u64,

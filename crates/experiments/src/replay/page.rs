@@ -117,7 +117,7 @@ pub struct PageMeta {
     pub scenario: String,
     /// Scenario description.
     pub description: String,
-    /// Method, upper case.
+    /// Method (display name).
     pub method: String,
     /// Trial index.
     pub trial: u32,

@@ -22,7 +22,7 @@ pub struct RescueeChange {
 /// [`super::ReplayRecorder`] while the trial runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Recording {
-    /// The grouping method's name, upper case (`RNE`).
+    /// The grouping method's display name (`RNE`).
     pub method: String,
     /// The trial's index.
     pub trial: u32,

@@ -11,25 +11,27 @@
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, PoisonError};
 
-use usar_sim::mission::{Simulation, StepObserver, trial_seed};
+use usar_sim::mission::{Simulation, StepObserver};
 
 use super::error::ReplayError;
 use super::page::write_replay;
 use super::recorder::ReplayRecorder;
 use super::trial::record_trial;
-use crate::sweep::{SweepConfig, SweepOutcome, TrialKey, TrialObserverFactory, trust_model};
+use crate::sweep::{
+    SweepConfig, SweepOutcome, TrialContext, TrialKey, TrialObserverFactory, trust_model,
+};
 
-/// One trial to replay: a method (canonical, upper case) and a trial index.
+/// One trial to replay: a method (its display name) and a trial index.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ReplayRequest {
-    /// The method's canonical name (`RNE`).
+    /// The method's display name, as the sweep's results spell it (`RNE`, `hp_sort`).
     pub method: String,
     /// The trial index.
     pub trial: u32,
 }
 
 impl ReplayRequest {
-    /// The page's file name: `replay-<method, lower case>-<trial>.html`.
+    /// The page's file name: `replay-<method, lower case>-<trial>.html` (`replay-rne-0.html`).
     pub fn file_name(&self) -> String {
         format!(
             "replay-{}-{}.html",
@@ -40,9 +42,9 @@ impl ReplayRequest {
 }
 
 /// Parses `--replay` values (`METHOD:TRIAL`, comma-separated, repeatable) against the
-/// sweep's methods (canonical names, as [`crate::sweep::canonical_method`] gives them) and
-/// trial count; `canonical` maps a name as typed to its canonical form. Duplicates are
-/// dropped.
+/// sweep's methods (display names, as [`crate::sweep::canonical_method`] gives them) and
+/// trial count; `canonical` maps a name as typed (as the factory takes it, e.g. `rne` or
+/// `hp_sort`) to its display name. Duplicates are dropped.
 ///
 /// # Errors
 /// [`ReplayError::Spec`] naming the first item that is not `METHOD:TRIAL`, names a method the
@@ -235,18 +237,19 @@ impl SweepReplays {
             .methods
             .iter()
             .find(|m| {
-                crate::sweep::canonical_method(m, &cfg.method_factory, &model)
+                crate::sweep::canonical_method(m, &cfg.method_factory, &model, cfg.base_seed)
                     .is_ok_and(|c| c == r.method)
             })
             .ok_or_else(|| ReplayError::Spec(format!("no method {}", r.method)))?;
+        let ctx = TrialContext::for_trial(cfg.base_seed, r.trial);
         let method = cfg
             .method_factory
-            .build(arg, &model)
+            .build(arg, &model, &ctx)
             .map_err(|e| ReplayError::Spec(format!("{e:#}")))?;
         let sim = Simulation::builder(scenario)
             .method(method)
             .trial(r.trial)
-            .seed(trial_seed(cfg.base_seed, r.trial))
+            .seed(ctx.seed)
             .duration_s(cfg.duration_of(scenario))
             .build()?;
         let t = record_trial(sim, self.hz, None)?;
@@ -322,33 +325,49 @@ impl StepObserver for Pair {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use rne_core::grouping::{Eng, GroupingMethod};
 
+    use super::*;
+    use crate::sweep::{MethodFactory, canonical_method};
+
+    /// ENG under the name `hp_sort`.
+    struct HpSort;
+
+    impl GroupingMethod for HpSort {
+        fn name(&self) -> &str {
+            "hp_sort"
+        }
+        fn assign(
+            &self,
+            request: &rne_core::grouping::GroupingRequest,
+        ) -> rne_core::Result<rne_core::grouping::Assignment> {
+            Eng.assign(request)
+        }
+    }
+
+    /// A name as typed on the command line to its display name, through a factory that knows
+    /// the built-ins and `hp_sort`.
     fn canon(m: &str) -> Option<String> {
-        ["rne", "dis", "eng", "hp_dis"]
-            .contains(&m.to_ascii_lowercase().as_str())
-            .then(|| m.to_ascii_uppercase())
+        let factory = MethodFactory::new(|name, model, ctx| match name {
+            "hp_sort" => Ok(Box::new(HpSort) as Box<dyn GroupingMethod>),
+            other => MethodFactory::builtin().build(other, model, ctx),
+        });
+        let model = rne_core::TrustModel::with_weights(rne_core::Weights::uniform(7).ok()?);
+        canonical_method(m, &factory, &model, 1).ok()
     }
 
     #[test]
     fn replay_lists_are_parsed_and_checked_against_the_sweep() {
-        let methods = vec!["RNE".to_string(), "DIS".to_string()];
-        let specs = vec!["rne:0, DIS:2".to_string(), "rne:0".to_string()];
+        let methods = vec!["RNE".to_string(), "DIS".to_string(), "hp_sort".to_string()];
+        let specs = vec!["rne:0, DIS:2".to_string(), "rne:0,hp_sort:1".to_string()];
         let got = parse_replay_list(&specs, &methods, 3, &canon).unwrap();
-        assert_eq!(
-            got,
-            [
-                ReplayRequest {
-                    method: "RNE".into(),
-                    trial: 0
-                },
-                ReplayRequest {
-                    method: "DIS".into(),
-                    trial: 2
-                },
-            ]
-        );
+        let want = [("RNE", 0), ("DIS", 2), ("hp_sort", 1)].map(|(m, trial)| ReplayRequest {
+            method: m.into(),
+            trial,
+        });
+        assert_eq!(got, want);
         assert_eq!(got[1].file_name(), "replay-dis-2.html");
+        assert_eq!(got[2].file_name(), "replay-hp_sort-1.html");
         let err = |s: &str| {
             parse_replay_list(&[s.to_string()], &methods, 3, &canon)
                 .unwrap_err()
@@ -357,6 +376,8 @@ mod tests {
         assert!(err("rne:3").contains("trial 3 is out of range (the sweep runs trials 0 to 2)"));
         assert!(err("eng:0").contains("the sweep runs no method \"eng\""));
         assert!(err("foo:0").contains("no method"));
+        // A method of the user's own is matched as its factory knows it, not re-cased.
+        assert!(err("HP_SORT:0").contains("the sweep runs no method \"HP_SORT\""));
         assert!(err("rne").contains("expected METHOD:TRIAL"));
         assert!(err("rne:x").contains("is not a trial index"));
         assert!(!err("rne:-1").is_empty());

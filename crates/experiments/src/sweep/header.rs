@@ -44,7 +44,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
         methods: cfg
             .methods
             .iter()
-            .map(|m| canonical_method(m, &cfg.method_factory, &model))
+            .map(|m| canonical_method(m, &cfg.method_factory, &model, cfg.base_seed))
             .collect::<Result<_>>()?,
         trials: cfg.trials,
         base_seed: cfg.base_seed,

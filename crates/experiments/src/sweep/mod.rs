@@ -30,7 +30,9 @@ pub use crate::data::limits::{
 pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir};
 pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};
 pub use crate::data::trial_length::simulated_length_s;
-pub use crate::method_factory::{MethodFactory, canonical_method, trust_model};
+pub use crate::method_factory::{
+    ChaCha8Rng, METHOD_RNG_STREAM, MethodFactory, TrialContext, canonical_method, rand, trust_model,
+};
 pub use checks::{check_config, check_grid_size, check_trial_count, trial_count};
 pub use header::header_of;
 pub(crate) use records::cells_from_records;

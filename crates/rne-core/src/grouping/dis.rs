@@ -34,6 +34,11 @@ impl GroupingMethod for Dis {
         "dis"
     }
 
+    /// `DIS`, the paper's name (Sec. VI.C).
+    fn display_name(&self) -> &str {
+        "DIS"
+    }
+
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
         let rank = request.difficulty_ranks();
         // Task `a` is preferred to `b` by robot `r`: nearer (IEEE order; distances are

@@ -22,6 +22,11 @@ impl GroupingMethod for Eng {
         "eng"
     }
 
+    /// `ENG`, the paper's name (Sec. VI.C).
+    fn display_name(&self) -> &str {
+        "ENG"
+    }
+
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
         Ok(fill_from_hardest(request, |a, b| {
             b.energy_pct.total_cmp(&a.energy_pct)

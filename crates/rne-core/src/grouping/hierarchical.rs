@@ -286,6 +286,11 @@ impl GroupingMethod for HierarchicalRne {
         "rne"
     }
 
+    /// `RNE`, the paper's name (Sec. VI.C).
+    fn display_name(&self) -> &str {
+        "RNE"
+    }
+
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
         Ok(self.group_detailed(request)?.assignment)
     }

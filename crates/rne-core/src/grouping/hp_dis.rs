@@ -22,6 +22,11 @@ impl GroupingMethod for HpDis {
         "hp_dis"
     }
 
+    /// `HP_DIS`, the paper's name (Sec. VI.C).
+    fn display_name(&self) -> &str {
+        "HP_DIS"
+    }
+
     fn assign(&self, request: &GroupingRequest) -> Result<Assignment> {
         let hardest = request.hardest_first()[0];
         Ok(fill_from_hardest(request, |a, b| {

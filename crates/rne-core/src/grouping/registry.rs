@@ -14,14 +14,16 @@ pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
 /// Builds a built-in grouping method from its name (case-insensitive, surrounding spaces
 /// ignored): `"rne"` ([`HierarchicalRne`] with `rne_model`), `"dis"` ([`Dis`]), `"eng"`
 /// ([`Eng`]), `"hp_dis"` ([`HpDis`]; `"hp-dis"` is accepted too). `rne_model` is only used by
-/// `"rne"`.
+/// `"rne"`. Their [`GroupingMethod::display_name`]s are the paper's `RNE`, `DIS`, `ENG` and
+/// `HP_DIS`.
 ///
 /// ```
 /// use rne_core::{TrustModel, Weights};
 /// use rne_core::grouping::method_from_name;
 ///
 /// let model = TrustModel::with_weights(Weights::uniform(7)?);
-/// assert_eq!(method_from_name("HP_DIS", &model)?.name(), "hp_dis");
+/// let m = method_from_name("HP_DIS", &model)?;
+/// assert_eq!((m.name(), m.display_name()), ("hp_dis", "HP_DIS"));
 /// let err = method_from_name("random", &model).err().unwrap();
 /// assert_eq!(err.to_string(), r#"unknown grouping method "random"; valid names: rne, dis, eng, hp_dis"#);
 /// # Ok::<(), rne_core::RneError>(())

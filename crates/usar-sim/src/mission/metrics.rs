@@ -64,7 +64,8 @@ pub struct RobotMetrics {
 pub struct TrialResult {
     /// Scenario name.
     pub scenario: String,
-    /// Grouping method name (e.g. `RNE`).
+    /// The grouping method's display name as its author wrote it
+    /// (`GroupingMethod::display_name`: `RNE`, `DIS`, `ENG`, `HP_DIS` for the built-ins).
     pub method: String,
     /// Trial index within a sweep, 0-based.
     pub trial: u32,

@@ -146,7 +146,7 @@ impl Recorder {
         }
         TrialResult {
             scenario: scenario.name.clone(),
-            method: run.method.to_ascii_uppercase(),
+            method: run.method.to_string(),
             trial: run.trial,
             seed: run.seed,
             duration_s: run.duration_s,
@@ -163,7 +163,7 @@ impl Recorder {
 /// What identifies a trial in its result.
 #[derive(Debug, Clone, Copy)]
 pub struct TrialInfo<'a> {
-    /// The grouping method's name.
+    /// The grouping method's display name (`GroupingMethod::display_name`), kept as written.
     pub method: &'a str,
     /// Trial index.
     pub trial: u32,

@@ -286,7 +286,7 @@ impl Simulation {
             &self.state.robots,
             &self.world,
             TrialInfo {
-                method: self.method.name(),
+                method: self.method.display_name(),
                 trial: self.trial,
                 seed: self.seed,
                 duration_s: self.duration_s(),

@@ -15,7 +15,8 @@ use experiments::multiverse::{MultiverseHooks, MultiverseProgress, run_multivers
 
 use experiments::shard::Shard;
 
-use experiments::sweep::SweepHooks;
+use experiments::sweep::{MethodFactory, SweepHooks, canonical_method};
+use rne_core::{TrustModel, Weights};
 
 use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, failed_universes, setup_of};
 use crate::shared::sweep_spec::threads_of;
@@ -110,12 +111,17 @@ pub struct MultiverseArgs {
     pub fail_trial: Vec<String>,
 }
 
-/// `--fail-trial METHOD:K`: the method's canonical (upper-case) name and the trial.
+/// `--fail-trial METHOD:K`: the built-in method's display name (`RNE`) and the trial.
 fn parse_fail(spec: &str) -> Result<(String, u32)> {
-    let parsed = spec
+    let (m, k) = spec
         .rsplit_once(':')
-        .and_then(|(m, k)| Some((m.trim().to_uppercase(), k.trim().parse().ok()?)));
-    parsed.with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))
+        .and_then(|(m, k)| Some((m, k.trim().parse().ok()?)))
+        .with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))?;
+    // A built-in's display name does not depend on the trust model's weights or the seed.
+    let model = TrustModel::with_weights(Weights::uniform(1)?);
+    let name = canonical_method(m, &MethodFactory::builtin(), &model, 0)
+        .with_context(|| format!("--fail-trial {spec:?}"))?;
+    Ok((name, k))
 }
 
 /// `--stop-after N`: hooks that exit the process abruptly once N calibration evaluations and

@@ -132,7 +132,8 @@ pub struct SweepArgs {
     pub stop_after: Option<usize>,
 }
 
-fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)> {
+/// `--fail-trial METHOD:K`: the built-in method's display name (`RNE`) and the trial.
+fn parse_fail(spec: &str, model: &rne_core::TrustModel, seed: u64) -> Result<(String, u32)> {
     let (m, k) = spec
         .rsplit_once(':')
         .with_context(|| format!("--fail-trial {spec:?}: expected METHOD:K"))?;
@@ -140,7 +141,10 @@ fn parse_fail(spec: &str, model: &rne_core::TrustModel) -> Result<(String, u32)>
         .trim()
         .parse::<u32>()
         .with_context(|| format!("--fail-trial {spec:?}: K is not a trial index"))?;
-    Ok((canonical_method(m, &MethodFactory::builtin(), model)?, k))
+    Ok((
+        canonical_method(m, &MethodFactory::builtin(), model, seed)?,
+        k,
+    ))
 }
 
 /// The grid of `--vary`, built from the scenario file's spec; `None` without `--vary`. A grid
@@ -161,16 +165,17 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     let args = &all.spec;
     let scenario = scenario::load(&args.scenario)?;
     let model = trust_model(&scenario)?;
+    let base_seed = args.seed.unwrap_or(scenario.sim.seed);
     let fail = all
         .fail_trial
         .iter()
-        .map(|s| parse_fail(s, &model))
+        .map(|s| parse_fail(s, &model, base_seed))
         .collect::<Result<Vec<_>>>()?;
     for (m, k) in &fail {
         let methods = args
             .methods
             .iter()
-            .map(|x| canonical_method(x.trim(), &MethodFactory::builtin(), &model))
+            .map(|x| canonical_method(x.trim(), &MethodFactory::builtin(), &model, base_seed))
             .collect::<Result<Vec<_>>>()?;
         if !methods.contains(m) || *k >= args.trials {
             bail!("--fail-trial {m}:{k} names no trial of this sweep");
@@ -187,7 +192,7 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
         method_factory: MethodFactory::builtin(),
         trials: args.trials,
-        base_seed: args.seed.unwrap_or(scenario.sim.seed),
+        base_seed,
         duration_s: args.duration,
         threads,
         out_dir: args
@@ -282,7 +287,7 @@ fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays
         return Ok(None);
     }
     let model = trust_model(&cfg.scenario)?;
-    let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model).ok();
+    let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model, cfg.base_seed).ok();
     let methods: Vec<String> = cfg.methods.iter().filter_map(|m| canonical(m)).collect();
     let requests = parse_replay_list(&args.replay, &methods, cfg.trials, &canonical)?;
     experiments::replay::ReplayRecorder::new(args.replay_hz).context("--replay-hz")?;

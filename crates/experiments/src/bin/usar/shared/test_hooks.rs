@@ -11,7 +11,7 @@ use usar_sim::mission::{Simulation, StepObserver};
 /// Exit status of a sweep stopped by `--stop-after`.
 pub const STOP_EXIT_CODE: i32 = 75;
 
-/// Hooks that fail the trials `fail` names (method in upper case, trial index) half-way and
+/// Hooks that fail the trials `fail` names (method's display name, trial index) half-way and
 /// exit the process with [`STOP_EXIT_CODE`] once `stop_after` trials are journaled.
 pub fn test_hooks(fail: Vec<(String, u32)>, stop_after: Option<usize>) -> SweepHooks {
     let trial_observer = (!fail.is_empty()).then(|| {
