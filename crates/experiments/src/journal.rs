@@ -26,6 +26,7 @@ use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::value::RawValue;
 use usar_sim::mission::TrialResult;
@@ -45,7 +46,7 @@ pub const JOURNAL_FORMAT: u32 = 5;
 
 /// The parameters that determine a sweep's results. `--resume` continues a journal only if
 /// its header equals the new sweep's header.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SweepHeader {
     /// [`JOURNAL_FORMAT`].
     pub format: u32,
@@ -70,7 +71,7 @@ pub struct SweepHeader {
 }
 
 /// The grid of a sweep: varied fields and cells.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct GridHeader {
     /// Varied field paths in `--vary` order; empty for a sweep without `--vary`.
     pub fields: Vec<String>,
@@ -79,7 +80,7 @@ pub struct GridHeader {
 }
 
 /// One cell of the grid.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CellHeader {
     /// The value of each varied field, as written on the command line, in field order.
     pub values: Vec<String>,
@@ -94,7 +95,7 @@ pub struct CellHeader {
 }
 
 /// How one trial ended.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Outcome {
     /// The trial ran to its time limit.
@@ -104,7 +105,7 @@ pub enum Outcome {
 }
 
 /// One journal line after the header.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct TrialRecord {
     /// Grid cell index, 0-based (into [`GridHeader::cells`]).
     pub cell: usize,
@@ -118,6 +119,30 @@ pub struct TrialRecord {
     pub wall_s: f64,
     /// The result or the failure.
     pub outcome: Outcome,
+}
+
+/// One line of `journal.jsonl` (and of each shard's journal, which `usar merge` reads), as
+/// its published schema describes it (`docs/schema/journal-line.schema.json`): the header
+/// line first, then one trial line per finished trial. `sum` is the line's checksum (see the
+/// module doc: FNV-1a 64, 16 lower-case hex digits). The journal writes these lines itself,
+/// field by field; this type exists for the schema.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum JournalLine {
+    /// The first line: the sweep's parameters.
+    Header {
+        /// The sweep's parameters.
+        header: SweepHeader,
+        /// [`header_sum`] of the header's JSON.
+        sum: String,
+    },
+    /// Every later line: one trial.
+    Trial {
+        /// The trial.
+        trial: TrialRecord,
+        /// [`record_sum`] of the header's sum and the record's JSON.
+        sum: String,
+    },
 }
 
 /// What identifies a record: `(cell, method, trial)`.

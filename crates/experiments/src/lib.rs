@@ -19,7 +19,8 @@
 //! it, never from one above (bottom first):
 //!
 //! 1. base: [`stats`], [`metrics`], [`table`], [`fingerprint`], [`atomic`], [`lock`],
-//!    [`spec_ron`], [`stderr`], [`chart`], [`method_factory`], [`vary`], [`journal`];
+//!    [`spec_ron`], [`stderr`], [`chart`], [`method_factory`], [`vary`], [`journal`],
+//!    [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
 //! 4. run: `executor`, [`stale_outputs`], [`sweep`], [`shard`], [`slurm`];
@@ -41,6 +42,7 @@ pub mod spec_ron;
 pub mod stats;
 pub mod stderr;
 pub mod table;
+pub mod trial_json;
 pub mod vary;
 // 2. data
 pub mod data;

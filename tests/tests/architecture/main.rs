@@ -70,6 +70,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "stats",
                     "stderr",
                     "table",
+                    "trial_json",
                     "vary",
                 ],
                 // Data: the sweep's plan, outcome, limits and output names.

@@ -2,11 +2,12 @@
 //! rescuee, rounds, and per-robot figures. Tasks are indexed by their id (their index in
 //! `Scenario::tasks`); [`TrialResult::tasks`] names them.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// One round: from the moment the team is grouped at the start until every grouped robot is
 /// back at its start position (paper, section VI.B).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct RoundRecord {
     /// Simulated time the round began, seconds since the trial start.
     pub start_s: f64,
@@ -22,7 +23,7 @@ pub struct RoundRecord {
 }
 
 /// Per-robot figures over a whole trial.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct RobotMetrics {
     /// Robot id (index into the scenario's robots).
     pub id: usize,
@@ -60,7 +61,7 @@ pub struct RobotMetrics {
 /// Everything measured in one trial: the record `usar run` prints and `usar sweep` tabulates.
 /// Per-task vectors are indexed by task id and have one entry per task of
 /// [`TrialResult::tasks`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct TrialResult {
     /// Scenario name.
     pub scenario: String,

@@ -21,6 +21,8 @@ use experiments::metrics::{Metric, Quantity, Scope};
 
 use experiments::table::num;
 
+use experiments::trial_json::TrialJson;
+
 use crate::shared::scenario_warnings::warn_about;
 use crate::shared::trial_build::{build_trial, warn_if_rounded};
 
@@ -101,46 +103,12 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         experiments::console::speed(result.duration_s / wall.max(1e-9))
     )?;
     if let Some(path) = &args.json {
-        let json = serde_json::to_string_pretty(&result_json(&result)?)
+        let json = serde_json::to_string_pretty(&TrialJson::of(&result))
             .context("serialising the result")?;
         write_atomic(path, json.as_bytes())?;
         writeln!(out, "wrote {}", path.display())?;
     }
     Ok(())
-}
-
-/// The JSON `--json` writes: the [`TrialResult`]'s fields (so it reads back as one), plus
-/// `by_task`, each task's `rescued`, `energy_spent_pct` and `hp_lost_pct` under its name, and
-/// `total`, the same three over all tasks, so a reader asserts `by_task.hard.rescued` without
-/// knowing the order of the tasks.
-///
-/// # Errors
-/// A result serde cannot write (a non-finite cost is written as `null`, not an error).
-fn result_json(r: &TrialResult) -> Result<serde_json::Value> {
-    let mut v = serde_json::to_value(r).context("serialising the result")?;
-    let by_task: serde_json::Map<String, serde_json::Value> = r
-        .tasks
-        .iter()
-        .enumerate()
-        .map(|(t, name)| {
-            let figures = serde_json::json!({
-                "rescued": r.rescued[t],
-                "energy_spent_pct": r.energy_spent_pct[t],
-                "hp_lost_pct": r.hp_lost_pct[t],
-            });
-            (name.clone(), figures)
-        })
-        .collect();
-    let total = serde_json::json!({
-        "rescued": r.rescued_total(),
-        "energy_spent_pct": r.energy_total_pct(),
-        "hp_lost_pct": r.hp_total_pct(),
-    });
-    if let Some(fields) = v.as_object_mut() {
-        fields.insert("by_task".into(), by_task.into());
-        fields.insert("total".into(), total);
-    }
-    Ok(v)
 }
 
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the
