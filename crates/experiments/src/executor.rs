@@ -63,13 +63,14 @@ pub(crate) struct CellPlan<'a> {
     pub(crate) steps_per_trial: u64,
 }
 
-/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends; returns the
-/// new records (in completion order).
+/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends (into
+/// `journal`; `None`: in memory, nothing is written); returns the new records (in completion
+/// order).
 pub(crate) fn execute(
     runner: &Runner<'_>,
     plans: &[CellPlan<'_>],
     jobs: &[Job],
-    journal: Journal,
+    journal: Option<Journal>,
 ) -> Result<Vec<TrialRecord>> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(runner.threads.max(1))
@@ -102,7 +103,7 @@ pub(crate) fn execute(
             let plan = &plans[job.cell];
             let record = run_job(runner, plan, job, &|steps| pb.inc(steps * plan.step_us));
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
-            if let Err(e) = j.append(&record) {
+            if let Some(Err(e)) = j.as_mut().map(|j| j.append(&record)) {
                 abort.store(true, Ordering::SeqCst);
                 journal_error
                     .lock()
