@@ -18,6 +18,12 @@ test:
 ci:
     bash .ci/run
 
+# The sweep library alone (`default-features = false`: no clap, no outputs): lints and tests.
+lib-only:
+    cargo clippy -p experiments --no-default-features --lib -- -D warnings
+    cargo test -p experiments --no-default-features --lib
+    cargo test -p experiments --no-default-features --doc
+
 # One trial of paper.ron with a grouping method (rne, dis, eng, hp_dis).
 run METHOD="rne" TRIAL="0":
     {{usar}} run scenarios/paper.ron --method {{METHOD}} --trial {{TRIAL}}

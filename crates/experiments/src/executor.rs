@@ -8,7 +8,6 @@ use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 use rayon::prelude::*;
 use rne_core::TrustModel;
 use usar_sim::mission::{Simulation, TrialResult};
@@ -17,6 +16,7 @@ use usar_sim::scenario::Scenario;
 use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::journal::{Journal, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
+use crate::progress_bar::progress_bar;
 
 /// How to run a sweep's jobs.
 pub(crate) struct Runner<'a> {
@@ -63,13 +63,14 @@ pub(crate) struct CellPlan<'a> {
     pub(crate) steps_per_trial: u64,
 }
 
-/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends; returns the
-/// new records (in completion order).
+/// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends (into
+/// `journal`; `None`: in memory, nothing is written); returns the new records (in completion
+/// order).
 pub(crate) fn execute(
     runner: &Runner<'_>,
     plans: &[CellPlan<'_>],
     jobs: &[Job],
-    journal: Journal,
+    journal: Option<Journal>,
 ) -> Result<Vec<TrialRecord>> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(runner.threads.max(1))
@@ -102,7 +103,7 @@ pub(crate) fn execute(
             let plan = &plans[job.cell];
             let record = run_job(runner, plan, job, &|steps| pb.inc(steps * plan.step_us));
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
-            if let Err(e) = j.append(&record) {
+            if let Some(Err(e)) = j.as_mut().map(|j| j.append(&record)) {
                 abort.store(true, Ordering::SeqCst);
                 journal_error
                     .lock()
@@ -228,28 +229,4 @@ pub(crate) fn run_trial(
             Err(format!("panicked: {msg}"))
         }
     }
-}
-
-/// A bar over the simulated time of all jobs (`total_us` microseconds), with the simulation
-/// rate and an ETA; hidden unless `show` and stderr is a terminal.
-fn progress_bar(show: bool, message: &str, total_us: u64) -> ProgressBar {
-    if !(show && std::io::IsTerminal::is_terminal(&std::io::stderr())) {
-        return ProgressBar::hidden();
-    }
-    let pb = ProgressBar::with_draw_target(Some(total_us), ProgressDrawTarget::stderr());
-    let style = ProgressStyle::with_template(
-        "{elapsed_precise} [{bar:32.cyan/blue}] {msg}, {simrate}, ETA {eta}",
-    )
-    .unwrap_or_else(|_| ProgressStyle::default_bar())
-    .with_key(
-        "simrate",
-        |s: &ProgressState, w: &mut dyn std::fmt::Write| {
-            let _ = write!(w, "{:.0} sim-s/s", s.per_sec() / 1e6);
-        },
-    )
-    .progress_chars("=> ");
-    pb.set_style(style);
-    pb.set_message(message.to_string());
-    pb.enable_steady_tick(std::time::Duration::from_millis(250));
-    pb
 }

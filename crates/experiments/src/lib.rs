@@ -15,12 +15,54 @@
 //! fields to target bands, and [`multiverse`] runs the calibrated comparison in every
 //! combination of the paper's open choices.
 //!
+//! # Entry points
+//!
+//! - [`sweep::SweepConfig`] plans a sweep (`SweepConfig::new` gives the defaults of
+//!   `usar sweep`); [`sweep::run_in_memory`] runs it and returns the results, with nothing on
+//!   disk; [`sweep::run_sweep`] runs it into a journal in its output folder (resumable, locked).
+//! - [`sweep::MethodFactory`] adds grouping methods of your own to a sweep.
+//! - With feature `outputs`: `analysis::Analysis::of` judges a sweep's outcome and
+//!   `output::write_outputs` writes its tables, figures and report; `calibrate` and
+//!   `multiverse` run the studies built on sweeps.
+//!
+//! # Features
+//!
+//! - `cli` (default): the `usar` binary (clap); implies `outputs`.
+//! - `outputs`: the analysis, the written outputs (CSV, figures, reports, replay pages), the
+//!   calibration, the multiverse and progress bars (statrs, csv, plotters, flate2, base64,
+//!   argmin, humantime, indicatif, rand). The modules that need them are left out without it.
+//!
+//! With `default-features = false` the crate is the sweep library alone (config, parallel
+//! trials, journal, grids, shards, results and the metric columns), none of those
+//! dependencies. A sweep of paper.ron in memory, on either:
+//!
+//! ```
+//! use experiments::sweep::{SweepConfig, run_in_memory};
+//!
+//! # let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+//! let scenario = usar_sim::scenario::load(path)?; // path: "scenarios/paper.ron"
+//! let cfg = SweepConfig {
+//!     methods: vec!["rne".into(), "dis".into()],
+//!     trials: 2,
+//!     duration_s: Some(10.0),
+//!     threads: 2,
+//!     progress: false,
+//!     ..SweepConfig::new(scenario, path)
+//! };
+//! let results = run_in_memory(&cfg)?;
+//! assert_eq!(results.failures().count(), 0);
+//! // Sorted as trials.csv: method order, then trial; the same seeds for every method.
+//! let trials: Vec<(&str, u32)> = results.results().map(|r| (r.method.as_str(), r.trial)).collect();
+//! assert_eq!(trials, [("RNE", 0), ("RNE", 1), ("DIS", 0), ("DIS", 1)]);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+//!
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it, never from one above (bottom first):
 //!
 //! 1. base: [`stats`], [`metrics`], [`table`], [`fingerprint`], [`atomic`], [`lock`],
-//!    [`spec_ron`], [`stderr`], [`chart`], [`method_factory`], [`vary`], [`journal`],
-//!    [`trial_json`];
+//!    [`spec_ron`], [`stderr`], `progress_bar`, [`chart`], [`method_factory`], [`vary`],
+//!    [`journal`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
 //! 4. run: `executor`, [`stale_outputs`], [`sweep`], [`shard`], [`slurm`];
@@ -32,15 +74,19 @@
 
 // 1. base
 pub mod atomic;
+#[cfg(feature = "outputs")]
 pub mod chart;
 pub mod fingerprint;
 pub mod journal;
 pub mod lock;
 pub mod method_factory;
 pub mod metrics;
+mod progress_bar;
 pub mod spec_ron;
+#[cfg(feature = "outputs")]
 pub mod stats;
 pub mod stderr;
+#[cfg(feature = "outputs")]
 pub mod table;
 pub mod trial_json;
 pub mod vary;
@@ -55,19 +101,32 @@ pub mod slurm;
 pub mod stale_outputs;
 pub mod sweep;
 // 5. fit
+#[cfg(feature = "outputs")]
 pub mod calibrate;
+#[cfg(feature = "outputs")]
 pub mod calibration;
 // 6. analyse
+#[cfg(feature = "outputs")]
 pub mod analysis;
+#[cfg(feature = "outputs")]
 pub mod claims;
 // 7. write
+#[cfg(feature = "outputs")]
 pub mod console;
+#[cfg(feature = "outputs")]
 pub mod csv_tables;
+#[cfg(feature = "outputs")]
 pub mod figures;
+#[cfg(feature = "outputs")]
 pub mod grid_outputs;
+#[cfg(feature = "outputs")]
 pub mod output;
+#[cfg(feature = "outputs")]
 pub mod render;
+#[cfg(feature = "outputs")]
 pub mod replay;
+#[cfg(feature = "outputs")]
 pub mod report;
 // 8. study
+#[cfg(feature = "outputs")]
 pub mod multiverse;

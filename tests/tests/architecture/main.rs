@@ -69,6 +69,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "spec_ron",
                     "stats",
                     "stderr",
+                    "progress_bar",
                     "table",
                     "trial_json",
                     "vary",

@@ -9,14 +9,20 @@
 //! go through one thread pool; results are sorted by cell, method order and trial, so they do
 //! not depend on thread count, completion order or interruptions.
 //!
+//! [`run_in_memory`] runs the same trials with nothing on disk (no output folder, journal or
+//! lock) and returns their results ([`SweepResults`]), bit-identical to `run_sweep`'s.
+//!
 //! The sweep's plan and outcome types, limits and output names are data ([`crate::data`]);
 //! they are re-exported here at their old paths. [`checks`] refuses a sweep before it runs,
-//! [`header`] makes its journal header, `open_journal` opens the journal, [`run`] runs the
-//! jobs and `records` sorts the records into per-cell outcomes.
+//! [`header`] makes its journal header, `open_journal` opens the journal, `plans` makes the
+//! cells' plans and the jobs, [`run`] runs the jobs (`in_memory` without a journal) and
+//! `records` sorts the records into per-cell outcomes.
 
 pub mod checks;
 pub mod header;
+mod in_memory;
 mod open_journal;
+mod plans;
 mod records;
 pub mod run;
 
@@ -35,5 +41,6 @@ pub use crate::method_factory::{
 };
 pub use checks::{check_config, check_grid_size, check_trial_count, trial_count};
 pub use header::header_of;
+pub use in_memory::{SweepResults, run_in_memory};
 pub(crate) use records::cells_from_records;
 pub use run::run_sweep;

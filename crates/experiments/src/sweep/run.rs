@@ -6,21 +6,19 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::Result;
-use usar_sim::mission::trial_seed;
-use usar_sim::scenario::trial_steps;
 
 use crate::atomic::remove_stale_temps;
 use crate::data::config::SweepConfig;
 use crate::data::jobs::{JobId, job_list};
 use crate::data::limits::{effective_threads, max_threads};
 use crate::data::outcome::SweepOutcome;
-use crate::executor::{CellPlan, Job, Runner, execute};
+use crate::executor::{Job, Runner, execute};
 use crate::journal::TrialRecord;
 use crate::lock::OutputLock;
-use crate::method_factory::trust_model;
 use crate::sweep::checks::check_config;
 use crate::sweep::header::header_of;
 use crate::sweep::open_journal::open_journal;
+use crate::sweep::plans::{cell_plans, job_of};
 use crate::sweep::records::{Slots, collect, is_ok, warn_rejected};
 
 /// Runs the sweep (every job without a successful record in the journal) and returns its
@@ -43,27 +41,7 @@ use crate::sweep::records::{Slots, collect, is_ok, warn_rejected};
 pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;
-    let plans = cfg
-        .cell_scenarios()
-        .into_iter()
-        .zip(&header.grid.cells)
-        .enumerate()
-        .map(|(i, (scenario, h))| {
-            let steps = trial_steps(h.duration_s, scenario.sim.dt_s.get())
-                .map_err(|e| anyhow::anyhow!("--duration: {e}"))?;
-            Ok(CellPlan {
-                label: match &cfg.grid {
-                    Some(g) => format!(" in cell {}", g.cells[i].dir),
-                    None => String::new(),
-                },
-                scenario,
-                model: trust_model(scenario)?,
-                duration_s: h.duration_s,
-                step_us: (scenario.sim.dt_s.get() * 1e6).round().max(1.0) as u64,
-                steps_per_trial: steps,
-            })
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let plans = cell_plans(cfg, &header)?;
     let dir = cfg.journal_dir();
     let lock = OutputLock::acquire(&dir)?;
     remove_stale_temps(&dir)?;
@@ -101,13 +79,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
             let i = slots.of(id.cell, &header.methods[id.method], id.trial);
             !is_ok(i.and_then(|i| records[i].as_ref()))
         })
-        .map(|id| Job {
-            cell: id.cell,
-            method_arg: cfg.methods[id.method].clone(),
-            method: header.methods[id.method].clone(),
-            trial: id.trial,
-            seed: trial_seed(cfg.base_seed, id.trial),
-        })
+        .map(|id| job_of(cfg, &header, id))
         .collect();
 
     let threads = effective_threads(cfg.threads, max_threads(), jobs.len());
@@ -118,7 +90,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         progress: cfg.progress,
         threads,
     };
-    let new_records = execute(&runner, &plans, &jobs, opened.journal)?;
+    let new_records = execute(&runner, &plans, &jobs, Some(opened.journal))?;
     let wall_s = start.elapsed().as_secs_f64();
     let ran = new_records.len();
     let trial_wall_sum_s = new_records.iter().map(|r| r.wall_s).sum();
