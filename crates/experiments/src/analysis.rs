@@ -1,12 +1,15 @@
 //! One analysis pass over a sweep's results, once per grid cell: per method and metric the
-//! summary statistics, the paper's claims checked, and the round lengths. Every output (CSV
-//! files, figures, `report.md`, `grid.*`, the terminal summary) is rendered from it, so the
-//! numbers are computed once and agree everywhere.
+//! summary statistics, the paper's claims checked, the round lengths and, when the reports
+//! compare with targets, the pooled statistics. Every output (CSV files, figures,
+//! `report.md`, `grid.*`, the terminal summary) is rendered from it, so the numbers are
+//! computed once and agree everywhere; its [`ReportOptions`] say which sections the reports
+//! show.
 
 use statrs::statistics::{Data, OrderStatistics};
 use usar_sim::mission::TrialResult;
 
-use crate::calibration::{self, Target};
+pub use crate::calibration::ReportOptions;
+use crate::calibration::{Target, Targets};
 use crate::claims::{CLAIMS, ClaimCheck, check_claim};
 use crate::metrics::{Metric, values_of};
 use crate::stats::Summary;
@@ -17,11 +20,20 @@ use crate::sweep::SweepOutcome;
 pub struct Analysis {
     /// Per cell.
     pub cells: Vec<CellAnalysis>,
+    /// What the reports rendered from it show besides the results (default: no targets, no
+    /// claims).
+    pub report: ReportOptions,
 }
 
 impl Analysis {
-    /// Analyses every cell of `outcome`.
+    /// Analyses every cell of `outcome`, for reports without targets or claims.
     pub fn of(outcome: &SweepOutcome) -> Self {
+        Self::with_report(outcome, ReportOptions::default())
+    }
+
+    /// Analyses every cell of `outcome` for reports with `report`'s sections: with targets,
+    /// each cell's [`CellAnalysis::pooled`] statistics are computed against them.
+    pub fn with_report(outcome: &SweepOutcome, report: ReportOptions) -> Self {
         Self {
             cells: outcome
                 .cells
@@ -30,8 +42,10 @@ impl Analysis {
                 .map(|(c, h)| {
                     CellAnalysis::of(&c.results, &outcome.header.methods, &h.tasks)
                         .with_difficulty(h.hardest_first.clone())
+                        .with_targets(report.targets.as_ref(), &c.results)
                 })
                 .collect(),
+            report,
         }
     }
 }
@@ -47,12 +61,14 @@ pub struct CellAnalysis {
     pub metrics: Vec<Metric>,
     /// Per method, in sweep order.
     pub methods: Vec<MethodStats>,
-    /// The paper's claims ([`CLAIMS`]) checked, in that order.
+    /// The paper's claims ([`CLAIMS`]) checked, in that order (always computed; the
+    /// reports show them only when asked, [`ReportOptions::claims`]).
     pub claims: Vec<ClaimCheck>,
     /// Completed-round lengths over all methods (label `all`), then per method.
     pub rounds: Vec<RoundStats>,
-    /// The calibration targets with this cell's statistics pooled over all its trials, in
-    /// the order of [`calibration::paper_targets`] (see `docs/calibration.md`).
+    /// The report's targets ([`ReportOptions::targets`]) with this cell's statistics pooled
+    /// over all its trials, in the targets' order (see `docs/calibration.md`); empty without
+    /// targets.
     pub pooled: Vec<(Target, f64)>,
 }
 
@@ -89,7 +105,7 @@ pub struct RoundStats {
 
 impl CellAnalysis {
     /// Analyses `results` (the successful trials of one cell) for `methods` (upper case, in
-    /// sweep order) and the cell's `tasks`.
+    /// sweep order) and the cell's `tasks`, without targets ([`CellAnalysis::with_targets`]).
     pub fn of(results: &[TrialResult], methods: &[String], tasks: &[String]) -> Self {
         let metrics = Metric::all(tasks.len());
         let stats = methods
@@ -131,8 +147,20 @@ impl CellAnalysis {
             methods: stats,
             claims,
             rounds,
-            pooled: calibration::check(results),
+            pooled: Vec::new(),
         }
+    }
+
+    /// The same analysis with its statistics over `results` (the cell's) pooled against
+    /// `targets` ([`CellAnalysis::pooled`]; none without targets).
+    pub fn with_targets(mut self, targets: Option<&Targets>, results: &[TrialResult]) -> Self {
+        self.pooled = targets.map_or_else(Vec::new, |t| {
+            t.targets()
+                .iter()
+                .map(|t| (t.clone(), t.value_of(results)))
+                .collect()
+        });
+        self
     }
 
     /// The same analysis with the tasks' difficulty order `hardest_first` (task ids, hardest

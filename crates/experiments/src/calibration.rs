@@ -1,20 +1,111 @@
-//! The method-independent statistics `scenarios/paper.ron` is calibrated against, pooled over
-//! every trial of a sweep (all methods together), and their targets: the authors' results sheet
-//! (`RNE_experiments_for_paper.ods` of the public repository RNE-Agent-Trust-Model-SMC2021, 4
-//! methods x 10 trials x 600 s, pooled the same way). See `docs/calibration.md`.
+//! The calibration targets a sweep's reports compare with, and the paper's own.
 //!
-//! The targets are defined once, in `scenarios/paper-targets.ron` (embedded here as
-//! [`PAPER_TARGETS_RON`], the default `usar calibrate` and the reports use): twelve
-//! statistics (means, ratios of means and pooled within-method standard deviations,
+//! [`ReportOptions`] says what a sweep's reports say about a paper: the pooled statistics
+//! against a targets file (`--targets FILE`) and the paper's claims (`--claims`); neither by
+//! default, so the report of a user's own scenario is about that scenario alone.
+//! [`ReportOptions::resolve`] is the one place they are decided.
+//!
+//! The paper's targets are the method-independent statistics `scenarios/paper.ron` is
+//! calibrated against, pooled over every trial of a sweep (all methods together): the authors'
+//! results sheet (`RNE_experiments_for_paper.ods` of the public repository
+//! RNE-Agent-Trust-Model-SMC2021, 4 methods x 10 trials x 600 s, pooled the same way). See
+//! `docs/calibration.md`. They are defined once, in `scenarios/paper-targets.ron` (embedded
+//! here as [`PAPER_TARGETS_RON`], the default of `usar calibrate`): twelve statistics (means,
+//! ratios of means and pooled within-method standard deviations,
 //! [`crate::calibrate::Statistic`]) over the tasks named `easy` and `hard`; for a scenario
 //! without them every statistic is NaN ([`applies_to`] says so).
 
+use std::path::Path;
 use std::sync::OnceLock;
 
 use usar_sim::mission::TrialResult;
+use usar_sim::scenario::{Scenario, path_text};
 
-pub use crate::calibrate::Target;
-use crate::calibrate::Targets;
+use crate::calibrate::TargetsError;
+pub use crate::calibrate::{Target, Targets};
+
+/// What a sweep's reports (`report.md`, `grid.md`, the terminal summary) say beyond the
+/// scenario's own results. Default: nothing (no targets, no claims).
+///
+/// These are outputs, not inputs: they are not part of a sweep's journal header, so changing
+/// them re-renders the reports of a journaled sweep without running a trial again.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReportOptions {
+    /// Targets to compare the statistics pooled over all trials with (the "Pooled statistics"
+    /// section, and a line of the terminal summary); `None`: no such section. The paper's are
+    /// `scenarios/paper-targets.ron` ([`paper_targets`]).
+    pub targets: Option<Targets>,
+    /// Check the paper's claims ([`crate::claims::CLAIMS`], about tasks named `easy` and
+    /// `hard`) in the reports; default `false`.
+    pub claims: bool,
+}
+
+impl ReportOptions {
+    /// The report options of a sweep of `scenario` (loaded from `scenario_path`): the targets
+    /// file `cli_targets` (`--targets FILE`, read and checked now, before any trial runs) and
+    /// `cli_claims` (`--claims`). Flags given on the command line override what the scenario
+    /// asks for; with neither, the reports say nothing about the paper.
+    ///
+    /// # Errors
+    /// A targets file that cannot be read or parsed ([`Targets::load`]), or one with a metric
+    /// the scenario lacks (a task it does not have: [`Targets::check_tasks`]).
+    pub fn resolve(
+        cli_targets: Option<&Path>,
+        cli_claims: bool,
+        scenario: &Scenario,
+        scenario_path: &Path,
+    ) -> Result<Self, TargetsError> {
+        let targets = match cli_targets {
+            None => None,
+            Some(path) => {
+                let t = Targets::load(path)?;
+                t.check_tasks(&scenario.task_names()).map_err(|mut e| {
+                    e.message = format!("{}; scenario: {}", e.message, path_text(scenario_path));
+                    e
+                })?;
+                Some(t)
+            }
+        };
+        Ok(Self {
+            targets,
+            claims: cli_claims,
+        })
+    }
+
+    /// The options of a report that checks the paper: `scenarios/paper-targets.ron`
+    /// ([`paper_targets`]) and the claims.
+    pub fn paper() -> Self {
+        Self {
+            targets: Some(paper_targets().clone()),
+            claims: true,
+        }
+    }
+
+    /// The one line a report gives when it leaves out the targets or the claims: how to ask
+    /// for what is left out; `None` when both are in.
+    pub fn how_to_ask(&self) -> Option<String> {
+        let missing: Vec<&str> = [
+            (
+                self.targets.is_none(),
+                "`--targets FILE` compares the pooled statistics with a \
+              targets file (the paper's: `scenarios/paper-targets.ron`)",
+            ),
+            (
+                !self.claims,
+                "`--claims` checks the paper's claims (tasks named `easy` and `hard`)",
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(left_out, text)| left_out.then_some(text))
+        .collect();
+        (!missing.is_empty()).then(|| {
+            format!(
+                "Also available (`usar sweep`, `usar merge`; see `docs/sweeps.md`): {}.",
+                missing.join("; ")
+            )
+        })
+    }
+}
 
 /// The text of `scenarios/paper-targets.ron` (read through the crate's
 /// `data/paper-targets.ron`, a link to it, so the packaged crate carries the file).

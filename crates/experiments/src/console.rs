@@ -1,6 +1,8 @@
 //! The terminal summary of `usar sweep`, rendered from the sweep's analysis: what ran, a table
-//! of the main metrics per method (per cell and chosen metric for a grid), the paper's claims
-//! (without a grid; a grid has them per cell in `grid.md`) and the files written.
+//! of the main metrics per method (per cell and chosen metric for a grid), when asked
+//! ([`crate::calibration::ReportOptions`]) how many pooled statistics lie in their target
+//! bands and the paper's claims (without a grid; a grid has them per cell in `grid.md`), and
+//! the files written.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -92,7 +94,10 @@ pub fn print_sweep(
     match &cfg.grid {
         None => {
             method_table(out, &analysis.cells[0])?;
-            claims(out, &analysis.cells[0])?;
+            pooled(out, analysis)?;
+            if analysis.report.claims {
+                claims(out, &analysis.cells[0])?;
+            }
             writeln!(out, "\nwrote:")?;
             for f in files {
                 writeln!(out, "  {}", f.display())?;
@@ -102,6 +107,7 @@ pub fn print_sweep(
             for m in grid_metrics {
                 grid_table(out, o, analysis, *m)?;
             }
+            pooled(out, analysis)?;
             writeln!(out, "\nwrote:")?;
             for f in files
                 .iter()
@@ -173,6 +179,58 @@ fn method_table(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
         }
         writeln!(out)?;
     }
+    Ok(())
+}
+
+/// With targets: per cell, how many pooled statistics lie in their bands, and without a
+/// grid the ones outside with their value and target (`report.md` and `grid.md` have the
+/// tables). Nothing without targets.
+fn pooled(out: &mut dyn Write, analysis: &Analysis) -> Result<()> {
+    let Some(targets) = &analysis.report.targets else {
+        return Ok(());
+    };
+    let count = |a: &CellAnalysis| {
+        let held = a.pooled.iter().filter(|(t, x)| t.holds(*x)).count();
+        let undefined = a.pooled.iter().filter(|(_, x)| !x.is_finite()).count();
+        let na = if undefined > 0 {
+            format!(", {undefined} n/a")
+        } else {
+            String::new()
+        };
+        format!("{held} of {} in their bands{na}", a.pooled.len())
+    };
+    if let [a] = analysis.cells.as_slice() {
+        let outside: Vec<String> = a
+            .pooled
+            .iter()
+            .filter(|(t, x)| x.is_finite() && !t.holds(*x))
+            .map(|(t, x)| format!("{} {} ({} {})", t.name, sig3(*x), t.value, t.band))
+            .collect();
+        let out_text = if outside.is_empty() {
+            String::new()
+        } else {
+            format!("; out: {}", outside.join(", "))
+        };
+        writeln!(
+            out,
+            "\npooled statistics against {}: {}{out_text}",
+            targets.origin(),
+            count(a)
+        )?;
+        return Ok(());
+    }
+    let cells: Vec<String> = analysis
+        .cells
+        .iter()
+        .enumerate()
+        .map(|(i, a)| format!("cell {i}: {}", count(a)))
+        .collect();
+    writeln!(
+        out,
+        "\npooled statistics against {} (grid.md): {}",
+        targets.origin(),
+        cells.join("; ")
+    )?;
     Ok(())
 }
 

@@ -101,6 +101,7 @@ fn write_cell(
         cell,
         analysis: a,
         grid_cell,
+        options: &analysis.report,
     });
     put(dir, "report.md", report.as_bytes(), files)
 }

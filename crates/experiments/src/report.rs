@@ -1,6 +1,7 @@
-//! `report.md`: one cell's parameters, results table, round lengths, the paper's claims checked
-//! one by one with significance tests, failed trials and timings, rendered from the cell's
-//! [`CellAnalysis`].
+//! `report.md`: one cell's parameters, results table, round lengths, failed trials and
+//! timings, rendered from the cell's [`CellAnalysis`]; when asked ([`ReportOptions`]), its
+//! statistics pooled over methods against a targets file and the paper's claims checked one
+//! by one with significance tests.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -9,7 +10,7 @@ use usar_sim::mission::trial_seed;
 use usar_sim::scenario::Scenario;
 
 use crate::analysis::CellAnalysis;
-use crate::calibration;
+use crate::calibration::ReportOptions;
 use crate::claims::{ALPHA, Verdict};
 use crate::data::figure_list::FIGURES;
 use crate::data::grid_cells::GridCell;
@@ -33,17 +34,30 @@ pub struct ReportInput<'a> {
     pub analysis: &'a CellAnalysis,
     /// The grid cell, for a sweep with `--vary`.
     pub grid_cell: Option<&'a GridCell>,
+    /// Which sections beyond the results to show (the sweep's [`crate::analysis::Analysis`]
+    /// has them).
+    pub options: &'a ReportOptions,
 }
 
-/// The text of `report.md`.
+/// The text of `report.md`: set-up, results and round lengths; the "Pooled statistics"
+/// section only with targets and the paper's claims only with `claims`
+/// ([`ReportOptions`]; a line says how to ask for what is left out); then figures, failed
+/// trials and timings.
 pub fn report_md(input: &ReportInput<'_>) -> String {
     let mut r = String::new();
     let _ = writeln!(r, "# Sweep report: {}\n", input.outcome.header.scenario);
     setup(&mut r, input);
     results(&mut r, input.analysis);
     round_lengths(&mut r, input.analysis);
-    pooled(&mut r, input.analysis);
-    claims(&mut r, input.analysis);
+    if let Some(targets) = &input.options.targets {
+        pooled(&mut r, input.analysis, targets.origin());
+    }
+    if input.options.claims {
+        claims(&mut r, input.analysis);
+    }
+    if let Some(line) = input.options.how_to_ask() {
+        let _ = writeln!(r, "{line}\n");
+    }
     let _ = writeln!(r, "## Figures\n");
     for f in &FIGURES {
         let _ = writeln!(r, "![{}]({})\n", f.title, f.file);
@@ -167,29 +181,20 @@ fn results(r: &mut String, a: &CellAnalysis) {
     r.push('\n');
 }
 
-/// Appends the "Pooled statistics" subsection: the calibration targets (the authors' results
-/// sheet, pooled over methods) next to this sweep's values pooled the same way. A scenario
-/// without tasks named `easy` and `hard` gets one sentence instead of the table; a value that
-/// is n/a (no trials, or a ratio of zeros) is not marked.
-fn pooled(r: &mut String, a: &CellAnalysis) {
-    let _ = write!(
-        r,
-        "### Pooled statistics\n\nOver all trials of all methods (means, ratios of means and \
-         pooled within-method standard deviations): the method-independent statistics \
-         `scenarios/paper.ron` is calibrated against (the authors' results sheet; \
-         `scenarios/paper-targets.ron`, `docs/calibration.md`). "
-    );
-    if !calibration::applies_to(&a.tasks) {
-        r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
-        return;
-    }
+/// Appends the "Pooled statistics" subsection: the targets read from `origin` next to this
+/// sweep's statistics pooled over all trials of all methods ([`CellAnalysis::pooled`]). A value outside its band
+/// is marked **out**; a value that is n/a (no trials, a task the scenario lacks, a zero
+/// denominator) is not.
+fn pooled(r: &mut String, a: &CellAnalysis, origin: &str) {
     let _ = writeln!(
         r,
-        "A value outside the band is marked **out**.\n\n| statistic | this sweep | target | \
-         band |\n|---|---|---|---|"
+        "### Pooled statistics\n\nOver all trials of all methods (means, ratios of means and \
+         pooled within-method standard deviations), against the targets of `{origin}` (see \
+         `docs/calibration.md`). A value outside the band is marked **out**.\n\n\
+         | statistic | this sweep | target | band |\n|---|---|---|---|"
     );
     for (t, x) in &a.pooled {
-        let mark = if x.is_nan() || t.holds(*x) {
+        let mark = if !x.is_finite() || t.holds(*x) {
             ""
         } else {
             " **out**"

@@ -153,7 +153,8 @@ fn a_duration_between_steps_is_reported_as_the_length_that_ran() {
     );
 }
 
-/// One trial per method: the claims say why they have no p-value (they said `max p = n/a`).
+/// One trial per method: the claims (`--claims`) say why they have no p-value (they said
+/// `max p = n/a`).
 #[test]
 fn one_trial_per_method_says_why_claims_have_no_p() {
     let dir = tempfile::tempdir().unwrap();
@@ -163,6 +164,7 @@ fn one_trial_per_method_says_why_claims_have_no_p() {
         [
             "sweep",
             PAPER,
+            "--claims",
             "--trials",
             "1",
             "--duration",

@@ -42,6 +42,13 @@ pub struct SweepPlan {
     /// plan written before this field existed, or no current folder).
     #[serde(default)]
     pub working_dir: Option<PathBuf>,
+    /// `--targets`: the targets file the reports compare with, as given (relative to
+    /// `working_dir`); `None`: none. A report option: `usar merge` renders with it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub targets: Option<PathBuf>,
+    /// `--claims`: the reports check the paper's claims (default `false`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub claims: bool,
 }
 
 impl SweepPlan {
@@ -72,9 +79,25 @@ impl SweepPlan {
     }
 
     /// The options after `SCENARIO` that repeat this sweep: `--methods`, `--trials`, then
-    /// `--seed`, `--duration`, each `--vary` and `--grid-metrics` when given. Numbers are
-    /// written so that they parse back to the same value.
+    /// `--seed`, `--duration`, each `--vary`, `--grid-metrics`, `--targets` and `--claims`
+    /// when given. Numbers are written so that they parse back to the same value.
     pub fn sweep_options(&self) -> Vec<String> {
+        self.options_with_targets(self.targets.as_deref())
+    }
+
+    /// The targets file of `--targets` as a path from `here` (the current folder): as given
+    /// when `here` is [`SweepPlan::working_dir`] (or either is unknown), else joined to the
+    /// folder the shard ran in.
+    pub fn targets_path(&self, here: Option<&Path>) -> Option<PathBuf> {
+        let t = self.targets.as_ref()?;
+        Some(match (&self.working_dir, here) {
+            (Some(wd), Some(here)) if wd != here => wd.join(t),
+            _ => t.clone(),
+        })
+    }
+
+    /// [`SweepPlan::sweep_options`] with `targets` for the targets file.
+    fn options_with_targets(&self, targets: Option<&Path>) -> Vec<String> {
         let mut a = vec![
             "--methods".to_string(),
             self.methods.join(","),
@@ -92,6 +115,12 @@ impl SweepPlan {
         }
         if !self.grid_metrics.is_empty() {
             a.extend(["--grid-metrics".to_string(), self.grid_metrics.join(",")]);
+        }
+        if let Some(t) = targets {
+            a.extend(["--targets".to_string(), t.display().to_string()]);
+        }
+        if self.claims {
+            a.push("--claims".to_string());
         }
         a
     }
@@ -111,12 +140,13 @@ impl SweepPlan {
             }
             _ => (self.scenario_path.clone(), out_dir.to_path_buf()),
         };
+        let targets = self.targets_path(here);
         let mut words = vec![
             "usar".to_string(),
             "sweep".to_string(),
             scenario.display().to_string(),
         ];
-        words.extend(self.sweep_options());
+        words.extend(self.options_with_targets(targets.as_deref()));
         words.extend([
             "--shard".to_string(),
             shard.to_string(),
@@ -152,6 +182,8 @@ mod tests {
             duration_s: None,
             grid_metrics: Vec::new(),
             working_dir: working_dir.map(PathBuf::from),
+            targets: None,
+            claims: false,
         }
     }
 
@@ -177,6 +209,29 @@ mod tests {
             "usar sweep '/home/me/scenarios/my paper.ron' --methods 'rne,dis' --trials 2 \
              --shard 1/2 --out '/tmp/out dir'"
         );
+    }
+
+    #[test]
+    fn report_options_are_repeated_and_made_absolute_with_the_scenario() {
+        let shard = Shard::new(0, 2).unwrap();
+        let mut p = plan(Some("/home/me"));
+        p.targets = Some("t.ron".into());
+        p.claims = true;
+        let out = Path::new("o");
+        assert!(
+            p.shard_command(shard, out, Some(Path::new("/home/me")))
+                .ends_with("--trials 2 --targets t.ron --claims --shard 0/2 --out o")
+        );
+        assert!(
+            p.shard_command(shard, out, Some(Path::new("/tmp")))
+                .contains("--targets /home/me/t.ron --claims")
+        );
+        let targets = |here: &str| p.targets_path(Some(Path::new(here)));
+        assert_eq!(targets("/tmp"), Some(PathBuf::from("/home/me/t.ron")));
+        assert_eq!(targets("/home/me"), Some(PathBuf::from("t.ron")));
+        // A plan without report options has no such fields (plan.json as before).
+        let json = serde_json::to_value(plan(None)).unwrap();
+        assert!(json.get("targets").is_none() && json.get("claims").is_none());
     }
 
     #[test]

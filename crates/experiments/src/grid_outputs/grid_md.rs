@@ -1,12 +1,12 @@
-//! `grid.md`: a grid's set-up, its cells, one table (and figure) per chosen metric, the
-//! paper's claims per cell and the failed trials. It holds no timings, so it is the same on
-//! any thread count.
+//! `grid.md`: a grid's set-up, its cells, one table (and figure) per chosen metric and the
+//! failed trials; when asked (the analysis's [`crate::calibration::ReportOptions`]), each
+//! cell's pooled statistics against a targets file and the paper's claims per cell. It holds
+//! no timings, so it is the same on any thread count.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::analysis::Analysis;
-use crate::calibration;
 use crate::claims::CLAIMS;
 use crate::grid::Grid;
 use crate::metrics::Metric;
@@ -32,17 +32,27 @@ pub struct GridReportInput<'a> {
     pub figures: &'a [String],
 }
 
-/// The text of `grid.md`.
+/// The text of `grid.md`: set-up, cells, the pooled statistics (only with targets), the
+/// chosen metrics, the paper's claims (only when asked; a line says how to ask for what is
+/// left out) and the failed trials.
 pub fn grid_md(input: &GridReportInput<'_>) -> String {
     let mut r = String::new();
+    let options = &input.analysis.report;
     let _ = writeln!(r, "# Grid report: {}\n", input.outcome.header.scenario);
     setup(&mut r, input);
     cells(&mut r, input);
-    pooled(&mut r, input);
+    if let Some(targets) = &options.targets {
+        pooled(&mut r, input, targets.origin());
+    }
     for (i, m) in input.metrics.iter().enumerate() {
         metric_section(&mut r, input, *m, input.figures.get(i));
     }
-    claims(&mut r, input);
+    if options.claims {
+        claims(&mut r, input);
+    }
+    if let Some(line) = options.how_to_ask() {
+        let _ = writeln!(r, "{line}\n");
+    }
     failures(&mut r, input);
     r
 }
@@ -161,42 +171,34 @@ fn cells(r: &mut String, input: &GridReportInput<'_>) {
     r.push('\n');
 }
 
-/// The calibration statistics of every cell, pooled over its trials of all methods, against
-/// their targets (`docs/calibration.md`); a value outside its band is marked with `!`, a
-/// value that is n/a is not. A scenario without tasks named `easy` and `hard` gets one
-/// sentence instead of the table (every value would be n/a).
-fn pooled(r: &mut String, input: &GridReportInput<'_>) {
+/// Every cell's statistics pooled over its trials of all methods against the targets of
+/// `origin`
+/// (`docs/calibration.md`); a value outside its band is marked with `!`, a value that is n/a
+/// is not.
+fn pooled(r: &mut String, input: &GridReportInput<'_>, origin: &str) {
     let h = &input.outcome.header;
-    let _ = write!(
-        r,
-        "## Pooled statistics\n\nPer cell, over all trials of all methods (means, ratios of \
-         means and pooled within-method standard deviations): the method-independent \
-         statistics `scenarios/paper.ron` is calibrated against (`scenarios/paper-targets.ron`, \
-         `docs/calibration.md`). "
-    );
-    let tasks = input
-        .analysis
-        .cells
-        .first()
-        .map_or(&[][..], |c| &c.tasks[..]);
-    if !calibration::applies_to(tasks) {
-        r.push_str("They need tasks named `easy` and `hard`, which this scenario lacks.\n\n");
-        return;
-    }
     let _ = writeln!(
         r,
-        "The targets are in the header; `!` marks a value outside its band.\n"
+        "## Pooled statistics\n\nPer cell, over all trials of all methods (means, ratios of \
+         means and pooled within-method standard deviations), against the targets of `{origin}` \
+         (see `docs/calibration.md`). The targets are in the header; `!` marks a value outside \
+         its band.\n"
     );
-    let labels: Vec<String> = calibration::paper_targets()
-        .targets()
+    let first = input.analysis.cells.first();
+    let labels: Vec<String> = first
+        .map_or(&[][..], |c| &c.pooled[..])
         .iter()
-        .map(|t| format!("{} ({})", t.name, t.describe()))
+        .map(|(t, _)| format!("{} ({})", t.name, t.describe()))
         .collect();
     table_head(r, &h.grid.fields, &labels);
     for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {
         cell_start(r, index, &c.values);
         for (t, x) in &a.pooled {
-            let mark = if x.is_nan() || t.holds(*x) { "" } else { " !" };
+            let mark = if !x.is_finite() || t.holds(*x) {
+                ""
+            } else {
+                " !"
+            };
             let _ = write!(r, " {}{mark} |", num(*x));
         }
         r.push('\n');

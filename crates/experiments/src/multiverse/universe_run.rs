@@ -26,7 +26,7 @@ use super::plan::MultiversePlan;
 use super::record::{CalibrationResult, ComparisonResult, MetricSummary, Status, UniverseRecord};
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
-use crate::analysis::{Analysis, CellAnalysis};
+use crate::analysis::{Analysis, CellAnalysis, ReportOptions};
 use crate::atomic::{remove_stale_temps, write_atomic};
 use crate::calibrate::{CalibrationOutcome, Progress, Target, calibrate};
 use crate::output::write_outputs;
@@ -168,7 +168,11 @@ impl UniverseRun<'_> {
             hooks: self.setup.hooks.sweep.clone(),
             ..SweepConfig::new(calibrated.best_scenario.clone(), dir)
         };
-        match compare(&cfg) {
+        let report = ReportOptions {
+            targets: Some(self.setup.targets.clone()),
+            claims: true,
+        };
+        match compare(&cfg, report) {
             Ok((o, analysis)) => {
                 record.comparison = Some(comparison_result(
                     &o,
@@ -197,10 +201,11 @@ impl UniverseRun<'_> {
     }
 }
 
-/// Runs the comparison and writes its files.
-fn compare(cfg: &SweepConfig) -> Result<(SweepOutcome, Analysis)> {
+/// Runs the comparison and writes its files, whose reports show `report`'s sections (a
+/// universe's report checks its targets and the paper's claims).
+fn compare(cfg: &SweepConfig, report: ReportOptions) -> Result<(SweepOutcome, Analysis)> {
     let o = run_sweep(cfg)?;
-    let analysis = Analysis::of(&o);
+    let analysis = Analysis::with_report(&o, report);
     write_outputs(cfg, &o, &analysis, &[])?;
     Ok((o, analysis))
 }

@@ -463,6 +463,8 @@ mod tests {
             duration_s: Some(60.0),
             grid_metrics: Vec::new(),
             working_dir: None,
+            targets: None,
+            claims: false,
         }
     }
 

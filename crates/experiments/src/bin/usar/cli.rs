@@ -26,10 +26,11 @@ Examples:
   # Watch trial 0 with RNE grouping in a browser: one self-contained HTML file
   usar replay scenarios/paper.ron --method rne --trial 0 --out replay.html
 
-  # Validate a scenario; run one trial; run the paper's whole comparison
+  # Validate a scenario; run one trial; run the paper's whole comparison (with its
+  # calibration targets and claims checked in report.md)
   usar check scenarios/paper.ron
   usar run scenarios/paper.ron --method rne --trial 0
-  usar sweep scenarios/paper.ron --trials 10 --out results/paper
+  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron --claims --out results/paper
 
   # A parameter sweep: the comparison once per value of a scenario field (see docs/sweeps.md)
   usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003

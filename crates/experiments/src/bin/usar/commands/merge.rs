@@ -17,7 +17,7 @@ use experiments::output::write_outputs;
 use experiments::shard::merge_shards;
 
 use crate::shared::multiverse_spec::failed_universes;
-use crate::shared::sweep_spec::grid_metrics;
+use crate::shared::sweep_spec::{ReportArgs, grid_metrics};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -37,7 +37,8 @@ grid.csv and grid.md); the CSV files are byte-identical to those of the same swe
 machine. A shard with no journal, or with trials it has not run, stops the merge: the message
 names it and gives the `usar sweep ... --shard I/N` command that runs it (again). Failed trials
 are reported the same way after the files are written (non-zero exit status). See
-docs/cluster.md.
+docs/cluster.md. The reports compare with the targets and check the claims the shards were
+given (--targets, --claims, recorded in their plan.json); --targets and --claims here override.
 
 A multiverse's folder (one with multiverse.json at its top or in its shard folders) is merged
 from its universes' records: once every universe of the plan has its universes/<id>/
@@ -52,6 +53,11 @@ pub struct MergeArgs {
     /// The sweep's (or multiverse's) output folder (the --out of its shards).
     #[arg(value_name = "DIR")]
     pub dir: PathBuf,
+
+    /// What the reports say beyond the results (a sweep's folder only); default what the
+    /// shards were given.
+    #[command(flatten)]
+    pub report: ReportArgs,
 }
 
 /// Runs `usar merge`: merge, analyse, write, summarise.
@@ -61,6 +67,12 @@ pub struct MergeArgs {
 /// different sweeps, an I/O error, or failed trials (after the files are written).
 pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     if is_multiverse_dir(&args.dir) {
+        if args.report.targets.is_some() || args.report.claims {
+            bail!(
+                "--targets and --claims are for a sweep's folder; a multiverse's reports \
+                 always check its targets and the paper's claims"
+            );
+        }
         let here = std::env::current_dir().ok();
         let o = merge_multiverse(&args.dir, here.as_deref())?;
         out.write_all(summary_text(&o, &args.dir).as_bytes())?;
@@ -83,7 +95,13 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     }
     let tasks = m.config.scenario.task_names();
     let metrics = grid_metrics(&m.plan.grid_metrics, &tasks)?;
-    let analysis = Analysis::of(&m.outcome);
+    let here = std::env::current_dir().ok();
+    let report = ReportArgs {
+        targets: (args.report.targets.clone()).or_else(|| m.plan.targets_path(here.as_deref())),
+        claims: args.report.claims || m.plan.claims,
+    }
+    .resolve(&m.config.scenario, &m.config.scenario_path)?;
+    let analysis = Analysis::with_report(&m.outcome, report);
     let files = write_outputs(&m.config, &m.outcome, &analysis, &metrics)?;
     writeln!(
         out,
@@ -96,7 +114,6 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     if m.failed_shards.is_empty() {
         return Ok(());
     }
-    let here = std::env::current_dir().ok();
     let commands: Vec<String> = m
         .failed_shards
         .iter()

@@ -19,7 +19,7 @@ use experiments::sweep::default_out_dir;
 use usar_sim::scenario;
 
 use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, setup_of};
-use crate::shared::sweep_spec::{SweepSpecArgs, warn_if_rounded};
+use crate::shared::sweep_spec::{ReportArgs, SweepSpecArgs, warn_if_rounded};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -34,8 +34,8 @@ Examples:
   # The same, submitted at once (sbatch must be on the PATH)
   usar slurm scenarios/paper.ron --trials 30 --out results/big --shards 100 --submit
 
-  # A multiverse (usar multiverse) instead of a sweep: --axes, --targets and --free make it
-  # one; 64 universes on 16 tasks of 4 CPUs
+  # A multiverse (usar multiverse) instead of a sweep: --axes (with --targets and --free)
+  # makes it one; 64 universes on 16 tasks of 4 CPUs
   usar slurm scenarios/paper.ron --axes scenarios/paper-axes.ron \\
       --targets scenarios/paper-targets.ron \\
       --free 'mission.hp_pct_per_step_in_radiation=0.001..0.02:log' \\
@@ -107,9 +107,15 @@ pub struct SlurmMultiverseArgs {
     )]
     pub axes: Option<PathBuf>,
 
-    /// With --axes: the targets file each universe is calibrated to.
-    #[arg(long, value_name = "TARGETS.ron", requires = "axes")]
+    /// With --axes: the targets file each universe is calibrated to. Without: the targets
+    /// the sweep's reports compare with (as `usar sweep --targets`).
+    #[arg(long, value_name = "TARGETS.ron")]
     pub targets: Option<PathBuf>,
+
+    /// Without --axes: the sweep's reports check the paper's claims (as `usar sweep
+    /// --claims`).
+    #[arg(long, conflicts_with = "axes")]
+    pub claims: bool,
 
     /// With --axes: a target reported but left out of the loss and admissibility
     /// (repeatable; as `usar multiverse --report-only`).
@@ -163,7 +169,9 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     if args.multiverse.axes.is_some() {
         return run_multiverse(args, out);
     }
-    let plan = args.spec.plan()?;
+    let mut plan = args.spec.plan()?;
+    plan.targets.clone_from(&args.multiverse.targets);
+    plan.claims = args.multiverse.claims;
     let out_dir = match &args.spec.out {
         Some(o) => o.clone(),
         None => default_out_dir(&scenario::load(&args.spec.scenario)?),
@@ -173,6 +181,11 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     let cfg = plan.config(&out_dir)?;
     let header = experiments::sweep::header_of(&cfg)?;
     experiments::sweep::check_config(&cfg, &header)?;
+    ReportArgs {
+        targets: plan.targets.clone(),
+        claims: plan.claims,
+    }
+    .resolve(&cfg.scenario, &cfg.scenario_path)?;
     if let Some(d) = args.spec.duration {
         warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
     }

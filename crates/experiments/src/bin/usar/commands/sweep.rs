@@ -16,7 +16,9 @@ use usar_sim::scenario::{self, Scenario, path_text};
 use experiments::analysis::Analysis;
 
 use crate::shared::scenario_warnings::{scenario_warnings, warn_about as warn_about_scenario};
-use crate::shared::sweep_spec::{SweepSpecArgs, grid_metrics, threads_of, warn_if_rounded};
+use crate::shared::sweep_spec::{
+    ReportArgs, SweepSpecArgs, grid_metrics, threads_of, warn_if_rounded,
+};
 use crate::shared::test_hooks::test_hooks;
 
 use experiments::console::print_sweep;
@@ -36,8 +38,9 @@ use experiments::sweep::{
 
 const EXAMPLES: &str = "\
 Examples:
-  # The paper's comparison: RNE, DIS, ENG, HP_DIS x 10 trials x 600 s, all cores
-  usar sweep scenarios/paper.ron
+  # The paper's comparison: RNE, DIS, ENG, HP_DIS x 10 trials x 600 s, all cores, with the
+  # paper's calibration targets and claims checked in report.md
+  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron --claims
 
   # A quick look: two methods, 2 trials of 60 s, into a chosen folder
   usar sweep scenarios/paper.ron --methods rne,dis --trials 2 --duration 60 --out /tmp/quick
@@ -73,6 +76,9 @@ command again continues its journal (like --resume) and rewrites the files. One 
 writes into a folder: it holds a lock on sweep.lock there (the file keeps the pid of the last
 holder; a killed sweep's lock ends with it). Every journal line carries a checksum: an edited
 record is reported by line and its trial runs again; an edited header is refused.
+report.md, grid.md and the summary compare with calibration targets only with --targets FILE,
+and check the paper's claims only with --claims; these change no trial, so running the same
+sweep again with other ones only rewrites the reports.
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
@@ -84,6 +90,10 @@ pub struct SweepArgs {
     /// What to sweep.
     #[command(flatten)]
     pub spec: SweepSpecArgs,
+
+    /// What the reports say beyond the results.
+    #[command(flatten)]
+    pub report: ReportArgs,
 
     /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
     /// cores; never more than there are trials to run.
@@ -246,6 +256,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let replays = replays_of(args, &cfg)?;
     // Options first (a bad one is the only line), then what the scenario warns about.
     experiments::sweep::check_trial_count(&cfg)?;
+    let report = args.report.resolve(&cfg.scenario, &cfg.scenario_path)?;
     warn_about(
         &path_text(&cfg.scenario_path),
         &cfg.scenario,
@@ -259,7 +270,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
         print_shard(out, &cfg, s.shard, &o)?;
         return failed_trials(&cfg, &o);
     }
-    let analysis = Analysis::of(&o);
+    let analysis = Analysis::with_report(&o, report);
     let files = write_outputs(&cfg, &o, &analysis, &metrics)?;
     print_sweep(out, &cfg, &o, &analysis, &metrics, &files)?;
     if let Some(r) = &replays {
@@ -294,14 +305,18 @@ fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays
     Ok(Some(SweepReplays::new(cfg, requests, args.replay_hz)?))
 }
 
-/// The shard and plan of `--shard`, if given.
+/// The shard and plan of `--shard`, if given (the plan records the report options, which
+/// `usar merge` renders with).
 fn shard_run(args: &SweepArgs) -> Result<Option<ShardRun>> {
     let Some(text) = &args.shard else {
         return Ok(None);
     };
+    let mut plan = args.spec.plan()?;
+    plan.targets.clone_from(&args.report.targets);
+    plan.claims = args.report.claims;
     Ok(Some(ShardRun {
         shard: text.parse()?,
-        plan: args.spec.plan()?,
+        plan,
     }))
 }
 

@@ -1,14 +1,17 @@
-//! What a sweep runs, as `usar sweep` and `usar slurm` take it ([`SweepSpecArgs`]), and the
-//! option checks `usar sweep`, `usar merge`, `usar calibrate` and `usar multiverse` share:
-//! `--grid-metrics`, `--threads` and a `--duration` rounded to whole steps.
+//! What a sweep runs, as `usar sweep` and `usar slurm` take it ([`SweepSpecArgs`]), what its
+//! reports show (`--targets`, `--claims`: [`ReportArgs`], for `usar sweep`, `usar merge` and
+//! `usar slurm`), and the option checks `usar sweep`, `usar merge`, `usar calibrate` and
+//! `usar multiverse` share: `--grid-metrics`, `--threads` and a `--duration` rounded to whole
+//! steps.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, Scenario};
 
+use experiments::calibration::ReportOptions;
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::shard::SweepPlan;
@@ -59,7 +62,8 @@ pub struct SweepSpecArgs {
 }
 
 impl SweepSpecArgs {
-    /// The sweep's plan: the scenario file's text and these options.
+    /// The sweep's plan: the scenario file's text and these options (no report options:
+    /// the commands that have them set [`SweepPlan::targets`] and [`SweepPlan::claims`]).
     ///
     /// # Errors
     /// The scenario file cannot be read.
@@ -75,7 +79,41 @@ impl SweepSpecArgs {
             duration_s: self.duration,
             grid_metrics: self.grid_metrics.clone(),
             working_dir: std::env::current_dir().ok(),
+            targets: None,
+            claims: false,
         })
+    }
+}
+
+/// `--targets FILE` and `--claims`: what the reports say beyond the scenario's own results.
+#[derive(Debug, Clone, Default, Args)]
+pub struct ReportArgs {
+    /// Compare the statistics pooled over all trials of all methods with the targets in FILE
+    /// (RON, as `usar calibrate --targets`; the paper's: scenarios/paper-targets.ron) in
+    /// report.md, grid.md and the summary. Default: no comparison. Changing it re-renders a
+    /// journaled sweep's reports without running its trials again.
+    #[arg(long, value_name = "FILE")]
+    pub targets: Option<PathBuf>,
+
+    /// Check the paper's claims (about tasks named easy and hard: Welch and Mann-Whitney
+    /// tests) in report.md, grid.md and the summary. Default: not checked.
+    #[arg(long)]
+    pub claims: bool,
+}
+
+impl ReportArgs {
+    /// The report options for `scenario` (loaded from `scenario_path`).
+    ///
+    /// # Errors
+    /// A targets file that cannot be read or parsed, or that names a task the scenario lacks.
+    pub fn resolve(&self, scenario: &Scenario, scenario_path: &Path) -> Result<ReportOptions> {
+        ReportOptions::resolve(
+            self.targets.as_deref(),
+            self.claims,
+            scenario,
+            scenario_path,
+        )
+        .context("--targets")
     }
 }
 
