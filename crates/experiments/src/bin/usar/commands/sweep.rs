@@ -187,7 +187,7 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
         methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
         method_factory: MethodFactory::builtin(),
         trials: args.trials,
-        base_seed: args.seed.unwrap_or(scenario.sim.seed),
+        base_seed: args.seed.unwrap_or(scenario.sim().seed),
         duration_s: args.duration,
         threads,
         out_dir: args
