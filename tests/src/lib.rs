@@ -3,7 +3,7 @@
 use rne_core::grouping::{GroupingMethod, method_from_name};
 use rne_core::{TrustModel, Weights};
 use usar_sim::mission::Simulation;
-use usar_sim::scenario::{self, ClampedNormal, Scenario};
+use usar_sim::scenario::{self, ClampedNormal, Scenario, ScenarioSpec};
 
 /// Path of a file in the workspace's `scenarios/` folder.
 pub fn scenario_path(file: &str) -> String {
@@ -31,6 +31,17 @@ pub fn paper() -> Scenario {
     scenario::load(scenario_path("paper.ron")).expect("scenarios/paper.ron loads")
 }
 
+/// `scenarios/paper.ron` with its spec changed by `edit`, validated again
+/// ([`Scenario::edit`]).
+///
+/// # Panics
+/// If the edited scenario breaks a rule (that is a test failure).
+pub fn paper_with(edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
+    paper()
+        .edit(edit)
+        .unwrap_or_else(|e| panic!("edited paper.ron: {e}"))
+}
+
 /// A built-in grouping method by name (`rne`, `dis`, `eng`, `hp_dis`), RNE using the
 /// scenario's needs weights.
 ///
@@ -38,7 +49,7 @@ pub fn paper() -> Scenario {
 /// On an unknown name.
 pub fn method(name: &str, s: &Scenario) -> Box<dyn GroupingMethod> {
     let model = TrustModel::with_weights(
-        Weights::new(s.needs_weights.to_array().to_vec()).expect("weights"),
+        Weights::new(s.needs_weights().to_array().to_vec()).expect("weights"),
     );
     method_from_name(name, &model).expect("built-in method")
 }

@@ -36,7 +36,7 @@ fn worst_overlap_m(s: &Scenario, name: &str, trial: u32) -> f64 {
 
 #[test]
 fn bodies_overlap_by_less_than_half_a_step_of_closing_up_to_the_speed_limit() {
-    let dt_s = paper().sim.dt_s.get();
+    let dt_s = paper().sim().dt_s.get();
     for speed_m_per_s in [2.5, 5.0, 10.0] {
         let s = paper_at(speed_m_per_s);
         let bound_m = 0.5 * 2.0 * speed_m_per_s * dt_s;

@@ -73,7 +73,7 @@ fn assert_calibrated(results: &[TrialResult], what: &str) {
 #[test]
 fn a_paper_sweep_lies_inside_every_mean_band() {
     let s = paper();
-    assert_calibrated(&sweep(&s, 10, s.sim.seed), "the paper sweep");
+    assert_calibrated(&sweep(&s, 10, s.sim().seed), "the paper sweep");
 }
 
 #[test]

@@ -18,7 +18,7 @@ fn assert_bounded(file: &str, name: &str, trial: u32) -> LongestStall {
     assert!(
         longest.duration_s <= NO_PROGRESS_BOUND_S,
         "{} {name} trial {trial}: {longest:?}; rounds {rounds:.0?}",
-        s.name
+        s.name()
     );
     longest
 }
@@ -26,11 +26,13 @@ fn assert_bounded(file: &str, name: &str, trial: u32) -> LongestStall {
 /// `s` with the default navigation (shared goal fields, detours): `paper.ron`,
 /// `paper-v0.ron` and `three-tasks.ron` pin the A*-only navigation their published numbers
 /// were measured with.
-fn with_default_navigation(mut s: Scenario) -> Scenario {
+fn with_default_navigation(s: Scenario) -> Scenario {
     let default = NavigationParams::default();
-    s.navigation.shared_goal_fields = default.shared_goal_fields;
-    s.navigation.stall_replan_s = default.stall_replan_s;
-    s
+    s.edit(|spec| {
+        spec.navigation.shared_goal_fields = default.shared_goal_fields;
+        spec.navigation.stall_replan_s = default.stall_replan_s;
+    })
+    .expect("the default navigation is valid")
 }
 
 /// Supplier 8 of four-tasks.ron, DIS, trial 0, was stuck for about 250 s at (37.0, 7.57):

@@ -1,8 +1,11 @@
 //! Behaviour of the mission rules (paper, section VI.B), each on a variant of paper.ron.
 
-use integration_tests::{fixed, method, paper};
+use integration_tests::{fixed, method, paper, paper_with};
 use usar_sim::mission::{Phase, Simulation, hp_factor};
-use usar_sim::scenario::{Circle, Debris, Locomotion, PointM, RadiationZone, Role, Scenario};
+use usar_sim::scenario::{
+    CircleSpec, DebrisSpec, Locomotion, RadiationZoneSpec, RestStationsSpec, Role, Scenario,
+    ScenarioSpec,
+};
 
 /// Highest speed robot `id` reaches during the first `seconds` of the trial, m/s.
 fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
@@ -16,17 +19,18 @@ fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
 
 #[test]
 fn a_group_without_an_observer_is_30_percent_slower() {
-    let mut s = paper();
-    let observer = s
-        .kinds
-        .iter()
-        .position(|k| k.role == Role::Observer)
-        .unwrap();
-    let easy = s.task_id("easy").unwrap();
-    s.kinds[observer].quota[easy] = 0; // the easy group gets no observer
-    s.kinds[observer].quota[1 - easy] = 2;
-    s.mission.initial_hp = fixed(100.0);
-    s.mission.initial_energy = fixed(100.0);
+    let s = paper_with(|s| {
+        let observer = s
+            .kinds
+            .iter()
+            .position(|k| k.role == Role::Observer)
+            .unwrap();
+        // The easy group gets no observer.
+        s.kinds[observer].quota.0.insert("easy".into(), 0);
+        s.kinds[observer].quota.0.insert("hard".into(), 2);
+        s.mission.initial_hp = fixed(100.0);
+        s.mission.initial_energy = fixed(100.0);
+    });
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
     sim.step().unwrap();
     let round = &sim.rounds()[0];
@@ -62,9 +66,10 @@ fn a_group_without_an_observer_is_30_percent_slower() {
 #[test]
 fn lower_hp_means_lower_speed() {
     let run = |hp: f64| {
-        let mut s = paper();
-        s.mission.initial_hp = fixed(hp);
-        s.mission.initial_energy = fixed(100.0);
+        let s = paper_with(|s| {
+            s.mission.initial_hp = fixed(hp);
+            s.mission.initial_energy = fixed(100.0);
+        });
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
         (top_speed(&mut sim, 0, 8.0), s.kind_of(0).max_speed_m_per_s)
     };
@@ -72,7 +77,7 @@ fn lower_hp_means_lower_speed() {
     let (low, _) = run(60.0);
     assert!((full - v_max).abs() < 0.02 * v_max, "{full}");
     assert!(
-        (low - hp_factor(&paper().mission, 60.0) * v_max).abs() < 0.02 * v_max,
+        (low - hp_factor(paper().mission(), 60.0) * v_max).abs() < 0.02 * v_max,
         "{low}"
     );
     assert!(low < full);
@@ -81,17 +86,16 @@ fn lower_hp_means_lower_speed() {
 /// Every robot starts just above the 30 % energy threshold, so all leave for the rest station
 /// within seconds; a radiation zone of dose factor 2 covers the rest station.
 fn low_energy_scenario() -> Scenario {
-    let mut s = paper();
-    s.mission.initial_energy = fixed(30.5);
-    s.mission.initial_hp = fixed(90.0);
-    s.radiation_zones.push(RadiationZone {
-        area: Circle {
-            center: s.rest_stations[0].center,
-            radius_m: s.rest_stations[0].radius_m + 1.5,
-        },
-        dose_rate_factor: 2.0,
-    });
-    s
+    paper_with(|s| {
+        s.mission.initial_energy = fixed(30.5);
+        s.mission.initial_hp = fixed(90.0);
+        let station = &s.rest_station.circles()[0];
+        s.radiation_zones.push(RadiationZoneSpec {
+            center_m: station.center_m,
+            radius_m: (station.radius_m.get() + 1.5).try_into().unwrap(),
+            dose_rate_factor: 2.0.try_into().unwrap(),
+        });
+    })
 }
 
 #[test]
@@ -143,9 +147,9 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
         "energy after recharging {}",
         r.energy_pct
     );
-    let recharge_s = f64::from(recharge_steps) * s.sim.dt_s.get();
+    let recharge_s = f64::from(recharge_steps) * s.sim().dt_s.get();
     assert!(
-        (recharge_s - s.mission.recharge_s.get()).abs() <= 2.0 * s.sim.dt_s.get(),
+        (recharge_s - s.mission().recharge_s.get()).abs() <= 2.0 * s.sim().dt_s.get(),
         "{recharge_s}"
     );
 }
@@ -154,14 +158,21 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
 /// within seconds) and a second rest station at (24, 4), left of the start rows, mirroring the
 /// paper's (56, 4) about their middle.
 fn two_station_scenario() -> Scenario {
-    let mut s = paper();
+    paper_with(two_stations)
+}
+
+/// The spec edit of [`two_station_scenario`].
+fn two_stations(s: &mut ScenarioSpec) {
     s.mission.initial_energy = fixed(30.5);
     s.mission.initial_hp = fixed(90.0);
-    s.rest_stations.push(Circle {
-        center: PointM::new(24.0, 4.0),
-        radius_m: 2.0,
-    });
-    s
+    let paper_station = s.rest_station.circles()[0].clone();
+    s.rest_station = RestStationsSpec::Many(vec![
+        paper_station,
+        CircleSpec {
+            center_m: [24.0, 4.0],
+            radius_m: 2.0.try_into().unwrap(),
+        },
+    ]);
 }
 
 /// For each robot's first trip to rest in 120 s: the robot, the station it heads for (by its
@@ -171,7 +182,7 @@ fn first_trips_to_rest(s: &Scenario) -> Vec<(usize, usize, usize)> {
     let mut sim = Simulation::for_trial(s, method("rne", s), 0)
         .with_duration_s(120.0)
         .unwrap();
-    let mut trips: Vec<Option<(usize, usize, usize)>> = vec![None; s.robots.len()];
+    let mut trips: Vec<Option<(usize, usize, usize)>> = vec![None; s.robots().len()];
     while !sim.is_finished() {
         sim.step().unwrap();
         for (id, trip) in trips.iter_mut().enumerate() {
@@ -180,7 +191,7 @@ fn first_trips_to_rest(s: &Scenario) -> Vec<(usize, usize, usize)> {
             if phase == Phase::ToRest && trip.is_none() {
                 let goal = robot.goal.expect("a robot on its way to rest has a goal");
                 let to = s
-                    .rest_stations
+                    .rest_stations()
                     .iter()
                     .position(|c| (goal - c.center).norm() < 1e-6)
                     .unwrap_or_else(|| panic!("robot {id} heads for {goal:?}, not a station"));
@@ -217,11 +228,13 @@ fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
 /// the nearer one.
 #[test]
 fn a_rest_station_behind_a_wall_is_farther_by_path() {
-    let mut s = two_station_scenario();
-    s.debris.push(Debris::Rect {
-        center: PointM::new(28.0, 15.0),
-        half_extents_m: nalgebra::Vector2::new(0.5, 15.0),
-        rotation_rad: 0.0,
+    let s = paper_with(|s| {
+        two_stations(s);
+        s.debris.push(DebrisSpec::Rect {
+            center_m: [28.0, 15.0],
+            size_m: [1.0, 30.0],
+            rotation_deg: 0.0,
+        });
     });
     let trips = first_trips_to_rest(&s);
     let (ground, aerial): (Vec<&(usize, usize, usize)>, Vec<_>) = trips
@@ -253,7 +266,7 @@ fn a_robot_standing_in_radiation_loses_hp_at_the_stated_rate() {
                 let factor = sim.world().radiation_factor(r.id);
                 assert!(factor >= 2.0, "robot {} recharges outside the zone", r.id);
                 let lost = hp0 - r.hp_pct;
-                let expected = s.mission.hp_pct_per_step_in_radiation.get() * factor;
+                let expected = s.mission().hp_pct_per_step_in_radiation.get() * factor;
                 assert!(
                     (lost - expected).abs() < 1e-12,
                     "lost {lost}, expected {expected}"
@@ -281,10 +294,10 @@ fn regrouping_happens_every_round_with_the_current_state() {
         sim.step().unwrap();
         if sim.rounds().len() > rounds {
             let round = sim.rounds().last().unwrap().clone();
-            for kind in 0..s.kinds.len() {
+            for kind in 0..s.kinds().len() {
                 let of_kind = |ids: &Vec<usize>| -> Vec<f64> {
                     ids.iter()
-                        .filter(|&&id| s.robots[id].kind == kind)
+                        .filter(|&&id| s.robots()[id].kind == kind)
                         .map(|&id| energy[id])
                         .collect()
                 };
@@ -364,7 +377,9 @@ fn the_needs_vector_follows_the_robot_state() {
     let v = now.as_slice();
     assert!((v[entry::ENG] - kind.energy_needs_full * r.energy_pct / 100.0).abs() < 1e-12);
     assert!((v[entry::HP] - kind.hp_needs_full * r.hp_pct / 100.0).abs() < 1e-12);
-    assert!((v[entry::V] - kind.max_speed_m_per_s * hp_factor(&s.mission, r.hp_pct)).abs() < 1e-12);
+    assert!(
+        (v[entry::V] - kind.max_speed_m_per_s * hp_factor(s.mission(), r.hp_pct)).abs() < 1e-12
+    );
     assert_eq!(v[entry::CAP], f64::from(r.capacity_free));
     assert!(
         v[entry::CAP] < before.as_slice()[entry::CAP],

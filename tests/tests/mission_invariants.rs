@@ -2,7 +2,7 @@
 //! of a full 600 s paper.ron trial for each built-in grouping method, and with a control
 //! period of 0.1 s (`sim.control_period_s`) for two of them.
 
-use integration_tests::{method, paper};
+use integration_tests::{method, paper, paper_with};
 use usar_sim::mission::{Phase, RescueeStatus, Simulation};
 use usar_sim::scenario::{Positive, Scenario};
 
@@ -10,9 +10,8 @@ const EPS: f64 = 1e-9;
 
 /// paper.ron with the robots deciding every 0.1 s (five steps).
 fn paper_at_10_hz() -> Scenario {
-    let mut s = paper();
-    s.sim.control_period_s = Some(Positive::new(0.1).expect("positive"));
-    assert_eq!(s.sim.control_steps(), 5);
+    let s = paper_with(|s| s.sim.control_period_s = Some(Positive::new(0.1).expect("positive")));
+    assert_eq!(s.sim().control_steps(), 5);
     s
 }
 
@@ -64,7 +63,7 @@ fn check(name: &str, s: &Scenario) {
                     "{name}: robot {} lost energy standing still",
                     r.id
                 );
-                let m = &s.mission;
+                let m = &s.mission();
                 let expected = (m.energy_pct_per_moving_step.get()
                     + m.energy_pct_per_m.get() * w.step_distance_m)
                     .min(e0);
@@ -108,7 +107,7 @@ fn check(name: &str, s: &Scenario) {
                     "{name}: robot {} lost HP outside radiation",
                     r.id
                 );
-                let expected = (s.mission.hp_pct_per_step_in_radiation.get() * factor).min(h0);
+                let expected = (s.mission().hp_pct_per_step_in_radiation.get() * factor).min(h0);
                 assert!((h0 - r.hp_pct - expected).abs() < 1e-9, "{name}: HP rate");
             }
             if r.hp_pct > h0 + EPS {
@@ -132,11 +131,11 @@ fn check(name: &str, s: &Scenario) {
             for group in &closed.groups {
                 for &id in group {
                     let r = &sim.robots()[id];
-                    let gap = (world.robot(id).position - s.robots[id].start_in_world).norm();
+                    let gap = (world.robot(id).position - s.robots()[id].start_in_world).norm();
                     assert!(
                         r.is_resting()
                             || (r.phase == Phase::AtStart
-                                && gap <= s.navigation.waypoint_tolerance_m.get() + 1e-6),
+                                && gap <= s.navigation().waypoint_tolerance_m.get() + 1e-6),
                         "{name}: a round closed with robot {id} away ({:?}, {gap} m)",
                         r.phase
                     );
@@ -151,7 +150,7 @@ fn check(name: &str, s: &Scenario) {
     }
     let result = sim.result();
     // Every delivered rescuee was picked up exactly once; nobody was picked up twice.
-    for (t, task) in s.tasks.iter().enumerate() {
+    for (t, task) in s.tasks().iter().enumerate() {
         let field = sim.rescuees(t);
         let mut delivered = 0;
         for i in 0..field.len() {

@@ -1,20 +1,21 @@
 //! The mission rules the paper leaves open (`mission.*` options, `docs/mission-model.md`): each
 //! setting's behaviour, on variants of paper.ron.
 
-use integration_tests::{fixed, method, paper};
+use integration_tests::{fixed, method, paper, paper_with};
 use usar_sim::mission::{
     Phase, RescueeStatus, Simulation, hp_factor, sweep_spacing_m, sweep_waypoints,
 };
 use usar_sim::scenario::{
-    Circle, LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZone, Refresh, Role,
-    RoundStart, Scenario,
+    LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZoneSpec, Refresh, Role, RoundStart,
+    Scenario,
 };
 
 #[test]
 fn energy_is_charged_per_moving_step_plus_per_metre() {
-    let mut s = paper();
-    s.mission.energy_pct_per_moving_step = 0.001.try_into().unwrap();
-    s.mission.energy_pct_per_m = 0.2.try_into().unwrap();
+    let s = paper_with(|s| {
+        s.mission.energy_pct_per_moving_step = 0.001.try_into().unwrap();
+        s.mission.energy_pct_per_m = 0.2.try_into().unwrap();
+    });
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
         .with_duration_s(60.0)
         .unwrap();
@@ -44,24 +45,26 @@ fn energy_is_charged_per_moving_step_plus_per_metre() {
 /// Every robot starts just above the energy threshold, so all leave for the rest station at
 /// once; two overlapping radiation zones cover the rest station.
 fn resting_in_two_zones(overlap: RadiationOverlap, falloff: RadiationFalloff) -> Scenario {
-    let mut s = paper();
-    s.mission.initial_energy = fixed(30.05);
-    s.mission.initial_hp = fixed(90.0);
-    s.mission.radiation_overlap = overlap;
-    s.mission.radiation_falloff = falloff;
-    // Low enough that nobody reaches 0 % HP (the loss is then clamped) within the test.
-    s.mission.hp_pct_per_step_in_radiation = 0.001.try_into().unwrap();
-    let c = s.rest_stations[0].center;
-    for (dx, factor) in [(0.0, 2.0), (1.0, 1.0)] {
-        s.radiation_zones.push(RadiationZone {
-            area: Circle {
-                center: usar_sim::scenario::PointM::new(c.x + dx, c.y),
-                radius_m: s.rest_stations[0].radius_m + 3.0,
-            },
-            dose_rate_factor: factor,
-        });
-    }
-    s
+    paper_with(|s| {
+        s.mission.initial_energy = fixed(30.05);
+        s.mission.initial_hp = fixed(90.0);
+        s.mission.radiation_overlap = overlap;
+        s.mission.radiation_falloff = falloff;
+        // Low enough that nobody reaches 0 % HP (the loss is then clamped) within the test.
+        s.mission.hp_pct_per_step_in_radiation = 0.001.try_into().unwrap();
+        let station = &s.rest_station.circles()[0];
+        let [x, y] = station.center_m;
+        // 2 m wider than the station, as far as the arena's floor allows (a zone lies inside
+        // the arena): every robot resting there is inside both zones.
+        let radius_m = (station.radius_m.get() + 2.0).min(y);
+        for (dx, factor) in [(0.0, 2.0), (1.0, 1.0)] {
+            s.radiation_zones.push(RadiationZoneSpec {
+                center_m: [x + dx, y],
+                radius_m: radius_m.try_into().unwrap(),
+                dose_rate_factor: factor.try_into().unwrap(),
+            });
+        }
+    })
 }
 
 #[test]
@@ -70,7 +73,7 @@ fn overlapping_zones_sum_or_take_the_strongest_and_linear_dose_falls_off() {
     use RadiationOverlap::{Max, Sum};
     for (overlap, falloff) in [(Sum, Uniform), (Max, Uniform), (Sum, Linear), (Max, Linear)] {
         let s = resting_in_two_zones(overlap, falloff);
-        let zones = &s.radiation_zones[s.radiation_zones.len() - 2..];
+        let zones = &s.radiation_zones()[s.radiation_zones().len() - 2..];
         let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
             .with_duration_s(90.0)
             .unwrap();
@@ -100,7 +103,7 @@ fn overlapping_zones_sum_or_take_the_strongest_and_linear_dose_falls_off() {
                     Max => doses.fold(0.0, f64::max),
                 };
                 let lost = hp0 - r.hp_pct;
-                let expected = s.mission.hp_pct_per_step_in_radiation.get() * dose;
+                let expected = s.mission().hp_pct_per_step_in_radiation.get() * dose;
                 assert!(
                     (lost - expected).abs() < 1e-9,
                     "{overlap:?}/{falloff:?}: lost {lost}, expected {expected}"
@@ -125,18 +128,19 @@ fn group_sizes(s: &Scenario) -> Vec<usize> {
 
 #[test]
 fn all_back_rounds_group_the_whole_team_and_available_rounds_do_not() {
-    let mut s = paper();
-    s.mission.round_start = RoundStart::AllBack;
+    let s = paper_with(|s| {
+        s.mission.round_start = RoundStart::AllBack;
+    });
     let all_back = group_sizes(&s);
     assert!(all_back.len() >= 4, "{all_back:?}");
     assert!(
-        all_back.iter().all(|&n| n == s.robots.len()),
+        all_back.iter().all(|&n| n == s.robots().len()),
         "{all_back:?}"
     );
-    s.mission.round_start = RoundStart::Available;
+    let s = paper_with(|s| s.mission.round_start = RoundStart::Available);
     let available = group_sizes(&s);
     assert!(
-        available.iter().any(|&n| n < s.robots.len()),
+        available.iter().any(|&n| n < s.robots().len()),
         "robots recharge during the trial, so some round must go without them: {available:?}"
     );
 }
@@ -156,11 +160,12 @@ fn leave_with_load(
     rule: LoadOnLeave,
     mut check: impl FnMut(&Simulation, &[LeaveWithLoad]),
 ) -> (Simulation, Vec<LeaveWithLoad>) {
-    let mut s = paper();
-    s.mission.initial_energy = fixed(36.0);
-    s.mission.initial_hp = fixed(100.0);
-    s.mission.load_on_leave = rule;
-    s.mission.search_time_budget_s = None;
+    let s = paper_with(|s| {
+        s.mission.initial_energy = fixed(36.0);
+        s.mission.initial_hp = fixed(100.0);
+        s.mission.load_on_leave = rule;
+        s.mission.search_time_budget_s = None;
+    });
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
         .with_duration_s(200.0)
         .unwrap();
@@ -247,14 +252,14 @@ fn a_leaving_robot_delivers_its_load_first() {
 fn a_group_leaves_when_its_search_time_budget_is_spent() {
     let s = paper();
     let budget = s
-        .mission
+        .mission()
         .search_time_budget_s
         .expect("paper.ron has a budget")
         .get();
     let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
         .with_duration_s(300.0)
         .unwrap();
-    let k = s.tasks.len();
+    let k = s.tasks().len();
     let mut first_in: Vec<Option<f64>> = vec![None; k];
     let mut ended = vec![false; k];
     let mut rounds = 0;
@@ -267,8 +272,8 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
             ended = vec![false; k];
         }
         let now = sim.time_s();
-        for level in 0..s.tasks.len() {
-            let area = s.tasks[level].search_area;
+        for level in 0..s.tasks().len() {
+            let area = s.tasks()[level].search_area;
             let s = &s;
             let sim = &sim;
             let members = move || {
@@ -285,7 +290,7 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
                 continue;
             };
             let searching = members().any(|r| r.is_on_task());
-            if now > t0 + budget + 2.0 * s.sim.dt_s.get() {
+            if now > t0 + budget + 2.0 * s.sim().dt_s.get() {
                 assert!(
                     !searching,
                     "task {level} group still searching at {now} s (in at {t0} s)"
@@ -297,7 +302,7 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
             if !ended[level] && turned {
                 ended[level] = true;
                 let free: u32 = members().map(|r| r.capacity_free).sum();
-                if now >= t0 + budget && now <= t0 + budget + 2.0 * s.sim.dt_s.get() && free > 0 {
+                if now >= t0 + budget && now <= t0 + budget + 2.0 * s.sim().dt_s.get() && free > 0 {
                     cut_short += 1;
                 }
             }
@@ -309,10 +314,11 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
 #[test]
 fn low_only_refresh_restores_only_the_level_below_its_threshold() {
     for (refresh, hp_after) in [(Refresh::LowOnly, 60.0), (Refresh::Both, 100.0)] {
-        let mut s = paper();
-        s.mission.initial_energy = fixed(30.05);
-        s.mission.initial_hp = fixed(60.0);
-        s.mission.refresh = refresh;
+        let s = paper_with(|s| {
+            s.mission.initial_energy = fixed(30.05);
+            s.mission.initial_hp = fixed(60.0);
+            s.mission.refresh = refresh;
+        });
         let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
             .with_duration_s(120.0)
             .unwrap();
@@ -332,14 +338,14 @@ fn low_only_refresh_restores_only_the_level_below_its_threshold() {
 /// (`sweep_waypoints` at `sweep_spacing_m`) passes within its detection radius of
 /// (body radius + observing range at full HP).
 fn swept_fraction(s: &Scenario) -> f64 {
-    let kind = &s.kinds[0];
+    let kind = &s.kinds()[0];
     let reach = kind.body_radius_m + kind.observing_range_m;
     let (mut seen, mut all) = (0, 0);
-    for task in &s.tasks {
+    for task in s.tasks() {
         let w = sweep_waypoints(
             &task.search_area,
             sweep_spacing_m(s),
-            s.mission.sweep_pattern,
+            s.mission().sweep_pattern,
         );
         for p in &task.rescuees {
             let d = w
@@ -364,11 +370,11 @@ fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
     // the rows of a 1 m rescuee grid, so a group without an observer could only find rescuees
     // by chance. The default spacing is the detection width.
     let s = paper();
-    assert_eq!(s.mission.sweep_spacing_m, None);
+    assert_eq!(s.mission().sweep_spacing_m, None);
     assert!((sweep_spacing_m(&s) - 0.9).abs() < 1e-12);
     assert_eq!(swept_fraction(&s), 1.0);
     let v0 = usar_sim::scenario::load(integration_tests::scenario_path("paper-v0.ron")).unwrap();
-    assert_eq!(v0.mission.sweep_spacing_m.map(|x| x.get()), Some(2.0));
+    assert_eq!(v0.mission().sweep_spacing_m.map(|x| x.get()), Some(2.0));
     let f = swept_fraction(&v0);
     assert!(f < 0.2, "2 m rows pass {f} of the rescuees");
 }
@@ -382,10 +388,10 @@ fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
 #[test]
 fn a_blind_sweep_finds_the_rescuees_at_the_corners_and_edges() {
     let s = integration_tests::load(&integration_tests::data_path("blind-edges.ron"));
-    assert!(!s.kinds.iter().any(|k| k.role == Role::Observer));
-    let reach = s.kinds[0].body_radius_m + s.kinds[0].observing_range_m;
-    let area = &s.tasks[0].search_area;
-    for p in &s.tasks[0].rescuees {
+    assert!(!s.kinds().iter().any(|k| k.role == Role::Observer));
+    let reach = s.kinds()[0].body_radius_m + s.kinds()[0].observing_range_m;
+    let area = &s.tasks()[0].search_area;
+    for p in &s.tasks()[0].rescuees {
         let to_edge = (p.x - area.min.x)
             .min(area.max.x - p.x)
             .min(p.y - area.min.y)
@@ -407,10 +413,11 @@ fn a_blind_sweep_finds_the_rescuees_at_the_corners_and_edges() {
 #[test]
 fn hp_slows_a_robot_no_further_than_the_floor() {
     let top = |min_factor: f64| {
-        let mut s = paper();
-        s.mission.initial_hp = fixed(5.0);
-        s.mission.initial_energy = fixed(100.0);
-        s.mission.min_hp_factor = min_factor.try_into().unwrap();
+        let s = paper_with(|s| {
+            s.mission.initial_hp = fixed(5.0);
+            s.mission.initial_energy = fixed(100.0);
+            s.mission.min_hp_factor = min_factor.try_into().unwrap();
+        });
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 0);
         let mut top: f64 = 0.0;
         while sim.time_s() < 8.0 {
@@ -420,7 +427,7 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
         (top, s.kind_of(0).max_speed_m_per_s)
     };
     let (floored, v_max) = top(0.2);
-    let mut floor = paper().mission;
+    let mut floor = paper().mission().clone();
     floor.min_hp_factor = 0.2.try_into().unwrap();
     assert!((hp_factor(&floor, 5.0) - 0.2).abs() < 1e-12);
     assert!(
@@ -439,12 +446,12 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
 #[test]
 fn a_rescue_takes_pickup_s_standing_still() {
     let s = paper();
-    let pickup_s = s.mission.pickup_s.get();
+    let pickup_s = s.mission().pickup_s.get();
     assert!(pickup_s > 0.0);
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
         .with_duration_s(120.0)
         .unwrap();
-    let n = s.robots.len();
+    let n = s.robots().len();
     let mut since: Vec<Option<f64>> = vec![None; n];
     let mut rescues = 0;
     while !sim.is_finished() {
@@ -472,7 +479,7 @@ fn a_rescue_takes_pickup_s_standing_still() {
                 let start = since[r.id].take().expect("a rescue starts before it ends");
                 let took = now - start;
                 assert!(
-                    (took - pickup_s).abs() <= s.sim.dt_s.get() + 1e-9,
+                    (took - pickup_s).abs() <= s.sim().dt_s.get() + 1e-9,
                     "robot {}: rescue took {took} s",
                     r.id
                 );
@@ -489,10 +496,11 @@ fn a_rescue_takes_pickup_s_standing_still() {
 /// of this valid scenario used to fail with "all weighted needs equal to zero".
 #[test]
 fn robots_with_all_zero_needs_are_grouped_by_rne() {
-    let mut s = paper();
-    s.mission.min_hp_factor = 0.0.try_into().unwrap();
-    s.mission.initial_hp = fixed(0.0);
-    s.mission.initial_energy = fixed(0.0);
+    let s = paper_with(|s| {
+        s.mission.min_hp_factor = 0.0.try_into().unwrap();
+        s.mission.initial_hp = fixed(0.0);
+        s.mission.initial_energy = fixed(0.0);
+    });
     let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
         .with_duration_s(5.0)
         .unwrap();

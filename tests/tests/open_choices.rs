@@ -3,7 +3,7 @@
 //! switches (radiation overlap and falloff, round start, refresh, load on leave, quotas) are
 //! tested in `mission_rules.rs`.
 
-use integration_tests::{fixed, method, paper};
+use integration_tests::{fixed, method, paper, paper_with};
 use usar_sim::mission::{MissionEventKind, Phase, Simulation, draw_initial_levels, hp_factor};
 use usar_sim::scenario::{
     ClampedNormal, CollisionPriority, HpEffect, LeaveWhenLow, OutsideRange, RescuedAt, Role,
@@ -33,12 +33,13 @@ fn hp_scales_speed_linearly_by_a_threshold_or_not_at_all() {
         (threshold, 60.0, 1.0),
         (HpEffect::NoEffect, 40.0, 1.0),
     ] {
-        let mut s = paper();
-        s.mission.hp_effect = effect;
-        s.mission.min_hp_factor = 0.0.try_into().unwrap();
-        s.mission.initial_hp = fixed(hp);
-        s.mission.initial_energy = fixed(100.0);
-        assert!((hp_factor(&s.mission, hp) - expected).abs() < 1e-12);
+        let s = paper_with(|s| {
+            s.mission.hp_effect = effect;
+            s.mission.min_hp_factor = 0.0.try_into().unwrap();
+            s.mission.initial_hp = fixed(hp);
+            s.mission.initial_energy = fixed(100.0);
+        });
+        assert!((hp_factor(s.mission(), hp) - expected).abs() < 1e-12);
         let v_max = s.kind_of(0).max_speed_m_per_s;
         let top = top_speed(&s, 6.0);
         assert!(
@@ -53,10 +54,11 @@ fn hp_scales_speed_linearly_by_a_threshold_or_not_at_all() {
 /// during its first trip. Returns, per `LeftForRest` event, the leaving robot's phase just
 /// before it left.
 fn phases_when_leaving(rule: LeaveWhenLow) -> Vec<Phase> {
-    let mut s = paper();
-    s.mission.initial_energy = fixed(33.0);
-    s.mission.initial_hp = fixed(90.0);
-    s.mission.leave_when_low = rule;
+    let s = paper_with(|s| {
+        s.mission.initial_energy = fixed(33.0);
+        s.mission.initial_hp = fixed(90.0);
+        s.mission.leave_when_low = rule;
+    });
     let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
         .with_duration_s(200.0)
         .unwrap();
@@ -99,9 +101,10 @@ fn a_low_robot_leaves_at_once_or_after_its_trip() {
 #[test]
 fn a_robot_below_its_threshold_at_the_start_leaves_at_once_under_both_rules() {
     for rule in [LeaveWhenLow::AtOnce, LeaveWhenLow::AfterTrip] {
-        let mut s = paper();
-        s.mission.initial_energy = fixed(20.0);
-        s.mission.leave_when_low = rule;
+        let s = paper_with(|s| {
+            s.mission.initial_energy = fixed(20.0);
+            s.mission.leave_when_low = rule;
+        });
         let mut sim = Simulation::for_trial(&s, method("rne", &s), 0);
         sim.step().unwrap();
         assert!(
@@ -116,8 +119,9 @@ fn a_robot_below_its_threshold_at_the_start_leaves_at_once_under_both_rules() {
 fn rescues_count_at_the_drop_off_or_at_the_pick_up() {
     // The counting rule changes no decision: both runs of a trial are the same trial.
     let run = |at: RescuedAt, trial: u32| {
-        let mut s = paper();
-        s.mission.rescued_at = at;
+        let s = paper_with(|s| {
+            s.mission.rescued_at = at;
+        });
         Simulation::for_trial(&s, method("eng", &s), trial)
             .with_duration_s(250.0)
             .unwrap()
@@ -157,8 +161,9 @@ fn the_collision_priority_key_is_energy_hp_or_nothing() {
         CollisionPriority::LowestHp,
         CollisionPriority::RobotId,
     ] {
-        let mut s = paper();
-        s.collision.priority = priority;
+        let s = paper_with(|s| {
+            s.collision.priority = priority;
+        });
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 3);
         for _ in 0..10 {
             sim.step().unwrap();
@@ -181,8 +186,8 @@ fn the_collision_priority_key_is_energy_hp_or_nothing() {
 
 #[test]
 fn initial_draws_outside_the_range_are_clamped_or_drawn_again() {
-    let mut s = paper();
-    let base = s.mission.initial_energy;
+    let s = paper();
+    let base = s.mission().initial_energy;
     let narrow = |outside_range| ClampedNormal {
         min_pct: 70.0.try_into().unwrap(),
         max_pct: 90.0.try_into().unwrap(),
@@ -195,10 +200,12 @@ fn initial_draws_outside_the_range_are_clamped_or_drawn_again() {
             .map(|l| l.energy_pct)
             .collect()
     };
-    s.mission.initial_energy = narrow(OutsideRange::Clamp);
-    let clamped = levels(&s);
-    s.mission.initial_energy = narrow(OutsideRange::Redraw);
-    let redrawn = levels(&s);
+    let with = |rule| {
+        s.edit(|s| s.mission.initial_energy = narrow(rule))
+            .expect("a valid edit")
+    };
+    let clamped = levels(&with(OutsideRange::Clamp));
+    let redrawn = levels(&with(OutsideRange::Redraw));
     let at_bounds = |xs: &[f64]| xs.iter().filter(|&&x| x == 70.0 || x == 90.0).count();
     // N(80, 20) in [70, 90]: 38 % of the draws are inside; clamping piles the rest on the
     // bounds, drawing again never lands exactly on them.
@@ -221,7 +228,7 @@ fn first_trip(s: &Scenario) -> Vec<(Option<f64>, Option<f64>)> {
     let mut sim = Simulation::for_trial(s, method("dis", s), 0)
         .with_duration_s(400.0)
         .unwrap();
-    let k = s.tasks.len();
+    let k = s.tasks().len();
     let mut out = vec![(None, None); k];
     while !sim.is_finished() && sim.rounds().len() < 2 {
         sim.step().unwrap();
@@ -256,11 +263,12 @@ fn first_trip(s: &Scenario) -> Vec<(Option<f64>, Option<f64>)> {
 
 #[test]
 fn the_search_clock_starts_at_the_round_start_or_when_the_group_is_assembled() {
-    let dt = paper().sim.dt_s.get();
+    let dt = paper().sim().dt_s.get();
     // Round start: a budget shorter than the way out turns every group before it arrives.
-    let mut s = paper();
-    s.mission.search_clock = SearchClock::RoundStart;
-    s.mission.search_time_budget_s = Some(10.0.try_into().unwrap());
+    let s = paper_with(|s| {
+        s.mission.search_clock = SearchClock::RoundStart;
+        s.mission.search_time_budget_s = Some(10.0.try_into().unwrap());
+    });
     for (t, (turned, assembled)) in first_trip(&s).into_iter().enumerate() {
         let turned = turned.expect("the group turns");
         assert!(
@@ -270,10 +278,11 @@ fn the_search_clock_starts_at_the_round_start_or_when_the_group_is_assembled() {
         assert!(assembled.is_none(), "task {t}: no group gets there in 10 s");
     }
     // Last arrival: the budget runs from the moment the whole group is in the area.
-    let mut s = paper();
-    s.mission.search_clock = SearchClock::LastArrival;
-    s.mission.search_time_budget_s = Some(8.0.try_into().unwrap());
-    s.mission.pickup_s = 5.0.try_into().unwrap();
+    let s = paper_with(|s| {
+        s.mission.search_clock = SearchClock::LastArrival;
+        s.mission.search_time_budget_s = Some(8.0.try_into().unwrap());
+        s.mission.pickup_s = 5.0.try_into().unwrap();
+    });
     for (t, (turned, assembled)) in first_trip(&s).into_iter().enumerate() {
         let (turned, assembled) = (turned.expect("turns"), assembled.expect("assembles"));
         assert!(
@@ -289,20 +298,20 @@ fn per_step_rates_do_not_depend_on_the_step_length() {
     // and 100 steps per second, and so, up to the first steps of the motion, is the energy
     // spent per moving step.
     let run = |dt_s: f64| {
-        let mut s = paper();
-        s.sim.dt_s = dt_s.try_into().unwrap();
-        s.mission.energy_pct_per_m = 0.0.try_into().unwrap();
-        s.mission.energy_pct_per_moving_step = 0.01.try_into().unwrap();
-        s.mission.hp_pct_per_step_in_radiation = 0.01.try_into().unwrap();
-        s.mission.initial_energy = fixed(100.0);
-        s.mission.initial_hp = fixed(100.0);
-        s.radiation_zones = vec![usar_sim::scenario::RadiationZone {
-            area: usar_sim::scenario::Circle {
-                center: usar_sim::scenario::PointM::new(40.0, 6.0),
-                radius_m: 100.0,
-            },
-            dose_rate_factor: 1.0,
-        }];
+        let s = paper_with(|s| {
+            s.sim.dt_s = dt_s.try_into().unwrap();
+            s.mission.energy_pct_per_m = 0.0.try_into().unwrap();
+            s.mission.energy_pct_per_moving_step = 0.01.try_into().unwrap();
+            s.mission.hp_pct_per_step_in_radiation = 0.01.try_into().unwrap();
+            s.mission.initial_energy = fixed(100.0);
+            s.mission.initial_hp = fixed(100.0);
+            // [10, 70] x [0, 60]: every robot for the first 4 s (a zone lies inside the arena).
+            s.radiation_zones = vec![usar_sim::scenario::RadiationZoneSpec {
+                center_m: [40.0, 30.0],
+                radius_m: 30.0.try_into().unwrap(),
+                dose_rate_factor: 1.0.try_into().unwrap(),
+            }];
+        });
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
             .with_duration_s(4.0)
             .unwrap();

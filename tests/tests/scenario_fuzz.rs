@@ -189,7 +189,7 @@ fn check_and_run(bytes: &[u8], dir: &std::path::Path, case: usize) -> Outcome {
     std::hint::black_box((unreachable_goals(&s), tasks_without_rescue(&s)));
     let run = Simulation::builder(&s)
         .method_named("rne")
-        .duration_s(5.0 * s.sim.dt_s.get())
+        .duration_s(5.0 * s.sim().dt_s.get())
         .build()
         .and_then(|mut sim| sim.run_to_end());
     match run {

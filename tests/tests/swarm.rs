@@ -14,8 +14,8 @@ const SHORT_S: f64 = 10.0;
 #[test]
 fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
     let s = load(&scenario_path("swarm-1000.ron"));
-    assert_eq!(s.robots.len(), 1000);
-    assert_eq!(s.tasks.len(), 4);
+    assert_eq!(s.robots().len(), 1000);
+    assert_eq!(s.tasks().len(), 4);
     for name in ["rne", "dis", "eng", "hp_dis"] {
         let mut sim = Simulation::builder(&s)
             .method(method(name, &s))
@@ -25,12 +25,12 @@ fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
         let r = sim.run_to_end().unwrap();
         assert_eq!(r.rescued.len(), 4, "{name}");
         let first = &r.rounds[0];
-        let mut seen = vec![false; s.robots.len()];
+        let mut seen = vec![false; s.robots().len()];
         for (t, group) in first.groups.iter().enumerate() {
-            for (kind, spec) in s.kinds.iter().enumerate() {
+            for (kind, spec) in s.kinds().iter().enumerate() {
                 let n = group
                     .iter()
-                    .filter(|&&id| s.robots[id].kind == kind)
+                    .filter(|&&id| s.robots()[id].kind == kind)
                     .count();
                 assert_eq!(n, spec.quota[t], "{name}: task {t}, kind {kind}");
             }
@@ -42,9 +42,9 @@ fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
         assert!(seen.iter().all(|&s| s), "{name}: a robot without a group");
         // The team has set off: at most one ground robot in ten still waits in the start grid.
         let ground = s
-            .robots
+            .robots()
             .iter()
-            .filter(|r| s.kinds[r.kind].locomotion == Locomotion::Ground)
+            .filter(|r| s.kinds()[r.kind].locomotion == Locomotion::Ground)
             .count();
         let stuck: Vec<usize> = sim
             .world()

@@ -24,7 +24,7 @@ const THREE_TASKS: &[(&str, u32, [u32; 3])] = &[
 /// kind's quota per task (exactly the quotas in the first round, when the whole team is
 /// there), rescuee fields that agree with the counts, and rescuees in every task.
 fn check_k_tasks(s: &Scenario, k: usize) {
-    assert_eq!(s.tasks.len(), k);
+    assert_eq!(s.tasks().len(), k);
     for name in ["rne", "dis", "eng", "hp_dis"] {
         let mut sim = Simulation::for_trial(s, method(name, s), 0);
         let r = sim.run_to_end().unwrap();
@@ -33,12 +33,12 @@ fn check_k_tasks(s: &Scenario, k: usize) {
         assert!(r.rounds.len() >= 2, "{name}: {} rounds", r.rounds.len());
         for (i, round) in r.rounds.iter().enumerate() {
             assert_eq!(round.groups.len(), k, "{name} round {i}");
-            let mut seen = vec![false; s.robots.len()];
+            let mut seen = vec![false; s.robots().len()];
             for (t, group) in round.groups.iter().enumerate() {
-                for (kind, spec) in s.kinds.iter().enumerate() {
+                for (kind, spec) in s.kinds().iter().enumerate() {
                     let n = group
                         .iter()
-                        .filter(|&&id| s.robots[id].kind == kind)
+                        .filter(|&&id| s.robots()[id].kind == kind)
                         .count();
                     assert!(n <= spec.quota[t], "{name} round {i}: task {t} kind {kind}");
                     if i == 0 {

@@ -23,7 +23,7 @@ fn main() {
     ));
     let scenario = usar_sim::scenario::load(&path).expect("paper.ron loads");
     let model = trust_model(&scenario).expect("weights");
-    let duration = scenario.mission.duration_s.get();
+    let duration = scenario.mission().duration_s.get();
 
     // 1. One trial.
     let mut times = Vec::new();

@@ -42,9 +42,12 @@ pub struct ReportOptions {
 
 impl ReportOptions {
     /// The report options of a sweep of `scenario` (loaded from `scenario_path`): the targets
-    /// file `cli_targets` (`--targets FILE`, read and checked now, before any trial runs) and
-    /// `cli_claims` (`--claims`). Flags given on the command line override what the scenario
-    /// asks for; with neither, the reports say nothing about the paper.
+    /// file `cli_targets` (`--targets FILE`) or else the one the scenario's `report` section
+    /// names (`report: (targets: "paper-targets.ron")`, relative to the scenario file's
+    /// folder), read and checked now, before any trial runs; and the claims when `cli_claims`
+    /// (`--claims`) or the scenario's `report: (claims: true)` asks for them. A flag given on
+    /// the command line overrides the scenario's targets; with neither flags nor a `report`
+    /// section, the reports say nothing about the paper.
     ///
     /// # Errors
     /// A targets file that cannot be read or parsed ([`Targets::load`]), or one with a metric
@@ -55,7 +58,12 @@ impl ReportOptions {
         scenario: &Scenario,
         scenario_path: &Path,
     ) -> Result<Self, TargetsError> {
-        let targets = match cli_targets {
+        let asked = scenario.report();
+        let from_scenario = asked.targets.as_ref().map(|file| {
+            let folder = scenario_path.parent().unwrap_or(Path::new(""));
+            folder.join(file)
+        });
+        let targets = match cli_targets.or(from_scenario.as_deref()) {
             None => None,
             Some(path) => {
                 let t = Targets::load(path)?;
@@ -68,7 +76,7 @@ impl ReportOptions {
         };
         Ok(Self {
             targets,
-            claims: cli_claims,
+            claims: cli_claims || asked.claims,
         })
     }
 
@@ -100,7 +108,8 @@ impl ReportOptions {
         .collect();
         (!missing.is_empty()).then(|| {
             format!(
-                "Also available (`usar sweep`, `usar merge`; see `docs/sweeps.md`): {}.",
+                "Also available (`usar sweep`, `usar merge`, or the scenario's `report` \
+                 section; see `docs/sweeps.md`): {}.",
                 missing.join("; ")
             )
         })

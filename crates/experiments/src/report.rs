@@ -81,7 +81,7 @@ fn setup(r: &mut String, input: &ReportInput<'_>) {
                 h.scenario,
                 input.scenario_path.display(),
                 cell.scenario_hash,
-                s.description
+                s.description()
             );
         }
         Some(g) => {
@@ -96,27 +96,27 @@ fn setup(r: &mut String, input: &ReportInput<'_>) {
                 input.cell,
                 h.grid.cells.len(),
                 cell.scenario_hash,
-                s.description
+                s.description()
             );
         }
     }
     let _ = writeln!(
         r,
         "- Team: {} robots ({}); step {} s.",
-        s.robots.len(),
-        s.kinds
+        s.robots().len(),
+        s.kinds()
             .iter()
             .map(|k| format!("{} {}", k.count, k.name))
             .collect::<Vec<_>>()
             .join(", "),
-        s.sim.dt_s
+        s.sim().dt_s
     );
     let _ = writeln!(r, "- Methods: {}.", h.methods.join(", "));
     let _ = writeln!(
         r,
         "- Trials: {} per method, {} s of simulated time each.",
         h.trials,
-        simulated_length_s(cell.duration_s, s.sim.dt_s.get())
+        simulated_length_s(cell.duration_s, s.sim().dt_s.get())
     );
     let _ = writeln!(
         r,

@@ -181,7 +181,7 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
         assert!(u0.join(f).is_file(), "u000/{f}");
     }
     let s = usar_sim::scenario::load(out.join("universes/u002/scenario.ron")).unwrap();
-    assert_eq!(s.kinds[0].count, 3);
+    assert_eq!(s.kinds()[0].count, 3);
     assert!(!out.join("universes/u003/calibration").exists());
     // The same command again runs nothing and writes the same bytes.
     let before = top_files(&out);

@@ -320,7 +320,7 @@ fn pages_of_three_tasks_and_a_thousand_robots_load_cleanly() {
             state["rescued"].as_array().expect("rescued").len(),
             scenario::load(scenario_path(scenario))
                 .expect("loads")
-                .tasks
+                .tasks()
                 .len()
         );
     }

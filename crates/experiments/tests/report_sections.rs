@@ -245,3 +245,28 @@ fn targets_for_tasks_the_scenario_lacks_are_refused_before_any_trial() {
     );
     assert!(!out.join("journal.jsonl").exists());
 }
+
+/// A scenario's `report` section asks for the sections itself: paper.ron names its targets
+/// (relative to its folder) and the claims, so its plain sweep checks both; a user's scenario
+/// that asks for the claims only gets the claims only.
+#[test]
+fn the_scenarios_report_section_asks_for_the_sections() {
+    let tmp = tempfile::tempdir().unwrap();
+    let paper = format!("{ROOT}/scenarios/paper.ron");
+    let out = tmp.path().join("paper");
+    sweep(&paper, &out, &[]);
+    let report = read_text(&out.join("report.md"));
+    assert_eq!(sections(&report), (true, true), "{report}");
+
+    let file = tmp.path().join("claims-only.ron");
+    let asked = USER_SCENARIO.replace(
+        "    mission: (duration_s: 60.0),\n",
+        "    mission: (duration_s: 60.0),\n    report: (claims: true),\n",
+    );
+    assert_ne!(asked, USER_SCENARIO);
+    std::fs::write(&file, asked).unwrap();
+    let out = tmp.path().join("mine");
+    sweep(text(&file), &out, &[]);
+    let report = read_text(&out.join("report.md"));
+    assert_eq!(sections(&report), (false, true), "{report}");
+}

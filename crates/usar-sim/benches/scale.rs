@@ -288,9 +288,9 @@ fn time_steps(
 /// task's goal (ground) or search-area centre (aerial).
 fn bare_scene(s: &Scenario) -> PhysicsScene {
     let mut scene = PhysicsScene::new(s);
-    for (id, r) in s.robots.iter().enumerate() {
-        let kind = &s.kinds[r.kind];
-        let task = &s.tasks[id % s.tasks.len()];
+    for (id, r) in s.robots().iter().enumerate() {
+        let kind = &s.kinds()[r.kind];
+        let task = &s.tasks()[id % s.tasks().len()];
         let goal = match kind.locomotion {
             Locomotion::Ground => task.goal,
             Locomotion::Aerial => task.search_area.center(),
@@ -348,10 +348,11 @@ fn rates(((ls, lw), (bs, bw)): (Timed, Timed)) -> (f64, f64) {
 fn measure(n: usize, o: &Options) -> Result<Row, String> {
     let s = team(n, &o.base)?;
     let (logic, bare) = rates(run_both(&s, o)?);
-    let every_step = match s.sim.control_period_s {
+    let every_step = match s.sim().control_period_s {
         Some(_) => {
-            let mut each = s.clone();
-            each.sim.control_period_s = None;
+            let each = s
+                .edit(|spec| spec.sim.control_period_s = None)
+                .map_err(|e| e.to_string())?;
             Some(rates(run_both(&each, o)?))
         }
         None => None,
@@ -360,7 +361,7 @@ fn measure(n: usize, o: &Options) -> Result<Row, String> {
         robots: n,
         logic,
         bare,
-        dt_s: s.sim.dt_s.get(),
+        dt_s: s.sim().dt_s.get(),
         every_step,
     })
 }

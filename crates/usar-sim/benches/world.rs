@@ -16,7 +16,7 @@ fn paper() -> Scenario {
 
 /// Far goal of robot `id` at a given leg: alternate between the two tasks' goals.
 fn far_goal(s: &Scenario, id: usize, leg: usize) -> usar_sim::scenario::PointM {
-    s.tasks[(id + leg) % 2].goal
+    s.tasks()[(id + leg) % 2].goal
 }
 
 fn bench(c: &mut Criterion) {
@@ -25,8 +25,8 @@ fn bench(c: &mut Criterion) {
     group.throughput(Throughput::Elements(1));
 
     let mut world = World::new(&s);
-    let mut legs = vec![0usize; s.robots.len()];
-    for id in 0..s.robots.len() {
+    let mut legs = vec![0usize; s.robots().len()];
+    for id in 0..s.robots().len() {
         world.set_goal(id, Some(far_goal(&s, id, 0))).unwrap();
     }
     group.bench_function("world_with_logic", |b| {
@@ -43,9 +43,9 @@ fn bench(c: &mut Criterion) {
     });
 
     let mut bare = PhysicsScene::new(&s);
-    for (id, r) in s.robots.iter().enumerate() {
+    for (id, r) in s.robots().iter().enumerate() {
         let v = to_vec2(&far_goal(&s, id, 0)) - to_vec2(&r.start_in_world);
-        let speed = s.kinds[r.kind].max_speed_m_per_s as f32;
+        let speed = s.kinds()[r.kind].max_speed_m_per_s as f32;
         let body = &mut bare.physics.bodies[bare.robot_bodies[id]];
         body.set_linvel(v.normalize() * speed, true);
     }

@@ -34,7 +34,7 @@ fn rejected(src: &str, field: &str) -> ScenarioError {
 fn short_run(s: &Scenario) {
     let mut sim = Simulation::builder(s)
         .method_named("rne")
-        .duration_s(5.0 * s.sim.dt_s.get())
+        .duration_s(5.0 * s.sim().dt_s.get())
         .build()
         .expect("trial builds");
     sim.run_to_end().expect("trial runs");
@@ -178,7 +178,7 @@ fn two_thousand_generated_slabs_are_placed_quickly() {
     let t0 = Instant::now();
     let s = scenario::from_str(&src, "slabs.ron").expect("2,000 slabs fit");
     let took = t0.elapsed().as_secs_f64();
-    assert_eq!(s.debris.len(), 11 + 2000);
+    assert_eq!(s.debris().len(), 11 + 2000);
     // Pairwise tests took 18 s in a release build; the index makes it well under a second.
     assert!(took < 6.0, "placing 2,000 slabs took {took} s");
 }
@@ -195,7 +195,7 @@ fn starts_exactly_one_body_apart_are_accepted() {
     );
     let s = scenario::from_str(&src, "t.ron").expect("touching starts are accepted");
     let d = (1..6)
-        .map(|i| (s.robots[i].start_in_world - s.robots[i - 1].start_in_world).norm())
+        .map(|i| (s.robots()[i].start_in_world - s.robots()[i - 1].start_in_world).norm())
         .fold(f64::INFINITY, f64::min);
     assert!(d < 0.8 && 0.8 - d < 1e-12, "{d}");
     // Clearly overlapping starts are still refused.
@@ -601,12 +601,12 @@ fn control_periods_of_whole_steps_are_accepted_and_run() {
             &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({period}))"),
         );
         let s = scenario::from_str(&src, "t.ron").unwrap_or_else(|e| panic!("{period}: {e}"));
-        assert_eq!(s.sim.control_steps(), steps, "{period}");
+        assert_eq!(s.sim().control_steps(), steps, "{period}");
         short_run(&s);
     }
     let s = scenario::from_str(&paper(), "paper.ron").expect("paper.ron");
-    assert_eq!(s.sim.control_period_s, None);
-    assert_eq!(s.sim.control_steps(), 1);
+    assert_eq!(s.sim().control_period_s, None);
+    assert_eq!(s.sim().control_steps(), 1);
 }
 
 // A start touching debris is accepted as two touching starts are (`START_TOLERANCE`).

@@ -49,14 +49,14 @@ fn every_shipped_scenario_loads() {
     );
     for f in &files {
         let s = scenario::load(f).unwrap_or_else(|e| panic!("{e}"));
-        assert!(!s.robots.is_empty(), "{}", f.display());
+        assert!(!s.robots().is_empty(), "{}", f.display());
         assert_eq!(
-            s.robots.len(),
-            s.kinds.iter().map(|k| k.count).sum::<usize>(),
+            s.robots().len(),
+            s.kinds().iter().map(|k| k.count).sum::<usize>(),
             "{}",
             f.display()
         );
-        for t in &s.tasks {
+        for t in s.tasks() {
             assert!(!t.rescuees.is_empty());
             assert!(t.rescuees.iter().all(|p| t.search_area.contains(p)));
         }
@@ -131,8 +131,8 @@ fn several_rest_stations_load_and_the_nearest_is_chosen() {
         "rest_station: [(center_m: (25.0, 2.0), radius_m: 1.0), (center_m: (5.0, 2.0), radius_m: 1.5)]",
     );
     let s = scenario::from_str(&src, "stations.ron").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(s.rest_stations.len(), 2);
-    assert_eq!(s.rest_stations[1].radius_m, 1.5);
+    assert_eq!(s.rest_stations().len(), 2);
+    assert_eq!(s.rest_stations()[1].radius_m, 1.5);
     let p = |x, y| scenario::PointM::new(x, y);
     assert_eq!(s.nearest_rest_station(&p(24.0, 10.0)), 0);
     assert_eq!(s.nearest_rest_station(&p(6.0, 10.0)), 1);
@@ -144,7 +144,7 @@ fn several_rest_stations_load_and_the_nearest_is_chosen() {
     assert!(s.in_rest_station(&p(5.0, 3.4)) && !s.in_rest_station(&p(15.0, 2.0)));
     // One circle is a list of one.
     let one = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(one.rest_stations.len(), 1);
+    assert_eq!(one.rest_stations().len(), 1);
     assert_eq!(one.nearest_rest_station(&p(0.0, 0.0)), 0);
 }
 
@@ -185,31 +185,31 @@ fn a_syntax_error_outside_every_field_names_the_scenario() {
 #[test]
 fn base_is_valid_and_defaults_apply() {
     let s = scenario::from_str(BASE, "base.ron").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(s.sim.dt_s, 0.02);
-    assert_eq!(s.sim.seed, 0);
-    assert_eq!(s.mission.duration_s, 600.0);
-    assert_eq!(s.mission.energy_pct_per_moving_step, 0.0045);
-    assert_eq!(s.mission.hp_pct_per_step_in_radiation, 0.0003);
-    assert_eq!(s.mission.no_observer_speed_factor, 0.7);
-    assert_eq!(s.mission.initial_energy.mean_pct, 80.0);
-    assert_eq!(s.mission.initial_hp.std_dev_pct, 10.0);
-    assert_eq!(s.navigation.grid_cell_m, 0.25);
-    assert_eq!(s.navigation.clearance_m, 0.1);
-    assert_eq!(s.navigation.waypoint_tolerance_m, 0.3);
-    assert!(s.collision.enabled);
-    assert_eq!(s.collision.lookahead_s, 1.0);
-    assert_eq!(s.collision.safety_margin_m, 0.2);
-    assert_eq!(s.collision.deadlock_after_s, 2.0);
-    assert_eq!(s.arena.wall_thickness_m, 0.5);
-    assert_eq!(s.needs_weights.to_array(), [1.0; 7]);
+    assert_eq!(s.sim().dt_s, 0.02);
+    assert_eq!(s.sim().seed, 0);
+    assert_eq!(s.mission().duration_s, 600.0);
+    assert_eq!(s.mission().energy_pct_per_moving_step, 0.0045);
+    assert_eq!(s.mission().hp_pct_per_step_in_radiation, 0.0003);
+    assert_eq!(s.mission().no_observer_speed_factor, 0.7);
+    assert_eq!(s.mission().initial_energy.mean_pct, 80.0);
+    assert_eq!(s.mission().initial_hp.std_dev_pct, 10.0);
+    assert_eq!(s.navigation().grid_cell_m, 0.25);
+    assert_eq!(s.navigation().clearance_m, 0.1);
+    assert_eq!(s.navigation().waypoint_tolerance_m, 0.3);
+    assert!(s.collision().enabled);
+    assert_eq!(s.collision().lookahead_s, 1.0);
+    assert_eq!(s.collision().safety_margin_m, 0.2);
+    assert_eq!(s.collision().deadlock_after_s, 2.0);
+    assert_eq!(s.arena().wall_thickness_m, 0.5);
+    assert_eq!(s.needs_weights().to_array(), [1.0; 7]);
     // Tasks in the file's order; the hard one first by difficulty, the easy one's default 0.
     assert_eq!(s.task_names(), ["hard", "easy"]);
-    assert_eq!((s.tasks[0].difficulty, s.tasks[1].difficulty), (1, 0));
+    assert_eq!((s.tasks()[0].difficulty, s.tasks()[1].difficulty), (1, 0));
     assert_eq!(s.hardest_first(), [0, 1]);
-    assert_eq!(s.kinds[0].quota, [1, 1]);
+    assert_eq!(s.kinds()[0].quota, [1, 1]);
     // 8 x 4 m area, spacing 1: 9 x 5 grid.
-    assert_eq!(s.tasks[1].rescuees.len(), 45);
-    assert_eq!(s.tasks[0].rescuees.len(), 2);
+    assert_eq!(s.tasks()[1].rescuees.len(), 45);
+    assert_eq!(s.tasks()[0].rescuees.len(), 2);
     assert_eq!(s.steps_per_trial(), 30_000);
 }
 
@@ -683,7 +683,12 @@ fn validate_spec_without_source_has_field_but_no_position() {
 #[test]
 fn paper_scenario_matches_the_paper() {
     let s = scenario::load(scenarios_dir().join("paper.ron")).unwrap_or_else(|e| panic!("{e}"));
-    let by_role = |r: Role| s.kinds.iter().find(|k| k.role == r).expect("role present");
+    let by_role = |r: Role| {
+        s.kinds()
+            .iter()
+            .find(|k| k.role == r)
+            .expect("role present")
+    };
     let (c, sup, o) = (
         by_role(Role::Carrier),
         by_role(Role::Supplier),
@@ -713,25 +718,29 @@ fn paper_scenario_matches_the_paper() {
     assert!(close(sup.energy_needs_full, c.energy_needs_full));
 
     // Geometry: hard goal about 1.25 times as far from the team as the easy goal.
-    let n = s.robots.len() as f64;
-    let centroid = s.robots.iter().fold(nalgebra::Vector2::zeros(), |acc, r| {
-        acc + r.start_in_world.coords
-    }) / n;
-    let task = |name: &str| &s.tasks[s.task_id(name).expect("paper.ron has easy and hard")];
+    let n = s.robots().len() as f64;
+    let centroid = s
+        .robots()
+        .iter()
+        .fold(nalgebra::Vector2::zeros(), |acc, r| {
+            acc + r.start_in_world.coords
+        })
+        / n;
+    let task = |name: &str| &s.tasks()[s.task_id(name).expect("paper.ron has easy and hard")];
     let d = |name: &str| (task(name).goal.coords - centroid).norm();
     let ratio = d("hard") / d("easy");
     assert!((1.2..=1.3).contains(&ratio), "ratio {ratio}");
-    assert!(task("hard").goal.x < s.arena.width_m.get() / 2.0);
-    assert!(task("easy").goal.x > s.arena.width_m.get() / 2.0);
+    assert!(task("hard").goal.x < s.arena().width_m.get() / 2.0);
+    assert!(task("easy").goal.x > s.arena().width_m.get() / 2.0);
     // Dense grids: hundreds of rescuees per task.
-    for t in &s.tasks {
+    for t in s.tasks() {
         assert!(t.rescuees.len() >= 200, "{} rescuees", t.rescuees.len());
     }
     // The hard side (left of the team) holds far more debris and radiation than the easy
     // side (right of it); the cluster in front of the team lies between the two.
     let (hard_side, easy_side) = (|x: f64| x < 33.0, |x: f64| x > 47.0);
     let debris_x: Vec<f64> = s
-        .debris
+        .debris()
         .iter()
         .map(|d| match d {
             usar_sim::scenario::Debris::Rect { center, .. } => center.x,
@@ -742,7 +751,7 @@ fn paper_scenario_matches_the_paper() {
     let debris_easy = debris_x.iter().filter(|x| easy_side(**x)).count();
     assert_eq!((debris_hard, debris_easy), (16, 3));
     let rad = |side: fn(f64) -> bool| {
-        s.radiation_zones
+        s.radiation_zones()
             .iter()
             .filter(|z| side(z.area.center.x))
             .count()
@@ -763,21 +772,21 @@ fn corridor_scales_to_2_4_8_robots() {
         let s = spec
             .validate("corridor.ron")
             .unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(s.robots.len(), 2 * per_end);
+        assert_eq!(s.robots().len(), 2 * per_end);
         // Everyone is on the corridor's centre line; the groups face each other.
         assert!(
-            s.robots
+            s.robots()
                 .iter()
                 .all(|r| (r.start_in_world.y - 1.7).abs() < 1e-12)
         );
         let east_max = s
-            .robots
+            .robots()
             .iter()
             .filter(|r| r.kind == 0)
             .map(|r| r.start_in_world.x)
             .fold(f64::MIN, f64::max);
         let west_min = s
-            .robots
+            .robots()
             .iter()
             .filter(|r| r.kind == 1)
             .map(|r| r.start_in_world.x)
@@ -788,22 +797,22 @@ fn corridor_scales_to_2_4_8_robots() {
     // Wide enough for a moving robot to pass one held on the centre line: the pass offset
     // (two radii plus the safety margin) plus the planner's inflation (radius, clearance and
     // half a grid cell) fits in each half of the corridor.
-    let r = s.kinds[0].body_radius_m;
-    let pass_offset = 2.0 * r + s.collision.safety_margin_m.get();
-    let inflation = r + s.navigation.clearance_m.get() + s.navigation.grid_cell_m.get() / 2.0;
+    let r = s.kinds()[0].body_radius_m;
+    let pass_offset = 2.0 * r + s.collision().safety_margin_m.get();
+    let inflation = r + s.navigation().clearance_m.get() + s.navigation().grid_cell_m.get() / 2.0;
     assert!(
-        s.arena.height_m.get() / 2.0 >= pass_offset + inflation,
+        s.arena().height_m.get() / 2.0 >= pass_offset + inflation,
         "width {}",
-        s.arena.height_m.get()
+        s.arena().height_m.get()
     );
     // Head-on robots on the centre line still collide: one must yield.
     assert!(
-        s.robots
+        s.robots()
             .iter()
-            .all(|r| r.start_in_world.y == s.arena.height_m.get() / 2.0)
+            .all(|r| r.start_in_world.y == s.arena().height_m.get() / 2.0)
     );
     // Each group's task is at the far end.
-    let task = |name: &str| &s.tasks[s.task_id(name).expect("corridor has easy and hard")];
+    let task = |name: &str| &s.tasks()[s.task_id(name).expect("corridor has easy and hard")];
     assert!(task("easy").goal.x > 20.0);
     assert!(task("hard").goal.x < 4.0);
 }
@@ -813,15 +822,15 @@ fn debris_generation_is_deterministic() {
     let path = scenarios_dir().join("paper.ron");
     let a = scenario::load(&path).expect("loads");
     let b = scenario::load(&path).expect("loads");
-    assert_eq!(a.debris, b.debris);
+    assert_eq!(a.debris(), b.debris());
     let src = std::fs::read_to_string(&path).expect("paper.ron");
     let c = scenario::from_str(
         &src.replace("seed: Some(2021)", "seed: Some(7)"),
         "paper7.ron",
     )
     .expect("other seed loads");
-    assert_ne!(a.debris, c.debris);
-    assert_eq!(a.debris.len(), c.debris.len());
+    assert_ne!(a.debris(), c.debris());
+    assert_eq!(a.debris().len(), c.debris().len());
 }
 
 #[test]
@@ -836,8 +845,8 @@ fn format_doc_minimal_example_loads() {
     let close = block[open..].find("```").expect("block end") + open;
     let s = scenario::from_str(&block[open..close], "scenario-format.md")
         .unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(s.name, "tiny");
-    assert_eq!(s.sim.seed, 7);
+    assert_eq!(s.name(), "tiny");
+    assert_eq!(s.sim().seed, 7);
 }
 
 #[test]

@@ -9,10 +9,12 @@ use usar_sim::world::{Motion, World};
 
 /// `corridor(per_side)` with a control period of `steps` steps (`None`: no period).
 fn with_period(per_side: usize, steps: Option<u32>) -> Scenario {
-    let mut s = corridor(per_side);
-    s.sim.control_period_s =
-        steps.map(|k| Positive::new(f64::from(k) * s.sim.dt_s.get()).expect("positive"));
-    s
+    corridor(per_side)
+        .edit(|s| {
+            s.sim.control_period_s =
+                steps.map(|k| Positive::new(f64::from(k) * s.sim.dt_s.get()).expect("positive"));
+        })
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// [`fnv`] of the 8-robot corridor swap's first 1,500 steps ([`trajectory`]) without a control
@@ -53,7 +55,7 @@ fn fnv(bits: &[u32]) -> u64 {
 fn a_period_of_one_step_is_the_model_without_a_period() {
     let none = with_period(4, None);
     let one = with_period(4, Some(1));
-    assert_eq!(one.sim.control_steps(), 1);
+    assert_eq!(one.sim().control_steps(), 1);
     let reference = trajectory(&none, 1500);
     assert_eq!(
         fnv(&reference),

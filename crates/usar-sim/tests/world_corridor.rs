@@ -23,8 +23,9 @@ struct Outcome {
 }
 
 fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {
-    let mut s = corridor(per_side);
-    s.collision.enabled = enabled;
+    let s = corridor(per_side)
+        .edit(|s| s.collision.enabled = enabled)
+        .unwrap_or_else(|e| panic!("{e}"));
     let goals = swap_goals(&s);
     let mut w = World::new(&s);
     for (id, g) in goals.iter().enumerate() {
@@ -36,7 +37,7 @@ fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {
     }
     let mut max_pen = 0.0f64;
     let mut all_arrived_at_s = None;
-    let steps = (BOUND_S / s.sim.dt_s.get()).round() as u64;
+    let steps = (BOUND_S / s.sim().dt_s.get()).round() as u64;
     for _ in 0..steps {
         w.step();
         max_pen = max_pen.max(w.max_penetration_m());
@@ -114,20 +115,20 @@ fn without_the_resolver_the_head_on_meeting_stays_stuck() {
 #[test]
 fn the_shipped_corridor_lets_a_robot_pass_a_held_one() {
     let s = corridor(4);
-    let r = s.kinds[0].body_radius_m;
+    let r = s.kinds()[0].body_radius_m;
     // Lateral offset to pass a robot standing on the centre line, plus what the planner keeps
     // from the wall: 1.0 m + 0.625 m on each side of the centre line.
-    let pass = 2.0 * r + s.collision.safety_margin_m.get();
-    let to_wall = r + s.navigation.clearance_m.get() + s.navigation.grid_cell_m.get() / 2.0;
+    let pass = 2.0 * r + s.collision().safety_margin_m.get();
+    let to_wall = r + s.navigation().clearance_m.get() + s.navigation().grid_cell_m.get() / 2.0;
     let needed = 2.0 * (pass + to_wall);
     assert!(
-        s.arena.height_m.get() >= needed,
+        s.arena().height_m.get() >= needed,
         "corridor {} m wide, passing needs {needed} m",
-        s.arena.height_m.get()
+        s.arena().height_m.get()
     );
     // Everyone starts on the centre line, the groups facing each other, 1 m apart in a row.
-    let y = s.arena.height_m.get() / 2.0;
-    assert!(s.robots.iter().all(|p| p.start_in_world.y == y));
+    let y = s.arena().height_m.get() / 2.0;
+    assert!(s.robots().iter().all(|p| p.start_in_world.y == y));
     let goals = swap_goals(&s);
     let xs: Vec<f64> = goals.iter().map(|g| g.x).collect();
     assert_eq!(xs, [22.5, 21.0, 19.5, 18.0, 1.5, 3.0, 4.5, 6.0]);

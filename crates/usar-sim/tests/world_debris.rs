@@ -14,7 +14,7 @@ fn inside_block(p: &PointM, grow: f64) -> bool {
         center,
         half_extents_m,
         ..
-    } = common::debris_crossing().debris[0]
+    } = common::debris_crossing().debris()[0]
     else {
         unreachable!()
     };
@@ -26,8 +26,8 @@ fn inside_block(p: &PointM, grow: f64) -> bool {
 fn aerial_flies_over_debris_ground_goes_around() {
     let s = common::debris_crossing();
     let mut w = World::new(&s);
-    w.set_goal(0, Some(s.tasks[0].goal)).unwrap();
-    w.set_goal(1, Some(s.tasks[1].goal)).unwrap();
+    w.set_goal(0, Some(s.tasks()[0].goal)).unwrap();
+    w.set_goal(1, Some(s.tasks()[1].goal)).unwrap();
     // The ground path's waypoints keep the body clear of the block.
     let path: Vec<PointM> = w.waypoints(0).collect();
     assert!(
@@ -38,7 +38,7 @@ fn aerial_flies_over_debris_ground_goes_around() {
     assert!(path.iter().all(|p| !inside_block(p, r)), "{path:?}");
     let mut aerial_over_block = false;
     let mut max_aerial_dev = 0.0f64;
-    let steps = (BOUND_S / s.sim.dt_s.get()) as usize;
+    let steps = (BOUND_S / s.sim().dt_s.get()) as usize;
     for _ in 0..steps {
         w.step();
         let g = w.robot(0);
@@ -91,15 +91,15 @@ fn unreachable_goal_is_reported_not_panicking() {
 #[test]
 fn a_goal_set_within_a_tolerance_is_reached_within_it() {
     let s = common::debris_crossing();
-    let tol = s.navigation.waypoint_tolerance_m.get();
-    let goal = s.tasks[0].goal;
+    let tol = s.navigation().waypoint_tolerance_m.get();
+    let goal = s.tasks()[0].goal;
     let stop_distance = |tolerance_m: Option<f64>| {
         let mut w = World::new(&s);
         match tolerance_m {
             Some(t) => w.set_goal_within(0, goal, t).unwrap(),
             None => w.set_goal(0, Some(goal)).unwrap(),
         }
-        for _ in 0..(BOUND_S / s.sim.dt_s.get()) as usize {
+        for _ in 0..(BOUND_S / s.sim().dt_s.get()) as usize {
             w.step();
             if w.robot(0).goal_reached {
                 break;

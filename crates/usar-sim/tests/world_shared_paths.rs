@@ -10,10 +10,10 @@ use usar_sim::world::World;
 
 fn scenario(file: &str) -> Scenario {
     let path = format!("{}/../../scenarios/{file}", env!("CARGO_MANIFEST_DIR"));
-    let mut s = usar_sim::scenario::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let s = usar_sim::scenario::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     // The shipped files pin A*-only navigation (their published numbers); test the fields.
-    s.navigation.shared_goal_fields = true;
-    s
+    s.edit(|spec| spec.navigation.shared_goal_fields = true)
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
 static PAPER: LazyLock<Scenario> = LazyLock::new(|| scenario("paper.ron"));
@@ -21,10 +21,10 @@ static THREE_TASKS: LazyLock<Scenario> = LazyLock::new(|| scenario("three-tasks.
 
 /// The shared goals of `s`: each task's goal point and drop-off centre, the rest station.
 fn shared_goals(s: &Scenario) -> Vec<PointM> {
-    s.tasks
+    s.tasks()
         .iter()
         .flat_map(|t| [t.goal, t.drop_off.center])
-        .chain(s.rest_stations.iter().map(|c| c.center))
+        .chain(s.rest_stations().iter().map(|c| c.center))
         .collect()
 }
 
@@ -33,18 +33,18 @@ fn shared_goals(s: &Scenario) -> Vec<PointM> {
 /// leg of the path, sampled each centimetre, against the exact distance to the statics.
 fn check_paths_from(s: &Scenario, fx: f64, fy: f64) -> Result<(), TestCaseError> {
     let mut w = World::new(s);
-    let start = PointM::new(fx * s.arena.width_m.get(), fy * s.arena.height_m.get());
-    let cell = s.navigation.grid_cell_m.get();
-    for kind in 0..s.kinds.len() {
-        let Some(id) = s.robots.iter().position(|r| r.kind == kind) else {
+    let start = PointM::new(fx * s.arena().width_m.get(), fy * s.arena().height_m.get());
+    let cell = s.navigation().grid_cell_m.get();
+    for kind in 0..s.kinds().len() {
+        let Some(id) = s.robots().iter().position(|r| r.kind == kind) else {
             continue;
         };
-        if s.kinds[kind].locomotion != Locomotion::Ground {
+        if s.kinds()[kind].locomotion != Locomotion::Ground {
             continue;
         }
         let radius = w.robot(id).radius_m;
         // A start whose cell is free: the planner does not snap it.
-        let inflation = radius + s.navigation.clearance_m.get() + cell;
+        let inflation = radius + s.navigation().clearance_m.get() + cell;
         if w.static_distance_at(&start) < inflation {
             continue;
         }
@@ -67,7 +67,7 @@ fn check_paths_from(s: &Scenario, fx: f64, fy: f64) -> Result<(), TestCaseError>
                         d >= radius,
                         "{}: kind {kind} from {start:?} to {goal:?}: {p:?} is {d} m from a \
                          static obstacle (body radius {radius} m); path {path:?}",
-                        s.name
+                        s.name()
                     );
                 }
             }

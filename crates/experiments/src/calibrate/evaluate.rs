@@ -146,17 +146,17 @@ impl<'a> Evaluator<'a> {
         let duration_s = self
             .setup
             .duration_s
-            .unwrap_or(scenario.mission.duration_s.get());
+            .unwrap_or(scenario.mission().duration_s.get());
         let plan = match (
             trust_model(scenario),
-            trial_steps(duration_s, scenario.sim.dt_s.get()),
+            trial_steps(duration_s, scenario.sim().dt_s.get()),
         ) {
             (Ok(model), Ok(steps)) => CellPlan {
                 label: String::new(),
                 scenario,
                 model,
                 duration_s,
-                step_us: (scenario.sim.dt_s.get() * 1e6).round().max(1.0) as u64,
+                step_us: (scenario.sim().dt_s.get() * 1e6).round().max(1.0) as u64,
                 steps_per_trial: steps,
             },
             (Err(e), _) => return everything_failed(format!("{e:#}")),

@@ -204,7 +204,7 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         format: TRACE_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
         build: crate::data::software::software_build().to_owned(),
-        scenario: checked.scenario.name.clone(),
+        scenario: checked.scenario.name().to_owned(),
         scenario_hash: scenario_hash(&checked.scenario)?,
         targets: setup.targets.targets().to_vec(),
         free: setup.free.clone(),

@@ -88,7 +88,7 @@ impl SweepConfig {
                 .collect(),
             method_factory: MethodFactory::builtin(),
             trials: 10,
-            base_seed: scenario.sim.seed,
+            base_seed: scenario.sim().seed,
             duration_s: None,
             threads: std::thread::available_parallelism().map_or(1, usize::from),
             out_dir: default_out_dir(&scenario),
@@ -111,13 +111,14 @@ impl SweepConfig {
 
     /// The trial length of a cell with `scenario`: `duration_s` or its `mission.duration_s`.
     pub fn duration_of(&self, scenario: &Scenario) -> f64 {
-        self.duration_s.unwrap_or(scenario.mission.duration_s.get())
+        self.duration_s
+            .unwrap_or(scenario.mission().duration_s.get())
     }
 
     /// The simulated length of each trial of a cell with `scenario`, seconds: its
     /// [`SweepConfig::duration_of`] run as whole steps ([`simulated_length_s`]).
     pub fn simulated_length_of(&self, scenario: &Scenario) -> f64 {
-        simulated_length_s(self.duration_of(scenario), scenario.sim.dt_s.get())
+        simulated_length_s(self.duration_of(scenario), scenario.sim().dt_s.get())
     }
 
     /// The folder of the journal (and the lock): `out_dir`, or the shard's folder under it.

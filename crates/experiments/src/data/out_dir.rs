@@ -14,7 +14,7 @@ use usar_sim::scenario::Scenario;
 /// the FNV-1a hash of the whole name, so that the folder can be created (most file systems
 /// allow 255 bytes) and two long names stay apart.
 pub fn default_out_dir(scenario: &Scenario) -> PathBuf {
-    Path::new("results").join(folder_name(&scenario.name))
+    Path::new("results").join(folder_name(scenario.name()))
 }
 
 /// The scenario name as one folder name (see [`default_out_dir`]).

@@ -251,8 +251,8 @@ mod tests {
         );
         let c = &g.cells[4];
         assert_eq!(c.index, 4);
-        assert_eq!(c.scenario.mission.hp_pct_per_step_in_radiation, 0.003);
-        assert_eq!(c.scenario.kinds[0].max_speed_m_per_s, 1.5);
+        assert_eq!(c.scenario.mission().hp_pct_per_step_in_radiation, 0.003);
+        assert_eq!(c.scenario.kinds()[0].max_speed_m_per_s, 1.5);
         assert_eq!(
             c.dir,
             "c04_hp_pct_per_step_in_radiation=0.003_max_speed_m_per_s=1.5"

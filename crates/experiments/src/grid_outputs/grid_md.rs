@@ -85,7 +85,7 @@ fn setup(r: &mut String, input: &GridReportInput<'_>) {
         .cells
         .iter()
         .zip(&input.grid.cells)
-        .map(|(c, g)| simulated_length_s(c.duration_s, g.scenario.sim.dt_s.get()))
+        .map(|(c, g)| simulated_length_s(c.duration_s, g.scenario.sim().dt_s.get()))
         .collect();
     durations.dedup();
     let mut asked: Vec<f64> = h.grid.cells.iter().map(|c| c.duration_s).collect();

@@ -95,7 +95,7 @@ impl MultiversePlan {
                 format: PLAN_FORMAT,
                 version: env!("CARGO_PKG_VERSION").to_string(),
                 build: crate::data::software::software_build().to_owned(),
-                scenario: checked.scenario.name.clone(),
+                scenario: checked.scenario.name().to_owned(),
                 scenario_hash: scenario_hash(&checked.scenario)?,
                 axes: setup.axes.clone(),
                 targets: setup.targets.targets().to_vec(),

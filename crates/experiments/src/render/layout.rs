@@ -29,7 +29,7 @@ pub(crate) struct Layout {
 
 impl Layout {
     pub(crate) fn new(s: &Scenario) -> Self {
-        let (w, h) = (s.arena.width(), s.arena.height());
+        let (w, h) = (s.arena().width(), s.arena().height());
         let pad = drawn_wall_m(s) + 1.0;
         let (x0, x1) = (-pad, w + pad);
         let (y0, y1) = (-pad, h + pad);
@@ -69,6 +69,6 @@ pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
 /// arena's longer side, so that thick walls (up to 10 km) do not shrink the arena in the
 /// picture to a dot.
 pub(crate) fn drawn_wall_m(s: &Scenario) -> f64 {
-    let longer_side_m = s.arena.width().max(s.arena.height());
-    s.arena.wall_thickness_m.get().min(0.1 * longer_side_m)
+    let longer_side_m = s.arena().width().max(s.arena().height());
+    s.arena().wall_thickness_m.get().min(0.1 * longer_side_m)
 }

@@ -38,7 +38,7 @@ pub(crate) enum Swatch {
 
 pub(crate) fn legend_entries(s: &Scenario, traced: bool) -> Vec<(Swatch, String)> {
     let mut v: Vec<(Swatch, String)> = s
-        .kinds
+        .kinds()
         .iter()
         .enumerate()
         .map(|(i, k)| {
@@ -60,7 +60,7 @@ pub(crate) fn legend_entries(s: &Scenario, traced: bool) -> Vec<(Swatch, String)
             "where it ended".into(),
         ));
     }
-    if !s.debris.is_empty() {
+    if !s.debris().is_empty() {
         v.push((Swatch::Square(DEBRIS), "debris".into()));
     }
     let doses = dose_levels(s);
@@ -75,7 +75,7 @@ pub(crate) fn legend_entries(s: &Scenario, traced: bool) -> Vec<(Swatch, String)
             format!("radiation, dose x{f}"),
         ));
     }
-    for (t, task) in s.tasks.iter().enumerate() {
+    for (t, task) in s.tasks().iter().enumerate() {
         v.push((
             Swatch::Square(task_color(s, t)),
             format!("{} task: area, drop-off", task.name),

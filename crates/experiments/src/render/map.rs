@@ -16,7 +16,7 @@ use crate::render::shapes::{debris_polygon, disc_outline, disc_polygon};
 /// Draws everything that does not move: walls, search areas (with their rescuees when
 /// `rescuees`), drop-offs, radiation zones, debris, the rest station, goal points and labels.
 pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Result<()> {
-    let (w, h) = (s.arena.width(), s.arena.height());
+    let (w, h) = (s.arena().width(), s.arena().height());
     let t = drawn_wall_m(s);
     let walls = [
         [(-t, -t), (w + t, 0.0)],
@@ -29,7 +29,7 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
         .map_err(draw_err)?;
 
     // Search areas and rescuees first: radiation, debris and labels go on top.
-    for (t, task) in s.tasks.iter().enumerate() {
+    for (t, task) in s.tasks().iter().enumerate() {
         let r = task.search_area;
         chart
             .draw_series([Rectangle::new(
@@ -65,7 +65,7 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
         doses.first().copied().unwrap_or(1.0),
         doses.last().copied().unwrap_or(1.0),
     );
-    for z in &s.radiation_zones {
+    for z in s.radiation_zones() {
         let c = radiation_color(z.dose_rate_factor, lo, hi);
         chart
             .draw_series([Polygon::new(
@@ -79,14 +79,14 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
     }
     chart
         .draw_series(
-            s.debris
+            s.debris()
                 .iter()
                 .map(|d| Polygon::new(debris_polygon(d), DEBRIS.filled())),
         )
         .map_err(draw_err)?;
     if doses.len() > 1 {
         chart
-            .draw_series(s.radiation_zones.iter().map(|z| {
+            .draw_series(s.radiation_zones().iter().map(|z| {
                 label_at(
                     format!("x{}", z.dose_rate_factor),
                     z.area.center.x,
@@ -99,14 +99,14 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
     }
     chart
         .draw_series(
-            s.rest_stations
+            s.rest_stations()
                 .iter()
                 .map(|rs| Polygon::new(disc_polygon(rs), REST.mix(0.6).filled())),
         )
         .map_err(draw_err)?;
 
     // Labels last so nothing covers them.
-    for task in &s.tasks {
+    for task in s.tasks() {
         let r = task.search_area;
         let text = format!(
             "{} search area ({} rescuees)",
@@ -133,7 +133,7 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
             .map_err(draw_err)?;
     }
     chart
-        .draw_series(s.rest_stations.iter().map(|rs| {
+        .draw_series(s.rest_stations().iter().map(|rs| {
             label_at(
                 "rest station".into(),
                 rs.center.x,
@@ -157,14 +157,14 @@ pub(crate) fn draw_area_label(
     let px_per_m = Layout::new(s).px_per_m;
     let w_m = text.len() as f64 * DESCRIPTION_CHAR_PX / px_per_m;
     let h_m = 10.0 / px_per_m;
-    let (y, v, inside) = if r.max.y + h_m <= s.arena.height() {
+    let (y, v, inside) = if r.max.y + h_m <= s.arena().height() {
         (r.max.y, VPos::Bottom, false)
     } else if r.min.y - h_m >= 0.0 {
         (r.min.y, VPos::Top, false)
     } else {
         (r.max.y, VPos::Top, true)
     };
-    let (x, h) = if r.min.x + w_m > s.arena.width() {
+    let (x, h) = if r.min.x + w_m > s.arena().width() {
         (r.max.x, HPos::Right)
     } else {
         (r.min.x, HPos::Left)

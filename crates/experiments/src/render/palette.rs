@@ -37,8 +37,8 @@ pub fn role_color(role: Role) -> RGBColor {
 /// Colour of kind `k` of `s`: its role's colour ([`role_color`]); a second or later kind of
 /// the same role is drawn darker, so kinds stay apart.
 pub fn kind_color(s: &Scenario, k: usize) -> RGBColor {
-    let role = s.kinds[k].role;
-    let same_role_before = s.kinds[..k].iter().filter(|o| o.role == role).count();
+    let role = s.kinds()[k].role;
+    let same_role_before = s.kinds()[..k].iter().filter(|o| o.role == role).count();
     let c = role_color(role);
     let f = 0.6_f64.powi(same_role_before.min(3) as i32);
     let dim = |v: u8| (f64::from(v) * f).round() as u8;
@@ -111,7 +111,7 @@ pub(crate) fn radiation_color(f: f64, lo: f64, hi: f64) -> RGBColor {
 /// The distinct dose rate factors of the scenario's zones, ascending.
 pub(crate) fn dose_levels(s: &Scenario) -> Vec<f64> {
     let mut v: Vec<f64> = s
-        .radiation_zones
+        .radiation_zones()
         .iter()
         .map(|z| z.dose_rate_factor)
         .collect();

@@ -40,7 +40,7 @@ pub fn render_svg_string(scenario: &Scenario, traces: Option<&[Trace]>) -> Resul
     let l = Layout::new(scenario);
     let total_w = l.map_w + LEGEND_PX;
     let description = wrap(
-        &scenario.description,
+        scenario.description(),
         ((f64::from(total_w) - 16.0) / DESCRIPTION_CHAR_PX) as usize,
     );
     let header_px = 30 + 16 * description.len() as u32;
@@ -132,10 +132,10 @@ pub(crate) fn draw_header(area: &Area<'_>, s: &Scenario, description: &[String])
     area.draw(&Text::new(
         format!(
             "{} ({} m x {} m, {} robots)",
-            s.name,
-            s.arena.width_m,
-            s.arena.height_m,
-            s.robots.len()
+            s.name(),
+            s.arena().width_m,
+            s.arena().height_m,
+            s.robots().len()
         ),
         (8, 6),
         title,

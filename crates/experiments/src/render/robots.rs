@@ -14,8 +14,8 @@ use crate::render::shapes::{disc_outline, disc_polygon};
 pub type Trace = Vec<PointM>;
 
 pub(crate) fn draw_paths(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace]) -> Result<()> {
-    for (id, trace) in traces.iter().enumerate().take(s.robots.len()) {
-        let color = kind_color(s, s.robots[id].kind);
+    for (id, trace) in traces.iter().enumerate().take(s.robots().len()) {
+        let color = kind_color(s, s.robots()[id].kind);
         chart
             .draw_series([PathElement::new(
                 trace.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(),
@@ -28,7 +28,7 @@ pub(crate) fn draw_paths(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trac
 
 /// Where each traced robot ended: hollow discs of the body's size, on top of everything.
 pub(crate) fn draw_ends(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace]) -> Result<()> {
-    for (id, trace) in traces.iter().enumerate().take(s.robots.len()) {
+    for (id, trace) in traces.iter().enumerate().take(s.robots().len()) {
         let kind = s.kind_of(id);
         let Some(end) = trace.last() else { continue };
         let body = Disc {
@@ -41,7 +41,7 @@ pub(crate) fn draw_ends(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace
         chart
             .draw_series([PathElement::new(
                 disc_outline(&body),
-                kind_color(s, s.robots[id].kind).stroke_width(2),
+                kind_color(s, s.robots()[id].kind).stroke_width(2),
             )])
             .map_err(draw_err)?;
     }
@@ -49,8 +49,8 @@ pub(crate) fn draw_ends(chart: &mut Chart<'_, '_>, s: &Scenario, traces: &[Trace
 }
 
 pub(crate) fn draw_robots(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
-    for (id, robot) in s.robots.iter().enumerate() {
-        let kind = &s.kinds[robot.kind];
+    for (id, robot) in s.robots().iter().enumerate() {
+        let kind = &s.kinds()[robot.kind];
         let body = Disc {
             center: robot.start_in_world,
             radius_m: kind.body_radius_m,
@@ -70,7 +70,7 @@ pub(crate) fn draw_robots(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()>
                 .draw_series([PathElement::new(disc_outline(&ring), color.stroke_width(1))])
                 .map_err(draw_err)?;
         }
-        if s.robots.len() <= MAX_LABELLED_ROBOTS {
+        if s.robots().len() <= MAX_LABELLED_ROBOTS {
             chart
                 .draw_series([label_at(
                     id.to_string(),

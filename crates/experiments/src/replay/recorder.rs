@@ -59,13 +59,13 @@ impl ReplayRecorder {
 
     fn start(&mut self, sim: &Simulation) {
         let s = sim.scenario();
-        let dt_s = s.sim.dt_s.get();
+        let dt_s = s.sim().dt_s.get();
         let (done, total) = sim.progress();
         let clock = SampleClock::new(self.hz, dt_s, total).unwrap_or(SampleClock {
             every_steps: 1,
             total_steps: total,
         });
-        let robots = s.robots.len();
+        let robots = s.robots().len();
         let expected = clock.samples().saturating_sub(clock_index(&clock, done));
         let info = sim.result();
         self.rec = Some(Recording {
@@ -90,7 +90,7 @@ impl ReplayRecorder {
             .iter()
             .map(|w| (w.counters.deadlocks_detected, w.counters.deadlocks_resolved))
             .collect();
-        self.codes = (0..s.tasks.len())
+        self.codes = (0..s.tasks().len())
             .flat_map(|t| {
                 let f = sim.rescuees(t);
                 (0..f.len()).map(move |i| RescueeCode::of(f.status(i)))
@@ -121,7 +121,7 @@ impl ReplayRecorder {
             }
         }
         let mut g = 0usize;
-        for t in 0..sim.scenario().tasks.len() {
+        for t in 0..sim.scenario().tasks().len() {
             let f = sim.rescuees(t);
             for i in 0..f.len() {
                 let code = RescueeCode::of(f.status(i));

@@ -35,7 +35,7 @@ impl SweepPlan {
             methods: self.methods.clone(),
             method_factory: MethodFactory::builtin(),
             trials: self.trials,
-            base_seed: self.seed.unwrap_or(scenario.sim.seed),
+            base_seed: self.seed.unwrap_or(scenario.sim().seed),
             duration_s: self.duration_s,
             threads: 1,
             out_dir: out_dir.to_path_buf(),

@@ -70,7 +70,7 @@ pub fn check_config(cfg: &SweepConfig, header: &SweepHeader) -> Result<()> {
                 s.task_names().join(", ")
             );
         }
-        if let Err(e) = trial_steps(cfg.duration_of(s), s.sim.dt_s.get()) {
+        if let Err(e) = trial_steps(cfg.duration_of(s), s.sim().dt_s.get()) {
             bail!("--duration: {e}");
         }
     }

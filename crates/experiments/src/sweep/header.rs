@@ -40,7 +40,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
         build: software_build().to_owned(),
-        scenario: cfg.scenario.name.clone(),
+        scenario: cfg.scenario.name().to_owned(),
         methods: cfg
             .methods
             .iter()

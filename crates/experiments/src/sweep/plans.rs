@@ -27,7 +27,7 @@ pub(crate) fn cell_plans<'a>(
         .zip(&header.grid.cells)
         .enumerate()
         .map(|(i, (scenario, h))| {
-            let steps = trial_steps(h.duration_s, scenario.sim.dt_s.get())
+            let steps = trial_steps(h.duration_s, scenario.sim().dt_s.get())
                 .map_err(|e| anyhow::anyhow!("--duration: {e}"))?;
             Ok(CellPlan {
                 label: match &cfg.grid {
@@ -37,7 +37,7 @@ pub(crate) fn cell_plans<'a>(
                 scenario,
                 model: trust_model(scenario)?,
                 duration_s: h.duration_s,
-                step_us: (scenario.sim.dt_s.get() * 1e6).round().max(1.0) as u64,
+                step_us: (scenario.sim().dt_s.get() * 1e6).round().max(1.0) as u64,
                 steps_per_trial: steps,
             })
         })

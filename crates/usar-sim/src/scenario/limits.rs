@@ -8,10 +8,11 @@
 //! the paper's mission (12 robots, 3 kinds, 2 tasks, 24 debris shapes, a 320 x 240 grid).
 
 use super::context::{Ctx, R};
-use super::model::{Locomotion, RobotKind, Scenario, count_text, number_text};
+use super::model::{Locomotion, RobotKind, count_text, number_text};
 use super::params::{Arena, CollisionParams, NavigationParams, NeedsWeights, SimParams};
 use super::search_pattern::{sweep_point_count, sweep_spacing_m};
 use super::spec::KindSpec;
+use super::validated::Scenario;
 
 /// Longest scenario file, bytes (64 MiB): the shipped 1,000-robot scenario is under 10 KB,
 /// and a file listing every start, debris shape and rescuee up to [`MAX_ROBOTS`],

@@ -10,11 +10,12 @@ use super::context::Ctx;
 use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
-use super::model::{Scenario, number_text, path_text};
+use super::model::{number_text, path_text};
 use super::plain_words::plain_words;
 use super::spec::ScenarioSpec;
 use super::suggest::did_you_mean;
 use super::validate::validate;
+use super::validated::Scenario;
 
 /// Loads and validates the scenario file at `path` (RON, format in `docs/scenario-format.md`).
 /// Errors name the path as given ([`path_text`]: on one line).

@@ -1,12 +1,32 @@
 //! Scenarios: RON spec types, validation into [`Scenario`], and loading.
 //!
-//! Load a file with [`load`] (or text with [`from_str`]); both parse the raw [`ScenarioSpec`]
-//! (serde + ron, unknown fields rejected; the leaf parameter blocks of [`params`] check their
-//! numbers as they are read) and validate it once into the [`Scenario`] the simulator takes,
-//! expanding start rows, rescuee grids and debris fields. Errors ([`ScenarioError`]) name the
-//! file, line, column and field path. The file format is documented in
-//! `docs/scenario-format.md`.
+//! Entry points, each ending in one validation into the read-only [`Scenario`] the simulator
+//! takes ("parse, don't validate"):
+//! - [`load`] a file, or [`from_str`] a text: parse the raw [`ScenarioSpec`] (serde + ron,
+//!   unknown fields rejected; the leaf parameter blocks of [`params`] check their numbers as
+//!   they are read) and validate it, expanding start rows, rescuee grids and debris fields.
+//!   Errors ([`ScenarioError`]) name the file, line, column and field path.
+//! - [`ScenarioSpec::builder`]: a scenario in code, from plain numbers, with the file's
+//!   defaults ([`KindDraft`], [`TaskDraft`]); a bad value is an error at `build()` naming its
+//!   field.
+//! - [`Scenario::edit`]: a changed copy of a validated scenario, validated again (or
+//!   [`Scenario::to_spec`], change, [`ScenarioSpec::validate`]).
+//!
+//! ```
+//! use usar_sim::scenario;
+//!
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+//! let paper = scenario::load(path)?;
+//! assert_eq!((paper.robots().len(), paper.tasks().len()), (12, 2));
+//! // Seven carriers need quotas adding up to seven: the edit is refused, with its field.
+//! let err = paper.edit(|spec| spec.kinds[0].count = 7).unwrap_err();
+//! assert_eq!(err.field(), Some("kinds[0].quota"));
+//! # Ok::<(), scenario::ScenarioError>(())
+//! ```
+//!
+//! The file format is documented in `docs/scenario-format.md`.
 
+mod builder;
 mod check_clear_places;
 mod check_debris;
 mod check_kinds;
@@ -18,6 +38,8 @@ mod check_starts;
 mod check_tasks;
 pub mod choices;
 mod context;
+mod draft;
+mod edit;
 mod error;
 mod generate;
 mod index;
@@ -33,10 +55,14 @@ mod shape;
 mod spec;
 mod suggest;
 mod validate;
+mod validated;
 
+pub use builder::ScenarioBuilder;
 pub use check_names::RESERVED_TASK_NAME;
 pub use check_starts::START_TOLERANCE;
 pub use choices::*;
+pub use draft::{KindDraft, TaskDraft, Xy};
+pub use edit::{EditOutcome, number_at};
 pub use error::{ScenarioError, SourceLocation};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
 pub use model::*;
@@ -47,3 +73,4 @@ pub use shape::DebrisShape;
 pub(crate) use shape::Primitive as DebrisPrimitive;
 pub use spec::*;
 pub use suggest::{SUGGEST_SIMILARITY, did_you_mean, nearest_name};
+pub use validated::Scenario;

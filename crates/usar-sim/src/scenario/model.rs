@@ -1,9 +1,11 @@
-//! The validated scenario: the only scenario type the simulator takes.
+//! The parts of a validated scenario: robot kinds and starts, tasks, shapes, debris and
+//! radiation zones, as [`crate::scenario::Scenario`] holds them.
 //!
-//! A [`Scenario`] is produced from a RON file by [`crate::scenario::load`] (raw spec types are
-//! deserialized, then validated once: "parse, don't validate"). Every value here has already been
-//! checked: lengths are positive, shapes lie inside the arena, counts match quotas, and so on, so
-//! the simulator never re-checks them.
+//! These are produced by validation ([`crate::scenario::ScenarioSpec::validate`]; "parse,
+//! don't validate") and read through the scenario's accessors. Every value here has already
+//! been checked: lengths are positive, shapes lie inside the arena, counts match quotas, and so
+//! on, so the simulator never re-checks them. Building one of these by hand gives no scenario:
+//! only validation makes a [`crate::scenario::Scenario`].
 //!
 //! Frame and units: the world frame has its origin at the arena's bottom-left inner corner, x to
 //! the right, y up; lengths in metres (`_m`), times in seconds (`_s`), speeds in metres per second
@@ -12,54 +14,13 @@
 use nalgebra::{Point2, Vector2};
 use serde::{Deserialize, Serialize};
 
-use super::params::{
-    Arena, CollisionParams, MissionParams, NavigationParams, NeedsWeights, SimParams,
-};
+use super::params::Arena;
 
 /// A point in the world frame, metres.
 pub type PointM = Point2<f64>;
 
 /// Number of entries of the paper's needs vector (hp, v, sen, eng, res, cap, obs), Eqs. 19-21.
 pub const NEEDS_LEN: usize = 7;
-
-/// A fully validated USAR scenario (paper, sections IV-VI).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Scenario {
-    /// Short name, used for output folders (e.g. `paper`).
-    pub name: String,
-    /// Free text shown by `usar check`.
-    pub description: String,
-    /// The walled field.
-    pub arena: Arena,
-    /// Robot kinds, in the merge order of the hierarchical grouping (paper: carrier, supplier,
-    /// observer). A robot's `kind` indexes this list.
-    pub kinds: Vec<RobotKind>,
-    /// Every robot of the team, ordered by kind (in `kinds` order) and then as listed in the file.
-    /// A robot's id is its index in this list.
-    pub robots: Vec<RobotStart>,
-    /// Where robots recharge energy and refresh HP (paper, section VI.B: "rest position"): at
-    /// least one station, in the file's order. The paper has one; a robot leaving to recharge
-    /// goes to the one with the shortest path from where it stands.
-    pub rest_stations: Vec<Circle>,
-    /// The tasks, at least one, in the file's order (a task's index in this list is its id
-    /// everywhere: quotas, groups, results). [`Scenario::hardest_first`] orders them by
-    /// difficulty.
-    pub tasks: Vec<Task>,
-    /// Static obstacles (listed and generated ones, generation already expanded).
-    pub debris: Vec<Debris>,
-    /// Radiation zones: robots inside lose HP.
-    pub radiation_zones: Vec<RadiationZone>,
-    /// Weights of the 7-entry needs vector (hp, v, sen, eng, res, cap, obs), all > 0 (Eq. 8).
-    pub needs_weights: NeedsWeights,
-    /// Mission rules: energy and HP costs, thresholds, recharging, initial levels (section VI.B).
-    pub mission: MissionParams,
-    /// Path planning of ground robots.
-    pub navigation: NavigationParams,
-    /// Priority-based collision avoidance and deadlock solving (section V, Algorithm 5).
-    pub collision: CollisionParams,
-    /// Time stepping and seeds.
-    pub sim: SimParams,
-}
 
 impl Arena {
     /// Whether `p` lies inside the field (boundary included; NaN or infinite coordinates are
@@ -149,7 +110,7 @@ pub struct RobotKind {
 /// One robot's kind and start (initial) position.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RobotStart {
-    /// Index into [`Scenario::kinds`].
+    /// Index into [`Scenario::kinds`](crate::scenario::Scenario::kinds).
     pub kind: usize,
     /// Start position, world frame, metres; inside the arena, and for ground robots clear of
     /// debris by at least the body radius.
@@ -244,61 +205,6 @@ pub struct RadiationZone {
     pub area: Circle,
     /// Relative dose rate, dimensionless, > 0 (1 = the scenario's base rate).
     pub dose_rate_factor: f64,
-}
-
-impl Scenario {
-    /// The kind of robot `id`.
-    ///
-    /// # Panics
-    /// If `id >= self.robots.len()`.
-    pub fn kind_of(&self, id: usize) -> &RobotKind {
-        &self.kinds[self.robots[id].kind]
-    }
-
-    /// The id (index in [`Scenario::tasks`]) of the task called `name`.
-    pub fn task_id(&self, name: &str) -> Option<usize> {
-        self.tasks.iter().position(|t| t.name == name)
-    }
-
-    /// Task ids from the hardest to the easiest: by `difficulty` descending, on equal ranks the
-    /// task listed first first. Grouping methods fill tasks in this order.
-    pub fn hardest_first(&self) -> Vec<usize> {
-        let mut order: Vec<usize> = (0..self.tasks.len()).collect();
-        order.sort_by_key(|&t| std::cmp::Reverse(self.tasks[t].difficulty));
-        order
-    }
-
-    /// The index in [`Scenario::rest_stations`] of the station whose centre is nearest to `p`
-    /// (straight-line distance, metres; on equal distances the one listed first). The mission
-    /// sends a robot leaving to recharge to the station with the shortest *path*, and uses
-    /// this only when no station can be reached (see `docs/scenario-format.md`, "Rest
-    /// stations"); with the paper's single station, always 0.
-    pub fn nearest_rest_station(&self, p: &PointM) -> usize {
-        let mut best = (0, f64::INFINITY);
-        for (i, c) in self.rest_stations.iter().enumerate() {
-            let d2 = (p - c.center).norm_squared();
-            if d2 < best.1 {
-                best = (i, d2);
-            }
-        }
-        best.0
-    }
-
-    /// Whether `p` lies inside any rest station (boundary included).
-    pub fn in_rest_station(&self, p: &PointM) -> bool {
-        self.rest_stations.iter().any(|c| c.contains(p))
-    }
-
-    /// The task names, in task-id order.
-    pub fn task_names(&self) -> Vec<String> {
-        self.tasks.iter().map(|t| t.name.clone()).collect()
-    }
-
-    /// Number of simulation steps in a trial of `mission.duration_s` ([`trial_steps`]; a
-    /// validated scenario's trial is within [`MAX_TRIAL_STEPS`]).
-    pub fn steps_per_trial(&self) -> u64 {
-        trial_steps(self.mission.duration_s.get(), self.sim.dt_s.get()).unwrap_or(MAX_TRIAL_STEPS)
-    }
 }
 
 /// Most steps one trial may take: 10 million, i.e. 200,000 s (about 55 hours) of simulated

@@ -7,7 +7,8 @@
 //! `docs/mission-model.md`.
 
 use super::choices::SweepPattern;
-use super::model::{Locomotion, Rect, Scenario};
+use super::model::{Locomotion, Rect};
+use super::validated::Scenario;
 
 /// How many waypoints the blind search's lawn-mower pattern (`mission::sweep_waypoints`) makes
 /// over `area` at `spacing_m`: `(ceil(width / spacing_m) + 1) * ceil(height / spacing_m)` for

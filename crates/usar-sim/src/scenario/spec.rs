@@ -74,6 +74,61 @@ pub struct ScenarioSpec {
     /// Time step and seed; defaults in [`SimParams`].
     #[serde(default)]
     pub sim: SimParams,
+    /// What a sweep's report compares the scenario with (data only; the simulator does not
+    /// read it); default no targets and no claims ([`ReportSpec`]).
+    #[serde(default)]
+    pub report: ReportSpec,
+}
+
+/// The `report` section: `report: (targets: "paper-targets.ron", claims: true)`. Data for the
+/// reports of a sweep (the `experiments` crate); the simulator does not read it. Both fields
+/// may be omitted, and unknown fields are rejected.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ReportSpec {
+    /// Calibration targets to compare the results with: a path to a targets file (such as
+    /// `scenarios/paper-targets.ron`), relative to the scenario file's folder; default none
+    /// (no calibration bands). Written as a plain string, `targets: "paper-targets.ron"`
+    /// (`Some("...")` and `None` are read too).
+    #[serde(
+        serialize_with = "ser_path_or_none",
+        deserialize_with = "de_path_or_none"
+    )]
+    pub targets: Option<String>,
+    /// Whether report.md checks the paper's claims (section VI); default `false`. Set for the
+    /// paper's scenario and its variants.
+    pub claims: bool,
+}
+
+fn ser_path_or_none<S: serde::Serializer>(v: &Option<String>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(path) => s.serialize_str(path),
+        None => s.serialize_none(),
+    }
+}
+
+/// A string, `Some("...")`, `None` (or a JSON `null`).
+fn de_path_or_none<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    struct PathOrNone;
+    impl<'de> serde::de::Visitor<'de> for PathOrNone {
+        type Value = Option<String>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a path such as \"paper-targets.ron\", or None")
+        }
+        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
+            Ok(Some(v.to_owned()))
+        }
+        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
+            String::deserialize(d).map(Some)
+        }
+    }
+    d.deserialize_any(PathOrNone)
 }
 
 /// The `rest_station` field: one circle `(center_m: (x, y), radius_m: r)` (the paper's single

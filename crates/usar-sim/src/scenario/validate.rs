@@ -28,9 +28,10 @@ use super::context::{Ctx, R};
 use super::error::ScenarioError;
 use super::generate::generate_debris_field;
 use super::limits::{check_derived, check_lists, check_sweeps};
-use super::model::{Locomotion, Scenario};
+use super::model::Locomotion;
 use super::shape::DebrisShape;
 use super::spec::ScenarioSpec;
+use super::validated::Scenario;
 
 impl ScenarioSpec {
     /// Checks every rule and builds the validated [`Scenario`] (grid layouts, start rows and
@@ -104,6 +105,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
         navigation: spec.navigation,
         collision: spec.collision,
         sim: spec.sim,
+        spec: spec.clone(),
     };
     check_sweeps(ctx, &scenario)?;
     Ok(scenario)

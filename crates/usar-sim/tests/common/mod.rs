@@ -32,10 +32,10 @@ pub fn corridor(per_side: usize) -> Scenario {
 /// likewise to the hard goal, so the front robot of a row takes the deepest slot and arrivals
 /// never block later ones.
 pub fn swap_goals(s: &Scenario) -> Vec<PointM> {
-    let task = |name: &str| &s.tasks[s.task_id(name).expect("corridor has easy and hard")];
+    let task = |name: &str| &s.tasks()[s.task_id(name).expect("corridor has easy and hard")];
     let (easy, hard) = (task("easy").goal, task("hard").goal);
     let mut seen = [0usize; 2];
-    s.robots
+    s.robots()
         .iter()
         .map(|r| {
             let k = seen[r.kind] as f64;

@@ -112,7 +112,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         }
         write!(out, "{}", spec_to_ron(spec, &comments)?)?;
     } else {
-        summarise(&s, args.robots || s.robots.len() <= ROBOTS_TABLE_MAX, out)?;
+        summarise(&s, args.robots || s.robots().len() <= ROBOTS_TABLE_MAX, out)?;
         writeln!(out, "scenario hash {hash}")?;
         let sets: Vec<String> = overrides.iter().map(|o| format!(" --set {o}")).collect();
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
@@ -124,7 +124,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
 /// side is 10 m or more, one more per factor of ten below that (3 for a 0.5 m arena, 4 for
 /// 8 cm), so that points a tenth of the arena's scale apart never print alike.
 fn decimals(s: &Scenario) -> usize {
-    decimals_for_side(s.arena.width().min(s.arena.height()))
+    decimals_for_side(s.arena().width().min(s.arena().height()))
 }
 
 /// [`decimals`] of an arena whose shorter side is `side_m` metres (> 0).
@@ -152,7 +152,7 @@ fn rest_stations(s: &Scenario) -> String {
             c.radius_m
         )
     };
-    match s.rest_stations.as_slice() {
+    match s.rest_stations() {
         [c] => format!("rest station {}", one(c)),
         list => {
             let all: Vec<String> = list.iter().map(one).collect();
@@ -169,8 +169,8 @@ fn rest_stations(s: &Scenario) -> String {
 /// # Errors
 /// An I/O error writing to `out`.
 pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<()> {
-    writeln!(out, "scenario {}: {}", s.name, s.description)?;
-    let (dt_s, duration_s) = (s.sim.dt_s.get(), s.mission.duration_s.get());
+    writeln!(out, "scenario {}: {}", s.name(), s.description())?;
+    let (dt_s, duration_s) = (s.sim().dt_s.get(), s.mission().duration_s.get());
     // What a trial runs: whole steps (usar run, sweep and replay report this length).
     let run_s = experiments::sweep::simulated_length_s(duration_s, dt_s);
     let rounded = if run_s == duration_s {
@@ -181,9 +181,9 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
             number_text(duration_s)
         )
     };
-    let control = match s.sim.control_period_s {
+    let control = match s.sim().control_period_s {
         Some(p) => {
-            let k = s.sim.control_steps();
+            let k = s.sim().control_steps();
             let steps = if k == 1 {
                 "1 step".to_string()
             } else {
@@ -196,13 +196,13 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
     writeln!(
         out,
         "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed {}{control}",
-        s.arena.width_m,
-        s.arena.height_m,
-        s.arena.wall_thickness_m,
-        s.sim.dt_s,
+        s.arena().width_m,
+        s.arena().height_m,
+        s.arena().wall_thickness_m,
+        s.sim().dt_s,
         number_text(run_s),
         s.steps_per_trial(),
-        s.sim.seed
+        s.sim().seed
     )?;
     kinds_table(s, out)?;
     tasks_table(s, out)?;
@@ -221,13 +221,13 @@ fn starts_by_kind(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     write!(
         out,
         "\nstarts by kind ({} robots; the per-robot table: --robots)\n{:<10} {:>6} {:>20} {:>20}",
-        s.robots.len(),
+        s.robots().len(),
         "kind",
         "count",
         "x range (m)",
         "y range (m)"
     )?;
-    for t in &s.tasks {
+    for t in s.tasks() {
         write!(out, " {:>18}", format!("->{} m", t.name))?;
     }
     writeln!(out)?;
@@ -237,9 +237,9 @@ fn starts_by_kind(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         });
         format!("{}..{}", metres(lo, d), metres(hi, d))
     };
-    for (k, kind) in s.kinds.iter().enumerate() {
+    for (k, kind) in s.kinds().iter().enumerate() {
         let starts: Vec<scenario::PointM> = s
-            .robots
+            .robots()
             .iter()
             .filter(|r| r.kind == k)
             .map(|r| r.start_in_world)
@@ -255,7 +255,7 @@ fn starts_by_kind(s: &Scenario, out: &mut dyn Write) -> Result<()> {
             range(&mut starts.iter().map(|p| p.x)),
             range(&mut starts.iter().map(|p| p.y))
         )?;
-        for t in &s.tasks {
+        for t in s.tasks() {
             let dist = range(&mut starts.iter().map(|&p| nalgebra_dist(p, t.goal)));
             write!(out, " {dist:>18}")?;
         }
@@ -270,7 +270,7 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         "\n{:<10} {:<9} {:<7} {:>5}",
         "kind", "role", "moves", "count"
     )?;
-    for t in &s.tasks {
+    for t in s.tasks() {
         write!(out, " {:>6}", t.name)?;
     }
     writeln!(
@@ -278,7 +278,7 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         " {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
         "speed", "sense", "observe", "radius", "cap", "res"
     )?;
-    for k in &s.kinds {
+    for k in s.kinds() {
         let moves = match k.locomotion {
             Locomotion::Ground => "ground",
             Locomotion::Aerial => "aerial",
@@ -315,9 +315,9 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     writeln!(out)?;
     let order = s.hardest_first();
-    for (t, task) in s.tasks.iter().enumerate() {
+    for (t, task) in s.tasks().iter().enumerate() {
         let d: Vec<f64> = s
-            .robots
+            .robots()
             .iter()
             .map(|r| nalgebra_dist(r.start_in_world, task.goal))
             .collect();
@@ -337,7 +337,7 @@ fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
              start->goal {}-{} m (mean {})",
             task.name,
             task.difficulty,
-            s.tasks.len(),
+            s.tasks().len(),
             task.rescuees.len(),
             m(area.min.x),
             m(area.min.y),
@@ -358,12 +358,12 @@ fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 
 fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     write!(out, "\n{:>3} {:<10} {:>14}", "id", "kind", "start (m)")?;
-    for t in &s.tasks {
+    for t in s.tasks() {
         write!(out, " {:>12}", format!("->{} m", t.name))?;
     }
     writeln!(out)?;
     let d = decimals(s);
-    for (id, r) in s.robots.iter().enumerate() {
+    for (id, r) in s.robots().iter().enumerate() {
         let (x, y) = (r.start_in_world.x, r.start_in_world.y);
         write!(
             out,
@@ -372,7 +372,7 @@ fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
             s.kind_of(id).name,
             format!("({}, {})", metres(x, d), metres(y, d))
         )?;
-        for t in &s.tasks {
+        for t in s.tasks() {
             let dist = metres(nalgebra_dist(r.start_in_world, t.goal), d);
             write!(out, " {dist:>12}")?;
         }
@@ -383,15 +383,15 @@ fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 
 fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     let rects = s
-        .debris
+        .debris()
         .iter()
         .filter(|d| matches!(d, Debris::Rect { .. }))
         .count();
-    let doses = if s.radiation_zones.is_empty() {
+    let doses = if s.radiation_zones().is_empty() {
         String::new()
     } else {
         let factors: Vec<String> = s
-            .radiation_zones
+            .radiation_zones()
             .iter()
             .map(|z| z.dose_rate_factor.to_string())
             .collect();
@@ -400,17 +400,17 @@ fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     writeln!(
         out,
         "\ndebris: {} ({} rectangles, {} discs); radiation zones: {}{}; {}",
-        s.debris.len(),
+        s.debris().len(),
         rects,
-        s.debris.len() - rects,
-        s.radiation_zones.len(),
+        s.debris().len() - rects,
+        s.radiation_zones().len(),
         doses,
         rest_stations(s)
     )?;
     writeln!(
         out,
         "needs weights (hp, v, sen, eng, res, cap, obs): {:?}",
-        s.needs_weights.to_array()
+        s.needs_weights().to_array()
     )?;
     Ok(())
 }

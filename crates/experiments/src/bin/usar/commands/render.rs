@@ -80,13 +80,13 @@ pub fn trace_trial(
     }
     let mut sim = crate::shared::trial_build::build_trial(builder)?;
     crate::shared::trial_build::warn_if_rounded(duration_s, &sim);
-    let every = ((TRACE_SAMPLE_S / scenario.sim.dt_s.get()).round() as u64).max(1);
+    let every = ((TRACE_SAMPLE_S / scenario.sim().dt_s.get()).round() as u64).max(1);
     let sample = |sim: &Simulation, traces: &mut [Trace]| {
         for (id, t) in traces.iter_mut().enumerate() {
             t.push(sim.world().robot(id).position);
         }
     };
-    let mut traces: Vec<Trace> = vec![Vec::new(); scenario.robots.len()];
+    let mut traces: Vec<Trace> = vec![Vec::new(); scenario.robots().len()];
     sample(&sim, &mut traces);
     let mut observe = |sim: &Simulation| {
         let (steps, _) = sim.progress();
@@ -123,19 +123,19 @@ pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
             out,
             "wrote {} ({}: {} robots, paths of trial {} with {} over {:.1} s, {} samples each)",
             args.out.display(),
-            scenario.name,
-            scenario.robots.len(),
+            scenario.name(),
+            scenario.robots().len(),
             args.trial,
             args.method,
-            args.duration.unwrap_or(scenario.mission.duration_s.get()),
+            args.duration.unwrap_or(scenario.mission().duration_s.get()),
             t.first().map_or(0, Vec::len)
         )?,
         None => writeln!(
             out,
             "wrote {} ({}: {} robots at their starts)",
             args.out.display(),
-            scenario.name,
-            scenario.robots.len()
+            scenario.name(),
+            scenario.robots().len()
         )?,
     }
     Ok(())

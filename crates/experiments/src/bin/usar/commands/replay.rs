@@ -94,14 +94,14 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     let sim = crate::shared::trial_build::build_trial(builder)?;
     crate::shared::trial_build::warn_if_rounded(args.duration, &sim);
     let clock =
-        experiments::replay::SampleClock::new(args.hz, scenario.sim.dt_s.get(), sim.progress().1)
+        experiments::replay::SampleClock::new(args.hz, scenario.sim().dt_s.get(), sim.progress().1)
             .context("--hz")?;
-    let robot_samples = clock.samples().saturating_mul(scenario.robots.len());
+    let robot_samples = clock.samples().saturating_mul(scenario.robots().len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
         experiments::console::warn(format!(
             "warning: {} robots x {} samples: the page will need about {} MB of memory in the \
              browser; a shorter --duration or a lower --hz keeps it light",
-            scenario.robots.len(),
+            scenario.robots().len(),
             clock.samples(),
             robot_samples * 60 / 1_000_000
         ));
@@ -116,7 +116,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
          robots, {} marks, {} rescued; {:.1} s wall-clock",
         args.out.display(),
         bytes as f64 / 1e6,
-        scenario.name,
+        scenario.name(),
         rec.method,
         rec.trial,
         rec.seed,

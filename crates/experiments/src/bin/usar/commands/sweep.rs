@@ -175,7 +175,7 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
     let args = &all.spec;
     let scenario = scenario::load(&args.scenario)?;
     let model = trust_model(&scenario)?;
-    let base_seed = args.seed.unwrap_or(scenario.sim.seed);
+    let base_seed = args.seed.unwrap_or(scenario.sim().seed);
     let fail = all
         .fail_trial
         .iter()

@@ -172,8 +172,12 @@ pub fn threads_of(requested: Option<usize>) -> Result<usize> {
 /// `--duration` of `requested_s` seconds is not a whole number of steps of it.
 pub fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid>) {
     let mut steps: Vec<f64> = match grid {
-        Some(g) => g.cells.iter().map(|c| c.scenario.sim.dt_s.get()).collect(),
-        None => vec![scenario.sim.dt_s.get()],
+        Some(g) => g
+            .cells
+            .iter()
+            .map(|c| c.scenario.sim().dt_s.get())
+            .collect(),
+        None => vec![scenario.sim().dt_s.get()],
     };
     steps.sort_by(f64::total_cmp);
     steps.dedup();

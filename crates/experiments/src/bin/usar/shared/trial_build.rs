@@ -26,7 +26,7 @@ pub fn build_trial(builder: TrialBuilder<'_>) -> Result<Simulation> {
 /// is not a whole number of steps is rounded up to one (shorter than one step: one step).
 pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
     if let Some(d) = requested
-        && let Some(w) = rounding_warning(d, sim.scenario().sim.dt_s.get())
+        && let Some(w) = rounding_warning(d, sim.scenario().sim().dt_s.get())
     {
         experiments::console::warn(w);
     }
