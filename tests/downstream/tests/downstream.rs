@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 use downstream_example::factory;
 use experiments::sweep::{SweepConfig, run_in_memory};
 use usar_sim::mission::{Simulation, TrialResult};
-use usar_sim::scenario;
+use usar_sim::scenario::{
+    self, KindDraft, Role, Scenario, ScenarioError, ScenarioSpec, TaskDraft, number_at,
+};
 
 fn paper_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper.ron")
@@ -77,4 +79,97 @@ fn a_seeded_stochastic_method_gives_the_same_sweep_twice_on_two_threads() {
         first_groups.windows(2).any(|w| w[0] != w[1]),
         "three trials, one draw: {first_groups:?}"
     );
+}
+
+/// A two-task scenario of four robots, built in code: everything not written takes the file
+/// format's default (mission rules, navigation, collision avoidance, time step, weights).
+fn my_site() -> Result<Scenario, ScenarioError> {
+    let ugv = KindDraft::ground("ugv", Role::Carrier)
+        .body_radius_m(0.4)
+        .max_speed_m_per_s(1.5)
+        .sensing_range_m(3.0)
+        .observing_range_m(1.0)
+        .carrying_capacity(2)
+        .rescuing_resources(2)
+        .hp_needs_full(2.0)
+        .energy_needs_full(1.5)
+        .starts_row((12.0, 2.0), (2.0, 0.0));
+    let drone = KindDraft::aerial("drone", Role::Observer)
+        .body_radius_m(0.3)
+        .max_speed_m_per_s(2.0)
+        .sensing_range_m(8.0)
+        .observing_range_m(10.0)
+        .carrying_capacity(0)
+        .rescuing_resources(0)
+        .hp_needs_full(1.0)
+        .energy_needs_full(1.0)
+        .starts_row((13.0, 4.0), (2.0, 0.0));
+    ScenarioSpec::builder("my-site")
+        .arena(30.0, 20.0)
+        .kind(ugv)
+        .kind(drone)
+        .rest_station((25.0, 3.0), 1.5)
+        .task(
+            TaskDraft::new("hard", 1)
+                .search_area((3.0, 12.0), (11.0, 18.0))
+                .goal_m((7.0, 15.0))
+                .drop_off((8.0, 8.0), 2.0)
+                .rescuee_grid(2.0, 0.5)
+                .quota("ugv", 1)
+                .quota("drone", 1),
+        )
+        .task(
+            TaskDraft::new("easy", 0)
+                .search_area((18.0, 12.0), (26.0, 18.0))
+                .goal_m((22.0, 15.0))
+                .drop_off((20.0, 8.0), 2.0)
+                .rescuee_grid(2.0, 0.5)
+                .quota("ugv", 1)
+                .quota("drone", 1),
+        )
+        .build()
+}
+
+#[test]
+fn a_scenario_built_in_code_runs_and_an_invalid_edit_is_an_error() {
+    let site = my_site().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(site.robots().len(), 4);
+    assert_eq!(
+        site.mission().duration_s.get(),
+        600.0,
+        "the default trial length"
+    );
+    let r = Simulation::builder(&site)
+        .method_named("rne")
+        .duration_s(90.0)
+        .build()
+        .expect("a valid trial")
+        .run_to_end()
+        .expect("the trial runs");
+    assert_eq!(r.tasks, ["hard", "easy"]);
+    assert!(
+        r.rescued_total() > 0,
+        "nobody rescued in 90 s: {:?}",
+        r.rescued
+    );
+
+    // Three carriers with quotas of 1 + 1: an error naming the field, before any trial.
+    let err = site
+        .edit(|s| s.kinds[0].count = 3)
+        .expect_err("quotas no longer add up");
+    assert_eq!(err.field(), Some("kinds[0].quota"), "{err}");
+    // A negative speed is refused where it is written, not in the middle of a trial.
+    let err = site
+        .edit(|s| {
+            s.kinds[0].max_speed_m_per_s = number_at("kinds[0].max_speed_m_per_s", -1.0)?;
+            Ok(())
+        })
+        .expect_err("a negative speed");
+    assert_eq!(err.field(), Some("kinds[0].max_speed_m_per_s"), "{err}");
+    // A bad number given to the builder is an error too.
+    let err = ScenarioSpec::builder("bad")
+        .arena(-30.0, 20.0)
+        .build()
+        .expect_err("a negative width");
+    assert!(err.to_string().contains("arena"), "{err}");
 }
