@@ -47,7 +47,9 @@ impl ReportOptions {
     /// folder), read and checked now, before any trial runs; and the claims when `cli_claims`
     /// (`--claims`) or the scenario's `report: (claims: true)` asks for them. A flag given on
     /// the command line overrides the scenario's targets; with neither flags nor a `report`
-    /// section, the reports say nothing about the paper.
+    /// section, the reports say nothing about the paper. A targets file the scenario names
+    /// that does not exist (a copy of paper.ron in another folder) is a warning on stderr,
+    /// and the reports leave the bands out; one given by `--targets` must exist.
     ///
     /// # Errors
     /// A targets file that cannot be read or parsed ([`Targets::load`]), or one with a metric
@@ -59,9 +61,21 @@ impl ReportOptions {
         scenario_path: &Path,
     ) -> Result<Self, TargetsError> {
         let asked = scenario.report();
-        let from_scenario = asked.targets.as_ref().map(|file| {
+        let from_scenario = asked.targets.as_ref().and_then(|file| {
             let folder = scenario_path.parent().unwrap_or(Path::new(""));
-            folder.join(file)
+            let path = folder.join(file);
+            // A copy of paper.ron elsewhere still runs: its reports leave the bands out.
+            if cli_targets.is_none() && !path.exists() {
+                crate::stderr::warn(format!(
+                    "warning: {}: report.targets: {} not found (relative to the scenario's \
+                     folder); the reports leave out the calibration bands (--targets FILE \
+                     gives them)",
+                    path_text(scenario_path),
+                    path_text(&path)
+                ));
+                return None;
+            }
+            Some(path)
         });
         let targets = match cli_targets.or(from_scenario.as_deref()) {
             None => None,

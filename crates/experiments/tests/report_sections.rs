@@ -270,3 +270,34 @@ fn the_scenarios_report_section_asks_for_the_sections() {
     let report = read_text(&out.join("report.md"));
     assert_eq!(sections(&report), (false, true), "{report}");
 }
+
+/// A copy of paper.ron in a folder without `paper-targets.ron` still sweeps: a one-line
+/// warning names the missing file, and the reports leave the bands out (the claims stay).
+#[test]
+fn a_copy_of_the_paper_elsewhere_sweeps_without_its_targets_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let copy = tmp.path().join("paper.ron");
+    std::fs::copy(format!("{ROOT}/scenarios/paper.ron"), &copy).unwrap();
+    let out = tmp.path().join("out");
+    let run = usar([
+        "sweep",
+        text(&copy),
+        "--methods",
+        "rne",
+        "--trials",
+        "1",
+        "--duration",
+        "4",
+        "--quiet",
+        "--out",
+        text(&out),
+    ]);
+    let warning = stderr(&run);
+    ok(&run);
+    assert!(
+        warning.contains("report.targets:") && warning.contains("paper-targets.ron not found"),
+        "{warning}"
+    );
+    let report = read_text(&out.join("report.md"));
+    assert_eq!(sections(&report), (false, true), "{report}");
+}
