@@ -493,6 +493,34 @@ mod tests {
             assert_eq!(back, s);
             assert_eq!(back.spec(), s.spec());
             assert_eq!(s.spec(), &s.to_spec());
+            // Serialised (the scenario hash), it is the validated parts only, as before the
+            // spec was kept inside.
+            let json = serde_json::to_value(&s).expect("JSON");
+            let mut keys: Vec<&str> = json
+                .as_object()
+                .expect("an object")
+                .keys()
+                .map(String::as_str)
+                .collect();
+            keys.sort_unstable();
+            let mut want = [
+                "name",
+                "description",
+                "arena",
+                "kinds",
+                "robots",
+                "rest_stations",
+                "tasks",
+                "debris",
+                "radiation_zones",
+                "needs_weights",
+                "mission",
+                "navigation",
+                "collision",
+                "sim",
+            ];
+            want.sort_unstable();
+            assert_eq!(keys, want);
         }
     }
 
