@@ -489,8 +489,38 @@ mod tests {
             tiny().build().expect("valid"),
             crate::scenario::load(paper_path()).expect("paper.ron"),
         ] {
-            assert_eq!(s.to_spec().validate("again").expect("valid"), s);
+            let back = s.to_spec().validate("again").expect("valid");
+            assert_eq!(back, s);
+            assert_eq!(back.spec(), s.spec());
             assert_eq!(s.spec(), &s.to_spec());
+            // Serialised (the scenario hash), it is the validated parts only, as before the
+            // spec was kept inside.
+            let json = serde_json::to_value(&s).expect("JSON");
+            let mut keys: Vec<&str> = json
+                .as_object()
+                .expect("an object")
+                .keys()
+                .map(String::as_str)
+                .collect();
+            keys.sort_unstable();
+            let mut want = [
+                "name",
+                "description",
+                "arena",
+                "kinds",
+                "robots",
+                "rest_stations",
+                "tasks",
+                "debris",
+                "radiation_zones",
+                "needs_weights",
+                "mission",
+                "navigation",
+                "collision",
+                "sim",
+            ];
+            want.sort_unstable();
+            assert_eq!(keys, want);
         }
     }
 
@@ -546,12 +576,12 @@ mod tests {
             parse_spec(&text, "back.ron").expect("parses"),
             *paper.spec()
         );
-        // The report changes no trial: the validated parts are the same without it.
+        // The report changes no trial: the scenario is equal without it, its spec is not.
         let plain = paper
             .edit(|s| s.report = ReportSpec::default())
             .expect("valid");
-        assert_eq!(plain.kinds(), paper.kinds());
-        assert_eq!(plain.tasks(), paper.tasks());
+        assert_eq!(plain, paper);
+        assert_ne!(plain.spec(), paper.spec());
         let src = tiny_ron_with(r#"report: (targets: Some("t.ron"))"#);
         let s = from_str(&src, "t.ron").expect("Some(...) is read too");
         assert_eq!(s.report().targets.as_deref(), Some("t.ron"));

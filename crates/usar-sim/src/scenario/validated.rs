@@ -27,10 +27,13 @@ use super::spec::{ReportSpec, ScenarioSpec};
 ///
 /// Read-only: every part has an accessor ([`Scenario::kinds`], [`Scenario::tasks`],
 /// [`Scenario::mission`], ...); to change a value, [`Scenario::edit`] its spec, which
-/// validates again. Equal scenarios have equal specs ([`Scenario::to_spec`]); serialising
-/// one (the scenario hash of the `experiments` crate) writes the validated, expanded parts,
-/// not the spec.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// validates again.
+///
+/// Equality and serialisation (the scenario hash of the `experiments` crate) are those of the
+/// validated, expanded parts a trial sees, not of the spec they came from: a `Row` of starts
+/// and the `List` of its points give equal scenarios, and so do specs that differ only in
+/// their `report` section. `scenario.to_spec().validate(..)` equals `scenario`.
+#[derive(Debug, Clone, Serialize)]
 pub struct Scenario {
     pub(crate) name: String,
     pub(crate) description: String,
@@ -50,6 +53,43 @@ pub struct Scenario {
     /// start rows and debris fields not expanded).
     #[serde(skip)]
     pub(crate) spec: ScenarioSpec,
+}
+
+impl PartialEq for Scenario {
+    /// Equal validated parts; the spec is left out (see [`Scenario`]).
+    fn eq(&self, other: &Self) -> bool {
+        let Self {
+            name,
+            description,
+            arena,
+            kinds,
+            robots,
+            rest_stations,
+            tasks,
+            debris,
+            radiation_zones,
+            needs_weights,
+            mission,
+            navigation,
+            collision,
+            sim,
+            spec: _,
+        } = self;
+        *name == other.name
+            && *description == other.description
+            && *arena == other.arena
+            && *kinds == other.kinds
+            && *robots == other.robots
+            && *rest_stations == other.rest_stations
+            && *tasks == other.tasks
+            && *debris == other.debris
+            && *radiation_zones == other.radiation_zones
+            && *needs_weights == other.needs_weights
+            && *mission == other.mission
+            && *navigation == other.navigation
+            && *collision == other.collision
+            && *sim == other.sim
+    }
 }
 
 impl Scenario {
