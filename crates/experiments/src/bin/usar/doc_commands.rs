@@ -6,6 +6,10 @@
 //! it. It ends at a comment (` #`), a pipe, a redirection, `&&` or `;`. A synopsis (a line with
 //! a placeholder such as `SCENARIO`, `[sweep options]` or `...`) is not a command and is
 //! skipped. Scenario files the command names under `scenarios/` must exist.
+//!
+//! The same files say what is true now: no commit hash (a word of 7 to 40 hex digits with a
+//! letter and a digit) and no "measured again" outside `docs/measurements.md`, the one dated
+//! history of measurements (CHANGELOG.md is not scanned).
 
 use std::path::{Path, PathBuf};
 
@@ -40,6 +44,34 @@ fn markdown_files() -> Vec<PathBuf> {
         files.extend(found);
     }
     files
+}
+
+/// Whether `word` looks like a commit hash: 7 to 40 lower-case hex digits, at least one
+/// letter and one digit (so neither `0.0037255` nor `deadbeef`-free words like `facade` match).
+fn looks_like_hash(word: &str) -> bool {
+    (7..=40).contains(&word.len())
+        && word
+            .chars()
+            .all(|c| c.is_ascii_digit() || ('a'..='f').contains(&c))
+        && word.chars().any(|c| c.is_ascii_digit())
+        && word.chars().any(|c| c.is_ascii_alphabetic())
+}
+
+/// The places in `md` (named `name`) that log history: hash-like words and "measured again".
+fn history_in(name: &str, md: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for (i, line) in md.lines().enumerate() {
+        let hashes = line
+            .split(|c: char| !c.is_ascii_alphanumeric())
+            .filter(|w| looks_like_hash(w));
+        for word in hashes {
+            found.push(format!("{name}:{}: commit hash? {word}", i + 1));
+        }
+        if line.to_lowercase().contains("measured again") {
+            found.push(format!("{name}:{}: \"measured again\"", i + 1));
+        }
+    }
+    found
 }
 
 /// One command found in a file: where it starts, and its text with continuations joined.
@@ -160,6 +192,29 @@ fn every_usar_command_in_the_readme_and_docs_parses() {
     // The README alone shows more than 15; fewer means the scan stopped finding them.
     assert!(checked >= 40, "only {checked} commands found");
     eprintln!("{checked} commands parse");
+}
+
+#[test]
+fn the_readme_and_docs_carry_no_commit_hash_outside_the_measurements_file() {
+    let mut found = Vec::new();
+    for file in markdown_files() {
+        if file.ends_with("docs/measurements.md") {
+            continue;
+        }
+        let md = std::fs::read_to_string(&file).expect("readable Markdown");
+        let name = file.strip_prefix(root()).unwrap_or(&file).display();
+        found.extend(history_in(&name.to_string(), &md));
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+#[test]
+fn the_history_scan_finds_hashes_and_remeasurements_but_not_numbers() {
+    let md = "at commit 7382cd6 it\nMeasured again later\n0.0037255 and 1,845 and facade\n";
+    assert_eq!(
+        history_in("t.md", md),
+        ["t.md:1: commit hash? 7382cd6", "t.md:2: \"measured again\""]
+    );
 }
 
 #[test]
