@@ -1,11 +1,32 @@
-//! `scenarios/swarm-1000.ron` end to end: 1,000 robots, four tasks, every method. A short run
-//! per method (default test run), and the ignored 1,800 s bound tests (every round but the
+//! `scenarios/swarm-1000.ron` and `scenarios/swarm-10000.ron` end to end: 1,000 robots and
+//! four tasks, every method, and 10,000 robots and eight tasks, RNE and DIS. A short run per
+//! method (default test run), and the ignored 1,800 s bound tests (every round but the
 //! last completes; run in release by `.ci/run` and `just swarm-bound`, `docs/scaling.md`,
 //! "Jams"). Speed is the scaling bench's.
 
 use integration_tests::{load, method, scenario_path};
-use usar_sim::mission::Simulation;
-use usar_sim::scenario::Locomotion;
+use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::scenario::{Locomotion, Scenario};
+
+/// Every robot of `s` is in exactly one group of `r`'s first round, and each group holds its
+/// task's quota of each kind.
+fn assert_first_round_follows_the_quotas(name: &str, s: &Scenario, r: &TrialResult) {
+    let mut seen = vec![false; s.robots().len()];
+    for (t, group) in r.rounds[0].groups.iter().enumerate() {
+        for (kind, spec) in s.kinds().iter().enumerate() {
+            let n = group
+                .iter()
+                .filter(|&&id| s.robots()[id].kind == kind)
+                .count();
+            assert_eq!(n, spec.quota[t], "{name}: task {t}, kind {kind}");
+        }
+        for &id in group {
+            assert!(!seen[id], "{name}: robot {id} in two groups");
+            seen[id] = true;
+        }
+    }
+    assert!(seen.iter().all(|&s| s), "{name}: a robot without a group");
+}
 
 /// Seconds simulated per method: long enough for grouping and for the start grid to clear
 /// (robots in the back rows wait for those in front).
@@ -24,22 +45,7 @@ fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
             .unwrap();
         let r = sim.run_to_end().unwrap();
         assert_eq!(r.rescued.len(), 4, "{name}");
-        let first = &r.rounds[0];
-        let mut seen = vec![false; s.robots().len()];
-        for (t, group) in first.groups.iter().enumerate() {
-            for (kind, spec) in s.kinds().iter().enumerate() {
-                let n = group
-                    .iter()
-                    .filter(|&&id| s.robots()[id].kind == kind)
-                    .count();
-                assert_eq!(n, spec.quota[t], "{name}: task {t}, kind {kind}");
-            }
-            for &id in group {
-                assert!(!seen[id], "{name}: robot {id} in two groups");
-                seen[id] = true;
-            }
-        }
-        assert!(seen.iter().all(|&s| s), "{name}: a robot without a group");
+        assert_first_round_follows_the_quotas(name, &s, &r);
         // The team has set off: at most one ground robot in ten still waits in the start grid.
         let ground = s
             .robots()
@@ -58,6 +64,55 @@ fn swarm_1000_groups_the_whole_team_and_sets_off_with_every_method() {
             "{name}: {} ground robots moved less than 0.5 m in {SHORT_S} s: {:?}",
             stuck.len(),
             &stuck[..stuck.len().min(20)]
+        );
+    }
+}
+
+/// Seconds of swarm-10000 simulated per method in the default (debug) test run: the round
+/// start (grouping 10,000 robots, planning every robot's path) and the first physics steps.
+const SHORT_10K_S: f64 = 2.0;
+
+/// Bodies may overlap by at most half a step of two robots closing at the top ground speed
+/// (2.5 m/s, 0.02 s steps), as in `body_overlap.rs`, metres.
+const OVERLAP_BOUND_M: f64 = 0.5 * 2.0 * 2.5 * 0.02;
+
+#[test]
+fn swarm_10000_groups_the_whole_team_by_the_quotas_and_keeps_bodies_apart() {
+    let s = load(&scenario_path("swarm-10000.ron"));
+    assert_eq!(s.robots().len(), 10_000);
+    assert_eq!(s.tasks().len(), 8);
+    let per_kind: Vec<usize> = s.kinds().iter().map(|k| k.count).collect();
+    assert_eq!(per_kind, [5000, 3333, 1667], "the paper's 6 : 4 : 2");
+    for name in ["rne", "dis"] {
+        let mut sim = Simulation::builder(&s)
+            .method(method(name, &s))
+            .duration_s(SHORT_10K_S)
+            .build()
+            .unwrap();
+        let r = sim.run_to_end().unwrap();
+        assert_eq!(r.tasks.len(), 8, "{name}");
+        assert_eq!(r.rescued.len(), 8, "{name}: rescuees counted per task");
+        for (t, &n) in r.rescued.iter().enumerate() {
+            assert!(
+                n as usize <= s.tasks()[t].rescuees.len(),
+                "{name}: task {t}"
+            );
+        }
+        assert_first_round_follows_the_quotas(name, &s, &r);
+        let moved = sim
+            .world()
+            .robots()
+            .iter()
+            .filter(|r| r.distance_travelled_m > 0.5)
+            .count();
+        assert!(
+            moved * 4 >= s.robots().len(),
+            "{name}: only {moved} robots moved more than 0.5 m in {SHORT_10K_S} s"
+        );
+        let overlap_m = sim.world().max_penetration_m();
+        assert!(
+            overlap_m <= OVERLAP_BOUND_M,
+            "{name}: bodies overlap by {overlap_m} m, more than {OVERLAP_BOUND_M} m"
         );
     }
 }

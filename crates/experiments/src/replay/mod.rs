@@ -41,6 +41,6 @@ pub use page::{
 };
 pub use recorder::ReplayRecorder;
 pub use recording::{Recording, RescueeChange};
-pub use sampling::{DEFAULT_HZ, SampleClock};
+pub use sampling::{DEFAULT_HZ, DEFAULT_MAX_ROBOT_SAMPLES, SampleClock, default_hz};
 pub use sweep_replays::{ReplayRequest, SweepReplays, WrittenReplay, parse_replay_list};
 pub use trial::{ReplayTrial, record_trial};

@@ -5,6 +5,29 @@ use super::error::ReplayError;
 /// The default sampling rate of a replay, samples per simulated second (`--hz`).
 pub const DEFAULT_HZ: f64 = 10.0;
 
+/// Most robot-samples (robots times samples) a replay takes at its default rate: 6,100,000, so
+/// a 1,000-robot, 600 s trial keeps [`DEFAULT_HZ`] (6,001,000) and larger ones get a lower
+/// rate ([`default_hz`]). The page decodes about 60 bytes per robot-sample, so about 370 MB
+/// in the browser, and the file takes about 1 to 2 bytes per robot-sample.
+pub const DEFAULT_MAX_ROBOT_SAMPLES: f64 = 6_100_000.0;
+
+/// The sampling rate of a replay without `--hz`, samples per simulated second: [`DEFAULT_HZ`],
+/// lowered for a large team or a long trial so that `robots` times the samples of `duration_s`
+/// stay within [`DEFAULT_MAX_ROBOT_SAMPLES`] (frame decimation: a 10,000-robot, 600 s trial
+/// is sampled at about 1 Hz). A team of no robots or a trial of no time keeps
+/// [`DEFAULT_HZ`].
+pub fn default_hz(robots: usize, duration_s: f64) -> f64 {
+    if robots == 0 || !(duration_s.is_finite() && duration_s > 0.0) {
+        return DEFAULT_HZ;
+    }
+    let fit = (DEFAULT_MAX_ROBOT_SAMPLES / robots as f64 - 1.0) / duration_s;
+    if fit > 0.0 {
+        DEFAULT_HZ.min(fit)
+    } else {
+        DEFAULT_HZ
+    }
+}
+
 /// Which steps are sampled: the trial's start (step 0), every `every_steps`-th step, and the
 /// last step. `every_steps = max(1, round(1 / (hz * dt_s)))`, so the rate actually used is
 /// `1 / (every_steps * dt_s)` ([`SampleClock::actual_hz`]): 10 Hz at the paper's 0.02 s step
@@ -71,6 +94,17 @@ impl SampleClock {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_default_rate_is_ten_hz_up_to_a_thousand_robots_for_600_s_and_decimated_beyond() {
+        assert!((default_hz(1_000, 600.0) - 10.0).abs() < 1e-12);
+        assert!((default_hz(12, 1_800.0) - 10.0).abs() < 1e-12);
+        let hz = default_hz(10_000, 600.0);
+        assert!((hz - 6_099.0 / 6_000.0).abs() < 1e-12, "{hz}");
+        let c = SampleClock::new(hz, 0.02, 30_000).unwrap();
+        assert!(10_000 * c.samples() <= 6_100_000, "{}", c.samples());
+        assert!((default_hz(0, 600.0) - 10.0).abs() < 1e-12);
+    }
 
     #[test]
     fn ten_hz_at_the_papers_step_is_every_fifth_step() {

@@ -10,7 +10,7 @@ use clap::Args;
 use usar_sim::mission::{Simulation, trial_seed};
 use usar_sim::scenario;
 
-use experiments::replay::{DEFAULT_HZ, record_trial, write_replay};
+use experiments::replay::{record_trial, write_replay};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -63,9 +63,11 @@ pub struct ReplayArgs {
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub duration: Option<f64>,
 
-    /// Samples per simulated second (> 0; rounded to a whole number of steps per sample).
-    #[arg(long, value_name = "HZ", default_value_t = DEFAULT_HZ, allow_hyphen_values = true)]
-    pub hz: f64,
+    /// Samples per simulated second (> 0; rounded to a whole number of steps per sample);
+    /// default 10, lowered so that robots times samples stay within 6,100,000 (about 1 Hz for
+    /// 10,000 robots over 600 s).
+    #[arg(long, value_name = "HZ", allow_hyphen_values = true)]
+    pub hz: Option<f64>,
 
     /// Where to write the page (HTML).
     #[arg(long, value_name = "FILE.html")]
@@ -93,9 +95,12 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     }
     let sim = crate::shared::trial_build::build_trial(builder)?;
     crate::shared::trial_build::warn_if_rounded(args.duration, &sim);
+    let dt_s = scenario.sim().dt_s.get();
+    let hz = args.hz.unwrap_or_else(|| {
+        experiments::replay::default_hz(scenario.robots().len(), sim.progress().1 as f64 * dt_s)
+    });
     let clock =
-        experiments::replay::SampleClock::new(args.hz, scenario.sim().dt_s.get(), sim.progress().1)
-            .context("--hz")?;
+        experiments::replay::SampleClock::new(hz, dt_s, sim.progress().1).context("--hz")?;
     let robot_samples = clock.samples().saturating_mul(scenario.robots().len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
         experiments::console::warn(format!(
@@ -107,7 +112,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         ));
     }
     let t0 = Instant::now();
-    let t = record_trial(sim, args.hz, None).context("recording the trial")?;
+    let t = record_trial(sim, hz, None).context("recording the trial")?;
     let bytes = write_replay(&scenario, &t.recording, &args.out)?;
     let rec = &t.recording;
     writeln!(

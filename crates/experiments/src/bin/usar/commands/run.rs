@@ -70,7 +70,17 @@ pub struct RunArgs {
     /// (/dev/stdout) is written directly; a folder, block device or socket is refused.
     #[arg(long, value_name = "FILE.json")]
     pub json: Option<PathBuf>,
+
+    /// Print the per-robot table and every group's robot ids even for a team of more than 50
+    /// robots, which otherwise gets group sizes and a summary per kind.
+    #[arg(long)]
+    pub robots: bool,
 }
+
+/// Teams of at most this many robots get the per-robot table and the groups' robot ids in
+/// `usar run`'s output; larger ones group sizes and a summary per kind, unless `--robots`
+/// (the same bound as `usar check`'s).
+pub const ROBOTS_TABLE_MAX: usize = 50;
 
 /// Runs `usar run`.
 ///
@@ -94,7 +104,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let result = sim.run_to_end().context("the trial failed")?;
     let wall = t0.elapsed().as_secs_f64();
     // A seed given as is belongs to no trial index.
-    print_result(&result, args.seed.is_none(), out)?;
+    let per_robot = args.robots || result.robots.len() <= ROBOTS_TABLE_MAX;
+    print_result(&result, args.seed.is_none(), per_robot, out)?;
     writeln!(
         out,
         "\n{} s simulated in {:.2} s wall-clock ({} sim-s per wall-s)",
@@ -112,12 +123,17 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
 }
 
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the
-/// per-robot table. The header names the trial's index when `indexed` (`trial 3`), else only
-/// its seed (`usar run --seed`).
+/// per-robot table (`per_robot`; else each group's size and a summary per kind). The header
+/// names the trial's index when `indexed` (`trial 3`), else only its seed (`usar run --seed`).
 ///
 /// # Errors
 /// An I/O error writing to `out`.
-pub fn print_result(r: &TrialResult, indexed: bool, out: &mut dyn Write) -> Result<()> {
+pub fn print_result(
+    r: &TrialResult,
+    indexed: bool,
+    per_robot: bool,
+    out: &mut dyn Write,
+) -> Result<()> {
     let trial = if indexed {
         format!("trial {}", r.trial)
     } else {
@@ -129,8 +145,12 @@ pub fn print_result(r: &TrialResult, indexed: bool, out: &mut dyn Write) -> Resu
         r.scenario, r.method, r.seed, r.duration_s
     )?;
     print_tasks(r, out)?;
-    print_rounds(r, out)?;
-    print_robots(r, out)
+    print_rounds(r, per_robot, out)?;
+    if per_robot {
+        print_robots(r, out)
+    } else {
+        print_kinds(r, out)
+    }
 }
 
 fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
@@ -164,7 +184,7 @@ fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn print_rounds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+fn print_rounds(r: &TrialResult, per_robot: bool, out: &mut dyn Write) -> Result<()> {
     writeln!(
         out,
         "\nrounds: {} ({})",
@@ -182,7 +202,8 @@ fn print_rounds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
     for t in &r.tasks {
         write!(out, " {t:>5}")?;
     }
-    writeln!(out, "  groups ({})", r.tasks.join(" | "))?;
+    let what = if per_robot { "groups" } else { "group sizes" };
+    writeln!(out, "  {what} ({})", r.tasks.join(" | "))?;
     // Rounds are numbered from 1, as on the replay page.
     for (i, rd) in r.rounds.iter().enumerate() {
         write!(
@@ -200,9 +221,50 @@ fn print_rounds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
         let groups: Vec<String> = rd
             .groups
             .iter()
-            .map(|g| g.iter().map(usize::to_string).collect::<Vec<_>>().join(","))
+            .map(|g| {
+                if per_robot {
+                    g.iter().map(usize::to_string).collect::<Vec<_>>().join(",")
+                } else {
+                    g.len().to_string()
+                }
+            })
             .collect();
         writeln!(out, "  {}", groups.join(" | "))?;
+    }
+    Ok(())
+}
+
+/// One line per kind, in the order of the kinds' first robots: the robots' count, their mean
+/// distance, final energy and final HP, and their total recharges, pick-ups and deliveries.
+fn print_kinds(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+    writeln!(
+        out,
+        "\n{:<10} {:>6} {:>11} {:>12} {:>9} {:>8} {:>8} {:>8}   (per-robot table: --robots)",
+        "kind", "robots", "mean dist m", "mean energy%", "mean HP%", "rech.", "picked", "deliv."
+    )?;
+    let mut kinds: Vec<&str> = Vec::new();
+    for m in &r.robots {
+        if !kinds.contains(&m.kind.as_str()) {
+            kinds.push(&m.kind);
+        }
+    }
+    for kind in kinds {
+        let of_kind = || r.robots.iter().filter(move |m| m.kind == kind);
+        let n = of_kind().count();
+        let mean = |f: fn(&usar_sim::mission::RobotMetrics) -> f64| {
+            of_kind().map(f).sum::<f64>() / n as f64
+        };
+        let total = |f: fn(&usar_sim::mission::RobotMetrics) -> u64| of_kind().map(f).sum::<u64>();
+        writeln!(
+            out,
+            "{kind:<10} {n:>6} {:>11.1} {:>12.2} {:>9.2} {:>8} {:>8} {:>8}",
+            mean(|m| m.distance_m),
+            mean(|m| m.final_energy_pct),
+            mean(|m| m.final_hp_pct),
+            total(|m| u64::from(m.recharges)),
+            total(|m| u64::from(m.picked_up)),
+            total(|m| u64::from(m.delivered)),
+        )?;
     }
     Ok(())
 }
