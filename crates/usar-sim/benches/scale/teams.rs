@@ -214,7 +214,7 @@ pub fn team(n: usize, base: &str, given: &[String]) -> Result<Team, String> {
     for file in given {
         let spec = read_spec(file)?;
         if robots(&spec) == n {
-            return validated(spec, file, file.clone());
+            return validated(spec, file, short(file));
         }
     }
     let own = path(&format!("scenarios/swarm-{n}.ron"));
