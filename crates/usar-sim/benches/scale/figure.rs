@@ -89,6 +89,34 @@ pub fn draw(points: &[Point], path: &str) -> Result<(), Box<dyn std::error::Erro
         }
         chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
     }
+    real_time_lines(&mut chart, dt, x_max)?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// The chart of [`draw`]: log-log, robots against steps per CPU second.
+type Chart<'a> = ChartContext<
+    'a,
+    SVGBackend<'a>,
+    Cartesian2d<
+        plotters::coord::combinators::LogCoord<f64>,
+        plotters::coord::combinators::LogCoord<f64>,
+    >,
+>;
+
+/// Draws the 10x and 25x real-time lines (steps per second at step `dt` seconds) across the
+/// chart, up to `x_max` robots. Errors: as the drawing backend's.
+fn real_time_lines(
+    chart: &mut Chart<'_>,
+    dt: f64,
+    x_max: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
     for (times, colour) in [(10.0, RGBColor(214, 39, 40)), (25.0, RGBColor(44, 160, 44))] {
         let target = times / dt;
         chart
@@ -101,12 +129,5 @@ pub fn draw(points: &[Point], path: &str) -> Result<(), Box<dyn std::error::Erro
                 PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(1))
             });
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
-    root.present()?;
     Ok(())
 }
