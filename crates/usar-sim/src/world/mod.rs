@@ -2,6 +2,8 @@
 //!
 //! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
+//! - `commands`: the velocities the last step commanded ([`World::commanded_velocities`]) and
+//!   [`drive_bodies`], their write rule for a bare scene (replaying a trial's motion).
 //! - [`clearance_grid`]: the clearance grid (parry2d distance queries): free cells, grid
 //!   moves, nearest free cell, line of sight.
 //! - [`standing_disc`]: a robot standing in the way of a detour, as a keep-out disc.
@@ -50,6 +52,7 @@ pub mod bodies;
 mod bucket_queue;
 pub mod clearance_grid;
 mod collision_course;
+mod commands;
 mod conflicts;
 mod disc_mask;
 pub mod distance_field;
@@ -86,6 +89,7 @@ mod union_find;
 )]
 mod world;
 
+pub use commands::drive_bodies;
 pub use error::{NavError, WorldError};
 pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
