@@ -3,9 +3,9 @@ on scenarios/paper.ron, and draw the rescuees per method (a matplotlib figure).
 
     pip install ./python matplotlib
     python examples/python/compare_methods.py                  # 10 trials x 600 s (minutes)
-    python examples/python/compare_methods.py --duration 30 --trials 2   # seconds (CI)
+    python examples/python/compare_methods.py --duration 60 --trials 2   # seconds (CI)
 
-USAR_EXAMPLE_DURATION=30 sets the default duration too (CI runs it so).
+USAR_EXAMPLE_DURATION=60 sets the default duration too (CI runs it so).
 """
 
 import argparse
