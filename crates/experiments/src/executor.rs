@@ -97,7 +97,8 @@ pub(crate) fn execute(
     let done = AtomicUsize::new(0);
     pool.install(|| {
         jobs.par_iter().for_each(|job| {
-            if abort.load(Ordering::SeqCst) {
+            let stopped = runner.hooks.stop.as_ref();
+            if abort.load(Ordering::SeqCst) || stopped.is_some_and(|s| s.load(Ordering::SeqCst)) {
                 return;
             }
             let plan = &plans[job.cell];

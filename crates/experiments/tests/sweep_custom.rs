@@ -132,6 +132,7 @@ fn hooks_observe_trials_and_journaled_records() {
         on_journaled: Some(Arc::new(move |r, n| {
             j2.lock().unwrap().push((r.method.clone(), r.trial, n));
         })),
+        stop: None,
     };
     let outcome = run_sweep(&cfg).unwrap();
     // The panicking observer failed its trial only.

@@ -3,6 +3,7 @@
 
 use std::fmt;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use usar_sim::mission::StepObserver;
 
@@ -46,6 +47,10 @@ pub struct SweepHooks {
     pub trial_observer: Option<TrialObserverFactory>,
     /// Sees each journaled record.
     pub on_journaled: Option<JournaledHook>,
+    /// Set to `true` to stop the sweep (e.g. on Ctrl-C in the Python package): trials not
+    /// started yet are skipped, running ones end as usual and are journaled; the sweep then
+    /// returns with the skipped trials missing (a resume runs them). Default `None`.
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 impl fmt::Debug for SweepHooks {
@@ -53,6 +58,7 @@ impl fmt::Debug for SweepHooks {
         f.debug_struct("SweepHooks")
             .field("trial_observer", &self.trial_observer.is_some())
             .field("on_journaled", &self.on_journaled.is_some())
+            .field("stop", &self.stop)
             .finish()
     }
 }

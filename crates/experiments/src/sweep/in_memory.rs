@@ -187,6 +187,26 @@ mod tests {
     }
 
     #[test]
+    fn a_stopped_sweep_skips_the_trials_not_started() {
+        let tmp = tempfile::tempdir().unwrap();
+        let mut cfg = config(1, tmp.path());
+        let stop = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let flag = stop.clone();
+        // Stopped once the first trial is recorded: on one thread, no other trial starts.
+        cfg.hooks.on_journaled = Some(Arc::new(move |_, _| {
+            flag.store(true, std::sync::atomic::Ordering::SeqCst);
+        }));
+        cfg.hooks.stop = Some(stop);
+        let got = run_in_memory(&cfg).unwrap();
+        assert_eq!(got.failures().count(), 0);
+        let kept: Vec<(&str, u32)> = got
+            .results()
+            .map(|r| (r.method.as_str(), r.trial))
+            .collect();
+        assert_eq!(kept, [("RNE", 0)]);
+    }
+
+    #[test]
     fn bad_parameters_are_one_line_errors() {
         let tmp = tempfile::tempdir().unwrap();
         let cfg = SweepConfig {

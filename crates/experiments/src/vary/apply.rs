@@ -2,7 +2,7 @@
 //! spec with overrides that breaks a rule.
 
 use serde_json::Value;
-use usar_sim::scenario::{ScenarioError, ScenarioSpec};
+use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 use crate::vary::field_override::Override;
 use crate::vary::path::FieldPath;
@@ -73,6 +73,42 @@ pub fn rule_error(flag: &str, overrides: &[Override], e: &ScenarioError) -> Stri
         .map(|o| format!("{flag} {}", o.brief()))
         .collect();
     format!("{}: {field}: {message}", names.join(" "))
+}
+
+/// Validates `spec`, the spec of the scenario source `text` (from `origin`) with `overrides`
+/// applied, as a file. A rule about an overridden field is [`rule_error`]'s one line
+/// (`FLAG FIELD=VALUE: field.path: message`); one the file itself breaks is the loader's
+/// error unchanged (`origin:line:col: field.path: message`); any other names the overrides it
+/// holds with (`... (with FLAG FIELD=VALUE ...)`). `flag` is how the overrides were given
+/// (`--set` for `usar check`, `set` for the Python package).
+///
+/// # Errors
+/// That one-line message.
+pub fn validate_overridden(
+    spec: &ScenarioSpec,
+    text: &str,
+    origin: &str,
+    flag: &str,
+    overrides: &[Override],
+) -> Result<Scenario, String> {
+    usar_sim::scenario::validate_in_source(spec, text, origin).map_err(|e| {
+        let field = match &e {
+            ScenarioError::Invalid { field, .. } => field.as_str(),
+            _ => return e.to_string(),
+        };
+        if !touching(overrides, field).is_empty() {
+            return rule_error(flag, overrides, &e);
+        }
+        let own = usar_sim::scenario::from_str(text, origin).err();
+        if own.is_some_and(|own| own.to_string() == e.to_string()) {
+            return e.to_string();
+        }
+        let with: Vec<String> = overrides
+            .iter()
+            .map(|o| format!("{flag} {}", o.brief()))
+            .collect();
+        format!("{e} (with {})", with.join(" "))
+    })
 }
 
 #[cfg(test)]

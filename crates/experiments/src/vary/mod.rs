@@ -22,7 +22,9 @@ mod split;
 mod value;
 mod value_list;
 
-pub use apply::{apply_overrides, rule_error, spec_from_json, spec_json, touching};
+pub use apply::{
+    apply_overrides, rule_error, spec_from_json, spec_json, touching, validate_overridden,
+};
 pub use field_override::{FieldValue, Override};
 pub use path::{FieldPath, Step};
 pub use quoted_arg::{QUOTED_ARG_CHARS, brief};

@@ -10,15 +10,13 @@ use anyhow::{Result, anyhow};
 
 use clap::Args;
 
-use usar_sim::scenario::{
-    self, Debris, Locomotion, Scenario, ScenarioError, number_text, path_text,
-};
+use usar_sim::scenario::{self, Debris, Locomotion, Scenario, number_text, path_text};
 
 use experiments::fingerprint::scenario_hash;
 
 use experiments::spec_ron::spec_to_ron;
 
-use experiments::vary::{Override, apply_overrides, brief, rule_error, touching};
+use experiments::vary::{Override, apply_overrides, brief, validate_overridden};
 
 use crate::shared::scenario_warnings::warn_about;
 
@@ -95,7 +93,8 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         let text = scenario::read_source(&args.scenario)?;
         let spec = apply_overrides(&scenario::parse_spec(&text, &origin)?, &overrides)
             .map_err(|(i, e)| anyhow!("--set {}: {e}", overrides[i].brief()))?;
-        let s = validate_overridden(&spec, &text, &origin, &overrides)?;
+        let s = validate_overridden(&spec, &text, &origin, "--set", &overrides)
+            .map_err(|e| anyhow!(e))?;
         (Some(spec), s)
     } else {
         (None, scenario::load(&args.scenario)?)
@@ -417,41 +416,6 @@ fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
 
 fn nalgebra_dist(a: scenario::PointM, b: scenario::PointM) -> f64 {
     (a - b).norm()
-}
-
-/// Validates `spec`, the file `text` with `overrides` applied, as the help promises: the
-/// overrides may repair a rule the file breaks. A broken rule about an overridden field names
-/// that `--set` ([`rule_error`]). Any other is reported at its field's line and column in the
-/// file: as it is when the file alone breaks it the same way, else followed by the overrides
-/// it was found with (`(with --set kinds[0].count=7)`: a count that no longer matches the
-/// file's quota).
-///
-/// # Errors
-/// That rule, as said.
-fn validate_overridden(
-    spec: &scenario::ScenarioSpec,
-    text: &str,
-    origin: &str,
-    overrides: &[Override],
-) -> Result<scenario::Scenario> {
-    scenario::validate_in_source(spec, text, origin).map_err(|e| {
-        let field = match &e {
-            ScenarioError::Invalid { field, .. } => field.as_str(),
-            _ => return anyhow!(e),
-        };
-        if !touching(overrides, field).is_empty() {
-            return anyhow!(rule_error("--set", overrides, &e));
-        }
-        let own = scenario::from_str(text, origin).err();
-        if own.is_some_and(|own| own.to_string() == e.to_string()) {
-            return anyhow!(e);
-        }
-        let with: Vec<String> = overrides
-            .iter()
-            .map(|o| format!("--set {}", o.brief()))
-            .collect();
-        anyhow!("{e} (with {})", with.join(" "))
-    })
 }
 
 /// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.

@@ -141,6 +141,7 @@ fn stop_hooks(limit: usize) -> MultiverseHooks {
         sweep: SweepHooks {
             trial_observer: None,
             on_journaled: Some(Arc::new(move |_, _| again())),
+            stop: None,
         },
         universe_done: None,
     }

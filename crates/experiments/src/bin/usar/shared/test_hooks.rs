@@ -32,6 +32,7 @@ pub fn test_hooks(fail: Vec<(String, u32)>, stop_after: Option<usize>) -> SweepH
     SweepHooks {
         trial_observer,
         on_journaled,
+        stop: None,
     }
 }
 

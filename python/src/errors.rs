@@ -1,0 +1,41 @@
+//! The exceptions of the native module and the conversion of library errors into Python
+//! exceptions: a bad scenario or argument is a `ValueError` with the library's one-line
+//! message, a failed trial a `TrialError`, a grouping method's bad answer a `GroupingError`.
+
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+
+pyo3::create_exception!(
+    _usar,
+    GroupingError,
+    PyValueError,
+    "A grouping method's answer broke a rule: not one group per task, a robot in no group or \
+     in two, an unknown id, or a kind's quota not met. The message names the rule."
+);
+
+pyo3::create_exception!(
+    _usar,
+    TrialError,
+    PyRuntimeError,
+    "A trial failed while it ran (a grouping method that raised or failed). In a sweep the \
+     other trials still ran; the message lists the failed ones."
+);
+
+/// A `ValueError` with `e`'s one-line message (anyhow's `{:#}`: context and cause).
+pub fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(one_line(&e.to_string()))
+}
+
+/// A `ValueError` from an anyhow error, its whole chain on one line.
+pub fn anyhow_value_error(e: &anyhow::Error) -> PyErr {
+    PyValueError::new_err(one_line(&format!("{e:#}")))
+}
+
+/// `text` on one line: line breaks become spaces.
+pub fn one_line(text: &str) -> String {
+    text.split(['\n', '\r'])
+        .map(str::trim_end)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ")
+}

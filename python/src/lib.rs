@@ -1,0 +1,38 @@
+//! `usar._usar`: the native module of the Python package `usar` (PyO3). It wraps the library
+//! crates (rne-core, usar-sim, experiments) and nothing else: the Python API, its docstrings
+//! and its argument checks for Python types live in `python/usar/` (see docs/python.md).
+//!
+//! - [`scenario`]: `Scenario` (load, from_ron, set, to_ron, check);
+//! - [`run`]: one trial, as `usar run --json` writes it;
+//! - [`sweep`]: a sweep in memory or into a folder, as `usar sweep` runs it;
+//! - [`py_method`]: a grouping method written in Python, called once per round;
+//! - [`core_fns`]: RNE trust and the built-in grouping methods as functions;
+//! - [`detached`]: running work with the GIL released while watching for Ctrl-C;
+//! - [`errors`]: the exception types and the conversion of library errors.
+
+use pyo3::prelude::*;
+
+pub mod check_data;
+pub mod core_fns;
+pub mod detached;
+pub mod errors;
+pub mod py_method;
+pub mod ron_value;
+pub mod run;
+pub mod scenario;
+pub mod sweep;
+
+/// The native module `usar._usar`.
+#[pymodule]
+fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<scenario::Scenario>()?;
+    m.add("GroupingError", py.get_type::<errors::GroupingError>())?;
+    m.add("TrialError", py.get_type::<errors::TrialError>())?;
+    m.add_function(wrap_pyfunction!(run::run_trial, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::run_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
+    m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
+    m.add("METHOD_NAMES", rne_core::grouping::METHOD_NAMES.to_vec())?;
+    Ok(())
+}

@@ -1,0 +1,96 @@
+//! `usar.run`: one trial, run as `usar run` runs it (the same builder, seed and length), its
+//! result returned as the JSON of `usar run --json` (`TrialJson`), which the Python side reads
+//! into a `TrialResult`.
+
+use std::cell::Cell;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rne_core::grouping::GroupingMethod;
+use usar_sim::mission::{MissionError, Simulation};
+
+use experiments::trial_json::TrialJson;
+
+use crate::detached::run_detached;
+use crate::errors::{TrialError, value_error};
+use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};
+use crate::scenario::Scenario;
+
+/// Runs one trial; returns `usar run --json`'s JSON text.
+///
+/// # Errors
+/// `ValueError` for an unknown method or a bad length; the Python method's own exception or a
+/// `GroupingError` for its bad answer; `TrialError` for another failure; `KeyboardInterrupt`.
+#[pyfunction]
+#[pyo3(signature = (scenario, method, trial = 0, duration_s = None, seed = None))]
+pub fn run_trial(
+    py: Python<'_>,
+    scenario: &Scenario,
+    method: MethodArg,
+    trial: u32,
+    duration_s: Option<f64>,
+    seed: Option<u64>,
+) -> PyResult<String> {
+    if seed.is_some() && trial != 0 {
+        return Err(PyValueError::new_err(
+            "give trial or seed, not both (a seed is used as is and names no trial)",
+        ));
+    }
+    let s = scenario.inner();
+    let first_error = FirstError::default();
+    let python = matches!(method, MethodArg::Python(_));
+    let mut builder = Simulation::builder(s).trial(trial);
+    builder = match method {
+        MethodArg::Name(name) => builder.method_named(&name),
+        MethodArg::Python((name, adapter)) => {
+            let m = PyMethod {
+                name,
+                adapter: Arc::new(adapter),
+                trial,
+                seed: seed.unwrap_or_else(|| usar_sim::mission::trial_seed(s.sim().seed, trial)),
+                round: Cell::new(0),
+                first_error: first_error.clone(),
+            };
+            builder.method(Box::new(m) as Box<dyn GroupingMethod>)
+        }
+    };
+    if let Some(seed) = seed {
+        builder = builder.seed(seed);
+    }
+    if let Some(d) = duration_s {
+        builder = builder.duration_s(d);
+    }
+    let stop = Arc::new(AtomicBool::new(false));
+    let work = || -> Result<Option<String>, MissionError> {
+        let mut sim = builder.build()?;
+        let mut tracker = PositionTracker;
+        if python {
+            usar_sim::mission::StepObserver::on_start(&mut tracker, &sim);
+        } else {
+            clear_positions();
+        }
+        while !sim.is_finished() {
+            if stop.load(Ordering::SeqCst) {
+                return Ok(None);
+            }
+            sim.step()?;
+            if python {
+                usar_sim::mission::StepObserver::on_step(&mut tracker, &sim);
+            }
+        }
+        let json = serde_json::to_string(&TrialJson::of(&sim.result()));
+        Ok(Some(json.unwrap_or_default()))
+    };
+    let outcome = run_detached(py, &stop, work, |_| Ok(()))?;
+    if let Some(e) = first_error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    match outcome {
+        Ok(Some(json)) => Ok(json),
+        Ok(None) => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err("")),
+        Err(e @ (MissionError::Method(_) | MissionError::Duration(_))) => Err(value_error(e)),
+        Err(e) => Err(TrialError::new_err(crate::errors::one_line(&e.to_string()))),
+    }
+}

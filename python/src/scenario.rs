@@ -1,0 +1,174 @@
+//! `usar.Scenario`: a validated scenario with the RON source it came from, edited by field
+//! path (`set`, `update`: the paths and values of `usar sweep --vary` and `usar check --set`),
+//! written back as RON (`to_ron`, as `usar check --print`) and summarised as data (`check`).
+
+use std::path::PathBuf;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use usar_sim::scenario::{self as sc, ScenarioSpec, path_text};
+
+use experiments::spec_ron::spec_to_ron;
+use experiments::vary::{Override, apply_overrides, brief, validate_overridden};
+
+use crate::errors::{anyhow_value_error, value_error};
+use crate::ron_value::ron_text;
+
+/// A validated scenario (see `usar/_usar.pyi` for the Python docstrings).
+#[pyclass(module = "usar", frozen)]
+#[derive(Clone)]
+pub struct Scenario {
+    /// The RON source it was read from (errors point into it).
+    text: String,
+    /// The file's path as errors name it, or `<string>` for `from_ron`.
+    origin: String,
+    /// The path it was loaded from (the folder of a `report.targets` file).
+    path: PathBuf,
+    /// Every `set` so far, in order.
+    overrides: Vec<Override>,
+    /// The source's spec with the overrides applied.
+    spec: ScenarioSpec,
+    /// The validated scenario.
+    scenario: sc::Scenario,
+}
+
+impl Scenario {
+    /// The validated scenario.
+    pub fn inner(&self) -> &sc::Scenario {
+        &self.scenario
+    }
+
+    /// The path it was loaded from (`<string>` for one made from text).
+    pub fn path(&self) -> &std::path::Path {
+        &self.path
+    }
+
+    fn from_text(text: String, origin: String, path: PathBuf) -> PyResult<Self> {
+        let spec = sc::parse_spec(&text, &origin).map_err(value_error)?;
+        let scenario = sc::validate_in_source(&spec, &text, &origin).map_err(value_error)?;
+        Ok(Self {
+            text,
+            origin,
+            path,
+            overrides: Vec::new(),
+            spec,
+            scenario,
+        })
+    }
+
+    /// A copy with `more` overrides applied after the earlier ones, validated once.
+    fn with(&self, more: Vec<Override>) -> PyResult<Self> {
+        let mut overrides = self.overrides.clone();
+        overrides.extend(more);
+        let base = sc::parse_spec(&self.text, &self.origin).map_err(value_error)?;
+        let spec = apply_overrides(&base, &overrides)
+            .map_err(|(i, e)| value_error(format!("set {}: {e}", overrides[i].brief())))?;
+        let scenario = validate_overridden(&spec, &self.text, &self.origin, "set", &overrides)
+            .map_err(value_error)?;
+        Ok(Self {
+            text: self.text.clone(),
+            origin: self.origin.clone(),
+            path: self.path.clone(),
+            overrides,
+            spec,
+            scenario,
+        })
+    }
+}
+
+/// One `FIELD=VALUE` override from a path and a Python value.
+fn override_of(path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
+    let ron = ron_text(value).map_err(|e| value_error(format!("set {path}: {e}")))?;
+    let arg = format!("{path}={ron}");
+    Override::parse(&arg).map_err(|e| value_error(format!("set {}: {e}", brief(&arg))))
+}
+
+#[pymethods]
+impl Scenario {
+    /// Reads and validates a scenario file (RON).
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        let text = sc::read_source(&path).map_err(value_error)?;
+        Self::from_text(text, path_text(&path), path)
+    }
+
+    /// Validates a scenario given as RON text; `origin` names it in errors.
+    #[staticmethod]
+    #[pyo3(signature = (text, origin = "<string>"))]
+    fn from_ron(text: String, origin: &str) -> PyResult<Self> {
+        Self::from_text(text, origin.to_string(), PathBuf::from(origin))
+    }
+
+    /// A copy with one field set (validated at once).
+    fn set(&self, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
+        self.with(vec![override_of(path, value)?])
+    }
+
+    /// A copy with several fields set in order, validated once at the end.
+    fn update(&self, fields: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let more = fields
+            .iter()
+            .map(|(k, v)| override_of(&k.extract::<String>()?, &v))
+            .collect::<PyResult<Vec<_>>>()?;
+        self.with(more)
+    }
+
+    /// The scenario as RON, every field written out (as `usar check --print`).
+    fn to_ron(&self) -> PyResult<String> {
+        let hash = experiments::fingerprint::scenario_hash(&self.scenario)
+            .map_err(|e| anyhow_value_error(&e))?;
+        let mut head = format!("{}, scenario hash {hash}", self.origin);
+        if !self.overrides.is_empty() {
+            let sets: Vec<String> = self.overrides.iter().map(ToString::to_string).collect();
+            head = format!(
+                "{} with {}, scenario hash {hash}",
+                self.origin,
+                sets.join(", ")
+            );
+        }
+        spec_to_ron(&self.spec, &[head]).map_err(|e| anyhow_value_error(&e))
+    }
+
+    /// What `usar check` prints, as a dict.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        crate::check_data::summary(py, &self.scenario)
+    }
+
+    /// The overrides applied so far, as `FIELD=VALUE` texts.
+    #[getter]
+    fn overrides<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        PyList::new(py, self.overrides.iter().map(ToString::to_string))
+    }
+
+    /// The scenario's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.scenario.name().to_string()
+    }
+
+    /// The origin errors name (the file's path, or `<string>`).
+    #[getter]
+    fn origin(&self) -> String {
+        self.origin.clone()
+    }
+
+    /// The task names, in the scenario's order.
+    #[getter]
+    fn task_names(&self) -> Vec<String> {
+        self.scenario.task_names()
+    }
+
+    fn __repr__(&self) -> String {
+        let sets: Vec<String> = self.overrides.iter().map(ToString::to_string).collect();
+        let with = if sets.is_empty() {
+            String::new()
+        } else {
+            format!(" with {}", sets.join(", "))
+        };
+        format!(
+            "<usar.Scenario {} from {}{with}>",
+            self.scenario.name(),
+            self.origin
+        )
+    }
+}

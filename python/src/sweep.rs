@@ -1,0 +1,224 @@
+//! `usar.sweep`: the trials of `usar sweep` (the same `SweepConfig`, seeds, thread pool and
+//! order), in memory or, with `out`, into a folder with the journal and every file
+//! `usar sweep` writes (`write_outputs`). Returns the bytes of `trials_long.csv`, which the
+//! Python side reads into a pandas DataFrame.
+
+use std::cell::Cell;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::prelude::*;
+use rne_core::grouping::{GroupingMethod, METHOD_NAMES};
+use usar_sim::mission::TrialResult;
+
+use experiments::analysis::Analysis;
+use experiments::calibration::ReportOptions;
+use experiments::csv_tables::trials_long_csv;
+use experiments::metrics::{Metric, Quantity, Scope};
+use experiments::output::write_outputs;
+use experiments::sweep::{
+    Failure, MethodFactory, SweepConfig, TrialObserverFactory, run_in_memory,
+};
+
+use crate::detached::run_detached;
+use crate::errors::{TrialError, anyhow_value_error, value_error};
+use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};
+use crate::scenario::Scenario;
+
+/// The Python methods of a sweep by name.
+type PyMethods = HashMap<String, Arc<Py<PyAny>>>;
+
+/// The sweep's methods: names for `SweepConfig::methods` and the Python ones by name.
+fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)> {
+    let mut names = Vec::new();
+    let mut python = PyMethods::new();
+    for m in methods {
+        match m {
+            MethodArg::Name(n) => names.push(n),
+            MethodArg::Python((n, adapter)) => {
+                let lower = n.trim().to_ascii_lowercase().replace('-', "_");
+                if METHOD_NAMES.contains(&lower.as_str()) {
+                    return Err(PyValueError::new_err(format!(
+                        "methods: a Python method may not be named {n:?}, a built-in's name"
+                    )));
+                }
+                if python.insert(n.clone(), Arc::new(adapter)).is_some() {
+                    return Err(PyValueError::new_err(format!(
+                        "methods: two Python methods are named {n:?}"
+                    )));
+                }
+                names.push(n);
+            }
+        }
+    }
+    Ok((names, python))
+}
+
+/// The factory: Python methods by name, the built-ins otherwise.
+fn factory(python: &PyMethods, first_error: &FirstError) -> MethodFactory {
+    let (python, first_error) = (python.clone(), first_error.clone());
+    MethodFactory::new(move |name, model, ctx| match python.get(name) {
+        Some(adapter) => Ok(Box::new(PyMethod {
+            name: name.to_string(),
+            adapter: adapter.clone(),
+            trial: ctx.trial,
+            seed: ctx.seed,
+            round: Cell::new(0),
+            first_error: first_error.clone(),
+        }) as Box<dyn GroupingMethod>),
+        None => MethodFactory::builtin().build(name, model, ctx),
+    })
+}
+
+/// A position tracker for the trials of Python methods (by display name).
+fn tracker(python: &PyMethods) -> TrialObserverFactory {
+    let names: Vec<String> = python.keys().cloned().collect();
+    Arc::new(move |key| {
+        if names.contains(&key.method) {
+            Some(Box::new(PositionTracker) as Box<dyn usar_sim::mission::StepObserver>)
+        } else {
+            clear_positions();
+            None
+        }
+    })
+}
+
+/// The checks of `usar sweep`'s options, in the Python arguments' names.
+fn check_args(trials: u32, threads: Option<usize>, duration_s: Option<f64>) -> PyResult<()> {
+    if trials == 0 {
+        return Err(PyValueError::new_err("trials must be at least 1"));
+    }
+    if threads == Some(0) {
+        return Err(PyValueError::new_err("threads must be at least 1"));
+    }
+    if let Some(d) = duration_s
+        && !(d.is_finite() && d > 0.0)
+    {
+        return Err(PyValueError::new_err(format!(
+            "duration_s must be a finite number of seconds > 0, not {d}"
+        )));
+    }
+    Ok(())
+}
+
+/// What a sweep gave: its successful trials (trials.csv order) and failures, or `None` when
+/// stopped.
+type Ran = Option<(Vec<TrialResult>, Vec<Failure>)>;
+
+/// Runs a sweep; returns `trials_long.csv`'s bytes. `progress(done, total)` is called about
+/// every 25 ms from the calling thread.
+///
+/// # Errors
+/// `ValueError` for bad arguments or a journal that cannot be resumed; the first Python
+/// method's exception or `GroupingError`; `TrialError` listing failed trials (with `out`,
+/// after the files are written); `KeyboardInterrupt` on Ctrl-C (with `out`, the finished
+/// trials are in the journal: `resume=True` runs the rest).
+#[pyfunction]
+#[pyo3(signature = (scenario, methods, trials = 10, threads = None, out = None, resume = false,
+    duration_s = None, seed = None, progress = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn run_sweep(
+    py: Python<'_>,
+    scenario: &Scenario,
+    methods: Vec<MethodArg>,
+    trials: u32,
+    threads: Option<usize>,
+    out: Option<PathBuf>,
+    resume: bool,
+    duration_s: Option<f64>,
+    seed: Option<u64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Vec<u8>> {
+    check_args(trials, threads, duration_s)?;
+    if methods.is_empty() {
+        return Err(PyValueError::new_err("methods: give at least one method"));
+    }
+    let (names, python) = methods_of(methods)?;
+    let first_error = FirstError::default();
+    let stop = Arc::new(AtomicBool::new(false));
+    let done = Arc::new(AtomicUsize::new(0));
+    let s = scenario.inner().clone();
+    let mut cfg = SweepConfig {
+        methods: names,
+        method_factory: factory(&python, &first_error),
+        trials,
+        base_seed: seed.unwrap_or(s.sim().seed),
+        duration_s,
+        threads: threads
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from)),
+        resume,
+        progress: false,
+        ..SweepConfig::new(s, scenario.path())
+    };
+    let counter = done.clone();
+    cfg.hooks.on_journaled = Some(Arc::new(move |_, _| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    cfg.hooks.stop = Some(stop.clone());
+    if !python.is_empty() {
+        cfg.hooks.trial_observer = Some(tracker(&python));
+    }
+    let report = match &out {
+        Some(dir) => {
+            cfg.out_dir = dir.clone();
+            Some(
+                ReportOptions::resolve(None, false, &cfg.scenario, &cfg.scenario_path)
+                    .map_err(value_error)?,
+            )
+        }
+        None => None,
+    };
+    let total = cfg.methods.len() * trials as usize;
+    let cfg_ref = &cfg;
+    let stopped = stop.clone();
+    let work = move || -> anyhow::Result<Ran> {
+        let Some(report) = report else {
+            let r = run_in_memory(cfg_ref)?;
+            let cell = r.cells.into_iter().next();
+            return Ok(cell.map(|c| (c.results, c.failures)));
+        };
+        let o = experiments::sweep::run_sweep(cfg_ref)?;
+        if stopped.load(Ordering::SeqCst) {
+            return Ok(None);
+        }
+        let tasks = cfg_ref.scenario.task_names();
+        let mut metrics = vec![Metric::new(Quantity::Rescued, Scope::Total)];
+        metrics.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
+        let analysis = Analysis::with_report(&o, report);
+        write_outputs(cfg_ref, &o, &analysis, &metrics)?;
+        let cell = o.cells.into_iter().next();
+        Ok(cell.map(|c| (c.results, c.failures)))
+    };
+    let tick = |py: Python<'_>| -> PyResult<()> {
+        match &progress {
+            Some(p) => p.call1(py, (done.load(Ordering::SeqCst), total)).map(drop),
+            None => Ok(()),
+        }
+    };
+    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| anyhow_value_error(&e))?;
+    if let Some(e) = first_error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    if stop.load(Ordering::SeqCst) {
+        return Err(PyKeyboardInterrupt::new_err("the sweep was stopped"));
+    }
+    let Some((results, failures)) = ran else {
+        return Err(PyKeyboardInterrupt::new_err("the sweep was stopped"));
+    };
+    if !failures.is_empty() {
+        let list: Vec<String> = failures
+            .iter()
+            .map(|f| format!("{} trial {} ({})", f.method, f.trial, f.message))
+            .collect();
+        return Err(TrialError::new_err(format!(
+            "{} of {total} trials failed: {}",
+            failures.len(),
+            list.join("; ")
+        )));
+    }
+    let tasks = cfg.scenario.task_names();
+    trials_long_csv(&results, &tasks).map_err(|e| anyhow_value_error(&e))
+}

@@ -1,0 +1,142 @@
+"""Every documented bad input raises the documented exception, with a one-line message."""
+
+import pytest
+
+import usar
+from conftest import PAPER
+
+
+def one_line(e):
+    text = str(e.value)
+    assert "\n" not in text, text
+    return text
+
+
+def test_a_broken_file_is_a_value_error_at_its_line_and_field(tmp_path):
+    bad = tmp_path / "bad.ron"
+    bad.write_text(PAPER.read_text().replace("max_speed_m_per_s", "max_sped_m_per_s", 1))
+    with pytest.raises(ValueError) as e:
+        usar.Scenario.load(str(bad))
+    text = one_line(e)
+    assert text.startswith(f"{bad}:"), text
+    assert "did you mean `max_speed_m_per_s`?" in text
+
+
+def test_from_ron_names_its_origin_line_and_column():
+    text = PAPER.read_text().replace("count: 6", "count: 5", 1)
+    with pytest.raises(ValueError) as e:
+        usar.Scenario.from_ron(text, "team.ron")
+    msg = one_line(e)
+    assert msg.startswith("team.ron:") and "kinds[0].quota" in msg
+    line, col = msg.split(":")[1:3]
+    assert line.isdigit() and col.isdigit()
+
+
+def test_a_missing_file_is_a_value_error(tmp_path):
+    with pytest.raises(ValueError) as e:
+        usar.Scenario.load(str(tmp_path / "nowhere.ron"))
+    assert "nowhere.ron" in one_line(e)
+
+
+@pytest.mark.parametrize(
+    "path,value,expected",
+    [
+        ("kinds[0].max_speed_m_per_s", -1.0, "set kinds[0].max_speed_m_per_s=-1.0: kinds[0].max_speed_m_per_s:"),
+        ("kinds[9].count", 1, "set kinds[9].count=1:"),
+        ("mission.no_such_field", 1, "set mission.no_such_field=1:"),
+        ("mission.duration_s", float("nan"), "set mission.duration_s: expected a finite number"),
+        ("mission.duration_s", {"a": 1}, "set mission.duration_s: no RON form"),
+    ],
+)
+def test_a_bad_set_is_a_one_line_value_error(paper, path, value, expected):
+    with pytest.raises(ValueError) as e:
+        paper.set(path, value)
+    assert one_line(e).startswith(expected), str(e.value)
+
+
+def test_a_set_that_breaks_a_file_rule_points_into_the_file(paper):
+    # As `usar check --set`: the rule's place in the file, and the override it holds with.
+    with pytest.raises(ValueError) as e:
+        paper.set("kinds[0].count", 7)
+    assert one_line(e) == (
+        f"{PAPER}:26:13: kinds[0].quota: hard 3 + easy 3 = 6 but count is 7 "
+        "(with set kinds[0].count=7)"
+    )
+
+
+def test_bad_run_arguments(paper):
+    with pytest.raises(ValueError, match="unknown grouping method|rne, dis, eng, hp_dis"):
+        usar.run(paper, "nope", duration_s=5)
+    with pytest.raises(ValueError, match="duration_s must be"):
+        usar.run(paper, duration_s=-1)
+    with pytest.raises(ValueError, match="trial must be"):
+        usar.run(paper, trial=-1)
+    with pytest.raises(ValueError, match="give trial or seed"):
+        usar.run(paper, trial=2, seed=5)
+    with pytest.raises(TypeError, match="scenario"):
+        usar.run(42)
+    with pytest.raises(TypeError, match="method"):
+        usar.run(paper, 3.5)
+
+
+def test_bad_sweep_arguments(paper):
+    with pytest.raises(ValueError, match="trials must be"):
+        usar.sweep(paper, trials=0)
+    with pytest.raises(ValueError, match="threads must be"):
+        usar.sweep(paper, threads=0, trials=1)
+    with pytest.raises(ValueError, match="unknown grouping method|rne, dis, eng, hp_dis"):
+        usar.sweep(paper, methods=["rne", "bogus"], trials=1, duration_s=5)
+    with pytest.raises(ValueError, match="built-in"):
+        usar.sweep(paper, methods=[lambda r: r, _named("rne")], trials=1, duration_s=5)
+
+
+def _named(name):
+    def f(request):
+        return usar.dis(request)
+
+    f.__name__ = name
+    return f
+
+
+@pytest.mark.parametrize(
+    "answer,rule",
+    [
+        (lambda r: [[x.id for x in r.robots]], "1 groups for 2 tasks"),
+        (lambda r: [[0, 0], list(range(1, 12))], "assigned more than once"),
+        (lambda r: [[99], list(range(12))], "not in the team"),
+        (lambda r: [[], list(range(11))], "is not assigned"),
+        (lambda r: [list(range(6)), list(range(6, 12))], "quotas are"),
+        (lambda r: "hard", "one list of robot ids per task"),
+        (lambda r: [["a"], []], "robot ids must be integers"),
+        (lambda r: {"medium": []}, "unknown task 'medium'"),
+    ],
+)
+def test_a_bad_answer_is_a_grouping_error_naming_the_rule(paper, answer, rule):
+    with pytest.raises(usar.GroupingError, match=rule):
+        usar.run(paper, answer, duration_s=5)
+    with pytest.raises(usar.GroupingError, match=rule):
+        usar.sweep(paper, methods=[answer], trials=2, duration_s=5)
+
+
+def test_a_methods_own_exception_reaches_the_caller(paper):
+    def broken(request):
+        raise KeyError("no such robot")
+
+    with pytest.raises(KeyError, match="no such robot"):
+        usar.run(paper, broken, duration_s=5)
+    with pytest.raises(KeyError, match="no such robot"):
+        usar.sweep(paper, methods=["dis", broken], trials=2, duration_s=5)
+
+
+def test_trust_and_grouping_functions_check_their_input():
+    # Paper Example 1 (weights [6, 4, 2]): 0.00373 nats.
+    t = usar.trust([6, 4, 2], [86, 120, 30], [20, 30, 10])
+    assert t == pytest.approx(0.003725, abs=1e-6)
+    with pytest.raises(ValueError):
+        usar.trust([6, 4], [86, 120, 30], [20, 30, 10])
+    with pytest.raises(ValueError):
+        usar.trust([6, 4, 2], [-1, 120, 30], [20, 30, 10])
+    with pytest.raises(ValueError, match="1-D"):
+        usar.trust([[6, 4, 2]], [86, 120, 30], [20, 30, 10])
+    with pytest.raises(TypeError, match="GroupingRequest"):
+        usar.dis({"robots": []})

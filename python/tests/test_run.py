@@ -1,0 +1,49 @@
+"""usar.run equals `usar run --json`, field for field and bit for bit."""
+
+import json
+import subprocess
+
+import pytest
+
+import usar
+from conftest import PAPER, SHORT_S
+
+
+def cli_run(usar_cli, tmp_path, *args):
+    out = tmp_path / "trial.json"
+    subprocess.run(
+        [usar_cli, "run", str(PAPER), *args, "--json", str(out)],
+        check=True,
+        capture_output=True,
+    )
+    return json.loads(out.read_text())
+
+
+@pytest.mark.parametrize("method,trial", [("rne", 0), ("hp_dis", 3)])
+def test_run_equals_the_cli_json(paper, usar_cli, tmp_path, method, trial):
+    want = cli_run(
+        usar_cli, tmp_path, "--method", method, "--trial", str(trial), "--duration", str(SHORT_S)
+    )
+    got = usar.run(paper, method=method, trial=trial, duration_s=SHORT_S)
+    assert got.to_dict() == want
+    assert got.method == want["method"]
+    assert got.by_task["hard"].rescued == want["by_task"]["hard"]["rescued"]
+    assert [r.to_dict() for r in got.robots] == want["robots"]
+    assert got.robots[0].final_energy_pct == want["robots"][0]["final_energy_pct"]
+    assert len(got.rounds) == len(want["rounds"])
+
+
+def test_a_seed_is_used_as_is(paper, usar_cli, tmp_path):
+    want = cli_run(usar_cli, tmp_path, "--method", "eng", "--seed", "7", "--duration", "10")
+    got = usar.run(paper, "eng", seed=7, duration_s=10)
+    assert got.to_dict() == want
+    assert got.seed == 7
+
+
+def test_result_attributes_add_up(paper):
+    r = usar.run(paper, "dis", duration_s=SHORT_S)
+    assert r.tasks == ["hard", "easy"]
+    assert r.total.rescued == sum(r.rescued) == r.rescued_total
+    assert r.total.energy_spent_pct == pytest.approx(sum(r.energy_spent_pct), abs=1e-9)
+    assert all(0.0 <= robot.final_energy_pct <= 100.0 for robot in r.robots)
+    assert all(w.end_s >= w.start_s for w in r.rounds)

@@ -1,0 +1,54 @@
+"""Scenarios: load, text round trip, edits by field path and the check summary."""
+
+import pytest
+
+import usar
+from conftest import PAPER
+
+
+def test_round_trip_through_ron_keeps_the_scenario(paper):
+    text = paper.to_ron()
+    again = usar.Scenario.from_ron(text, "copy.ron")
+    assert again.check() == paper.check()
+    # The text differs only in its first comment (the origin).
+    assert again.to_ron().splitlines()[1:] == text.splitlines()[1:]
+    assert paper.check()["hash"] == again.check()["hash"]
+
+
+def test_from_ron_of_the_file_is_load(paper):
+    same = usar.Scenario.from_ron(PAPER.read_text(), "paper.ron")
+    assert same.check() == paper.check()
+
+
+def test_check_is_the_summary_as_data(paper):
+    c = paper.check()
+    assert c["name"] == "paper"
+    assert [k["name"] for k in c["kinds"]] == ["carrier", "supplier", "observer"]
+    assert [k["count"] for k in c["kinds"]] == [6, 4, 2]
+    assert c["kinds"][0]["quota"] == {"hard": 3, "easy": 3}
+    assert [t["name"] for t in c["tasks"]] == ["hard", "easy"]
+    assert c["tasks"][0]["rank"] == 1
+    assert len(c["robots"]) == 12
+    assert c["steps"] > 0 and c["dt_s"] > 0
+    assert len(c["hash"]) > 8
+
+
+def test_set_returns_a_validated_copy(paper):
+    short = paper.set("mission.duration_s", 30.0)
+    assert short.check()["duration_s"] == pytest.approx(30.0, abs=1e-12)
+    assert paper.check()["duration_s"] != short.check()["duration_s"]
+    assert short.overrides == ["mission.duration_s=30.0"]
+    eight = paper.update({"kinds[0].count": 8, "kinds[0].quota.hard": 5})
+    assert eight.check()["kinds"][0]["count"] == 8
+    assert len(eight.check()["robots"]) == 14
+    # Variants and tuples as RON.
+    moved = paper.set("tasks.hard.goal_m", (10.0, 50.0)).set("kinds[2].locomotion", "Ground")
+    assert moved.check()["tasks"][0]["goal_m"] == (10.0, 50.0)
+    assert moved.check()["kinds"][2]["locomotion"] == "ground"
+    assert "tasks.hard.goal_m=(10.0, 50.0)" in moved.to_ron().splitlines()[0]
+
+
+def test_set_and_run_agree_with_a_set_scenario(paper):
+    via_set = usar.run(paper.set("mission.duration_s", 10.0), "dis")
+    via_arg = usar.run(paper, "dis", duration_s=10.0)
+    assert via_set.to_dict() == via_arg.to_dict()

@@ -1,0 +1,133 @@
+"""usar.sweep equals `usar sweep`'s trials_long.csv (same rows, values and order), in memory
+and with `out` (the same files), and a Python method runs through a sweep."""
+
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import usar
+from conftest import PAPER, SHORT_S
+
+
+def cli_sweep(usar_cli, out, methods, trials, threads):
+    subprocess.run(
+        [usar_cli, "sweep", str(PAPER), "--methods", ",".join(methods), "--trials", str(trials),
+         "--duration", str(SHORT_S), "--threads", str(threads), "--quiet", "--out", str(out)],
+        check=True,
+        capture_output=True,
+    )
+    return usar.read_trials_long(out / "trials_long.csv")
+
+
+def test_sweep_frame_equals_the_cli_trials_long_csv(paper, usar_cli, tmp_path):
+    methods = ["rne", "dis", "eng", "hp_dis"]
+    want = cli_sweep(usar_cli, tmp_path / "cli", methods, 2, 2)
+    got = usar.sweep(paper, methods=methods, trials=2, threads=2, duration_s=SHORT_S)
+    pd.testing.assert_frame_equal(got, want, check_exact=True)
+    assert list(got.columns) == ["scenario", "method", "trial", "seed", "task", "metric", "value"]
+    # Also as plain pandas reads the file (default float parser): same text, same frame.
+    plain = pd.read_csv(tmp_path / "cli" / "trials_long.csv")
+    assert plain.shape == got.shape
+    assert (plain["method"] == got["method"]).all()
+
+
+def test_sweep_with_out_writes_the_cli_files(paper, usar_cli, tmp_path):
+    cli = tmp_path / "cli"
+    cli_sweep(usar_cli, cli, ["rne", "eng"], 2, 1)
+    got = usar.sweep(paper, methods=["rne", "eng"], trials=2, threads=2,
+                     duration_s=SHORT_S, out=tmp_path / "py")
+    for name in ["trials.csv", "trials_long.csv", "summary.csv"]:
+        assert (tmp_path / "py" / name).read_bytes() == (cli / name).read_bytes(), name
+    for name in ["report.md", "fig3a_rescuees.svg", "journal.jsonl"]:
+        assert (tmp_path / "py" / name).exists(), name
+    pd.testing.assert_frame_equal(got, usar.read_trials_long(cli / "trials_long.csv"),
+                                  check_exact=True)
+    # The same call again reads every trial back from the journal.
+    again = usar.sweep(paper, methods=["rne", "eng"], trials=2, duration_s=SHORT_S,
+                       out=tmp_path / "py", resume=True)
+    pd.testing.assert_frame_equal(again, got, check_exact=True)
+
+
+class KMeansNeeds(usar.GroupingMethod):
+    """Per kind, sort robots by the first principal direction of their needs vectors (a
+    one-dimensional k-means split) and deal them to the tasks hardest first."""
+
+    name = "kmeans_needs"
+
+    def group(self, request):
+        groups = {t.name: [] for t in request.tasks}
+        hardest_first = sorted(request.tasks, key=lambda t: t.rank)
+        for kind in {r.kind for r in request.robots}:
+            robots = request.robots_of_kind(kind)
+            needs = np.stack([r.needs for r in robots])
+            centred = needs - needs.mean(axis=0)
+            axis = np.linalg.svd(centred, full_matrices=False)[2][0] if len(robots) > 1 else None
+            score = centred @ axis if axis is not None else np.zeros(len(robots))
+            order = [robots[i] for i in np.argsort(-score, kind="stable")]
+            for task in hardest_first:
+                n = task.quotas[kind]
+                groups[task.name].extend(order[:n])
+                order = order[n:]
+        return groups
+
+
+def random_groups(request):
+    """Each kind's robots shuffled by the trial's generator, then dealt by quota."""
+    rng = request.rng()
+    out = [[] for _ in request.tasks]
+    for k, quota in enumerate(request.quotas):
+        ids = [r.id for r in request.robots if r.kind_index == k]
+        rng.shuffle(ids)
+        for t, n in enumerate(quota):
+            out[t].extend(ids[:n])
+            ids = ids[n:]
+    return out
+
+
+def test_python_methods_run_through_a_sweep_deterministically(paper):
+    methods = ["eng", KMeansNeeds(), random_groups]
+    one = usar.sweep(paper, methods=methods, trials=2, threads=1, duration_s=SHORT_S)
+    two = usar.sweep(paper, methods=methods, trials=2, threads=2, duration_s=SHORT_S)
+    pd.testing.assert_frame_equal(one, two, check_exact=True)
+    assert list(dict.fromkeys(one["method"])) == ["ENG", "kmeans_needs", "random_groups"]
+    rescued = one[(one.metric == "rescued") & (one.task == "total")]
+    assert len(rescued) == 6
+    assert (rescued["value"] >= 0).all()
+
+
+class SameAsEng(usar.GroupingMethod):
+    name = "same_as_eng"
+
+    def group(self, request):
+        return usar.eng(request)
+
+
+def test_a_python_method_giving_engs_answer_gives_engs_numbers(paper):
+    df = usar.sweep(paper, methods=["eng", SameAsEng], trials=2, duration_s=SHORT_S)
+    eng = df[df.method == "ENG"].drop(columns="method").reset_index(drop=True)
+    mine = df[df.method == "same_as_eng"].drop(columns="method").reset_index(drop=True)
+    pd.testing.assert_frame_equal(eng, mine, check_exact=True)
+
+
+def test_requests_carry_the_team(paper):
+    seen = []
+
+    def spy(request):
+        seen.append(request)
+        return usar.dis(request)
+
+    usar.run(paper, spy, duration_s=10)
+    first = seen[0]
+    assert first.round == 0 and first.trial == 0
+    assert len(first.robots) == 12
+    assert first.robots[0].needs.dtype == np.float64
+    assert first.robots[0].role == "Carrier" and first.robots[0].kind == "carrier"
+    assert first.robots[0].position is not None and len(first.robots[0].position) == 2
+    assert 0.0 <= first.robots[0].energy_pct <= 100.0
+    assert [t.name for t in first.tasks] == ["hard", "easy"]
+    assert first.tasks[0].quotas == {"carrier": 3, "supplier": 2, "observer": 1}
+    assert first.needs_matrix().shape[0] == 12
+    assert usar.rne(first) == usar.rne(first)
+    assert sorted(i for g in usar.hp_dis(first) for i in g) == list(range(12))

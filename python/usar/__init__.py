@@ -1,0 +1,55 @@
+"""usar: relative-needs-entropy (RNE) robot-robot trust and USAR multi-robot trials.
+
+The Python face of the rne-usar Rust crates (Yang & Parasuraman, "How Can Robots Trust Each
+Other For Better Cooperation? A Relative Needs Entropy Based Robot-Robot Trust Assessment
+Model", IEEE SMC 2021). Every number comes from the same library code as the ``usar``
+command line: the same scenario and seed give the same results, bit for bit.
+
+- :class:`Scenario`: load (``Scenario.load(path)``, ``Scenario.from_ron(text)``), edit by
+  field path (``scenario.set("kinds[0].count", 8)``), write (``to_ron()``), summarise
+  (``check()``).
+- :func:`run`: one trial -> :class:`TrialResult` (as ``usar run --json``).
+- :func:`sweep`: methods x trials in parallel -> pandas DataFrame (as ``trials_long.csv``).
+- :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
+- :class:`GroupingMethod` or any callable ``group(request) -> list of groups``: a grouping
+  method written in Python, run by :func:`run` and :func:`sweep` once per grouping round.
+
+Units follow the field names: ``_s`` seconds, ``_m`` metres, ``_pct`` percent points.
+Documentation: docs/python.md in the repository.
+"""
+
+from ._usar import METHOD_NAMES, GroupingError, Scenario, TrialError
+from ._grouping import (
+    GroupingMethod,
+    GroupingRequest,
+    Robot,
+    Task,
+    dis,
+    eng,
+    hp_dis,
+    rne,
+)
+from ._results import Record, TrialResult
+from ._api import read_trials_long, run, sweep, trust
+
+__all__ = [
+    "METHOD_NAMES",
+    "GroupingError",
+    "GroupingMethod",
+    "GroupingRequest",
+    "Record",
+    "Robot",
+    "Scenario",
+    "Task",
+    "TrialError",
+    "TrialResult",
+    "dis",
+    "eng",
+    "hp_dis",
+    "read_trials_long",
+    "rne",
+    "run",
+    "sweep",
+    "trust",
+]
+__version__ = "0.1.0"

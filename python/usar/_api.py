@@ -1,0 +1,177 @@
+"""usar.run, usar.sweep and usar.trust: the Python entry points over the native module."""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import sys
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+import pandas as pd
+
+from . import _usar
+from ._grouping import MethodLike, method_arg
+from ._results import TrialResult
+from ._usar import METHOD_NAMES, Scenario
+
+_U64 = 2**64
+
+
+def _scenario(scenario: Any) -> Scenario:
+    if isinstance(scenario, Scenario):
+        return scenario
+    if isinstance(scenario, (str, os.PathLike)):
+        return Scenario.load(os.fspath(scenario))
+    raise TypeError(f"scenario: expected a usar.Scenario or a path, found {type(scenario).__name__}")
+
+
+def _count(name: str, value: Any, minimum: int, maximum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an integer, found {type(value).__name__}")
+    if not minimum <= int(value) < maximum:
+        raise ValueError(f"{name} must be in {minimum}..{maximum - 1}, not {value}")
+    return int(value)
+
+
+def _seconds(value: Any) -> Optional[float]:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+        raise TypeError(f"duration_s: expected seconds as a number, found {type(value).__name__}")
+    d = float(value)
+    if not (np.isfinite(d) and d > 0):
+        raise ValueError(f"duration_s must be a finite number of seconds > 0, not {value}")
+    return d
+
+
+def run(
+    scenario: Union[Scenario, str, os.PathLike],
+    method: MethodLike = "rne",
+    trial: int = 0,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+) -> TrialResult:
+    """Runs one trial, as ``usar run SCENARIO --method M --trial K [--duration D] [--seed S]``.
+
+    ``method``: a built-in name (``rne``, ``dis``, ``eng``, ``hp_dis``), a
+    :class:`usar.GroupingMethod` (instance or subclass) or any callable ``group(request)``.
+    ``trial`` (>= 0) picks the starting team, seed ``trial_seed(sim.seed, trial)``; ``seed``
+    (0 <= seed < 2**64) is used as is instead (give one of them). ``duration_s``: simulated
+    seconds (> 0), default the scenario's ``mission.duration_s`` (rounded up to whole steps).
+
+    Returns a :class:`usar.TrialResult`, equal to ``usar run --json``'s output. The trial
+    runs with the GIL released; a Python method takes it once per grouping round.
+
+    Raises ValueError (unknown method, bad numbers, a scenario file that does not load),
+    TypeError (wrong argument types), :class:`usar.GroupingError` (a Python method's bad
+    answer), the Python method's own exception, :class:`usar.TrialError` (another failure)
+    and KeyboardInterrupt (Ctrl-C).
+    """
+    s = _scenario(scenario)
+    trial = _count("trial", trial, 0, 2**32)
+    seed = None if seed is None else _count("seed", seed, 0, _U64)
+    arg = method_arg(method, s)
+    return TrialResult(json.loads(_usar.run_trial(s, arg, trial, _seconds(duration_s), seed)))
+
+
+def _progress(progress: Optional[bool], total: int) -> tuple:
+    """(callback, closer) of a tqdm bar, or (None, no-op)."""
+    if progress is None:
+        progress = sys.stderr.isatty() or "ipykernel" in sys.modules
+    if not progress:
+        return None, lambda: None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None, lambda: None
+    bar = tqdm(total=total, unit="trial", desc="sweep")
+
+    def update(done: int, _total: int) -> None:
+        if done > bar.n:
+            bar.update(done - bar.n)
+
+    return update, bar.close
+
+
+# pandas before 3.0 parses floats fast but inexactly unless asked; 3.0 parses them exactly
+# by default and deprecates the option.
+_EXACT = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+
+
+def read_trials_long(path: Any) -> pd.DataFrame:
+    """Reads a ``trials_long.csv`` (a path or a binary file) as :func:`usar.sweep` returns
+    it: every float exactly the f64 written (shortest round-trip text)."""
+    return pd.read_csv(path, **_EXACT)
+
+
+def sweep(
+    scenario: Union[Scenario, str, os.PathLike],
+    methods: Optional[Sequence[MethodLike]] = None,
+    trials: int = 10,
+    threads: Optional[int] = None,
+    out: Optional[Union[str, os.PathLike]] = None,
+    resume: bool = False,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+    progress: Optional[bool] = None,
+) -> pd.DataFrame:
+    """Runs every method for ``trials`` trials, as ``usar sweep``, and returns the long table.
+
+    ``methods``: names and/or Python methods (default the four built-ins, in
+    ``usar.METHOD_NAMES`` order). ``trials`` >= 1 per method; trial ``k`` of every method
+    starts from the same team (seed ``trial_seed(seed or sim.seed, k)``). ``threads`` >= 1
+    (default all cores; results do not depend on it). ``duration_s``: simulated seconds per
+    trial (> 0), default ``mission.duration_s``. ``out``: a folder to write what
+    ``usar sweep --out`` writes (journal.jsonl, trials.csv, trials_long.csv, summary.csv,
+    report.md, figures); ``resume=True`` continues its journal. ``progress``: a tqdm bar
+    (default: on a terminal or in a notebook, when tqdm is installed).
+
+    Returns a DataFrame equal to ``trials_long.csv`` read by :func:`usar.read_trials_long`:
+    columns ``scenario, method, trial, seed, task, metric, value``, the same rows in the
+    same order. Trials run in parallel with the GIL released; Ctrl-C stops the sweep
+    (KeyboardInterrupt; with ``out`` the finished trials stay in the journal).
+
+    Raises ValueError, TypeError, :class:`usar.GroupingError` or a Python method's own
+    exception (the first one met), :class:`usar.TrialError` (failed trials, after the others
+    ran) and KeyboardInterrupt.
+    """
+    s = _scenario(scenario)
+    if methods is None:
+        methods = list(METHOD_NAMES)
+    if isinstance(methods, (str, bytes)) or callable(methods):
+        methods = [methods]
+    args = [method_arg(m, s) for m in methods]
+    trials = _count("trials", trials, 1, 2**32)
+    threads = None if threads is None else _count("threads", threads, 1, 2**16)
+    seed = None if seed is None else _count("seed", seed, 0, _U64)
+    folder = None if out is None else os.fspath(out)
+    callback, close = _progress(progress, len(args) * trials)
+    try:
+        data = _usar.run_sweep(
+            s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback
+        )
+    finally:
+        close()
+    return read_trials_long(io.BytesIO(bytes(data)))
+
+
+def trust(
+    weights: Sequence[float], needs_a: Sequence[float], needs_b: Sequence[float]
+) -> float:
+    """Trust of robot A in robot B, nats (paper Eq. 7; Example 1 gives 0.00373).
+
+    ``weights``: one per needs category, > 0; ``needs_a``, ``needs_b``: needs vectors
+    (paper Def. 1) of the same length, >= 0. Lists or 1-D numpy arrays. Raises ValueError
+    for empty, mismatched, negative or non-finite values.
+    """
+    vectors = []
+    for name, v in (("weights", weights), ("needs_a", needs_a), ("needs_b", needs_b)):
+        a = np.asarray(v, dtype=float)
+        if a.ndim != 1:
+            raise ValueError(f"{name}: expected a 1-D vector, found shape {a.shape}")
+        vectors.append([float(x) for x in a])
+    return _usar.trust(*vectors)
+
+

@@ -1,0 +1,102 @@
+"""Type stubs of the native module ``usar._usar`` (Rust, PyO3). Use the ``usar`` package:
+``usar.Scenario`` and the exceptions are these; ``usar.run`` and ``usar.sweep`` wrap the
+functions below."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+METHOD_NAMES: List[str]
+"""The built-in grouping methods, in the default sweep order: rne, dis, eng, hp_dis."""
+
+class GroupingError(ValueError):
+    """A grouping method's answer broke a rule (not one group per task, a robot in no group
+    or two, an unknown id, a kind's quota not met); the message names the rule."""
+
+class TrialError(RuntimeError):
+    """A trial failed while running; in a sweep the others still ran (message lists them)."""
+
+class Scenario:
+    """A validated scenario (RON), immutable: ``set``/``update`` return edited copies.
+
+    Errors are ``ValueError`` with the loader's one-line message
+    ``file:line:col: field.path: message`` (as ``usar check``), or for an edit
+    ``set FIELD=VALUE: field.path: message`` (as ``usar check --set``).
+    """
+
+    @staticmethod
+    def load(path: Union[str, PathLike]) -> Scenario:
+        """Reads and validates a scenario file. ValueError if missing or invalid."""
+    @staticmethod
+    def from_ron(text: str, origin: str = "<string>") -> Scenario:
+        """Validates RON text; ``origin`` names it in errors. ValueError if invalid."""
+    def set(self, path: str, value: Any) -> Scenario:
+        """A copy with the field at ``path`` (any ``usar sweep --vary`` path:
+        ``kinds[0].count``, ``mission.duration_s``, ``tasks.hard.goal_m``,
+        ``radiation_zones[*].radius_m``) set to ``value`` and validated at once. Values:
+        int, float (finite), bool, None, tuple, list, or a str of RON text (``"Aerial"``,
+        ``"Some(3)"``; a string field needs its quotes). ValueError on a bad path or value
+        or a broken rule."""
+    def update(self, fields: Dict[str, Any]) -> Scenario:
+        """A copy with several fields set in order, validated once at the end (e.g. a
+        count and its quota together)."""
+    def to_ron(self) -> str:
+        """The scenario as RON, every field written out (``usar check --print``); reads
+        back as the same scenario."""
+    def check(self) -> Dict[str, Any]:
+        """What ``usar check`` prints, as data: ``name``, ``description``, ``arena``
+        (``width_m``, ``height_m``, ``wall_thickness_m``), ``dt_s``, ``duration_s``,
+        ``simulated_s``, ``steps``, ``seed``, ``control_period_s``, ``kinds`` (``name``,
+        ``role``, ``locomotion``, ``count``, ``quota`` by task, speeds m/s, ranges and
+        radius m, ``carrying_capacity``, ``rescuing_resources``), ``tasks`` (``name``,
+        ``difficulty``, ``rank`` 1 = hardest, ``rescuees``, ``search_area_m``, ``goal_m``,
+        ``drop_off`` ((x, y), r), ``quota`` by kind, ``start_to_goal_m`` (min, max, mean)),
+        ``robots`` (``id``, ``kind``, ``start_m``, ``distance_to_goal_m`` by task),
+        ``rest_stations``, ``debris_rects``, ``debris_circles``, ``radiation_zones``
+        ((x, y), r, dose factor) and ``hash`` (the scenario hash)."""
+    @property
+    def overrides(self) -> List[str]:
+        """The edits applied so far, as ``FIELD=VALUE`` texts, in order."""
+    @property
+    def name(self) -> str:
+        """The scenario's name."""
+    @property
+    def origin(self) -> str:
+        """The path or origin that errors name."""
+    @property
+    def task_names(self) -> List[str]:
+        """Task names, scenario order."""
+
+MethodArg = Union[str, Tuple[str, Callable[[Dict[str, Any]], List[List[int]]]]]
+
+def run_trial(
+    scenario: Scenario,
+    method: MethodArg,
+    trial: int = 0,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+) -> str:
+    """One trial; returns the JSON of ``usar run --json``. Use ``usar.run``."""
+
+def run_sweep(
+    scenario: Scenario,
+    methods: Sequence[MethodArg],
+    trials: int = 10,
+    threads: Optional[int] = None,
+    out: Optional[str] = None,
+    resume: bool = False,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
+) -> bytes:
+    """A sweep; returns the bytes of ``trials_long.csv``. Use ``usar.sweep``."""
+
+def trust(weights: List[float], needs_a: List[float], needs_b: List[float]) -> float:
+    """Trust of A in B, nats (paper Eq. 7). Use ``usar.trust``."""
+
+def builtin_group(
+    name: str,
+    raw: Dict[str, Any],
+    scenario: Optional[Scenario] = None,
+    weights: Optional[List[float]] = None,
+) -> List[List[int]]:
+    """A built-in method's groups for a raw request. Use ``usar.rne`` etc."""
