@@ -14,6 +14,7 @@ use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario::Scenario;
 
 use crate::data::hooks::{SweepHooks, TrialKey};
+use crate::data::limits::{max_threads, sweep_threads};
 use crate::journal::{Journal, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
 use crate::progress_bar::progress_bar;
@@ -28,6 +29,9 @@ pub(crate) struct Runner<'a> {
     pub(crate) progress: bool,
     /// Worker threads (>= 1).
     pub(crate) threads: usize,
+    /// Whether the pool's threads may also run a trial's per-robot phases
+    /// ([`crate::sweep::sweep_threads`]); `false`: each trial on one thread.
+    pub(crate) inside_trials: bool,
 }
 
 /// Steps between two progress-bar updates from a running trial.
@@ -61,6 +65,14 @@ pub(crate) struct CellPlan<'a> {
     pub(crate) step_us: u64,
     /// Steps per trial.
     pub(crate) steps_per_trial: u64,
+}
+
+/// The pool's threads and whether they go inside trials
+/// ([`sweep_threads`](crate::sweep::sweep_threads)) for `jobs` trials of `plans` when
+/// `requested` threads are asked for.
+pub(crate) fn threads_for(requested: usize, plans: &[CellPlan<'_>], jobs: usize) -> (usize, bool) {
+    let largest_team = plans.iter().map(|p| p.scenario.robots().len()).max();
+    sweep_threads(requested, max_threads(), jobs, largest_team.unwrap_or(0))
 }
 
 /// Runs `jobs` on a pool of `runner.threads`, journaling each record as it ends (into
@@ -199,6 +211,7 @@ pub(crate) fn run_trial(
             .duration_s(plan.duration_s)
             .build()
             .map_err(|e| e.to_string())?;
+        sim.set_parallel(runner.inside_trials);
         if let Some(h) = hook.as_mut() {
             h.on_start(&sim);
         }

@@ -146,3 +146,71 @@ fn a_reader_that_goes_away_ends_the_command_quietly() {
     assert_eq!(o.status.code(), Some(141));
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
+
+/// `--threads 0` is a one-line error on every command that simulates one trial.
+#[test]
+fn zero_threads_is_a_one_line_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let page = tmp.path().join("r.html");
+    let svg = tmp.path().join("r.svg");
+    for args in [
+        vec!["run", PAPER, "--duration", "1", "--threads", "0"],
+        vec!["replay", PAPER, "--duration", "1", "--threads", "0"],
+        vec![
+            "render",
+            PAPER,
+            "--trace",
+            "--duration",
+            "1",
+            "--threads",
+            "0",
+        ],
+    ] {
+        let mut args: Vec<&str> = args;
+        match args[0] {
+            "replay" => args.extend(["--out", page.to_str().unwrap()]),
+            "render" => args.extend(["--out", svg.to_str().unwrap()]),
+            _ => {}
+        }
+        let o = usar(&args);
+        assert!(!o.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(
+            err.trim_end(),
+            "error: --threads must be at least 1",
+            "{args:?}"
+        );
+    }
+}
+
+/// A team above the parallel threshold (`swarm-1000.ron`, 1,000 robots) writes the same
+/// result, byte for byte, on one and on two threads.
+#[test]
+fn a_large_team_runs_the_same_on_one_and_two_threads() {
+    let swarm = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenarios/swarm-1000.ron"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let json = |threads: &str| {
+        let path = tmp.path().join(format!("t{threads}.json"));
+        let o = usar([
+            "run",
+            swarm,
+            "--method",
+            "dis",
+            "--duration",
+            "6",
+            "--threads",
+            threads,
+            "--json",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(&path).unwrap()
+    };
+    assert!(
+        json("1") == json("2"),
+        "1 and 2 threads wrote different results"
+    );
+}

@@ -183,6 +183,7 @@ impl<'a> Evaluator<'a> {
             hooks: &hooks,
             progress: false,
             threads: self.pool.current_num_threads(),
+            inside_trials: false,
         };
         let outcomes: Vec<Result<TrialResult, String>> = self.pool.install(|| {
             use rayon::prelude::*;

@@ -52,8 +52,10 @@ pub struct SweepConfig {
     /// Simulated length of each trial, seconds (> 0); `None`: each cell's
     /// `mission.duration_s`.
     pub duration_s: Option<f64>,
-    /// Worker threads (>= 1); a sweep uses at most [`max_threads`](crate::sweep::max_threads) and never more than it
-    /// has jobs to run ([`effective_threads`](crate::sweep::effective_threads)).
+    /// Worker threads (>= 1); a sweep uses at most [`max_threads`](crate::sweep::max_threads): trials in
+    /// parallel, one thread each, and with fewer trials than threads, for a team of at least
+    /// 512 robots, the threads left over inside the trials, else no more threads than trials
+    /// ([`sweep_threads`](crate::sweep::sweep_threads)).
     pub threads: usize,
     /// Output folder; the journal is at its top.
     pub out_dir: PathBuf,

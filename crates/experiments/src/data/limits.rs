@@ -19,6 +19,46 @@ pub fn effective_threads(requested: usize, max: usize, jobs: usize) -> usize {
     requested.min(max).min(jobs).max(1)
 }
 
+#[cfg(test)]
+mod sweep_threads_tests {
+    use super::*;
+
+    #[test]
+    fn threads_go_inside_trials_only_when_trials_are_fewer_than_threads() {
+        let big = usar_sim::world::PARALLEL_MIN_ROBOTS;
+        assert_eq!(sweep_threads(2, 8, 40, big), (2, false));
+        assert_eq!(sweep_threads(2, 8, 2, big), (2, false));
+        assert_eq!(sweep_threads(4, 8, 1, big), (4, true));
+        assert_eq!(sweep_threads(16, 8, 3, big), (8, true));
+        assert_eq!(sweep_threads(0, 8, 3, big), (1, false));
+        // A small team: one thread per trial, never more threads than trials.
+        assert_eq!(sweep_threads(4, 8, 1, big - 1), (1, false));
+        assert_eq!(sweep_threads(16, 8, 3, 12), (3, false));
+    }
+}
+
+/// The threads of a sweep of `jobs` trials whose largest team has `largest_team` robots, when
+/// `requested` are asked for (capped at `max`), and whether threads go inside trials. The
+/// rule: with at least as many trials as threads, trials run in parallel, one thread each
+/// (`false`). With fewer trials, a team of at least [`usar_sim::world::PARALLEL_MIN_ROBOTS`]
+/// robots gets every requested thread: every trial runs at once and the threads left over
+/// join the trials' per-robot phases (`true`); a smaller team gets one thread per trial
+/// ([`effective_threads`], `false`). The results are bit-identical either way: this is only
+/// a choice of speed.
+pub fn sweep_threads(
+    requested: usize,
+    max: usize,
+    jobs: usize,
+    largest_team: usize,
+) -> (usize, bool) {
+    let pool = requested.min(max).max(1);
+    if jobs < pool && largest_team >= usar_sim::world::PARALLEL_MIN_ROBOTS {
+        (pool, true)
+    } else {
+        (effective_threads(requested, max, jobs), false)
+    }
+}
+
 /// Most trials one sweep may hold: grid cells x methods x trials, all shards together
 /// (1,000,000). A sweep keeps a few hundred bytes per trial in memory (its job list, records
 /// and tables), so the limit keeps a mistyped `--trials` a one-line error instead of an

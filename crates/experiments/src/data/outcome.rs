@@ -71,7 +71,7 @@ pub struct SweepOutcome {
     pub wall_s: f64,
     /// Sum of the wall-clock times of this invocation's trials, seconds (CPU-ish time).
     pub trial_wall_sum_s: f64,
-    /// Threads used ([`effective_threads`](crate::sweep::effective_threads)).
+    /// Threads used ([`sweep_threads`](crate::sweep::sweep_threads)).
     pub threads: usize,
     /// The lock on the output folder ([`crate::lock`]), held while this outcome (or a clone of
     /// it) lives, so that the files written from it are written under the same lock.

@@ -8,9 +8,8 @@ use usar_sim::mission::TrialResult;
 
 use crate::data::config::SweepConfig;
 use crate::data::jobs::job_list;
-use crate::data::limits::{effective_threads, max_threads};
 use crate::data::outcome::{CellOutcome, Failure};
-use crate::executor::{Job, Runner, execute};
+use crate::executor::{Job, Runner, execute, threads_for};
 use crate::journal::SweepHeader;
 use crate::sweep::checks::check_config;
 use crate::sweep::header::header_of;
@@ -29,7 +28,7 @@ pub struct SweepResults {
     /// method order then trial, the order of the rows of `trials.csv`. Every trial is counted
     /// in [`CellOutcome::ran`]; [`CellOutcome::reused`] is 0.
     pub cells: Vec<CellOutcome>,
-    /// Worker threads used ([`effective_threads`](crate::sweep::effective_threads)).
+    /// Worker threads used ([`sweep_threads`](crate::sweep::sweep_threads)).
     pub threads: usize,
     /// Wall-clock time of the trials, seconds.
     pub wall_s: f64,
@@ -50,7 +49,7 @@ impl SweepResults {
 /// Runs every trial of every method of every cell of `cfg` in memory and returns the results:
 /// the same trials as [`crate::sweep::run_sweep`] on a fresh output folder (trial `k` seeded
 /// `trial_seed(base_seed, k)` for every method and cell, one pool of
-/// [`effective_threads`](crate::sweep::effective_threads) threads, the same checks), so the
+/// [`sweep_threads`](crate::sweep::sweep_threads) threads, the same checks), so the
 /// results are bit-identical to the ones it journals, on any thread count. Nothing is
 /// written: `out_dir`, `resume` and `overwrite` are not used, no folder is locked.
 ///
@@ -77,12 +76,13 @@ pub fn run_in_memory(cfg: &SweepConfig) -> Result<SweepResults> {
         .into_iter()
         .map(|id| job_of(cfg, &header, id))
         .collect();
-    let threads = effective_threads(cfg.threads, max_threads(), jobs.len());
+    let (threads, inside_trials) = threads_for(cfg.threads, &plans, jobs.len());
     let runner = Runner {
         factory: &cfg.method_factory,
         hooks: &cfg.hooks,
         progress: cfg.progress,
         threads,
+        inside_trials,
     };
     let start = Instant::now();
     let records = execute(&runner, &plans, &jobs, None)?;
@@ -107,6 +107,7 @@ mod tests {
 
     use super::*;
     use crate::data::hooks::TrialObserverFactory;
+    use crate::data::limits::max_threads;
     use crate::sweep::run_sweep;
 
     const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");

@@ -31,7 +31,7 @@ pub use crate::data::hooks::{JournaledHook, SweepHooks, TrialKey, TrialObserverF
 pub use crate::data::jobs::{JobId, job_list};
 pub use crate::data::limits::{
     MAX_SWEEP_TRIALS, MAX_THREADS_PER_CORE, check_shard_count, check_sweep_size, effective_threads,
-    max_threads,
+    max_threads, sweep_threads,
 };
 pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir};
 pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};

@@ -10,9 +10,8 @@ use anyhow::Result;
 use crate::atomic::remove_stale_temps;
 use crate::data::config::SweepConfig;
 use crate::data::jobs::{JobId, job_list};
-use crate::data::limits::{effective_threads, max_threads};
 use crate::data::outcome::SweepOutcome;
-use crate::executor::{Job, Runner, execute};
+use crate::executor::{Job, Runner, execute, threads_for};
 use crate::journal::TrialRecord;
 use crate::lock::OutputLock;
 use crate::sweep::checks::check_config;
@@ -82,13 +81,14 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         .map(|id| job_of(cfg, &header, id))
         .collect();
 
-    let threads = effective_threads(cfg.threads, max_threads(), jobs.len());
+    let (threads, inside_trials) = threads_for(cfg.threads, &plans, jobs.len());
     let start = Instant::now();
     let runner = Runner {
         factory: &cfg.method_factory,
         hooks: &cfg.hooks,
         progress: cfg.progress,
         threads,
+        inside_trials,
     };
     let new_records = execute(&runner, &plans, &jobs, Some(opened.journal))?;
     let wall_s = start.elapsed().as_secs_f64();

@@ -138,6 +138,14 @@ impl Simulation {
         &self.world
     }
 
+    /// Lets (`true`, the default) or forbids (`false`) the world's per-robot phases to run on
+    /// the threads of the calling rayon pool for a team of at least
+    /// [`PARALLEL_MIN_ROBOTS`](crate::world::PARALLEL_MIN_ROBOTS) robots
+    /// ([`World::set_parallel`]). Results are bit-identical either way.
+    pub fn set_parallel(&mut self, enabled: bool) {
+        self.world.set_parallel(enabled);
+    }
+
     /// The team's mission state, indexed by robot id.
     pub fn robots(&self) -> &[MissionRobot] {
         &self.state.robots

@@ -45,6 +45,9 @@
 //! - `path_following`: a robot's intended velocity from its path (corner passing, the periodic
 //!   line-of-sight check and re-plan).
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
+//! - `parallel`: the step's per-robot phases (read-back, steering) on a rayon pool for a
+//!   large team ([`PARALLEL_MIN_ROBOTS`]), bit-identical on any number of threads.
+//! - `per_robot`: the per-robot outputs of those phases, and when they run in parallel.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
@@ -64,10 +67,12 @@ mod grid_search;
 mod nav_state;
 mod neighbour_lists;
 pub mod neighbours;
+mod parallel;
 mod path_following;
 mod path_following_params;
 pub mod path_planner;
 mod path_smoothing;
+mod per_robot;
 mod plan_cache;
 mod plan_into;
 pub mod plan_query;
@@ -95,6 +100,7 @@ pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
     STALL_PROGRESS_M, STALL_REPLAN_S,
 };
+pub use per_robot::PARALLEL_MIN_ROBOTS;
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;
 pub use step::MOVED_TOLERANCE_M;

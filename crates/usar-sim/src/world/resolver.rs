@@ -551,20 +551,37 @@ impl Resolver {
         grid: &ClearanceGrid,
         static_inflation: Option<f32>,
     ) -> Option<Vec2> {
+        let mut near = std::mem::take(&mut self.near);
+        let steered = self.steer_with(inputs, i, grid, static_inflation, &mut near);
+        self.near = near;
+        steered
+    }
+
+    /// [`Resolver::steer`] with the caller's scratch list `near` (cleared, then filled with the
+    /// robots standing still near `i`; its capacity is kept between calls) instead of the
+    /// resolver's own, so that it borrows the resolver immutably and robots may steer on
+    /// several threads at once. Same answer, bit for bit, as [`Resolver::steer`].
+    pub fn steer_with(
+        &self,
+        inputs: &[ResolverInput],
+        i: usize,
+        grid: &ClearanceGrid,
+        static_inflation: Option<f32>,
+        near: &mut Vec<usize>,
+    ) -> Option<Vec2> {
         let a = &inputs[i];
         if a.intent == Vec2::ZERO {
             return Some(Vec2::ZERO);
         }
         let horizon = self.params.lookahead_s.get() as f32;
         let held = &self.held;
-        self.near.clear();
-        self.near
-            .extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
-                let b = &inputs[j];
-                let still = held[j] || !b.active || b.intent == Vec2::ZERO;
-                j != i && still && b.layer == a.layer && Self::sensed(a, b)
-            }));
-        let obstacles = &self.near;
+        near.clear();
+        near.extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
+            let b = &inputs[j];
+            let still = held[j] || !b.active || b.intent == Vec2::ZERO;
+            j != i && still && b.layer == a.layer && Self::sensed(a, b)
+        }));
+        let obstacles = &*near;
         let clear_of_robots = |w: Vec2| {
             obstacles.iter().all(|&j| {
                 let b = &inputs[j];

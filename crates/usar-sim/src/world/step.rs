@@ -2,14 +2,10 @@
 //! in a deterministic order (robots by id; no wall-clock time, no threads, no hash-map
 //! iteration).
 
-use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
 
-use super::bodies::to_point;
 use super::robot::Motion;
-use super::steering::STEER_STATIC_GAP_M;
 use super::world::World;
-use crate::scenario::Locomotion;
 
 /// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
 /// metres.
@@ -52,9 +48,7 @@ impl World {
         }
         self.scene.step();
         self.stats.steps += 1;
-        for id in 0..n {
-            self.read_back(id);
-        }
+        self.read_back_all();
         if self.is_control_step() {
             self.reindex();
         } else {
@@ -78,6 +72,7 @@ impl World {
             let period_s = self.control_period_s();
             self.resolver
                 .resolve(&self.inputs, &self.neighbours, period_s);
+            self.steer_all();
         }
         for id in 0..n {
             self.nav[id].command = self.command(id);
@@ -114,9 +109,7 @@ impl World {
                 motion = Motion::Held;
                 Vec2::ZERO
             } else {
-                let infl = (input.layer == Locomotion::Ground)
-                    .then_some(input.radius + STEER_STATIC_GAP_M);
-                match self.resolver.steer(&self.inputs, id, &self.grid, infl) {
+                match self.per_robot.steered[id] {
                     Some(v) => v,
                     None => {
                         motion = Motion::Blocked;
@@ -129,22 +122,5 @@ impl World {
         };
         state.motion = motion;
         command
-    }
-
-    /// Reads robot `id`'s body back after the physics step: position, velocity, whether it
-    /// moved (more than [`MOVED_TOLERANCE_M`]) and how far.
-    fn read_back(&mut self, id: usize) {
-        let nav = &mut self.nav[id];
-        let body = &self.scene.physics.bodies[nav.body];
-        let p = body.translation();
-        let v = body.linvel();
-        let disp = f64::from((p - nav.pos).length());
-        nav.pos = p;
-        let state = &mut self.robots[id];
-        state.position = to_point(p);
-        state.velocity = Vector2::new(f64::from(v.x), f64::from(v.y));
-        state.moved_this_step = disp > MOVED_TOLERANCE_M;
-        state.step_distance_m = if state.moved_this_step { disp } else { 0.0 };
-        state.distance_travelled_m += state.step_distance_m;
     }
 }

@@ -14,6 +14,7 @@ use super::nav_state::Nav;
 use super::clearance_grid::ClearanceGrid;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
+use super::per_robot::{PerRobot, radiation_of};
 use super::plan_into::PlanInto;
 use super::plan_query::plan_inflation_m;
 use super::radiation::{self, DoseRule};
@@ -64,8 +65,10 @@ pub struct World {
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
     pub(super) inputs: Vec<ResolverInput>,
-    zones: Vec<RadiationZone>,
-    dose_rule: DoseRule,
+    pub(super) zones: Vec<RadiationZone>,
+    pub(super) dose_rule: DoseRule,
+    /// The per-robot outputs of the parallel phases (`parallel.rs`).
+    pub(super) per_robot: PerRobot,
     /// Arena width and height at physics precision, metres.
     pub(super) arena: (f32, f32),
     pub(super) dt: f64,
@@ -130,6 +133,12 @@ impl World {
             .zip(&robots)
             .map(|(n, r)| n.resolver_input(r))
             .collect();
+        let zones = s.radiation_zones.clone();
+        let dose_rule = DoseRule {
+            overlap: s.mission.radiation_overlap,
+            falloff: s.mission.radiation_falloff,
+        };
+        let per_robot = PerRobot::new(radiation_of(&robots, &zones, dose_rule));
         let mut neighbours = NeighbourIndex::new(s);
         neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
         Self {
@@ -142,11 +151,9 @@ impl World {
             nav,
             robots,
             inputs,
-            zones: s.radiation_zones.clone(),
-            dose_rule: DoseRule {
-                overlap: s.mission.radiation_overlap,
-                falloff: s.mission.radiation_falloff,
-            },
+            zones,
+            dose_rule,
+            per_robot,
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
             control_steps: s.sim.control_steps(),
@@ -375,6 +382,8 @@ impl World {
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
+        self.per_robot.radiation[id] =
+            radiation::radiation_factor_at(&self.zones, &state.position, self.dose_rule);
         state.velocity = Vector2::zeros();
         // At rest without a goal until the next control step decides again.
         state.held = false;
@@ -496,7 +505,9 @@ impl World {
     /// # Panics
     /// If `id` is not a robot id.
     pub fn radiation_factor(&self, id: usize) -> f64 {
-        self.radiation_factor_at(&self.robots[id].position)
+        // Computed where the position changes (after each physics step, in parallel for a
+        // large team, and on a teleport): the same value as computing it here.
+        self.per_robot.radiation[id]
     }
 
     /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);

@@ -59,9 +59,12 @@ pub struct RenderArgs {
     /// Length of the traced trial, seconds (> 0); default the scenario's mission.duration_s.
     #[arg(long, value_name = "SECONDS", requires = "trace")]
     pub duration: Option<f64>,
+
+    #[arg(long, value_name = "N", requires = "trace", help = crate::shared::trial_build::TRIAL_THREADS_HELP)]
+    pub threads: Option<usize>,
 }
 
-/// Runs one trial of `scenario` and returns every robot's path, sampled every
+/// Runs one trial of `scenario` in `pool` and returns every robot's path, sampled every
 /// [`TRACE_SAMPLE_S`] of simulated time (the start and the final position included).
 ///
 /// # Errors
@@ -71,6 +74,7 @@ pub fn trace_trial(
     method: &str,
     trial: u32,
     duration_s: Option<f64>,
+    pool: &rayon::ThreadPool,
 ) -> Result<Vec<Trace>> {
     let mut builder = Simulation::builder(scenario)
         .method_named(method)
@@ -94,7 +98,7 @@ pub fn trace_trial(
             sample(sim, &mut traces);
         }
     };
-    sim.run_observed(&mut observe)
+    pool.install(|| sim.run_observed(&mut observe))
         .with_context(|| format!("trial {trial}"))?;
     Ok(traces)
 }
@@ -105,13 +109,14 @@ pub fn trace_trial(
 /// The scenario's loader message (file:line:col, field, rule) for a bad scenario, a bad
 /// option, a failing trial, or an error writing the picture.
 pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
+    let pool = crate::shared::trial_build::trial_pool(args.threads)?;
     let path = &args.scenario;
     // The loader's message is complete (file:line:col, field, rule, or the I/O error), as
     // every other command prints it.
     let scenario = scenario::load(path)?;
     let traces = if args.trace {
         Some(
-            trace_trial(&scenario, &args.method, args.trial, args.duration)
+            trace_trial(&scenario, &args.method, args.trial, args.duration, &pool)
                 .with_context(|| format!("tracing a trial of {}", path_text(path)))?,
         )
     } else {

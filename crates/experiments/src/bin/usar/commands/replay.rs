@@ -72,6 +72,9 @@ pub struct ReplayArgs {
     /// Where to write the page (HTML).
     #[arg(long, value_name = "FILE.html")]
     pub out: PathBuf,
+
+    #[arg(long, value_name = "N", help = crate::shared::trial_build::TRIAL_THREADS_HELP)]
+    pub threads: Option<usize>,
 }
 
 /// Runs `usar replay`, writing a one-line summary to `out`.
@@ -79,6 +82,7 @@ pub struct ReplayArgs {
 /// # Errors
 /// A bad scenario or option, a failing trial, or an error writing the page.
 pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
+    let pool = crate::shared::trial_build::trial_pool(args.threads)?;
     let path = &args.scenario;
     let scenario = scenario::load(path)?;
     let mut builder = Simulation::builder(&scenario)
@@ -112,7 +116,9 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         ));
     }
     let t0 = Instant::now();
-    let t = record_trial(sim, hz, None).context("recording the trial")?;
+    let t = pool
+        .install(|| record_trial(sim, hz, None))
+        .context("recording the trial")?;
     let bytes = write_replay(&scenario, &t.recording, &args.out)?;
     let rec = &t.recording;
     writeln!(

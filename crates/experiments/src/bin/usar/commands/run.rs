@@ -24,7 +24,7 @@ use experiments::table::num;
 use experiments::trial_json::TrialJson;
 
 use crate::shared::scenario_warnings::warn_about;
-use crate::shared::trial_build::{build_trial, warn_if_rounded};
+use crate::shared::trial_build::{TRIAL_THREADS_HELP, build_trial, trial_pool, warn_if_rounded};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -75,6 +75,9 @@ pub struct RunArgs {
     /// robots, which otherwise gets group sizes and a summary per kind.
     #[arg(long)]
     pub robots: bool,
+
+    #[arg(long, value_name = "N", help = TRIAL_THREADS_HELP)]
+    pub threads: Option<usize>,
 }
 
 /// Teams of at most this many robots get the per-robot table and the groups' robot ids in
@@ -87,6 +90,7 @@ pub const ROBOTS_TABLE_MAX: usize = 50;
 /// # Errors
 /// A bad scenario or option, a failing trial, or an I/O error.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
+    let pool = trial_pool(args.threads)?;
     let scenario = scenario::load(&args.scenario)?;
     let mut builder = Simulation::builder(&scenario)
         .method_named(&args.method)
@@ -101,7 +105,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     warn_about(&path_text(&args.scenario), &scenario);
     warn_if_rounded(args.duration, &sim);
     let t0 = Instant::now();
-    let result = sim.run_to_end().context("the trial failed")?;
+    let result = pool
+        .install(|| sim.run_to_end())
+        .context("the trial failed")?;
     let wall = t0.elapsed().as_secs_f64();
     // A seed given as is belongs to no trial index.
     let per_robot = args.robots || result.robots.len() <= ROBOTS_TABLE_MAX;

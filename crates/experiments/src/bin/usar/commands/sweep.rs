@@ -96,7 +96,9 @@ pub struct SweepArgs {
     pub report: ReportArgs,
 
     /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
-    /// cores; never more than there are trials to run.
+    /// cores. Trials run in parallel, one thread each; with fewer trials than threads, a team
+    /// of at least 512 robots gets the threads left over inside its trials, a smaller one no
+    /// more threads than trials. Same results on any thread count.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, Scenario};
@@ -15,9 +15,9 @@ use experiments::calibration::ReportOptions;
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::shard::SweepPlan;
-use experiments::sweep::{MAX_THREADS_PER_CORE, max_threads};
 
 use crate::shared::trial_build::rounding_warning;
+pub use crate::shared::trial_build::threads_of;
 
 /// The arguments of `usar sweep` that decide what the sweep runs (shared with `usar slurm`).
 #[derive(Debug, Clone, Args)]
@@ -144,28 +144,6 @@ pub fn grid_metrics(names: &[String], tasks: &[String]) -> Result<Vec<Metric>> {
             })
         })
         .collect()
-}
-
-/// The worker threads of `--threads`: all cores when not given; more than
-/// [`max_threads`] are capped there with a warning.
-///
-/// # Errors
-/// `--threads 0`.
-pub fn threads_of(requested: Option<usize>) -> Result<usize> {
-    Ok(match requested {
-        Some(0) => bail!("--threads must be at least 1"),
-        Some(n) if n > max_threads() => {
-            experiments::console::warn(format!(
-                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
-                 cores: using {}",
-                max_threads() / MAX_THREADS_PER_CORE,
-                max_threads()
-            ));
-            max_threads()
-        }
-        Some(n) => n,
-        None => std::thread::available_parallelism().map_or(1, usize::from),
-    })
 }
 
 /// Warns once per distinct step (`sim.dt_s` of the scenario or of a grid's cells) when the

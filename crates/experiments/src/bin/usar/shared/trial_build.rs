@@ -1,10 +1,54 @@
 //! Building one trial for a command (`usar run`, `usar render`, `usar replay`): the builder's
 //! errors named by their flag, and the warning for a `--duration` that is not a whole number
-//! of steps.
+//! of steps; the `--threads` of every command and the thread pool a trial runs in.
 
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
+use experiments::sweep::{MAX_THREADS_PER_CORE, max_threads};
 use usar_sim::mission::{MissionError, Simulation, TrialBuilder, trial_steps};
 use usar_sim::scenario::number_text;
+
+/// The worker threads of `--threads`: all cores when not given; more than
+/// [`max_threads`] are capped there with a warning.
+///
+/// # Errors
+/// `--threads 0`.
+pub fn threads_of(requested: Option<usize>) -> Result<usize> {
+    Ok(match requested {
+        Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > max_threads() => {
+            experiments::console::warn(format!(
+                "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
+                 cores: using {}",
+                max_threads() / MAX_THREADS_PER_CORE,
+                max_threads()
+            ));
+            max_threads()
+        }
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, usize::from),
+    })
+}
+
+/// The help of `--threads` on the commands that simulate one trial.
+pub const TRIAL_THREADS_HELP: &str = "Threads of the trial (>= 1); default all cores. A team of \
+at least 512 robots reads its bodies back and steers on them; a smaller team, and Rapier, run \
+on one. The results are the same, bit for bit, on any number of threads.";
+
+/// The rayon pool one trial runs in, of `--threads` threads ([`threads_of`]: all cores when
+/// not given, capped with a warning at 4 x the cores). Run the trial inside
+/// [`rayon::ThreadPool::install`]: a team of at least
+/// [`PARALLEL_MIN_ROBOTS`](usar_sim::world::PARALLEL_MIN_ROBOTS) robots spreads its per-robot
+/// phases over the pool's threads, with the same results as on one.
+///
+/// # Errors
+/// `--threads 0`, or the pool's threads could not be started.
+pub fn trial_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    let n = threads_of(threads)?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .context("starting the trial's thread pool")
+}
 
 /// Builds the trial, with the flag a builder error is about as its context: `--method` for an
 /// unknown or failing grouping method, `--duration` for a bad trial length.

@@ -1,0 +1,118 @@
+//! Per-robot parallelism inside one trial: the step's per-robot work that reads shared state
+//! and writes only its own robot's output (the read-back after the physics step with each
+//! robot's radiation factor, and the resolver's steering), computed with rayon into buffers
+//! kept between steps, then applied in robot id order.
+//!
+//! Not in the paper. Each robot's output is computed by the same code, with the same
+//! floating-point operations in the same order, on whichever thread runs it, and nothing it
+//! reads is written during the phase; anything that mutates shared state (Rapier, the
+//! planner's caches, the resolver's lists, the mission's tallies) stays serial. So a trial
+//! gives bit-identical results on any number of threads (`tests/tests/parallel_trial.rs`).
+//! Rapier itself steps serially: its `parallel` feature does not promise identical results.
+
+use nalgebra::Vector2;
+use parry2d::math::Vector as Vec2;
+use rapier2d::dynamics::RigidBodySet;
+use rayon::prelude::*;
+
+use super::bodies::to_point;
+use super::nav_state::Nav;
+use super::per_robot::CHUNK_ROBOTS;
+use super::radiation::radiation_factor_at;
+use super::robot::RobotState;
+use super::steering::STEER_STATIC_GAP_M;
+use super::step::MOVED_TOLERANCE_M;
+use super::world::World;
+use crate::scenario::Locomotion;
+
+impl World {
+    /// Lets (`true`, the default) or forbids (`false`) this world's per-robot phases to run on
+    /// the threads of the calling rayon pool. Results are bit-identical either way; a sweep
+    /// that runs one trial per thread forbids it so that trials do not compete for threads.
+    pub fn set_parallel(&mut self, enabled: bool) {
+        self.per_robot.enabled = enabled;
+    }
+
+    /// Reads every robot's body back after the physics step (see [`read_back`]) and its
+    /// radiation factor at its new position, in parallel for a large team.
+    pub(super) fn read_back_all(&mut self) {
+        let bodies = &self.scene.physics.bodies;
+        let (zones, rule) = (&self.zones[..], self.dose_rule);
+        let per = &mut self.per_robot;
+        let parallel = per.parallel_for(self.nav.len());
+        let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
+            read_back(bodies, nav, state);
+            *rad = radiation_factor_at(zones, &state.position, rule);
+        };
+        if parallel {
+            self.nav
+                .par_iter_mut()
+                .zip(&mut self.robots)
+                .zip(&mut per.radiation)
+                .with_min_len(CHUNK_ROBOTS)
+                .for_each(each);
+        } else {
+            self.nav
+                .iter_mut()
+                .zip(&mut self.robots)
+                .zip(&mut per.radiation)
+                .for_each(each);
+        }
+    }
+
+    /// Rule 5 for every robot the resolver did not hold, into `per_robot.steered` (ground
+    /// robots keep [`STEER_STATIC_GAP_M`] beyond their radius from walls and debris), in
+    /// parallel for a large team. Call after the resolver ran on `self.inputs`.
+    pub(super) fn steer_all(&mut self) {
+        let n = self.inputs.len();
+        let (resolver, inputs, grid) = (&self.resolver, &self.inputs[..], &self.grid);
+        let per = &mut self.per_robot;
+        let parallel = per.parallel_for(n);
+        per.steered.resize(n, None);
+        let chunks = n.div_ceil(CHUNK_ROBOTS).max(1);
+        if per.scratch.len() < chunks {
+            per.scratch.resize_with(chunks, Vec::new);
+        }
+        let decisions = resolver.decisions();
+        let steer_chunk = |(c, (out, near)): (usize, (&mut [Option<Vec2>], &mut Vec<usize>))| {
+            for (k, o) in out.iter_mut().enumerate() {
+                let id = c * CHUNK_ROBOTS + k;
+                if decisions[id].held {
+                    continue;
+                }
+                let a = &inputs[id];
+                let infl = (a.layer == Locomotion::Ground).then_some(a.radius + STEER_STATIC_GAP_M);
+                *o = resolver.steer_with(inputs, id, grid, infl, near);
+            }
+        };
+        let scratch = &mut per.scratch[..chunks];
+        if parallel {
+            per.steered
+                .par_chunks_mut(CHUNK_ROBOTS)
+                .zip(scratch)
+                .enumerate()
+                .for_each(steer_chunk);
+        } else {
+            per.steered
+                .chunks_mut(CHUNK_ROBOTS)
+                .zip(scratch)
+                .enumerate()
+                .for_each(steer_chunk);
+        }
+    }
+}
+
+/// Reads one robot's body back after the physics step: position, velocity, whether it moved
+/// (more than [`MOVED_TOLERANCE_M`]) and how far. Writes only `nav` and `state`.
+fn read_back(bodies: &RigidBodySet, nav: &mut Nav, state: &mut RobotState) {
+    let body = &bodies[nav.body];
+    let p = body.translation();
+    let v = body.linvel();
+    let disp = f64::from((p - nav.pos).length());
+    nav.pos = p;
+    state.position = to_point(p);
+    state.velocity = Vector2::new(f64::from(v.x), f64::from(v.y));
+    state.moved_this_step = disp > MOVED_TOLERANCE_M;
+    state.step_distance_m = if state.moved_this_step { disp } else { 0.0 };
+    state.distance_travelled_m += state.step_distance_m;
+}

@@ -1,0 +1,69 @@
+//! The per-robot outputs of a step's parallel phases (`parallel.rs`), kept between steps, and
+//! when those phases run in parallel (team size threshold, rayon pool).
+//!
+//! Not in the paper.
+
+use parry2d::math::Vector as Vec2;
+
+use super::radiation::{DoseRule, radiation_factor_at};
+use super::robot::RobotState;
+use crate::scenario::RadiationZone;
+
+/// Smallest team whose per-robot phases run on several threads (robots, 512). Smaller teams
+/// stay serial: a phase costs tens of nanoseconds per robot, so below a few hundred robots
+/// rayon's fork-join (a few microseconds per phase) costs more than it saves. The paper's 12
+/// robots and the 100-robot teams are always serial.
+pub const PARALLEL_MIN_ROBOTS: usize = 512;
+
+/// Robots per parallel task (256): each task steers its robots with one scratch list.
+pub(super) const CHUNK_ROBOTS: usize = 256;
+
+/// The per-robot outputs of the parallel phases, kept between steps (allocated once for the
+/// team, grown only with it), and whether they may run in parallel.
+#[derive(Debug)]
+pub(super) struct PerRobot {
+    /// `World::set_parallel`: `false` keeps every phase serial.
+    pub(super) enabled: bool,
+    /// Each robot's radiation factor at its current position ([`radiation_factor_at`]).
+    pub(super) radiation: Vec<f64>,
+    /// Each robot's steered velocity of this control step (rule 5), `None` when blocked;
+    /// unused for held robots.
+    pub(super) steered: Vec<Option<Vec2>>,
+    /// One scratch list of nearby robots per task of [`CHUNK_ROBOTS`] robots.
+    pub(super) scratch: Vec<Vec<usize>>,
+}
+
+impl PerRobot {
+    /// The buffers of `n` robots standing at `radiation` (their factors), parallel enabled.
+    pub(super) fn new(radiation: Vec<f64>) -> Self {
+        let n = radiation.len();
+        Self {
+            enabled: true,
+            radiation,
+            steered: vec![None; n],
+            scratch: (0..n.div_ceil(CHUNK_ROBOTS).max(1))
+                .map(|_| Vec::new())
+                .collect(),
+        }
+    }
+
+    /// Whether a phase over `n` robots runs in parallel: enabled, at least
+    /// [`PARALLEL_MIN_ROBOTS`] robots, and the calling thread's rayon pool (the global pool
+    /// outside any) has more than one thread.
+    pub(super) fn parallel_for(&self, n: usize) -> bool {
+        self.enabled && n >= PARALLEL_MIN_ROBOTS && rayon::current_num_threads() > 1
+    }
+}
+
+/// The radiation factor of each of `robots` where it stands (in id order), for
+/// [`PerRobot::new`].
+pub(super) fn radiation_of(
+    robots: &[RobotState],
+    zones: &[RadiationZone],
+    rule: DoseRule,
+) -> Vec<f64> {
+    robots
+        .iter()
+        .map(|r| radiation_factor_at(zones, &r.position, rule))
+        .collect()
+}

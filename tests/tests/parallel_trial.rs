@@ -1,0 +1,92 @@
+//! One trial on several threads: a large team's per-robot phases (the read-back after the
+//! physics step, the resolver's steering) run on the rayon pool the trial runs in, and the
+//! trial's numbers are bit-identical for any number of threads (`docs/scaling.md`, "One trial
+//! on all cores").
+
+use integration_tests::{load, method, scenario_path};
+use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::world::PARALLEL_MIN_ROBOTS;
+
+/// Simulated seconds: grouping, the round start (every robot plans) and 100 control steps of
+/// the team leaving its start grids, with collision lists, holds and steering.
+const SHORT_S: f64 = 10.0;
+
+/// What a trial leaves: every robot's position, velocity and distance travelled as bits,
+/// the mission's HP and energy as bits, and the trial's result.
+struct Outcome {
+    robots: Vec<[u64; 5]>,
+    levels: Vec<[u64; 2]>,
+    result: TrialResult,
+}
+
+/// `swarm-1000.ron`, DIS, trial 0, [`SHORT_S`] seconds, in a rayon pool of `threads` threads
+/// (per-robot phases parallel when `parallel`).
+fn run(threads: usize, parallel: bool) -> Outcome {
+    let s = load(&scenario_path("swarm-1000.ron"));
+    assert!(s.robots().len() >= PARALLEL_MIN_ROBOTS);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    pool.install(|| {
+        assert_eq!(rayon::current_num_threads(), threads);
+        let mut sim = Simulation::builder(&s)
+            .method(method("dis", &s))
+            .duration_s(SHORT_S)
+            .build()
+            .expect("builds");
+        sim.set_parallel(parallel);
+        let result = sim.run_to_end().expect("runs");
+        let robots = sim
+            .world()
+            .robots()
+            .iter()
+            .map(|r| {
+                [
+                    r.position.x.to_bits(),
+                    r.position.y.to_bits(),
+                    r.velocity.x.to_bits(),
+                    r.velocity.y.to_bits(),
+                    r.distance_travelled_m.to_bits(),
+                ]
+            })
+            .collect();
+        let levels = sim
+            .robots()
+            .iter()
+            .map(|r| [r.hp_pct.to_bits(), r.energy_pct.to_bits()])
+            .collect();
+        Outcome {
+            robots,
+            levels,
+            result,
+        }
+    })
+}
+
+#[test]
+fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
+    let one = run(1, true);
+    // The trial did something worth comparing: robots moved, some were held or steered.
+    let moved = one
+        .robots
+        .iter()
+        .filter(|r| f64::from_bits(r[4]) > 0.5)
+        .count();
+    assert!(moved > 500, "{moved} robots moved more than 0.5 m");
+    for (threads, parallel) in [(2, true), (4, true), (4, false)] {
+        let other = run(threads, parallel);
+        for (id, (a, b)) in one.robots.iter().zip(&other.robots).enumerate() {
+            assert_eq!(a, b, "robot {id}, {threads} threads, parallel {parallel}");
+        }
+        assert_eq!(
+            one.levels, other.levels,
+            "{threads} threads, parallel {parallel}"
+        );
+        assert_eq!(
+            format!("{:?}", one.result),
+            format!("{:?}", other.result),
+            "{threads} threads, parallel {parallel}"
+        );
+    }
+}
