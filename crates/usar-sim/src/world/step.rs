@@ -1,6 +1,6 @@
 //! [`World::step`]: one fixed step `dt` of path following, collision resolution and physics,
-//! in a deterministic order (robots by id; no wall-clock time, no threads, no hash-map
-//! iteration).
+//! in a deterministic order (robots by id; no wall-clock time, no hash-map iteration; a large
+//! team's per-robot phases on several threads give the same bits, `parallel.rs`).
 
 use parry2d::math::Vector as Vec2;
 
