@@ -11,20 +11,30 @@ pub const DEFAULT_HZ: f64 = 10.0;
 /// in the browser, and the file takes about 1 to 2 bytes per robot-sample.
 pub const DEFAULT_MAX_ROBOT_SAMPLES: f64 = 6_100_000.0;
 
-/// The sampling rate of a replay without `--hz`, samples per simulated second: [`DEFAULT_HZ`],
-/// lowered for a large team or a long trial so that `robots` times the samples of `duration_s`
-/// stay within [`DEFAULT_MAX_ROBOT_SAMPLES`] (frame decimation: a 10,000-robot, 600 s trial
-/// is sampled at about 1 Hz). A team of no robots or a trial of no time keeps
-/// [`DEFAULT_HZ`].
-pub fn default_hz(robots: usize, duration_s: f64) -> f64 {
-    if robots == 0 || !(duration_s.is_finite() && duration_s > 0.0) {
+/// The sampling rate of a replay without `--hz`, samples per simulated second, for a trial of
+/// `total_steps` steps of `dt_s` seconds: [`DEFAULT_HZ`], lowered for a large team or a long
+/// trial so that `robots` times the samples of its [`SampleClock`] stay within
+/// [`DEFAULT_MAX_ROBOT_SAMPLES`] (frame decimation: a 10,000-robot, 600 s trial at the
+/// paper's 0.02 s step is sampled every 50th step, 1 Hz). The rate returned is one the clock
+/// uses exactly (a whole number of steps between samples). A team of no robots, a trial of
+/// no steps or a bad step keeps [`DEFAULT_HZ`]; a team too large for even two samples (the
+/// start and the end) gets the sparsest clock.
+pub fn default_hz(robots: usize, total_steps: u64, dt_s: f64) -> f64 {
+    if robots == 0 || total_steps == 0 || !(dt_s.is_finite() && dt_s > 0.0) {
         return DEFAULT_HZ;
     }
-    let fit = (DEFAULT_MAX_ROBOT_SAMPLES / robots as f64 - 1.0) / duration_s;
-    if fit > 0.0 {
-        DEFAULT_HZ.min(fit)
-    } else {
+    // The clock has `1 + ceil(total_steps / every)` samples at most; it fits when
+    // `every >= total_steps / (max_samples - 1)`.
+    let max_samples = (DEFAULT_MAX_ROBOT_SAMPLES / robots as f64).floor();
+    if max_samples < 2.0 {
+        return DEFAULT_HZ.min(1.0 / (total_steps as f64 * dt_s));
+    }
+    let needed = (total_steps as f64 / (max_samples - 1.0)).ceil();
+    let default_every = (1.0 / (DEFAULT_HZ * dt_s)).round().max(1.0);
+    if needed <= default_every {
         DEFAULT_HZ
+    } else {
+        1.0 / (needed * dt_s)
     }
 }
 
@@ -97,13 +107,26 @@ mod tests {
 
     #[test]
     fn the_default_rate_is_ten_hz_up_to_a_thousand_robots_for_600_s_and_decimated_beyond() {
-        assert!((default_hz(1_000, 600.0) - 10.0).abs() < 1e-12);
-        assert!((default_hz(12, 1_800.0) - 10.0).abs() < 1e-12);
-        let hz = default_hz(10_000, 600.0);
-        assert!((hz - 6_099.0 / 6_000.0).abs() < 1e-12, "{hz}");
-        let c = SampleClock::new(hz, 0.02, 30_000).unwrap();
-        assert!(10_000 * c.samples() <= 6_100_000, "{}", c.samples());
-        assert!((default_hz(0, 600.0) - 10.0).abs() < 1e-12);
+        assert_eq!(default_hz(1_000, 30_000, 0.02), DEFAULT_HZ);
+        assert_eq!(default_hz(12, 90_000, 0.02), DEFAULT_HZ);
+        assert_eq!(default_hz(0, 30_000, 0.02), DEFAULT_HZ);
+        let hz = default_hz(10_000, 30_000, 0.02);
+        assert!((hz - 1.0).abs() < 1e-12, "{hz}");
+        // Every team size and length keeps within the limit with the clock it gets.
+        for robots in [
+            1, 12, 1_000, 1_017, 3_000, 10_000, 100_000, 3_050_000, 7_000_000,
+        ] {
+            for total in [1, 7, 1_500, 30_000, 90_000] {
+                let hz = default_hz(robots, total, 0.02);
+                let c = SampleClock::new(hz, 0.02, total).unwrap();
+                let fits = robots as f64 * c.samples() as f64 <= DEFAULT_MAX_ROBOT_SAMPLES;
+                assert!(
+                    fits || c.samples() == 2,
+                    "{robots} robots, {total} steps: {hz} Hz"
+                );
+                assert!(hz <= DEFAULT_HZ, "{robots} robots, {total} steps: {hz} Hz");
+            }
+        }
     }
 
     #[test]

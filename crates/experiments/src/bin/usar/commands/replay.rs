@@ -101,7 +101,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     crate::shared::trial_build::warn_if_rounded(args.duration, &sim);
     let dt_s = scenario.sim().dt_s.get();
     let hz = args.hz.unwrap_or_else(|| {
-        experiments::replay::default_hz(scenario.robots().len(), sim.progress().1 as f64 * dt_s)
+        experiments::replay::default_hz(scenario.robots().len(), sim.progress().1, dt_s)
     });
     let clock =
         experiments::replay::SampleClock::new(hz, dt_s, sim.progress().1).context("--hz")?;
