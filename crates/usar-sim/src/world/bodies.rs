@@ -201,6 +201,17 @@ impl PhysicsScene {
         }
     }
 
+    /// Drives `body` at `command` (m/s, world frame) for the next step: the velocity is
+    /// written only where it differs from the body's (writing through `bodies[..]` as `&mut`
+    /// queues the body for Rapier's pass over user-modified bodies; an unchanged velocity needs
+    /// no write, same physics). The one write rule of [`crate::world::World::step`] and of
+    /// [`crate::world::drive_bodies`], so a replay of the commands moves bodies bit for bit.
+    pub fn drive_body(&mut self, body: RigidBodyHandle, command: Vec2) {
+        if self.physics.bodies[body].linvel() != command {
+            self.physics.bodies[body].set_linvel(command, true);
+        }
+    }
+
     /// Advances the physics by one fixed step.
     pub fn step(&mut self) {
         self.physics.step();

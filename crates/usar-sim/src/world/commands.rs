@@ -31,10 +31,8 @@ impl World {
 /// Rapier's pass over user-modified bodies). Robots beyond the shorter of the two lists are
 /// left as they are. Call [`PhysicsScene::step`] after it.
 pub fn drive_bodies(scene: &mut PhysicsScene, commands: &[Vec2]) {
-    for (&body, &command) in scene.robot_bodies.iter().zip(commands) {
-        if scene.physics.bodies[body].linvel() != command {
-            scene.physics.bodies[body].set_linvel(command, true);
-        }
+    for (i, &command) in commands.iter().enumerate().take(scene.robot_bodies.len()) {
+        scene.drive_body(scene.robot_bodies[i], command);
     }
 }
 

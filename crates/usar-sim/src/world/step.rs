@@ -38,13 +38,8 @@ impl World {
                 c.steps_held += 1;
                 c.time_held_s = c.steps_held as f64 * self.dt;
             }
-            let command = self.nav[id].command;
-            let body = self.nav[id].body;
-            // Writing through `bodies[..]` as `&mut` queues the body for Rapier's pass over
-            // user-modified bodies; an unchanged velocity needs no write (same physics).
-            if self.scene.physics.bodies[body].linvel() != command {
-                self.scene.physics.bodies[body].set_linvel(command, true);
-            }
+            self.scene
+                .drive_body(self.nav[id].body, self.nav[id].command);
         }
         self.scene.step();
         self.stats.steps += 1;
