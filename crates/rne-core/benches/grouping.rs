@@ -1,7 +1,8 @@
 //! Criterion benchmarks of the hierarchical RNE grouping (Algorithm 1) and the baselines, from
 //! the paper's 12 robots to a 1,000-robot team (500 carriers, 333 suppliers, 167 observers,
-//! 4 tasks). At the end it prints the process's peak resident set (`VmHWM`, Linux), which
-//! bounds the memory any one grouping used (criterion's own included).
+//! 4 tasks) and swarm-10000's team of 10,000 (5,000, 3,333 and 1,667, 8 tasks). At the end it
+//! prints the process's peak resident set (`VmHWM`, Linux), which bounds the memory any one
+//! grouping used (criterion's own included).
 //!
 //! ```sh
 //! cargo bench -p rne-core --bench grouping -- --quick
@@ -89,6 +90,11 @@ fn bench(c: &mut Criterion) {
         (
             "1000_robots_3_kinds_4_tasks",
             large_team::large_team([500, 333, 167], 4, 7),
+        ),
+        // swarm-10000.ron's team: the issue's target is RNE under 1 s.
+        (
+            "10000_robots_3_kinds_8_tasks",
+            large_team::large_team([5000, 3333, 1667], 8, 7),
         ),
     ];
     let model = TrustModel::with_weights(Weights::uniform(7).expect("weights"));

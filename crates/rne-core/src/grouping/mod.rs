@@ -23,7 +23,7 @@ mod split_scorer;
 mod two_way;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use assignment::Assignment;
 pub use dis::Dis;

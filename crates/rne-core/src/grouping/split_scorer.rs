@@ -37,6 +37,15 @@ pub(crate) struct Scratch {
     qs: Vec<f64>,
     sa: Vec<f64>,
     sb: Vec<f64>,
+    /// Swaps scored so far ([`SplitScorer::swap_score`] calls).
+    swaps_scored: u64,
+}
+
+impl Scratch {
+    /// How many swaps [`SplitScorer::swap_score`] has scored with this work space.
+    pub(crate) fn swaps_scored(&self) -> u64 {
+        self.swaps_scored
+    }
 }
 
 impl<'a> SplitScorer<'a> {
@@ -101,6 +110,7 @@ impl<'a> SplitScorer<'a> {
             qs: v(),
             sa: v(),
             sb: v(),
+            swaps_scored: 0,
         }
     }
 
@@ -203,6 +213,7 @@ impl<'a> SplitScorer<'a> {
         b: usize,
         w: &mut Scratch,
     ) -> f64 {
+        w.swaps_scored += 1;
         let (va, vb) = (self.row(a), self.row(b));
         let mut na = std::mem::take(&mut w.sa);
         let mut nb = std::mem::take(&mut w.sb);

@@ -2,7 +2,7 @@
 //! properties over random requests and the two-task oracle.
 
 mod baselines;
-mod common;
+pub(crate) mod common;
 mod k_tasks;
 mod oracle_two_task;
 mod paper_team;
