@@ -2,6 +2,7 @@
 //! validated scenario, so a grid cell's `scenario.ron` can be matched to its cell.
 
 use anyhow::{Context, Result};
+use serde_json::Value;
 use usar_sim::scenario::Scenario;
 
 /// FNV-1a 64-bit hash of `bytes`, as 16 hex digits (stable across platforms and releases).
@@ -14,14 +15,27 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
     format!("{h:016x}")
 }
 
-/// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON. Any
-/// change to what the scenario means changes it; comments, layout, and writing out a default
-/// value or leaving it out do not.
+/// Fields added after scenario hashes were first published, as (section, field, the value that
+/// keeps the model as it was): left out of the hashed form while they hold that value, so a
+/// scenario that does not use them keeps its hash.
+const ADDED_FIELDS: [(&str, &str, &str); 1] = [("mission", "idle_before_area", "Wait")];
+
+/// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
+/// the [`ADDED_FIELDS`] that hold their old value. Any change to what the scenario means
+/// changes it; comments, layout, and writing out a default value or leaving it out do not.
 ///
 /// # Errors
 /// A scenario serde_json cannot serialise (not expected).
 pub fn scenario_hash(scenario: &Scenario) -> Result<String> {
-    let json = serde_json::to_vec(scenario).context("serialising the scenario")?;
+    let mut value = serde_json::to_value(scenario).context("serialising the scenario")?;
+    for (section, field, old) in ADDED_FIELDS {
+        if let Some(fields) = value.get_mut(section).and_then(Value::as_object_mut)
+            && fields.get(field).and_then(Value::as_str) == Some(old)
+        {
+            fields.shift_remove(field);
+        }
+    }
+    let json = serde_json::to_vec(&value).context("serialising the scenario")?;
     Ok(fnv1a64_hex(&json))
 }
 
@@ -45,5 +59,37 @@ mod tests {
             usar_sim::scenario::from_str(&src.replace("recharge_s: 30.0", "recharge_s: 31.0"), "c")
                 .unwrap();
         assert_ne!(scenario_hash(&a).unwrap(), scenario_hash(&c).unwrap());
+    }
+
+    #[test]
+    fn a_field_added_later_keeps_the_hashes_of_scenarios_that_do_not_use_it() {
+        // The hashes before `mission.idle_before_area` existed (`usar check FILE --hash`).
+        let before = [
+            (
+                include_str!("../../../scenarios/paper.ron"),
+                "e019bba885d01aaf",
+            ),
+            (
+                include_str!("../../../scenarios/three-tasks.ron"),
+                "97fe69ca418d0202",
+            ),
+        ];
+        for (src, hash) in before {
+            let s = usar_sim::scenario::from_str(src, "s").unwrap();
+            assert_eq!(scenario_hash(&s).unwrap(), hash);
+            let wait = src.replace("pickup_s:", "idle_before_area: Wait,\n        pickup_s:");
+            let wait = usar_sim::scenario::from_str(&wait, "wait").unwrap();
+            assert_eq!(
+                scenario_hash(&wait).unwrap(),
+                hash,
+                "written out: same meaning"
+            );
+            let go = src.replace(
+                "pickup_s:",
+                "idle_before_area: GoToArea,\n        pickup_s:",
+            );
+            let go = usar_sim::scenario::from_str(&go, "go").unwrap();
+            assert_ne!(scenario_hash(&go).unwrap(), hash);
+        }
     }
 }

@@ -9,7 +9,8 @@ use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
 use super::state::{LeaveFigures, MissionState};
 use crate::scenario::{
-    CollisionPriority, Locomotion, PointM, Rect, Role, Scenario, SearchClock, SweepPattern,
+    CollisionPriority, IdleBeforeArea, Locomotion, PointM, Rect, Role, Scenario, SearchClock,
+    SweepPattern,
 };
 use crate::world::{World, WorldError};
 
@@ -175,7 +176,8 @@ fn leave_search_area(
 }
 
 /// A ground member of a group without a claim: claims the nearest known rescuee it can reach
-/// (while it has capacity and its group unpromised resources), else sweeps (blind groups) or
+/// (while it has capacity and its group unpromised resources), else sweeps (blind groups),
+/// drives on to its search area (not reached yet, `mission.idle_before_area: GoToArea`) or
 /// waits.
 fn decide_ground_on_task(
     scenario: &Scenario,
@@ -223,6 +225,11 @@ fn decide_ground_on_task(
             }
         }
         Phase::Waiting => {}
+        // Nothing to claim before the area (`mission.idle_before_area: GoToArea`): on to it.
+        _ if scenario.mission.idle_before_area == IdleBeforeArea::GoToArea && !r.reached_area => {
+            st.robots[id].phase = Phase::ToSearchArea;
+            send(world, &mut st.recorder, id, scenario.tasks[t].goal)?;
+        }
         _ => {
             st.robots[id].phase = Phase::Waiting;
             stop(world, id)?;
@@ -408,6 +415,44 @@ mod tests {
                 prop_assert_eq!(st.tally.observer[t], observer);
                 prop_assert_eq!(st.tally.unclaimed[t], st.unclaimed_pool(t));
             }
+        }
+    }
+
+    #[test]
+    fn a_member_with_nothing_to_claim_before_its_area_waits_or_drives_on() {
+        for (rule, before) in [
+            (IdleBeforeArea::Wait, Phase::Waiting),
+            (IdleBeforeArea::GoToArea, Phase::ToSearchArea),
+        ] {
+            let s = three_tasks()
+                .edit(|spec| spec.mission.idle_before_area = rule)
+                .unwrap();
+            let mut world = World::new(&s);
+            let mut st = MissionState::new(&s, &draw_initial_levels(&s, 7));
+            let id = (0..s.robots.len())
+                .find(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
+                .unwrap();
+            // A claim just finished on the way: no claim, and no rescuee known to claim (no
+            // observer has looked yet).
+            let r = &mut st.robots[id];
+            (r.task, r.phase, r.claim, r.reached_area) = (Some(0), Phase::Searching, None, false);
+            gather_leave_figures(&s, &mut st);
+            tally_tasks(&s, &mut st);
+            decide_ground_on_task(&s, &mut world, &mut st, id, false).unwrap();
+            assert_eq!(st.robots[id].phase, before, "{rule:?}");
+            let goal = world.robot(id).goal;
+            match rule {
+                IdleBeforeArea::Wait => assert_eq!(goal, None),
+                IdleBeforeArea::GoToArea => {
+                    let d = (goal.expect("a goal") - s.tasks[0].goal).norm();
+                    assert!(d < 1e-6, "goal {d} m from the task's goal");
+                }
+            }
+            // Within reach of the area, both wait.
+            st.robots[id].reached_area = true;
+            st.robots[id].phase = Phase::Searching;
+            decide_ground_on_task(&s, &mut world, &mut st, id, false).unwrap();
+            assert_eq!(st.robots[id].phase, Phase::Waiting, "{rule:?}");
         }
     }
 }

@@ -204,3 +204,19 @@ pub enum SearchClock {
     /// that is slower or farther away searches for less time.
     RoundStart,
 }
+
+/// What a ground member with nothing to claim does before it has come within reach of its
+/// task's search area (`MissionRobot::reached_area`). A member may claim a known rescuee on
+/// its way and finish or lose the claim there (a claim is released when the member makes no
+/// progress to it), and then has nothing to do. Not in the paper, which does not say.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum IdleBeforeArea {
+    /// It stops and waits where it stands until its group leaves (default; the model of the
+    /// paper's scenarios).
+    #[default]
+    Wait,
+    /// It drives on to its task's goal and waits only once within reach of the search area.
+    /// In a group of a thousand members, members standing on the way to the area block the
+    /// others (`scenarios/swarm-10000.ron`, `docs/scaling.md`).
+    GoToArea,
+}

@@ -9,8 +9,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::choices::{
-    AwayQuotas, CollisionPriority, HpEffect, LeaveWhenLow, LoadOnLeave, OutsideRange,
-    RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart, SearchClock, SweepPattern,
+    AwayQuotas, CollisionPriority, HpEffect, IdleBeforeArea, LeaveWhenLow, LoadOnLeave,
+    OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart, SearchClock,
+    SweepPattern,
 };
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
@@ -150,6 +151,9 @@ pub struct MissionParams {
     pub search_time_budget_s: Option<Positive>,
     /// When the search time budget starts to run; default `FirstArrival`.
     pub search_clock: SearchClock,
+    /// What a ground member with nothing to claim does before it reaches its search area;
+    /// default `Wait`.
+    pub idle_before_area: IdleBeforeArea,
     /// What a stay at the rest station restores; default `Both`.
     pub refresh: Refresh,
     /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
@@ -201,6 +205,7 @@ impl Default for MissionParams {
             load_on_leave: LoadOnLeave::default(),
             search_time_budget_s: None,
             search_clock: SearchClock::FirstArrival,
+            idle_before_area: IdleBeforeArea::Wait,
             refresh: Refresh::default(),
             sweep_spacing_m: None,
             sweep_pattern: SweepPattern::default(),
