@@ -21,8 +21,9 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
 const ADDED_FIELDS: [(&str, &str, &str); 1] = [("mission", "idle_before_area", "Wait")];
 
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
-/// the [`ADDED_FIELDS`] that hold their old value. Any change to what the scenario means
-/// changes it; comments, layout, and writing out a default value or leaving it out do not.
+/// the fields added later (`ADDED_FIELDS`) that hold their old value. Any change to what the
+/// scenario means changes it; comments, layout, and writing out a default value or leaving it
+/// out do not.
 ///
 /// # Errors
 /// A scenario serde_json cannot serialise (not expected).
