@@ -18,7 +18,10 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
 /// Fields added after scenario hashes were first published, as (section, field, the value that
 /// keeps the model as it was): left out of the hashed form while they hold that value, so a
 /// scenario that does not use them keeps its hash.
-const ADDED_FIELDS: [(&str, &str, &str); 1] = [("mission", "idle_before_area", "Wait")];
+const ADDED_FIELDS: [(&str, &str, &str); 2] = [
+    ("mission", "idle_before_area", "Wait"),
+    ("mission", "empty_on_leave", "ViaDropOff"),
+];
 
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
 /// the fields added later (`ADDED_FIELDS`) that hold their old value. Any change to what the
@@ -64,7 +67,8 @@ mod tests {
 
     #[test]
     fn a_field_added_later_keeps_the_hashes_of_scenarios_that_do_not_use_it() {
-        // The hashes before `mission.idle_before_area` existed (`usar check FILE --hash`).
+        // The hashes before `mission.idle_before_area` and `mission.empty_on_leave` existed
+        // (`usar check FILE --hash`).
         let before = [
             (
                 include_str!("../../../scenarios/paper.ron"),
@@ -91,6 +95,22 @@ mod tests {
             );
             let go = usar_sim::scenario::from_str(&go, "go").unwrap();
             assert_ne!(scenario_hash(&go).unwrap(), hash);
+            let via = src.replace(
+                "pickup_s:",
+                "empty_on_leave: ViaDropOff,\n        pickup_s:",
+            );
+            let via = usar_sim::scenario::from_str(&via, "via").unwrap();
+            assert_eq!(
+                scenario_hash(&via).unwrap(),
+                hash,
+                "written out: same meaning"
+            );
+            let straight = src.replace(
+                "pickup_s:",
+                "empty_on_leave: StraightToStart,\n        pickup_s:",
+            );
+            let straight = usar_sim::scenario::from_str(&straight, "straight").unwrap();
+            assert_ne!(scenario_hash(&straight).unwrap(), hash);
         }
     }
 }

@@ -9,8 +9,8 @@ use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
 use super::state::{LeaveFigures, MissionState};
 use crate::scenario::{
-    CollisionPriority, IdleBeforeArea, Locomotion, PointM, Rect, Role, Scenario, SearchClock,
-    SweepPattern,
+    CollisionPriority, EmptyOnLeave, IdleBeforeArea, Locomotion, PointM, Rect, Role, Scenario,
+    SearchClock, SweepPattern,
 };
 use crate::world::{World, WorldError};
 
@@ -152,7 +152,8 @@ fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: 
 }
 
 /// Sends every member of task `t`'s group still searching to the task's drop-off, releasing
-/// their claims.
+/// their claims; under `mission.empty_on_leave: StraightToStart` a member carrying nothing goes
+/// straight back to its start instead.
 fn leave_search_area(
     scenario: &Scenario,
     world: &mut World,
@@ -160,6 +161,7 @@ fn leave_search_area(
     t: usize,
 ) -> Result<(), MissionError> {
     let drop_off = scenario.tasks[t].drop_off.center;
+    let straight = scenario.mission.empty_on_leave == EmptyOnLeave::StraightToStart;
     for id in 0..st.robots.len() {
         let r = &mut st.robots[id];
         if r.task != Some(t) || !r.is_on_task() {
@@ -169,8 +171,18 @@ fn leave_search_area(
             st.fields[t].release(i);
         }
         r.picking_until_s = None;
-        r.phase = Phase::ToDropOff;
-        send(world, &mut st.recorder, id, drop_off)?;
+        if straight && r.load.is_empty() {
+            r.phase = Phase::ToStart;
+            send(
+                world,
+                &mut st.recorder,
+                id,
+                scenario.robots[id].start_in_world,
+            )?;
+        } else {
+            r.phase = Phase::ToDropOff;
+            send(world, &mut st.recorder, id, drop_off)?;
+        }
     }
     Ok(())
 }
@@ -453,6 +465,42 @@ mod tests {
             st.robots[id].phase = Phase::Searching;
             decide_ground_on_task(&s, &mut world, &mut st, id, false).unwrap();
             assert_eq!(st.robots[id].phase, Phase::Waiting, "{rule:?}");
+        }
+    }
+
+    #[test]
+    fn an_empty_member_leaves_via_the_drop_off_or_straight_to_its_start() {
+        for rule in [EmptyOnLeave::ViaDropOff, EmptyOnLeave::StraightToStart] {
+            let s = three_tasks()
+                .edit(|spec| spec.mission.empty_on_leave = rule)
+                .unwrap();
+            let mut world = World::new(&s);
+            let mut st = MissionState::new(&s, &draw_initial_levels(&s, 7));
+            let ground: Vec<usize> = (0..s.robots.len())
+                .filter(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
+                .take(2)
+                .collect();
+            let (loaded, empty) = (ground[0], ground[1]);
+            for &id in &ground {
+                let r = &mut st.robots[id];
+                (r.task, r.phase, r.reached_area) = (Some(0), Phase::Waiting, true);
+            }
+            st.robots[loaded].load.push(0);
+            leave_search_area(&s, &mut world, &mut st, 0).unwrap();
+            let goal_m = |world: &World, id: usize| world.robot(id).goal.expect("a goal");
+            let drop_off = s.tasks[0].drop_off.center;
+            assert_eq!(st.robots[loaded].phase, Phase::ToDropOff, "{rule:?}");
+            assert!(
+                (goal_m(&world, loaded) - drop_off).norm() < 1e-6,
+                "{rule:?}"
+            );
+            let (phase, target) = match rule {
+                EmptyOnLeave::ViaDropOff => (Phase::ToDropOff, drop_off),
+                EmptyOnLeave::StraightToStart => (Phase::ToStart, s.robots[empty].start_in_world),
+            };
+            assert_eq!(st.robots[empty].phase, phase, "{rule:?}");
+            let d = (goal_m(&world, empty) - target).norm();
+            assert!(d < 1e-6, "{rule:?}: goal {d} m from where it should go");
         }
     }
 }

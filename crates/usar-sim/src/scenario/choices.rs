@@ -205,6 +205,22 @@ pub enum SearchClock {
     RoundStart,
 }
 
+/// Where a member carrying nothing goes when its group leaves the search area
+/// (`docs/mission-model.md`, "Leaving the search area"). Not in the paper, which sends the
+/// group to the drop-off and back and does not say whether an empty member makes the detour.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum EmptyOnLeave {
+    /// With its group, to the task's drop-off, and from there to its start (default; the model
+    /// of the paper's scenarios).
+    #[default]
+    ViaDropOff,
+    /// Straight back to its start. Members that carry rescuees still go to the drop-off. In a
+    /// group of a thousand members drawn from a wide start area, empty members sent to the
+    /// drop-off crossed the arena and met the loaded ones head-on (`scenarios/swarm-10000.ron`,
+    /// `docs/scaling.md`).
+    StraightToStart,
+}
+
 /// What a ground member with nothing to claim does before it has come within reach of its
 /// task's search area (`MissionRobot::reached_area`). A member may claim a known rescuee on
 /// its way and finish or lose the claim there (a claim is released when the member makes no

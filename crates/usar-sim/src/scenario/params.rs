@@ -9,9 +9,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::choices::{
-    AwayQuotas, CollisionPriority, HpEffect, IdleBeforeArea, LeaveWhenLow, LoadOnLeave,
-    OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart, SearchClock,
-    SweepPattern,
+    AwayQuotas, CollisionPriority, EmptyOnLeave, HpEffect, IdleBeforeArea, LeaveWhenLow,
+    LoadOnLeave, OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart,
+    SearchClock, SweepPattern,
 };
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
@@ -154,6 +154,9 @@ pub struct MissionParams {
     /// What a ground member with nothing to claim does before it reaches its search area;
     /// default `Wait`.
     pub idle_before_area: IdleBeforeArea,
+    /// Where a member carrying nothing goes when its group leaves the search area; default
+    /// `ViaDropOff`.
+    pub empty_on_leave: EmptyOnLeave,
     /// What a stay at the rest station restores; default `Both`.
     pub refresh: Refresh,
     /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
@@ -206,6 +209,7 @@ impl Default for MissionParams {
             search_time_budget_s: None,
             search_clock: SearchClock::FirstArrival,
             idle_before_area: IdleBeforeArea::Wait,
+            empty_on_leave: EmptyOnLeave::ViaDropOff,
             refresh: Refresh::default(),
             sweep_spacing_m: None,
             sweep_pattern: SweepPattern::default(),
