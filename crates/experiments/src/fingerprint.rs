@@ -79,38 +79,26 @@ mod tests {
                 "97fe69ca418d0202",
             ),
         ];
+        // Each added field: the value that keeps the old model, and one that changes it.
+        let added = [
+            ("idle_before_area", "Wait", "GoToArea"),
+            ("empty_on_leave", "ViaDropOff", "StraightToStart"),
+        ];
+        let with = |src: &str, field: &str, value: &str| {
+            let edited = src.replace(
+                "pickup_s:",
+                &format!("{field}: {value},\n        pickup_s:"),
+            );
+            let s = usar_sim::scenario::from_str(&edited, "edited").unwrap();
+            scenario_hash(&s).unwrap()
+        };
         for (src, hash) in before {
             let s = usar_sim::scenario::from_str(src, "s").unwrap();
             assert_eq!(scenario_hash(&s).unwrap(), hash);
-            let wait = src.replace("pickup_s:", "idle_before_area: Wait,\n        pickup_s:");
-            let wait = usar_sim::scenario::from_str(&wait, "wait").unwrap();
-            assert_eq!(
-                scenario_hash(&wait).unwrap(),
-                hash,
-                "written out: same meaning"
-            );
-            let go = src.replace(
-                "pickup_s:",
-                "idle_before_area: GoToArea,\n        pickup_s:",
-            );
-            let go = usar_sim::scenario::from_str(&go, "go").unwrap();
-            assert_ne!(scenario_hash(&go).unwrap(), hash);
-            let via = src.replace(
-                "pickup_s:",
-                "empty_on_leave: ViaDropOff,\n        pickup_s:",
-            );
-            let via = usar_sim::scenario::from_str(&via, "via").unwrap();
-            assert_eq!(
-                scenario_hash(&via).unwrap(),
-                hash,
-                "written out: same meaning"
-            );
-            let straight = src.replace(
-                "pickup_s:",
-                "empty_on_leave: StraightToStart,\n        pickup_s:",
-            );
-            let straight = usar_sim::scenario::from_str(&straight, "straight").unwrap();
-            assert_ne!(scenario_hash(&straight).unwrap(), hash);
+            for (field, old, new) in added {
+                assert_eq!(with(src, field, old), hash, "{field}: {old} written out");
+                assert_ne!(with(src, field, new), hash, "{field}: {new}");
+            }
         }
     }
 }
