@@ -6,8 +6,8 @@ use usar_sim::mission::{
     Phase, RescueeStatus, Simulation, hp_factor, sweep_spacing_m, sweep_waypoints,
 };
 use usar_sim::scenario::{
-    LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZoneSpec, Refresh, Role, RoundStart,
-    Scenario,
+    LoadOnLeave, RadiationFalloff, RadiationOverlap, RadiationZoneSpec, Refresh, RestAt, Role,
+    RoundStart, Scenario,
 };
 
 #[test]
@@ -331,6 +331,52 @@ fn low_only_refresh_restores_only_the_level_below_its_threshold() {
         assert_eq!(r.energy_pct, 100.0, "{refresh:?}");
         // No radiation between the start and the rest station: HP is untouched or full.
         assert_eq!(r.hp_pct, hp_after, "{refresh:?}");
+    }
+}
+
+#[test]
+fn a_robot_recharges_at_a_rest_station_or_at_its_own_start() {
+    for rest_at in [RestAt::RestStation, RestAt::OwnStart] {
+        // 1 % above the energy threshold: robot 0 falls below it on its way to its task, a few
+        // metres from its start.
+        let s = paper_with(|s| {
+            s.mission.initial_energy = fixed(31.0);
+            s.mission.rest_at = rest_at;
+        });
+        let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
+            .with_duration_s(300.0)
+            .unwrap();
+        let id = 0;
+        let mut left_start = false;
+        while !matches!(sim.robots()[id].phase, Phase::Recharging { .. }) && !sim.is_finished() {
+            sim.step().unwrap();
+            left_start |= sim.world().robot(id).distance_travelled_m > 1.0;
+        }
+        assert!(left_start, "{rest_at:?}: robot {id} never set off");
+        let pos = sim.world().robot(id).position;
+        let start = s.robots()[id].start_in_world;
+        let tolerance_m = s.navigation().waypoint_tolerance_m.get() + 0.05;
+        match rest_at {
+            RestAt::RestStation => {
+                assert!(
+                    s.in_rest_station(&pos),
+                    "{rest_at:?}: recharging at {pos:?}"
+                );
+                assert!((pos - start).norm() > 1.0, "{rest_at:?}: at its start");
+            }
+            RestAt::OwnStart => {
+                let d = (pos - start).norm();
+                assert!(
+                    d <= tolerance_m,
+                    "{rest_at:?}: recharging {d} m from its start"
+                );
+            }
+        }
+        while sim.result().robots[id].recharges == 0 && !sim.is_finished() {
+            sim.step().unwrap();
+        }
+        assert_eq!(sim.result().robots[id].recharges, 1, "{rest_at:?}");
+        assert_eq!(sim.robots()[id].energy_pct, 100.0, "{rest_at:?}");
     }
 }
 

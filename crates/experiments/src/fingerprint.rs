@@ -18,9 +18,10 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
 /// Fields added after scenario hashes were first published, as (section, field, the value that
 /// keeps the model as it was): left out of the hashed form while they hold that value, so a
 /// scenario that does not use them keeps its hash.
-const ADDED_FIELDS: [(&str, &str, &str); 2] = [
+const ADDED_FIELDS: [(&str, &str, &str); 3] = [
     ("mission", "idle_before_area", "Wait"),
     ("mission", "empty_on_leave", "ViaDropOff"),
+    ("mission", "rest_at", "RestStation"),
 ];
 
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
@@ -67,7 +68,7 @@ mod tests {
 
     #[test]
     fn a_field_added_later_keeps_the_hashes_of_scenarios_that_do_not_use_it() {
-        // The hashes before `mission.idle_before_area` and `mission.empty_on_leave` existed
+        // The hashes before `mission.idle_before_area`, `empty_on_leave` and `rest_at` existed
         // (`usar check FILE --hash`).
         let before = [
             (
@@ -83,6 +84,7 @@ mod tests {
         let added = [
             ("idle_before_area", "Wait", "GoToArea"),
             ("empty_on_leave", "ViaDropOff", "StraightToStart"),
+            ("rest_at", "RestStation", "OwnStart"),
         ];
         let with = |src: &str, field: &str, value: &str| {
             let edited = src.replace(

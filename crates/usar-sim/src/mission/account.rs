@@ -11,7 +11,8 @@ use super::rescuees::RescueeStatus;
 use super::robot::Phase;
 use super::state::MissionState;
 use crate::scenario::{
-    LeaveWhenLow, LoadOnLeave, Locomotion, MissionParams, PointM, Refresh, Scenario, SearchClock,
+    LeaveWhenLow, LoadOnLeave, Locomotion, MissionParams, PointM, Refresh, RestAt, Scenario,
+    SearchClock,
 };
 use crate::world::World;
 
@@ -133,7 +134,11 @@ fn advance_phase(
             st.robots[id].phase = Phase::AtStart;
             stop(world, id)?;
         }
-        (Phase::ToRest, _) if (reached || scenario.in_rest_station(&pos)) => {
+        (Phase::ToRest, _)
+            if reached
+                || (scenario.mission.rest_at == RestAt::RestStation
+                    && scenario.in_rest_station(&pos)) =>
+        {
             st.robots[id].phase = Phase::Recharging {
                 until_s: now + scenario.mission.recharge_s.get(),
             };
@@ -255,7 +260,7 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
 
 /// Robot `id` leaves its task and group for the nearest rest station
 /// ([`rest_station_for`]: by path from where it stands; energy or HP below its
-/// threshold). Its claim is released; its load is abandoned, put back, or first delivered
+/// threshold), or for its own start under `mission.rest_at: OwnStart`. Its claim is released; its load is abandoned, put back, or first delivered
 /// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
 /// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
 fn go_rest(
@@ -290,6 +295,9 @@ fn go_rest(
     r.leaving = false;
     r.task = None;
     r.phase = Phase::ToRest;
-    let station = scenario.rest_stations[rest_station_for(scenario, world, id)].center;
-    send(world, &mut st.recorder, id, station)
+    let rest_m = match scenario.mission.rest_at {
+        RestAt::RestStation => scenario.rest_stations[rest_station_for(scenario, world, id)].center,
+        RestAt::OwnStart => scenario.robots[id].start_in_world,
+    };
+    send(world, &mut st.recorder, id, rest_m)
 }

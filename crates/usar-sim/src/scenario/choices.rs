@@ -205,6 +205,23 @@ pub enum SearchClock {
     RoundStart,
 }
 
+/// Where a robot whose energy or HP fell below its threshold recharges (paper, section VI.B:
+/// "it needs to go to the pre-defined rest position for recharging energy (or for refreshing
+/// its health HP) 30 seconds, then back to the initial position").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum RestAt {
+    /// At a rest station (`rest_station`), the one nearest by path, in the first station disc
+    /// it enters (default; the paper's model).
+    #[default]
+    RestStation,
+    /// At its own start position, as a robot docking at its own charger: it drives home and
+    /// recharges there for `mission.recharge_s`. No crowd forms at a station: in a team of
+    /// 10,000, a thousand robots converging on a few stations stood in the way of the robots
+    /// going home, and rounds never completed (`scenarios/swarm-10000.ron`,
+    /// `docs/scaling.md`).
+    OwnStart,
+}
+
 /// Where a member carrying nothing goes when its group leaves the search area
 /// (`docs/mission-model.md`, "Leaving the search area"). Not in the paper, which sends the
 /// group to the drop-off and back and does not say whether an empty member makes the detour.

@@ -10,8 +10,8 @@ use serde::{Deserialize, Serialize};
 
 use super::choices::{
     AwayQuotas, CollisionPriority, EmptyOnLeave, HpEffect, IdleBeforeArea, LeaveWhenLow,
-    LoadOnLeave, OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RoundStart,
-    SearchClock, SweepPattern,
+    LoadOnLeave, OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RestAt,
+    RoundStart, SearchClock, SweepPattern,
 };
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
@@ -157,6 +157,8 @@ pub struct MissionParams {
     /// Where a member carrying nothing goes when its group leaves the search area; default
     /// `ViaDropOff`.
     pub empty_on_leave: EmptyOnLeave,
+    /// Where a robot below a threshold recharges; default `RestStation`.
+    pub rest_at: RestAt,
     /// What a stay at the rest station restores; default `Both`.
     pub refresh: Refresh,
     /// Row spacing of a blind group's lawn-mower search, metres, > 0, written `Some(2.0)`;
@@ -210,6 +212,7 @@ impl Default for MissionParams {
             search_clock: SearchClock::FirstArrival,
             idle_before_area: IdleBeforeArea::Wait,
             empty_on_leave: EmptyOnLeave::ViaDropOff,
+            rest_at: RestAt::RestStation,
             refresh: Refresh::default(),
             sweep_spacing_m: None,
             sweep_pattern: SweepPattern::default(),
