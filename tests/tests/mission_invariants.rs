@@ -4,7 +4,7 @@
 
 use integration_tests::{method, paper, paper_with};
 use usar_sim::mission::{Phase, RescueeStatus, Simulation};
-use usar_sim::scenario::{Positive, Scenario};
+use usar_sim::scenario::{Positive, RestAt, Scenario};
 
 const EPS: f64 = 1e-9;
 
@@ -18,6 +18,10 @@ fn paper_at_10_hz() -> Scenario {
 fn check_method(name: &str) {
     check(name, &paper());
 }
+
+/// How far from its start a robot recharging there (`mission.rest_at: OwnStart`) may stand
+/// beyond the goal tolerance: pushes by neighbours while it stands still, metres.
+const OWN_START_PUSH_M: f64 = 0.2;
 
 fn check(name: &str, s: &Scenario) {
     let s = s.clone();
@@ -86,15 +90,25 @@ fn check(name: &str, s: &Scenario) {
                 "{name}: robot {} changed phase between control steps",
                 r.id
             );
-            // Energy rises only when a recharge at the rest station ends.
+            // Energy rises only when a recharge ends, where `mission.rest_at` says.
             if r.energy_pct > e0 + EPS {
                 assert!(
                     matches!(phase0, Phase::Recharging { .. }),
                     "{name}: energy rose"
                 );
+                let at_rest = match s.mission().rest_at {
+                    RestAt::RestStation => s.in_rest_station(&w.position),
+                    // Within the goal tolerance of its start, plus what a neighbour's push
+                    // may move a robot standing still (metres).
+                    RestAt::OwnStart => {
+                        let start = s.robots()[r.id].start_in_world;
+                        let d = (w.position - start).norm();
+                        d <= s.navigation().waypoint_tolerance_m.get() + OWN_START_PUSH_M
+                    }
+                };
                 assert!(
-                    s.in_rest_station(&w.position),
-                    "{name}: robot {} recharged outside the rest station",
+                    at_rest,
+                    "{name}: robot {} recharged away from where it rests",
                     r.id
                 );
                 assert_eq!(r.energy_pct, 100.0);
@@ -212,4 +226,16 @@ fn invariants_rne_with_a_control_period() {
 #[test]
 fn invariants_dis_with_a_control_period() {
     check("dis", &paper_at_10_hz());
+}
+
+#[test]
+fn invariants_rne_recharging_at_the_own_start() {
+    let s = paper_with(|s| s.mission.rest_at = RestAt::OwnStart);
+    check("rne", &s);
+    // The trial checked has recharges to check.
+    let r = Simulation::for_trial(&s, method("rne", &s), 0)
+        .run_to_end()
+        .unwrap();
+    let recharges: u32 = r.robots.iter().map(|x| x.recharges).sum();
+    assert!(recharges > 0, "no robot recharged");
 }

@@ -18,7 +18,7 @@ pub enum MarkKind {
     DeadlockDetected = 2,
     /// Robots left a list whose order had been rotated: their deadlock cleared.
     DeadlockResolved = 3,
-    /// A robot left its task for the rest station (`value`: bit 0 low energy, bit 1 low HP).
+    /// A robot left its task to recharge (`value`: bit 0 low energy, bit 1 low HP).
     LeftToRecharge = 4,
     /// A robot delivered rescuees at its task's drop-off (`value`: how many).
     Delivery = 5,

@@ -367,8 +367,8 @@
         s = (carry || 'going') + ' to the drop-off' + (flags & F_LEAVING ? ', then to rest' : '');
         break;
       case 'ToStart': s = 'returning to its start'; break;
-      case 'ToRest': s = 'going to the rest station'; break;
-      case 'Recharging': s = 'resting at the rest station'; break;
+      case 'ToRest': s = 'going to recharge'; break;
+      case 'Recharging': s = 'recharging'; break;
       case 'RestToStart': s = 'rested, returning to its start'; break;
       default: s = p;
     }

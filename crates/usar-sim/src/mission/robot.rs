@@ -18,11 +18,14 @@ pub enum Phase {
     Waiting,
     /// Carrying its load to the task's drop-off.
     ToDropOff,
-    /// Going back to its start position after the drop-off.
+    /// Going back to its start position after the drop-off (or, carrying nothing, from its
+    /// search area under `mission.empty_on_leave: StraightToStart`).
     ToStart,
-    /// Left its task with low energy or HP; going to the rest station.
+    /// Left its task with low energy or HP; going to where it recharges (the rest station, or
+    /// its own start under `mission.rest_at: OwnStart`).
     ToRest,
-    /// At the rest station until the given simulated time, seconds.
+    /// Recharging (at the rest station, or at its start under `mission.rest_at: OwnStart`)
+    /// until the given simulated time, seconds.
     Recharging {
         /// When recharging ends, seconds since the trial start.
         until_s: f64,
@@ -77,7 +80,7 @@ pub struct MissionRobot {
 }
 
 impl MissionRobot {
-    /// Whether the robot is away for its safety or basic needs (rest station or on the way,
+    /// Whether the robot is away for its safety or basic needs (recharging or on the way,
     /// including a last delivery on the way there; see [`MissionRobot::leaving`]).
     pub fn is_resting(&self) -> bool {
         self.leaving
