@@ -5,7 +5,7 @@
 use super::decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 use super::error::MissionError;
 use super::events::{MissionEvent, MissionEventKind};
-use super::goals::{rest_station_for, send, stop};
+use super::goals::{rest_station_for, send, send_home, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::Phase;
@@ -126,8 +126,7 @@ fn advance_phase(
                 go_rest(scenario, world, st, id)?;
             } else {
                 st.robots[id].phase = Phase::ToStart;
-                let start = scenario.robots[id].start_in_world;
-                send(world, &mut st.recorder, id, start)?;
+                send_home(scenario, world, &mut st.recorder, id)?;
             }
         }
         (Phase::ToStart | Phase::RestToStart, _) if reached => {
@@ -148,8 +147,7 @@ fn advance_phase(
             refresh(scenario, st, id);
             let kind = MissionEventKind::Recharged;
             st.events.push(MissionEvent::of_robot(now, id, None, kind));
-            let start = scenario.robots[id].start_in_world;
-            send(world, &mut st.recorder, id, start)?;
+            send_home(scenario, world, &mut st.recorder, id)?;
         }
         // At the start, or (never in a valid state) on a task's work without a task.
         _ => {}
@@ -260,8 +258,8 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
 
 /// Robot `id` leaves its task and group for the nearest rest station
 /// ([`rest_station_for`]: by path from where it stands; energy or HP below its threshold), or
-/// for its own start under `mission.rest_at: OwnStart`. Its claim is released; its load is abandoned, put back, or first delivered
-/// (`mission.load_on_leave`). A robot delivering first stays in its group, marked
+/// for its own start under `mission.rest_at: OwnStart`. Its claim is released; its load is
+/// abandoned, put back, or first delivered (`mission.load_on_leave`). A robot delivering first stays in its group, marked
 /// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
 fn go_rest(
     scenario: &Scenario,

@@ -3,7 +3,7 @@
 //! collision priority follow its state; ground members claim rescuees or sweep.
 
 use super::error::MissionError;
-use super::goals::{send, stop};
+use super::goals::{send, send_home, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
@@ -173,12 +173,7 @@ fn leave_search_area(
         r.picking_until_s = None;
         if straight && r.load.is_empty() {
             r.phase = Phase::ToStart;
-            send(
-                world,
-                &mut st.recorder,
-                id,
-                scenario.robots[id].start_in_world,
-            )?;
+            send_home(scenario, world, &mut st.recorder, id)?;
         } else {
             r.phase = Phase::ToDropOff;
             send(world, &mut st.recorder, id, drop_off)?;

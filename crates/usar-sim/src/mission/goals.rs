@@ -28,6 +28,20 @@ pub(crate) fn send(
     }
 }
 
+/// Sends robot `id` to its start position (`Scenario::robots[id].start_in_world`), as
+/// [`send`].
+///
+/// # Errors
+/// As [`send`].
+pub(crate) fn send_home(
+    scenario: &Scenario,
+    world: &mut World,
+    rec: &mut Recorder,
+    id: usize,
+) -> Result<(), MissionError> {
+    send(world, rec, id, scenario.robots[id].start_in_world)
+}
+
 /// Clears robot `id`'s goal: it stands still.
 ///
 /// # Errors

@@ -216,7 +216,7 @@ pub enum RestAt {
     RestStation,
     /// At its own start position, as a robot docking at its own charger: it drives home and
     /// recharges there for `mission.recharge_s`. No crowd forms at a station: in a team of
-    /// 10,000, a thousand robots converging on a few stations stood in the way of the robots
+    /// 10,000, hundreds of robots converging on a few stations stood in the way of the robots
     /// going home, and rounds never completed (`scenarios/swarm-10000.ron`,
     /// `docs/scaling.md`).
     OwnStart,
