@@ -56,6 +56,12 @@ swarm-bound:
 swarm-bound-10k:
     cargo test --release -p integration-tests --test swarm -- --ignored --nocapture swarm_10000
 
+# Rapier's `parallel` feature measured: a 10,000-robot trial on 1 and 2 threads (same results?
+# how much faster?) and a paper sweep with it (docs/scaling.md, "Rapier's parallel feature";
+# about 15 min on 2 cores).
+rapier-parallel:
+    scripts/rapier-parallel.sh
+
 # The comparison in every combination of the paper's open choices, each calibrated first
 # (docs/multiverse.md; the axes are scenarios/paper-axes.ron).
 multiverse *ARGS:

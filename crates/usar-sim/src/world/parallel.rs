@@ -8,7 +8,10 @@
 //! reads is written during the phase; anything that mutates shared state (Rapier, the
 //! planner's caches, the resolver's lists, the mission's tallies) stays serial. So a trial
 //! gives bit-identical results on any number of threads (`tests/tests/parallel_trial.rs`).
-//! Rapier itself steps serially: its `parallel` feature does not promise identical results.
+//! Rapier itself steps serially: with its `parallel` feature a trial gave the same results, but
+//! a Rapier step on a thread of a busy rayon pool waits for a task queued behind the trial that
+//! thread runs, so a sweep with one trial per thread deadlocks (`docs/scaling.md`, "Rapier's
+//! `parallel` feature", and `scripts/rapier-parallel.sh`).
 
 use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
