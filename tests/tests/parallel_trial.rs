@@ -1,7 +1,7 @@
 //! One trial on several threads: a large team's per-robot phases (the read-back after the
 //! physics step, the resolver's steering) run on the rayon pool the trial runs in, and the
 //! trial's numbers are bit-identical for any number of threads (`docs/scaling.md`, "One trial
-//! on all cores").
+//! on all cores"); and two trials side by side on one pool, as a sweep runs them, finish.
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::{Simulation, TrialResult};
@@ -89,4 +89,43 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
             "{threads} threads, parallel {parallel}"
         );
     }
+}
+
+/// Longest wait for [`two_trials_side_by_side_on_one_pool_finish`], seconds: its two 30 s
+/// trials of `paper.ron` take well under a second each, even in a debug build.
+const SIDE_BY_SIDE_TIMEOUT_S: u64 = 300;
+
+/// Two trials side by side, one on each thread of a 2-thread rayon pool, as a sweep runs its
+/// trials, both finish and agree. Built with Rapier's `parallel` feature they never finish:
+/// each Rapier step waits for a task queued on its own busy thread (`docs/scaling.md`,
+/// "Rapier's `parallel` feature"); this test then fails after [`SIDE_BY_SIDE_TIMEOUT_S`]
+/// instead of hanging the suite.
+#[test]
+fn two_trials_side_by_side_on_one_pool_finish() {
+    let (sender, receiver) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let s = load(&scenario_path("paper.ron"));
+        let trial = || {
+            Simulation::builder(&s)
+                .method(method("dis", &s))
+                .duration_s(30.0)
+                .build()
+                .expect("builds")
+                .run_to_end()
+                .expect("runs")
+        };
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .expect("a thread pool");
+        let (a, b) = pool.install(|| rayon::join(trial, trial));
+        // The receiver is gone only when the test has already failed on the timeout.
+        let _ = sender.send((format!("{a:?}"), format!("{b:?}")));
+    });
+    let timeout = std::time::Duration::from_secs(SIDE_BY_SIDE_TIMEOUT_S);
+    let (a, b) = receiver.recv_timeout(timeout).unwrap_or_else(|e| {
+        panic!("two trials on a 2-thread pool did not finish in {SIDE_BY_SIDE_TIMEOUT_S} s: {e}")
+    });
+    assert_eq!(a, b, "the same trial twice, side by side");
+    assert!(a.contains("rescued"), "a trial result: {a}");
 }
