@@ -1,6 +1,7 @@
 //! The scaling bench's figure: steps per CPU second against team size, log-log, for the logic
 //! and its bare-Rapier replay, at the scenario's control period and with the software every
-//! step, with lines at 10x and 25x real time.
+//! step; the logic on one thread and on a pool, steps per wall-clock second; with lines at 10x
+//! and 25x real time.
 
 use plotters::prelude::*;
 
@@ -14,18 +15,25 @@ pub struct Point {
     pub control: Option<(f64, f64)>,
     /// Logic and bare replay with the software every step (`None` if not measured).
     pub every_step: Option<(f64, f64)>,
+    /// Logic at the scenario's control period on one thread and on the bench's pool, steps
+    /// per wall-clock second (`None` if not measured).
+    pub threads: Option<(f64, f64)>,
 }
 
 /// A curve: label, colour, dashed, and its value of a point.
-type Series<'a> = (&'a str, RGBColor, bool, &'a dyn Fn(&Point) -> Option<f64>);
+type Series<'a> = (String, RGBColor, bool, &'a dyn Fn(&Point) -> Option<f64>);
 
-/// Draws `points` as a log-log plot into the SVG file `path`. Errors: the file cannot be
-/// written.
-pub fn draw(points: &[Point], path: &str) -> Result<(), Box<dyn std::error::Error>> {
+/// Draws `points` as a log-log plot into the SVG file `path`; `threads` names the pool of
+/// [`Point::threads`]. Errors: the file cannot be written.
+pub fn draw(
+    points: &[Point],
+    threads: usize,
+    path: &str,
+) -> Result<(), Box<dyn std::error::Error>> {
     let root = SVGBackend::new(path, (760, 480)).into_drawing_area();
     root.fill(&WHITE)?;
     let all = |p: &Point| {
-        [p.control, p.every_step]
+        [p.control, p.every_step, p.threads]
             .into_iter()
             .flatten()
             .flat_map(|(a, b)| [a, b])
@@ -38,7 +46,7 @@ pub fn draw(points: &[Point], path: &str) -> Result<(), Box<dyn std::error::Erro
     let y_min = values.iter().copied().fold(10.0 / dt, f64::min) * 0.5;
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            "World steps per CPU second against team size",
+            "World steps per second against team size",
             ("sans-serif", 20),
         )
         .margin(12)
@@ -48,25 +56,41 @@ pub fn draw(points: &[Point], path: &str) -> Result<(), Box<dyn std::error::Erro
     chart
         .configure_mesh()
         .x_desc("robots")
-        .y_desc("world steps per CPU second (one core)")
+        .y_desc("world steps per CPU second (one core), per wall second (threads)")
         .x_label_formatter(&|v| format!("{v:.0}"))
         .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()?;
     let blue = RGBColor(31, 119, 180);
     let orange = RGBColor(255, 127, 14);
-    let series: [Series; 4] = [
-        ("all logic, 10 Hz control", blue, false, &|p| {
+    let purple = RGBColor(148, 103, 189);
+    let series: [Series; 6] = [
+        ("all logic, 10 Hz control".into(), blue, false, &|p| {
             p.control.map(|c| c.0)
         }),
-        ("bare Rapier replaying it", blue, true, &|p| {
+        ("bare Rapier replaying it".into(), blue, true, &|p| {
             p.control.map(|c| c.1)
         }),
-        ("all logic, software every step", orange, false, &|p| {
-            p.every_step.map(|c| c.0)
-        }),
-        ("bare Rapier replaying it", orange, true, &|p| {
+        (
+            "all logic, software every step".into(),
+            orange,
+            false,
+            &|p| p.every_step.map(|c| c.0),
+        ),
+        ("bare Rapier replaying it".into(), orange, true, &|p| {
             p.every_step.map(|c| c.1)
         }),
+        (
+            "all logic, 1 thread, per wall second".into(),
+            purple,
+            true,
+            &|p| p.threads.map(|t| t.0),
+        ),
+        (
+            format!("all logic, {threads} threads, per wall second"),
+            purple,
+            false,
+            &|p| p.threads.map(|t| t.1),
+        ),
     ];
     for (label, colour, dashed, value) in series {
         let pts: Vec<(f64, f64)> = points

@@ -26,8 +26,11 @@
 //! default 1,500), `--budget-s S` (stop a measurement at the first block end after S
 //! wall-clock seconds; the output then says `CUT` and after how many steps; no budget by
 //! default), `--teams 12,100,...`, `--no-every-step` (skip the software-every-step
-//! measurement), `--svg FILE` (relative to the workspace root; also draw the curves, log-log,
-//! with the 10x and 25x real-time lines; `docs/img/scaling.svg` is made this way).
+//! measurement), `--threads N` (default 2; 1 skips it: the scenario's trial run twice side by
+//! side in alternating blocks, on one thread and on a pool of N, timed by the wall clock, with
+//! the speed-up and a check that both runs' robots stand in the same places; `threads.rs`),
+//! `--svg FILE` (relative to the workspace root; also draw the curves, log-log, with the 10x
+//! and 25x real-time lines; `docs/img/scaling.svg` is made this way).
 //!
 //! A team that cannot be built (a scaled start grid that no longer fits, a file that does not
 //! parse), an unknown `--method` or a failing step stops the bench with a one-line error,
@@ -37,9 +40,11 @@ mod figure;
 mod measure;
 mod options;
 mod teams;
+mod threads;
 
 use measure::{Measured, measure, peak_rss_mib, reset_peak_rss};
 use options::Options;
+use threads::{Threaded, measure_threads};
 
 /// One team's measurements: at the scenario's control period (if it has one) and with the
 /// software every step (the scenario itself when it has no control period).
@@ -47,6 +52,7 @@ struct Row {
     robots: usize,
     control: Option<Measured>,
     every_step: Option<Measured>,
+    threaded: Option<Threaded>,
     peak_rss_mib: f64,
 }
 
@@ -70,6 +76,24 @@ fn report(label: &str, m: &Measured) {
     );
 }
 
+/// Prints the one-against-several-threads measurement, indented under its team.
+fn report_threads(t: &Threaded) {
+    let same = match t.diverged_at {
+        None => "the two runs' robots stood in the same places at every block end".to_owned(),
+        Some(step) => format!("THE RUNS DIVERGED: robots stand apart at step {step}"),
+    };
+    println!(
+        "  the scenario on 1 and on {} threads: steps 1-{}, {:.3} and {:.3} wall-s, {:.1} and {:.1} sim-s per wall-s, speed-up {:.2}; {same}",
+        t.threads,
+        t.steps,
+        t.one_wall_s,
+        t.many_wall_s,
+        t.one_rate(),
+        t.many_rate(),
+        t.speed_up(),
+    );
+}
+
 /// Builds and measures the team of `n` (see the module docs). Errors: one line.
 fn run_team(n: usize, o: &Options) -> Result<Row, String> {
     let rss_reset = reset_peak_rss();
@@ -81,6 +105,7 @@ fn run_team(n: usize, o: &Options) -> Result<Row, String> {
         robots: n,
         control: None,
         every_step: None,
+        threaded: None,
         peak_rss_mib: 0.0,
     };
     let err = |e: String| format!("team of {n}: {e}");
@@ -100,6 +125,11 @@ fn run_team(n: usize, o: &Options) -> Result<Row, String> {
         let m = measure(s, &o.method, o.steps, o.budget_s).map_err(err)?;
         report("software every step (the scenario)", &m);
         row.every_step = Some(m);
+    }
+    if o.threads > 1 {
+        let t = measure_threads(s, &o.method, o.steps, o.threads).map_err(err)?;
+        report_threads(&t);
+        row.threaded = Some(t);
     }
     row.peak_rss_mib = peak_rss_mib();
     let since = if rss_reset {
@@ -131,13 +161,14 @@ fn cells(m: Option<&Measured>) -> String {
     }
 }
 
-/// Prints the summary table of every team (markdown).
-fn print_table(rows: &[Row]) {
+/// Prints the summary table of every team (markdown); `threads` is the pool of the
+/// one-against-several-threads measurement.
+fn print_table(rows: &[Row], threads: usize) {
     println!();
     println!(
-        "| robots | control period: steps (sim) | logic steps/CPU-s | bare replay steps/CPU-s | logic / bare | sim-s per CPU-s | software every step: steps (sim) | logic steps/CPU-s | bare replay steps/CPU-s | logic / bare | peak RSS MiB |"
+        "| robots | control period: steps (sim) | logic steps/CPU-s | bare replay steps/CPU-s | logic / bare | sim-s per CPU-s | software every step: steps (sim) | logic steps/CPU-s | bare replay steps/CPU-s | logic / bare | sim-s per wall-s, 1 thread | the same, {threads} threads | speed-up | peak RSS MiB |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for r in rows {
         let speed = r
             .control
@@ -148,8 +179,16 @@ fn print_table(rows: &[Row]) {
             None => " | | | ".to_owned(),
             Some(m) => cells(Some(m)),
         };
+        let threaded = r.threaded.as_ref().map_or(" | | ".to_owned(), |t| {
+            format!(
+                "{:.1} | {:.1} | {:.2}",
+                t.one_rate(),
+                t.many_rate(),
+                t.speed_up()
+            )
+        });
         println!(
-            "| {} | {} | {speed} | {every} | {:.0} |",
+            "| {} | {} | {speed} | {every} | {threaded} | {:.0} |",
             r.robots,
             cells(r.control.as_ref()),
             r.peak_rss_mib
@@ -160,14 +199,22 @@ fn print_table(rows: &[Row]) {
 fn main() {
     let o = options::options();
     println!(
-        "scaling bench: method {}, {} steps per measurement{}, one thread, rates per CPU second of the thread; logic and bare-Rapier replay of its commands in alternating blocks of {} steps",
+        "scaling bench: method {}, {} steps per measurement{}, one thread, rates per CPU second of the thread; logic and bare-Rapier replay of its commands in alternating blocks of {} steps{}",
         o.method,
         o.steps,
         o.budget_s
             .map_or(", each measured in full".to_owned(), |b| format!(
                 ", a measurement cut at the first block end after {b} s of wall time"
             )),
-        measure::BLOCK_STEPS
+        measure::BLOCK_STEPS,
+        if o.threads > 1 {
+            format!(
+                "; then the scenario on 1 and on {} threads side by side, by the wall clock",
+                o.threads
+            )
+        } else {
+            String::new()
+        }
     );
     let mut rows = Vec::new();
     for &n in &o.teams {
@@ -179,7 +226,7 @@ fn main() {
             }
         }
     }
-    print_table(&rows);
+    print_table(&rows, o.threads);
     if let Some(path) = &o.svg {
         let points: Vec<figure::Point> = rows
             .iter()
@@ -195,9 +242,13 @@ fn main() {
                     .every_step
                     .as_ref()
                     .map(|m| (m.logic_rate(), m.bare_rate())),
+                threads: r.threaded.as_ref().map(|t| {
+                    let steps_per = |wall_s: f64| t.steps as f64 / wall_s;
+                    (steps_per(t.one_wall_s), steps_per(t.many_wall_s))
+                }),
             })
             .collect();
-        if let Err(e) = figure::draw(&points, path) {
+        if let Err(e) = figure::draw(&points, o.threads, path) {
             eprintln!("error: cannot draw {path}: {e}");
             std::process::exit(1);
         }

@@ -98,6 +98,17 @@ fn same_positions(scene: &PhysicsScene, sim: &Simulation) -> bool {
         .all(|(&b, r)| to_point(scene.physics.bodies[b].translation()) == r.position)
 }
 
+/// Trial 0 of `s` under `method`, long enough (1e5 simulated seconds) for any measurement.
+/// Errors (one line): the simulation does not build (an unknown method).
+pub fn trial(s: &Scenario, method: &str) -> Result<Simulation, String> {
+    Simulation::builder(s)
+        .method_named(method)
+        .trial(0)
+        .duration_s(1e5)
+        .build()
+        .map_err(|e| e.to_string())
+}
+
 /// Measures the first `steps` steps of trial 0 of `s` under `method`, logic and bare replay
 /// in alternating blocks (see the module docs); with `budget_s`, stops at the first block end
 /// after that much wall-clock time and says so in [`Measured::cut`]. Errors (one line): the
@@ -108,12 +119,7 @@ pub fn measure(
     steps: u64,
     budget_s: Option<f64>,
 ) -> Result<Measured, String> {
-    let mut sim = Simulation::builder(s)
-        .method_named(method)
-        .trial(0)
-        .duration_s(1e5)
-        .build()
-        .map_err(|e| e.to_string())?;
+    let mut sim = trial(s, method)?;
     let mut scene = PhysicsScene::new(s);
     let n = s.robots().len().max(1);
     let mut commands: Vec<Vec2> = Vec::with_capacity(n * BLOCK_STEPS as usize);

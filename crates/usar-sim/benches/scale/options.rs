@@ -21,6 +21,9 @@ pub struct Options {
     pub svg: Option<String>,
     /// Whether the measurement with the software at every step is skipped (`--no-every-step`).
     pub no_every_step: bool,
+    /// Threads of the one-against-several-threads measurement (`--threads`, default 2; 1
+    /// skips it).
+    pub threads: usize,
 }
 
 /// The default team sizes.
@@ -49,7 +52,7 @@ fn positive<T: std::str::FromStr + PartialOrd + Default>(
 /// bench with a one-line error (exit 2). Cargo's own `--bench` argument is ignored.
 pub fn options() -> Options {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    const VALUED: [&str; 7] = [
+    const VALUED: [&str; 8] = [
         "--base",
         "--scenario",
         "--method",
@@ -57,6 +60,7 @@ pub fn options() -> Options {
         "--budget-s",
         "--teams",
         "--svg",
+        "--threads",
     ];
     let mut i = 0;
     while i < args.len() {
@@ -93,5 +97,6 @@ pub fn options() -> Options {
         svg: value("--svg").map(|f| path(&f)),
         teams: teams.unwrap_or_else(|| if quick { vec![12, 100] } else { TEAMS.to_vec() }),
         no_every_step: args.iter().any(|a| a == "--no-every-step"),
+        threads: positive("--threads", value("--threads"), 2usize),
     }
 }
