@@ -28,7 +28,8 @@
 //! default), `--teams 12,100,...`, `--no-every-step` (skip the software-every-step
 //! measurement), `--threads N` (default 2; 1 skips it: the scenario's trial run twice side by
 //! side in alternating blocks, on one thread and on a pool of N, timed by the wall clock, with
-//! the speed-up and a check that both runs' robots stand in the same places; `threads.rs`),
+//! the speed-up and a check that both runs' robots stand in the same places; `threads.rs`;
+//! always the full `--steps`, `--budget-s` does not cut it),
 //! `--svg FILE` (relative to the workspace root; also draw the curves, log-log, with the 10x
 //! and 25x real-time lines; `docs/img/scaling.svg` is made this way).
 //!
