@@ -57,7 +57,9 @@ run usual "$usual" 1
 run parallel-1-thread "$parallel" 1
 run parallel-2-threads "$parallel" 2
 # ratio A B: wall-clock of run A over that of run B
-ratio() { awk '{ w[NR] = $1 } END { printf "%.2f\n", w[1] / w[2] }' "$work/$1.time" "$work/$2.time"; }
+ratio() {
+    awk '{ w[NR] = $1 } END { printf "%.2f\n", w[1] / w[2] }' "$work/$1.time" "$work/$2.time"
+}
 echo "wall-clock speed-up, parallel build on 2 threads over the usual on 1:" \
     "$(ratio usual parallel-2-threads)"
 echo "wall-clock speed-up, parallel build on 2 threads over itself on 1:" \

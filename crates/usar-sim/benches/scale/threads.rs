@@ -1,11 +1,11 @@
 //! The scaling bench's one-against-several-threads measurement: the same trial run twice side
-//! by side, once on this thread alone and once on a rayon pool of `threads` threads (the
-//! team's per-robot phases in parallel from `PARALLEL_MIN_ROBOTS` robots on,
-//! `docs/scaling.md`, "One trial on all cores"), in alternating blocks of
-//! [`BLOCK_STEPS`](crate::measure::BLOCK_STEPS) steps timed by the wall clock (each run first
-//! every other block), so both see the same load of a shared machine. After each block (untimed) the two worlds' robots are
-//! compared: they stand in the same place, bit for bit, as a trial gives the same numbers on
-//! any number of threads.
+//! by side, once on one thread and once on a rayon pool of `threads` threads (the team's
+//! per-robot phases in parallel from `PARALLEL_MIN_ROBOTS` robots on, `docs/scaling.md`, "One
+//! trial on all cores"), in alternating blocks of [`BLOCK_STEPS`](crate::measure::BLOCK_STEPS)
+//! steps timed by the wall clock (each run first every other block), so both see the same load
+//! of a shared machine. After each block (untimed) the two worlds' robots are compared: they
+//! stand in the same place, bit for bit, as a trial gives the same numbers on any number of
+//! threads.
 
 use std::time::Instant;
 

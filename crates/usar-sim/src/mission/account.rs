@@ -259,8 +259,9 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
 /// Robot `id` leaves its task and group for the nearest rest station
 /// ([`rest_station_for`]: by path from where it stands; energy or HP below its threshold), or
 /// for its own start under `mission.rest_at: OwnStart`. Its claim is released; its load is
-/// abandoned, put back, or first delivered (`mission.load_on_leave`). A robot delivering first stays in its group, marked
-/// [`super::MissionRobot::leaving`], until it reaches the drop-off, and comes back here then.
+/// abandoned, put back, or first delivered (`mission.load_on_leave`). A robot delivering
+/// first stays in its group, marked [`super::MissionRobot::leaving`], until it reaches the
+/// drop-off, and comes back here then.
 fn go_rest(
     scenario: &Scenario,
     world: &mut World,
