@@ -91,17 +91,21 @@ impl Nav {
 
     /// What the collision resolver needs to know about this robot, whose public state is
     /// `state`: its sensing range scaled by the sensing factor, active while it has a goal it has
-    /// not reached, and its priority key.
+    /// not reached, its priority key, and (active robots only, else 0) its remaining path
+    /// length. The resolver reads `remaining` of list members only, and only active robots
+    /// join lists; skipping the path of a parked robot saves a cache miss per robot and
+    /// control step in a large team.
     pub(super) fn resolver_input(&self, state: &RobotState) -> ResolverInput {
+        let active = state.is_active();
         ResolverInput {
             pos: self.pos,
             intent: self.intent,
             radius: self.radius,
             sensing: self.sensing * state.sensing_factor as f32,
             layer: self.layer,
-            active: state.is_active(),
+            active,
             key: state.priority_key,
-            remaining: self.remaining(),
+            remaining: if active { self.remaining() } else { 0.0 },
         }
     }
 }

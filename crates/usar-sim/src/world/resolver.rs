@@ -630,7 +630,7 @@ mod tests {
     use crate::scenario::{Arena, Locomotion, NonNegative, Positive};
     use crate::world::bodies::{StaticObstacle, StaticShape};
     use crate::world::neighbours::{AllRobots, NeighbourIndex};
-    use proptest::strategy::Strategy;
+    use proptest::strategy::{Strategy, ValueTree};
 
     /// The neighbour index (3 m cells over the 10 m x 10 m test field) of `inputs`.
     fn index(inputs: &[ResolverInput]) -> NeighbourIndex {
@@ -1099,5 +1099,60 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The resolver never reads `remaining` of an inactive robot (the world passes 0 for them,
+    /// `Nav::resolver_input`): with NaN there instead of a length it decides the same lists,
+    /// holds and deadlocks, step after step, on 64 random crowds (a fixed seed) in which one
+    /// robot stops or starts every step (list members among them) and the active robots'
+    /// progress stalls often enough that lists deadlock and rotate.
+    #[test]
+    fn inactive_robots_remaining_is_never_read() {
+        let crowds = (
+            proptest::collection::vec(random_robot(), 40..120),
+            proptest::collection::vec((0usize..120, 0.0f32..0.5), 16),
+        );
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let mut deadlocks = 0u64;
+        for _ in 0..64 {
+            let (mut inputs, flips) = ValueTree::current(&crowds.new_tree(&mut runner).unwrap());
+            let n = inputs.len();
+            let (mut real, mut nan) = (Resolver::new(params(), n), Resolver::new(params(), n));
+            for (step, &(flip, progress_m)) in flips.iter().enumerate() {
+                let f = &mut inputs[flip % n];
+                f.active = !f.active;
+                // Progress every sixth step only: lists standing four steps (2 s) deadlock.
+                if step % 6 == 5 {
+                    for a in inputs.iter_mut() {
+                        a.remaining = (a.remaining - progress_m).max(0.0);
+                    }
+                }
+                let masked: Vec<ResolverInput> = inputs
+                    .iter()
+                    .map(|a| ResolverInput {
+                        remaining: if a.active { a.remaining } else { f32::NAN },
+                        ..*a
+                    })
+                    .collect();
+                let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                real.resolve(&inputs, &ix, 0.5);
+                nan.resolve(&masked, &ix, 0.5);
+                assert_eq!(real.decisions(), nan.decisions(), "step {step}");
+                assert_eq!(real.lists, nan.lists, "step {step}");
+                assert_eq!(
+                    real.deadlocked_lists(),
+                    nan.deadlocked_lists(),
+                    "step {step}"
+                );
+                deadlocks += real.deadlocked_lists();
+                for (i, a) in inputs.iter_mut().enumerate() {
+                    if !real.decisions()[i].held {
+                        a.pos += a.intent * 0.05;
+                    }
+                }
+            }
+        }
+        assert!(deadlocks > 0, "no list deadlocked: the crowds test nothing");
     }
 }

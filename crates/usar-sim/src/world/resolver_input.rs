@@ -24,7 +24,8 @@ pub struct ResolverInput {
     /// Priority key: lower goes first, ties by id.
     pub key: f64,
     /// Remaining path length to the goal (distance to the current waypoint plus the rest of
-    /// the path), metres; progress for deadlock detection is its decrease.
+    /// the path), metres; progress for deadlock detection is its decrease. Read only for
+    /// robots in a collision list, which are all `active`: the world passes 0 for the others.
     pub remaining: f32,
 }
 
