@@ -8,8 +8,12 @@ import time
 
 from conftest import PAPER
 
+# The child restores Python's Ctrl-C handler first: a shell without job control starts
+# background jobs with SIGINT ignored, and Python then installs no handler of its own (so a
+# `bash .ci/run &` would otherwise see the sweep finish instead of stop).
 SCRIPT = f"""
-import sys, usar
+import signal, sys, usar
+signal.signal(signal.SIGINT, signal.default_int_handler)
 paper = usar.Scenario.load({str(PAPER)!r})
 print("started", flush=True)
 try:
