@@ -243,10 +243,7 @@ fn main() {
                     .every_step
                     .as_ref()
                     .map(|m| (m.logic_rate(), m.bare_rate())),
-                threads: r.threaded.as_ref().map(|t| {
-                    let steps_per = |wall_s: f64| t.steps as f64 / wall_s;
-                    (steps_per(t.one_wall_s), steps_per(t.many_wall_s))
-                }),
+                threads: r.threaded.as_ref().map(Threaded::steps_per_wall_s),
             })
             .collect();
         if let Err(e) = figure::draw(&points, o.threads, path) {

@@ -41,6 +41,12 @@ impl Threaded {
         self.steps as f64 * self.dt_s / self.many_wall_s
     }
 
+    /// World steps per wall second on one thread and on the pool (the figure's curves).
+    pub fn steps_per_wall_s(&self) -> (f64, f64) {
+        let steps = self.steps as f64;
+        (steps / self.one_wall_s, steps / self.many_wall_s)
+    }
+
     /// Wall-clock speed-up of the pool over one thread.
     pub fn speed_up(&self) -> f64 {
         self.one_wall_s / self.many_wall_s
