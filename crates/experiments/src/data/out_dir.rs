@@ -1,5 +1,6 @@
-//! The default output folder of a sweep: `results/<scenario name>/`, always one folder
-//! inside `results/`.
+//! The default output folder of a sweep (`results/<scenario name>/`), of a calibration and of
+//! a multiverse (`results/calibrate-<scenario name>/`, `results/multiverse-<scenario name>/`),
+//! always one folder inside `results/`.
 
 use std::path::{Path, PathBuf};
 
@@ -15,6 +16,13 @@ use usar_sim::scenario::Scenario;
 /// allow 255 bytes) and two long names stay apart.
 pub fn default_out_dir(scenario: &Scenario) -> PathBuf {
     Path::new("results").join(folder_name(scenario.name()))
+}
+
+/// Default output folder of a run of kind `kind` (`"calibrate"`, `"multiverse"`) on a
+/// scenario: `results/<kind>-<scenario name>/`, the name made one folder as for
+/// [`default_out_dir`] (so `kind` must hold no path separator).
+pub fn default_out_dir_of(kind: &str, scenario: &Scenario) -> PathBuf {
+    Path::new("results").join(format!("{kind}-{}", folder_name(scenario.name())))
 }
 
 /// The scenario name as one folder name (see [`default_out_dir`]).
@@ -73,6 +81,32 @@ mod tests {
             assert!(
                 matches!(parts[1], std::path::Component::Normal(_)),
                 "{name:?}"
+            );
+        }
+    }
+
+    /// A calibration's and a multiverse's folders are the sweep's folder name after their
+    /// kind, one folder inside `results/` whatever the scenario's name.
+    #[test]
+    fn a_run_kind_prefixes_the_safe_folder_name() {
+        let paper = include_str!("../../../../scenarios/paper.ron");
+        let mut spec = usar_sim::scenario::parse_spec(paper, "paper.ron").unwrap();
+        for (name, calibrate) in [
+            ("paper", "results/calibrate-paper"),
+            ("../../escaped", "results/calibrate-.._.._escaped"),
+        ] {
+            spec.name = name.into();
+            let scenario = spec.validate("paper.ron").unwrap();
+            assert_eq!(
+                default_out_dir_of("calibrate", &scenario),
+                Path::new(calibrate)
+            );
+            let multiverse = default_out_dir_of("multiverse", &scenario);
+            assert_eq!(
+                multiverse.components().count(),
+                2,
+                "{}",
+                multiverse.display()
             );
         }
     }

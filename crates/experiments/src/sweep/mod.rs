@@ -33,7 +33,7 @@ pub use crate::data::limits::{
     MAX_SWEEP_TRIALS, MAX_THREADS_PER_CORE, check_shard_count, check_sweep_size, effective_threads,
     max_threads, sweep_threads,
 };
-pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir};
+pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir, default_out_dir_of};
 pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};
 pub use crate::data::trial_length::simulated_length_s;
 pub use crate::method_factory::{

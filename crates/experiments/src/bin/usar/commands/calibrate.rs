@@ -29,7 +29,7 @@ use experiments::calibration::{PAPER_TARGETS_ORIGIN, PAPER_TARGETS_RON};
 
 use experiments::shard::shell_join;
 
-use experiments::sweep::default_out_dir;
+use experiments::sweep::default_out_dir_of;
 
 use crate::shared::source_date::source_date;
 use crate::shared::sweep_spec::threads_of;
@@ -225,11 +225,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
 /// for a sweep's folder).
 fn default_dir(setup: &CalibrationSetup) -> Result<PathBuf> {
     let scenario = setup.base.validate(&setup.origin)?;
-    let sweep_dir = default_out_dir(&scenario);
-    let name = sweep_dir
-        .file_name()
-        .map_or("scenario".into(), |n| n.to_string_lossy().into_owned());
-    Ok(Path::new("results").join(format!("calibrate-{name}")))
+    Ok(default_out_dir_of("calibrate", &scenario))
 }
 
 /// Runs `usar calibrate`: calibrate, then print the summary.

@@ -2,7 +2,7 @@
 //! ([`MultiverseSpecArgs`]), its setup and default folder, and the error that lists failed
 //! universes (`usar multiverse`, `usar merge`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::Args;
@@ -15,7 +15,7 @@ use experiments::multiverse::setup::{
 };
 use experiments::multiverse::{Axes, MultiverseSetup, Sample};
 use experiments::shard::Shard;
-use experiments::sweep::default_out_dir;
+use experiments::sweep::default_out_dir_of;
 
 use crate::shared::source_date::source_date;
 
@@ -131,10 +131,7 @@ pub fn setup_of(
 /// for a sweep's folder).
 pub fn default_dir(setup: &MultiverseSetup) -> Result<PathBuf> {
     let scenario = setup.base.validate(&setup.origin)?;
-    let name = default_out_dir(&scenario)
-        .file_name()
-        .map_or("scenario".into(), |n| n.to_string_lossy().into_owned());
-    Ok(Path::new("results").join(format!("multiverse-{name}")))
+    Ok(default_out_dir_of("multiverse", &scenario))
 }
 
 /// The error listing failed universes, if any, ending with `retry` (how to retry them).
