@@ -1,28 +1,40 @@
-//! One trial on several threads: a large team's per-robot phases (the read-back after the
-//! physics step, the resolver's steering) run on the rayon pool the trial runs in, and the
+//! One trial on several threads: a large team's per-robot phases (path following up to the
+//! planner, the read-back after the physics step, the resolver's steering) run on the rayon
+//! pool the trial runs in, and the
 //! trial's numbers are bit-identical for any number of threads (`docs/scaling.md`, "One trial
 //! on all cores"); and two trials side by side on one pool, as a sweep runs them, finish.
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::scenario::Positive;
 use usar_sim::world::PARALLEL_MIN_ROBOTS;
 
 /// Simulated seconds: grouping, the round start (every robot plans) and 100 control steps of
-/// the team leaving its start grids, with collision lists, holds and steering.
+/// the team leaving its start grids, with collision lists, holds, steering, detours and
+/// re-plans (with [`STALL_REPLAN_S`]).
 const SHORT_S: f64 = 10.0;
 
+/// `navigation.stall_replan_s` of the test's scenario, seconds (the file's is 3): short, so
+/// that robots take detours and re-plan within [`SHORT_S`] (with the file's, none does before
+/// about 15 s), and the serial part of parallel path following is run too.
+const STALL_REPLAN_S: f64 = 0.5;
+
 /// What a trial leaves: every robot's position, velocity and distance travelled as bits,
-/// the mission's HP and energy as bits, and the trial's result.
+/// the mission's HP and energy as bits, its re-plans, and the trial's result.
 struct Outcome {
     robots: Vec<[u64; 5]>,
     levels: Vec<[u64; 2]>,
+    replans: Vec<u64>,
     result: TrialResult,
 }
 
-/// `swarm-1000.ron`, DIS, trial 0, [`SHORT_S`] seconds, in a rayon pool of `threads` threads
-/// (per-robot phases parallel when `parallel`).
+/// `swarm-1000.ron` with [`STALL_REPLAN_S`], DIS, trial 0, [`SHORT_S`] seconds, in a rayon
+/// pool of `threads` threads (per-robot phases parallel when `parallel`).
 fn run(threads: usize, parallel: bool) -> Outcome {
-    let s = load(&scenario_path("swarm-1000.ron"));
+    let stall = Positive::new(STALL_REPLAN_S).expect("positive");
+    let s = load(&scenario_path("swarm-1000.ron"))
+        .edit(|s| s.navigation.stall_replan_s = Some(stall))
+        .expect("a valid edit");
     assert!(s.robots().len() >= PARALLEL_MIN_ROBOTS);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -56,9 +68,16 @@ fn run(threads: usize, parallel: bool) -> Outcome {
             .iter()
             .map(|r| [r.hp_pct.to_bits(), r.energy_pct.to_bits()])
             .collect();
+        let replans = sim
+            .world()
+            .robots()
+            .iter()
+            .map(|r| r.counters.replans)
+            .collect();
         Outcome {
             robots,
             levels,
+            replans,
             result,
         }
     })
@@ -74,6 +93,10 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
         .filter(|r| f64::from_bits(r[4]) > 0.5)
         .count();
     assert!(moved > 500, "{moved} robots moved more than 0.5 m");
+    // Some robots needed the planner while following their paths (detours, re-plans): the
+    // part of path following that stays serial ran between the parallel parts.
+    let replanned = one.replans.iter().filter(|&&r| r > 0).count();
+    assert!(replanned >= 10, "{replanned} robots re-planned");
     for (threads, parallel) in [(2, true), (4, true), (4, false)] {
         let other = run(threads, parallel);
         for (id, (a, b)) in one.robots.iter().zip(&other.robots).enumerate() {
@@ -81,6 +104,10 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
         }
         assert_eq!(
             one.levels, other.levels,
+            "{threads} threads, parallel {parallel}"
+        );
+        assert_eq!(
+            one.replans, other.replans,
             "{threads} threads, parallel {parallel}"
         );
         assert_eq!(

@@ -42,11 +42,14 @@
 //! - `plan_into`: where a robot's plan is written (its path, or the world's scratch buffer).
 //! - `robot_planning`: a robot's plans ([`World`]'s planning function over the
 //!   [`path_planner`]: goals, goal checks, re-plans).
-//! - `path_following`: a robot's intended velocity from its path (corner passing, the periodic
-//!   line-of-sight check and re-plan).
+//! - `follow`: one robot's path following up to where it needs the planner (goal test,
+//!   no-progress clock, the periodic line-of-sight check, corner passing, intended velocity),
+//!   written to a buffer: a function of the robot's own state.
+//! - `path_following`: a robot's intended velocity from its path: `follow`, then the planner's
+//!   part (detours and re-plans), in robot order.
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
-//! - `parallel`: the step's per-robot phases (read-back, steering) on a rayon pool for a
-//!   large team ([`PARALLEL_MIN_ROBOTS`]), bit-identical on any number of threads.
+//! - `parallel`: the step's per-robot phases (path following, read-back, steering) on a rayon
+//!   pool for a large team ([`PARALLEL_MIN_ROBOTS`]), bit-identical on any number of threads.
 //! - `per_robot`: the per-robot outputs of those phases, and when they run in parallel.
 //!
 //! See `docs/world-model.md` for the model and its rules.
@@ -60,6 +63,7 @@ mod conflicts;
 mod disc_mask;
 pub mod distance_field;
 mod error;
+mod follow;
 mod grid_astar;
 mod grid_moves;
 mod grid_regions;

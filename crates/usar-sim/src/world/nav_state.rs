@@ -69,12 +69,12 @@ impl Nav {
         }
     }
 
-    /// The current waypoint (the last one if `wp` ran past the end).
+    /// Waypoint `wp` of the path (the last one if `wp` runs past the end).
     ///
     /// # Panics
     /// If the path is empty (no goal).
-    pub(super) fn waypoint(&self) -> Vec2 {
-        self.path[self.wp.min(self.path.len() - 1)]
+    pub(super) fn waypoint_at(&self, wp: usize) -> Vec2 {
+        self.path[wp.min(self.path.len() - 1)]
     }
 
     /// Remaining path length: to the current waypoint, then along the rest of the path.

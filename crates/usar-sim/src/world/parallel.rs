@@ -1,7 +1,7 @@
 //! Per-robot parallelism inside one trial: the step's per-robot work that reads shared state
-//! and writes only its own robot's output (the read-back after the physics step with each
-//! robot's radiation factor, and the resolver's steering), computed with rayon into buffers
-//! kept between steps, then applied in robot id order.
+//! and writes only its own robot's output (path following up to the planner, the read-back
+//! after the physics step with each robot's radiation factor, and the resolver's steering),
+//! computed with rayon into buffers kept between steps, then applied in robot id order.
 //!
 //! Not in the paper. Each robot's output is computed by the same code, with the same
 //! floating-point operations in the same order, on whichever thread runs it, and nothing it
@@ -19,6 +19,7 @@ use rapier2d::dynamics::RigidBodySet;
 use rayon::prelude::*;
 
 use super::bodies::to_point;
+use super::follow::{Follow, Followed, Stage, check_due, follow};
 use super::nav_state::Nav;
 use super::per_robot::CHUNK_ROBOTS;
 use super::radiation::radiation_factor_at;
@@ -34,6 +35,29 @@ impl World {
     /// that runs one trial per thread forbids it so that trials do not compete for threads.
     pub fn set_parallel(&mut self, enabled: bool) {
         self.per_robot.enabled = enabled;
+    }
+
+    /// Path following of every robot from the start of this control step ([`follow`]) into
+    /// `per_robot.followed`, in parallel: `Some` where it is done, `None` where the robot needs
+    /// the planner (the world then runs that robot's path following serially, in id order:
+    /// [`World::update_intent`]). `tick` counts the control steps before this one. Reads only
+    /// each robot's own state, the grid and the clock, and writes only the buffer.
+    pub(super) fn follow_all(&mut self, tick: u64) {
+        let mut out = std::mem::take(&mut self.per_robot.followed);
+        out.resize(self.nav.len(), None);
+        let ctx = self.follow_ctx();
+        let (nav, robots, every) = (&self.nav[..], &self.robots[..], self.path_check_every);
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(CHUNK_ROBOTS)
+            .for_each(|(id, o)| {
+                let (me, state) = (&nav[id], &robots[id]);
+                let mut f = Followed::of(me, state);
+                let due = check_due(tick, id, every);
+                let done = follow(&ctx, me, state, due, &mut f, Stage::Start) == Follow::Done;
+                *o = done.then_some(f);
+            });
+        self.per_robot.followed = out;
     }
 
     /// Reads every robot's body back after the physics step (see [`read_back`]) and its

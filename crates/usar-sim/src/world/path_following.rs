@@ -3,14 +3,14 @@
 //! and, for ground robots, the periodic line-of-sight check that skips visible waypoints and
 //! re-plans when the current one is hidden, and the detour: a ground robot outside collision
 //! lists that makes no progress along its path for [`STALL_REPLAN_S`](super::STALL_REPLAN_S)
-//! re-plans around the robots standing near it.
+//! re-plans around the robots standing near it. The per-robot part is `follow.rs`; this file
+//! runs it and does the planner's part (re-plans and detours) in robot order.
 
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
-use super::path_following_params::{
-    CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_MAX_M, STALL_PROGRESS_M,
-};
+use super::follow::{Follow, FollowCtx, Followed, Stage, follow};
+use super::path_following_params::DETOUR_REJOIN_BEYOND_M;
 use super::plan_into::PlanInto;
 use super::plan_query::PlanQuery;
 use super::robot::Motion;
@@ -19,71 +19,58 @@ use super::world::World;
 use crate::scenario::{HoldRule, Locomotion};
 
 impl World {
-    /// Inflation of robot `id`'s line-of-sight checks while following its path: body radius +
-    /// half of `navigation.clearance_m`, metres.
-    fn check_inflation(&self, id: usize) -> f32 {
-        self.nav[id].radius + 0.5 * self.navigation.clearance_m.get() as f32
+    /// What path following reads besides the robot ([`FollowCtx`]).
+    pub(super) fn follow_ctx(&self) -> FollowCtx<'_> {
+        FollowCtx {
+            grid: &self.grid,
+            navigation: &self.navigation,
+            crowd: self.collision.hold_rule == HoldRule::Yield,
+            steps: self.stats.steps,
+            dt: self.dt,
+            period_s: self.control_period_s(),
+        }
     }
 
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
     /// once it is reached; marks the goal reached within its tolerance, by default
     /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]); a ground robot
     /// also checks its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`](super::PATH_CHECK_INTERVAL_STEPS)).
+    /// [`follow`] does all but the planner's work: a detour when the no-progress clock runs
+    /// out ([`World::detour`], then the clock restarts) and a re-plan from where the robot
+    /// stands when the periodic check finds its waypoint hidden (on failure the old path is
+    /// kept; physics keeps the robot out of obstacles).
     pub(super) fn update_intent(&mut self, id: usize, check_due: bool) {
-        let nav = &mut self.nav[id];
-        nav.intent = Vec2::ZERO;
-        let Some(goal) = nav.goal else {
-            return;
-        };
-        if self.robots[id].goal_reached {
-            return;
-        }
-        if (goal - nav.pos).length() <= nav.goal_tolerance_m {
-            self.robots[id].goal_reached = true;
-            return;
-        }
-        if nav.layer == Locomotion::Ground {
-            self.watch_progress(id);
-            if check_due {
-                self.check_path(id);
-            }
-        }
-        self.pass_corners(id);
-        self.nav[id].intent = self.intent_to_waypoint(id);
-    }
-
-    /// The periodic path check of ground robot `id`: skips the waypoints it can see (within
-    /// [`PATH_CHECK_MAX_M`]) and, if the line of sight to its waypoint (first
-    /// [`PATH_CHECK_MAX_M`]) is blocked, re-plans from where it stands. On failure the old path
-    /// is kept; physics keeps the robot out of obstacles.
-    fn check_path(&mut self, id: usize) {
-        let check_infl = self.check_inflation(id);
-        let nav = &mut self.nav[id];
-        let p = nav.pos;
-        let mut skipped = false;
-        while nav.wp + 1 < nav.path.len()
-            && (nav.path[nav.wp + 1] - p).length() < PATH_CHECK_MAX_M
-            && self
-                .grid
-                .line_of_sight(p, nav.path[nav.wp + 1], check_infl, f32::INFINITY)
-        {
-            nav.wp += 1;
-            skipped = true;
-        }
-        // After a skip the new waypoint was just seen in full (it is nearer than
-        // PATH_CHECK_MAX_M), so only an unskipped waypoint needs its line of sight checked.
-        if skipped
-            || self
-                .grid
-                .line_of_sight(p, nav.waypoint(), check_infl, PATH_CHECK_MAX_M)
-        {
-            return;
-        }
-        let Some(requested) = nav.requested else {
-            return;
-        };
-        if let Ok(eff) = self.plan(id, requested, PlanInto::Scratch) {
-            self.take_scratch_path(id, eff);
+        let mut f = Followed::of(&self.nav[id], &self.robots[id]);
+        let mut from = Stage::Start;
+        loop {
+            let ctx = self.follow_ctx();
+            let outcome = follow(
+                &ctx,
+                &self.nav[id],
+                &self.robots[id],
+                check_due,
+                &mut f,
+                from,
+            );
+            f.apply(&mut self.nav[id], &mut self.robots[id]);
+            from = match outcome {
+                Follow::Done => return,
+                Follow::Detour => {
+                    let steps = self.stats.steps;
+                    self.detour(id);
+                    let nav = &mut self.nav[id];
+                    nav.best_remaining = nav.best_remaining.min(nav.remaining());
+                    nav.progress_step = steps;
+                    Stage::PathCheck
+                }
+                Follow::Replan(requested) => {
+                    if let Ok(eff) = self.plan(id, requested, PlanInto::Scratch) {
+                        self.take_scratch_path(id, eff);
+                    }
+                    Stage::Corners
+                }
+            };
+            f = Followed::of(&self.nav[id], &self.robots[id]);
         }
     }
 
@@ -98,36 +85,6 @@ impl World {
         let state = &mut self.robots[id];
         state.goal = Some(to_point(eff));
         state.counters.replans += 1;
-    }
-
-    /// The no-progress clock of ground robot `id` (`navigation.stall_replan_s`, default
-    /// [`STALL_REPLAN_S`](super::STALL_REPLAN_S)): restarts on progress, and under
-    /// `collision.hold_rule: ListHead` while the robot was in a collision list at the last
-    /// step; when it runs out, the robot
-    /// takes a detour ([`World::detour`]) and the clock restarts. (Under `Yield` a list member
-    /// stuck in a jam no rotation clears, e.g. robots meeting head-on in a gap between debris,
-    /// detours too.)
-    fn watch_progress(&mut self, id: usize) {
-        let steps = self.stats.steps;
-        let crowd = self.collision.hold_rule == HoldRule::Yield;
-        let nav = &mut self.nav[id];
-        let remaining = nav.remaining();
-        let listed = self.robots[id].in_collision_list && !crowd;
-        if listed || remaining < nav.best_remaining - STALL_PROGRESS_M {
-            nav.best_remaining = remaining;
-            nav.progress_step = steps;
-            return;
-        }
-        let Some(stall_s) = self.navigation.stall_replan_s else {
-            return;
-        };
-        if (steps - nav.progress_step) as f64 * self.dt < stall_s.get() {
-            return;
-        }
-        self.detour(id);
-        let nav = &mut self.nav[id];
-        nav.best_remaining = nav.best_remaining.min(nav.remaining());
-        nav.progress_step = steps;
     }
 
     /// Re-plans ground robot `id` around the robots of its layer standing still within its
@@ -269,49 +226,6 @@ impl World {
             at = next;
         }
         None
-    }
-
-    /// Advances robot `id`'s waypoint past the corners it has passed: a corner is passed when
-    /// reached (within `navigation.waypoint_tolerance_m`), or when the robot is within
-    /// [`CORNER_PASS_M`] of it, already beyond the line through it perpendicular to the next
-    /// leg, and sees the next waypoint. Without the second rule robots queueing at a corner all
-    /// aim at the same point, which their own bodies cover: a jam no priority order resolves.
-    fn pass_corners(&mut self, id: usize) {
-        let tol = self.navigation.waypoint_tolerance_m.get() as f32;
-        let check_infl = self.check_inflation(id);
-        let nav = &mut self.nav[id];
-        let p = nav.pos;
-        let last = nav.path.len() - 1;
-        while nav.wp < last {
-            let corner = nav.path[nav.wp];
-            let next = nav.path[nav.wp + 1];
-            let d = (corner - p).length();
-            let passed = d <= tol
-                || (d <= CORNER_PASS_M
-                    && (p - corner).dot(next - corner) > 0.0
-                    && self.grid.line_of_sight(p, next, check_infl, f32::INFINITY));
-            if !passed {
-                break;
-            }
-            nav.wp += 1;
-        }
-    }
-
-    /// Velocity towards robot `id`'s current waypoint at top speed times the speed factor; on
-    /// the last leg at most `distance / period` (the control period: the step `dt` without
-    /// `sim.control_period_s`), so the goal is not overshot before the next control step.
-    fn intent_to_waypoint(&self, id: usize) -> Vec2 {
-        let nav = &self.nav[id];
-        let to_target = nav.waypoint() - nav.pos;
-        let dist = to_target.length();
-        if dist <= f32::EPSILON {
-            return Vec2::ZERO;
-        }
-        let mut speed = nav.max_speed * self.robots[id].speed_factor as f32;
-        if nav.wp >= nav.path.len() - 1 {
-            speed = speed.min(dist / self.control_period_s() as f32);
-        }
-        to_target * (speed / dist)
     }
 }
 

@@ -5,6 +5,7 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::follow::Followed;
 use super::radiation::{DoseRule, radiation_factor_at};
 use super::robot::RobotState;
 use crate::scenario::RadiationZone;
@@ -31,6 +32,9 @@ pub(super) struct PerRobot {
     pub(super) steered: Vec<Option<Vec2>>,
     /// One scratch list of nearby robots per task of [`CHUNK_ROBOTS`] robots.
     pub(super) scratch: Vec<Vec<usize>>,
+    /// Each robot's path following of this control step when it needed no planner, `None`
+    /// when it does (filled only when path following runs in parallel).
+    pub(super) followed: Vec<Option<Followed>>,
 }
 
 impl PerRobot {
@@ -44,6 +48,7 @@ impl PerRobot {
             scratch: (0..n.div_ceil(CHUNK_ROBOTS).max(1))
                 .map(|_| Vec::new())
                 .collect(),
+            followed: vec![None; n],
         }
     }
 

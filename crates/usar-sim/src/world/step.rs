@@ -4,6 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::follow::check_due;
 use super::robot::Motion;
 use super::world::World;
 
@@ -55,12 +56,19 @@ impl World {
     /// robot's command, motion and list flags (see [`World::step`]).
     fn control(&mut self) {
         let n = self.robots.len();
-        // Robot `id` checks its path when `tick + id` is a multiple of `path_check_every`
-        // (`tick` counts the control steps taken before this one).
+        // `tick` counts the control steps taken before this one (see `check_due`).
         let tick = self.stats.steps / self.control_steps;
+        // A large team follows its paths in parallel up to the planner; the robots that need
+        // it, and every robot of a serial trial, follow theirs here, in id order.
+        let parallel = self.per_robot.parallel_for(n);
+        if parallel {
+            self.follow_all(tick);
+        }
         for id in 0..n {
-            let check_due = (tick + id as u64).is_multiple_of(self.path_check_every);
-            self.update_intent(id, check_due);
+            match self.per_robot.followed.get(id).copied().flatten() {
+                Some(f) if parallel => f.apply(&mut self.nav[id], &mut self.robots[id]),
+                _ => self.update_intent(id, check_due(tick, id, self.path_check_every)),
+            }
             self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
         if self.collision.enabled {

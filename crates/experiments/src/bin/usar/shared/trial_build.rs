@@ -31,8 +31,8 @@ pub fn threads_of(requested: Option<usize>) -> Result<usize> {
 
 /// The help of `--threads` on the commands that simulate one trial.
 pub const TRIAL_THREADS_HELP: &str = "Threads of the trial (>= 1); default all cores. A team of \
-at least 512 robots reads its bodies back and steers on them; a smaller team, and Rapier, run \
-on one. The results are the same, bit for bit, on any number of threads.";
+at least 512 robots follows its paths, reads its bodies back and steers on them; a smaller \
+team, and Rapier, run on one. The results are the same, bit for bit, on any number of threads.";
 
 /// The rayon pool one trial runs in, of `--threads` threads ([`threads_of`]: all cores when
 /// not given, capped with a warning at 4 x the cores). Run the trial inside
