@@ -65,9 +65,14 @@ impl World {
             self.follow_all(tick);
         }
         for id in 0..n {
-            match self.per_robot.followed.get(id).copied().flatten() {
-                Some(f) if parallel => f.apply(&mut self.nav[id], &mut self.robots[id]),
-                _ => self.update_intent(id, check_due(tick, id, self.path_check_every)),
+            let followed = if parallel {
+                self.per_robot.followed[id]
+            } else {
+                None
+            };
+            match followed {
+                Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
+                None => self.update_intent(id, check_due(tick, id, self.path_check_every)),
             }
             self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
