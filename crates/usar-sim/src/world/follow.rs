@@ -148,7 +148,7 @@ pub(super) fn check_due(tick: u64, id: usize, every: u64) -> bool {
 
 /// Inflation of a robot's line-of-sight checks while following its path: body radius + half of
 /// `navigation.clearance_m`, metres.
-pub(super) fn check_inflation(ctx: &FollowCtx<'_>, nav: &Nav) -> f32 {
+fn check_inflation(ctx: &FollowCtx<'_>, nav: &Nav) -> f32 {
     nav.radius + 0.5 * ctx.navigation.clearance_m.get() as f32
 }
 
