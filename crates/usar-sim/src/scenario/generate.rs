@@ -270,75 +270,30 @@ pub(crate) fn generate_debris_field(
 ) -> R<Vec<DebrisShape>> {
     let base = format!("debris_fields[{j}]");
     let region = ctx.rect_in_arena(&format!("{base}.region"), &f.region, arena)?;
-    if f.count == 0 {
-        return Err(ctx.err(
-            format!("{base}.count"),
-            "expected at least 1 shape, found 0",
-        ));
-    }
-    if f.count > MAX_DEBRIS.saturating_sub(existing.len()) {
-        return Err(ctx.err(
-            format!("{base}.count"),
-            format!(
-                "{} shapes after the {} before them make more than the limit of {MAX_DEBRIS} \
-                 debris shapes",
-                f.count,
-                existing.len()
-            ),
-        ));
-    }
+    check_field_count(ctx, &base, f.count, existing.len())?;
     let gap = ctx.non_negative(&format!("{base}.min_gap_m"), f.min_gap_m)?;
     let (w, h) = (region.max.x - region.min.x, region.max.y - region.min.y);
     let draw = draw_of(ctx, &base, &f.shape, w, h)?;
     let seed = f.seed.unwrap_or(sim_seed.wrapping_add(j as u64));
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    // Every shape the new ones keep clear of (the existing ones, then those placed), and the
-    // index of their boxes and of the protected discs' boxes.
-    let mut all: Vec<DebrisShape> = Vec::with_capacity(existing.len() + f.count);
-    let mut shapes = BoxIndex::new();
-    for d in existing {
-        push_shape(&mut all, &mut shapes, *d);
-    }
-    let mut places = BoxIndex::new();
-    for p in protected {
-        let r = Vector2::new(p.radius_m, p.radius_m);
-        places.push(&(p.center - r), &(p.center + r));
-    }
+    let mut keepout = Keepout::new(existing, protected, gap, f.count);
     let max_attempts = ATTEMPTS_PER_SHAPE * f.count;
     let (mut attempts, mut failed_in_a_row) = (0, 0);
-    while all.len() - existing.len() < f.count
+    while keepout.all.len() - existing.len() < f.count
         && attempts < max_attempts
         && failed_in_a_row < FAILED_IN_A_ROW
     {
         attempts += 1;
         failed_in_a_row += 1;
-        let (mut shape, half) = draw_shape(&mut rng, draw);
-        let (x_lo, x_hi) = (region.min.x + half.x, region.max.x - half.x);
-        let (y_lo, y_hi) = (region.min.y + half.y, region.max.y - half.y);
-        if x_lo > x_hi || y_lo > y_hi {
+        let Some(shape) = draw_in_region(&mut rng, draw, &region) else {
             continue;
-        }
-        let c = Point2::new(rng.random_range(x_lo..=x_hi), rng.random_range(y_lo..=y_hi));
-        match &mut shape {
-            Debris::Circle(circle) => circle.center = c,
-            Debris::Rect { center, .. } => *center = c,
-        }
-        let shape = shape.shape();
-        let (lo, hi) = shape.aabb();
-        let clear_of_debris = shapes
-            .near(&lo, &hi, gap)
-            .into_iter()
-            .all(|i| shape.distance(&all[i]) >= gap);
-        let clear_of_places = places.near(&lo, &hi, gap).into_iter().all(|i| {
-            let p = &protected[i];
-            shape.distance_to_point(&p.center) >= p.radius_m + gap
-        });
-        if clear_of_debris && clear_of_places {
-            push_shape(&mut all, &mut shapes, shape);
+        };
+        if keepout.is_clear(&shape) {
+            keepout.push(shape);
             failed_in_a_row = 0;
         }
     }
-    let placed = all.split_off(existing.len());
+    let placed = keepout.all.split_off(existing.len());
     if placed.len() < f.count {
         return Err(field_full(
             ctx,
@@ -353,11 +308,103 @@ pub(crate) fn generate_debris_field(
     Ok(placed)
 }
 
-/// Appends `shape` to `all` and its bounding box to `index` (same number).
-fn push_shape(all: &mut Vec<DebrisShape>, index: &mut BoxIndex, shape: DebrisShape) {
-    let (lo, hi) = shape.aabb();
-    index.push(&lo, &hi);
-    all.push(shape);
+/// Field `base`'s `count` against zero and against the room [`MAX_DEBRIS`] leaves after the
+/// `before` shapes placed earlier.
+fn check_field_count(ctx: &Ctx<'_>, base: &str, count: usize, before: usize) -> R<()> {
+    if count == 0 {
+        return Err(ctx.err(
+            format!("{base}.count"),
+            "expected at least 1 shape, found 0",
+        ));
+    }
+    if count > MAX_DEBRIS.saturating_sub(before) {
+        return Err(ctx.err(
+            format!("{base}.count"),
+            format!(
+                "{count} shapes after the {before} before them make more than the limit of \
+                 {MAX_DEBRIS} debris shapes"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// One shape drawn by `draw` at a uniform position in `region` (the draws of
+/// [`draw_shape`], then x, then y), or `None` when the shape is larger than the region (no
+/// position is drawn then).
+fn draw_in_region(rng: &mut ChaCha8Rng, draw: Draw, region: &Rect) -> Option<DebrisShape> {
+    let (mut shape, half) = draw_shape(rng, draw);
+    let (x_lo, x_hi) = (region.min.x + half.x, region.max.x - half.x);
+    let (y_lo, y_hi) = (region.min.y + half.y, region.max.y - half.y);
+    if x_lo > x_hi || y_lo > y_hi {
+        return None;
+    }
+    let c = Point2::new(rng.random_range(x_lo..=x_hi), rng.random_range(y_lo..=y_hi));
+    match &mut shape {
+        Debris::Circle(circle) => circle.center = c,
+        Debris::Rect { center, .. } => *center = c,
+    }
+    Some(shape.shape())
+}
+
+/// What a new debris shape keeps at least `gap` metres from: every shape so far (`all`: the
+/// existing ones, then those placed) and the `protected` places, each behind an index of its
+/// bounding boxes.
+struct Keepout<'a> {
+    /// The existing shapes, then the placed ones.
+    all: Vec<DebrisShape>,
+    /// Bounding boxes of `all` (same order).
+    shapes: BoxIndex,
+    /// Bounding boxes of the protected discs (same order as `protected`).
+    places: BoxIndex,
+    /// Places no debris may come near (starts, goals, drop-offs...).
+    protected: &'a [Protected],
+    /// The least gap, metres (>= 0).
+    gap: f64,
+}
+
+impl<'a> Keepout<'a> {
+    /// The keep-out of `existing` shapes and `protected` places, with room for `count` more.
+    fn new(existing: &[DebrisShape], protected: &'a [Protected], gap: f64, count: usize) -> Self {
+        let mut k = Self {
+            all: Vec::with_capacity(existing.len() + count),
+            shapes: BoxIndex::new(),
+            places: BoxIndex::new(),
+            protected,
+            gap,
+        };
+        for d in existing {
+            k.push(*d);
+        }
+        for p in protected {
+            let r = Vector2::new(p.radius_m, p.radius_m);
+            k.places.push(&(p.center - r), &(p.center + r));
+        }
+        k
+    }
+
+    /// Whether `shape` is at least `gap` from every shape and protected place.
+    fn is_clear(&self, shape: &DebrisShape) -> bool {
+        let gap = self.gap;
+        let (lo, hi) = shape.aabb();
+        let clear_of_debris = self
+            .shapes
+            .near(&lo, &hi, gap)
+            .into_iter()
+            .all(|i| shape.distance(&self.all[i]) >= gap);
+        let clear_of_places = self.places.near(&lo, &hi, gap).into_iter().all(|i| {
+            let p = &self.protected[i];
+            shape.distance_to_point(&p.center) >= p.radius_m + gap
+        });
+        clear_of_debris && clear_of_places
+    }
+
+    /// Adds `shape` to the shapes kept clear of.
+    fn push(&mut self, shape: DebrisShape) {
+        let (lo, hi) = shape.aabb();
+        self.shapes.push(&lo, &hi);
+        self.all.push(shape);
+    }
 }
 
 /// The error of a debris field that could not place all its shapes, naming the most likely

@@ -167,6 +167,23 @@ pub(crate) fn check_derived(
     kinds: &[RobotKind],
     sim: &SimParams,
 ) -> R<()> {
+    check_lengths(ctx, arena, navigation, collision)?;
+    check_waypoint_tolerance(ctx, arena, navigation)?;
+    check_nav_grid(ctx, arena, navigation)?;
+    check_weights(ctx, weights)?;
+    let dt_s = sim.dt_s.get();
+    check_step_lengths(ctx, kinds, dt_s)?;
+    check_closing_speeds(ctx, kinds, dt_s)
+}
+
+/// The arena's sides and wall thickness, `navigation.clearance_m` and
+/// `collision.safety_margin_m` against [`MAX_ARENA_SIDE_M`].
+fn check_lengths(
+    ctx: &Ctx<'_>,
+    arena: &Arena,
+    navigation: &NavigationParams,
+    collision: &CollisionParams,
+) -> R<()> {
     for (name, v) in [
         ("width_m", arena.width()),
         ("height_m", arena.height()),
@@ -196,6 +213,12 @@ pub(crate) fn check_derived(
             ));
         }
     }
+    Ok(())
+}
+
+/// `navigation.waypoint_tolerance_m` against [`MAX_WAYPOINT_TOLERANCE_M`] and
+/// [`min_waypoint_tolerance_m`] of the arena's longer side.
+fn check_waypoint_tolerance(ctx: &Ctx<'_>, arena: &Arena, navigation: &NavigationParams) -> R<()> {
     let tolerance_m = navigation.waypoint_tolerance_m.get();
     if tolerance_m > MAX_WAYPOINT_TOLERANCE_M {
         return Err(ctx.err(
@@ -219,6 +242,12 @@ pub(crate) fn check_derived(
             ),
         ));
     }
+    Ok(())
+}
+
+/// The navigation grid's cell (`navigation.grid_cell_m`) against the arena's shorter side,
+/// and its cell count against [`MAX_NAV_CELLS`].
+fn check_nav_grid(ctx: &Ctx<'_>, arena: &Arena, navigation: &NavigationParams) -> R<()> {
     let cell_m = navigation.grid_cell_m.get();
     let shorter_side_m = arena.width().min(arena.height());
     if cell_m > shorter_side_m {
@@ -248,6 +277,11 @@ pub(crate) fn check_derived(
             ),
         ));
     }
+    Ok(())
+}
+
+/// Every needs weight against [`NEEDS_RANGE`].
+fn check_weights(ctx: &Ctx<'_>, weights: &NeedsWeights) -> R<()> {
     let (lo, hi) = NEEDS_RANGE;
     let names = ["hp", "v", "sen", "eng", "res", "cap", "obs"];
     for (name, w) in names.iter().zip(weights.to_array()) {
@@ -261,7 +295,11 @@ pub(crate) fn check_derived(
             ));
         }
     }
-    let dt_s = sim.dt_s.get();
+    Ok(())
+}
+
+/// Every kind's distance per step of `dt_s` seconds at top speed against its body radius.
+fn check_step_lengths(ctx: &Ctx<'_>, kinds: &[RobotKind], dt_s: f64) -> R<()> {
     for (k, kind) in kinds.iter().enumerate() {
         let step_m = kind.max_speed_m_per_s * dt_s;
         if step_m > kind.body_radius_m {
@@ -279,7 +317,7 @@ pub(crate) fn check_derived(
             ));
         }
     }
-    check_closing_speeds(ctx, kinds, dt_s)
+    Ok(())
 }
 
 /// Two ground robots driving at each other close `(v_a + v_b) * dt_s` per step: that must not
