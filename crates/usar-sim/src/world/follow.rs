@@ -14,7 +14,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::clearance_grid::ClearanceGrid;
-use super::nav_state::Nav;
+use super::nav_state::{Following, Nav};
 use super::path_following_params::{CORNER_PASS_M, PATH_CHECK_MAX_M, STALL_PROGRESS_M};
 use super::robot::RobotState;
 use crate::scenario::{Locomotion, NavigationParams};
@@ -36,18 +36,13 @@ pub(super) struct FollowCtx<'a> {
     pub(super) period_s: f64,
 }
 
-/// The navigation fields path following changes in one control step, and the robot's
-/// "goal reached" flag: computed by [`follow`], written by [`Followed::apply`].
+/// The navigation fields path following changes in one control step ([`Following`]), and
+/// the robot's "goal reached" flag: computed by [`follow`], written by [`Followed::apply`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Followed {
-    /// Index of the current waypoint in the robot's path.
-    pub(super) wp: usize,
-    /// Shortest remaining path length since the no-progress clock restarted, metres.
-    pub(super) best_remaining: f32,
-    /// Step at which the no-progress clock restarted.
-    pub(super) progress_step: u64,
-    /// Intended velocity, metres per second (zero until [`follow`] sets it).
-    pub(super) intent: Vec2,
+    /// Waypoint, no-progress clock and intended velocity (the intent is zero until
+    /// [`follow`] sets it).
+    pub(super) following: Following,
     /// Whether the robot has reached its goal.
     pub(super) goal_reached: bool,
 }
@@ -56,20 +51,17 @@ impl Followed {
     /// The robot's fields as they stand, with a zero intent (the start of a control step).
     pub(super) fn of(nav: &Nav, state: &RobotState) -> Self {
         Self {
-            wp: nav.wp,
-            best_remaining: nav.best_remaining,
-            progress_step: nav.progress_step,
-            intent: Vec2::ZERO,
+            following: Following {
+                intent: Vec2::ZERO,
+                ..nav.following
+            },
             goal_reached: state.goal_reached,
         }
     }
 
     /// Writes the fields into the robot's navigation state and public state.
     pub(super) fn apply(self, nav: &mut Nav, state: &mut RobotState) {
-        nav.wp = self.wp;
-        nav.best_remaining = self.best_remaining;
-        nav.progress_step = self.progress_step;
-        nav.intent = self.intent;
+        nav.following = self.following;
         state.goal_reached = self.goal_reached;
     }
 }
@@ -100,8 +92,8 @@ pub(super) enum Follow {
 
 /// Robot `nav`'s path following from `from` (see the module docs), into `f` (which holds
 /// [`Followed::of`] the robot at [`Stage::Start`]); `check_due` is whether a ground robot
-/// checks its path this control step. Reads `f.wp` as the current waypoint. Returns where the
-/// planner must act, if it must: the world then applies `f`, runs the planner, takes
+/// checks its path this control step. Reads `f.following.wp` as the current waypoint. Returns
+/// where the planner must act, if it must: the world then applies `f`, runs the planner, takes
 /// `Followed::of` the robot again and resumes at the stage named by [`Follow`].
 pub(super) fn follow(
     ctx: &FollowCtx<'_>,
@@ -123,19 +115,19 @@ pub(super) fn follow(
             f.goal_reached = true;
             return Follow::Done;
         }
-        if ground && stalled(ctx, nav, state, f) {
+        if ground && stalled(ctx, nav, state, &mut f.following) {
             return Follow::Detour;
         }
     }
     if from != Stage::Corners
         && ground
         && check_due
-        && let Some(requested) = path_blocked(ctx, nav, f)
+        && let Some(requested) = path_blocked(ctx, nav, &mut f.following)
     {
         return Follow::Replan(requested);
     }
-    pass_corners(ctx, nav, f);
-    f.intent = intent_to_waypoint(ctx, nav, state, f.wp);
+    pass_corners(ctx, nav, &mut f.following);
+    f.following.intent = intent_to_waypoint(ctx, nav, state, f.following.wp);
     Follow::Done
 }
 
@@ -158,8 +150,8 @@ fn check_inflation(ctx: &FollowCtx<'_>, nav: &Nav) -> f32 {
 /// `true` when it has run out (the robot takes a detour; the world restarts the clock). Under
 /// `Yield` a list member stuck in a jam no rotation clears, e.g. robots meeting head-on in a
 /// gap between debris, detours too. Reads the remaining path from the robot's own waypoint
-/// (`f.wp` is still `nav.wp` here).
-fn stalled(ctx: &FollowCtx<'_>, nav: &Nav, state: &RobotState, f: &mut Followed) -> bool {
+/// (`f.wp` is still `nav.following.wp` here).
+fn stalled(ctx: &FollowCtx<'_>, nav: &Nav, state: &RobotState, f: &mut Following) -> bool {
     let remaining = nav.remaining();
     let listed = state.in_collision_list && !ctx.crowd;
     if listed || remaining < f.best_remaining - STALL_PROGRESS_M {
@@ -177,7 +169,7 @@ fn stalled(ctx: &FollowCtx<'_>, nav: &Nav, state: &RobotState, f: &mut Followed)
 /// [`PATH_CHECK_MAX_M`]) and, if the line of sight to its waypoint (first
 /// [`PATH_CHECK_MAX_M`]) is blocked, returns its requested goal to re-plan to (none without
 /// one: it keeps its path, and physics keeps it out of obstacles).
-fn path_blocked(ctx: &FollowCtx<'_>, nav: &Nav, f: &mut Followed) -> Option<Vec2> {
+fn path_blocked(ctx: &FollowCtx<'_>, nav: &Nav, f: &mut Following) -> Option<Vec2> {
     let infl = check_inflation(ctx, nav);
     let p = nav.pos;
     let path = &nav.path;
@@ -205,7 +197,7 @@ fn path_blocked(ctx: &FollowCtx<'_>, nav: &Nav, f: &mut Followed) -> Option<Vec2
 /// [`CORNER_PASS_M`] of it, already beyond the line through it perpendicular to the next
 /// leg, and sees the next waypoint. Without the second rule robots queueing at a corner all
 /// aim at the same point, which their own bodies cover: a jam no priority order resolves.
-fn pass_corners(ctx: &FollowCtx<'_>, nav: &Nav, f: &mut Followed) {
+fn pass_corners(ctx: &FollowCtx<'_>, nav: &Nav, f: &mut Following) {
     let tol = ctx.navigation.waypoint_tolerance_m.get() as f32;
     let infl = check_inflation(ctx, nav);
     let p = nav.pos;

@@ -31,20 +31,29 @@ pub(super) struct Nav {
     pub(super) goal_tolerance_m: f32,
     /// Waypoints (start excluded, effective goal last); non-empty while `goal` is set.
     pub(super) path: Vec<Vec2>,
-    /// Index of the current waypoint in `path`.
-    pub(super) wp: usize,
     /// Position after the last step.
     pub(super) pos: Vec2,
-    /// Intended velocity (path following, before collision avoidance), metres per second.
-    pub(super) intent: Vec2,
+    /// The fields path following updates each control step (waypoint, no-progress clock,
+    /// intended velocity).
+    pub(super) following: Following,
     /// Velocity commanded at the last control step (the intent after the resolver), held
     /// until the next one, metres per second.
     pub(super) command: Vec2,
+}
+
+/// The navigation fields path following updates on each control step (`follow.rs`), kept
+/// together so that the parallel pass can compute them into a buffer and copy them back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Following {
+    /// Index of the current waypoint in the robot's path.
+    pub(super) wp: usize,
     /// Shortest remaining path length since the no-progress clock last restarted, metres
     /// (infinite right after a goal is set); see `path_following.rs`.
     pub(super) best_remaining: f32,
     /// Step at which the no-progress clock last restarted.
     pub(super) progress_step: u64,
+    /// Intended velocity (path following, before collision avoidance), metres per second.
+    pub(super) intent: Vec2,
 }
 
 impl Nav {
@@ -60,12 +69,14 @@ impl Nav {
             goal: None,
             goal_tolerance_m: 0.0,
             path: Vec::with_capacity(64),
-            wp: 0,
             pos,
-            intent: Vec2::ZERO,
+            following: Following {
+                wp: 0,
+                best_remaining: f32::INFINITY,
+                progress_step: 0,
+                intent: Vec2::ZERO,
+            },
             command: Vec2::ZERO,
-            best_remaining: f32::INFINITY,
-            progress_step: 0,
         }
     }
 
@@ -79,11 +90,12 @@ impl Nav {
 
     /// Remaining path length: to the current waypoint, then along the rest of the path.
     pub(super) fn remaining(&self) -> f32 {
-        if self.goal.is_none() || self.wp >= self.path.len() {
+        let wp = self.following.wp;
+        if self.goal.is_none() || wp >= self.path.len() {
             return 0.0;
         }
-        let mut total = (self.path[self.wp] - self.pos).length();
-        for k in self.wp + 1..self.path.len() {
+        let mut total = (self.path[wp] - self.pos).length();
+        for k in wp + 1..self.path.len() {
             total += (self.path[k] - self.path[k - 1]).length();
         }
         total
@@ -99,7 +111,7 @@ impl Nav {
         let active = state.is_active();
         ResolverInput {
             pos: self.pos,
-            intent: self.intent,
+            intent: self.following.intent,
             radius: self.radius,
             sensing: self.sensing * state.sensing_factor as f32,
             layer: self.layer,

@@ -59,8 +59,9 @@ impl World {
                     let steps = self.stats.steps;
                     self.detour(id);
                     let nav = &mut self.nav[id];
-                    nav.best_remaining = nav.best_remaining.min(nav.remaining());
-                    nav.progress_step = steps;
+                    nav.following.best_remaining =
+                        nav.following.best_remaining.min(nav.remaining());
+                    nav.following.progress_step = steps;
                     Stage::PathCheck
                 }
                 Follow::Replan(requested) => {
@@ -80,8 +81,8 @@ impl World {
         let nav = &mut self.nav[id];
         std::mem::swap(&mut nav.path, &mut self.scratch);
         nav.goal = Some(eff);
-        nav.wp = 0;
-        nav.best_remaining = nav.remaining();
+        nav.following.wp = 0;
+        nav.following.best_remaining = nav.remaining();
         let state = &mut self.robots[id];
         state.goal = Some(to_point(eff));
         state.counters.replans += 1;
@@ -115,8 +116,8 @@ impl World {
             let nav = &mut self.nav[id];
             self.scratch.extend_from_slice(&nav.path[next..]);
             std::mem::swap(&mut nav.path, &mut self.scratch);
-            nav.wp = 0;
-            nav.best_remaining = nav.remaining();
+            nav.following.wp = 0;
+            nav.following.best_remaining = nav.remaining();
             self.robots[id].counters.replans += 1;
             return;
         }
@@ -164,7 +165,7 @@ impl World {
             let other = &self.nav[j];
             let r = &self.robots[j];
             let stuck = crowd && (r.held || r.motion == Motion::Blocked);
-            let still = !r.is_active() || other.intent == Vec2::ZERO || stuck;
+            let still = !r.is_active() || other.following.intent == Vec2::ZERO || stuck;
             // Sensed, or near enough to touch its keep-out disc: a robot with its sensing
             // cut by low HP still feels the one it is pressed against.
             let reach = range.max(me.radius + other.radius + infl);
@@ -211,7 +212,7 @@ impl World {
         // The farthest stretch walked before the point is taken: it must lie `beyond` away
         // and clear of the discs; each metre further is tried while a disc holds it.
         let mut want = beyond;
-        for k in nav.wp..nav.path.len() {
+        for k in nav.following.wp..nav.path.len() {
             let next = nav.path[k];
             let leg = (next - at).length();
             while walked + leg > want {
@@ -272,7 +273,7 @@ mod tests {
     fn clear_of_robot_1(w: &World) {
         let keep_out = w.nav[1].radius + w.plan_inflation(0) - 1e-3;
         let mut at = w.nav[0].pos;
-        for &p in &w.nav[0].path[w.nav[0].wp..] {
+        for &p in &w.nav[0].path[w.nav[0].following.wp..] {
             let d = to_segment(w.nav[1].pos, at, p);
             assert!(d >= keep_out, "leg {at:?}-{p:?} passes {d} m from robot 1");
             at = p;
@@ -324,7 +325,7 @@ mod tests {
             Vec2::new(3.5, 3.0),
         ];
         w.nav[0].path.clone_from(&winding);
-        w.nav[0].wp = 0;
+        w.nav[0].following.wp = 0;
         w.collect_standing(0);
         assert!(
             w.first_point_beyond_standing(0).is_some(),

@@ -46,7 +46,7 @@ impl World {
         let nav = &mut self.nav[id];
         let out = match into {
             PlanInto::Path => {
-                nav.wp = 0;
+                nav.following.wp = 0;
                 &mut nav.path
             }
             PlanInto::Scratch => &mut self.scratch,

@@ -240,8 +240,8 @@ impl World {
             Some(g) => self.plan(id, to_vec2(&g), PlanInto::Path).map(Some),
         };
         let nav = &mut self.nav[id];
-        nav.best_remaining = f32::INFINITY;
-        nav.progress_step = self.stats.steps;
+        nav.following.best_remaining = f32::INFINITY;
+        nav.following.progress_step = self.stats.steps;
         nav.goal_tolerance_m = tolerance_m as f32;
         let state = &mut self.robots[id];
         state.goal_reached = false;
@@ -378,7 +378,7 @@ impl World {
         body.set_translation(p, true);
         body.set_linvel(Vec2::ZERO, true);
         nav.command = Vec2::ZERO;
-        nav.intent = Vec2::ZERO;
+        nav.following.intent = Vec2::ZERO;
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
@@ -486,7 +486,7 @@ impl World {
     pub fn waypoints(&self, id: usize) -> impl Iterator<Item = PointM> + '_ {
         let nav = &self.nav[id];
         let rest = if nav.goal.is_some() {
-            &nav.path[nav.wp.min(nav.path.len())..]
+            &nav.path[nav.following.wp.min(nav.path.len())..]
         } else {
             &[]
         };
