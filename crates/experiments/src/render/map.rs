@@ -16,6 +16,18 @@ use crate::render::shapes::{debris_polygon, disc_outline, disc_polygon};
 /// Draws everything that does not move: walls, search areas (with their rescuees when
 /// `rescuees`), drop-offs, radiation zones, debris, the rest station, goal points and labels.
 pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Result<()> {
+    draw_walls(chart, s)?;
+    // Search areas and rescuees first: radiation, debris and labels go on top.
+    draw_task_areas(chart, s, rescuees)?;
+    draw_hazards(chart, s)?;
+    draw_rest_stations(chart, s)?;
+    // Labels last so nothing covers them.
+    draw_task_labels(chart, s)?;
+    draw_rest_station_labels(chart, s)
+}
+
+/// Draws the four walls around the arena of `s`, each as thick as drawn (`drawn_wall_m`).
+fn draw_walls(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     let (w, h) = (s.arena().width(), s.arena().height());
     let t = drawn_wall_m(s);
     let walls = [
@@ -27,8 +39,12 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
     chart
         .draw_series(walls.iter().map(|r| Rectangle::new(*r, WALL.filled())))
         .map_err(draw_err)?;
+    Ok(())
+}
 
-    // Search areas and rescuees first: radiation, debris and labels go on top.
+/// Draws each task's search area (with its rescuees when `rescuees`) and its drop-off disc
+/// with an outline, in the task's colour.
+fn draw_task_areas(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: bool) -> Result<()> {
     for (t, task) in s.tasks().iter().enumerate() {
         let r = task.search_area;
         chart
@@ -59,7 +75,13 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
             )])
             .map_err(draw_err)?;
     }
+    Ok(())
+}
 
+/// Draws the radiation zones (coloured by dose rate between the lowest and highest dose
+/// levels), the debris over them, then each zone's dose-rate factor (`x2`) when the zones
+/// have more than one dose level.
+fn draw_hazards(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     let doses = dose_levels(s);
     let (lo, hi) = (
         doses.first().copied().unwrap_or(1.0),
@@ -97,6 +119,11 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
             }))
             .map_err(draw_err)?;
     }
+    Ok(())
+}
+
+/// Draws each rest station as a translucent disc.
+fn draw_rest_stations(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     chart
         .draw_series(
             s.rest_stations()
@@ -104,8 +131,12 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
                 .map(|rs| Polygon::new(disc_polygon(rs), REST.mix(0.6).filled())),
         )
         .map_err(draw_err)?;
+    Ok(())
+}
 
-    // Labels last so nothing covers them.
+/// Labels each task's search area (name and rescuee count) and drop-off, and marks its goal
+/// point with a cross.
+fn draw_task_labels(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     for task in s.tasks() {
         let r = task.search_area;
         let text = format!(
@@ -132,6 +163,11 @@ pub(crate) fn draw_static(chart: &mut Chart<'_, '_>, s: &Scenario, rescuees: boo
             )])
             .map_err(draw_err)?;
     }
+    Ok(())
+}
+
+/// Labels each rest station "rest station", the text hanging from the disc's lowest point.
+fn draw_rest_station_labels(chart: &mut Chart<'_, '_>, s: &Scenario) -> Result<()> {
     chart
         .draw_series(s.rest_stations().iter().map(|rs| {
             label_at(

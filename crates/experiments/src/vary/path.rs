@@ -14,7 +14,7 @@
 
 use std::fmt;
 
-use serde_json::Value;
+use serde_json::{Map, Value};
 use usar_sim::scenario::did_you_mean;
 
 /// One step of a [`FieldPath`].
@@ -178,6 +178,8 @@ fn where_(here: &str) -> String {
     }
 }
 
+/// Walks `steps` from `node` and replaces the value(s) they name with `make(old value)`;
+/// `here` is the path walked so far (restored on return), used in error messages.
 fn set_at(
     node: &mut Value,
     steps: &[Step],
@@ -200,64 +202,14 @@ fn set_at(
     }
     let shown = where_(here);
     let len = here.len();
+    let rest = &steps[1..];
     let result = match (step, &mut *node) {
-        (Step::Field(name), Value::Object(map)) => match map.get_mut(name) {
-            Some(child) => {
-                push_field(here, name);
-                set_at(child, &steps[1..], here, make)
-            }
-            None => {
-                let fields: Vec<&str> = map.keys().map(String::as_str).collect();
-                Err(format!(
-                    "no field {name:?} in {shown} (fields: {}){}",
-                    fields.join(", "),
-                    did_you_mean(name, fields.iter().copied())
-                ))
-            }
-        },
+        (Step::Field(name), Value::Object(map)) => set_field(map, name, rest, here, make, &shown),
         (Step::Field(name), Value::Array(items)) => {
-            let names: Vec<String> = items.iter().filter_map(element_name).collect();
-            match items
-                .iter_mut()
-                .find(|item| element_name(item).as_deref() == Some(name.as_str()))
-            {
-                Some(child) => {
-                    push_field(here, name);
-                    set_at(child, &steps[1..], here, make)
-                }
-                None if names.is_empty() => Err(format!(
-                    "{shown} is a list or tuple, which has no field {name:?}"
-                )),
-                None => Err(format!(
-                    "no element named {name:?} in {shown} (names: {})",
-                    names.join(", ")
-                )),
-            }
+            set_named_element(items, name, rest, here, make, &shown)
         }
-        (Step::Index(i), Value::Array(items)) => {
-            let n = items.len();
-            match items.get_mut(*i) {
-                Some(child) => {
-                    here.push_str(&format!("[{i}]"));
-                    set_at(child, &steps[1..], here, make)
-                }
-                None if n == 0 => Err(format!("no element [{i}] in {shown}: it is empty")),
-                None => Err(format!(
-                    "no element [{i}] in {shown}: it has {n} (indices 0 to {})",
-                    n - 1
-                )),
-            }
-        }
-        (Step::All, Value::Array(items)) => {
-            if items.is_empty() {
-                Err(format!("{shown} is empty: [*] sets nothing"))
-            } else {
-                here.push_str("[*]");
-                items
-                    .iter_mut()
-                    .try_for_each(|child| set_at(child, &steps[1..], here, make))
-            }
-        }
+        (Step::Index(i), Value::Array(items)) => set_element(items, *i, rest, here, make, &shown),
+        (Step::All, Value::Array(items)) => set_every_element(items, rest, here, make, &shown),
         (step, other) => Err(format!(
             "{shown} is {}, which has no {}",
             kind_of(other),
@@ -266,6 +218,105 @@ fn set_at(
     };
     here.truncate(len);
     result
+}
+
+/// Sets the `rest` of the path in the struct field `name` of `map`; `shown` names the struct
+/// in errors. A missing field is an error listing the fields there are.
+fn set_field(
+    map: &mut Map<String, Value>,
+    name: &str,
+    rest: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+    shown: &str,
+) -> Result<(), String> {
+    match map.get_mut(name) {
+        Some(child) => {
+            push_field(here, name);
+            set_at(child, rest, here, make)
+        }
+        None => {
+            let fields: Vec<&str> = map.keys().map(String::as_str).collect();
+            Err(format!(
+                "no field {name:?} in {shown} (fields: {}){}",
+                fields.join(", "),
+                did_you_mean(name, fields.iter().copied())
+            ))
+        }
+    }
+}
+
+/// Sets the `rest` of the path in the element of `items` whose `name` field is `name`;
+/// `shown` names the list in errors. No such element is an error listing the names there are
+/// (or saying the list has no names).
+fn set_named_element(
+    items: &mut [Value],
+    name: &str,
+    rest: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+    shown: &str,
+) -> Result<(), String> {
+    let names: Vec<String> = items.iter().filter_map(element_name).collect();
+    match items
+        .iter_mut()
+        .find(|item| element_name(item).as_deref() == Some(name))
+    {
+        Some(child) => {
+            push_field(here, name);
+            set_at(child, rest, here, make)
+        }
+        None if names.is_empty() => Err(format!(
+            "{shown} is a list or tuple, which has no field {name:?}"
+        )),
+        None => Err(format!(
+            "no element named {name:?} in {shown} (names: {})",
+            names.join(", ")
+        )),
+    }
+}
+
+/// Sets the `rest` of the path in element `i` of `items`; `shown` names the list in errors.
+/// An index out of range is an error giving the list's length.
+fn set_element(
+    items: &mut [Value],
+    i: usize,
+    rest: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+    shown: &str,
+) -> Result<(), String> {
+    let n = items.len();
+    match items.get_mut(i) {
+        Some(child) => {
+            here.push_str(&format!("[{i}]"));
+            set_at(child, rest, here, make)
+        }
+        None if n == 0 => Err(format!("no element [{i}] in {shown}: it is empty")),
+        None => Err(format!(
+            "no element [{i}] in {shown}: it has {n} (indices 0 to {})",
+            n - 1
+        )),
+    }
+}
+
+/// Sets the `rest` of the path in every element of `items` (`[*]`), first to last, stopping
+/// at the first error; `shown` names the list in errors. An empty list is an error.
+fn set_every_element(
+    items: &mut [Value],
+    rest: &[Step],
+    here: &mut String,
+    make: &mut dyn FnMut(&Value) -> Result<Value, String>,
+    shown: &str,
+) -> Result<(), String> {
+    if items.is_empty() {
+        Err(format!("{shown} is empty: [*] sets nothing"))
+    } else {
+        here.push_str("[*]");
+        items
+            .iter_mut()
+            .try_for_each(|child| set_at(child, rest, here, make))
+    }
 }
 
 /// The fields a scenario writes either as one struct or as a list of them, where a list of

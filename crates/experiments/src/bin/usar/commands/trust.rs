@@ -108,12 +108,37 @@ struct Side<'a> {
     dists: &'a [Distribution],
 }
 
+/// The parsed input of `usar trust`: the trust model (weights and RNE options), each robot's
+/// needs vector (R1, R2, ...) and each group's needs matrix (G1, G2, ...).
+struct TrustInput {
+    model: TrustModel,
+    robots: Vec<NeedsVector>,
+    groups: Vec<NeedsMatrix>,
+}
+
+/// The needs distributions of the robots and of the groups, with their labels (`R1`.., `G1`..).
+struct Distributions {
+    robot_labels: Vec<String>,
+    robots: Vec<Distribution>,
+    group_labels: Vec<String>,
+    groups: Vec<Distribution>,
+}
+
 /// Runs `usar trust`, writing the report to `out`.
 ///
 /// # Errors
 /// A one-line message for bad input (naming the flag and its 1-based occurrence), or an I/O
 /// error.
 pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
+    let input = parse_input(args)?;
+    let dists = distributions(&input)?;
+    write_report(args, &input.model, &dists, out)
+}
+
+/// Parses the flags into the trust model, the robots' needs vectors and the groups' needs
+/// matrices, checking in flag order: `--weights`, at least one robot or group, each
+/// `--needs`, each `--group`, `--log-base`, then `--epsilon`.
+fn parse_input(args: &TrustArgs) -> Result<TrustInput> {
     let weights = Weights::new(parse_list(&args.weights, "--weights")?).context("--weights")?;
     let j = weights.len();
     if args.needs.is_empty() && args.groups.is_empty() {
@@ -129,15 +154,30 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
         .groups
         .iter()
         .enumerate()
-        .map(|(g, t)| {
-            let rows = t
-                .split(';')
-                .enumerate()
-                .map(|(r, row)| parse_needs(row, &format!("--group #{} row {}", g + 1, r + 1), j))
-                .collect::<Result<Vec<_>>>()?;
-            NeedsMatrix::from_members(&rows).with_context(|| format!("--group #{}", g + 1))
-        })
+        .map(|(g, t)| parse_group(t, g, j))
         .collect::<Result<Vec<_>>>()?;
+    let model = trust_model(args, weights)?;
+    Ok(TrustInput {
+        model,
+        robots,
+        groups,
+    })
+}
+
+/// Parses the `--group` number `g` (0-based) into a group's needs matrix: robots separated by
+/// `;`, each a needs vector of `j` values.
+fn parse_group(text: &str, g: usize, j: usize) -> Result<NeedsMatrix> {
+    let rows = text
+        .split(';')
+        .enumerate()
+        .map(|(r, row)| parse_needs(row, &format!("--group #{} row {}", g + 1, r + 1), j))
+        .collect::<Result<Vec<_>>>()?;
+    NeedsMatrix::from_members(&rows).with_context(|| format!("--group #{}", g + 1))
+}
+
+/// The trust model of `weights` and the RNE options of `--log-base`, `--epsilon` (0 = no
+/// smoothing) and `--sorted`.
+fn trust_model(args: &TrustArgs, weights: Weights) -> Result<TrustModel> {
     let log_base: LogBase = args.log_base.parse().context("--log-base")?;
     let smoothing = if args.epsilon == 0.0 {
         Smoothing::None
@@ -149,7 +189,7 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
     } else {
         Alignment::Category
     };
-    let model = TrustModel::new(
+    TrustModel::new(
         weights,
         RneOptions {
             smoothing,
@@ -157,59 +197,65 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
             log_base,
         },
     )
-    .context("--epsilon")?;
+    .context("--epsilon")
+}
 
-    let robot_labels: Vec<String> = (1..=robots.len()).map(|i| format!("R{i}")).collect();
-    let group_labels: Vec<String> = (1..=groups.len()).map(|i| format!("G{i}")).collect();
-    let rd = (robots.iter().enumerate())
+/// The needs distribution of each robot (Eq. 8) and each group (Eq. 11), labelled `R1`..
+/// and `G1`..; errors name the `--needs` or `--group` they come from.
+fn distributions(input: &TrustInput) -> Result<Distributions> {
+    let model = &input.model;
+    let robot_labels: Vec<String> = (1..=input.robots.len()).map(|i| format!("R{i}")).collect();
+    let group_labels: Vec<String> = (1..=input.groups.len()).map(|i| format!("G{i}")).collect();
+    let robots = (input.robots.iter().enumerate())
         .map(|(i, r)| {
             model
                 .distribution(r)
                 .with_context(|| format!("--needs #{}", i + 1))
         })
         .collect::<Result<Vec<_>>>()?;
-    let gd = (groups.iter().enumerate())
+    let groups = (input.groups.iter().enumerate())
         .map(|(g, m)| {
             model
                 .group_distribution(m)
                 .with_context(|| format!("--group #{}", g + 1))
         })
         .collect::<Result<Vec<_>>>()?;
-    let rne_matrix = |rows: &[Distribution], cols: &[Distribution]| -> Result<Vec<Vec<f64>>> {
-        rows.iter()
-            .map(|p| cols.iter().map(|q| Ok(model.rne(p, q)?)).collect())
-            .collect()
-    };
+    Ok(Distributions {
+        robot_labels,
+        robots,
+        group_labels,
+        groups,
+    })
+}
 
-    let smoothing_text = match smoothing {
-        Smoothing::Relative(e) => format!("relative smoothing {e:e}"),
-        _ => "no smoothing".to_string(),
-    };
-    let align_text = if args.sorted {
-        "sorted (Algorithm 4)"
-    } else {
-        "category-aligned"
-    };
-    writeln!(
-        out,
-        "Weights: {}; {align_text}; {smoothing_text}",
-        args.weights
-    )?;
-    writeln!(
-        out,
-        "RNE T(row || column) in {}; lower = more trust; * = lowest in row",
-        unit(log_base)
-    )?;
+/// Writes the report to `out`: the header (weights, alignment, smoothing, unit), the needs
+/// distributions, then the robot-robot, robot-group and group-group RNE matrices (each
+/// skipped when a side is empty).
+fn write_report(
+    args: &TrustArgs,
+    model: &TrustModel,
+    dists: &Distributions,
+    out: &mut dyn Write,
+) -> Result<()> {
+    write_header(args, model.options(), out)?;
     writeln!(out, "\nNeeds distributions (Eqs. 8, 11):")?;
-    write!(out, "{}", distribution_lines(&robot_labels, &rd))?;
-    write!(out, "{}", distribution_lines(&group_labels, &gd))?;
+    write!(
+        out,
+        "{}",
+        distribution_lines(&dists.robot_labels, &dists.robots)
+    )?;
+    write!(
+        out,
+        "{}",
+        distribution_lines(&dists.group_labels, &dists.groups)
+    )?;
     let robots_side = Side {
-        labels: &robot_labels,
-        dists: &rd,
+        labels: &dists.robot_labels,
+        dists: &dists.robots,
     };
     let groups_side = Side {
-        labels: &group_labels,
-        dists: &gd,
+        labels: &dists.group_labels,
+        dists: &dists.groups,
     };
     let sections = [
         (
@@ -232,22 +278,74 @@ pub fn run(args: &TrustArgs, out: &mut dyn Write) -> Result<()> {
         ),
     ];
     for (title, trustors, trustees, square) in sections {
-        if trustors.dists.is_empty() || trustees.dists.is_empty() {
-            continue;
-        }
-        let values = rne_matrix(trustors.dists, trustees.dists)?;
-        let minima: Vec<Vec<usize>> = values
-            .iter()
-            .enumerate()
-            .map(|(r, row)| row_minima(row, square.then_some(r)))
-            .collect();
-        writeln!(out, "\n{title}")?;
-        write!(
-            out,
-            "{}",
-            matrix(trustors.labels, trustees.labels, &values, |r, c| minima[r]
-                .contains(&c))
-        )?;
+        write_rne_section(model, title, trustors, trustees, square, out)?;
     }
     Ok(())
+}
+
+/// Writes the report's first two lines: the weights as given, the alignment and smoothing,
+/// and the unit of the RNE values.
+fn write_header(args: &TrustArgs, options: &RneOptions, out: &mut dyn Write) -> Result<()> {
+    let smoothing_text = match options.smoothing {
+        Smoothing::Relative(e) => format!("relative smoothing {e:e}"),
+        _ => "no smoothing".to_string(),
+    };
+    let align_text = if args.sorted {
+        "sorted (Algorithm 4)"
+    } else {
+        "category-aligned"
+    };
+    writeln!(
+        out,
+        "Weights: {}; {align_text}; {smoothing_text}",
+        args.weights
+    )?;
+    writeln!(
+        out,
+        "RNE T(row || column) in {}; lower = more trust; * = lowest in row",
+        unit(options.log_base)
+    )?;
+    Ok(())
+}
+
+/// Writes one RNE matrix `T(trustor || trustee)` under `title`, '*' marking each row's
+/// lowest value (excluding the diagonal when `square`); writes nothing when either side is
+/// empty.
+fn write_rne_section(
+    model: &TrustModel,
+    title: &str,
+    trustors: &Side<'_>,
+    trustees: &Side<'_>,
+    square: bool,
+    out: &mut dyn Write,
+) -> Result<()> {
+    if trustors.dists.is_empty() || trustees.dists.is_empty() {
+        return Ok(());
+    }
+    let values = rne_matrix(model, trustors.dists, trustees.dists)?;
+    let minima: Vec<Vec<usize>> = values
+        .iter()
+        .enumerate()
+        .map(|(r, row)| row_minima(row, square.then_some(r)))
+        .collect();
+    writeln!(out, "\n{title}")?;
+    write!(
+        out,
+        "{}",
+        matrix(trustors.labels, trustees.labels, &values, |r, c| minima[r]
+            .contains(&c))
+    )?;
+    Ok(())
+}
+
+/// The RNE `T(p || q)` of each row distribution `p` (trustor) against each column
+/// distribution `q` (trustee), row by row.
+fn rne_matrix(
+    model: &TrustModel,
+    rows: &[Distribution],
+    cols: &[Distribution],
+) -> Result<Vec<Vec<f64>>> {
+    rows.iter()
+        .map(|p| cols.iter().map(|q| Ok(model.rne(p, q)?)).collect())
+        .collect()
 }
