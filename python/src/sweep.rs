@@ -153,45 +153,12 @@ pub fn run_sweep(
         progress: false,
         ..SweepConfig::new(s, scenario.path())
     };
-    let counter = done.clone();
-    cfg.hooks.on_journaled = Some(Arc::new(move |_, _| {
-        counter.fetch_add(1, Ordering::SeqCst);
-    }));
-    cfg.hooks.stop = Some(stop.clone());
-    if !python.is_empty() {
-        cfg.hooks.trial_observer = Some(tracker(&python));
-    }
-    let report = match &out {
-        Some(dir) => {
-            cfg.out_dir = dir.clone();
-            Some(
-                ReportOptions::resolve(None, false, &cfg.scenario, &cfg.scenario_path)
-                    .map_err(value_error)?,
-            )
-        }
-        None => None,
-    };
+    add_hooks(&mut cfg, &python, &stop, &done);
+    let report = report_options(&mut cfg, out.as_ref())?;
     let total = cfg.methods.len() * trials as usize;
     let cfg_ref = &cfg;
     let stopped = stop.clone();
-    let work = move || -> anyhow::Result<Ran> {
-        let Some(report) = report else {
-            let r = run_in_memory(cfg_ref)?;
-            let cell = r.cells.into_iter().next();
-            return Ok(cell.map(|c| (c.results, c.failures)));
-        };
-        let o = experiments::sweep::run_sweep(cfg_ref)?;
-        if stopped.load(Ordering::SeqCst) {
-            return Ok(None);
-        }
-        let tasks = cfg_ref.scenario.task_names();
-        let mut metrics = vec![Metric::new(Quantity::Rescued, Scope::Total)];
-        metrics.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
-        let analysis = Analysis::with_report(&o, report);
-        write_outputs(cfg_ref, &o, &analysis, &metrics)?;
-        let cell = o.cells.into_iter().next();
-        Ok(cell.map(|c| (c.results, c.failures)))
-    };
+    let work = move || sweep_trials(cfg_ref, report, &stopped);
     let tick = |py: Python<'_>| -> PyResult<()> {
         match &progress {
             Some(p) => p.call1(py, (done.load(Ordering::SeqCst), total)).map(drop),
@@ -199,6 +166,85 @@ pub fn run_sweep(
         }
     };
     let ran = run_detached(py, &stop, work, tick)?.map_err(|e| anyhow_value_error(&e))?;
+    let results = successful_trials(ran, &first_error, &stop, total)?;
+    let tasks = cfg.scenario.task_names();
+    trials_long_csv(&results, &tasks).map_err(|e| anyhow_value_error(&e))
+}
+
+/// Sets the sweep's hooks: each journaled trial counts into `done` (for `progress`), `stop`
+/// stops the sweep, and, when there are Python methods, their trials track positions.
+fn add_hooks(
+    cfg: &mut SweepConfig,
+    python: &PyMethods,
+    stop: &Arc<AtomicBool>,
+    done: &Arc<AtomicUsize>,
+) {
+    let counter = done.clone();
+    cfg.hooks.on_journaled = Some(Arc::new(move |_, _| {
+        counter.fetch_add(1, Ordering::SeqCst);
+    }));
+    cfg.hooks.stop = Some(stop.clone());
+    if !python.is_empty() {
+        cfg.hooks.trial_observer = Some(tracker(python));
+    }
+}
+
+/// With `out`, points the sweep's output folder at it and returns the report options the
+/// scenario's `report` section asks for (no `--targets` or `--claims`); without, `None` (an
+/// in-memory sweep).
+///
+/// # Errors
+/// `ValueError` when the report options cannot be resolved.
+fn report_options(cfg: &mut SweepConfig, out: Option<&PathBuf>) -> PyResult<Option<ReportOptions>> {
+    match out {
+        Some(dir) => {
+            cfg.out_dir = dir.clone();
+            Ok(Some(
+                ReportOptions::resolve(None, false, &cfg.scenario, &cfg.scenario_path)
+                    .map_err(value_error)?,
+            ))
+        }
+        None => Ok(None),
+    }
+}
+
+/// The sweep's work, off the Python thread: without `report`, the trials in memory; with
+/// it, `usar sweep`'s run into `cfg.out_dir` and, unless `stopped`, every file it writes
+/// (metrics: rescued in total and per task). `None` when stopped or there is no cell.
+fn sweep_trials(
+    cfg: &SweepConfig,
+    report: Option<ReportOptions>,
+    stopped: &AtomicBool,
+) -> anyhow::Result<Ran> {
+    let Some(report) = report else {
+        let r = run_in_memory(cfg)?;
+        let cell = r.cells.into_iter().next();
+        return Ok(cell.map(|c| (c.results, c.failures)));
+    };
+    let o = experiments::sweep::run_sweep(cfg)?;
+    if stopped.load(Ordering::SeqCst) {
+        return Ok(None);
+    }
+    let tasks = cfg.scenario.task_names();
+    let mut metrics = vec![Metric::new(Quantity::Rescued, Scope::Total)];
+    metrics.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
+    let analysis = Analysis::with_report(&o, report);
+    write_outputs(cfg, &o, &analysis, &metrics)?;
+    let cell = o.cells.into_iter().next();
+    Ok(cell.map(|c| (c.results, c.failures)))
+}
+
+/// The successful trials of a finished sweep (`ran`) of `total` trials.
+///
+/// # Errors
+/// In this order: the first Python method's exception; `KeyboardInterrupt` when `stop` is
+/// set or the sweep gave nothing; `TrialError` listing the failed trials.
+fn successful_trials(
+    ran: Ran,
+    first_error: &FirstError,
+    stop: &AtomicBool,
+    total: usize,
+) -> PyResult<Vec<TrialResult>> {
     if let Some(e) = first_error.lock().ok().and_then(|mut e| e.take()) {
         return Err(e);
     }
@@ -219,6 +265,5 @@ pub fn run_sweep(
             list.join("; ")
         )));
     }
-    let tasks = cfg.scenario.task_names();
-    trials_long_csv(&results, &tasks).map_err(|e| anyhow_value_error(&e))
+    Ok(results)
 }
