@@ -11,7 +11,7 @@ use usar_sim::scenario::Scenario;
 
 use crate::analysis::CellAnalysis;
 use crate::calibration::ReportOptions;
-use crate::claims::{ALPHA, Verdict};
+use crate::claims::{ALPHA, ClaimCheck, Verdict};
 use crate::data::figure_list::FIGURES;
 use crate::data::grid_cells::GridCell;
 use crate::data::outcome::SweepOutcome;
@@ -241,6 +241,8 @@ fn round_lengths(r: &mut String, a: &CellAnalysis) {
     r.push('\n');
 }
 
+/// The report's section on the paper's claims: how a verdict is reached, a table of the
+/// verdicts, and one subsection per claim ([`claim_section`]).
 fn claims(r: &mut String, a: &CellAnalysis) {
     let _ = writeln!(r, "## The paper's claims (section VI, Fig. 3)\n");
     let _ = writeln!(
@@ -270,62 +272,69 @@ fn claims(r: &mut String, a: &CellAnalysis) {
     }
     r.push('\n');
     for c in &a.claims {
-        let _ = writeln!(
-            r,
-            "### ({}) {}: **{}**\n",
-            c.claim.id,
-            c.claim.text,
-            c.verdict.words()
-        );
-        if c.verdict == Verdict::NotApplicable {
-            let _ = writeln!(
-                r,
-                "Not applicable: the scenario has no task named {:?}; the paper's claims are \
-                 about its tasks named \"easy\" and \"hard\".\n",
-                c.claim.task.unwrap_or_default()
-            );
-            continue;
-        }
-        if c.verdict == Verdict::NotTested {
-            let _ = writeln!(
-                r,
-                "Not tested: the sweep has no results for {} or for any other method.\n",
-                c.claim.subject
-            );
-            continue;
-        }
-        let label = c.metric.map_or_else(String::new, |m| m.label(&a.tasks));
-        let _ = writeln!(
-            r,
-            "{} {}: {} (n = {}).\n",
-            c.claim.subject,
-            label,
-            mean_sd(&c.subject_summary),
-            c.subject_summary.n
-        );
-        let _ = writeln!(
-            r,
-            "| vs | other's mean ± sd (n) | difference | Welch t (dof) | p | Mann-Whitney U | p | p(reverse) |"
-        );
-        let _ = writeln!(r, "|---|---|---|---|---|---|---|---|");
-        for cmp in &c.comparisons {
-            let _ = writeln!(
-                r,
-                "| {} | {} ({}) | {} | {} ({}) | {} | {} | {} | {} |",
-                cmp.other,
-                mean_sd(&cmp.other_summary),
-                cmp.other_summary.n,
-                num(c.subject_summary.mean - cmp.other_summary.mean),
-                num(cmp.welch.statistic),
-                num(cmp.welch.dof),
-                pval(cmp.welch.p),
-                num(cmp.mann_whitney.statistic),
-                pval(cmp.mann_whitney.p),
-                pval(cmp.welch_reverse.p),
-            );
-        }
-        r.push('\n');
+        claim_section(r, a, c);
     }
+}
+
+/// One claim's subsection: its verdict and, when it was tested, the subject's mean and one
+/// row per other method (the difference, Welch's t-test, the Mann-Whitney U test and the
+/// reverse direction's p).
+fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
+    let _ = writeln!(
+        r,
+        "### ({}) {}: **{}**\n",
+        c.claim.id,
+        c.claim.text,
+        c.verdict.words()
+    );
+    if c.verdict == Verdict::NotApplicable {
+        let _ = writeln!(
+            r,
+            "Not applicable: the scenario has no task named {:?}; the paper's claims are \
+             about its tasks named \"easy\" and \"hard\".\n",
+            c.claim.task.unwrap_or_default()
+        );
+        return;
+    }
+    if c.verdict == Verdict::NotTested {
+        let _ = writeln!(
+            r,
+            "Not tested: the sweep has no results for {} or for any other method.\n",
+            c.claim.subject
+        );
+        return;
+    }
+    let label = c.metric.map_or_else(String::new, |m| m.label(&a.tasks));
+    let _ = writeln!(
+        r,
+        "{} {}: {} (n = {}).\n",
+        c.claim.subject,
+        label,
+        mean_sd(&c.subject_summary),
+        c.subject_summary.n
+    );
+    let _ = writeln!(
+        r,
+        "| vs | other's mean ± sd (n) | difference | Welch t (dof) | p | Mann-Whitney U | p | p(reverse) |"
+    );
+    let _ = writeln!(r, "|---|---|---|---|---|---|---|---|");
+    for cmp in &c.comparisons {
+        let _ = writeln!(
+            r,
+            "| {} | {} ({}) | {} | {} ({}) | {} | {} | {} | {} |",
+            cmp.other,
+            mean_sd(&cmp.other_summary),
+            cmp.other_summary.n,
+            num(c.subject_summary.mean - cmp.other_summary.mean),
+            num(cmp.welch.statistic),
+            num(cmp.welch.dof),
+            pval(cmp.welch.p),
+            num(cmp.mann_whitney.statistic),
+            pval(cmp.mann_whitney.p),
+            pval(cmp.welch_reverse.p),
+        );
+    }
+    r.push('\n');
 }
 
 fn failures(r: &mut String, input: &ReportInput<'_>) {
