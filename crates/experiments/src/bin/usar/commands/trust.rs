@@ -237,7 +237,7 @@ fn write_report(
     dists: &Distributions,
     out: &mut dyn Write,
 ) -> Result<()> {
-    write_header(args, model.options(), out)?;
+    write_header(&args.weights, model.options(), out)?;
     writeln!(out, "\nNeeds distributions (Eqs. 8, 11):")?;
     write!(
         out,
@@ -283,23 +283,18 @@ fn write_report(
     Ok(())
 }
 
-/// Writes the report's first two lines: the weights as given, the alignment and smoothing,
-/// and the unit of the RNE values.
-fn write_header(args: &TrustArgs, options: &RneOptions, out: &mut dyn Write) -> Result<()> {
+/// Writes the report's first two lines: the weights as given (`weights`, the flag's text), the
+/// alignment and smoothing, and the unit of the RNE values (all three from `options`).
+fn write_header(weights: &str, options: &RneOptions, out: &mut dyn Write) -> Result<()> {
     let smoothing_text = match options.smoothing {
         Smoothing::Relative(e) => format!("relative smoothing {e:e}"),
         _ => "no smoothing".to_string(),
     };
-    let align_text = if args.sorted {
-        "sorted (Algorithm 4)"
-    } else {
-        "category-aligned"
+    let align_text = match options.alignment {
+        Alignment::Sorted => "sorted (Algorithm 4)",
+        Alignment::Category => "category-aligned",
     };
-    writeln!(
-        out,
-        "Weights: {}; {align_text}; {smoothing_text}",
-        args.weights
-    )?;
+    writeln!(out, "Weights: {weights}; {align_text}; {smoothing_text}")?;
     writeln!(
         out,
         "RNE T(row || column) in {}; lower = more trust; * = lowest in row",
