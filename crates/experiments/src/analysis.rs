@@ -70,6 +70,12 @@ pub struct CellAnalysis {
     /// over all its trials, in the targets' order (see `docs/calibration.md`); empty without
     /// targets.
     pub pooled: Vec<(Target, f64)>,
+    /// Per entry of [`CellAnalysis::pooled`], how many trials its statistic left out (a
+    /// metric undefined there: [`crate::calibrate::Statistic::left_out`]), of
+    /// [`CellAnalysis::trials`].
+    pub pooled_left_out: Vec<usize>,
+    /// The cell's trials (every method's).
+    pub trials: usize,
 }
 
 /// Statistics of one method's trials in one cell.
@@ -148,6 +154,8 @@ impl CellAnalysis {
             claims,
             rounds,
             pooled: Vec::new(),
+            pooled_left_out: Vec::new(),
+            trials: 0,
         }
     }
 
@@ -160,6 +168,12 @@ impl CellAnalysis {
                 .map(|t| (t.clone(), t.value_of(results)))
                 .collect()
         });
+        self.pooled_left_out = self
+            .pooled
+            .iter()
+            .map(|(t, _)| t.statistic.left_out(results))
+            .collect();
+        self.trials = results.len();
         self
     }
 

@@ -307,6 +307,42 @@ pub fn remove_stale_temps(dir: &Path) -> Result<Vec<PathBuf>> {
     remove_files_where(dir, is_temp_name)
 }
 
+/// Removes from `dir` the files (regular files or symbolic links, never folders) of these
+/// names that are there; the rest stays. Returns the files removed.
+///
+/// # Errors
+/// An I/O error removing a file.
+pub fn remove_named(dir: &Path, names: &[&str]) -> Result<Vec<PathBuf>> {
+    let mut removed = Vec::new();
+    for name in names {
+        let p = dir.join(name);
+        if fs::symlink_metadata(&p).is_ok_and(|m| m.is_file() || m.is_symlink()) {
+            fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
+            removed.push(p);
+        }
+    }
+    Ok(removed)
+}
+
+/// Removes the folder `dir` if it is empty; a missing or non-empty folder stays as it is.
+///
+/// # Errors
+/// Another I/O error removing it.
+pub fn remove_dir_if_empty(dir: &Path) -> Result<()> {
+    match fs::remove_dir(dir) {
+        Ok(()) => Ok(()),
+        Err(e)
+            if matches!(
+                e.kind(),
+                std::io::ErrorKind::DirectoryNotEmpty | std::io::ErrorKind::NotFound
+            ) =>
+        {
+            Ok(())
+        }
+        Err(e) => Err(e).with_context(|| format!("removing {}", path_text(dir))),
+    }
+}
+
 /// Removes from `dir` (not its subfolders) the regular files whose names `matches` accepts
 /// (names that are not UTF-8 never match); a missing folder has none. Returns the files
 /// removed.

@@ -4,8 +4,8 @@
 //! no fonts are needed to write them.
 
 use crate::analysis::CellAnalysis;
+use crate::chart::{AXIS_LIMIT, draw_err, legend_entry, plotted};
 pub use crate::chart::{FIGURE_SIZE, method_color};
-use crate::chart::{draw_err, legend_entry};
 pub use crate::data::figure_list::{FIGURES, FigureSpec};
 use crate::metrics::{Metric, Quantity, Scope};
 use crate::stats::Summary;
@@ -35,7 +35,8 @@ fn groups(quantity: Quantity, tasks: &[String]) -> Vec<(String, Metric)> {
         .collect()
 }
 
-/// Top of the y axis: 12 % above the highest upper whisker (or mean), at least 1.
+/// Top of the y axis: 12 % above the highest upper whisker (or mean), at least 1; values
+/// past [`AXIS_LIMIT`] count as that bound (so the top cannot overflow).
 fn y_max(stats: &[Vec<Summary>]) -> f64 {
     let top = stats
         .iter()
@@ -48,6 +49,7 @@ fn y_max(stats: &[Vec<Summary>]) -> f64 {
             }
         })
         .filter(|x| x.is_finite())
+        .map(|x| x.min(AXIS_LIMIT))
         .fold(0.0f64, f64::max);
     if top > 0.0 { top * 1.12 } else { 1.0 }
 }
@@ -69,7 +71,7 @@ fn draw_method(
         .map(|(g, s)| {
             let x = g as f64 + offset;
             Rectangle::new(
-                [(x - bar_w * 0.42, 0.0), (x + bar_w * 0.42, s.mean)],
+                [(x - bar_w * 0.42, 0.0), (x + bar_w * 0.42, plotted(s.mean))],
                 color.filled(),
             )
         });
@@ -80,7 +82,7 @@ fn draw_method(
         .filter(|(_, s)| s.mean.is_finite() && s.ci95.is_finite())
         .flat_map(|(g, s)| {
             let x = g as f64 + offset;
-            let (lo, hi) = (s.ci_low().max(0.0), s.ci_high());
+            let (lo, hi) = (plotted(s.ci_low().max(0.0)), plotted(s.ci_high()));
             let cap = bar_w * 0.18;
             [
                 PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(1)),

@@ -130,3 +130,6 @@ pub mod report;
 // 8. study
 #[cfg(feature = "outputs")]
 pub mod multiverse;
+
+#[cfg(all(test, feature = "outputs"))]
+mod figure_props;

@@ -158,7 +158,7 @@ impl std::fmt::Debug for MethodFactory {
 /// method once with trial 0's context of `base_seed` and drops it.
 ///
 /// # Errors
-/// An unknown method name, or an empty display name.
+/// An unknown method name, or a display name that is empty or holds a control character.
 pub fn canonical_method(
     name: &str,
     factory: &MethodFactory,
@@ -172,6 +172,11 @@ pub fn canonical_method(
     anyhow::ensure!(
         !shown.trim().is_empty(),
         "method {name:?}: its display name is empty"
+    );
+    anyhow::ensure!(
+        !shown.chars().any(char::is_control),
+        "method {name:?}: its display name {shown:?} has a control character (a line break \
+         would break the tables of trials.csv and report.md)"
     );
     Ok(shown.to_string())
 }
@@ -210,5 +215,40 @@ mod tests {
         assert_ne!(ChaCha8Rng::seed_from_u64(ctx.seed).next_u64(), first[0]);
         // Another trial, another stream.
         assert_ne!(TrialContext::for_trial(2021, 1).rng().next_u64(), first[0]);
+    }
+
+    /// A method named `self.0`.
+    struct Named(&'static str);
+
+    impl rne_core::grouping::GroupingMethod for Named {
+        fn name(&self) -> &str {
+            self.0
+        }
+        fn assign(
+            &self,
+            request: &rne_core::grouping::GroupingRequest,
+        ) -> rne_core::Result<rne_core::grouping::Assignment> {
+            rne_core::grouping::Eng.assign(request)
+        }
+    }
+
+    /// A line break in a display name broke report.md's tables; it is refused by name.
+    #[test]
+    fn a_display_name_with_a_control_character_is_refused() {
+        let factory = MethodFactory::new(|name, _, _| {
+            Ok(
+                Box::new(Named(if name == "nl" { "my\nmethod" } else { "mine" }))
+                    as Box<dyn rne_core::grouping::GroupingMethod>,
+            )
+        });
+        let model = TrustModel::with_weights(rne_core::Weights::uniform(7).unwrap());
+        assert_eq!(canonical_method("ok", &factory, &model, 1).unwrap(), "mine");
+        let e = canonical_method("nl", &factory, &model, 1)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("display name \"my\\nmethod\" has a control character") && !e.contains('\n'),
+            "{e}"
+        );
     }
 }

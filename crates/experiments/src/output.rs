@@ -14,6 +14,7 @@ use anyhow::Result;
 
 use crate::analysis::Analysis;
 use crate::atomic::FileSet;
+use crate::chart::figure_or_warn;
 use crate::csv_tables::{summary_csv, trials_csv, trials_long_csv};
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid::{Grid, GridCell};
@@ -35,7 +36,8 @@ use crate::sweep::{SweepConfig, SweepOutcome};
 /// call with every file as it was: the set is never half old and half new.
 ///
 /// # Errors
-/// An I/O error, a path that cannot be written, or a figure plotters fails to draw.
+/// An I/O error or a path that cannot be written. A figure that cannot be drawn is left out
+/// with a warning ([`figure_or_warn`]); the tables and reports are written.
 pub fn write_outputs(
     cfg: &SweepConfig,
     outcome: &SweepOutcome,
@@ -92,7 +94,9 @@ fn write_cell(
     )?;
     put(dir, "summary.csv", &summary_csv(a)?, files)?;
     for spec in &FIGURES {
-        put(dir, spec.file, figure_svg(spec, a)?.as_bytes(), files)?;
+        if let Some(svg) = figure_or_warn(spec.file, || figure_svg(spec, a)) {
+            put(dir, spec.file, svg.as_bytes(), files)?;
+        }
     }
     let report = report_md(&ReportInput {
         scenario: grid_cell.map_or(&cfg.scenario, |g| &g.scenario),
@@ -151,9 +155,10 @@ fn write_grid(
     )?;
     let mut figures = Vec::new();
     for m in metrics {
-        if let Some(svg) = grid_figure_svg(&outcome.header, analysis, *m)? {
-            let tasks = analysis.cells.first().map_or(&[][..], |c| &c.tasks[..]);
-            let name = figure_file(*m, tasks);
+        let tasks = analysis.cells.first().map_or(&[][..], |c| &c.tasks[..]);
+        let name = figure_file(*m, tasks);
+        let drawn = figure_or_warn(&name, || grid_figure_svg(&outcome.header, analysis, *m));
+        if let Some(svg) = drawn.flatten() {
             put(dir, &name, svg.as_bytes(), files)?;
             figures.push(name);
         }

@@ -193,15 +193,19 @@ fn pooled(r: &mut String, a: &CellAnalysis, origin: &str) {
          `docs/calibration.md`). A value outside the band is marked **out**.\n\n\
          | statistic | this sweep | target | band |\n|---|---|---|---|"
     );
-    for (t, x) in &a.pooled {
+    for (k, (t, x)) in a.pooled.iter().enumerate() {
         let mark = if !x.is_finite() || t.holds(*x) {
             ""
         } else {
             " **out**"
         };
+        let left_out = match a.pooled_left_out.get(k) {
+            Some(&n) if n > 0 => format!(" ({n} of {} trials left out: undefined there)", a.trials),
+            _ => String::new(),
+        };
         let _ = writeln!(
             r,
-            "| {} | {}{mark} | {} | {} |",
+            "| {} | {}{mark}{left_out} | {} | {} |",
             t.name,
             num(*x),
             t.value,

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use usar_sim::scenario::path_text;
 
-use crate::atomic::{remove_files_where, remove_stale_temps};
+use crate::atomic::{remove_files_where, remove_named, remove_stale_temps};
 use crate::data::figure_list::FIGURES;
 use crate::data::shard_folders::shard_folders;
 use crate::grid::names::{cell_dir, field_labels};
@@ -119,6 +119,21 @@ pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf
         }
     }
     Ok(removed)
+}
+
+/// `--overwrite` of a sweep's folder whose journal is `dir/journal.jsonl`: removes that
+/// journal, the outputs of its sweep and its shards' merge ([`remove_previous_outputs`]) and
+/// the temporary files killed runs left; the shards' folders, the lock, the owner manifest
+/// and every file a sweep does not write stay. Call it only while holding the folder's lock.
+///
+/// # Errors
+/// An I/O error listing a folder or removing a file.
+pub fn clear_sweep(dir: &Path) -> Result<()> {
+    let journal = Journal::path_in(dir);
+    remove_previous_outputs(dir, &journal)?;
+    remove_named(dir, &[crate::journal::JOURNAL_FILE])?;
+    remove_stale_temps(dir)?;
+    Ok(())
 }
 
 #[cfg(test)]

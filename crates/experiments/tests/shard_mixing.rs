@@ -1,6 +1,7 @@
-//! One output folder never holds the files of two sweeps through a merge: `usar merge`
-//! refuses a folder whose own journal is another sweep's, a sweep refuses a folder whose
-//! shards are another sweep's, and `--overwrite` removes what the shards' merge wrote.
+//! One output folder never holds the files of two sweeps through a merge: a folder belongs to
+//! one kind of run (`usar-owner.json`), so shards are refused in a plain sweep's folder and a
+//! plain sweep in a sharded sweep's, with or without `--overwrite`; `usar merge` refuses a
+//! folder whose own journal is another sweep's.
 
 mod common;
 
@@ -32,71 +33,80 @@ fn grid_shard(out: &Path, shard: &str) -> Output {
     sweep(out, &["--vary", vary, "--shard", shard])
 }
 
+/// The error of a refused command.
 fn refused(o: &Output) -> String {
     assert!(!o.status.success(), "ran, but should have been refused");
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The error of a refused command, asserted to be one line.
+fn refused_in_a_line(o: &Output) -> String {
+    let err = refused(o);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    err
+}
+
 #[test]
-fn a_merge_refuses_a_folder_whose_journal_is_another_sweeps() {
+fn shards_are_refused_in_a_plain_sweeps_folder() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");
     ok(&sweep(&dir, &[]));
     let plain = std::fs::read(dir.join("trials.csv")).unwrap();
-    ok(&grid_shard(&dir, "0/2"));
-    ok(&grid_shard(&dir, "1/2"));
-    let err = refused(&merge(&dir));
+    let err = refused_in_a_line(&grid_shard(&dir, "0/2"));
     assert!(
-        err.contains("journal.jsonl is the journal of another sweep than the shards'")
-            && err.contains("varied fields"),
+        err.contains("holds a sweep (") && err.contains("a sharded sweep never writes"),
         "{err}"
     );
-    assert_eq!(err.trim().lines().count(), 1, "{err}");
-    // Nothing of the shards' sweep was written next to the plain sweep's files.
+    assert!(!dir.join("shards").exists());
+    let err = refused_in_a_line(&merge(&dir));
+    assert!(err.contains("holds a sweep ("), "{err}");
     assert!(!dir.join("grid.csv").exists());
     assert!(CELLS.iter().all(|c| !dir.join(c).exists()));
     assert_eq!(std::fs::read(dir.join("trials.csv")).unwrap(), plain);
 }
 
 #[test]
-fn a_sweep_refuses_a_folder_whose_shards_are_another_sweeps_and_overwrite_clears_it() {
+fn a_merge_refuses_a_folder_whose_journal_is_another_sweeps() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (plain, dir) = (tmp.path().join("plain"), tmp.path().join("s"));
+    ok(&sweep(&plain, &[]));
+    ok(&grid_shard(&dir, "0/2"));
+    ok(&grid_shard(&dir, "1/2"));
+    // A journal of another sweep put at the top of the sharded sweep's folder by hand.
+    std::fs::copy(plain.join("journal.jsonl"), dir.join("journal.jsonl")).unwrap();
+    let err = refused_in_a_line(&merge(&dir));
+    assert!(
+        err.contains("journal.jsonl is the journal of another sweep than the shards'")
+            && err.contains("varied fields"),
+        "{err}"
+    );
+    assert!(!dir.join("grid.csv").exists());
+    assert!(CELLS.iter().all(|c| !dir.join(c).exists()));
+}
+
+#[test]
+fn a_plain_sweep_is_refused_in_a_sharded_sweeps_folder_even_to_overwrite_it() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");
     ok(&grid_shard(&dir, "0/2"));
     ok(&grid_shard(&dir, "1/2"));
     ok(&merge(&dir));
-    assert!(dir.join("grid.csv").exists() && dir.join(CELLS[0]).exists());
-    // Another sweep (no grid) run plainly into the folder is refused.
-    let err = refused(&sweep(&dir, &[]));
-    assert!(
-        err.contains("is a shard's journal of another sweep") && err.contains("--overwrite"),
-        "{err}"
-    );
-    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let merged = std::fs::read(dir.join("grid.csv")).unwrap();
+    for extra in [&[][..], &["--overwrite"][..]] {
+        let err = refused_in_a_line(&sweep(&dir, extra));
+        assert!(
+            err.contains("holds a sharded sweep (") && err.contains("a sweep never writes"),
+            "{err}"
+        );
+    }
+    // The same sweep as the shards', run without --shard, is another kind of run too.
+    let vary = "mission.hp_pct_per_step_in_radiation=0.0003,0.003";
+    refused(&sweep(&dir, &["--vary", vary]));
     assert!(!dir.join("journal.jsonl").exists());
-    // --overwrite removes the merged grid (its top files and cell folders) and keeps the
-    // shards, whose merge is then refused.
-    ok(&sweep(&dir, &["--overwrite"]));
-    assert!(!dir.join("grid.csv").exists());
-    assert!(CELLS.iter().all(|c| !dir.join(c).exists()), "a cell stayed");
-    assert!(dir.join("shards/0-of-2/journal.jsonl").exists());
-    assert!(dir.join("trials.csv").exists());
-    refused(&merge(&dir));
-}
-
-#[test]
-fn the_shards_own_sweep_runs_plainly_in_their_folder() {
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("s");
-    ok(&sweep(&dir, &["--shard", "0/2"]));
-    ok(&sweep(&dir, &["--shard", "1/2"]));
+    assert_eq!(std::fs::read(dir.join("grid.csv")).unwrap(), merged);
+    assert!(CELLS.iter().all(|c| dir.join(c).exists()));
     ok(&merge(&dir));
-    let merged = std::fs::read(dir.join("trials.csv")).unwrap();
-    ok(&sweep(&dir, &[]));
-    assert_eq!(std::fs::read(dir.join("trials.csv")).unwrap(), merged);
-    // And a merge after it: the folder's journal is the shards' sweep.
-    ok(&merge(&dir));
-    assert_eq!(std::fs::read(dir.join("trials.csv")).unwrap(), merged);
+    assert_eq!(std::fs::read(dir.join("grid.csv")).unwrap(), merged);
 }
 
 /// Shards run by two builds of usar are not merged (the second may simulate differently);

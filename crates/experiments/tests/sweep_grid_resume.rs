@@ -180,8 +180,12 @@ fn overwrite_leaves_nothing_of_the_earlier_grid() {
         "sweep.lock",
         "trials.csv",
         "trials_long.csv",
+        "usar-owner.json",
     ];
     assert_eq!(names, expected);
+    // The folder is the sweep's now.
+    let owner = std::fs::read_to_string(dir.join("usar-owner.json")).unwrap();
+    assert!(owner.contains("\"kind\":\"sweep\""), "{owner}");
     let kept: Vec<_> = std::fs::read_dir(dir.join(CELLS[1])).unwrap().collect();
     assert_eq!(kept.len(), 1, "only notes.txt stays in its cell");
     assert_eq!(journal_trials(&dir), 1);

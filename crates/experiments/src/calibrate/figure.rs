@@ -35,6 +35,15 @@ type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64
 /// If plotters fails to draw.
 pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
     let losses: Vec<f64> = o.evaluations.iter().map(|e| e.loss).collect();
+    losses_svg(&o.header.scenario, &losses, o.best)
+}
+
+/// The convergence figure of a calibration of `scenario` with these `losses` (in evaluation
+/// order; any values, +inf drawn as a triangle at the top) and the best at index `best`.
+///
+/// # Errors
+/// If plotters fails to draw.
+pub(crate) fn losses_svg(scenario: &str, losses: &[f64], best: usize) -> Result<String> {
     let top = losses
         .iter()
         .filter(|l| l.is_finite())
@@ -48,7 +57,7 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
         root.fill(&WHITE).map_err(draw_err)?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
-                format!("Calibration of {}: loss per evaluation", o.header.scenario),
+                format!("Calibration of {scenario}: loss per evaluation"),
                 ("sans-serif", 20),
             )
             .margin(16)
@@ -69,8 +78,8 @@ pub fn convergence_svg(o: &CalibrationOutcome) -> Result<String> {
             .draw()
             .map_err(draw_err)?;
         ticks(&mut chart, &root, y_max, n)?;
-        points(&mut chart, &losses, y_max)?;
-        best_line(&mut chart, &losses, o.best)?;
+        points(&mut chart, losses, y_max)?;
+        best_line(&mut chart, losses, best)?;
         root.draw(&Text::new(
             "dots: each evaluation; line: best so far; ring: the best; triangles at the top: +inf \
              (a failed trial, a broken rule or an undefined statistic)",

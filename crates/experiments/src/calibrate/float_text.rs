@@ -5,6 +5,19 @@
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+/// `x` as text for people and for RON: Rust's shortest round-trip form (`0.0055`, `14`,
+/// `inf`), in scientific notation (`1e300`, `1.7e308`, `2.5e-12`) when `|x|` is at least 1e16
+/// or below 1e-9 (but not 0), where the plain form runs to hundreds of digits. Reads back as
+/// the same `f64`.
+pub fn short(x: f64) -> String {
+    let a = x.abs();
+    if a.is_finite() && (a >= 1e16 || (a > 0.0 && a < 1e-9)) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// A number as written: finite, or one of the three words.
 #[derive(Serialize, Deserialize)]
 #[serde(untagged)]
@@ -110,5 +123,21 @@ mod tests {
         assert_eq!(back.stats[2..], [f64::NEG_INFINITY, 1e-300]);
         let e = serde_json::from_str::<Row>(r#"{"loss":"big","stats":[]}"#).unwrap_err();
         assert!(e.to_string().contains("found \"big\""), "{e}");
+    }
+
+    #[test]
+    fn short_text_reads_back_and_stays_short() {
+        for (x, text) in [
+            (0.0055, "0.0055"),
+            (14.0, "14"),
+            (1e300, "1e300"),
+            (-1.7e308, "-1.7e308"),
+            (2.5e-12, "2.5e-12"),
+            (0.0, "0"),
+            (1e15, "1000000000000000"),
+        ] {
+            assert_eq!(super::short(x), text);
+            assert_eq!(text.parse::<f64>().unwrap(), x);
+        }
     }
 }

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use usar_sim::scenario::ScenarioSpec;
 
+use super::float_text::short;
 use crate::vary::{FieldPath, FieldValue, Override, RonValue, apply_overrides, brief, spec_json};
 
 /// One free field and its range.
@@ -70,6 +71,12 @@ impl FreeField {
         let (lo, hi) = range
             .split_once("..")
             .ok_or_else(|| fail(format!("expected a range LO..HI, found {:?}", brief(range))))?;
+        if hi.trim_start().starts_with('.') {
+            return Err(fail(format!(
+                "expected a range LO..HI with two dots, found {:?}",
+                brief(range)
+            )));
+        }
         let bound = |name: &str, text: &str| -> Result<f64, FreeError> {
             let x: f64 = text
                 .trim()
@@ -85,6 +92,13 @@ impl FreeField {
         if lo >= hi {
             return Err(fail(format!(
                 "the range {lo}..{hi} is empty or reversed: LO must be below HI"
+            )));
+        }
+        if !(hi - lo).is_finite() {
+            return Err(fail(format!(
+                "the range {}..{} is wider than the largest number: narrow it",
+                short(lo),
+                short(hi)
             )));
         }
         if log && lo <= 0.0 {
@@ -151,7 +165,7 @@ impl FreeField {
 
     /// The override that sets the field to `x` (every element a `[*]` names).
     pub fn override_for(&self, x: f64) -> Override {
-        let text = format!("{x}");
+        let text = short(x);
         Override {
             path: self.path(),
             value: FieldValue {
@@ -206,7 +220,7 @@ impl FreeField {
 impl fmt::Display for FreeField {
     /// As written: `mission.pickup_s=0.5..2`, `mission.hp_pct_per_step_in_radiation=0.002..0.02:log`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}={}..{}", self.field, self.lo, self.hi)?;
+        write!(f, "{}={}..{}", self.field, short(self.lo), short(self.hi))?;
         if self.log {
             f.write_str(":log")?;
         }
@@ -275,6 +289,14 @@ mod tests {
     }
 
     #[test]
+    fn huge_bounds_print_short() {
+        let f = FreeField::parse("mission.pickup_s=1e-300..1e300:log").unwrap();
+        assert_eq!(f.to_string(), "mission.pickup_s=1e-300..1e300:log");
+        assert_eq!(f.override_for(1e300).value.text, "1e300");
+        assert_eq!(f.override_for(1.25).value.text, "1.25");
+    }
+
+    #[test]
     fn parses_linear_and_log_ranges() {
         let f = FreeField::parse("mission.pickup_s=0.5..2").unwrap();
         assert_eq!(
@@ -323,6 +345,14 @@ mod tests {
             (
                 "mission.pickup_s=0..2:log",
                 "a log range needs LO > 0, found 0",
+            ),
+            (
+                "mission.pickup_s=0.5...2",
+                "expected a range LO..HI with two dots, found \"0.5...2\"",
+            ),
+            (
+                "mission.pickup_s=-1e308..1e308",
+                "the range -1e308..1e308 is wider than the largest number",
             ),
             (
                 "mission.pickup_s=-1..2:log",

@@ -16,7 +16,7 @@ pub fn target_loss(target: &Target, x: f64) -> f64 {
     if !d.is_finite() {
         return f64::INFINITY;
     }
-    let share = (d / target.band.half_width()).powi(2);
+    let share = (d / target.band.half_width(target.value)).powi(2);
     if d > 0.0 {
         share.max(f64::MIN_POSITIVE)
     } else {

@@ -11,29 +11,45 @@ use anyhow::{Context, Result};
 use super::figure::convergence_svg;
 use super::markdown::calibration_md;
 use super::outcome::{
-    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, REPORT_FILE, STATISTICS_FIGURE_FILE,
-    TRACE_CSV_FILE,
+    CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, OUTPUT_FILES, REPORT_FILE,
+    STATISTICS_FIGURE_FILE, TRACE_CSV_FILE,
 };
 use super::targets_figure::statistics_svg;
 use crate::atomic::FileSet;
+use crate::chart::figure_or_warn;
 use crate::spec_ron::spec_to_ron;
 
 /// Writes the outputs of `o` into `dir` as one set; returns their paths.
 ///
 /// # Errors
 /// A path that cannot be written (a folder in the way, a full disk): no file of the set
-/// changes then.
+/// changes then. A figure that cannot be drawn is left out with a warning
+/// ([`figure_or_warn`]); the other files are written.
 pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>> {
     let mut set = FileSet::new();
     set.stage(&dir.join(CALIBRATED_FILE), calibrated_ron(o)?.as_bytes())?;
     set.stage(&dir.join(TRACE_CSV_FILE), trace_csv(o)?.as_bytes())?;
     set.stage(&dir.join(REPORT_FILE), calibration_md(o).as_bytes())?;
-    set.stage(&dir.join(FIGURE_FILE), convergence_svg(o)?.as_bytes())?;
-    set.stage(
-        &dir.join(STATISTICS_FIGURE_FILE),
-        statistics_svg(o)?.as_bytes(),
-    )?;
+    if let Some(svg) = figure_or_warn(FIGURE_FILE, || convergence_svg(o)) {
+        set.stage(&dir.join(FIGURE_FILE), svg.as_bytes())?;
+    }
+    if let Some(svg) = figure_or_warn(STATISTICS_FIGURE_FILE, || statistics_svg(o)) {
+        set.stage(&dir.join(STATISTICS_FIGURE_FILE), svg.as_bytes())?;
+    }
     set.commit()
+}
+
+/// `--overwrite` of a calibration's folder: removes its trace, the files [`write_outputs`]
+/// writes and the temporary files killed runs left; the lock, the owner manifest and every
+/// other file stay. Call it only while holding the folder's lock.
+///
+/// # Errors
+/// An I/O error removing a file.
+pub fn clear(dir: &Path) -> Result<()> {
+    crate::atomic::remove_named(dir, &[super::trace::TRACE_FILE])?;
+    crate::atomic::remove_named(dir, &OUTPUT_FILES)?;
+    crate::atomic::remove_stale_temps(dir)?;
+    Ok(())
 }
 
 /// A free value, or a statistic, as the files write it: Rust's shortest round-trip form

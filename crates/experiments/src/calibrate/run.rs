@@ -10,13 +10,14 @@ use usar_sim::scenario::path_text;
 
 use super::evaluate::{Evaluation, Evaluator};
 use super::optimizer::{INITIAL_STEP, OUTSIDE_PENALTY, STALL_LIMIT, StopReason, nelder_mead};
-use super::outcome::{CalibrationOutcome, CheckOutcome, OUTPUT_FILES, best_index, target_checks};
-use super::outputs::write_outputs;
+use super::outcome::{CalibrationOutcome, CheckOutcome, best_index, target_checks};
+use super::outputs::{clear, write_outputs};
 use super::progress::{Display, Progress};
 use super::searcher::{Searcher, key};
 use super::setup::{CalibrationSetup, Checked};
 use super::trace::{TRACE_FORMAT, Trace, TraceHeader, header_diff, read_trace};
-use crate::atomic::remove_stale_temps;
+use crate::atomic::{remove_named, remove_stale_temps};
+use crate::data::owner::{RunKind, claim};
 use crate::fingerprint::scenario_hash;
 use crate::journal::{holds_no_line, something_at};
 use crate::lock::OutputLock;
@@ -54,8 +55,9 @@ use crate::lock::OutputLock;
 /// ```
 ///
 /// # Errors
-/// A setup that does not fit its scenario ([`CalibrationSetup::check`]), a folder locked by
-/// another run, a trace that cannot be continued (another calibration's, edited, damaged), an
+/// A setup that does not fit its scenario ([`CalibrationSetup::check`]), an output folder
+/// that is not a folder or belongs to another kind of run ([`crate::data::owner`]), a folder
+/// locked by another run, a trace that cannot be continued (another calibration's, edited, damaged), an
 /// I/O error, or no evaluated point giving a valid scenario. Failing or panicking trials and
 /// free values that break a rule are not errors: their evaluation's loss is +inf.
 pub fn calibrate(
@@ -66,6 +68,7 @@ pub fn calibrate(
     let t0 = Instant::now();
     let checked = setup.check()?;
     let header = header_of(setup, &checked)?;
+    claim(dir, RunKind::Calibration)?;
     let _lock = OutputLock::acquire(dir)?;
     remove_stale_temps(dir)?;
     let (trace, recorded) = open_trace(dir, &header, setup.overwrite)?;
@@ -230,21 +233,11 @@ fn open_trace(
     overwrite: bool,
 ) -> Result<(Trace, Vec<Evaluation>)> {
     let path = Trace::path_in(dir);
-    // An empty trace, or one killed while it wrote its header, holds nothing to lose.
-    let outputs = if overwrite {
-        OUTPUT_FILES.as_slice()
-    } else {
-        &[]
-    };
-    if overwrite || holds_no_line(&path) {
-        for name in std::iter::once(&super::trace::TRACE_FILE).chain(outputs) {
-            let p = dir.join(name);
-            if p.symlink_metadata()
-                .is_ok_and(|m| m.is_file() || m.is_symlink())
-            {
-                std::fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
-            }
-        }
+    if overwrite {
+        clear(dir)?;
+    } else if holds_no_line(&path) {
+        // An empty trace, or one killed while it wrote its header, holds nothing to lose.
+        remove_named(dir, &[super::trace::TRACE_FILE])?;
     }
     if !something_at(&path) {
         return Ok((Trace::create(dir, header)?, Vec::new()));

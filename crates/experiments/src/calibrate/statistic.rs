@@ -58,6 +58,17 @@ impl Statistic {
     }
 }
 
+impl Statistic {
+    /// How many of `results` it leaves out because one of its metrics is undefined there (a
+    /// cost per rescuee in a trial without rescuees): reports say so next to the value.
+    pub fn left_out(&self, results: &[TrialResult]) -> usize {
+        results
+            .iter()
+            .filter(|r| self.metrics().iter().any(|m| m.value(r).is_none()))
+            .count()
+    }
+}
+
 impl fmt::Display for Statistic {
     /// As written in a targets file, without quotes: `RatioOfMeans(rescued_easy, rescued_hard)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -192,10 +203,11 @@ pub(crate) mod tests {
         );
         // Undefined per-trial values are left out: no hard rescuees, no hard cost per rescuee.
         let mixed = [zero[0].clone(), r[0].clone()];
-        assert!(close(
-            Statistic::Mean(m("energy_per_hard_rescuee_pct")).value(&mixed),
-            500.0 / 60.0
-        ));
+        let per_rescuee = Statistic::Mean(m("energy_per_hard_rescuee_pct"));
+        assert!(close(per_rescuee.value(&mixed), 500.0 / 60.0));
+        assert_eq!(per_rescuee.left_out(&mixed), 1);
+        assert_eq!(per_rescuee.left_out(&r), 0);
+        assert_eq!(Statistic::Mean(m("rounds")).left_out(&mixed), 0);
     }
 
     #[test]

@@ -68,11 +68,13 @@ impl Target {
         }
     }
 
-    /// The value and band as a table shows them: `6.2 ± 0.6`, `4.69 in [3, 7]`.
+    /// The value and band as a table shows them: `6.2 ± 0.6`, `4.69 in [3, 7]`, `6 in [5, ∞)`.
     pub fn describe(&self) -> String {
         match self.band {
             Band::PlusMinus(_) => format!("{} {}", self.value, self.band),
-            Band::Between(..) => format!("{} in {}", self.value, self.band),
+            Band::Between(..) | Band::AtLeast(_) | Band::AtMost(_) => {
+                format!("{} in {}", self.value, self.band)
+            }
         }
     }
 

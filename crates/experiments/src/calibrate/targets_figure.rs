@@ -11,7 +11,7 @@ use plotters::prelude::*;
 
 use super::outcome::CalibrationOutcome;
 use super::targets::Target;
-use crate::chart::draw_err;
+use crate::chart::{axis_range, draw_err, plotted, tick_label};
 
 /// Panels per row.
 const COLUMNS: usize = 4;
@@ -71,16 +71,24 @@ pub fn targets_svg(
     Ok(svg)
 }
 
-/// The y range of a panel: the band and every finite value, with a margin.
+/// The y range of a panel ([`axis_range`], 8 % room): every finite value and the target's
+/// value, and each band edge that is finite and lies within one data span of them (a band
+/// edge far away, or open, is left out; the band's shading is cut at the axis).
 fn y_range(target: &Target, values: &[f64]) -> (f64, f64) {
-    let (lo, hi) = target.band.bounds(target.value);
-    let (mut min, mut max) = (lo.min(target.value), hi.max(target.value));
-    for &x in values.iter().filter(|x| x.is_finite()) {
-        min = min.min(x);
-        max = max.max(x);
-    }
-    let pad = ((max - min) * 0.08).max(1e-9);
-    (min - pad, max + pad)
+    let plotted = || {
+        values
+            .iter()
+            .copied()
+            .filter(|x| x.is_finite())
+            .chain(std::iter::once(target.value))
+    };
+    let (lo, hi) = axis_range(plotted(), 0.0);
+    let span = hi - lo;
+    let (b0, b1) = target.band.bounds(target.value);
+    let near = [b0, b1]
+        .into_iter()
+        .filter(|b| b.is_finite() && *b >= lo - span && *b <= hi + span);
+    axis_range(plotted().chain(near), 0.08)
 }
 
 /// One target's panel on `area`.
@@ -104,7 +112,7 @@ fn panel(
         .x_labels(4)
         .y_labels(4)
         .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.3}"))
+        .y_label_formatter(&|y| tick_label(*y, 3))
         .label_style(("sans-serif", 10))
         .disable_mesh()
         .draw()
@@ -113,13 +121,16 @@ fn panel(
     let band = RGBColor(0, 158, 115).mix(0.18);
     chart
         .draw_series(std::iter::once(Rectangle::new(
-            [(-0.5, lo.max(y0)), (n - 0.5, hi.min(y1))],
+            [(-0.5, lo.clamp(y0, y1)), (n - 0.5, hi.clamp(y0, y1))],
             band.filled(),
         )))
         .map_err(draw_err)?;
     chart
         .draw_series(std::iter::once(PathElement::new(
-            vec![(-0.5, target.value), (n - 0.5, target.value)],
+            vec![
+                (-0.5, plotted(target.value)),
+                (n - 0.5, plotted(target.value)),
+            ],
             RGBColor(0, 158, 115),
         )))
         .map_err(draw_err)?;
@@ -133,7 +144,7 @@ fn panel(
             } else {
                 RGBColor(150, 150, 150)
             };
-            Circle::new((i as f64, x), 2, c.filled())
+            Circle::new((i as f64, plotted(x)), 2, c.filled())
         });
     chart.draw_series(dots).map_err(draw_err)?;
     if let Some((i, &x)) = ring.and_then(|i| values.get(i).map(|x| (i, x))) {
@@ -142,7 +153,7 @@ fn panel(
         }
         chart
             .draw_series(std::iter::once(Circle::new(
-                (i as f64, x),
+                (i as f64, plotted(x)),
                 5,
                 RGBColor(213, 94, 0).stroke_width(2),
             )))
@@ -170,5 +181,29 @@ mod tests {
         assert!(lo < 2.0 && hi > 7.0 && hi < 8.0, "{lo}..{hi}");
         let (lo, hi) = y_range(&t, &[]);
         assert!(lo < 5.0 && hi > 7.0, "{lo}..{hi}");
+    }
+
+    /// A band reaching 1.7e308 once spun plotters' tick loop forever: the axis spans the
+    /// values and leaves a far or open band edge out.
+    #[test]
+    fn a_far_or_open_band_edge_is_left_out() {
+        for band in [
+            Band::Between(5.0, 1.7e308),
+            Band::AtLeast(5.0),
+            Band::Between(-1e308, 1e308),
+        ] {
+            let t = Target {
+                name: "t".into(),
+                statistic: Statistic::Mean(MetricRef("rounds".into())),
+                value: 6.0,
+                band,
+                report_only: false,
+            };
+            let (lo, hi) = y_range(&t, &[5.5, 6.5]);
+            assert!(lo > -10.0 && hi < 10.0, "{band:?}: {lo}..{hi}");
+            let svg =
+                targets_svg("t", std::slice::from_ref(&t), &[vec![5.5, 6.5]], Some(0)).unwrap();
+            assert!(svg.contains("<svg"));
+        }
     }
 }

@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
+use serde_json::Value;
 use serde_json::value::RawValue;
 use usar_sim::scenario::path_text;
 
@@ -32,7 +33,7 @@ use super::targets::Target;
 use crate::journal::{header_sum, journal_line, record_sum};
 
 /// File name of the trace in the output folder.
-pub const TRACE_FILE: &str = "trace.jsonl";
+pub const TRACE_FILE: &str = crate::data::owner::evidence::TRACE;
 
 /// Format of the trace's lines; bumped when they change shape.
 pub const TRACE_FORMAT: u32 = 1;
@@ -78,7 +79,10 @@ pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
         list(
             h.targets
                 .iter()
-                .map(|t| format!("{}: {} {}", t.name, t.statistic, t.describe()))
+                .map(|t| {
+                    let reported = if t.report_only { " (reported)" } else { "" };
+                    format!("{}: {} {}{reported}", t.name, t.statistic, t.describe())
+                })
                 .collect(),
         )
     };
@@ -117,7 +121,7 @@ pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
         ("digits", old.digits.to_string(), new.digits.to_string()),
         ("search", old.search.clone(), new.search.clone()),
     ];
-    let d: Vec<String> = fields
+    let mut d: Vec<String> = fields
         .iter()
         .filter(|(_, a, b)| a != b)
         .map(|(name, a, b)| match *name {
@@ -125,7 +129,37 @@ pub fn header_diff(old: &TraceHeader, new: &TraceHeader) -> String {
             _ => format!("{name} {a} vs {b}"),
         })
         .collect();
+    if d.is_empty() {
+        d = json_diff(old, new);
+    }
     format!("trace has {}", d.join(", "))
+}
+
+/// The fields where two headers differ, compared as JSON (what the trace holds): the
+/// fallback of [`header_diff`] for a difference its texts do not show.
+fn json_diff(old: &TraceHeader, new: &TraceHeader) -> Vec<String> {
+    let (Ok(Value::Object(a)), Ok(Value::Object(b))) =
+        (serde_json::to_value(old), serde_json::to_value(new))
+    else {
+        return vec!["another header".into()];
+    };
+    let shown = |v: Option<&Value>| {
+        let text = v.map_or_else(|| "nothing".to_owned(), Value::to_string);
+        crate::vary::brief(&text)
+    };
+    let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
+    keys.sort();
+    keys.dedup();
+    let d: Vec<String> = keys
+        .into_iter()
+        .filter(|k| a.get(*k) != b.get(*k))
+        .map(|k| format!("{k} {} vs {}", shown(a.get(k)), shown(b.get(k))))
+        .collect();
+    if d.is_empty() {
+        vec!["the same fields in another form".into()]
+    } else {
+        d
+    }
 }
 
 /// One line as read back: the header's or the evaluation's JSON as written, and its sum.
@@ -434,5 +468,16 @@ mod tests {
             "trace has free fields [mission.pickup_s=0.5..2] vs [mission.pickup_s=0.5..3], \
              trials 2 vs 3"
         );
+        // A target only reported in one of them: once "trace has " and nothing more.
+        let mut reported = header();
+        reported.targets[0].report_only = true;
+        let d = header_diff(&header(), &reported);
+        assert!(
+            d.starts_with("trace has targets [") && d.contains(" (reported)]"),
+            "{d}"
+        );
+        // What the texts do not show is named from the JSON.
+        let d = json_diff(&header(), &reported);
+        assert!(d.len() == 1 && d[0].starts_with("targets [{"), "{d:?}");
     }
 }

@@ -12,6 +12,7 @@ use usar_sim::scenario::Scenario;
 use crate::data::grid_cells::Grid;
 use crate::data::hooks::SweepHooks;
 use crate::data::out_dir::default_out_dir;
+use crate::data::owner::RunKind;
 use crate::data::shard_folders::{ShardRun, shard_dir};
 use crate::data::trial_length::simulated_length_s;
 use crate::method_factory::MethodFactory;
@@ -121,6 +122,16 @@ impl SweepConfig {
     /// [`SweepConfig::duration_of`] run as whole steps ([`simulated_length_s`]).
     pub fn simulated_length_of(&self, scenario: &Scenario) -> f64 {
         simulated_length_s(self.duration_of(scenario), scenario.sim().dt_s.get())
+    }
+
+    /// The kind of run this sweep is, which owns its folders ([`crate::data::owner`]): a
+    /// sharded sweep with a shard, a grid with `--vary` cells, a sweep otherwise.
+    pub fn run_kind(&self) -> RunKind {
+        match (&self.shard, &self.grid) {
+            (Some(_), _) => RunKind::ShardedSweep,
+            (None, Some(_)) => RunKind::Grid,
+            (None, None) => RunKind::Sweep,
+        }
     }
 
     /// The folder of the journal (and the lock): `out_dir`, or the shard's folder under it.

@@ -4,7 +4,8 @@
 //! A sweep's plan is a [`config::SweepConfig`] (with its grid's cells, [`grid_cells`], its
 //! extension points, [`hooks`], and its shard, [`shard_split`], [`shard_folders`] and
 //! [`sweep_plan`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
-//! [`limits`] bounds a sweep; [`out_dir`], [`figure_list`], [`trial_length`] and [`software`]
+//! [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
+//! [`out_dir`], [`figure_list`], [`trial_length`] and [`software`]
 //! name and describe what it writes. The modules above (run, design, analyse, write) build,
 //! run, judge and write this data.
 
@@ -16,6 +17,7 @@ pub mod jobs;
 pub mod limits;
 pub mod out_dir;
 pub mod outcome;
+pub mod owner;
 pub mod shard_folders;
 pub mod shard_split;
 pub mod software;

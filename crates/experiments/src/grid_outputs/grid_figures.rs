@@ -15,7 +15,7 @@ use plotters::style::colors::colormaps::ViridisRGB;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::analysis::Analysis;
-use crate::chart::{FIGURE_SIZE, draw_err, legend_entry, method_color};
+use crate::chart::{FIGURE_SIZE, axis_range, draw_err, legend_entry, method_color, plotted};
 use crate::journal::SweepHeader;
 use crate::metrics::Metric;
 use crate::stats::Summary;
@@ -102,29 +102,22 @@ fn spans_a_decade(v: &[f64]) -> bool {
     lo > 0.0 && hi / lo >= 10.0 - 1e-9
 }
 
+/// The y axis: every band end (or mean where the band is undefined), with 8 % room
+/// ([`axis_range`]: finite and never empty, whatever the values).
 fn y_range(per_method: &[Vec<Summary>]) -> (f64, f64) {
-    let (lo, hi) = per_method
-        .iter()
-        .flatten()
-        .flat_map(|s| {
-            if s.ci95.is_finite() {
-                [s.ci_low(), s.ci_high()]
-            } else {
-                [s.mean, s.mean]
-            }
-        })
-        .filter(|x| x.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(x), b.max(x))
-        });
-    if !lo.is_finite() {
-        return (0.0, 1.0);
-    }
-    let pad = if hi > lo { (hi - lo) * 0.08 } else { 1.0 };
-    (lo - pad, hi + pad)
+    let ends = per_method.iter().flatten().flat_map(|s| {
+        if s.ci95.is_finite() {
+            [s.ci_low(), s.ci_high()]
+        } else {
+            [s.mean, s.mean]
+        }
+    });
+    axis_range(ends, 0.08)
 }
 
-fn line_chart(
+/// A line chart of one varied `field` (its `values`, numeric or not): per method, the mean
+/// and its 95 % band at each value (`per_method[method][cell]`), titled with `label`.
+pub(crate) fn line_chart(
     field: &str,
     values: &[String],
     methods: &[String],
@@ -138,17 +131,10 @@ fn line_chart(
         Some(v) => v,
         None => (0..values.len()).map(|i| i as f64).collect(),
     };
-    let (x_lo, x_hi) = xs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(*x), b.max(*x))
-        });
-    let x_pad = if categorical {
-        0.5
-    } else if x_hi > x_lo {
-        (x_hi - x_lo) * 0.05
+    let (x_lo, x_hi) = if categorical {
+        (-0.5, xs.len() as f64 - 0.5)
     } else {
-        1.0
+        axis_range(xs.iter().copied(), 0.05)
     };
     let (y_lo, y_hi) = y_range(per_method);
     // Points in increasing x, so lines and bands run left to right.
@@ -165,7 +151,7 @@ fn line_chart(
             .margin_bottom(30)
             .x_label_area_size(44)
             .y_label_area_size(64)
-            .build_cartesian_2d((x_lo - x_pad)..(x_hi + x_pad), y_lo..y_hi)
+            .build_cartesian_2d(x_lo..x_hi, y_lo..y_hi)
             .map_err(draw_err)?;
         let x_desc = if log_x {
             format!("{field} (log scale)")
@@ -217,8 +203,9 @@ fn draw_method(
     stats: &[Summary],
 ) -> Result<()> {
     for run in band_runs(order, stats) {
-        let mut poly: Vec<(f64, f64)> = run.iter().map(|&k| (xs[k], stats[k].ci_high())).collect();
-        poly.extend(run.iter().rev().map(|&k| (xs[k], stats[k].ci_low())));
+        let at = |k: usize, y: f64| (plotted(xs[k]), plotted(y));
+        let mut poly: Vec<(f64, f64)> = run.iter().map(|&k| at(k, stats[k].ci_high())).collect();
+        poly.extend(run.iter().rev().map(|&k| at(k, stats[k].ci_low())));
         chart
             .draw_series(std::iter::once(Polygon::new(
                 poly,
@@ -229,7 +216,7 @@ fn draw_method(
     let line: Vec<(f64, f64)> = order
         .iter()
         .filter(|&&k| stats[k].mean.is_finite())
-        .map(|&k| (xs[k], stats[k].mean))
+        .map(|&k| (plotted(xs[k]), plotted(stats[k].mean)))
         .collect();
     chart
         .draw_series(line.iter().map(|p| Circle::new(*p, 3, color.filled())))
@@ -270,7 +257,9 @@ fn footnote(root: &DrawingArea<SVGBackend<'_>, Shift>, text: &str) -> Result<()>
     .map_err(draw_err)
 }
 
-fn heat_maps(
+/// One heat map per method over two varied `fields` (`xs` by `ys`, cells in grid order),
+/// coloured by the mean of `per_method[method][cell]`, titled with `label`.
+pub(crate) fn heat_maps(
     fields: &[String],
     xs: &[String],
     ys: &[String],
@@ -286,10 +275,14 @@ fn heat_maps(
     let (lo, hi) = means.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
         (a.min(x), b.max(x))
     });
-    let (lo, hi) = if lo.is_finite() {
-        (lo, hi.max(lo + 1e-12))
-    } else {
+    let (lo, hi) = if !lo.is_finite() {
         (0.0, 1.0)
+    } else if (hi - lo).is_finite() && hi - lo >= 1e-12 && hi - lo >= lo.abs().max(hi.abs()) * 1e-9
+    {
+        (lo, hi)
+    } else {
+        // One value (or nearly): an axis that is not empty ([`axis_range`]).
+        axis_range([lo, hi], 0.0)
     };
     let size = (
         PANEL_W * methods.len().max(1) as u32 + COLORBAR_W,

@@ -4,6 +4,7 @@
 //!
 //! ```text
 //! DIR/
+//!   usar-owner.json   its owner, a multiverse (crate::data::owner)
 //!   multiverse.json   the plan (super::plan)      sweep.lock   the lock (crate::lock)
 //!   multiverse.csv  multiverse.md  spec_curve_<claim>.svg      (super::outputs)
 //!   universes/u000/ ...                                        (super::universe_run)
@@ -17,8 +18,13 @@ use usar_sim::scenario::path_text;
 
 use super::outputs::output_files;
 use super::plan::{MultiversePlan, identity_diff};
-use super::universe_run::UNIVERSES_DIR;
+use super::record::RECORD_FILE;
+use super::universe_run::{CALIBRATION_DIR, COMPARISON_DIR, SCENARIO_FILE, UNIVERSES_DIR};
+use crate::atomic::{remove_dir_if_empty, remove_named, remove_stale_temps};
+use crate::data::owner::{OWNER_FILE, RunKind, check_owner};
+use crate::lock::LOCK_FILE;
 use crate::shard::{SHARDS_DIR, Shard, shard_folders};
+use crate::stale_outputs::clear_sweep;
 
 /// Every plan in `dir`: the top one (`None`), then each shard folder's, by shard.
 ///
@@ -71,37 +77,83 @@ pub fn refuse_others(dir: &Path, plan: &MultiversePlan) -> Result<()> {
     Ok(())
 }
 
-/// `--overwrite`: removes from `dir` what a multiverse wrote there (the plan, the top files,
-/// `universes/` and `shards/`); other files stay.
+/// `--overwrite`: removes from `dir` what a multiverse writes there and nothing else: the
+/// plan and the top files; in each shard's folder (`shards/<I>-of-<N>/`) its plan, lock and
+/// owner manifest; in each universe's folder (`universes/u<digits>/`) its scenario, record,
+/// its calibration's files ([`crate::calibrate::outputs::clear`]) and its comparison's
+/// ([`crate::stale_outputs::clear_sweep`]), with their locks and owner manifests. A folder is
+/// removed once that leaves it empty; a file the multiverse does not write stays, and so does
+/// its folder. Call it only with the folder's exclusive lock held (no shard runs then).
 ///
 /// # Errors
-/// An I/O error removing something.
+/// An I/O error listing a folder or removing something.
 pub fn clear(dir: &Path) -> Result<()> {
     let mut files = output_files();
     files.push(super::plan::PLAN_FILE.to_string());
-    for name in files {
-        let p = dir.join(name);
-        if p.symlink_metadata()
-            .is_ok_and(|m| m.is_file() || m.is_symlink())
-        {
-            std::fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
+    let names: Vec<&str> = files.iter().map(String::as_str).collect();
+    remove_named(dir, &names)?;
+    let own = [super::plan::PLAN_FILE, LOCK_FILE, OWNER_FILE];
+    for (_, shard) in shard_folders(dir)? {
+        remove_named(&shard, &own)?;
+        remove_stale_temps(&shard)?;
+        remove_dir_if_empty(&shard)?;
+    }
+    remove_dir_if_empty(&dir.join(SHARDS_DIR))?;
+    let universes = dir.join(UNIVERSES_DIR);
+    for u in universe_folders(&universes)? {
+        clear_universe(&u)?;
+    }
+    remove_dir_if_empty(&universes)
+}
+
+/// The universes' folders under `universes` (`u` and digits, as
+/// [`super::universe::Universe::id`] names them); none when it does not exist.
+fn universe_folders(universes: &Path) -> Result<Vec<std::path::PathBuf>> {
+    let entries = match std::fs::read_dir(universes) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(universes))),
+    };
+    let mut out = Vec::new();
+    for e in entries {
+        let e = e.with_context(|| format!("listing {}", path_text(universes)))?;
+        let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
+        let name = e.file_name();
+        let is_id = name.to_str().is_some_and(|n| {
+            n.len() > 1 && n.starts_with('u') && n[1..].bytes().all(|b| b.is_ascii_digit())
+        });
+        if is_dir && is_id {
+            out.push(e.path());
         }
     }
-    for name in [UNIVERSES_DIR, SHARDS_DIR] {
-        let p = dir.join(name);
-        match p.symlink_metadata() {
-            Ok(m) if m.is_dir() => std::fs::remove_dir_all(&p),
-            Ok(_) => std::fs::remove_file(&p),
-            Err(_) => continue,
-        }
-        .with_context(|| format!("removing {}", path_text(&p)))?;
+    out.sort();
+    Ok(out)
+}
+
+/// Removes what a universe's run writes in its folder `u` (see [`clear`]).
+fn clear_universe(u: &Path) -> Result<()> {
+    let run_files = [LOCK_FILE, OWNER_FILE];
+    let calibration = u.join(CALIBRATION_DIR);
+    if check_owner(&calibration, RunKind::Calibration).is_ok() {
+        crate::calibrate::outputs::clear(&calibration)?;
+        remove_named(&calibration, &run_files)?;
+        remove_dir_if_empty(&calibration)?;
     }
-    Ok(())
+    let comparison = u.join(COMPARISON_DIR);
+    if check_owner(&comparison, RunKind::Sweep).is_ok() {
+        clear_sweep(&comparison)?;
+        remove_named(&comparison, &run_files)?;
+        remove_dir_if_empty(&comparison)?;
+    }
+    remove_named(u, &[SCENARIO_FILE, RECORD_FILE])?;
+    remove_stale_temps(u)?;
+    remove_dir_if_empty(u)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::atomic::tests::names;
     use crate::multiverse::plan::tests::plan;
 
     #[test]
@@ -122,16 +174,51 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("--overwrite") && !e.contains('\n'), "{e}");
-        std::fs::create_dir_all(d.join("universes/u000")).unwrap();
-        std::fs::write(d.join("multiverse.csv"), "x").unwrap();
-        std::fs::write(d.join("notes.txt"), "mine").unwrap();
+        std::fs::create_dir_all(d.join("universes/u000/calibration")).unwrap();
+        std::fs::create_dir_all(d.join("universes/u001/comparison")).unwrap();
+        for f in [
+            "universes/u000/universe.json",
+            "universes/u000/scenario.ron",
+            "universes/u000/calibration/trace.jsonl",
+            "universes/u000/calibration/calibrated.ron",
+            "universes/u000/calibration/sweep.lock",
+            "universes/u001/comparison/journal.jsonl",
+            "universes/u001/comparison/trials.csv",
+            "multiverse.csv",
+        ] {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        // What a multiverse does not write stays, and so do the folders holding it.
+        for f in [
+            "notes.txt",
+            "universes/notes.txt",
+            "universes/u001/comparison/mine.txt",
+            "shards/1-of-2/mine.txt",
+        ] {
+            std::fs::write(d.join(f), "mine").unwrap();
+        }
         p.write(d).unwrap();
         clear(d).unwrap();
         assert!(!is_multiverse_dir(d));
-        assert!(!d.join("universes").exists() && !d.join("multiverse.csv").exists());
+        assert!(!d.join("multiverse.csv").exists() && !d.join("universes/u000").exists());
+        assert_eq!(names(&d.join("universes")), ["notes.txt", "u001"]);
+        assert_eq!(names(&d.join("universes/u001")), ["comparison"]);
+        assert_eq!(names(&d.join("universes/u001/comparison")), ["mine.txt"]);
+        assert_eq!(names(&d.join("shards/1-of-2")), ["mine.txt"]);
         assert_eq!(
             std::fs::read_to_string(d.join("notes.txt")).unwrap(),
             "mine"
         );
+        // Nothing left: every folder goes.
+        for f in [
+            "notes.txt",
+            "universes/notes.txt",
+            "universes/u001/comparison/mine.txt",
+        ] {
+            std::fs::remove_file(d.join(f)).unwrap();
+        }
+        std::fs::remove_file(d.join("shards/1-of-2/mine.txt")).unwrap();
+        clear(d).unwrap();
+        assert!(names(d).is_empty(), "{:?}", names(d));
     }
 }

@@ -13,8 +13,9 @@ use super::plan::{MultiversePlan, identity_diff};
 use super::record::{RecordRead, UniverseRecord};
 use super::universe::{Universe, shard_of};
 use super::universe_run::universe_dir;
+use crate::data::owner::{RunKind, check_owner, claim};
 use crate::lock::OutputLock;
-use crate::shard::Shard;
+use crate::shard::{Shard, shard_folders};
 
 /// Writes `multiverse.csv`, `multiverse.md` and the figures of the multiverse in `dir` from
 /// its universes' records (the same bytes as the run without shards), locking `dir` while it
@@ -23,12 +24,20 @@ use crate::shard::Shard;
 ///
 /// # Errors
 /// No plan in `dir`; plans of different multiverses (each odd one named with what differs);
+/// a folder, or a shard's folder, of another kind of run ([`crate::data::owner`]);
 /// universes without a record that verifies (listed, with the command of each shard that
 /// runs them, or the command without `--shard`, which runs only the missing ones); a folder
 /// locked by a running shard; an I/O error. Failed universes are not an error here (the
 /// caller reports them).
 pub fn merge_multiverse(dir: &Path, here: Option<&Path>) -> Result<MultiverseOutcome> {
     let t0 = Instant::now();
+    if dir.is_dir() {
+        check_owner(dir, RunKind::Multiverse)?;
+    }
+    for (_, shard) in shard_folders(dir)? {
+        check_owner(&shard, RunKind::Multiverse)?;
+    }
+    claim(dir, RunKind::Multiverse)?;
     let _lock = OutputLock::acquire(dir)?;
     let plans = plans_in(dir)?;
     let Some((_, plan)) = plans.first().cloned() else {

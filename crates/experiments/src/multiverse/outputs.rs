@@ -14,6 +14,7 @@ use super::record::UniverseRecord;
 use super::spec_curve::{spec_curve_file, spec_curve_svg};
 use crate::atomic::FileSet;
 use crate::calibrate::targets_figure::targets_svg;
+use crate::chart::figure_or_warn;
 use crate::claims::CLAIMS;
 
 /// The long-form table.
@@ -34,8 +35,8 @@ pub fn output_files() -> Vec<String> {
 /// universe of the plan, in universe order) into `dir`; returns their paths.
 ///
 /// # Errors
-/// An I/O error, a path that cannot be written, or a figure plotters fails to draw; no file
-/// is changed then.
+/// An I/O error or a path that cannot be written; no file is changed then. A figure that
+/// cannot be drawn is left out with a warning ([`figure_or_warn`]).
 pub fn write_outputs(
     plan: &MultiversePlan,
     records: &[UniverseRecord],
@@ -44,13 +45,14 @@ pub fn write_outputs(
     let mut files = FileSet::new();
     files.stage(&dir.join(CSV_FILE), &multiverse_csv(plan, records)?)?;
     for c in &CLAIMS {
-        let svg = spec_curve_svg(plan, records, c)?;
-        files.stage(&dir.join(spec_curve_file(c)), svg.as_bytes())?;
+        let name = spec_curve_file(c);
+        if let Some(svg) = figure_or_warn(&name, || spec_curve_svg(plan, records, c)) {
+            files.stage(&dir.join(name), svg.as_bytes())?;
+        }
     }
-    files.stage(
-        &dir.join(TARGETS_FIGURE_FILE),
-        targets_figure(plan, records)?.as_bytes(),
-    )?;
+    if let Some(svg) = figure_or_warn(TARGETS_FIGURE_FILE, || targets_figure(plan, records)) {
+        files.stage(&dir.join(TARGETS_FIGURE_FILE), svg.as_bytes())?;
+    }
     files.stage(
         &dir.join(REPORT_FILE),
         multiverse_md(plan, records).as_bytes(),

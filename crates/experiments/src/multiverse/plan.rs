@@ -22,7 +22,7 @@ use crate::shard::{Shard, shell_join};
 use crate::slurm::ShardedWork;
 
 /// The plan's file name.
-pub const PLAN_FILE: &str = "multiverse.json";
+pub const PLAN_FILE: &str = crate::data::owner::evidence::MULTIVERSE_PLAN;
 
 /// The plan's format (1); another format is another multiverse.
 pub const PLAN_FORMAT: u32 = 1;

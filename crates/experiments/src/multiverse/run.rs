@@ -16,6 +16,7 @@ use super::record::{RecordRead, Status, UniverseRecord};
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe_run::{UniverseRun, universe_dir};
 use crate::atomic::remove_stale_temps;
+use crate::data::owner::{RunKind, claim};
 use crate::lock::OutputLock;
 use crate::shard::shard_dir;
 
@@ -54,7 +55,8 @@ use crate::shard::shard_dir;
 ///
 /// # Errors
 /// A setup that does not fit its scenario ([`MultiverseSetup::check`]), `--overwrite` with
-/// a shard, an output folder locked by another run or holding another multiverse, or an I/O
+/// a shard, an output folder that is not a folder or belongs to another kind of run
+/// ([`crate::data::owner`]), one locked by another run or holding another multiverse, or an I/O
 /// error writing the plan, a universe's own files or the top files. A universe whose
 /// scenario breaks a rule, whose calibration errs or whose trials fail is not an error: its
 /// record says so and the others run.
@@ -73,6 +75,10 @@ pub fn run_multiverse(
         );
     }
     let plan = MultiversePlan::of(setup, &checked, dir)?;
+    claim(dir, RunKind::Multiverse)?;
+    if let Some(s) = setup.shard {
+        claim(&shard_dir(dir, s), RunKind::Multiverse)?;
+    }
     let _locks = lock(setup, dir)?;
     if setup.overwrite {
         clear(dir)?;

@@ -17,7 +17,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::chart::{draw_err, method_color};
+use crate::chart::{axis_range, draw_err, method_color, plotted};
 use crate::claims::{Claim, Verdict};
 
 /// Width of the figure, pixels.
@@ -99,21 +99,16 @@ fn points<'a>(records: &'a [UniverseRecord], claim: &Claim) -> Vec<Point<'a>> {
 }
 
 /// The effect axis: from the lowest to the highest of 0, effects and interval ends, with 8 %
-/// room; `-1..1` when they are all equal.
+/// room ([`axis_range`]: finite and never empty); `-1..1` when they are all 0.
 fn y_range(pts: &[Point<'_>]) -> (f64, f64) {
     let values = pts
         .iter()
         .flat_map(|p| [p.effect, p.low, p.high])
-        .filter(|x| x.is_finite())
         .chain(std::iter::once(0.0));
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-        (l.min(x), h.max(x))
-    });
-    if hi - lo <= 0.0 {
-        return (lo - 1.0, hi + 1.0);
+    if values.clone().filter(|x| x.is_finite()).all(|x| x == 0.0) {
+        return (-1.0, 1.0);
     }
-    let pad = 0.08 * (hi - lo);
-    (lo - pad, hi + pad)
+    axis_range(values, 0.08)
 }
 
 /// The SVG text of the specification curve of `claim` over `records`.
@@ -215,15 +210,15 @@ fn draw_effects(root: &Root<'_>, area: &Root<'_>, pts: &[Point<'_>], n: f64) -> 
         .filter(|(_, p)| p.low.is_finite() && p.high.is_finite())
         .map(|(i, p)| {
             PathElement::new(
-                vec![(i as f64, p.low), (i as f64, p.high)],
+                vec![(i as f64, plotted(p.low)), (i as f64, plotted(p.high))],
                 verdict_color(p.verdict).stroke_width(2),
             )
         });
     chart.draw_series(bars).map_err(draw_err)?;
-    let dots = pts
-        .iter()
-        .enumerate()
-        .map(|(i, p)| Circle::new((i as f64, p.effect), 4, verdict_color(p.verdict).filled()));
+    let dots = pts.iter().enumerate().map(|(i, p)| {
+        let at = (i as f64, plotted(p.effect));
+        Circle::new(at, 4, verdict_color(p.verdict).filled())
+    });
     chart.draw_series(dots).map_err(draw_err)?;
     if pts.is_empty() {
         let (x, y) = chart.backend_coord(&(0.0, (lo + hi) / 2.0));

@@ -19,6 +19,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::{one_line_text, path_text};
 
 use crate::atomic::remove_stale_temps;
+use crate::data::owner::{RunKind, check_owner, claim};
 use crate::data::shard_folders::{SHARDS_DIR, shard_dir, shard_folders};
 use crate::data::shard_split::{Shard, job_costs_ms, split, sweep_jobs};
 use crate::data::sweep_plan::{PLAN_FILE, SweepPlan};
@@ -383,15 +384,17 @@ fn unfinished(
 
 /// Merges the shards of the sweep whose output folder is `dir`: reads every shard's journal,
 /// checks it, and returns the sweep's configuration and outcome for the analysis and the
-/// output files. It locks `dir` ([`OutputLock`], held by the outcome) and removes the
+/// output files. Every shard's folder and `dir` must belong to a sharded sweep (or to no run
+/// yet: [`crate::data::owner`]). It claims and locks `dir` ([`OutputLock`], held by the outcome) and removes the
 /// temporary files killed writers left there and in the cell folders.
 ///
 /// # Errors
 /// [`MergeError`] (no shards, shards of two splits, shards that ran another sweep than the
 /// rest, unfinished shards: nothing is merged then), a plan that does not match its shard's
 /// journal, a journal of another sweep at the top of `dir` (the differences are listed), a
-/// damaged journal or plan, a locked `dir`, or an I/O error.
+/// damaged journal or plan, a folder of another kind of run, a locked `dir`, or an I/O error.
 pub fn merge_shards(dir: &Path) -> Result<Merged> {
+    check_owners(dir)?;
     let count = find_split(dir)?;
     let shards = read_shards(dir, count)?;
     // The folder the suggested commands are shown in (see `SweepPlan::shard_command`).
@@ -424,6 +427,7 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
         }
         .into());
     }
+    claim(dir, RunKind::ShardedSweep)?;
     let lock = OutputLock::acquire(dir)?;
     remove_stale_temps(dir)?;
     if let Some(g) = &config.grid {
@@ -452,6 +456,19 @@ pub fn merge_shards(dir: &Path) -> Result<Merged> {
         rejected,
         failed_shards,
     })
+}
+
+/// Refuses to merge `dir` when it, or one of its shards' folders, belongs to another kind of
+/// run than a sharded sweep ([`crate::data::owner`]): a multiverse's shards, say, are merged
+/// as a multiverse's, never as a sweep's.
+fn check_owners(dir: &Path) -> Result<()> {
+    if dir.is_dir() {
+        check_owner(dir, RunKind::ShardedSweep)?;
+    }
+    for (_, shard) in shard_folders(dir)? {
+        check_owner(&shard, RunKind::ShardedSweep)?;
+    }
+    Ok(())
 }
 
 /// The shards (by index) whose jobs' last records include a failure.

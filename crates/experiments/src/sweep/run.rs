@@ -11,6 +11,7 @@ use crate::atomic::remove_stale_temps;
 use crate::data::config::SweepConfig;
 use crate::data::jobs::{JobId, job_list};
 use crate::data::outcome::SweepOutcome;
+use crate::data::owner::{claim, record_kind};
 use crate::executor::{Job, Runner, execute, threads_for};
 use crate::journal::TrialRecord;
 use crate::lock::OutputLock;
@@ -25,8 +26,10 @@ use crate::sweep::records::{Slots, collect, is_ok, warn_rejected};
 /// [`CellOutcome::failures`](crate::sweep::CellOutcome::failures) (the caller decides the exit status). No file but the journal
 /// (and the lock file) is written.
 ///
-/// Once the parameters are checked, it locks the output folder ([`OutputLock`]; the lock
-/// stays in [`SweepOutcome::lock`]) and removes the temporary files killed runs left there and
+/// Once the parameters are checked, it claims the output folder (and a shard's folder) for
+/// its kind of run ([`crate::data::owner::claim`]: a folder of another kind is refused, with
+/// or without `overwrite`), locks it ([`OutputLock`]; the lock stays in
+/// [`SweepOutcome::lock`]) and removes the temporary files killed runs left there and
 /// in the cell folders ([`remove_stale_temps`]) before it opens the journal.
 ///
 /// With [`SweepConfig::shard`] it runs only the shard's jobs, and the folder it locks, cleans
@@ -35,13 +38,19 @@ use crate::sweep::records::{Slots, collect, is_ok, warn_rejected};
 /// records only.
 ///
 /// # Errors
-/// Bad parameters, an output folder locked by another sweep, a journal that cannot be started
+/// Bad parameters, an output folder that is not a folder or belongs to another kind of run
+/// ([`crate::data::owner::OwnerError`]), one locked by another sweep, a journal that cannot be started
 /// or resumed, or an I/O error writing the journal.
 pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;
     let plans = cell_plans(cfg, &header)?;
     let dir = cfg.journal_dir();
+    let kind = cfg.run_kind();
+    claim(&cfg.out_dir, kind)?;
+    if dir != cfg.out_dir {
+        claim(&dir, kind)?;
+    }
     let lock = OutputLock::acquire(&dir)?;
     remove_stale_temps(&dir)?;
     if let (Some(g), None) = (&cfg.grid, &cfg.shard) {
@@ -50,6 +59,7 @@ pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
         }
     }
     let opened = open_journal(cfg, &dir, &header)?;
+    record_kind(&dir, kind)?;
     if let Some(s) = &cfg.shard {
         s.plan.write(&dir)?;
     }

@@ -1,0 +1,583 @@
+//! Who owns an output folder: the kind of run whose files it holds, written in a small
+//! manifest, [`OWNER_FILE`], before anything else of the run, and checked by every run and
+//! merge before it writes or removes anything there.
+//!
+//! ```text
+//! DIR/usar-owner.json   {"tool":"usar","kind":"sharded sweep","format":1}
+//! ```
+//!
+//! Five kinds ([`RunKind`]): a sweep, a grid (a sweep with `--vary`), a sharded sweep (its
+//! shards' folders `shards/<I>-of-<N>/` and the merge's files at the top; a sharded grid is
+//! one too), a calibration and a multiverse (sharded or not). A run claims its folder with
+//! [`claim`]: a folder owned by another kind is refused, with or without `--overwrite`, in a
+//! one-line error naming both kinds and the file that shows the owner; `--overwrite` then only
+//! ever removes what its own kind writes. A sweep and a grid are the one exception
+//! ([`RunKind::may_use`]): `usar sweep` writes both under one journal, which refuses the other
+//! and whose `--overwrite` removes exactly what it names; the run then records its kind
+//! ([`record_kind`]). A shard's folder is claimed by the shard and checked by the merge
+//! ([`check_owner`]).
+//!
+//! Folders written before the manifest existed are recognised by their files
+//! ([`recognise`]): `journal.jsonl` (a sweep, or a grid when its header varies fields; in a
+//! shard's folder, or under `shards/`, a sharded sweep, as is a shard's `plan.json`),
+//! `trace.jsonl` (a calibration) and `multiverse.json` at the top or in a shard's folder (a
+//! multiverse). A folder holding none of them (an empty one, or one of the user's own files)
+//! belongs to no run yet: any kind may claim it.
+
+use std::fmt;
+use std::fs;
+use std::io::ErrorKind;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use usar_sim::scenario::path_text;
+
+use crate::data::shard_folders::{SHARDS_DIR, shard_folders};
+use crate::data::shard_split::Shard;
+use crate::data::sweep_plan::PLAN_FILE as SHARD_PLAN_FILE;
+use crate::journal::{JOURNAL_FILE, read_header_unverified};
+
+/// The manifest's name in an output folder.
+pub const OWNER_FILE: &str = "usar-owner.json";
+
+/// The manifest's format; a manifest of a later format is refused (written by a newer build).
+const FORMAT: u32 = 1;
+
+/// The files of the higher layers that show an owner in a folder without a manifest (see the
+/// module docs): `calibrate::trace::TRACE_FILE` and `multiverse::plan::PLAN_FILE` are defined
+/// as these. A sweep's journal and a shard's plan are [`JOURNAL_FILE`] and
+/// [`crate::data::sweep_plan::PLAN_FILE`].
+pub mod evidence {
+    /// A calibration's trace.
+    pub const TRACE: &str = "trace.jsonl";
+    /// A multiverse's plan.
+    pub const MULTIVERSE_PLAN: &str = "multiverse.json";
+}
+
+/// The kind of run an output folder belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RunKind {
+    /// `usar sweep` without `--vary` or `--shard` (also a multiverse universe's comparison).
+    #[serde(rename = "sweep")]
+    Sweep,
+    /// `usar sweep --vary` without `--shard`.
+    #[serde(rename = "grid")]
+    Grid,
+    /// `usar sweep --shard I/N` (with or without `--vary`), `usar slurm`, `usar merge`.
+    #[serde(rename = "sharded sweep")]
+    ShardedSweep,
+    /// `usar calibrate` (also a multiverse universe's calibration).
+    #[serde(rename = "calibration")]
+    Calibration,
+    /// `usar multiverse`, with or without `--shard`.
+    #[serde(rename = "multiverse")]
+    Multiverse,
+}
+
+impl RunKind {
+    /// The kind's name as the manifest and messages write it (`sharded sweep`).
+    pub fn name(self) -> &'static str {
+        match self {
+            RunKind::Sweep => "sweep",
+            RunKind::Grid => "grid",
+            RunKind::ShardedSweep => "sharded sweep",
+            RunKind::Calibration => "calibration",
+            RunKind::Multiverse => "multiverse",
+        }
+    }
+}
+
+impl RunKind {
+    /// Whether a run of this kind may use a folder owned by `owner`: the same kind, or a
+    /// sweep and a grid, which `usar sweep` writes alike under one journal (whose header tells
+    /// them apart: a run of the other is refused there, and its `--overwrite` removes exactly
+    /// the files the journal names, [`crate::stale_outputs`]).
+    pub fn may_use(self, owner: RunKind) -> bool {
+        self == owner
+            || matches!(
+                (self, owner),
+                (Self::Sweep, Self::Grid) | (Self::Grid, Self::Sweep)
+            )
+    }
+}
+
+impl fmt::Display for RunKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The manifest's content.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Manifest {
+    /// Always `usar`.
+    tool: String,
+    /// The owner.
+    kind: RunKind,
+    /// [`FORMAT`].
+    format: u32,
+}
+
+/// Why a folder cannot be used as a run's output folder: one line, naming the folder.
+#[derive(Debug, thiserror::Error)]
+pub enum OwnerError {
+    /// The path is empty.
+    #[error("the output folder is an empty path; name a folder (\".\" is the working folder)")]
+    EmptyPath,
+    /// Something other than a folder is at the path.
+    #[error("{path}: is a {what}, not a folder; choose another output folder")]
+    NotAFolder {
+        /// The path, as given.
+        path: String,
+        /// `file`, `FIFO`, `device`, ...
+        what: &'static str,
+    },
+    /// The folder belongs to another kind of run.
+    #[error(
+        "{dir} holds a {found} ({evidence}); a {wanted} never writes into another kind of \
+         run's folder, even to overwrite it: choose another output folder"
+    )]
+    OtherKind {
+        /// The folder.
+        dir: String,
+        /// Its owner.
+        found: RunKind,
+        /// The run that was refused.
+        wanted: RunKind,
+        /// The file that shows the owner.
+        evidence: String,
+    },
+    /// The manifest cannot be read or is not one this build writes.
+    #[error(
+        "{path}: {why}; it names the kind of run that owns the folder: remove it only if the \
+         folder holds none of usar's results, or choose another output folder"
+    )]
+    BadManifest {
+        /// The manifest's path.
+        path: String,
+        /// What is wrong.
+        why: String,
+    },
+    /// An I/O error.
+    #[error("{what} {path}: {source}")]
+    Io {
+        /// What was being done (`creating folder`, `writing`).
+        what: &'static str,
+        /// The path.
+        path: String,
+        /// The error.
+        source: std::io::Error,
+    },
+}
+
+fn io(what: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> OwnerError {
+    let path = path_text(path);
+    move |source| OwnerError::Io { what, path, source }
+}
+
+/// Checks that `dir` can be an output folder: not empty, and nothing but a folder (or a link
+/// to one) at that path if something is.
+///
+/// # Errors
+/// [`OwnerError::EmptyPath`], [`OwnerError::NotAFolder`] (a file, a FIFO, a device, a socket,
+/// a dangling link).
+pub fn check_out_dir(dir: &Path) -> Result<(), OwnerError> {
+    if dir.as_os_str().is_empty() {
+        return Err(OwnerError::EmptyPath);
+    }
+    let what = match fs::metadata(dir) {
+        Ok(m) if m.is_dir() => return Ok(()),
+        Ok(m) => file_type_name(&m),
+        Err(e) if e.kind() == ErrorKind::NotFound => {
+            if fs::symlink_metadata(dir).is_ok() {
+                "link to nothing"
+            } else {
+                return Ok(());
+            }
+        }
+        Err(e) => return Err(io("reading", dir)(e)),
+    };
+    Err(OwnerError::NotAFolder {
+        path: path_text(dir),
+        what,
+    })
+}
+
+#[cfg(unix)]
+fn file_type_name(m: &fs::Metadata) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    let t = m.file_type();
+    if t.is_file() {
+        "file"
+    } else if t.is_fifo() {
+        "FIFO"
+    } else if t.is_char_device() || t.is_block_device() {
+        "device"
+    } else if t.is_socket() {
+        "socket"
+    } else {
+        "special file"
+    }
+}
+
+#[cfg(not(unix))]
+fn file_type_name(m: &fs::Metadata) -> &'static str {
+    if m.is_file() { "file" } else { "special file" }
+}
+
+/// Claims `dir` for a run of `kind`: checks the path ([`check_out_dir`]), creates the folder,
+/// refuses it when it belongs to another kind (its manifest, or for a folder without one, its
+/// files: [`recognise`]), and writes the manifest if there is none yet. A manifest is created
+/// only if absent (never replaced), so two runs claiming one folder at the same time cannot
+/// both win. Call it before anything else of the run touches `dir`.
+///
+/// # Errors
+/// See [`check_out_dir`]; [`OwnerError::OtherKind`]; [`OwnerError::BadManifest`]; an I/O error
+/// creating the folder or writing the manifest.
+pub fn claim(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    check_out_dir(dir)?;
+    fs::create_dir_all(dir).map_err(io("creating folder", dir))?;
+    if let Some(found) = read_manifest(dir)? {
+        return refuse_other(dir, kind, Owner::of_manifest(dir, found));
+    }
+    if let Some(found) = recognise(dir)? {
+        refuse_other(dir, kind, found)?;
+    }
+    match write_new_manifest(dir, kind) {
+        Ok(()) => Ok(()),
+        // Another run wrote one since: its kind decides.
+        Err(OwnerError::Io { source, .. }) if source.kind() == ErrorKind::AlreadyExists => {
+            match owner(dir)? {
+                Some(found) => refuse_other(dir, kind, found),
+                None => Ok(()),
+            }
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// Records that `dir`, claimed by a run of `kind` ([`claim`]), now holds that kind's files:
+/// rewrites the manifest when it names another kind (a grid's folder that a sweep overwrote).
+/// Call it once the run has taken the folder over (its journal opened).
+///
+/// # Errors
+/// [`OwnerError::BadManifest`], or an I/O error writing the manifest.
+pub fn record_kind(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    if read_manifest(dir)? == Some(kind) {
+        return Ok(());
+    }
+    let path = dir.join(OWNER_FILE);
+    let tmp = dir.join(format!(".{OWNER_FILE}.tmp-{}-owner", std::process::id()));
+    fs::write(&tmp, manifest_text(kind)).map_err(io("writing", &tmp))?;
+    fs::rename(&tmp, &path).map_err(io("writing", &path))
+}
+
+/// Checks that `dir` (which must exist) belongs to a run of `kind`, or to none yet, without
+/// writing anything: what a merge asks of each shard's folder.
+///
+/// # Errors
+/// [`OwnerError::OtherKind`], [`OwnerError::BadManifest`], or an I/O error reading the folder.
+pub fn check_owner(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    match owner(dir)? {
+        Some(found) => refuse_other(dir, kind, found),
+        None => Ok(()),
+    }
+}
+
+/// The owner of `dir`: from its manifest, or recognised by its files; `None` when neither
+/// names one.
+///
+/// # Errors
+/// [`OwnerError::BadManifest`], or an I/O error listing the folder.
+pub fn owner(dir: &Path) -> Result<Option<Owner>, OwnerError> {
+    if let Some(kind) = read_manifest(dir)? {
+        return Ok(Some(Owner::of_manifest(dir, kind)));
+    }
+    recognise(dir)
+}
+
+/// A folder's owner as found: the kinds it may be (one, from a manifest; from files, a journal
+/// whose header cannot be read may be a sweep's or a grid's) and the file that shows it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Owner {
+    /// The kinds the folder may belong to; never empty.
+    pub kinds: Vec<RunKind>,
+    /// The file that shows it.
+    pub evidence: PathBuf,
+}
+
+impl Owner {
+    /// The owner the manifest in `dir` names.
+    fn of_manifest(dir: &Path, kind: RunKind) -> Self {
+        Self {
+            kinds: vec![kind],
+            evidence: dir.join(OWNER_FILE),
+        }
+    }
+}
+
+fn refuse_other(dir: &Path, wanted: RunKind, found: Owner) -> Result<(), OwnerError> {
+    if found.kinds.iter().any(|k| wanted.may_use(*k)) {
+        return Ok(());
+    }
+    Err(OwnerError::OtherKind {
+        dir: path_text(dir),
+        found: found.kinds[0],
+        wanted,
+        evidence: path_text(&found.evidence),
+    })
+}
+
+/// The manifest's kind; `None` without one.
+fn read_manifest(dir: &Path) -> Result<Option<RunKind>, OwnerError> {
+    let path = dir.join(OWNER_FILE);
+    let bad = |why: String| OwnerError::BadManifest {
+        path: path_text(&path),
+        why,
+    };
+    match fs::symlink_metadata(&path) {
+        Err(e) if e.kind() == ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(io("reading", &path)(e)),
+        Ok(m) if !m.is_file() => return Err(bad("not a regular file".into())),
+        Ok(m) if m.len() > 4096 => return Err(bad("longer than a manifest".into())),
+        Ok(_) => {}
+    }
+    let text = fs::read_to_string(&path).map_err(io("reading", &path))?;
+    let m: Manifest = serde_json::from_str(text.trim_end())
+        .map_err(|e| bad(format!("not a usar manifest ({e})")))?;
+    if m.tool != "usar" {
+        return Err(bad(format!("written by {:?}, not usar", m.tool)));
+    }
+    if m.format != FORMAT {
+        return Err(bad(format!(
+            "format {} (this build reads format {FORMAT})",
+            m.format
+        )));
+    }
+    Ok(Some(m.kind))
+}
+
+/// Writes the manifest of `kind` into `dir` unless one is there: the bytes go to a temporary
+/// file, which is then hard-linked to the final name (refused if the name exists) and removed.
+fn write_new_manifest(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    let path = dir.join(OWNER_FILE);
+    let tmp = dir.join(format!(".{OWNER_FILE}.tmp-{}-owner", std::process::id()));
+    fs::write(&tmp, manifest_text(kind)).map_err(io("writing", &tmp))?;
+    let linked = fs::hard_link(&tmp, &path).map_err(io("writing", &path));
+    let removed = fs::remove_file(&tmp).map_err(io("removing", &tmp));
+    linked.and(removed)
+}
+
+/// The manifest of `kind`, one JSON line.
+fn manifest_text(kind: RunKind) -> String {
+    let m = Manifest {
+        tool: "usar".into(),
+        kind,
+        format: FORMAT,
+    };
+    let mut text = serde_json::to_string(&m).expect("a manifest serialises");
+    text.push('\n');
+    text
+}
+
+/// The owner of a folder without a manifest, recognised by its files (see the module docs);
+/// `None` when none of them is there.
+///
+/// # Errors
+/// An I/O error listing the folder's shard folders.
+pub fn recognise(dir: &Path) -> Result<Option<Owner>, OwnerError> {
+    let found = |kinds: Vec<RunKind>, evidence: PathBuf| Ok(Some(Owner { kinds, evidence }));
+    let is_file = |p: &Path| fs::symlink_metadata(p).is_ok_and(|m| m.is_file());
+    let in_shard = is_shard_folder(dir);
+    let journal = dir.join(JOURNAL_FILE);
+    if is_file(&journal) {
+        if in_shard {
+            return found(vec![RunKind::ShardedSweep], journal);
+        }
+        let kinds = match read_header_unverified(&journal) {
+            Some(h) if h.grid.fields.is_empty() => vec![RunKind::Sweep],
+            Some(_) => vec![RunKind::Grid],
+            None => vec![RunKind::Sweep, RunKind::Grid],
+        };
+        return found(kinds, journal);
+    }
+    let shard_plan = dir.join(SHARD_PLAN_FILE);
+    if in_shard && is_file(&shard_plan) {
+        return found(vec![RunKind::ShardedSweep], shard_plan);
+    }
+    let trace = dir.join(evidence::TRACE);
+    if is_file(&trace) {
+        return found(vec![RunKind::Calibration], trace);
+    }
+    let plan = dir.join(evidence::MULTIVERSE_PLAN);
+    if is_file(&plan) {
+        return found(vec![RunKind::Multiverse], plan);
+    }
+    let shards = shard_folders(dir).map_err(|e| OwnerError::Io {
+        what: "listing",
+        path: path_text(&dir.join(SHARDS_DIR)),
+        source: std::io::Error::other(format!("{e:#}")),
+    })?;
+    for (_, shard) in shards {
+        if let Some(kind) = read_manifest(&shard)? {
+            return found(vec![kind], shard.join(OWNER_FILE));
+        }
+        for (name, kind) in [
+            (JOURNAL_FILE, RunKind::ShardedSweep),
+            (SHARD_PLAN_FILE, RunKind::ShardedSweep),
+            (evidence::MULTIVERSE_PLAN, RunKind::Multiverse),
+        ] {
+            let p = shard.join(name);
+            if is_file(&p) {
+                return found(vec![kind], p);
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// Whether `dir` is a shard's folder: `<out>/shards/<I>-of-<N>`.
+fn is_shard_folder(dir: &Path) -> bool {
+    let name = dir.file_name().and_then(|n| n.to_str());
+    let parent = dir.parent().and_then(Path::file_name);
+    name.and_then(Shard::from_dir_name).is_some() && parent.is_some_and(|p| p == SHARDS_DIR)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(r: Result<(), OwnerError>) -> String {
+        let e = r.unwrap_err().to_string();
+        assert!(!e.contains('\n'), "{e}");
+        e
+    }
+
+    #[test]
+    fn a_claim_writes_the_manifest_once_and_refuses_other_kinds() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path().join("out");
+        claim(&d, RunKind::Multiverse).unwrap();
+        let text = fs::read_to_string(d.join(OWNER_FILE)).unwrap();
+        assert_eq!(
+            text,
+            "{\"tool\":\"usar\",\"kind\":\"multiverse\",\"format\":1}\n"
+        );
+        claim(&d, RunKind::Multiverse).unwrap();
+        assert_eq!(fs::read_dir(&d).unwrap().count(), 1, "no temporary file");
+        for other in [RunKind::Sweep, RunKind::ShardedSweep, RunKind::Calibration] {
+            let e = err(claim(&d, other));
+            assert!(
+                e.contains(&format!("holds a multiverse ({}", path_text(&d)))
+                    && e.contains(&format!("a {other} never writes")),
+                "{e}"
+            );
+        }
+        assert_eq!(fs::read_to_string(d.join(OWNER_FILE)).unwrap(), text);
+        check_owner(&d, RunKind::Multiverse).unwrap();
+        assert!(check_owner(&d, RunKind::Grid).is_err());
+    }
+
+    #[test]
+    fn old_folders_are_recognised_by_their_files() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let kinds = |dir: &Path| recognise(dir).unwrap().map(|o| o.kinds);
+        assert_eq!(kinds(d), None);
+        fs::write(d.join("notes.txt"), "mine").unwrap();
+        assert_eq!(kinds(d), None);
+        // A sharded sweep: a shard's plan, then its journal.
+        let shard = d.join("shards/0-of-2");
+        fs::create_dir_all(&shard).unwrap();
+        fs::write(shard.join("plan.json"), "{}").unwrap();
+        assert_eq!(kinds(d), Some(vec![RunKind::ShardedSweep]));
+        assert_eq!(kinds(&shard), Some(vec![RunKind::ShardedSweep]));
+        fs::write(shard.join("journal.jsonl"), "x").unwrap();
+        assert_eq!(kinds(&shard), Some(vec![RunKind::ShardedSweep]));
+        let e = err(claim(d, RunKind::Multiverse));
+        assert!(
+            e.contains("holds a sharded sweep") && e.contains("shards/0-of-2/journal.jsonl"),
+            "{e}"
+        );
+        assert!(!d.join(OWNER_FILE).exists());
+        claim(d, RunKind::ShardedSweep).unwrap();
+        // A journal whose header cannot be read may be a sweep's or a grid's.
+        let s = tmp.path().join("s");
+        fs::create_dir(&s).unwrap();
+        fs::write(s.join("journal.jsonl"), "garbage\n").unwrap();
+        assert_eq!(kinds(&s), Some(vec![RunKind::Sweep, RunKind::Grid]));
+        claim(&s, RunKind::Grid).unwrap();
+        assert!(
+            claim(&s, RunKind::ShardedSweep).is_err(),
+            "the manifest decides now"
+        );
+        assert_eq!(read_manifest(&s).unwrap(), Some(RunKind::Grid));
+        // A sweep may take a grid's folder over (its journal decides), and records itself.
+        claim(&s, RunKind::Sweep).unwrap();
+        record_kind(&s, RunKind::Sweep).unwrap();
+        assert_eq!(read_manifest(&s).unwrap(), Some(RunKind::Sweep));
+        // A calibration, and a multiverse's shard.
+        let c = tmp.path().join("c");
+        fs::create_dir(&c).unwrap();
+        fs::write(c.join("trace.jsonl"), "x").unwrap();
+        assert_eq!(kinds(&c), Some(vec![RunKind::Calibration]));
+        let m = tmp.path().join("m/shards/1-of-4");
+        fs::create_dir_all(&m).unwrap();
+        fs::write(m.join("multiverse.json"), "x").unwrap();
+        assert_eq!(
+            kinds(&tmp.path().join("m")),
+            Some(vec![RunKind::Multiverse])
+        );
+        assert_eq!(kinds(&m), Some(vec![RunKind::Multiverse]));
+    }
+
+    #[test]
+    fn paths_that_are_not_folders_are_refused() {
+        let tmp = tempfile::tempdir().unwrap();
+        assert_eq!(
+            err(claim(Path::new(""), RunKind::Sweep)),
+            "the output folder is an empty path; name a folder (\".\" is the working folder)"
+        );
+        let f = tmp.path().join("f");
+        fs::write(&f, "x").unwrap();
+        assert!(
+            err(claim(&f, RunKind::Sweep))
+                .ends_with("f: is a file, not a folder; choose another output folder")
+        );
+        #[cfg(unix)]
+        {
+            assert!(err(check_out_dir(Path::new("/dev/null"))).contains("is a device"));
+            let link = tmp.path().join("dangling");
+            std::os::unix::fs::symlink(tmp.path().join("nowhere"), &link).unwrap();
+            assert!(err(check_out_dir(&link)).contains("is a link to nothing"));
+        }
+        check_out_dir(Path::new(".")).unwrap();
+        check_out_dir(&tmp.path().join("new/folder")).unwrap();
+    }
+
+    #[test]
+    fn a_bad_manifest_is_named() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        for (text, says) in [
+            ("{}", "not a usar manifest"),
+            (
+                "{\"tool\":\"x\",\"kind\":\"sweep\",\"format\":1}",
+                "written by \"x\"",
+            ),
+            (
+                "{\"tool\":\"usar\",\"kind\":\"sweep\",\"format\":2}",
+                "format 2",
+            ),
+            (
+                "{\"tool\":\"usar\",\"kind\":\"walk\",\"format\":1}",
+                "not a usar manifest",
+            ),
+        ] {
+            fs::write(d.join(OWNER_FILE), text).unwrap();
+            let e = err(claim(d, RunKind::Sweep));
+            assert!(e.contains("usar-owner.json: ") && e.contains(says), "{e}");
+        }
+    }
+}
