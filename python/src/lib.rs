@@ -8,6 +8,7 @@
 //! - [`py_method`]: a grouping method written in Python, called once per round;
 //! - [`core_fns`]: RNE trust and the built-in grouping methods as functions;
 //! - [`detached`]: running work with the GIL released while watching for Ctrl-C;
+//! - [`read_file`]: reading a scenario file so that Ctrl-C works while it waits;
 //! - [`errors`]: the exception types and the conversion of library errors.
 
 use pyo3::prelude::*;
@@ -17,6 +18,7 @@ pub mod core_fns;
 pub mod detached;
 pub mod errors;
 pub mod py_method;
+pub mod read_file;
 pub mod ron_value;
 pub mod run;
 pub mod scenario;

@@ -1,6 +1,7 @@
 //! A Python value as the RON text of a `--set`/`--vary` value: `True` -> `true`, `None` ->
 //! `None`, an int or float as written in RON (floats in their shortest round-trip form), a
-//! tuple -> `(a, b)`, a list -> `[a, b]`; a `str` is taken as RON text itself (`"Aerial"`,
+//! tuple -> `(a, b)`, a list -> `[a, b]`, a numpy scalar or array as its Python value
+//! (`tolist()`); a `str` is taken as RON text itself (`"Aerial"`,
 //! `"Some(3)"`, `"Grid(spacing_m: 2.0)"`; a string field needs its quotes: `'"my name"'`).
 
 use pyo3::prelude::*;
@@ -43,6 +44,12 @@ fn ron_at(value: &Bound<'_, PyAny>, depth: usize) -> Result<String, String> {
     if let Ok(s) = value.cast::<PyString>() {
         return s.extract::<String>().map_err(py_err);
     }
+    if is_numpy(value) && value.hasattr("tolist").map_err(py_err)? {
+        // A numpy scalar (np.float32(1.5), np.int64(3), np.bool_) or array: its Python value
+        // (a float, int, bool or nested list).
+        let plain = value.call_method0("tolist").map_err(py_err)?;
+        return ron_at(&plain, depth + 1);
+    }
     let items = |seq: Vec<Bound<'_, PyAny>>| -> Result<String, String> {
         let parts = seq
             .iter()
@@ -61,4 +68,12 @@ fn ron_at(value: &Bound<'_, PyAny>, depth: usize) -> Result<String, String> {
         "no RON form for a value of type {type_name} (use a number, bool, None, str of RON, tuple or \
          list)"
     ))
+}
+
+/// Whether `value`'s type comes from numpy (its module is `numpy`), without importing numpy.
+fn is_numpy(value: &Bound<'_, PyAny>) -> bool {
+    value
+        .get_type()
+        .module()
+        .is_ok_and(|m| m.extract::<String>().is_ok_and(|m| m == "numpy"))
 }

@@ -87,8 +87,8 @@ fn override_of(path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
 impl Scenario {
     /// Reads and validates a scenario file (RON).
     #[staticmethod]
-    fn load(path: PathBuf) -> PyResult<Self> {
-        let text = sc::read_source(&path).map_err(value_error)?;
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let text = crate::read_file::read_source_interruptibly(py, &path)?;
         Self::from_text(text, path_text(&path), path)
     }
 

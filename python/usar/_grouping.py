@@ -163,11 +163,16 @@ class GroupingMethod:
 MethodLike = Union[str, GroupingMethod, Callable[[GroupingRequest], Any], type]
 
 
-def _id_of(x: Any, method: str) -> int:
+def _id_of(x: Any, method: str, ids: frozenset) -> int:
     if isinstance(x, Robot):
         return x.id
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
         raise GroupingError(f"method {method}: robot ids must be integers, found {x!r}")
+    if int(x) not in ids:
+        shown = ", ".join(str(i) for i in sorted(ids))
+        raise GroupingError(
+            f"method {method}: robot id {int(x)} is not in the team of this round (ids: {shown})"
+        )
     return int(x)
 
 
@@ -186,13 +191,14 @@ def _groups(answer: Any, request: GroupingRequest, method: str) -> List[List[int
             f"method {method}: the answer must be one list of robot ids per task, "
             f"found {type(answer).__name__}"
         )
+    ids = frozenset(r.id for r in request.robots)
     out = []
     for g in answer:
         if isinstance(g, (str, bytes)) or not hasattr(g, "__iter__"):
             raise GroupingError(
                 f"method {method}: each group must be a list of robot ids, found {g!r}"
             )
-        out.append([_id_of(x, method) for x in g])
+        out.append([_id_of(x, method, ids) for x in g])
     return out
 
 
