@@ -12,17 +12,31 @@ default:
 sweep *ARGS:
     {{usar}} sweep scenarios/paper.ron {{ARGS}}
 
-# The README's test command.
+# The README's test command: the default tier (about 1 min with the dependencies built).
 test:
     cargo test --workspace
 
-# Everything CI checks: formatting, lints, tests, a short sweep.
+# Both tiers: the default one in debug, then the long one (#[ignore]d: whole-trial checks, the
+# calibration bands, swarm-1000's round bound; not swarm-10000's, `just swarm-bound-10k`) in
+# release, as CI runs them.
+test-all:
+    cargo test --workspace
+    cargo test --release --workspace -- --ignored --skip swarm_10000
+
+# The default tier through cargo-nextest with CI's profile: per-test timings, and any test over
+# 30 s fails by name (.config/nextest.toml); then the slowest ten.
+test-timed:
+    cargo nextest run --workspace --profile ci
+    python3 scripts/slowest-tests.py target/nextest/ci/junit.xml 10
+
+# Everything CI checks (a table of each step's seconds at the end).
 ci:
     bash .ci/run
 
 # The sweep library alone (`default-features = false`: no clap, no outputs): lints and tests.
 lib-only:
-    cargo clippy -p experiments --no-default-features --lib -- -D warnings
+    cargo clippy -p experiments --no-default-features --lib --tests -- -D warnings
+    cargo clippy -p experiments --no-default-features --features outputs --lib -- -D warnings
     cargo test -p experiments --no-default-features --lib
     cargo test -p experiments --no-default-features --doc
 
@@ -45,16 +59,16 @@ replay METHOD="rne" TRIAL="0":
 
 # The README's replay screenshot (docs/img/replay.png), taken by the browser test in chromium.
 replay-screenshot:
-    USAR_WRITE_SCREENSHOT="$PWD/docs/img/replay.png" cargo test -p experiments --test replay_browser readme_screenshot -- --ignored --nocapture
+    USAR_WRITE_SCREENSHOT="$PWD/docs/img/replay.png" cargo test -p experiments --test integration readme_screenshot -- --ignored --nocapture
 
 # swarm-1000's round bound: every round but the last completes in 1,800 s, every method (about 3 min on 2 cores).
 swarm-bound:
-    cargo test --release -p integration-tests --test swarm -- --ignored --nocapture --skip swarm_10000
+    cargo test --release -p integration-tests --test integration swarm -- --ignored --nocapture --skip swarm_10000
 
 # swarm-10000's round bound, every method (about 17 min on 2 cores; CI runs it last, when time
 # allows: docs/scaling.md).
 swarm-bound-10k:
-    cargo test --release -p integration-tests --test swarm -- --ignored --nocapture swarm_10000
+    cargo test --release -p integration-tests --test integration -- --ignored --nocapture swarm_10000
 
 # Rapier's `parallel` feature measured: a 10,000-robot trial on 1 and 2 threads (same results?
 # how much faster?) and a paper sweep with it (docs/scaling.md, "Rapier's parallel feature";

@@ -13,7 +13,8 @@
 #   4. stops the daemons it started (by pid) and removes its temporary folder, also on failure.
 #
 # Usage (as root, from anywhere): scripts/slurm-test.sh    (CI: .ci/run runs it)
-# Environment: USAR_SLURM_PORT (default 36817; slurmd uses the next port),
+# Environment: USAR_BIN (a built usar; default: cargo build --release -p experiments --bin usar),
+#              USAR_SLURM_PORT (default 36817; slurmd uses the next port),
 #              USAR_SLURM_TIMEOUT_S (default 600: the longest wait for the jobs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -130,8 +131,13 @@ done
 echo "one-node cluster up: $node"
 
 # --- 3. the sharded sweep and the local sweep ------------------------------------------------
-cargo build --release -q -p experiments --bin usar
-usar="$repo/target/release/usar"
+# USAR_BIN: a release build of usar already made (CI passes the one its release tests built).
+if [ -n "${USAR_BIN:-}" ]; then
+    usar="$USAR_BIN"
+else
+    cargo build --release -q -p experiments --bin usar
+    usar="$repo/target/release/usar"
+fi
 sweep=(scenarios/paper.ron --methods rne,dis --trials 2 --duration 60)
 
 "$usar" sweep "${sweep[@]}" --quiet --out "$tmp/local" >/dev/null

@@ -4,7 +4,7 @@
 //! on any number of threads, and trial `k` gets the same draws in every run.
 //!
 //! This example runs RNE against `random` twice on two threads over `scenarios/paper.ron` and
-//! checks that both runs agree; `crates/experiments/tests/sweep_custom.rs` tests the same
+//! checks that both runs agree; `crates/experiments/tests/integration/sweep_custom.rs` tests the same
 //! method. Copy [`RandomQuotas`] and [`factory`] into your own crate as they are (`rand` is
 //! the one `experiments::sweep` re-exports).
 //!

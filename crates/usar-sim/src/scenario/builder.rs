@@ -543,7 +543,7 @@ mod tests {
         assert_eq!(err.field(), Some("kinds[0].quota"));
         assert!(err.to_string().starts_with("paper (edited): "), "{err}");
         // A number out of range cannot be written into the spec; given as a plain number
-        // it is an error naming the field (tests/tests/scenario_api.rs: a negative speed).
+        // it is an error naming the field (tests/tests/integration/scenario_api.rs: a negative speed).
         let err = paper
             .edit(|s| {
                 s.kinds[1].sensing_range_m = number_at("kinds[1].sensing_range_m", f64::NAN)?;

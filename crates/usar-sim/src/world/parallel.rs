@@ -7,7 +7,7 @@
 //! floating-point operations in the same order, on whichever thread runs it, and nothing it
 //! reads is written during the phase; anything that mutates shared state (Rapier, the
 //! planner's caches, the resolver's lists, the mission's tallies) stays serial. So a trial
-//! gives bit-identical results on any number of threads (`tests/tests/parallel_trial.rs`).
+//! gives bit-identical results on any number of threads (`tests/tests/integration/parallel_trial.rs`).
 //! Rapier itself steps serially: with its `parallel` feature a trial gave the same results, but
 //! a Rapier step on a thread of a busy rayon pool waits for a task queued behind the trial that
 //! thread runs, so a sweep with one trial per thread deadlocks (`docs/scaling.md`, "Rapier's

@@ -1,0 +1,36 @@
+//! The integration tests of `experiments`, one test binary (each file a module: linking the
+//! workspace and Rapier once, not once per file): the `usar` command line run as a process
+//! (`env!("CARGO_BIN_EXE_usar")`) and the library's sweeps, calibrations and multiverses, with
+//! the helpers they share in `common`. The long checks are `#[ignore]`d with their reason
+//! (`cargo test --release -p experiments --test integration -- --ignored`; CI runs them in
+//! release).
+
+mod calibrate_cli;
+mod calibrate_lib;
+mod check_cli;
+mod common;
+mod json_schema;
+mod multiverse_cli;
+mod output_owners;
+mod output_paths;
+mod render_cli;
+mod replay_browser;
+mod replay_cli;
+mod report_sections;
+mod run_cli;
+mod shard_commands;
+mod shard_merge;
+mod shard_mixing;
+mod slurm_cli;
+mod sweep_custom;
+mod sweep_failure;
+mod sweep_grid;
+mod sweep_grid_resume;
+mod sweep_journal_checks;
+mod sweep_limits;
+mod sweep_lock;
+mod sweep_resume;
+mod sweep_threads;
+mod tasks_cli;
+mod trust_cli;
+mod usage_errors;

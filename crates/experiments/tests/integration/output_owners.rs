@@ -1,0 +1,303 @@
+//! Every output folder has an owner (`usar-owner.json`, `experiments::data::owner`): a run of
+//! another kind is refused with and without `--overwrite` and the folder's files stay
+//! byte for byte; `usar merge` refuses shards of another kind; and a calibration against a
+//! band reaching 1.7e308 ends (its targets figure once spun forever).
+
+use crate::common;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{PAPER, merge, ok, stderr, text, usar};
+
+const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
+const AXES: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/multiverse-axes.ron"
+);
+const TARGETS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/multiverse-targets.ron"
+);
+
+/// Every file under `dir` (relative path, bytes).
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(root, &p, out);
+            } else {
+                let rel = p.strip_prefix(root).unwrap().to_path_buf();
+                out.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+/// A sharded sweep of paper.ron (rne, 1 trial of 10 s, 2 shards) in `dir`, merged.
+fn sharded_sweep(dir: &Path) {
+    for shard in ["0/2", "1/2"] {
+        ok(&usar([
+            "sweep",
+            PAPER,
+            "--methods",
+            "rne,dis",
+            "--trials",
+            "1",
+            "--duration",
+            "10",
+            "--quiet",
+            "--shard",
+            shard,
+            "--out",
+            text(dir),
+        ]));
+    }
+    ok(&merge(dir));
+}
+
+/// A tiny multiverse of corridor.ron (the axes and targets of `tests/data/`, 1 trial of 10 s,
+/// 1 evaluation) into `out`.
+fn multiverse_args(out: &Path) -> Vec<&str> {
+    vec![
+        "multiverse",
+        CORRIDOR,
+        "--axes",
+        AXES,
+        "--targets",
+        TARGETS,
+        "--free",
+        "mission.pickup_s=0.5..2",
+        "--trials",
+        "1",
+        "--calibration-trials",
+        "1",
+        "--max-evals",
+        "1",
+        "--duration",
+        "10",
+        "--quiet",
+        "--out",
+        text(out),
+    ]
+}
+
+/// Asserts `o` failed with a one-line error naming the folder's owner and the refused kind.
+fn refused(o: &Output, owner: &str, kind: &str) {
+    let e = stderr(o);
+    assert!(!o.status.success(), "accepted: {e}");
+    assert!(
+        e.contains(&format!("holds a {owner} (")) && e.contains(&format!("a {kind} never writes")),
+        "{e}"
+    );
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+}
+
+#[test]
+fn no_other_kind_writes_into_a_sharded_sweeps_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let s = tmp.path().join("S");
+    sharded_sweep(&s);
+    std::fs::create_dir_all(s.join("universes")).unwrap();
+    std::fs::write(s.join("universes/notes.txt"), "mine").unwrap();
+    std::fs::write(s.join("notes.txt"), "mine").unwrap();
+    let before = snapshot(&s);
+    assert!(before.contains_key(Path::new("shards/0-of-2/journal.jsonl")));
+    assert!(before.contains_key(Path::new("usar-owner.json")));
+    for overwrite in [false, true] {
+        let mut multiverse = multiverse_args(&s);
+        let mut calibrate = vec![
+            "calibrate",
+            PAPER,
+            "--free",
+            "mission.pickup_s=0.5..2",
+            "--methods",
+            "rne",
+            "--trials",
+            "2",
+            "--duration",
+            "10",
+            "--max-evals",
+            "1",
+            "--check-trials",
+            "0",
+            "--quiet",
+            "--out",
+            text(&s),
+        ];
+        let mut grid = vec![
+            "sweep",
+            PAPER,
+            "--vary",
+            "mission.pickup_s=1,2",
+            "--methods",
+            "rne",
+            "--trials",
+            "1",
+            "--duration",
+            "10",
+            "--quiet",
+            "--out",
+            text(&s),
+        ];
+        let mut sweep = vec![
+            "sweep",
+            PAPER,
+            "--methods",
+            "rne",
+            "--trials",
+            "1",
+            "--duration",
+            "10",
+            "--quiet",
+            "--out",
+            text(&s),
+        ];
+        for args in [&mut multiverse, &mut calibrate, &mut grid, &mut sweep] {
+            if overwrite {
+                args.push("--overwrite");
+            }
+        }
+        refused(&usar(&multiverse), "sharded sweep", "multiverse");
+        refused(&usar(&calibrate), "sharded sweep", "calibration");
+        refused(&usar(&grid), "sharded sweep", "grid");
+        refused(&usar(&sweep), "sharded sweep", "sweep");
+        assert!(
+            snapshot(&s) == before,
+            "the sweep's folder changed (overwrite {overwrite})"
+        );
+    }
+    // Its own kind still merges, and another shard of it still runs.
+    ok(&merge(&s));
+}
+
+#[test]
+fn a_sharded_sweep_is_refused_in_a_multiverse_folder_and_merge_checks_every_shard() {
+    let tmp = tempfile::tempdir().unwrap();
+    let m = tmp.path().join("M");
+    let mut args = multiverse_args(&m);
+    args.extend(["--shard", "0/2"]);
+    ok(&usar(&args));
+    let before = snapshot(&m);
+    let o = usar([
+        "sweep",
+        PAPER,
+        "--methods",
+        "rne,dis",
+        "--trials",
+        "1",
+        "--duration",
+        "10",
+        "--quiet",
+        "--shard",
+        "1/2",
+        "--out",
+        text(&m),
+    ]);
+    refused(&o, "multiverse", "sharded sweep");
+    assert!(snapshot(&m) == before);
+
+    // Folders written before the manifests, mixing a multiverse's shard and a sweep's: the
+    // merge names the odd shard and writes nothing.
+    let s = tmp.path().join("S");
+    sharded_sweep(&s);
+    for dir in [&m, &s] {
+        for f in [
+            dir.join("usar-owner.json"),
+            dir.join("shards/0-of-2/usar-owner.json"),
+            dir.join("shards/1-of-2/usar-owner.json"),
+        ] {
+            let _ = std::fs::remove_file(f);
+        }
+    }
+    std::fs::rename(s.join("shards/1-of-2"), m.join("shards/1-of-2")).unwrap();
+    let before = snapshot(&m);
+    let o = merge(&m);
+    let e = stderr(&o);
+    assert!(!o.status.success(), "merged: {e}");
+    assert!(
+        e.contains("shards/1-of-2 holds a sharded sweep")
+            && e.contains("shards/1-of-2/journal.jsonl"),
+        "{e}"
+    );
+    assert!(snapshot(&m) == before, "the merge changed the folder");
+}
+
+#[test]
+fn a_calibration_against_a_band_reaching_the_largest_number_ends() {
+    let tmp = tempfile::tempdir().unwrap();
+    let targets = tmp.path().join("t.ron");
+    std::fs::write(
+        &targets,
+        "Targets(targets: [\n\
+         (name: \"at least 5\", statistic: Mean(\"rounds\"), value: 6.0, band: Between(5.0, 1.7e308)),\n\
+         (name: \"at most 9\", statistic: Mean(\"rounds\"), value: 6.0, band: AtMost(9.0)),\n\
+         (name: \"wide\", statistic: Mean(\"rescued_total\"), value: 0.0, band: Between(-1e308, 1e308)),\n\
+         ])\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("X");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args([
+            "calibrate",
+            PAPER,
+            "--targets",
+            text(&targets),
+            "--free",
+            "mission.pickup_s=0.5..2",
+            "--methods",
+            "rne",
+            "--trials",
+            "2",
+            "--duration",
+            "20",
+            "--max-evals",
+            "2",
+            "--check-trials",
+            "0",
+            "--quiet",
+            "--out",
+            text(&out),
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if t0.elapsed() > Duration::from_secs(60) {
+            child.kill().unwrap();
+            panic!("usar calibrate did not end within 60 s");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert!(status.success());
+    let files = snapshot(&out);
+    for f in [
+        "statistics.svg",
+        "convergence.svg",
+        "calibration.md",
+        "calibrated.ron",
+    ] {
+        assert!(files.contains_key(Path::new(f)), "no {f}");
+    }
+    assert!(
+        !files.keys().any(|p| p.to_string_lossy().contains(".tmp-")),
+        "temporary files left: {:?}",
+        files.keys().collect::<Vec<_>>()
+    );
+    let md = String::from_utf8(files[Path::new("calibration.md")].clone()).unwrap();
+    assert!(
+        md.contains("[5, 1.7e308]") && md.contains("(-∞, 9]"),
+        "{md}"
+    );
+}

@@ -1,0 +1,299 @@
+//! The architecture test: each crate's source files form a layered tree (docs/architecture.md).
+//!
+//! It reads every crate's `src/` from its root file's `mod` items, resolves each `crate::`,
+//! `super::` and `self::` path (in `use` items, code and macro arguments; through `mod.rs`
+//! re-exports) to the file that defines the name, and fails on
+//! - an import cycle between files;
+//! - an import from a lower layer to a higher one (the layer order of each crate is written
+//!   once, below, in [`LAYOUTS`]), or between two peer files such as two `usar` commands;
+//! - a file of more than [`rules::MAX_CODE_LINES`] code lines, or one that does not open with a
+//!   `//!` line naming its concept.
+//!
+//! It also draws the layers into docs/architecture.md (a Mermaid figure between two marker
+//! lines) and fails when the figure there is not the code's; after a change of the layers,
+//! `USAR_WRITE_ARCHITECTURE=1 cargo test -p integration-tests --test integration architecture` rewrites it.
+//!
+//! The tests at the bottom plant each fault in a small crate of their own and check that it is
+//! found (a test of the test). Run: `cargo test -p integration-tests --test integration architecture`.
+
+mod diagram;
+mod imports;
+mod modules;
+mod rules;
+
+use std::path::{Path, PathBuf};
+
+use modules::ModuleTree;
+use rules::{CrateLayout, file_problems, layering_problems};
+
+/// Each crate's root file (from the workspace root) and its layers, bottom first.
+const LAYOUTS: &[(&str, CrateLayout)] = &[
+    (
+        "crates/rne-core/src/lib.rs",
+        CrateLayout {
+            name: "rne-core",
+            layers: &[
+                &["message_text"],
+                &["error"],
+                &["vector_newtype"],
+                &["needs"],
+                &["distribution"],
+                &["rne", "combinations"],
+                &["grouping"],
+            ],
+            peers: &[],
+        },
+    ),
+    (
+        "crates/usar-sim/src/lib.rs",
+        CrateLayout {
+            name: "usar-sim",
+            layers: &[&["scenario"], &["world"], &["mission"]],
+            peers: &[],
+        },
+    ),
+    (
+        "crates/experiments/src/lib.rs",
+        CrateLayout {
+            name: "experiments",
+            layers: &[
+                // Base: files, numbers and tables that know nothing of a sweep.
+                &[
+                    "atomic",
+                    "chart",
+                    "fingerprint",
+                    "journal",
+                    "lock",
+                    "method_factory",
+                    "metrics",
+                    "spec_ron",
+                    "stats",
+                    "stderr",
+                    "progress_bar",
+                    "table",
+                    "trial_json",
+                    "vary",
+                ],
+                // Data: the sweep's plan, outcome, limits and output names.
+                &["data"],
+                // Design, run, fit, analyse, write, study.
+                &["grid"],
+                &["executor", "stale_outputs", "sweep", "shard", "slurm"],
+                &["calibrate", "calibration"],
+                &["claims", "analysis"],
+                &[
+                    "csv_tables",
+                    "figures",
+                    "report",
+                    "grid_outputs",
+                    "console",
+                    "output",
+                    "render",
+                    "replay",
+                ],
+                &["multiverse"],
+            ],
+            peers: &[],
+        },
+    ),
+    (
+        "crates/experiments/src/bin/usar/main.rs",
+        CrateLayout {
+            name: "usar (binary)",
+            layers: &[&["shared"], &["commands"], &["cli"]],
+            peers: &["commands"],
+        },
+    ),
+];
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ has a parent")
+        .to_path_buf()
+}
+
+fn read(root_file: &Path) -> ModuleTree {
+    ModuleTree::read(root_file).unwrap_or_else(|e| panic!("reading the crate: {e}"))
+}
+
+#[test]
+fn each_crate_is_a_layered_tree_without_cycles() {
+    let mut problems = Vec::new();
+    for (root, layout) in LAYOUTS {
+        let tree = read(&workspace_root().join(root));
+        assert!(tree.files.len() > 3, "{}: too few files read", layout.name);
+        problems.extend(layering_problems(&tree, layout));
+    }
+    assert!(problems.is_empty(), "\n{}\n", problems.join("\n"));
+}
+
+#[test]
+fn every_source_file_is_short_and_names_its_concept() {
+    let mut problems = Vec::new();
+    for (root, _) in LAYOUTS {
+        problems.extend(file_problems(&read(&workspace_root().join(root))));
+    }
+    assert!(problems.is_empty(), "\n{}\n", problems.join("\n"));
+}
+
+#[test]
+fn docs_architecture_draws_the_current_layers() {
+    let trees: Vec<ModuleTree> = LAYOUTS
+        .iter()
+        .map(|(root, _)| read(&workspace_root().join(root)))
+        .collect();
+    let crates: Vec<(&CrateLayout, &ModuleTree)> =
+        LAYOUTS.iter().map(|(_, l)| l).zip(trees.iter()).collect();
+    let figure = diagram::figure(&crates);
+    let path = workspace_root().join("docs/architecture.md");
+    let doc = std::fs::read_to_string(&path).expect("docs/architecture.md is readable");
+    let wanted = diagram::with_figure(&doc, &figure).unwrap_or_else(|| {
+        panic!(
+            "docs/architecture.md lacks the marker lines `{}` and `{}`",
+            diagram::BEGIN,
+            diagram::END
+        )
+    });
+    if std::env::var_os("USAR_WRITE_ARCHITECTURE").is_some() {
+        std::fs::write(&path, &wanted).expect("docs/architecture.md written");
+    } else {
+        assert!(
+            doc == wanted,
+            "docs/architecture.md's layer figure is not the code's: run \
+             `USAR_WRITE_ARCHITECTURE=1 cargo test -p integration-tests --test integration architecture`"
+        );
+    }
+}
+
+// ---- Tests of the test: each fault planted in a small crate of its own. ----
+
+/// A crate in a temporary folder from `(relative path, text)` pairs; returns its tree.
+fn planted(files: &[(&str, &str)]) -> (tempfile::TempDir, ModuleTree) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    for (path, text) in files {
+        let path = dir.path().join(path);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+        std::fs::write(path, text).expect("file written");
+    }
+    let tree = read(&dir.path().join("lib.rs"));
+    (dir, tree)
+}
+
+const FLAT: CrateLayout = CrateLayout {
+    name: "planted",
+    layers: &[&["a", "b", "c", "m"]],
+    peers: &[],
+};
+
+#[test]
+fn a_planted_cycle_is_found() {
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod a;\nmod b;\n"),
+        ("a.rs", "//! A thing.\nuse crate::b::B;\npub struct A;\n"),
+        ("b.rs", "//! B thing.\nuse crate::a::A;\npub struct B;\n"),
+    ]);
+    let problems = layering_problems(&tree, &FLAT);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].contains("import cycle"), "{problems:?}");
+    assert!(problems[0].contains("a.rs -> ") && problems[0].contains("(B)"));
+}
+
+#[test]
+fn a_cycle_through_a_reexport_or_an_inline_path_is_found() {
+    // b reaches A through m's `pub use` (a facade), a names b's function inline in its code.
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod a;\nmod m;\n"),
+        (
+            "a.rs",
+            "//! A thing.\npub struct A;\npub fn f() { crate::m::b::g(); }\n",
+        ),
+        (
+            "m/mod.rs",
+            "//! Facade.\npub mod b;\npub use crate::a::*;\n",
+        ),
+        ("m/b.rs", "//! B thing.\nuse super::A;\npub fn g() {}\n"),
+    ]);
+    let problems = layering_problems(&tree, &FLAT);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].contains("import cycle"), "{problems:?}");
+    assert!(problems[0].contains("m/b.rs -> ") && problems[0].contains("a.rs (A)"));
+}
+
+#[test]
+fn test_only_imports_do_not_count() {
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod a;\nmod b;\n"),
+        ("a.rs", "//! A thing.\nuse crate::b::B;\npub struct A;\n"),
+        (
+            "b.rs",
+            "//! B thing.\npub struct B;\n#[cfg(test)]\nmod tests {\n    use crate::a::A;\n}\n",
+        ),
+    ]);
+    assert!(layering_problems(&tree, &FLAT).is_empty());
+}
+
+#[test]
+fn a_planted_upward_import_and_a_peer_import_are_found() {
+    let layout = CrateLayout {
+        name: "planted",
+        layers: &[&["low"], &["high"]],
+        peers: &["high"],
+    };
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod low;\nmod high;\n"),
+        (
+            "low.rs",
+            "//! Low.\npub fn f() -> usize { crate::high::one::N }\n",
+        ),
+        ("high/mod.rs", "//! High.\nmod one;\nmod two;\n"),
+        ("high/one.rs", "//! One.\npub const N: usize = 1;\n"),
+        (
+            "high/two.rs",
+            "//! Two.\nuse super::one::N;\nuse crate::low::f;\n",
+        ),
+    ]);
+    let problems = layering_problems(&tree, &layout);
+    assert_eq!(problems.len(), 2, "{problems:?}");
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("upward import") && p.contains("`N`"))
+    );
+    assert!(problems.iter().any(|p| p.contains("from its peer")));
+}
+
+#[test]
+fn a_module_in_no_layer_is_named() {
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod a;\nmod z;\n"),
+        ("a.rs", "//! A thing.\n"),
+        ("z.rs", "//! Z thing.\n"),
+    ]);
+    let problems = layering_problems(&tree, &FLAT);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(problems[0].contains("`z`") && problems[0].contains("no layer"));
+}
+
+#[test]
+fn a_long_file_and_a_file_without_its_concept_are_found() {
+    let long: String = std::iter::once("//! Long.\n".to_string())
+        .chain((0..501).map(|i| format!("pub const C{i}: u8 = 0;\n")))
+        .collect();
+    let with_tests: String = std::iter::once("//! Fine.\n".to_string())
+        .chain((0..10).map(|i| format!("pub const C{i}: u8 = 0;\n")))
+        .chain(std::iter::once("#[cfg(test)]\nmod tests {\n".to_string()))
+        .chain((0..600).map(|i| format!("    const T{i}: u8 = 0;\n")))
+        .chain(std::iter::once("}\n".to_string()))
+        .collect();
+    let (_dir, tree) = planted(&[
+        ("lib.rs", "//! Root.\nmod a;\nmod b;\nmod c;\n"),
+        ("a.rs", &long),
+        ("b.rs", "// not a module comment\npub struct B;\n"),
+        ("c.rs", &with_tests),
+    ]);
+    let problems = file_problems(&tree);
+    assert_eq!(problems.len(), 2, "{problems:?}");
+    assert!(problems[0].contains("a.rs: 501 code lines"), "{problems:?}");
+    assert!(problems[1].contains("b.rs:1:"), "{problems:?}");
+}

@@ -1,0 +1,127 @@
+//! The calibrated paper mission against the twelve targets of `scenarios/paper-targets.ron`
+//! (docs/calibration.md), pooled over all methods: a whole paper sweep (4 methods x 10 trials
+//! x 600 s, the sweep's default seeds) and 30 trials per method it was never fitted on (base
+//! seed 7, as `usar calibrate --check-seed` defaults to).
+//!
+//! The nine mean targets must hold on both. The three spread targets (pooled within-method
+//! SDs) are out of reach of the model under every reading of the paper's open rules tried
+//! (docs/calibration.md, "The spread"; the multiverse in docs/multiverse.md): they are
+//! reported with `--report-only` by the recorded calibration, and these tests check that
+//! they stay defined and keep the order the docs give (ours are larger than the sheet's),
+//! not that they hold.
+
+use experiments::calibrate::{FreeField, Targets};
+use experiments::calibration::check;
+use experiments::multiverse::{Axes, MultiverseSetup};
+use integration_tests::{method, paper, scenario_path};
+use rayon::prelude::*;
+use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::scenario::Scenario;
+
+/// The spread targets: reported, not fitted (see the module docs).
+const SPREAD: [&str; 3] = [
+    "pooled SD of total rescuees",
+    "pooled SD of hard-task rescuees",
+    "pooled SD of easy-task rescuees",
+];
+
+/// Every built-in method x `trials` trials of `s` from base seed `base_seed`, in parallel.
+fn sweep(s: &Scenario, trials: u32, base_seed: u64) -> Vec<TrialResult> {
+    let jobs: Vec<(&str, u32)> = ["rne", "dis", "eng", "hp_dis"]
+        .into_iter()
+        .flat_map(|m| (0..trials).map(move |k| (m, k)))
+        .collect();
+    jobs.par_iter()
+        .map(|&(name, k)| {
+            Simulation::builder(s)
+                .method(method(name, s))
+                .trial(k)
+                .base_seed(base_seed)
+                .build()
+                .and_then(|mut sim| sim.run_to_end())
+                .expect("built-in methods do not fail")
+        })
+        .collect()
+}
+
+/// Asserts the nine mean targets hold on `results` and the spread targets are defined and
+/// above the sheet's values; the message is the whole table.
+fn assert_calibrated(results: &[TrialResult], what: &str) {
+    let checked = check(results);
+    let table: Vec<String> = checked
+        .iter()
+        .map(|(t, x)| {
+            format!(
+                "{}: {x:.3} (target {}) {}",
+                t.name,
+                t.describe(),
+                t.mark(*x)
+            )
+        })
+        .collect();
+    let table = table.join("\n");
+    assert_eq!(checked.len(), 12, "{table}");
+    for (t, x) in &checked {
+        if SPREAD.contains(&t.name.as_str()) {
+            assert!(x.is_finite() && *x > t.value, "{what}: {}\n{table}", t.name);
+        } else {
+            assert!(t.holds(*x), "{what}: {} out of its band\n{table}", t.name);
+        }
+    }
+}
+
+#[test]
+#[ignore = "long: the paper sweep, 40 trials of 600 s (about 11 s in debug); just test-all, CI in release"]
+fn a_paper_sweep_lies_inside_every_mean_band() {
+    let s = paper();
+    assert_calibrated(&sweep(&s, 10, s.sim().seed), "the paper sweep");
+}
+
+#[test]
+#[ignore = "long: 120 unseen trials of 600 s (about 35 s in debug); just test-all, CI in release"]
+fn thirty_unseen_trials_lie_inside_every_mean_band() {
+    assert_calibrated(&sweep(&paper(), 30, 7), "30 trials from seed 7");
+}
+
+#[test]
+fn the_spread_targets_are_names_of_the_paper_targets() {
+    let mut t = Targets::load(std::path::Path::new(&scenario_path("paper-targets.ron")))
+        .expect("paper-targets.ron loads");
+    let names: Vec<String> = SPREAD.iter().map(|n| n.to_string()).collect();
+    t.set_report_only(&names)
+        .expect("--report-only names of the recorded calibration");
+    assert_eq!(t.targets().iter().filter(|t| t.report_only).count(), 3);
+}
+
+/// `scenarios/paper-axes.ron`, the multiverse's axes: at least ten axes of the paper's open
+/// choices, each with at least two alternatives and the paper's words, checked against
+/// paper.ron as `usar multiverse` checks them (every alternative applies and validates, no two
+/// alternatives of an axis give the same scenario, no axis sets a free field).
+#[test]
+fn the_paper_axes_check_against_paper_ron() {
+    let axes = Axes::load(std::path::Path::new(&scenario_path("paper-axes.ron")))
+        .expect("paper-axes.ron parses");
+    assert!(axes.axes.len() >= 10, "{} axes", axes.axes.len());
+    for a in &axes.axes {
+        assert!(a.alternatives.len() >= 2, "axis {}", a.name);
+        assert!(
+            !a.paper.trim().is_empty(),
+            "axis {} quotes no paper",
+            a.name
+        );
+    }
+    let text = std::fs::read_to_string(scenario_path("paper.ron")).unwrap();
+    let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron").unwrap();
+    let targets = experiments::calibration::paper_targets().clone();
+    let free = vec![
+        FreeField::parse("mission.hp_pct_per_step_in_radiation=0.002..0.02:log").unwrap(),
+        FreeField::parse("mission.search_time_budget_s=6..30").unwrap(),
+    ];
+    let setup = MultiverseSetup::new(base, "scenarios/paper.ron", axes, targets, free);
+    let checked = setup.check().unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        checked.universes.len() >= 1024,
+        "{}",
+        checked.universes.len()
+    );
+}

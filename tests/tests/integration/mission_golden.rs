@@ -1,0 +1,43 @@
+//! Golden rescuee counts of paper.ron: the exact (hard, easy) numbers each built-in grouping
+//! method gets in trials 0 and 1 (seeds `trial_seed(paper.sim.seed, k)`).
+//!
+//! These pin the whole model: any change to the world, the mission rules, the grouping methods
+//! or `scenarios/paper.ron` that moves a number fails this test. When such a change is made
+//! on purpose, regenerate the table with
+//!
+//! ```sh
+//! cargo test -p integration-tests --test integration mission_golden -- --nocapture
+//! ```
+//!
+//! which prints the new table in this file's format on failure, then paste it below and say
+//! in the commit message why the numbers moved.
+
+use integration_tests::{golden_counts, paper};
+
+/// (method, trial, hard, easy).
+const GOLDEN: &[(&str, u32, u32, u32)] = &[
+    ("rne", 0, 40, 69),
+    ("rne", 1, 61, 68),
+    ("dis", 0, 37, 80),
+    ("dis", 1, 46, 81),
+    ("eng", 0, 84, 71),
+    ("eng", 1, 56, 69),
+    ("hp_dis", 0, 75, 82),
+    ("hp_dis", 1, 81, 84),
+];
+
+#[test]
+fn paper_rescuee_counts_are_pinned() {
+    let actual = golden_counts(&paper());
+    if actual != GOLDEN {
+        println!("const GOLDEN: &[(&str, u32, u32, u32)] = &[");
+        for (m, t, h, e) in &actual {
+            println!("    ({m:?}, {t}, {h}, {e}),");
+        }
+        println!("];");
+    }
+    assert_eq!(
+        actual, GOLDEN,
+        "paper.ron rescuee counts moved; see this file's docs"
+    );
+}
