@@ -35,7 +35,7 @@ ci:
 
 # The sweep library alone (`default-features = false`: no clap, no outputs): lints and tests.
 lib-only:
-    cargo clippy -p experiments --no-default-features --lib --tests -- -D warnings
+    cargo clippy -p experiments --no-default-features --lib -- -D warnings
     cargo clippy -p experiments --no-default-features --features outputs --lib -- -D warnings
     cargo test -p experiments --no-default-features --lib
     cargo test -p experiments --no-default-features --doc
