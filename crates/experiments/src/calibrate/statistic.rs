@@ -1,6 +1,8 @@
 //! The statistics a target constrains, computed from a set of trials pooled over methods
-//! (every trial weighs the same, whatever its method): `Mean`, `RatioOfMeans`, `MeanOfRatios`
-//! and `PooledSd` of `trials.csv` metrics ([`MetricRef`]).
+//! (every trial weighs the same, whatever its method): `Mean`, `RatioOfMeans`, `MeanOfRatios`,
+//! `PooledSd` and `PooledCv` of `trials.csv` metrics ([`MetricRef`]), and the structure of the
+//! trials: `WithinMethodCorrelation` of two metrics and `CrossMethodCorrelation` of one
+//! (issue 55's S3 to S6, as `shared/tools/structure.py` computes them).
 
 use std::fmt;
 
@@ -27,14 +29,35 @@ pub enum Statistic {
     /// The pooled within-method standard deviation: `sqrt(mean over methods of each method's
     /// sample variance (n - 1))`; NaN unless every method has at least 2 trials defining it.
     PooledSd(MetricRef),
+    /// The within-method coefficient of variation, percent: `100 * PooledSd(m) / Mean(m)`
+    /// (how much a method's trials scatter around the pooled mean); NaN as `PooledSd`, or for a
+    /// zero mean.
+    PooledCv(MetricRef),
+    /// The mean over methods of the Pearson correlation of the two metrics across each
+    /// method's trials (the trials where both are defined): `sum((a - mean a)(b - mean b)) /
+    /// sqrt(sum((a - mean a)^2) sum((b - mean b)^2))`, taken as 0 when either metric is
+    /// constant; in `[-1, 1]`; NaN unless every method has at least 2 such trials. Whether a
+    /// trial that yields more of one yields less of the other (S5: hard and easy rescuees).
+    WithinMethodCorrelation(MetricRef, MetricRef),
+    /// The mean over every pair of methods of the Pearson correlation of the metric between
+    /// the two methods' trials of the same number (the same seed and initial draws, common
+    /// random numbers; the trials both have), 0 for a constant side; in `[-1, 1]`; NaN with
+    /// fewer than two methods or a pair with fewer than 2 common trials. Whether a trial's
+    /// draws decide its outcome whatever the method (S6: total rescuees).
+    CrossMethodCorrelation(MetricRef),
 }
 
 impl Statistic {
     /// The metrics it reads, in the order written.
     pub fn metrics(&self) -> Vec<&MetricRef> {
         match self {
-            Statistic::Mean(m) | Statistic::PooledSd(m) => vec![m],
-            Statistic::RatioOfMeans(a, b) | Statistic::MeanOfRatios(a, b) => vec![a, b],
+            Statistic::Mean(m)
+            | Statistic::PooledSd(m)
+            | Statistic::PooledCv(m)
+            | Statistic::CrossMethodCorrelation(m) => vec![m],
+            Statistic::RatioOfMeans(a, b)
+            | Statistic::MeanOfRatios(a, b)
+            | Statistic::WithinMethodCorrelation(a, b) => vec![a, b],
         }
     }
 
@@ -54,6 +77,11 @@ impl Statistic {
                     .filter_map(|r| Some(a.value(r)? / b.value(r)?)),
             ),
             Statistic::PooledSd(m) => pooled_sd(results, m),
+            Statistic::PooledCv(m) => {
+                100.0 * pooled_sd(results, m) / mean(results.iter().filter_map(|r| m.value(r)))
+            }
+            Statistic::WithinMethodCorrelation(a, b) => within_method_correlation(results, a, b),
+            Statistic::CrossMethodCorrelation(m) => cross_method_correlation(results, m),
         }
     }
 }
@@ -77,6 +105,11 @@ impl fmt::Display for Statistic {
             Statistic::RatioOfMeans(a, b) => write!(f, "RatioOfMeans({a}, {b})"),
             Statistic::MeanOfRatios(a, b) => write!(f, "MeanOfRatios({a}, {b})"),
             Statistic::PooledSd(m) => write!(f, "PooledSd({m})"),
+            Statistic::PooledCv(m) => write!(f, "PooledCv({m})"),
+            Statistic::WithinMethodCorrelation(a, b) => {
+                write!(f, "WithinMethodCorrelation({a}, {b})")
+            }
+            Statistic::CrossMethodCorrelation(m) => write!(f, "CrossMethodCorrelation({m})"),
         }
     }
 }
@@ -87,16 +120,90 @@ fn mean(xs: impl Iterator<Item = f64>) -> f64 {
     if n == 0 { f64::NAN } else { sum / n as f64 }
 }
 
-/// `sqrt(mean over methods of the sample variance of `metric` among that method's trials)`,
-/// methods in order of first appearance; NaN when a method has fewer than 2 defined values or
-/// there are no results.
-fn pooled_sd(results: &[TrialResult], metric: &MetricRef) -> f64 {
+/// The methods of `results` in order of first appearance.
+fn methods_of(results: &[TrialResult]) -> Vec<&str> {
     let mut methods: Vec<&str> = Vec::new();
     for r in results {
         if !methods.contains(&r.method.as_str()) {
             methods.push(&r.method);
         }
     }
+    methods
+}
+
+/// The Pearson correlation of `pairs` (0 when either side is constant); NaN for fewer than 2.
+fn pearson(pairs: &[(f64, f64)]) -> f64 {
+    if pairs.len() < 2 {
+        return f64::NAN;
+    }
+    let n = pairs.len() as f64;
+    let (ma, mb) = (
+        pairs.iter().map(|p| p.0).sum::<f64>() / n,
+        pairs.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+    for &(a, b) in pairs {
+        sab += (a - ma) * (b - mb);
+        saa += (a - ma).powi(2);
+        sbb += (b - mb).powi(2);
+    }
+    let scale = (saa * sbb).sqrt();
+    if scale > 0.0 { sab / scale } else { 0.0 }
+}
+
+/// [`Statistic::WithinMethodCorrelation`] of `a` and `b` over `results`.
+fn within_method_correlation(results: &[TrialResult], a: &MetricRef, b: &MetricRef) -> f64 {
+    let per_method = methods_of(results).into_iter().map(|method| {
+        let pairs: Vec<(f64, f64)> = results
+            .iter()
+            .filter(|r| r.method == method)
+            .filter_map(|r| Some((a.value(r)?, b.value(r)?)))
+            .collect();
+        pearson(&pairs)
+    });
+    mean(per_method)
+}
+
+/// [`Statistic::CrossMethodCorrelation`] of `metric` over `results`.
+fn cross_method_correlation(results: &[TrialResult], metric: &MetricRef) -> f64 {
+    let methods = methods_of(results);
+    if methods.len() < 2 {
+        return f64::NAN;
+    }
+    // Per method, (trial number, value), by trial number.
+    let by_trial: Vec<Vec<(u32, f64)>> = methods
+        .iter()
+        .map(|&method| {
+            let mut v: Vec<(u32, f64)> = results
+                .iter()
+                .filter(|r| r.method == method)
+                .filter_map(|r| Some((r.trial, metric.value(r)?)))
+                .collect();
+            v.sort_by_key(|&(t, _)| t);
+            v
+        })
+        .collect();
+    let mut correlations = Vec::new();
+    for i in 0..by_trial.len() {
+        for j in i + 1..by_trial.len() {
+            let pairs: Vec<(f64, f64)> = by_trial[i]
+                .iter()
+                .filter_map(|&(t, x)| {
+                    let k = by_trial[j].binary_search_by_key(&t, |&(u, _)| u).ok()?;
+                    Some((x, by_trial[j][k].1))
+                })
+                .collect();
+            correlations.push(pearson(&pairs));
+        }
+    }
+    mean(correlations.into_iter())
+}
+
+/// `sqrt(mean over methods of the sample variance of `metric` among that method's trials)`,
+/// methods in order of first appearance; NaN when a method has fewer than 2 defined values or
+/// there are no results.
+fn pooled_sd(results: &[TrialResult], metric: &MetricRef) -> f64 {
+    let methods = methods_of(results);
     let variances = methods.iter().map(|&method| {
         let xs: Vec<f64> = results
             .iter()
@@ -231,6 +338,69 @@ pub(crate) mod tests {
         assert!(Statistic::PooledSd(m("rescued_total")).value(&[]).is_nan());
     }
 
+    /// Three methods of three trials each; the expected values are those of
+    /// `shared/tools/structure.py` on the same numbers (Python's `statistics`, by hand).
+    #[test]
+    fn structure_statistics_match_hand_computed_values() {
+        // (trial, hard, easy, energy_total)
+        let data = [
+            (
+                "A",
+                [(0, 60, 90, 400.0), (1, 50, 100, 420.0), (2, 40, 115, 380.0)],
+            ),
+            (
+                "B",
+                [(0, 10, 20, 300.0), (1, 20, 30, 330.0), (2, 30, 50, 310.0)],
+            ),
+            (
+                "C",
+                [(0, 30, 35, 500.0), (1, 25, 45, 480.0), (2, 35, 30, 520.0)],
+            ),
+        ];
+        let mut r = Vec::new();
+        for (method, trials) in data {
+            for (k, hard, easy, energy) in trials {
+                let mut t = trial(
+                    method,
+                    6,
+                    (easy, hard),
+                    (energy / 2.0, energy / 2.0),
+                    (1.0, 1.0),
+                );
+                t.trial = k;
+                r.push(t);
+            }
+        }
+        // Per method: A -0.99340, B 0.98198, C -0.98198 (hard against easy).
+        let within = Statistic::WithinMethodCorrelation(m("rescued_hard"), m("rescued_easy"));
+        assert!(
+            close(within.value(&r), -0.33113308926626095),
+            "{}",
+            within.value(&r)
+        );
+        // Totals A 150 150 155, B 30 50 80, C 65 70 65: the three pairs' mean.
+        let cross = Statistic::CrossMethodCorrelation(m("rescued_total"));
+        assert!(
+            close(cross.value(&r), 0.1009850228489886),
+            "{}",
+            cross.value(&r)
+        );
+        // 100 x 18.5592 / 404.444.
+        let cv = Statistic::PooledCv(m("energy_total_pct"));
+        assert!(close(cv.value(&r), 4.5888167825522155), "{}", cv.value(&r));
+        // In any order of the trials.
+        let mut shuffled = r.clone();
+        shuffled.reverse();
+        assert!(close(cross.value(&shuffled), cross.value(&r)));
+        assert!(close(within.value(&shuffled), within.value(&r)));
+        // A constant side counts as no correlation; one method has no pair; too few trials.
+        let constant: Vec<TrialResult> = r.iter().filter(|t| t.method == "A").cloned().collect();
+        let flat = Statistic::WithinMethodCorrelation(m("rounds"), m("rescued_easy"));
+        assert_eq!(flat.value(&constant), 0.0);
+        assert!(cross.value(&constant).is_nan());
+        assert!(within.value(&constant[..1]).is_nan());
+    }
+
     #[test]
     fn statistics_print_as_written_without_quotes() {
         assert_eq!(
@@ -240,6 +410,14 @@ pub(crate) mod tests {
         assert_eq!(
             Statistic::PooledSd(m("rescued_total")).to_string(),
             "PooledSd(rescued_total)"
+        );
+        assert_eq!(
+            Statistic::WithinMethodCorrelation(m("rescued_hard"), m("rescued_easy")).to_string(),
+            "WithinMethodCorrelation(rescued_hard, rescued_easy)"
+        );
+        assert_eq!(
+            Statistic::CrossMethodCorrelation(m("rescued_total")).to_string(),
+            "CrossMethodCorrelation(rescued_total)"
         );
     }
 }
