@@ -42,6 +42,7 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
         "control_period_s",
         s.sim().control_period_s.map(|p| p.get()),
     )?;
+    d.set_item("physics", format!("{:?}", s.sim().physics))?;
     d.set_item("kinds", kinds(py, s)?)?;
     d.set_item("tasks", tasks(py, s)?)?;
     d.set_item("robots", robots(py, s)?)?;

@@ -93,13 +93,22 @@ fn check_gives_the_control_period_where_the_scenario_has_one() {
             .unwrap()
             .to_string()
     };
-    let line = second_line(&["check", PAPER, "--set", "sim.control_period_s=Some(0.1)"]);
+    let line = second_line(&[
+        "check",
+        PAPER,
+        "--set",
+        "sim.control_period_s=Some(0.1)",
+        "--set",
+        "sim.physics=EveryStep",
+    ]);
     assert!(
         line.ends_with("; robots decide every 0.1 s (5 steps)"),
         "{line}"
     );
+    // paper.ron steps Rapier near contacts only, and says so.
     let line = second_line(&["check", PAPER]);
     assert!(!line.contains("decide"), "{line}");
+    assert!(line.ends_with("; Rapier steps near contacts only"), "{line}");
 }
 
 #[test]

@@ -10,8 +10,8 @@ use serde::{Deserialize, Serialize};
 
 use super::choices::{
     AwayQuotas, CollisionPriority, EmptyOnLeave, HpEffect, IdleBeforeArea, LeaveWhenLow,
-    LoadOnLeave, OutsideRange, RadiationFalloff, RadiationOverlap, Refresh, RescuedAt, RestAt,
-    RoundStart, SearchClock, SweepPattern,
+    LoadOnLeave, OutsideRange, PhysicsStepping, RadiationFalloff, RadiationOverlap, Refresh,
+    RescuedAt, RestAt, RoundStart, SearchClock, SweepPattern,
 };
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
@@ -364,6 +364,8 @@ pub struct SimParams {
     /// default control step of the ARGoS swarm simulator). See `docs/world-model.md`,
     /// "Control period".
     pub control_period_s: Option<Positive>,
+    /// When Rapier steps the bodies; default `EveryStep` ([`PhysicsStepping`]).
+    pub physics: PhysicsStepping,
 }
 
 impl Default for SimParams {
@@ -372,6 +374,7 @@ impl Default for SimParams {
             dt_s: Positive::known(1.0 / 50.0),
             seed: 0,
             control_period_s: None,
+            physics: PhysicsStepping::EveryStep,
         }
     }
 }

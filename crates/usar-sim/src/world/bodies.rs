@@ -8,6 +8,7 @@ use parry2d::bounding_volume::Aabb;
 use parry2d::math::{Pose, Vector as Vec2};
 use parry2d::query::PointQuery;
 use parry2d::shape::{Ball, Cuboid, Shape};
+use rapier2d::geometry::{BroadPhaseBvh, BvhOptimizationStrategy};
 use rapier2d::prelude::{
     ColliderBuilder, Group, InteractionGroups, InteractionTestMode, PhysicsWorld, RigidBodyBuilder,
     RigidBodyHandle,
@@ -155,6 +156,15 @@ pub fn static_obstacles(s: &Scenario) -> Vec<StaticObstacle> {
     out
 }
 
+/// Teams of at most this many robots (64) step Rapier's broad phase without its BVH
+/// optimizer. With a dozen moving discs among a few dozen static colliders, a large share of
+/// the leaves leaves its fattened box every step, so the optimizer (re)builds most of the tree
+/// every step (`Bvh::rebuild_range_binned`, 12 % of a `paper.ron` trial): without it the tree
+/// keeps its first shape, which a tree this small can afford. The same pairs are found, in the
+/// same order: the paper, three-tasks and swarm-1000 sweeps are byte-identical. A large team
+/// needs the optimizer (`swarm-1000.ron` without it: 5x slower). `docs/scaling.md`.
+pub const SMALL_TEAM_ROBOTS: usize = 64;
+
 /// The Rapier world of a scenario without any mission logic: zero gravity, fixed step
 /// `sim.dt_s`, static colliders for walls and debris, one dynamic, rotation-locked,
 /// frictionless disc per robot (never sleeping).
@@ -173,6 +183,12 @@ impl PhysicsScene {
         let mut physics = PhysicsWorld::new();
         physics.gravity = Vec2::ZERO;
         physics.integration_parameters.dt = s.sim.dt_s.get() as f32;
+        // No body enables CCD: Rapier's CCD pass would only look for some each step.
+        physics.integration_parameters.max_ccd_substeps = 0;
+        if s.robots.len() <= SMALL_TEAM_ROBOTS {
+            physics.broad_phase =
+                BroadPhaseBvh::with_optimization_strategy(BvhOptimizationStrategy::None);
+        }
         let statics = static_obstacles(s);
         for o in &statics {
             physics.insert_collider(o.collider(), None);

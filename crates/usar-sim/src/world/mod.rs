@@ -27,6 +27,8 @@
 //!   memory budget.
 //! - `plan_cache`: the planner's plan cache, bounded in entries and bytes.
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
+//! - `contact_gate`: `sim.physics: NearContacts`, whether a contact may begin within the next
+//!   step, and the straight move of every body on a step without one.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
@@ -60,6 +62,7 @@ pub mod clearance_grid;
 mod collision_course;
 mod commands;
 mod conflicts;
+mod contact_gate;
 mod disc_mask;
 pub mod distance_field;
 mod error;
@@ -99,6 +102,7 @@ mod union_find;
 mod world;
 
 pub use commands::drive_bodies;
+pub use contact_gate::NEAR_CONTACT_MARGIN_M;
 pub use error::{NavError, WorldError};
 pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,

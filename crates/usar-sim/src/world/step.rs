@@ -7,6 +7,7 @@ use parry2d::math::Vector as Vec2;
 use super::follow::check_due;
 use super::robot::Motion;
 use super::world::World;
+use crate::scenario::PhysicsStepping;
 
 /// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
 /// metres.
@@ -22,7 +23,8 @@ impl World {
     ///    commanded as they are. Between control steps each robot keeps its command, motion
     ///    and list flags;
     /// 2. the commanded velocities are set on the bodies (held robots count a held step) and
-    ///    Rapier steps once;
+    ///    Rapier steps once (with `sim.physics: NearContacts`, only when a contact may begin
+    ///    or go on, [`World::near_contact`]; otherwise every body moves straight);
     /// 3. positions, velocities, flags and counters are read back, and before a control step
     ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
@@ -42,7 +44,12 @@ impl World {
             self.scene
                 .drive_body(self.nav[id].body, self.nav[id].command);
         }
-        self.scene.step();
+        if self.physics == PhysicsStepping::NearContacts && !self.near_contact() {
+            self.scene.move_free(self.dt as f32);
+        } else {
+            self.scene.step();
+            self.stats.physics_steps += 1;
+        }
         self.stats.steps += 1;
         self.read_back_all();
         if self.is_control_step() {

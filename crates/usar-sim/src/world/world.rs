@@ -7,7 +7,7 @@
 use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
 
-use super::bodies::{PhysicsScene, StaticObstacle, to_point, to_vec2};
+use super::bodies::{PhysicsScene, to_point, to_vec2};
 use super::error::{NavError, WorldError};
 use super::nav_state::Nav;
 
@@ -23,7 +23,7 @@ use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
 use super::standing_disc::StandingDisc;
 use crate::scenario::{
-    CollisionParams, Locomotion, NavigationParams, PointM, RadiationZone, Scenario,
+    CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, RadiationZone, Scenario,
 };
 use crate::scenario::{in_field, in_span};
 
@@ -41,6 +41,9 @@ pub const CLEARANCE_CAP_MARGIN_M: f64 = 4.0;
 pub struct WorldStats {
     /// Steps taken.
     pub steps: u64,
+    /// Steps Rapier took: every step, or with `sim.physics: NearContacts` those near a
+    /// contact.
+    pub physics_steps: u64,
     /// Deadlocks detected (one per list and rotation, not per member).
     pub deadlocks_detected: u64,
     /// Largest collision list seen (members).
@@ -80,6 +83,8 @@ pub struct World {
     /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
     /// every control step and after a teleport, not after the steps in between.
     pub(super) index_fresh: bool,
+    /// When Rapier steps (`sim.physics`).
+    pub(super) physics: PhysicsStepping,
     pub(super) collision: CollisionParams,
     pub(super) navigation: NavigationParams,
     pub(super) stats: WorldStats,
@@ -161,6 +166,7 @@ impl World {
                 / s.sim.control_steps())
             .max(1),
             index_fresh: true,
+            physics: s.sim.physics,
             collision: s.collision,
             navigation: s.navigation,
             stats: WorldStats::default(),
@@ -404,7 +410,13 @@ impl World {
     /// `p` (and perhaps others): the neighbour index's candidates while it is fresh, else
     /// every robot of the layer (between control steps the index is not rebuilt). Callers
     /// test the distance themselves, so both give the same answers.
-    fn for_each_near(&self, layer: Locomotion, p: Vec2, radius_m: f32, mut f: impl FnMut(usize)) {
+    pub(super) fn for_each_near(
+        &self,
+        layer: Locomotion,
+        p: Vec2,
+        radius_m: f32,
+        mut f: impl FnMut(usize),
+    ) {
         if self.index_fresh {
             self.neighbours
                 .grid(layer)
@@ -513,7 +525,7 @@ impl World {
     /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);
     /// parry2d point queries, not the grid.
     pub fn static_distance_at(&self, p: &PointM) -> f64 {
-        nearest(&self.scene.statics, to_vec2(p), true)
+        f64::from(self.scene.static_distance(to_vec2(p), true))
     }
 
     /// Largest penetration at the current state, metres, `>= 0`: over same-layer robot pairs
@@ -523,7 +535,7 @@ impl World {
         let mut worst = 0.0f64;
         for (i, a) in self.nav.iter().enumerate() {
             let ground = a.layer == Locomotion::Ground;
-            let d = nearest(&self.scene.statics, a.pos, ground);
+            let d = f64::from(self.scene.static_distance(a.pos, ground));
             worst = worst.max(f64::from(a.radius) - d);
             let slot = usize::from(!ground);
             let reach = a.radius + self.max_radius_m[slot] as f32;
@@ -547,13 +559,4 @@ fn shared_goals(s: &Scenario) -> Vec<Vec2> {
         .flat_map(|t| [to_vec2(&t.goal), to_vec2(&t.drop_off.center)])
         .chain(s.rest_stations.iter().map(|c| to_vec2(&c.center)))
         .collect()
-}
-
-/// Distance from `p` to the nearest static obstacle (walls and, if `with_debris`, debris).
-fn nearest(statics: &[StaticObstacle], p: Vec2, with_debris: bool) -> f64 {
-    statics
-        .iter()
-        .filter(|o| with_debris || o.is_wall)
-        .map(|o| f64::from(o.distance_to_point(p)))
-        .fold(f64::INFINITY, f64::min)
 }

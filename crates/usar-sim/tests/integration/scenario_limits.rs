@@ -570,8 +570,8 @@ fn a_control_period_that_is_no_whole_number_of_steps_is_an_error() {
         ("0.1000001", "not a whole number of steps"),
     ] {
         let src = paper_with(
-            "sim: (dt_s: 0.02, seed: 2021)",
-            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({bad}))"),
+            "sim: (dt_s: 0.02, seed: 2021,",
+            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({bad}),"),
         );
         let e = rejected(&src, "sim.control_period_s");
         assert!(e.to_string().contains(says), "{bad}: {e}");
@@ -581,8 +581,8 @@ fn a_control_period_that_is_no_whole_number_of_steps_is_an_error() {
 #[test]
 fn a_control_period_longer_than_the_trial_is_an_error() {
     let src = paper_with(
-        "sim: (dt_s: 0.02, seed: 2021)",
-        "sim: (dt_s: 0.02, seed: 2021, control_period_s: Some(600.02))",
+        "sim: (dt_s: 0.02, seed: 2021,",
+        "sim: (dt_s: 0.02, seed: 2021, control_period_s: Some(600.02),",
     );
     let e = rejected(&src, "sim.control_period_s");
     assert!(e.to_string().contains("longer than the trial"), "{e}");
@@ -597,8 +597,8 @@ fn control_periods_of_whole_steps_are_accepted_and_run() {
         ("600", 30_000),
     ] {
         let src = paper_with(
-            "sim: (dt_s: 0.02, seed: 2021)",
-            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({period}))"),
+            "sim: (dt_s: 0.02, seed: 2021,",
+            &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({period}),"),
         );
         let s = scenario::from_str(&src, "t.ron").unwrap_or_else(|e| panic!("{period}: {e}"));
         assert_eq!(s.sim().control_steps(), steps, "{period}");

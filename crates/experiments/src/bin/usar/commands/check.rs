@@ -192,9 +192,14 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
         }
         None => String::new(),
     };
+    let physics = match s.sim().physics {
+        usar_sim::scenario::PhysicsStepping::EveryStep => "",
+        usar_sim::scenario::PhysicsStepping::NearContacts => "; Rapier steps near contacts only",
+    };
     writeln!(
         out,
-        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed {}{control}",
+        "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed \
+         {}{control}{physics}",
         s.arena().width_m,
         s.arena().height_m,
         s.arena().wall_thickness_m,
