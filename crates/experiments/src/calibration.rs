@@ -10,9 +10,9 @@
 //! results sheet (`RNE_experiments_for_paper.ods` of the public repository
 //! RNE-Agent-Trust-Model-SMC2021, 4 methods x 10 trials x 600 s, pooled the same way). See
 //! `docs/calibration.md`. They are defined once, in `scenarios/paper-targets.ron` (embedded
-//! here as [`PAPER_TARGETS_RON`], the default of `usar calibrate`): twelve statistics (means,
-//! ratios of means and pooled within-method standard deviations,
-//! [`crate::calibrate::Statistic`]) over the tasks named `easy` and `hard`; for a scenario
+//! here as [`PAPER_TARGETS_RON`], the default of `usar calibrate`): eighteen statistics (nine
+//! means and ratios of means, three pooled within-method standard deviations and six of the
+//! trials' structure, [`crate::calibrate::Statistic`]) over the tasks named `easy` and `hard`; for a scenario
 //! without them every statistic is NaN ([`applies_to`] says so).
 
 use std::path::Path;
@@ -174,7 +174,7 @@ mod tests {
     use crate::calibrate::statistic::tests::trial;
 
     #[test]
-    fn the_paper_targets_are_the_twelve_of_the_sheet() {
+    fn the_paper_targets_are_the_eighteen_of_the_sheet() {
         let t = paper_targets().targets();
         let rows: Vec<(String, String, f64)> = t
             .iter()
@@ -233,6 +233,24 @@ mod tests {
                 "PooledSd(rescued_easy)",
                 5.2,
             ),
+            ("energy per trial", "Mean(energy_total_pct)", 4275.8),
+            ("HP lost per trial", "Mean(hp_total_pct)", 1601.9),
+            (
+                "energy CV within a method, %",
+                "PooledCv(energy_total_pct)",
+                2.71,
+            ),
+            ("pooled SD of rounds", "PooledSd(rounds)", 0.24),
+            (
+                "hard-easy correlation within a method",
+                "WithinMethodCorrelation(rescued_hard, rescued_easy)",
+                -0.48,
+            ),
+            (
+                "cross-method correlation of trial totals",
+                "CrossMethodCorrelation(rescued_total)",
+                -0.19,
+            ),
         ];
         assert_eq!(rows.len(), expected.len());
         for (row, (name, stat, value)) in rows.iter().zip(expected) {
@@ -258,9 +276,23 @@ mod tests {
                 "± 3",
                 "[3, 7]",
                 "[2.5, 6.5]",
-                "[3, 8]"
+                "[3, 8]",
+                "[3420, 5130]",
+                "[1280, 1920]",
+                "(-∞, 5]",
+                "(-∞, 0.35]",
+                "(-∞, -0.1]",
+                "(-∞, 0.2]"
             ]
         );
+        // The sheet's cost unit is an open choice: S1 and S2 are reported, not fitted, under
+        // today's reading.
+        let reported: Vec<&str> = t
+            .iter()
+            .filter(|t| t.report_only)
+            .map(|t| t.name.as_str())
+            .collect();
+        assert_eq!(reported, ["energy per trial", "HP lost per trial"]);
         let paper = ["hard".to_string(), "easy".to_string()];
         assert!(applies_to(&paper));
         assert!(!applies_to(&["a".to_string()]));
@@ -289,10 +321,16 @@ mod tests {
         assert!(check(&[]).iter().all(|(_, x)| x.is_nan()));
         let mut other = r[0].clone();
         other.tasks = vec!["a".into(), "b".into()];
-        // Without the tasks, every statistic that names one is undefined (and a pooled SD
-        // of one trial); rounds and total rescuees are not.
+        // Without the tasks, every statistic that names one is undefined (and a pooled SD,
+        // CV or correlation of one trial); rounds, total rescuees and total costs are not.
         for (t, x) in check(&[other]) {
-            let defined = ["rounds per trial", "rescuees per trial"].contains(&t.name.as_str());
+            let defined = [
+                "rounds per trial",
+                "rescuees per trial",
+                "energy per trial",
+                "HP lost per trial",
+            ]
+            .contains(&t.name.as_str());
             assert_eq!(x.is_nan(), !defined, "{}", t.name);
         }
         assert!(checked[0].0.holds(6.8) && !checked[0].0.holds(6.81));

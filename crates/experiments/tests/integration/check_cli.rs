@@ -108,7 +108,10 @@ fn check_gives_the_control_period_where_the_scenario_has_one() {
     // paper.ron steps Rapier near contacts only, and says so.
     let line = second_line(&["check", PAPER]);
     assert!(!line.contains("decide"), "{line}");
-    assert!(line.ends_with("; Rapier steps near contacts only"), "{line}");
+    assert!(
+        line.ends_with("; Rapier steps near contacts only"),
+        "{line}"
+    );
 }
 
 #[test]
