@@ -38,7 +38,9 @@ class TrialResult(Record):
     ``hp_lost_pct`` (per task, percent points summed over robots), ``by_task`` (task name ->
     :class:`Record` with ``rescued``, ``energy_spent_pct``, ``hp_lost_pct``), ``total`` (the
     same over all tasks), ``rounds`` (list of :class:`Record`: ``start_s``, ``end_s``,
-    ``completed``, ``groups``, ``rescued``) and ``robots`` (list of :class:`Record` per robot:
+    ``completed``, ``groups``, ``rescued``, and per task ``left_area_s``, ``left_because``,
+    ``deliveries``, ``empty_deliveries``, ``left_for_rest``, ``back_s``: the per-round yields of
+    docs/calibration.md) and ``robots`` (list of :class:`Record` per robot:
     ``id``, ``kind``, ``distance_m``, ``final_energy_pct``, ``final_hp_pct``,
     ``energy_spent_pct``, ``hp_lost_pct``, ``recharges``, ``time_in_radiation_s``,
     ``time_held_s``, ``collision_lists``, ``deadlocks_resolved``, ``picked_up``,

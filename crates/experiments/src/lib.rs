@@ -127,6 +127,8 @@ pub mod render;
 pub mod replay;
 #[cfg(feature = "outputs")]
 pub mod report;
+#[cfg(feature = "outputs")]
+pub mod rounds_table;
 // 8. study
 #[cfg(feature = "outputs")]
 pub mod multiverse;

@@ -16,6 +16,7 @@ mod open_choices;
 mod paper_v0;
 mod paper_v1;
 mod parallel_trial;
+mod round_trips;
 mod scenario_api;
 mod scenario_fuzz;
 mod swarm;

@@ -248,6 +248,7 @@ pub(crate) mod tests {
                     completed: true,
                     groups: vec![vec![], vec![]],
                     rescued: vec![0, 0],
+                    ..Default::default()
                 };
                 rounds
             ],

@@ -214,3 +214,68 @@ fn a_large_team_runs_the_same_on_one_and_two_threads() {
         "1 and 2 threads wrote different results"
     );
 }
+
+#[test]
+fn rounds_csv_of_run_and_sweep_has_a_row_per_round_and_task_and_a_summary() {
+    let tmp = tempfile::tempdir().unwrap();
+    let csv = tmp.path().join("rounds.csv");
+    let json = tmp.path().join("t.json");
+    let o = usar([
+        "run",
+        PAPER,
+        "--method",
+        "rne",
+        "--duration",
+        "200",
+        "--json",
+        json.to_str().unwrap(),
+        "--rounds-csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("per-round yields"), "{out}");
+    let r: usar_sim::mission::TrialResult =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header[0], "cell");
+    assert_eq!(*header.last().unwrap(), "wait_s");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(r.rounds.len() >= 2, "a 200 s trial has rounds");
+    assert_eq!(rows.len(), r.rounds.len() * r.tasks.len());
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for (i, row) in rows.iter().enumerate() {
+        let (round, t) = (&r.rounds[i / 2], i % 2);
+        assert_eq!(row[col("task")], r.tasks[t]);
+        assert_eq!(row[col("rescued")], round.rescued[t].to_string());
+        assert_eq!(row[col("deliveries")], round.deliveries[t].to_string());
+    }
+
+    let swept = tmp.path().join("swept.csv");
+    let o = usar([
+        "sweep",
+        PAPER,
+        "--methods",
+        "rne,dis",
+        "--trials",
+        "2",
+        "--duration",
+        "60",
+        "--quiet",
+        "--out",
+        tmp.path().join("s").to_str().unwrap(),
+        "--rounds-csv",
+        swept.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&swept).unwrap();
+    for (method, trial) in [("RNE", 0), ("RNE", 1), ("DIS", 0), ("DIS", 1)] {
+        let prefix = format!("0,{method},{trial},");
+        assert!(
+            text.lines().any(|l| l.starts_with(&prefix)),
+            "{prefix} missing in\n{text}"
+        );
+    }
+}

@@ -74,6 +74,9 @@ pub(crate) fn account(
         let (low_energy, low_hp) = r.low_levels(m);
         let may_leave = m.leave_when_low == LeaveWhenLow::AtOnce || r.phase == Phase::AtStart;
         if !r.is_resting() && (low_energy || low_hp) && may_leave {
+            if let Some(t) = r.task {
+                st.recorder.left_for_rest(t);
+            }
             let kind = MissionEventKind::LeftForRest { low_energy, low_hp };
             st.events
                 .push(MissionEvent::of_robot(now, id, r.task, kind));
@@ -131,6 +134,7 @@ fn advance_phase(
         }
         (Phase::ToStart | Phase::RestToStart, _) if reached => {
             st.robots[id].phase = Phase::AtStart;
+            st.recorder.back_at_start(id, now);
             stop(world, id)?;
         }
         (Phase::ToRest, _)

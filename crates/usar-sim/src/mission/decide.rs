@@ -4,6 +4,7 @@
 
 use super::error::MissionError;
 use super::goals::{send, send_home, stop};
+use super::metrics::LeaveCause;
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
@@ -35,7 +36,8 @@ pub(crate) fn decide(
         start_search_clocks_of_assembled_groups(world, st);
     }
     for t in 0..scenario.tasks.len() {
-        if group_should_leave(scenario, world, st, t) {
+        if let Some(cause) = group_should_leave(scenario, world, st, t) {
+            st.recorder.left_area(t, world.time_s(), cause);
             leave_search_area(scenario, world, st, t)?;
         }
     }
@@ -132,12 +134,18 @@ fn start_search_clocks_of_assembled_groups(world: &World, st: &mut MissionState)
 /// Whether task `t`'s group must leave its search area (see `docs/mission-model.md`): its
 /// pool of resources or its ground members' free capacity is used up, nothing more is to be
 /// had (every ground member waits and no observer is still flying in), or its search time
-/// budget (`mission.search_time_budget_s`) is spent. Reads `st.tally.leave` (see
+/// budget (`mission.search_time_budget_s`) is spent; returns why (the first that holds, in
+/// [`LeaveCause`]'s order), or `None` to stay. Reads `st.tally.leave` (see
 /// [`gather_leave_figures`]).
-fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: usize) -> bool {
+fn group_should_leave(
+    scenario: &Scenario,
+    world: &World,
+    st: &MissionState,
+    t: usize,
+) -> Option<LeaveCause> {
     let f = st.tally.leave[t];
     if !f.any_on_task {
-        return false;
+        return None;
     }
     let (pool, free_capacity) = (f.pool, f.free_capacity);
     let nothing_more = f.ground_all_waiting && !f.observer_arriving;
@@ -148,7 +156,14 @@ fn group_should_leave(scenario: &Scenario, world: &World, st: &MissionState, t: 
         (Some(budget_s), Some(start_s)) => world.time_s() - start_s >= budget_s.get(),
         _ => false,
     };
-    pool == 0 || free_capacity == 0 || nothing_more || out_of_time
+    [
+        (pool == 0, LeaveCause::ResourcesUsed),
+        (free_capacity == 0, LeaveCause::CapacityFull),
+        (nothing_more, LeaveCause::NothingLeft),
+        (out_of_time, LeaveCause::SearchBudget),
+    ]
+    .into_iter()
+    .find_map(|(holds, cause)| holds.then_some(cause))
 }
 
 /// Sends every member of task `t`'s group still searching to the task's drop-off, releasing

@@ -5,9 +5,39 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+/// Why a task's group was sent out of its search area (`docs/mission-model.md`, "Leaving the
+/// search area"); when several hold at once, the first in this order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum LeaveCause {
+    /// The group's pool of rescuing resources is used up.
+    ResourcesUsed,
+    /// Its ground members' free carrying capacity is used up (every carrier full).
+    CapacityFull,
+    /// Nothing more is to be had: every ground member waits (nothing it can claim or sweep)
+    /// and no observer is still flying in.
+    NothingLeft,
+    /// Its search time budget (`mission.search_time_budget_s`) is spent.
+    SearchBudget,
+}
+
+impl LeaveCause {
+    /// The cause's name as written in CSV files (`resources_used`, `capacity_full`,
+    /// `nothing_left`, `search_budget`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::ResourcesUsed => "resources_used",
+            Self::CapacityFull => "capacity_full",
+            Self::NothingLeft => "nothing_left",
+            Self::SearchBudget => "search_budget",
+        }
+    }
+}
+
 /// One round: from the moment the team is grouped at the start until every grouped robot is
-/// back at its start position (paper, section VI.B).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// back at its start position (paper, section VI.B). Every per-task list has one entry per
+/// task, by task id; the trip figures (`left_area_s` to `back_s`) are empty in results
+/// journaled before they existed.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct RoundRecord {
     /// Simulated time the round began, seconds since the trial start.
     pub start_s: f64,
@@ -20,6 +50,30 @@ pub struct RoundRecord {
     pub groups: Vec<Vec<usize>>,
     /// Rescuees delivered to each task's drop-off during this round, by task id.
     pub rescued: Vec<u32>,
+    /// When each task's group was sent out of its search area, seconds since the trial start
+    /// (`None`: it never was this round, e.g. cut by the time limit, or an empty group).
+    #[serde(default)]
+    pub left_area_s: Vec<Option<f64>>,
+    /// Why each task's group was sent out of its search area ([`LeaveCause`]; `None` as in
+    /// `left_area_s`).
+    #[serde(default)]
+    pub left_because: Vec<Option<LeaveCause>>,
+    /// Trips of each task's members that can carry rescuees (`carrying_capacity > 0`) that
+    /// ended at the task's drop-off this round (deliveries, the empty ones included).
+    #[serde(default)]
+    pub deliveries: Vec<u32>,
+    /// Of `deliveries`, those that brought no rescuee.
+    #[serde(default)]
+    pub empty_deliveries: Vec<u32>,
+    /// Members of each task's group that left it this round for their needs (energy or HP
+    /// below `mission.low_energy_pct` / `mission.low_hp_pct`).
+    #[serde(default)]
+    pub left_for_rest: Vec<u32>,
+    /// When the last member still in each task's group got back to its start, seconds since
+    /// the trial start (`None`: not every one was back when the round ended, or an empty
+    /// group). The group then waits `end_s - back_s` for the other tasks' groups.
+    #[serde(default)]
+    pub back_s: Vec<Option<f64>>,
 }
 
 /// Per-robot figures over a whole trial.

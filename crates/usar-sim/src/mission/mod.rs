@@ -42,7 +42,7 @@ pub use error::MissionError;
 pub use events::{MissionEvent, MissionEventKind};
 pub use grouping::{adapted_quotas, group_available, shrink_quotas, snapshot};
 pub use initial::{InitialLevels, draw_initial_levels, trial_seed};
-pub use metrics::{RobotMetrics, RoundRecord, TrialResult, per};
+pub use metrics::{LeaveCause, RobotMetrics, RoundRecord, TrialResult, per};
 pub use needs::{entry, hp_factor, needs_vector};
 pub use reachability::{UnreachableGoal, unreachable_goals};
 pub use recorder::{Recorder, TrialInfo};

@@ -2,7 +2,7 @@
 //! The systems report events to it; [`Recorder::result`] turns the counts into a
 //! [`TrialResult`].
 
-use super::metrics::{RobotMetrics, RoundRecord, TrialResult};
+use super::metrics::{LeaveCause, RobotMetrics, RoundRecord, TrialResult};
 use super::robot::MissionRobot;
 use crate::scenario::{RescuedAt, Scenario};
 use crate::world::World;
@@ -23,6 +23,11 @@ pub struct Recorder {
     rescued: Vec<u32>,
     rounds: Vec<RoundRecord>,
     rescued_at: RescuedAt,
+    /// When each robot last got back to its start in the open round, seconds.
+    back_at_start_s: Vec<Option<f64>>,
+    /// Whether each robot's kind can carry rescuees (`carrying_capacity > 0`): only their
+    /// drop-off arrivals count as trips.
+    carries: Vec<bool>,
 }
 
 impl Recorder {
@@ -42,6 +47,10 @@ impl Recorder {
             rescued: vec![0; k],
             rounds: Vec::new(),
             rescued_at: scenario.mission.rescued_at,
+            back_at_start_s: vec![None; scenario.robots.len()],
+            carries: (0..scenario.robots.len())
+                .map(|id| scenario.kind_of(id).carrying_capacity > 0)
+                .collect(),
         }
     }
 
@@ -82,6 +91,10 @@ impl Recorder {
     /// rescued now under `mission.rescued_at: DropOff`.
     pub fn delivered(&mut self, id: usize, t: usize, n: u32) {
         self.robots[id].delivered += n;
+        if let Some(round) = self.rounds.last_mut().filter(|_| self.carries[id]) {
+            round.deliveries[t] += 1;
+            round.empty_deliveries[t] += u32::from(n == 0);
+        }
         if self.rescued_at == RescuedAt::DropOff {
             self.rescue(t, n);
         }
@@ -93,6 +106,26 @@ impl Recorder {
         if let Some(round) = self.rounds.last_mut() {
             round.rescued[t] += n;
         }
+    }
+
+    /// Task `t`'s group was sent out of its search area at `time_s` because of `cause`.
+    pub fn left_area(&mut self, t: usize, time_s: f64, cause: LeaveCause) {
+        if let Some(round) = self.rounds.last_mut() {
+            round.left_area_s[t] = Some(time_s);
+            round.left_because[t] = Some(cause);
+        }
+    }
+
+    /// A member of task `t`'s group left it for its needs (a level below its threshold).
+    pub fn left_for_rest(&mut self, t: usize) {
+        if let Some(round) = self.rounds.last_mut() {
+            round.left_for_rest[t] += 1;
+        }
+    }
+
+    /// Robot `id` got back to its start at `time_s`.
+    pub fn back_at_start(&mut self, id: usize, time_s: f64) {
+        self.back_at_start_s[id] = Some(time_s);
     }
 
     /// Robot `id` ended a stay at the rest station.
@@ -108,21 +141,46 @@ impl Recorder {
     /// A round started at `time_s` with `groups` (robot ids by task id).
     pub fn round_started(&mut self, time_s: f64, groups: Vec<Vec<usize>>) {
         let k = groups.len();
+        self.back_at_start_s.fill(None);
         self.rounds.push(RoundRecord {
             start_s: time_s,
             end_s: time_s,
             completed: false,
             groups,
             rescued: vec![0; k],
+            left_area_s: vec![None; k],
+            left_because: vec![None; k],
+            deliveries: vec![0; k],
+            empty_deliveries: vec![0; k],
+            left_for_rest: vec![0; k],
+            back_s: vec![None; k],
         });
     }
 
     /// The open round ended at `time_s`, with every grouped robot back (`completed`) or cut by
-    /// the time limit.
-    pub fn round_closed(&mut self, time_s: f64, completed: bool) {
-        if let Some(round) = self.rounds.last_mut() {
-            round.end_s = time_s;
-            round.completed = completed;
+    /// the time limit; `members` are the robots still in a group, with their task ids.
+    pub fn round_closed(
+        &mut self,
+        time_s: f64,
+        completed: bool,
+        members: impl Iterator<Item = (usize, usize)>,
+    ) {
+        let Some(round) = self.rounds.last_mut() else {
+            return;
+        };
+        round.end_s = time_s;
+        round.completed = completed;
+        let mut all_back = vec![true; round.back_s.len()];
+        for (id, t) in members {
+            match self.back_at_start_s[id] {
+                Some(s) => round.back_s[t] = Some(round.back_s[t].map_or(s, |b: f64| b.max(s))),
+                None => all_back[t] = false,
+            }
+        }
+        for (back, all) in round.back_s.iter_mut().zip(all_back) {
+            if !all {
+                *back = None;
+            }
         }
     }
 

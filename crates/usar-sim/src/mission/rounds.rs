@@ -97,7 +97,8 @@ pub(crate) fn round_complete(st: &MissionState) -> bool {
 /// Ends the open round now (`completed`: everyone back; otherwise cut by the time limit); the
 /// groups dissolve.
 pub(crate) fn close_round(world: &World, st: &mut MissionState, completed: bool) {
-    st.recorder.round_closed(world.time_s(), completed);
+    let members = st.robots.iter().filter_map(|r| r.task.map(|t| (r.id, t)));
+    st.recorder.round_closed(world.time_s(), completed, members);
     let round = st.recorder.rounds().len().saturating_sub(1);
     st.events.push(MissionEvent::of_round(
         world.time_s(),

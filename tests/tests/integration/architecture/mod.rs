@@ -70,6 +70,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "stats",
                     "stderr",
                     "progress_bar",
+                    "rounds_table",
                     "table",
                     "trial_json",
                     "vary",

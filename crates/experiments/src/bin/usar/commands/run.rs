@@ -71,6 +71,14 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE.json")]
     pub json: Option<PathBuf>,
 
+    /// Also write the trial's per-round yields as CSV to this file: one row per round and
+    /// task (rescuees, why the group left its search area, trips, empty trips, members that
+    /// left to rest, when the group was back and how long it waited; columns in
+    /// docs/calibration.md, "Per-round yields"), and print a summary per task. Written as
+    /// --json is.
+    #[arg(long, value_name = "FILE.csv")]
+    pub rounds_csv: Option<PathBuf>,
+
     /// Print the per-robot table and every group's robot ids even for a team of more than 50
     /// robots, which otherwise gets group sizes and a summary per kind.
     #[arg(long)]
@@ -124,6 +132,13 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
             .context("serialising the result")?;
         write_atomic(path, json.as_bytes())?;
         writeln!(out, "wrote {}", path.display())?;
+    }
+    if let Some(path) = &args.rounds_csv {
+        crate::shared::rounds_csv::write_rounds_csv(
+            path,
+            &[(0, std::slice::from_ref(&result))],
+            out,
+        )?;
     }
     Ok(())
 }

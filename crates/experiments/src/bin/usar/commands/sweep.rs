@@ -5,7 +5,7 @@
 
 use std::io::Write;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
@@ -134,6 +134,13 @@ pub struct SweepArgs {
     /// Samples per simulated second of the replays (--replay).
     #[arg(long, value_name = "HZ", default_value_t = DEFAULT_HZ, requires = "replay")]
     pub replay_hz: f64,
+
+    /// Also write every trial's per-round yields as CSV to this file (one row per cell, method,
+    /// trial, round and task; the columns of `usar run --rounds-csv`, with `cell` the grid
+    /// cell) and print a summary per task over all trials. Written from the journal after the
+    /// sweep, so adding it to a finished sweep runs no trial again.
+    #[arg(long, value_name = "FILE.csv", conflicts_with = "shard")]
+    pub rounds_csv: Option<PathBuf>,
 
     /// Test hook: make trial K of METHOD panic half-way (repeatable).
     #[arg(long, value_name = "METHOD:K", hide = true)]
@@ -275,6 +282,15 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let analysis = Analysis::with_report(&o, report);
     let files = write_outputs(&cfg, &o, &analysis, &metrics)?;
     print_sweep(out, &cfg, &o, &analysis, &metrics, &files)?;
+    if let Some(path) = &args.rounds_csv {
+        let cells: Vec<_> = o
+            .cells
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (i, c.results.as_slice()))
+            .collect();
+        crate::shared::rounds_csv::write_rounds_csv(path, &cells, out)?;
+    }
     if let Some(r) = &replays {
         for w in r.finish(&cfg, &o)? {
             writeln!(

@@ -1,0 +1,33 @@
+//! `--rounds-csv FILE` of `usar run` and `usar sweep`: the per-round yields written and
+//! summarised (`experiments::rounds_table`).
+
+use std::io::Write;
+
+use anyhow::{Context, Result};
+use experiments::atomic::write_atomic;
+
+/// Writes `--rounds-csv` of `cells` (grid cell index, results) to `path` and prints the
+/// summary per task of every result (`experiments::rounds_table`).
+///
+/// # Errors
+/// An I/O error writing the file or the output.
+pub fn write_rounds_csv(
+    path: &std::path::Path,
+    cells: &[(usize, &[usar_sim::mission::TrialResult])],
+    out: &mut dyn Write,
+) -> Result<()> {
+    use experiments::rounds_table::{rounds_csv, summary_lines, task_rounds};
+    write_atomic(path, &rounds_csv(cells)?)
+        .with_context(|| format!("--rounds-csv {}", path.display()))?;
+    let all: Vec<_> = cells.iter().flat_map(|(_, r)| r.iter().cloned()).collect();
+    writeln!(
+        out,
+        "\nper-round yields (rounds with a group; {} trial(s)):",
+        all.len()
+    )?;
+    for line in summary_lines(&task_rounds(&all)) {
+        writeln!(out, "  {line}")?;
+    }
+    writeln!(out, "wrote {}", path.display())?;
+    Ok(())
+}
