@@ -16,12 +16,13 @@ use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::{Scenario, ScenarioSpec, trial_steps};
 
 use super::float_text;
+use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
 use crate::data::hooks::SweepHooks;
 use crate::executor::{CellPlan, Job, Runner, run_trial};
 use crate::method_factory::trust_model;
-use crate::vary::{Override, apply_overrides, rule_error};
+use crate::vary::{Override, apply_overrides, rule_error, spec_from_json, spec_json};
 
 /// One evaluated point of a calibration (a line of `trace.jsonl` and a row of `trace.csv`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,6 +44,37 @@ pub struct Evaluation {
     pub trials_ok: usize,
     /// Wall-clock time of the evaluation, seconds (informative only).
     pub wall_s: f64,
+    /// The loss of the same values on the calibration's unseen trials (`check_trials` per
+    /// method from `check_seed`): run only for a point in band (loss 0) when the calibration
+    /// checks unseen trials; NaN otherwise (and absent from the trace). A point is accepted
+    /// only when it is 0 too ([`Evaluation::search_loss`]).
+    #[serde(
+        default = "not_checked",
+        with = "float_text",
+        skip_serializing_if = "is_not_checked"
+    )]
+    pub unseen_loss: f64,
+}
+
+fn not_checked() -> f64 {
+    f64::NAN
+}
+
+fn is_not_checked(x: &f64) -> bool {
+    x.is_nan()
+}
+
+impl Evaluation {
+    /// The loss the search sees and the best point is chosen by: [`Evaluation::loss`], or
+    /// for a point in band whose check on unseen trials failed, that check's loss (so the
+    /// search goes on, and prefers points in band on both sets of trials).
+    pub fn search_loss(&self) -> f64 {
+        if self.unseen_loss > 0.0 {
+            self.unseen_loss
+        } else {
+            self.loss
+        }
+    }
 }
 
 /// The trials of one scenario: the successful results in (method order, trial) order and a
@@ -81,28 +113,60 @@ impl<'a> Evaluator<'a> {
         })
     }
 
-    /// The overrides that set the free fields to `values`.
+    /// The overrides that set the free fields that are not factors to `values` (a factor
+    /// field is applied by [`Evaluator::scenario_at`]).
     pub fn overrides(&self, values: &[f64]) -> Vec<Override> {
         self.setup
             .free
             .iter()
             .zip(values)
+            .filter(|(f, _)| !f.factor)
             .map(|(f, &x)| f.override_for(x))
             .collect()
     }
 
-    /// The base spec with the free fields set to `values`, and its validated scenario.
+    /// The base spec with the free fields set to `values` (a `:factor` field's value(s)
+    /// scaled by its value, after the others are set), and its validated scenario.
     ///
     /// # Errors
     /// A value the field cannot take, or a scenario that breaks a rule: one line naming the
     /// `--free` values (`--free mission.pickup_s=-1: mission.pickup_s: expected ...`).
     pub fn scenario_at(&self, values: &[f64]) -> Result<(ScenarioSpec, Scenario), String> {
         let overrides = self.overrides(values);
-        let spec = apply_overrides(&self.setup.base, &overrides)
+        let mut spec = apply_overrides(&self.setup.base, &overrides)
             .map_err(|(i, e)| format!("--free {}: {e}", overrides[i].brief()))?;
+        let factors: Vec<(&FreeField, f64)> = self
+            .setup
+            .free
+            .iter()
+            .zip(values.iter().copied())
+            .filter(|(f, _)| f.factor)
+            .collect();
+        if !factors.is_empty() {
+            let mut json = spec_json(&spec)?;
+            for (f, x) in &factors {
+                f.scale_in(&mut json, *x)
+                    .map_err(|e| format!("--free {}: {e}", f.assignment(*x)))?;
+            }
+            spec = spec_from_json(json).map_err(|e| format!("--free factors: {e}"))?;
+        }
+        // Every free value, as the rule errors name them (a factor as `FIELD=x`).
+        let named: Vec<Override> = self
+            .setup
+            .free
+            .iter()
+            .zip(values)
+            .map(|(f, &x)| {
+                let mut o = f.override_for(x);
+                if f.factor {
+                    o.value.text = format!("{} (factor)", o.value.text);
+                }
+                o
+            })
+            .collect();
         let scenario = spec
             .validate(&self.setup.origin)
-            .map_err(|e| rule_error("--free", &overrides, &e))?;
+            .map_err(|e| rule_error("--free", &named, &e))?;
         Ok((spec, scenario))
     }
 
@@ -118,6 +182,7 @@ impl<'a> Evaluator<'a> {
             message: None,
             trials_ok: 0,
             wall_s: 0.0,
+            unseen_loss: f64::NAN,
         };
         match self.scenario_at(values) {
             Err(m) => e.message = Some(m),
@@ -126,6 +191,15 @@ impl<'a> Evaluator<'a> {
                 e.statistics = self.setup.targets.values(&set.results);
                 e.trials_ok = set.results.len();
                 e.loss = loss(self.setup.targets.targets(), &e.statistics);
+                if e.loss == 0.0 && set.failures.is_empty() && self.setup.check_trials > 0 {
+                    let check = self.run(&scenario, self.setup.check_seed, self.setup.check_trials);
+                    let stats = self.setup.targets.values(&check.results);
+                    e.unseen_loss = if check.failures.is_empty() {
+                        loss(self.setup.targets.targets(), &stats)
+                    } else {
+                        f64::INFINITY
+                    };
+                }
                 if !set.failures.is_empty() {
                     e.loss = f64::INFINITY;
                     e.message = Some(format!(

@@ -3,6 +3,12 @@
 //! ([`crate::vary::FieldPath`]) that holds a real number (an `Option<f64>` such as
 //! `mission.search_time_budget_s` included: a number sets it to `Some(number)`).
 //!
+//! With `:factor` (`FIELD=LO..HI:factor`, or `:log,factor`) the free value is a factor of the
+//! base scenario's value(s), `LO > 0`: `kinds[*].max_speed_m_per_s=0.5..2:factor` scales every
+//! kind's speed by the same factor and so keeps their ratios (the paper's
+//! `v_c = v_s = 1.5 v_o`), where `kinds[*].max_speed_m_per_s=1..3` would set them equal. It
+//! starts at 1 (the base scenario) when 1 lies in the range.
+//!
 //! The search works on normalised coordinates `u` in `[0, 1]` per field
 //! ([`FreeField::to_unit`], [`FreeField::from_unit`]; on a log range `u` is linear in
 //! `ln x`), and every value is rounded to a number of significant digits
@@ -29,6 +35,9 @@ pub struct FreeField {
     pub hi: f64,
     /// Search on a log scale.
     pub log: bool,
+    /// The value is a factor of the base scenario's value(s) of the field (`:factor`).
+    #[serde(default)]
+    pub factor: bool,
 }
 
 /// A bad `--free` argument, or one that does not fit the scenario: one line,
@@ -43,12 +52,12 @@ pub struct FreeError {
 }
 
 impl FreeField {
-    /// Parses `FIELD=LO..HI` or `FIELD=LO..HI:log`.
+    /// Parses `FIELD=LO..HI`, optionally followed by `:log`, `:factor` or `:log,factor`.
     ///
     /// # Errors
-    /// No `=`, a malformed field path (the `--vary` message), a scale other than `log`, no
-    /// `..`, a bound that is not a finite number, `LO >= HI` (an empty or reversed range), or
-    /// `LO <= 0` on a log scale.
+    /// No `=`, a malformed field path (the `--vary` message), a scale other than `log` and
+    /// `factor`, no `..`, a bound that is not a finite number, `LO >= HI` (an empty or reversed
+    /// range), or `LO <= 0` on a log scale or for a factor.
     pub fn parse(arg: &str) -> Result<Self, FreeError> {
         let fail = |message: String| FreeError {
             arg: brief(arg),
@@ -58,16 +67,16 @@ impl FreeField {
             .split_once('=')
             .ok_or_else(|| fail("expected FIELD=LO..HI or FIELD=LO..HI:log".into()))?;
         let path = FieldPath::parse(field.trim()).map_err(fail)?;
-        let (range, log) = match range.rsplit_once(':') {
-            Some((r, "log")) => (r, true),
-            Some((_, scale)) => {
-                return Err(fail(format!(
-                    "unknown scale {:?} after ':' (the only one is log)",
-                    scale.trim()
-                )));
-            }
-            None => (range, false),
+        let (range, scales) = match range.rsplit_once(':') {
+            Some((r, scales)) => (r, scales.split(',').map(str::trim).collect::<Vec<_>>()),
+            None => (range, Vec::new()),
         };
+        if let Some(bad) = scales.iter().find(|s| !["log", "factor"].contains(s)) {
+            return Err(fail(format!(
+                "unknown scale {bad:?} after ':' (write log, factor or log,factor)"
+            )));
+        }
+        let (log, factor) = (scales.contains(&"log"), scales.contains(&"factor"));
         let (lo, hi) = range
             .split_once("..")
             .ok_or_else(|| fail(format!("expected a range LO..HI, found {:?}", brief(range))))?;
@@ -106,11 +115,53 @@ impl FreeField {
                 "a log range needs LO > 0, found {lo} (or drop :log for a linear range)"
             )));
         }
+        if factor && lo <= 0.0 {
+            return Err(fail(format!(
+                "a factor range needs LO > 0, found {lo}: a factor of 0 or less is no speed, \
+                 rate or range"
+            )));
+        }
         Ok(Self {
             field: path.to_string(),
             lo,
             hi,
             log,
+            factor,
+        })
+    }
+
+    /// How the field is named in tables and lines: its path, with ` (factor)` for a factor.
+    pub fn label(&self) -> String {
+        if self.factor {
+            format!("{} (factor)", self.field)
+        } else {
+            self.field.clone()
+        }
+    }
+
+    /// The field set to `x` as reports write it: `field=x`, or `field=x (factor)`.
+    pub fn assignment(&self, x: f64) -> String {
+        if self.factor {
+            format!("{}={x} (factor)", self.field)
+        } else {
+            format!("{}={x}", self.field)
+        }
+    }
+
+    /// Scales the value(s) this `:factor` field names in `spec_json` (a spec's JSON form) by
+    /// `x`.
+    ///
+    /// # Errors
+    /// A path that names nothing, or a value that is not a number (the `--vary` messages).
+    pub fn scale_in(&self, spec_json: &mut Value, x: f64) -> Result<(), String> {
+        self.path().set(spec_json, &mut |old| match old {
+            Value::Number(n) if n.is_f64() => {
+                serde_json::Number::from_f64(n.as_f64().unwrap_or(0.0) * x)
+                    .map(Value::Number)
+                    .ok_or_else(|| "the scaled value is not a finite number".to_string())
+            }
+            Value::Null => Err("is None; a factor scales a number".into()),
+            _ => Err("is not a real number; --free fits real-valued fields only".into()),
         })
     }
 
@@ -154,8 +205,8 @@ impl FreeField {
         }
     }
 
-    /// Where the search starts: `base` (the field's value in the base scenario) when it lies
-    /// in the range, else the range's [`FreeField::midpoint`].
+    /// Where the search starts: `base` (the field's value in the base scenario; 1 for a
+    /// factor) when it lies in the range, else the range's [`FreeField::midpoint`].
     pub fn start(&self, base: Option<f64>) -> f64 {
         match base {
             Some(x) if (self.lo..=self.hi).contains(&x) => x,
@@ -189,6 +240,11 @@ impl FreeField {
             message,
         };
         let mut json = spec_json(base).map_err(fail)?;
+        if self.factor {
+            let mut probe = json.clone();
+            self.scale_in(&mut probe, 1.0).map_err(fail)?;
+            return Ok(Some(1.0));
+        }
         let mut found: Vec<Option<f64>> = Vec::new();
         self.path()
             .set(&mut json, &mut |old| match old {
@@ -218,13 +274,16 @@ impl FreeField {
 }
 
 impl fmt::Display for FreeField {
-    /// As written: `mission.pickup_s=0.5..2`, `mission.hp_pct_per_step_in_radiation=0.002..0.02:log`.
+    /// As written: `mission.pickup_s=0.5..2`, `mission.hp_pct_per_step_in_radiation=0.002..0.02:log`,
+    /// `kinds[*].max_speed_m_per_s=0.5..2:factor`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}={}..{}", self.field, short(self.lo), short(self.hi))?;
-        if self.log {
-            f.write_str(":log")?;
+        match (self.log, self.factor) {
+            (true, true) => f.write_str(":log,factor"),
+            (true, false) => f.write_str(":log"),
+            (false, true) => f.write_str(":factor"),
+            (false, false) => Ok(()),
         }
-        Ok(())
     }
 }
 
@@ -312,6 +371,49 @@ mod tests {
     }
 
     #[test]
+    fn a_factor_scales_every_value_it_names_and_keeps_their_ratios() {
+        let f = FreeField::parse("kinds[*].max_speed_m_per_s=0.5..2:factor").unwrap();
+        assert!(f.factor && !f.log);
+        assert_eq!(f.to_string(), "kinds[*].max_speed_m_per_s=0.5..2:factor");
+        assert_eq!(f.label(), "kinds[*].max_speed_m_per_s (factor)");
+        assert_eq!(f.assignment(1.2), "kinds[*].max_speed_m_per_s=1.2 (factor)");
+        let g = FreeField::parse("mission.pickup_s=0.5..2:log,factor").unwrap();
+        assert!(g.factor && g.log);
+        assert_eq!(g.to_string(), "mission.pickup_s=0.5..2:log,factor");
+        let spec = parse_spec(PAPER, "paper.ron").unwrap();
+        // Its base value is the factor 1 (the base scenario), whatever the kinds hold.
+        assert_eq!(f.base_value(&spec), Ok(Some(1.0)));
+        assert_eq!(f.start(Some(1.0)), 1.0);
+        let mut json = spec_json(&spec).unwrap();
+        f.scale_in(&mut json, 1.2).unwrap();
+        let speeds: Vec<f64> = json["kinds"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|k| k["max_speed_m_per_s"].as_f64().unwrap())
+            .collect();
+        let before: Vec<f64> = spec
+            .kinds
+            .iter()
+            .map(|k| k.max_speed_m_per_s.get())
+            .collect();
+        for (now, was) in speeds.iter().zip(&before) {
+            assert!((now - 1.2 * was).abs() < 1e-12, "{now} vs {was}");
+        }
+        assert!((speeds[0] / speeds[2] - before[0] / before[2]).abs() < 1e-12);
+        let e = FreeField::parse("mission.pickup_s=0..2:factor")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a factor range needs LO > 0"), "{e}");
+        let e = FreeField::parse("tasks.hard.goal_m=1..2:factor")
+            .unwrap()
+            .base_value(&spec)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is not a real number"), "{e}");
+    }
+
+    #[test]
     fn bad_arguments_say_what_is_wrong() {
         for (arg, says) in [
             (
@@ -324,7 +426,7 @@ mod tests {
             ),
             (
                 "mission.pickup_s=1..2:ln",
-                "unknown scale \"ln\" after ':' (the only one is log)",
+                "unknown scale \"ln\" after ':' (write log, factor or log,factor)",
             ),
             (
                 "mission.pickup_s=1-2",
@@ -460,7 +562,7 @@ mod tests {
             log in any::<bool>(),
         ) {
             let lo = if log { lo.abs() + 1e-3 } else { lo };
-            let f = FreeField { field: "x".into(), lo, hi: lo + width, log };
+            let f = FreeField { field: "x".into(), lo, hi: lo + width, log, factor: false };
             let x = f.lo + t * (f.hi - f.lo);
             let back = f.from_unit(f.to_unit(x), 17);
             prop_assert!((back - x).abs() <= 1e-9 * x.abs().max(f.hi.abs()), "{} -> {}", x, back);

@@ -62,6 +62,15 @@ pub fn calibration_md(o: &CalibrationOutcome) -> String {
         let _ = writeln!(r, "Its evaluation failed: {m}\n");
     }
     table(&mut r, &o.statistics);
+    if let Some((a, b)) = super::tradeoff_figure::tradeoff_pair(o) {
+        let _ = writeln!(
+            r,
+            "Figures: `convergence.svg` (the loss per evaluation), `statistics.svg` (each \
+             target's statistic per evaluation) and `tradeoff.svg` ({} against {}, the two \
+             farthest outside their bands at the best point, with the Pareto front).\n",
+            o.header.targets[a].name, o.header.targets[b].name
+        );
+    }
     let _ = writeln!(r, "## Best values\n");
     let _ = writeln!(
         r,
@@ -70,8 +79,9 @@ pub fn calibration_md(o: &CalibrationOutcome) -> String {
     for ((f, x), s) in h.free.iter().zip(&best.values).zip(&o.starts) {
         let _ = writeln!(
             r,
-            "| `{}` | {x} | {} to {} | {} | {s} |",
+            "| `{}`{} | {x} | {} to {} | {} | {s} |",
             f.field,
+            if f.factor { " (factor)" } else { "" },
             f.lo,
             f.hi,
             if f.log { "log" } else { "linear" }

@@ -2,19 +2,20 @@
 //! fall inside the bands of a targets file.
 //!
 //! A calibration ([`calibrate`], set up by [`CalibrationSetup`]) searches the free fields
-//! ([`FreeField`], `--free FIELD=LO..HI[:log]`) with Nelder-Mead ([`optimizer`]) on
-//! normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
+//! ([`FreeField`], `--free FIELD=LO..HI[:log][,factor]`) with Nelder-Mead ([`optimizer`]) or
+//! CMA-ES ([`cma_es`]) on normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
 //! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss()`]
 //! against the [`Targets`] (`TARGETS.ron`, [`targets`]). Every evaluation is appended to
 //! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
 //! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
-//! `calibration.md`, `convergence.svg` and `statistics.svg`.
+//! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
 //! Files depend one way (each imports only from those before it): band, metric_ref,
-//! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, trace,
-//! outcome, figure, targets_figure, progress, markdown, outputs, searcher, run, summary.
+//! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, cma_es, trace,
+//! outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs, searcher, run, summary.
 
 pub mod band;
+pub mod cma_es;
 pub mod evaluate;
 pub mod figure;
 pub mod float_text;
@@ -35,13 +36,14 @@ pub mod summary;
 pub mod targets;
 pub mod targets_figure;
 pub mod trace;
+pub mod tradeoff_figure;
 
 pub use band::Band;
 pub use evaluate::{Evaluation, Evaluator, TrialSet};
 pub use free::{FreeError, FreeField, parse_free, round_significant};
 pub use loss::{loss, target_loss};
 pub use metric_ref::MetricRef;
-pub use optimizer::StopReason;
+pub use optimizer::{Optimizer, StopReason};
 pub use outcome::{CalibrationOutcome, CheckOutcome, TargetCheck};
 pub use progress::{EvaluationHook, Progress};
 pub use run::calibrate;

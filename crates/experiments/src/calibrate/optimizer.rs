@@ -36,6 +36,18 @@ pub const OUTSIDE_PENALTY: f64 = 1.0;
 /// (100): on a plateau the rounded values repeat and Nelder-Mead would shrink for ever.
 pub const STALL_LIMIT: usize = 100;
 
+/// Which search a calibration runs (`usar calibrate --optimizer`); part of its identity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Optimizer {
+    /// Nelder-Mead from the start point ([`nelder_mead`]); the default, for one to three free
+    /// values.
+    #[default]
+    NelderMead,
+    /// CMA-ES seeded by the calibration's base seed ([`super::cma_es::cma_es`]); for wider free
+    /// sets and noisy losses.
+    CmaEs,
+}
+
 /// Why a search stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum StopReason {
@@ -49,6 +61,9 @@ pub enum StopReason {
     Converged,
     /// [`STALL_LIMIT`] points in a row brought nothing new.
     Stalled,
+    /// CMA-ES stopped by its own criteria (its step size or its recent losses too small to
+    /// go on; `--optimizer cma-es`).
+    Settled,
 }
 
 impl fmt::Display for StopReason {
@@ -59,6 +74,9 @@ impl fmt::Display for StopReason {
             StopReason::MaxTime => "the time budget (--max-time) is spent",
             StopReason::Converged => "the simplex is flat (every vertex has the same loss)",
             StopReason::Stalled => "the search stalled (no new point in a long run)",
+            StopReason::Settled => {
+                "CMA-ES settled (its step size or its recent losses too small to go on)"
+            }
         })
     }
 }
@@ -127,7 +145,7 @@ struct Cost<'a> {
     inner: RefCell<Search<'a>>,
 }
 
-struct Search<'a> {
+pub(super) struct Search<'a> {
     objective: &'a mut dyn Objective,
     /// Loss per clamped point (by the bits of its coordinates).
     seen: HashMap<Vec<u64>, f64>,
@@ -147,9 +165,19 @@ impl fmt::Display for Halt {
 
 impl std::error::Error for Halt {}
 
-impl Search<'_> {
-    /// The cost at `u`: the loss at the clamped point plus the outside penalty.
-    fn cost(&mut self, u: &[f64]) -> Result<f64, StopReason> {
+impl<'a> Search<'a> {
+    /// A search of `objective` that has seen no point yet.
+    pub(super) fn new(objective: &'a mut dyn Objective) -> Self {
+        Self {
+            objective,
+            seen: HashMap::new(),
+            idle: 0,
+        }
+    }
+
+    /// The cost at `u`: the loss at the clamped point plus the outside penalty; or why to
+    /// stop (a loss of 0, a spent budget, [`STALL_LIMIT`] points in a row seen before).
+    pub(super) fn cost(&mut self, u: &[f64]) -> Result<f64, StopReason> {
         let clamped: Vec<f64> = u.iter().map(|x| x.clamp(0.0, 1.0)).collect();
         let outside = u
             .iter()
@@ -203,11 +231,7 @@ impl CostFunction for Cost<'_> {
 pub fn nelder_mead(start: &[f64], objective: &mut dyn Objective) -> StopReason {
     let simplex = initial_simplex(start);
     let cost = Cost {
-        inner: RefCell::new(Search {
-            objective,
-            seen: HashMap::new(),
-            idle: 0,
-        }),
+        inner: RefCell::new(Search::new(objective)),
     };
     // The simplex first, in order: a budget spent here stops before argmin starts (its
     // `init` cannot stop), and argmin then finds every vertex known.

@@ -20,14 +20,18 @@ pub const REPORT_FILE: &str = "calibration.md";
 pub const FIGURE_FILE: &str = "convergence.svg";
 /// Each target's statistic against the evaluations, its band shaded.
 pub const STATISTICS_FIGURE_FILE: &str = "statistics.svg";
+/// The two targets farthest outside their bands at the best point, every evaluation, and
+/// the Pareto front between them.
+pub const TRADEOFF_FIGURE_FILE: &str = "tradeoff.svg";
 /// The files `super::outputs::write_outputs` writes, in that order (`--overwrite` removes
 /// them).
-pub const OUTPUT_FILES: [&str; 5] = [
+pub const OUTPUT_FILES: [&str; 6] = [
     CALIBRATED_FILE,
     TRACE_CSV_FILE,
     REPORT_FILE,
     FIGURE_FILE,
     STATISTICS_FIGURE_FILE,
+    TRADEOFF_FIGURE_FILE,
 ];
 
 /// One target with a statistic's value and whether it lies in the band.
@@ -147,9 +151,45 @@ impl CalibrationOutcome {
 pub fn best_index(evaluations: &[Evaluation]) -> Option<usize> {
     let mut best: Option<usize> = None;
     for (i, e) in evaluations.iter().enumerate() {
-        if best.is_none_or(|b| e.loss < evaluations[b].loss) {
+        if best.is_none_or(|b| e.search_loss() < evaluations[b].search_loss()) {
             best = Some(i);
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(loss: f64, unseen_loss: f64) -> Evaluation {
+        Evaluation {
+            index: 0,
+            values: vec![1.0],
+            statistics: vec![],
+            loss,
+            message: None,
+            trials_ok: 2,
+            wall_s: 0.0,
+            unseen_loss,
+        }
+    }
+
+    #[test]
+    fn a_point_in_band_that_fails_its_unseen_check_is_not_the_best_nor_admissible() {
+        // In band on the search's trials, out on the unseen ones: its search loss is the
+        // unseen check's; a point near the bands beats it, one in band on both beats all.
+        let unconfirmed = eval(0.0, 3.0);
+        assert_eq!(unconfirmed.search_loss(), 3.0);
+        let near = eval(0.5, f64::NAN);
+        assert_eq!(best_index(&[unconfirmed.clone(), near.clone()]), Some(1));
+        let confirmed = eval(0.0, 0.0);
+        assert_eq!(confirmed.search_loss(), 0.0);
+        assert_eq!(best_index(&[unconfirmed, near, confirmed]), Some(2));
+        assert_eq!(
+            eval(0.0, f64::NAN).search_loss(),
+            0.0,
+            "not checked: its own loss"
+        );
+    }
 }

@@ -1,20 +1,23 @@
 //! The files a calibration writes at its end, as one set through [`crate::atomic::FileSet`]
 //! (every file complete or none changed): `calibrated.ron` (the base scenario with the best
 //! values, [`crate::spec_ron::spec_to_ron`], after a header comment), `trace.csv` (one row per
-//! evaluation), `calibration.md` (`super::markdown`), `convergence.svg` (`super::figure`) and
-//! `statistics.svg` (`super::targets_figure`).
+//! evaluation), `calibration.md` (`super::markdown`), `convergence.svg` (`super::figure`),
+//! `statistics.svg` (`super::targets_figure`) and `tradeoff.svg` (`super::tradeoff_figure`;
+//! with at least two fitted targets).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
 use super::figure::convergence_svg;
+use super::free::FreeField;
 use super::markdown::calibration_md;
 use super::outcome::{
     CALIBRATED_FILE, CalibrationOutcome, FIGURE_FILE, OUTPUT_FILES, REPORT_FILE,
-    STATISTICS_FIGURE_FILE, TRACE_CSV_FILE,
+    STATISTICS_FIGURE_FILE, TRACE_CSV_FILE, TRADEOFF_FIGURE_FILE,
 };
 use super::targets_figure::statistics_svg;
+use super::tradeoff_figure::tradeoff_svg;
 use crate::atomic::FileSet;
 use crate::chart::figure_or_warn;
 use crate::spec_ron::spec_to_ron;
@@ -35,6 +38,9 @@ pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>>
     }
     if let Some(svg) = figure_or_warn(STATISTICS_FIGURE_FILE, || statistics_svg(o)) {
         set.stage(&dir.join(STATISTICS_FIGURE_FILE), svg.as_bytes())?;
+    }
+    if let Some(Some(svg)) = figure_or_warn(TRADEOFF_FIGURE_FILE, || tradeoff_svg(o)) {
+        set.stage(&dir.join(TRADEOFF_FIGURE_FILE), svg.as_bytes())?;
     }
     set.commit()
 }
@@ -89,7 +95,12 @@ pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
         "Free fields (value; range):".into(),
     ];
     for (f, x) in h.free.iter().zip(&best.values) {
-        let scale = if f.log { ", log scale" } else { "" };
+        let scale = match (f.log, f.factor) {
+            (true, true) => ", log scale, a factor of the base scenario's value(s)",
+            (false, true) => ", a factor of the base scenario's value(s)",
+            (true, false) => ", log scale",
+            (false, false) => "",
+        };
         c.push(format!(
             "  {} = {} ({}..{}{scale})",
             f.field,
@@ -122,7 +133,7 @@ pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
 pub fn trace_csv(o: &CalibrationOutcome) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let mut head = vec!["index".to_string()];
-    head.extend(o.header.free.iter().map(|f| f.field.clone()));
+    head.extend(o.header.free.iter().map(FreeField::label));
     head.extend(o.header.targets.iter().map(|t| t.name.clone()));
     head.extend(["loss".to_string(), "message".to_string()]);
     w.write_record(&head)?;

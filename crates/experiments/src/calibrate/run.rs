@@ -8,8 +8,11 @@ use std::time::Instant;
 use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::path_text;
 
+use super::cma_es::{INFINITE_LOSS, INITIAL_SIGMA, cma_es, population};
 use super::evaluate::{Evaluation, Evaluator};
-use super::optimizer::{INITIAL_STEP, OUTSIDE_PENALTY, STALL_LIMIT, StopReason, nelder_mead};
+use super::optimizer::{
+    INITIAL_STEP, OUTSIDE_PENALTY, Optimizer, STALL_LIMIT, StopReason, nelder_mead,
+};
 use super::outcome::{CalibrationOutcome, CheckOutcome, best_index, target_checks};
 use super::outputs::{clear, write_outputs};
 use super::progress::{Display, Progress};
@@ -100,8 +103,8 @@ pub fn calibrate(
         date: setup.date.clone().unwrap_or_else(|| {
             humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
         }),
-        loss: evaluations[best].loss,
-        admissible: evaluations[best].loss == 0.0,
+        loss: evaluations[best].search_loss(),
+        admissible: evaluations[best].search_loss() == 0.0,
         statistics: target_checks(setup.targets.targets(), &evaluations[best].statistics),
         best,
         evaluations,
@@ -165,7 +168,10 @@ fn search(
         .zip(starts)
         .map(|(f, &x)| f.to_unit(x))
         .collect();
-    let stop = nelder_mead(&u0, &mut searcher);
+    let stop = match setup.optimizer {
+        Optimizer::NelderMead => nelder_mead(&u0, &mut searcher),
+        Optimizer::CmaEs => cma_es(&u0, &mut searcher, setup.base_seed),
+    };
     searcher.display.finish();
     if let Some(e) = searcher.error {
         return Err(e.context("the trace could not be written; the calibration stopped"));
@@ -194,14 +200,21 @@ fn unseen(
 }
 
 /// The search's description in the header: its kind and constants.
-fn search_text() -> String {
-    format!(
-        "Nelder-Mead (argmin) on [0, 1]^d: initial step {INITIAL_STEP}, outside penalty \
-         {OUTSIDE_PENALTY}, stall limit {STALL_LIMIT}"
-    )
+fn search_text(setup: &CalibrationSetup) -> String {
+    match setup.optimizer {
+        Optimizer::NelderMead => format!(
+            "Nelder-Mead (argmin) on [0, 1]^d: initial step {INITIAL_STEP}, outside penalty \
+             {OUTSIDE_PENALTY}, stall limit {STALL_LIMIT}"
+        ),
+        Optimizer::CmaEs => format!(
+            "CMA-ES (fcmaes-core, active) on [0, 1]^d: population {}, initial step size \
+             {INITIAL_SIGMA}, seed {}, +inf told as {INFINITE_LOSS:e}, stall limit {STALL_LIMIT}",
+            population(setup.free.len()),
+            setup.base_seed
+        ),
+    }
 }
 
-/// The trace header of `setup`.
 fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader> {
     Ok(TraceHeader {
         format: TRACE_FORMAT,
@@ -217,9 +230,9 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         duration_s: setup.duration_s,
         digits: setup.digits,
         search: if setup.start_mid {
-            format!("{}; start: the ranges' middles", search_text())
+            format!("{}; start: the ranges' middles", search_text(setup))
         } else {
-            search_text()
+            search_text(setup)
         },
     })
 }

@@ -53,7 +53,7 @@ impl Searcher<'_> {
     }
 
     fn field_names(&self) -> Vec<String> {
-        self.free.iter().map(|f| f.field.clone()).collect()
+        self.free.iter().map(FreeField::label).collect()
     }
 }
 
@@ -63,7 +63,7 @@ impl Objective for Searcher<'_> {
         let k = key(&values);
         if let Some(&i) = self.positions.get(&k) {
             return Ok(Scored {
-                loss: self.sequence[i].loss,
+                loss: self.sequence[i].search_loss(),
                 fresh: false,
             });
         }
@@ -95,7 +95,7 @@ impl Objective for Searcher<'_> {
         e.index = index;
         let fields = self.field_names();
         self.display.show(&e, new, &fields);
-        let loss = e.loss;
+        let loss = e.search_loss();
         self.positions.insert(k, index);
         self.sequence.push(e);
         Ok(Scored { loss, fresh: true })

@@ -6,6 +6,7 @@ use std::time::Duration;
 use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 use super::free::{FreeError, FreeField, check_distinct};
+use super::optimizer::Optimizer;
 use super::targets::{Targets, TargetsError};
 use crate::data::limits::{MAX_SWEEP_TRIALS, max_threads};
 use crate::method_factory::{MethodFactory, canonical_method, trust_model};
@@ -78,6 +79,9 @@ pub struct CalibrationSetup {
     /// Discard a trace of another calibration (and its outputs) in the output folder instead
     /// of refusing to start.
     pub overwrite: bool,
+    /// The search (default [`Optimizer::NelderMead`]; `--optimizer`). Part of the
+    /// calibration's identity.
+    pub optimizer: Optimizer,
     /// Start the search at the middle of each free range ([`super::FreeField::midpoint`])
     /// instead of the scenario's own values (default `false`): a fit that does not depend on
     /// the values the file holds (`--start-mid`). Part of the calibration's identity.
@@ -124,6 +128,7 @@ impl CalibrationSetup {
             check_trials: DEFAULT_CHECK_TRIALS,
             overwrite: false,
             start_mid: false,
+            optimizer: Optimizer::NelderMead,
             date: None,
             base,
         }

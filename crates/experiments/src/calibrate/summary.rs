@@ -29,7 +29,7 @@ pub fn summary_text(o: &CalibrationOutcome) -> String {
         .free
         .iter()
         .zip(o.best_values())
-        .map(|(f, x)| format!("{}={x}", f.field))
+        .map(|(f, x)| f.assignment(*x))
         .collect();
     let _ = writeln!(r, "\nbest values: {}", values.join(" "));
     let _ = writeln!(

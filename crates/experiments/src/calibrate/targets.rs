@@ -206,6 +206,25 @@ impl Targets {
     /// A name no target has (the message lists the names there are), or every target left
     /// out of the loss (nothing would be fitted).
     pub fn set_report_only(&mut self, names: &[String]) -> Result<(), TargetsError> {
+        self.mark(names, "--report-only", true)
+    }
+
+    /// Puts the targets called `names` back into the loss although the file marks them
+    /// `report_only: true` (`--require NAME`; e.g. the paper's energy and HP per trial under
+    /// the reading that the sheet's costs are percentage points of a full level).
+    ///
+    /// # Errors
+    /// A name no target has (the message lists the names there are).
+    pub fn set_required(&mut self, names: &[String]) -> Result<(), TargetsError> {
+        self.mark(names, "--require", false)
+    }
+
+    fn mark(
+        &mut self,
+        names: &[String],
+        flag: &str,
+        report_only: bool,
+    ) -> Result<(), TargetsError> {
         let fail = |message: String| TargetsError {
             location: SourceLocation {
                 origin: self.origin.clone(),
@@ -222,11 +241,11 @@ impl Targets {
                     .map(|t| format!("{:?}", t.name))
                     .collect();
                 return Err(fail(format!(
-                    "--report-only {name:?}: no target has that name (targets: {})",
+                    "{flag} {name:?}: no target has that name (targets: {})",
                     known.join(", ")
                 )));
             };
-            self.targets[i].report_only = true;
+            self.targets[i].report_only = report_only;
         }
         if self.targets.iter().all(|t| t.report_only) {
             return Err(fail(

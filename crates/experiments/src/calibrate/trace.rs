@@ -396,6 +396,7 @@ mod tests {
             message: (index == 1).then(|| "failed".to_string()),
             trials_ok: 2,
             wall_s: 0.5,
+            unseen_loss: if index == 2 { 1.5 } else { f64::NAN },
         }
     }
 

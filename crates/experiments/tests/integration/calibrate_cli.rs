@@ -375,3 +375,95 @@ fn report_only_names_a_target_of_the_file() {
         "{err}"
     );
 }
+
+#[test]
+fn cma_es_resumes_its_own_trace_and_refuses_one_of_nelder_mead() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cma = ["--optimizer", "cma-es", "--check-trials", "0"];
+    // A short CMA-ES run, then the same command with a larger budget: the first evaluations
+    // come from the trace, in the same order.
+    let first = ok(&calibrate_in(
+        tmp.path(),
+        &[&cma[..], &["--max-evals", "3"]].concat(),
+    ));
+    assert!(
+        first.contains("3 evaluations (3 run now, 0 from the trace)"),
+        "{first}"
+    );
+    let before = rows(&tmp.path().join("out"));
+    let more = ok(&calibrate_in(
+        tmp.path(),
+        &[&cma[..], &["--max-evals", "5"]].concat(),
+    ));
+    assert!(
+        more.contains("5 evaluations (2 run now, 3 from the trace)"),
+        "{more}"
+    );
+    let after = rows(&tmp.path().join("out"));
+    assert_eq!(before[..], after[..3]);
+    let md = read_text(&tmp.path().join("out/calibration.md"));
+    assert!(md.contains("CMA-ES (fcmaes-core, active)"), "{md}");
+    // The same folder under Nelder-Mead is another calibration.
+    let o = calibrate_in(tmp.path(), &["--max-evals", "5", "--check-trials", "0"]);
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("holds another calibration") && err.contains("search"),
+        "{err}"
+    );
+}
+
+#[test]
+fn require_fits_a_report_only_target_and_names_an_unknown_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .current_dir(tmp.path())
+        .args(["calibrate", PAPER, "--free", "mission.pickup_s=0.5..2"])
+        .args(["--require", "energy per trials", "--out", "never"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(!tmp.path().join("never").exists());
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("--require \"energy per trials\": no target has that name"),
+        "{err}"
+    );
+    let ok_run = ok(&Command::new(env!("CARGO_BIN_EXE_usar"))
+        .current_dir(tmp.path())
+        .args(["calibrate", PAPER, "--free", "mission.pickup_s=0.5..2"])
+        .args([
+            "--require",
+            "energy per trial",
+            "--methods",
+            "rne",
+            "--trials",
+            "2",
+        ])
+        .args([
+            "--duration",
+            "30",
+            "--max-evals",
+            "1",
+            "--check-trials",
+            "0",
+        ])
+        .args(["--quiet", "--out", "fit"])
+        .output()
+        .unwrap());
+    assert!(!ok_run.is_empty());
+    // Fitted now: the table no longer marks it as reported only.
+    let md = read_text(&tmp.path().join("fit/calibration.md"));
+    let line = md
+        .lines()
+        .find(|l| l.contains("energy per trial"))
+        .expect("the target is in the table");
+    assert!(!line.contains("(reported only)"), "{line}");
+    assert!(
+        md.lines()
+            .any(|l| l.contains("HP lost per trial") && l.contains("(reported only)")),
+        "{md}"
+    );
+}

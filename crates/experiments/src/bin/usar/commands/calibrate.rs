@@ -88,7 +88,7 @@ pub struct CalibrateArgs {
     #[arg(value_name = "SCENARIO")]
     pub scenario: PathBuf,
 
-    /// The targets file (RON, see below); default the paper's twelve targets
+    /// The targets file (RON, see below); default the paper's eighteen targets
     /// (scenarios/paper-targets.ron, built in).
     #[arg(long, value_name = "TARGETS.ron")]
     pub targets: Option<PathBuf>,
@@ -99,16 +99,25 @@ pub struct CalibrateArgs {
     #[arg(long = "report-only", value_name = "NAME")]
     pub report_only: Vec<String>,
 
+    /// The name of a target the file marks `report_only: true` to fit after all (repeatable;
+    /// applied before --report-only). The paper's "energy per trial" and "HP lost per trial"
+    /// are report-only until the sheet's cost unit is read as percentage points of a full
+    /// level: `--require "energy per trial" --require "HP lost per trial"` reads it so.
+    #[arg(long = "require", value_name = "NAME")]
+    pub require: Vec<String>,
+
     /// Start the search at the middle of each free range (geometric for a log range) instead
     /// of the scenario's own values: a fit that does not depend on the values the file holds.
     #[arg(long)]
     pub start_mid: bool,
 
     /// A field to fit and its range: FIELD=LO..HI, or FIELD=LO..HI:log for a log scale (LO >
-    /// 0); repeatable, each field once.
+    /// 0); with :factor (or :log,factor) the value is a factor of the base scenario's value(s)
+    /// (`kinds[*].max_speed_m_per_s=0.5..2:factor` scales every kind's speed, keeping their
+    /// ratios); repeatable, each field once.
     #[arg(
         long,
-        value_name = "FIELD=LO..HI[:log]",
+        value_name = "FIELD=LO..HI[:log][,factor]",
         required = true,
         allow_hyphen_values = true
     )]
@@ -158,6 +167,12 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_CHECK_TRIALS)]
     pub check_trials: u32,
 
+    /// The search: `nelder-mead` (a simplex from the start point; for one to three free
+    /// values) or `cma-es` (CMA-ES seeded by --seed; for wider free sets and noisy losses).
+    /// Part of the calibration's identity: a trace of the other search is not continued.
+    #[arg(long, value_enum, value_name = "SEARCH", default_value_t = OptimizerArg::NelderMead)]
+    pub optimizer: OptimizerArg,
+
     /// Discard a trace of another calibration in the output folder, and its files, and start
     /// afresh.
     #[arg(long)]
@@ -170,6 +185,24 @@ pub struct CalibrateArgs {
     /// Test hook: exit abruptly (status 75, no output files) after N new evaluations.
     #[arg(long, value_name = "N", hide = true)]
     pub stop_after: Option<usize>,
+}
+
+/// `--optimizer`'s values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OptimizerArg {
+    /// Nelder-Mead (argmin).
+    NelderMead,
+    /// CMA-ES (fcmaes-core).
+    CmaEs,
+}
+
+impl From<OptimizerArg> for experiments::calibrate::Optimizer {
+    fn from(a: OptimizerArg) -> Self {
+        match a {
+            OptimizerArg::NelderMead => Self::NelderMead,
+            OptimizerArg::CmaEs => Self::CmaEs,
+        }
+    }
 }
 
 /// `--max-time`: a duration as humantime reads it (`90s`, `30m`, `1h 30m`).
@@ -194,6 +227,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let text = scenario::read_source(&args.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
     let mut targets = targets_of(args.targets.as_deref())?;
+    targets.set_required(&args.require)?;
     targets.set_report_only(&args.report_only)?;
     let free = parse_free(&args.free)?;
     let seed = args.seed.unwrap_or(base.sim.seed);
@@ -215,6 +249,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
         check_trials: args.check_trials,
         overwrite: args.overwrite,
         start_mid: args.start_mid,
+        optimizer: args.optimizer.into(),
         command,
         date: source_date()?,
         ..CalibrationSetup::new(base, origin, targets, free)

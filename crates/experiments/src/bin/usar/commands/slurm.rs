@@ -125,7 +125,7 @@ pub struct SlurmMultiverseArgs {
     /// With --axes: a field each universe's calibration fits (repeatable).
     #[arg(
         long,
-        value_name = "FIELD=LO..HI[:log]",
+        value_name = "FIELD=LO..HI[:log][,factor]",
         requires = "axes",
         allow_hyphen_values = true
     )]

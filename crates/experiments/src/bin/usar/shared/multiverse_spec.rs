@@ -44,7 +44,7 @@ pub struct MultiverseSpecArgs {
     /// FIELD=LO..HI:log (LO > 0); repeatable, each field once, none set by an axis.
     #[arg(
         long,
-        value_name = "FIELD=LO..HI[:log]",
+        value_name = "FIELD=LO..HI[:log][,factor]",
         required = true,
         allow_hyphen_values = true
     )]
