@@ -125,6 +125,22 @@ impl<'a> Evaluator<'a> {
             .collect()
     }
 
+    /// Every free value as a rule error names it: `FIELD=x`, a factor as `FIELD=x (factor)`.
+    fn named(&self, values: &[f64]) -> Vec<Override> {
+        self.setup
+            .free
+            .iter()
+            .zip(values)
+            .map(|(f, &x)| {
+                let mut o = f.override_for(x);
+                if f.factor {
+                    o.value.text = format!("{} (factor)", o.value.text);
+                }
+                o
+            })
+            .collect()
+    }
+
     /// The base spec with the free fields set to `values` (a `:factor` field's value(s)
     /// scaled by its value, after the others are set), and its validated scenario.
     ///
@@ -150,23 +166,9 @@ impl<'a> Evaluator<'a> {
             }
             spec = spec_from_json(json).map_err(|e| format!("--free factors: {e}"))?;
         }
-        // Every free value, as the rule errors name them (a factor as `FIELD=x`).
-        let named: Vec<Override> = self
-            .setup
-            .free
-            .iter()
-            .zip(values)
-            .map(|(f, &x)| {
-                let mut o = f.override_for(x);
-                if f.factor {
-                    o.value.text = format!("{} (factor)", o.value.text);
-                }
-                o
-            })
-            .collect();
         let scenario = spec
             .validate(&self.setup.origin)
-            .map_err(|e| rule_error("--free", &named, &e))?;
+            .map_err(|e| rule_error("--free", &self.named(values), &e))?;
         Ok((spec, scenario))
     }
 

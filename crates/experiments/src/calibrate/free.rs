@@ -241,8 +241,7 @@ impl FreeField {
         };
         let mut json = spec_json(base).map_err(fail)?;
         if self.factor {
-            let mut probe = json.clone();
-            self.scale_in(&mut probe, 1.0).map_err(fail)?;
+            self.scale_in(&mut json, 1.0).map_err(fail)?;
             return Ok(Some(1.0));
         }
         let mut found: Vec<Option<f64>> = Vec::new();
