@@ -3,6 +3,7 @@
 //! share in `common`.
 
 mod common;
+mod proptest_floats;
 mod scenario_limits;
 mod scenario_load;
 mod world_control_period;
