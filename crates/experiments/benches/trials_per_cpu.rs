@@ -157,7 +157,8 @@ fn run(bin: &Path, scenario: &Path, case: &Case, out: &Path) -> Result<f64, Stri
 }
 
 /// The scenario a reference build reads: `scenario` itself, or a copy without its
-/// `physics:` field when the reference predates `sim.physics` (detected by `usar check`).
+/// `physics:` field when the reference predates `sim.physics` (detected by `usar check`), in
+/// `dir` beside copies of the other `.ron` files of its folder.
 fn scenario_for(bin: &Path, scenario: &Path, dir: &Path) -> Result<PathBuf, String> {
     let ok = Command::new(bin)
         .arg("check")
@@ -173,6 +174,16 @@ fn scenario_for(bin: &Path, scenario: &Path, dir: &Path) -> Result<PathBuf, Stri
     let text =
         std::fs::read_to_string(scenario).map_err(|e| format!("{}: {e}", scenario.display()))?;
     let kept = without_physics(&text);
+    // The files a scenario names (its targets, say) are relative to its folder: copied along.
+    let folder = scenario.parent().unwrap_or(Path::new("."));
+    let siblings = std::fs::read_dir(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    for entry in siblings.flatten() {
+        let path = entry.path();
+        if path.is_file() && path.extension().is_some_and(|x| x == "ron") {
+            let to = dir.join(entry.file_name());
+            std::fs::copy(&path, &to).map_err(|e| format!("{}: {e}", to.display()))?;
+        }
+    }
     let copy = dir.join(scenario.file_name().ok_or("scenario without a file name")?);
     std::fs::write(&copy, kept).map_err(|e| format!("{}: {e}", copy.display()))?;
     Ok(copy)

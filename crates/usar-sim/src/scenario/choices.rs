@@ -272,4 +272,12 @@ pub enum PhysicsStepping {
     /// (`docs/scaling.md`, "Physics only near contacts", with the effect on the calibration
     /// statistics).
     NearContacts,
+    /// Per body: Rapier steps only the robots near a contact (as in `NearContacts`, both robots
+    /// of a pair within reach of each other, or a robot within reach of a wall or debris); every
+    /// other robot moves straight at its commanded velocity and its body is disabled in Rapier
+    /// (out of the solver and the broad phase) until it comes near a contact again. Rapier
+    /// steps only when some robot is near a contact. For large teams, where some robot is
+    /// almost always near a contact but most are not (`scenarios/swarm-1000.ron`,
+    /// `docs/scaling.md`, "Physics only near contacts").
+    NearBodies,
 }

@@ -175,6 +175,8 @@ pub struct PhysicsScene {
     pub robot_bodies: Vec<RigidBodyHandle>,
     /// Walls then debris, for exact distance queries (same shapes as the colliders).
     pub statics: Vec<StaticObstacle>,
+    /// The world-frame bounding box of each of `statics`, in the same order.
+    pub static_boxes: Vec<Aabb>,
 }
 
 impl PhysicsScene {
@@ -213,6 +215,7 @@ impl PhysicsScene {
         Self {
             physics,
             robot_bodies,
+            static_boxes: statics.iter().map(StaticObstacle::aabb).collect(),
             statics,
         }
     }

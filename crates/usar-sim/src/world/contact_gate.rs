@@ -3,9 +3,9 @@
 //! body on a step without one ([`PhysicsScene::move_free`]).
 
 use parry2d::math::Vector as Vec2;
-use rapier2d::prelude::RigidBodyHandle;
 
 use super::bodies::PhysicsScene;
+use super::nav_state::Nav;
 use super::world::World;
 use crate::scenario::Locomotion;
 
@@ -14,53 +14,97 @@ use crate::scenario::Locomotion;
 /// (0.05): a slack for the rounding of positions and for Rapier's fattened boxes.
 pub const NEAR_CONTACT_MARGIN_M: f32 = 0.05;
 
+/// What [`PhysicsScene::static_within`] adds to the reach before it skips an obstacle by its
+/// bounding box, and the gate to half a cell's diagonal before it trusts the clearance grid's
+/// bound, metres (1 mm): far above the rounding of a box's distance or of a cell's clearance,
+/// so a skipped obstacle is one the exact distance would have found out of reach too.
+const BOX_SKIP_MARGIN_M: f32 = 1e-3;
+
 impl World {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
+    /// layer within the next step ([`World::robot_near_contact`] of each robot, by id). Stops at
+    /// the first robot near a contact.
+    pub(super) fn near_contact(&mut self) -> bool {
+        let gate = self.gate();
+        let near = (0..self.nav.len()).any(|i| self.robot_near_contact(i, &gate));
+        self.gate_speeds = gate.speeds_m_per_s;
+        near
+    }
+
+    /// `sim.physics: NearBodies`: marks in `near[id]` whether robot `id` may touch a wall,
+    /// debris or another robot within the next step ([`World::robot_near_contact`]); returns
+    /// whether any may. `near` holds one flag per robot.
+    pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
+        let gate = self.gate();
+        let mut any = false;
+        for (i, flag) in near.iter_mut().enumerate() {
+            *flag = self.robot_near_contact(i, &gate);
+            any |= *flag;
+        }
+        self.gate_speeds = gate.speeds_m_per_s;
+        any
+    }
+
+    /// What every robot's gate shares on one step: each body's speed, the fastest, and the
+    /// slack every gap is allowed (Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]).
+    fn gate(&mut self) -> Gate {
+        // A body's velocity is its robot's command on every step the gate runs (`World::step`
+        // drives the bodies first; with `NearBodies` a disabled body keeps its command).
+        let mut speeds = std::mem::take(&mut self.gate_speeds);
+        speeds.clear();
+        speeds.extend(self.nav.iter().map(|n| n.command.length()));
+        Gate {
+            slack_m: self
+                .scene
+                .physics
+                .integration_parameters
+                .prediction_distance()
+                + NEAR_CONTACT_MARGIN_M,
+            fastest_m_per_s: speeds.iter().copied().fold(0.0f32, f32::max),
+            speeds_m_per_s: speeds,
+        }
+    }
+
+    /// Whether robot `i` may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step: its gap (distance between the surfaces, negative when they
     /// overlap) is at most what the two can close in a step at their bodies' velocities, plus
     /// Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]. Statics by the clearance
-    /// grid first (a cell's clearance less half a diagonal bounds the distance from below), then
-    /// exactly; robots through the neighbour index. Stops at the first robot near a contact.
-    pub(super) fn near_contact(&self) -> bool {
+    /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
+    /// then exactly; robots through the neighbour index. Symmetric between two robots.
+    fn robot_near_contact(&self, i: usize, gate: &Gate) -> bool {
         let dt = self.dt as f32;
-        let bodies = &self.scene.physics.bodies;
-        let speed = |body: RigidBodyHandle| bodies[body].linvel().length();
-        let slack = self
-            .scene
-            .physics
-            .integration_parameters
-            .prediction_distance()
-            + NEAR_CONTACT_MARGIN_M;
-        let fastest = self
-            .nav
-            .iter()
-            .map(|n| speed(n.body))
-            .fold(0.0f32, f32::max);
-        let half_diagonal = self.grid.cell_m() * std::f32::consts::SQRT_2;
-        for (i, a) in self.nav.iter().enumerate() {
-            let va = speed(a.body);
-            let reach = va * dt + slack;
-            let ground = a.layer == Locomotion::Ground;
-            let grid_gap = self.grid.clearance_at(a.pos) - half_diagonal - a.radius;
-            if (!ground || grid_gap <= reach)
-                && self.scene.static_distance(a.pos, ground) - a.radius <= reach
-            {
-                return true;
-            }
-            let others = self.max_radius_m[usize::from(!ground)] as f32;
-            let radius = a.radius + others + (va + fastest) * dt + slack;
-            let mut near = false;
-            self.for_each_near(a.layer, a.pos, radius, |j| {
-                let b = &self.nav[j];
-                let gap = (b.pos - a.pos).length() - a.radius - b.radius;
-                near |= j != i && gap <= (va + speed(b.body)) * dt + slack;
-            });
-            if near {
-                return true;
-            }
+        let speed = &gate.speeds_m_per_s;
+        // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
+        let half_diagonal =
+            self.grid.cell_m() * std::f32::consts::FRAC_1_SQRT_2 + BOX_SKIP_MARGIN_M;
+        let a = &self.nav[i];
+        let va = speed[i];
+        let reach = va * dt + gate.slack_m;
+        let ground = a.layer == Locomotion::Ground;
+        let grid_gap = self.grid.clearance_at(a.pos) - half_diagonal - a.radius;
+        if (!ground || grid_gap <= reach)
+            && self.scene.static_within(a.pos, ground, a.radius, reach)
+        {
+            return true;
         }
-        false
+        let others = self.max_radius_m[usize::from(!ground)] as f32;
+        let radius = a.radius + others + (va + gate.fastest_m_per_s) * dt + gate.slack_m;
+        let mut near = false;
+        self.for_each_near(a.layer, a.pos, radius, |j| {
+            let b = &self.nav[j];
+            let gap = (b.pos - a.pos).length() - a.radius - b.radius;
+            near |= j != i && gap <= (va + speed[j]) * dt + gate.slack_m;
+        });
+        near
     }
+}
+
+/// What every robot's gate shares on one step (see [`World::robot_near_contact`]).
+struct Gate {
+    slack_m: f32,
+    fastest_m_per_s: f32,
+    /// Each robot's body speed, by id, m/s.
+    speeds_m_per_s: Vec<f32>,
 }
 
 impl PhysicsScene {
@@ -73,6 +117,45 @@ impl PhysicsScene {
             let p: Vec2 = body.translation() + body.linvel() * dt;
             body.set_translation(p, false);
         }
+    }
+
+    /// `sim.physics: NearBodies`: the body of each robot not `near[id]` a contact is disabled
+    /// in Rapier (out of its solver and broad phase; the read-back moves the robot straight at
+    /// its command, `parallel.rs`); the body of each robot near one is enabled, set to the
+    /// robot's position if it was disabled, and driven at its command.
+    pub(super) fn gate_bodies(&mut self, nav: &[Nav], near: &[bool]) {
+        for (robot, &near) in nav.iter().zip(near) {
+            let body = &self.physics.bodies[robot.body];
+            match (near, body.is_enabled()) {
+                (true, true) => self.drive_body(robot.body, robot.command),
+                (true, false) => {
+                    let body = &mut self.physics.bodies[robot.body];
+                    body.set_enabled(true);
+                    body.set_translation(robot.pos, false);
+                    body.set_linvel(robot.command, false);
+                }
+                (false, true) => self.physics.bodies[robot.body].set_enabled(false),
+                (false, false) => {}
+            }
+        }
+    }
+
+    /// Whether `static_distance(p, with_debris) - radius_m <= reach_m`, answered obstacle by
+    /// obstacle (the same answer: `f32` subtraction keeps the order of the distances) and
+    /// skipping an obstacle whose bounding box is farther than that by
+    /// [`BOX_SKIP_MARGIN_M`] (a box's distance bounds its obstacle's from below).
+    pub fn static_within(&self, p: Vec2, with_debris: bool, radius_m: f32, reach_m: f32) -> bool {
+        let box_reach = radius_m + reach_m + BOX_SKIP_MARGIN_M;
+        self.statics
+            .iter()
+            .zip(&self.static_boxes)
+            .filter(|(o, _)| with_debris || o.is_wall)
+            .any(|(o, b)| {
+                let dx = (b.mins.x - p.x).max(p.x - b.maxs.x).max(0.0);
+                let dy = (b.mins.y - p.y).max(p.y - b.maxs.y).max(0.0);
+                dx * dx + dy * dy <= box_reach * box_reach
+                    && o.distance_to_point(p) - radius_m <= reach_m
+            })
     }
 
     /// Distance from `p` to the nearest wall, or wall or debris when `with_debris`, metres (0
@@ -111,11 +194,11 @@ mod tests {
         assert!(gap > 0.0);
         // Robot 0 drives at robot 1 fast enough to close the gap within a step.
         let v = (b.pos - a.pos).normalize() * (gap / w.dt as f32 + 0.1);
-        w.scene.physics.bodies[a.body].set_linvel(v, true);
+        drive(&mut w, 0, v);
         assert!(w.near_contact());
         // Slowly: the gap stays open this step.
         let slow = (b.pos - a.pos).normalize() * 0.01;
-        w.scene.physics.bodies[a.body].set_linvel(slow, true);
+        drive(&mut w, 0, slow);
         let prediction = w.scene.physics.integration_parameters.prediction_distance();
         let reach = 0.01 * w.dt as f32 + prediction + NEAR_CONTACT_MARGIN_M;
         assert_eq!(w.near_contact(), gap <= reach, "gap {gap}, reach {reach}");
@@ -131,7 +214,7 @@ mod tests {
             let mut w = World::new(&paper(physics));
             let body = w.nav[0].body;
             for _ in 0..100 {
-                w.scene.physics.bodies[body].set_linvel(Vec2::new(0.0, 0.5), true);
+                drive(&mut w, 0, Vec2::new(0.0, 0.5));
                 if physics == PhysicsStepping::NearContacts && !w.near_contact() {
                     w.scene.move_free(w.dt as f32);
                 } else {
@@ -146,5 +229,79 @@ mod tests {
             (ends[1].y - start.y - 1.0).abs() < 1e-4,
             "{start:?} {ends:?}"
         );
+    }
+
+    /// Robot `id` commanded at `v` and its body driven, as a control step and `World::step` do.
+    fn drive(w: &mut World, id: usize, v: Vec2) {
+        w.nav[id].command = v;
+        let body = w.nav[id].body;
+        w.scene.drive_body(body, v);
+    }
+
+    /// One physics step as `World::step` takes it with `NearBodies`; returns the near flags.
+    fn gated_step(w: &mut World) -> Vec<bool> {
+        w.reindex();
+        let mut near = vec![false; w.nav.len()];
+        if w.mark_near_bodies(&mut near) {
+            w.scene.gate_bodies(&w.nav, &near);
+            w.scene.step();
+        } else {
+            w.scene.gate_bodies(&w.nav, &near);
+        }
+        w.read_back_all();
+        near
+    }
+
+    /// With `NearBodies` only the two robots about to touch are Rapier's: their bodies are
+    /// enabled and the contact keeps them apart; every other body is disabled and its robot
+    /// moves straight at its command, exactly `position + command * dt` per step.
+    #[test]
+    fn near_bodies_steps_only_the_robots_near_a_contact() {
+        let mut w = World::new(&paper(PhysicsStepping::NearBodies));
+        let (a, b) = (w.nav[0].clone(), w.nav[1].clone());
+        let toward = (b.pos - a.pos).normalize();
+        let sideways = Vec2::new(-toward.y, toward.x) * 0.3;
+        let third = w.nav[2].pos;
+        for step in 0..200 {
+            drive(&mut w, 0, toward * 1.0);
+            drive(&mut w, 2, sideways);
+            let before = w.nav[2].pos;
+            let near = gated_step(&mut w);
+            assert_eq!(near[0], near[1], "step {step}: a pair is near from both sides");
+            for (id, &flag) in near.iter().enumerate() {
+                let enabled = w.scene.physics.bodies[w.nav[id].body].is_enabled();
+                assert_eq!(enabled, flag, "step {step}, robot {id}");
+            }
+            if !near[2] {
+                assert_eq!(w.nav[2].pos, before + sideways * w.dt as f32, "step {step}");
+            }
+            let gap = (w.nav[1].pos - w.nav[0].pos).length() - a.radius - b.radius;
+            assert!(gap > -0.02, "step {step}: bodies overlap by {}", -gap);
+        }
+        assert!(w.nav[1].pos != b.pos, "robot 0 pushed robot 1");
+        assert!((w.nav[2].pos - third).length() > 1.0, "robot 2 drove on");
+    }
+
+    /// A body disabled while its robot drove free is enabled again where the robot is, at its
+    /// command: the robot driven at a wall ends against it, as Rapier stops it.
+    #[test]
+    fn a_body_enabled_again_starts_where_its_robot_is() {
+        let mut w = World::new(&paper(PhysicsStepping::NearBodies));
+        let mut enabled_again = false;
+        for _ in 0..1500 {
+            drive(&mut w, 0, Vec2::new(0.0, -0.8));
+            let was_enabled = w.scene.physics.bodies[w.nav[0].body].is_enabled();
+            let near = gated_step(&mut w);
+            if near[0] && !was_enabled {
+                enabled_again = true;
+            }
+            let body = &w.scene.physics.bodies[w.nav[0].body];
+            if body.is_enabled() {
+                assert_eq!(body.translation(), w.nav[0].pos);
+            }
+        }
+        assert!(enabled_again, "robot 0 reached the wall");
+        let wall_gap = w.scene.static_distance(w.nav[0].pos, true) - w.nav[0].radius;
+        assert!(wall_gap.abs() < 0.02, "against the wall: gap {wall_gap}");
     }
 }

@@ -67,8 +67,9 @@ impl World {
         let (zones, rule) = (&self.zones[..], self.dose_rule);
         let per = &mut self.per_robot;
         let parallel = per.parallel_for(self.nav.len());
+        let dt = self.dt as f32;
         let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
-            read_back(bodies, nav, state);
+            read_back(bodies, nav, state, dt);
             *rad = radiation_factor_at(zones, &state.position, rule);
         };
         if parallel {
@@ -130,11 +131,17 @@ impl World {
 }
 
 /// Reads one robot's body back after the physics step: position, velocity, whether it moved
-/// (more than [`MOVED_TOLERANCE_M`]) and how far. Writes only `nav` and `state`.
-fn read_back(bodies: &RigidBodySet, nav: &mut Nav, state: &mut RobotState) {
+/// (more than [`MOVED_TOLERANCE_M`]) and how far. A robot whose body is disabled
+/// (`sim.physics: NearBodies`, far from any contact) moves straight at its command for the
+/// step, `dt` seconds, as Rapier moves a body with nothing in reach. Writes only `nav` and
+/// `state`.
+fn read_back(bodies: &RigidBodySet, nav: &mut Nav, state: &mut RobotState, dt: f32) {
     let body = &bodies[nav.body];
-    let p = body.translation();
-    let v = body.linvel();
+    let (p, v) = if body.is_enabled() {
+        (body.translation(), body.linvel())
+    } else {
+        (nav.pos + nav.command * dt, nav.command)
+    };
     let disp = f64::from((p - nav.pos).length());
     nav.pos = p;
     state.position = to_point(p);

@@ -34,6 +34,7 @@ impl World {
         if self.is_control_step() {
             self.control();
         }
+        let physics = self.physics;
         for id in 0..n {
             let state = &mut self.robots[id];
             if state.held {
@@ -41,14 +42,35 @@ impl World {
                 c.steps_held += 1;
                 c.time_held_s = c.steps_held as f64 * self.dt;
             }
-            self.scene
-                .drive_body(self.nav[id].body, self.nav[id].command);
+            if physics != PhysicsStepping::NearBodies {
+                self.scene
+                    .drive_body(self.nav[id].body, self.nav[id].command);
+            }
         }
-        if self.physics == PhysicsStepping::NearContacts && !self.near_contact() {
-            self.scene.move_free(self.dt as f32);
-        } else {
-            self.scene.step();
-            self.stats.physics_steps += 1;
+        match physics {
+            PhysicsStepping::NearContacts if !self.near_contact() => {
+                self.scene.move_free(self.dt as f32);
+            }
+            PhysicsStepping::NearBodies => {
+                // The gate asks the neighbour index for every robot: between control steps
+                // it is rebuilt first (a linear scan per robot would cost n^2).
+                if !self.index_fresh {
+                    self.reindex();
+                }
+                let mut near = std::mem::take(&mut self.near_body);
+                near.resize(n, false);
+                let any = self.mark_near_bodies(&mut near);
+                self.scene.gate_bodies(&self.nav, &near);
+                if any {
+                    self.scene.step();
+                    self.stats.physics_steps += 1;
+                }
+                self.near_body = near;
+            }
+            _ => {
+                self.scene.step();
+                self.stats.physics_steps += 1;
+            }
         }
         self.stats.steps += 1;
         self.read_back_all();

@@ -100,6 +100,10 @@ pub struct World {
     pub(super) standing: Vec<StandingDisc>,
     /// Robot ids from the neighbour index (scratch of `path_following.rs`).
     pub(super) near_ids: Vec<usize>,
+    /// `sim.physics: NearBodies`: whether robot `id` is near a contact this step (scratch).
+    pub(super) near_body: Vec<bool>,
+    /// Each robot's body speed on this step, m/s (scratch of `contact_gate.rs`).
+    pub(super) gate_speeds: Vec<f32>,
 }
 
 impl World {
@@ -185,6 +189,8 @@ impl World {
             },
             standing: Vec::new(),
             near_ids: Vec::new(),
+            near_body: Vec::new(),
+            gate_speeds: Vec::new(),
         }
     }
 

@@ -195,6 +195,9 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
     let physics = match s.sim().physics {
         usar_sim::scenario::PhysicsStepping::EveryStep => "",
         usar_sim::scenario::PhysicsStepping::NearContacts => "; Rapier steps near contacts only",
+        usar_sim::scenario::PhysicsStepping::NearBodies => {
+            "; Rapier steps only the robots near contacts"
+        }
     };
     writeln!(
         out,
