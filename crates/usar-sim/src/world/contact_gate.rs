@@ -267,7 +267,10 @@ mod tests {
             drive(&mut w, 2, sideways);
             let before = w.nav[2].pos;
             let near = gated_step(&mut w);
-            assert_eq!(near[0], near[1], "step {step}: a pair is near from both sides");
+            assert_eq!(
+                near[0], near[1],
+                "step {step}: a pair is near from both sides"
+            );
             for (id, &flag) in near.iter().enumerate() {
                 let enabled = w.scene.physics.bodies[w.nav[id].body].is_enabled();
                 assert_eq!(enabled, flag, "step {step}, robot {id}");
