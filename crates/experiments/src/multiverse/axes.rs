@@ -51,6 +51,15 @@ pub struct Alternative {
     /// scenario's own values). FIELD is a path as `--vary` takes it, VALUE is RON.
     #[serde(default)]
     pub set: Vec<String>,
+    /// Names of targets (of `--targets`) fitted in this alternative's universes although the
+    /// file marks them `report_only`, as `usar calibrate --require NAME` (default none). For a
+    /// choice that decides which targets a reading can be held to (the sheet's cost unit).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub require: Vec<String>,
+    /// Names of targets left out of the loss in this alternative's universes, as `usar
+    /// calibrate --report-only NAME` (default none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub report_only: Vec<String>,
 }
 
 /// One open choice and its alternatives.
@@ -231,7 +240,8 @@ impl Axes {
         for (i, axis) in self.axes.iter().enumerate() {
             self.check_axis(i, axis)?;
         }
-        self.check_fields_belong_to_one_axis()
+        self.check_fields_belong_to_one_axis()?;
+        self.check_targets_belong_to_one_axis()
     }
 
     /// One axis's names and overrides.
@@ -275,6 +285,7 @@ impl Axes {
                 ));
             }
             self.check_overrides(i, k)?;
+            self.check_target_names(i, k)?;
         }
         Ok(())
     }

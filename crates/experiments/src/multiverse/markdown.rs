@@ -93,11 +93,18 @@ fn axes_and_targets(r: &mut String, plan: &MultiversePlan) {
             .iter()
             .map(|alt| {
                 let sets: Vec<String> = alt.set.iter().map(|s| format!("`{s}`")).collect();
-                let sets = if sets.is_empty() {
+                let mut sets = if sets.is_empty() {
                     "the base scenario's values".into()
                 } else {
                     sets.join(", ")
                 };
+                let names = |n: &[String]| n.iter().map(|t| format!("{t:?}")).collect::<Vec<_>>();
+                if !alt.require.is_empty() {
+                    sets += &format!("; fitted: {}", names(&alt.require).join(", "));
+                }
+                if !alt.report_only.is_empty() {
+                    sets += &format!("; report-only: {}", names(&alt.report_only).join(", "));
+                }
                 format!("**{}**: {sets}", alt.name)
             })
             .collect();
@@ -128,6 +135,13 @@ fn axes_and_targets(r: &mut String, plan: &MultiversePlan) {
             cell(&t.name),
             t.statistic,
             t.describe()
+        );
+    }
+    if id.axes.flags_targets() {
+        let _ = writeln!(
+            r,
+            "\nThe targets a universe fits follow its alternatives (\"fitted\" and \
+             \"report-only\" in the axes above), and its admissibility with them."
         );
     }
     let _ = writeln!(r);

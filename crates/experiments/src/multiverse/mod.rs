@@ -12,11 +12,13 @@
 //! resumed, sharded ([`run_multiverse`] with `--shard I/N`) and merged
 //! ([`merge_multiverse`]) multiverse writes the same bytes as one uninterrupted run.
 //!
-//! Files depend one way (each imports only from those before it): columns, axes, validate,
+//! Files depend one way (each imports only from those before it): columns, axes, axis_targets,
+//! validate,
 //! universe, effect, record, setup, plan, universe_run, tally, csv, spec_curve, markdown,
 //! outputs, progress, outcome, summary, folder, run, merge.
 
 pub mod axes;
+mod axis_targets;
 pub mod columns;
 pub mod csv;
 pub mod effect;

@@ -158,11 +158,13 @@ impl MultiverseSetup {
     }
 
     /// The calibration of one universe: `spec` (the base with the universe's choices, read
-    /// from `origin`), fitted with this setup's targets, free fields, methods and budget,
-    /// no check on unseen trials, described by `command`.
+    /// from `origin`), fitted to `targets` (this setup's, with the universe's target flags,
+    /// [`Axes::universe_targets`]) with this setup's free fields, methods and budget, no
+    /// check on unseen trials, described by `command`.
     pub fn calibration_setup(
         &self,
         spec: ScenarioSpec,
+        targets: Targets,
         origin: String,
         command: String,
     ) -> CalibrationSetup {
@@ -180,7 +182,7 @@ impl MultiverseSetup {
             overwrite: false,
             command,
             date: self.date.clone(),
-            ..CalibrationSetup::new(spec, origin, self.targets.clone(), self.free.clone())
+            ..CalibrationSetup::new(spec, origin, targets, self.free.clone())
         }
     }
 
@@ -203,10 +205,20 @@ impl MultiverseSetup {
         }
         check_sweep_size(1, self.methods.len(), self.trials)
             .map_err(|e| MultiverseError::Invalid(format!("{e:#}")))?;
-        let calibration =
-            self.calibration_setup(self.base.clone(), self.origin.clone(), String::new());
+        let calibration = self.calibration_setup(
+            self.base.clone(),
+            self.targets.clone(),
+            self.origin.clone(),
+            String::new(),
+        );
         let checked = calibration.check()?;
-        check_axes(&self.axes, &self.base, &self.origin, &self.free)?;
+        check_axes(
+            &self.axes,
+            &self.base,
+            &self.origin,
+            &self.free,
+            &self.targets,
+        )?;
         let sizes = self.axes.sizes();
         let universes = select(&sizes, self.sample)?;
         if let Some(s) = self.shard {

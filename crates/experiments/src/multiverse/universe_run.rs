@@ -28,7 +28,7 @@ use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::analysis::{Analysis, CellAnalysis, ReportOptions};
 use crate::atomic::{remove_stale_temps, write_atomic};
-use crate::calibrate::{CalibrationOutcome, Progress, Target, calibrate};
+use crate::calibrate::{CalibrationOutcome, Progress, Target, Targets, calibrate};
 use crate::output::write_outputs;
 use crate::spec_ron::spec_to_ron;
 use crate::sweep::{SweepConfig, SweepOutcome, run_sweep};
@@ -82,12 +82,22 @@ impl UniverseRun<'_> {
             comparison: None,
         };
         let overrides = self.setup.axes.universe_overrides(&u.choices);
-        match self.scenario(&overrides, &dir)? {
-            Err(message) => {
+        let targets = self
+            .setup
+            .axes
+            .universe_targets(&u.choices, &self.setup.targets);
+        match (self.scenario(&overrides, &dir)?, targets) {
+            (Err(message), _) => {
                 record.status = Status::Invalid;
                 record.message = Some(message);
             }
-            Ok(spec) => self.calibrate_and_compare(spec, &dir, &mut record),
+            (Ok(_), Err(e)) => {
+                record.status = Status::Invalid;
+                record.message = Some(format!("targets: {}", e.message));
+            }
+            (Ok(spec), Ok(targets)) => {
+                self.calibrate_and_compare(spec, &targets, &dir, &mut record);
+            }
         }
         record.write(&dir, self.identity_sum)?;
         Ok(record)
@@ -134,11 +144,18 @@ impl UniverseRun<'_> {
             .join(", ")
     }
 
-    /// Calibrates `spec`, compares the methods on the calibrated scenario, and fills in
-    /// `record`.
-    fn calibrate_and_compare(&self, spec: ScenarioSpec, dir: &Path, record: &mut UniverseRecord) {
+    /// Calibrates `spec` to the universe's `targets`, compares the methods on the calibrated
+    /// scenario, and fills in `record`.
+    fn calibrate_and_compare(
+        &self,
+        spec: ScenarioSpec,
+        targets: &Targets,
+        dir: &Path,
+        record: &mut UniverseRecord,
+    ) {
         let setup = self.setup.calibration_setup(
             spec,
+            targets.clone(),
             path_text(&dir.join(SCENARIO_FILE)),
             format!("{} (universe {})", self.plan.command(None), record.id),
         );
@@ -169,16 +186,13 @@ impl UniverseRun<'_> {
             ..SweepConfig::new(calibrated.best_scenario.clone(), dir)
         };
         let report = ReportOptions {
-            targets: Some(self.setup.targets.clone()),
+            targets: Some(targets.clone()),
             claims: true,
         };
         match compare(&cfg, report) {
             Ok((o, analysis)) => {
-                record.comparison = Some(comparison_result(
-                    &o,
-                    &analysis.cells[0],
-                    self.setup.targets.targets(),
-                ));
+                record.comparison =
+                    Some(comparison_result(&o, &analysis.cells[0], targets.targets()));
                 let failures: Vec<String> = o
                     .failures()
                     .map(|f| format!("{} trial {}: {}", f.method, f.trial, f.message))

@@ -1,7 +1,8 @@
 //! The checks of an axes file against the base scenario and the free fields, made before
 //! anything runs ([`check_axes`]): every alternative applied to the base spec alone must name
 //! fields that exist, take values of their type and give a scenario that keeps every rule;
-//! two alternatives of one axis must not give the same scenario; no axis may set a field that
+//! two alternatives of one axis must not give the same scenario and target flags; every target
+//! an alternative flags must be in the targets file; no axis may set a field that
 //! is `--free` (a calibrated field cannot be a choice too); and no axis may be named like a
 //! free field (both are columns of `multiverse.csv`).
 //!
@@ -12,20 +13,25 @@ use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 
 use super::axes::{Axes, AxesError};
 use crate::calibrate::FreeField;
+use crate::calibrate::targets::Targets;
 use crate::vary::{Override, apply_overrides, spec_json, touching};
 
-/// Checks `axes` against the base spec `base` (read from `origin`) and the free fields.
+/// Checks `axes` against the base spec `base` (read from `origin`), the free fields and the
+/// targets.
 ///
 /// # Errors
 /// The first problem, one line at the override or alternative it is about: a field that
 /// does not exist or a value it cannot take (`set[j]`, with the `--vary` message), a rule the
-/// alternative's scenario breaks, two alternatives of an axis that give the same scenario, a
+/// alternative's scenario breaks, a target name the targets file does not have, an
+/// alternative leaving every target out of the loss, two alternatives of an axis that give the
+/// same scenario and target flags, a
 /// field that is also `--free`, or an axis named like a free field.
 pub fn check_axes(
     axes: &Axes,
     base: &ScenarioSpec,
     origin: &str,
     free: &[FreeField],
+    targets: &Targets,
 ) -> Result<(), AxesError> {
     for (i, axis) in axes.axes.iter().enumerate() {
         if let Some(f) = free.iter().find(|f| f.field == axis.name.trim()) {
@@ -38,11 +44,13 @@ pub fn check_axes(
                 ),
             ));
         }
-        let mut specs: Vec<serde_json::Value> = Vec::new();
+        let mut specs: Vec<(serde_json::Value, Vec<bool>)> = Vec::new();
         for k in 0..axis.alternatives.len() {
             check_free(axes, i, k, free)?;
             let spec = apply_alternative(axes, i, k, base, origin)?;
             let json = spec_json(&spec).map_err(|m| alt_error(axes, i, k, "name", m))?;
+            let flags = target_flags(axes, i, k, targets)?;
+            let json = (json, flags);
             if let Some(m) = specs.iter().position(|s| *s == json) {
                 return Err(alt_error(
                     axes,
@@ -60,6 +68,28 @@ pub fn check_axes(
         }
     }
     Ok(())
+}
+
+/// Each target's `report_only` flag in a universe of `targets` that takes alternative `k`
+/// of axis `i` (and the file's flags elsewhere); refuses a name no target has, or an
+/// alternative that leaves every target out of the loss.
+fn target_flags(
+    axes: &Axes,
+    i: usize,
+    k: usize,
+    targets: &Targets,
+) -> Result<Vec<bool>, AxesError> {
+    let alt = &axes.axes[i].alternatives[k];
+    let mut t = targets.clone();
+    let field = if alt.require.is_empty() {
+        "report_only"
+    } else {
+        "require"
+    };
+    t.set_required(&alt.require)
+        .and_then(|()| t.set_report_only(&alt.report_only))
+        .map_err(|e| alt_error(axes, i, k, field, e.message))?;
+    Ok(t.targets().iter().map(|t| t.report_only).collect())
 }
 
 /// An error about `field` of alternative `k` of axis `i` (`name`, `set[2]`), naming both.
@@ -156,9 +186,27 @@ mod tests {
         Axes::parse(&src, "a.ron").unwrap()
     }
 
+    /// Two targets, the second report-only.
+    fn targets() -> Targets {
+        Targets::parse(
+            "Targets(targets: [(name: \"rounds\", statistic: Mean(\"rounds\"), value: 6.0, \
+             band: PlusMinus(1.0)), (name: \"energy\", statistic: Mean(\"rescued_total\"), \
+             value: 4000.0, band: PlusMinus(500.0), report_only: true)])",
+            "t.ron",
+        )
+        .unwrap()
+    }
+
     fn check(alternatives: &str, free: &[&str]) -> Result<(), String> {
         let free: Vec<FreeField> = free.iter().map(|f| FreeField::parse(f).unwrap()).collect();
-        check_axes(&axes(alternatives), &base(), "corridor.ron", &free).map_err(|e| e.to_string())
+        check_axes(
+            &axes(alternatives),
+            &base(),
+            "corridor.ron",
+            &free,
+            &targets(),
+        )
+        .map_err(|e| e.to_string())
     }
 
     #[test]
@@ -218,7 +266,7 @@ mod tests {
         let src = "Axes(axes: [(name: \"mission.pickup_s\", alternatives: [(name: \"x\")])])";
         let a = Axes::parse(src, "a.ron").unwrap();
         let free = [FreeField::parse("mission.pickup_s=0.5..2").unwrap()];
-        let e = check_axes(&a, &base(), "corridor.ron", &free)
+        let e = check_axes(&a, &base(), "corridor.ron", &free, &targets())
             .unwrap_err()
             .to_string();
         assert!(
@@ -242,5 +290,32 @@ mod tests {
             ),
             "{e}"
         );
+    }
+
+    /// Two alternatives that differ only in their target flags are two readings; a name the
+    /// targets file lacks, or an alternative with nothing left to fit, is refused at the name.
+    #[test]
+    fn target_flags_make_alternatives_and_name_targets_that_exist() {
+        let alts = "(name: \"unknown unit\"), (name: \"% points\", require: [\"energy\"])";
+        check(alts, &[]).unwrap();
+        let a = axes(alts);
+        let flags = |choice: usize| -> Vec<bool> {
+            let t = a.universe_targets(&[0, choice], &targets()).unwrap();
+            t.targets().iter().map(|t| t.report_only).collect()
+        };
+        assert_eq!(flags(0), [false, true]);
+        assert_eq!(flags(1), [false, false]);
+        let e = check("(name: \"x\", require: [\"energy per trial\"])", &[]).unwrap_err();
+        assert!(
+            e.contains(
+                "axes[1].alternatives[0].require: axis \"b\", alternative \"x\": --require \
+                 \"energy per trial\": no target has that name (targets: \"rounds\", \"energy\")"
+            ),
+            "{e}"
+        );
+        let e = check("(name: \"x\", report_only: [\"rounds\"])", &[]).unwrap_err();
+        assert!(e.contains("every target is report-only"), "{e}");
+        let e = check("(name: \"x\"), (name: \"y\", report_only: [])", &[]).unwrap_err();
+        assert!(e.contains("gives the same scenario"), "{e}");
     }
 }
