@@ -217,11 +217,13 @@ fn the_paper_axes_check_against_paper_ron() {
         FreeField::parse("mission.hp_pct_per_step_in_radiation=0.002..0.02:log").unwrap(),
         FreeField::parse("mission.search_time_budget_s=6..30").unwrap(),
     ];
-    let setup = MultiverseSetup::new(base, "scenarios/paper.ron", axes, targets, free);
+    let mut setup = MultiverseSetup::new(base, "scenarios/paper.ron", axes, targets, free);
+    // More universes than one multiverse runs whole: the committed command draws a sample.
+    let whole = setup.check().unwrap_err().to_string();
+    assert!(whole.contains("draw some with --sample N"), "{whole}");
+    setup.sample = Some(experiments::multiverse::universe::Sample { n: 64, seed: 2021 });
     let checked = setup.check().unwrap_or_else(|e| panic!("{e}"));
-    assert!(
-        checked.universes.len() >= 1024,
-        "{}",
-        checked.universes.len()
-    );
+    assert_eq!(checked.universes.len(), 64);
+    let size = experiments::multiverse::universe::factorial_size(&setup.axes.sizes()).unwrap();
+    assert!(size >= 4096, "{size}");
 }

@@ -10,6 +10,7 @@
 
 use std::fmt::Write;
 
+use super::conclusions::conclusions;
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
 use super::spec_curve::spec_curve_file;
@@ -32,6 +33,9 @@ pub fn multiverse_md(plan: &MultiversePlan, records: &[UniverseRecord]) -> Strin
     let _ = writeln!(r, "# Multiverse: {}\n", plan.identity.scenario);
     set_up(&mut r, plan, records.len());
     claims(&mut r, &tally);
+    let _ = writeln!(r, "## What this run can conclude\n");
+    let sampled = plan.identity.sample.is_some();
+    let _ = writeln!(r, "{}", conclusions(&tally, sampled, plan.factorial()));
     targets(&mut r, plan, records);
     by_axis(&mut r, plan, &tally);
     figures(&mut r);
@@ -354,10 +358,11 @@ mod tests {
             "| a | \"x\" (I) | **a0**: the base scenario's values; **a1**: `mission.pickup_s=2` |",
             "- `--free mission.hp_pct_per_step_in_radiation=0.001..0.02:log`",
             "| rounds | `Mean(rounds)` | 6 ± 1 |",
-            "1/2 (50 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
-            "| (1) RNE rescues the most in total | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
+            "1/2 (50 %, 95 % CI 1 to 99 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
+            "| (1) RNE rescues the most in total | 1/1 (100 %, 95 % CI 3 to 100 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
+            "## What this run can conclude\n\n- 1/2 (50 %, 95 % CI 1 to 99 %) of the universes are admissible: only 2 of the factorial's 6 universes have a record",
             "### b\n\n| alternative | admissible universes | (1) holds |",
-            "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",
+            "| b0 | 1 | 1/1 (100 %, 95 % CI 3 to 100 %) | 0/1 (0 %, 95 % CI 0 to 98 %) |",
             "| b2 | 0 | 0/0 |",
             "![Claim 4b: RNE has the lowest HP cost per rescuee in the hard task](spec_curve_4b.svg)",
             "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25 | 0.003 | ok |  |",

@@ -13,13 +13,13 @@
 //! ([`merge_multiverse`]) multiverse writes the same bytes as one uninterrupted run.
 //!
 //! Files depend one way (each imports only from those before it): columns, axes, axis_targets,
-//! validate,
-//! universe, effect, record, setup, plan, universe_run, tally, csv, spec_curve, markdown,
-//! outputs, progress, outcome, summary, folder, run, merge.
+//! validate, universe, effect, record, setup, plan, universe_run, tally, conclusions, csv,
+//! spec_curve, markdown, outputs, progress, outcome, summary, folder, run, merge.
 
 pub mod axes;
 mod axis_targets;
 pub mod columns;
+pub mod conclusions;
 pub mod csv;
 pub mod effect;
 pub mod folder;

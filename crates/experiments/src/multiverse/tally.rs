@@ -34,12 +34,54 @@ impl VerdictCount {
     }
 }
 
-/// `k/n (p %)`, or `0/0` for none: a share as the report writes it.
-pub fn share(k: usize, n: usize) -> String {
-    if n == 0 {
-        "0/0".into()
+/// Confidence level of every share's interval ([`clopper_pearson`]): 0.95.
+pub const SHARE_CONFIDENCE: f64 = 0.95;
+
+/// The two-sided Clopper-Pearson interval of a share seen as `k` of `n` (`k <= n`, `n >= 1`)
+/// at [`SHARE_CONFIDENCE`], as fractions in `[0, 1]`; `None` for `n = 0` (or `k > n`).
+///
+/// With `a = 1 - SHARE_CONFIDENCE`: the lower end is the `a / 2` quantile of Beta(k, n - k + 1)
+/// (0 when `k = 0`), the upper end the `1 - a / 2` quantile of Beta(k + 1, n - k) (1 when
+/// `k = n`). Exact in that it covers the true share at least 95 % of the time for a random
+/// sample (a `--sample` of the factorial, or the admissible universes within it); conservative.
+/// Seen 0 of 5: 0 to 52 %.
+///
+/// # Reference
+/// C. J. Clopper and E. S. Pearson, "The use of confidence or fiducial limits illustrated in
+/// the case of the binomial", Biometrika 26 (1934) 404-413.
+pub fn clopper_pearson(k: usize, n: usize) -> Option<(f64, f64)> {
+    use statrs::distribution::{Beta, ContinuousCDF};
+    if n == 0 || k > n {
+        return None;
+    }
+    let a = 1.0 - SHARE_CONFIDENCE;
+    let (kf, nf) = (k as f64, n as f64);
+    let lower = if k == 0 {
+        0.0
     } else {
-        format!("{k}/{n} ({:.0} %)", 100.0 * k as f64 / n as f64)
+        Beta::new(kf, nf - kf + 1.0).ok()?.inverse_cdf(a / 2.0)
+    };
+    let upper = if k == n {
+        1.0
+    } else {
+        Beta::new(kf + 1.0, nf - kf)
+            .ok()?
+            .inverse_cdf(1.0 - a / 2.0)
+    };
+    Some((lower, upper))
+}
+
+/// `k/n (p %, 95 % CI lo to hi %)` with the [`clopper_pearson`] interval, or `0/0` for none:
+/// a share as the report writes it.
+pub fn share(k: usize, n: usize) -> String {
+    match clopper_pearson(k, n) {
+        None => "0/0".into(),
+        Some((lo, hi)) => format!(
+            "{k}/{n} ({:.0} %, 95 % CI {:.0} to {:.0} %)",
+            100.0 * k as f64 / n as f64,
+            100.0 * lo,
+            100.0 * hi
+        ),
     }
 }
 
@@ -128,7 +170,26 @@ mod tests {
         assert_eq!(t.by_alternative[0][1][0].holds, 1);
         assert_eq!(t.by_alternative[1][0][0].universes, 0);
         assert_eq!(t.by_alternative[1][1][0].universes, 2);
-        assert_eq!(share(1, 3), "1/3 (33 %)");
+        assert_eq!(share(1, 3), "1/3 (33 %, 95 % CI 1 to 91 %)");
         assert_eq!(share(0, 0), "0/0");
+    }
+
+    /// Against the closed forms of the end cases and R's `binom.test` (its Clopper-Pearson
+    /// interval): 0 of 5 is 0 to 1 - 0.025^(1/5); 5 of 5 is 0.025^(1/5) to 1; 3 of 10 is
+    /// 0.06673951 to 0.65245285.
+    #[test]
+    fn clopper_pearson_matches_the_closed_forms_and_r() {
+        let tol = 1e-6;
+        let (lo, hi) = clopper_pearson(0, 5).unwrap();
+        assert_eq!(lo, 0.0);
+        assert!((hi - (1.0 - 0.025f64.powf(0.2))).abs() < tol, "{hi}");
+        let (lo, hi) = clopper_pearson(5, 5).unwrap();
+        assert!((lo - 0.025f64.powf(0.2)).abs() < tol, "{lo}");
+        assert_eq!(hi, 1.0);
+        let (lo, hi) = clopper_pearson(3, 10).unwrap();
+        assert!((lo - 0.066_739_51).abs() < tol, "{lo}");
+        assert!((hi - 0.652_452_85).abs() < tol, "{hi}");
+        assert_eq!(clopper_pearson(0, 0), None);
+        assert_eq!(clopper_pearson(3, 2), None);
     }
 }
