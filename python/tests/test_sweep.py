@@ -131,3 +131,31 @@ def test_requests_carry_the_team(paper):
     assert first.needs_matrix().shape[0] == 12
     assert usar.rne(first) == usar.rne(first)
     assert sorted(i for g in usar.hp_dis(first) for i in g) == list(range(12))
+
+
+def test_the_seed_column_is_uint64_whatever_the_seeds(paper, tmp_path):
+    """Issue 58: `seed` was int64 when every seed was below 2**63 and uint64 otherwise, so
+    `pd.concat` of two sweeps made it float64 and lost seeds."""
+    small = tmp_path / "small.csv"
+    small.write_text(
+        "scenario,method,trial,seed,task,metric,value\n"
+        "paper,RNE,0,5,,rescued_total,3\n"
+    )
+    big = tmp_path / "big.csv"
+    big.write_text(
+        "scenario,method,trial,seed,task,metric,value\n"
+        "paper,RNE,0,11487996472437173461,,rescued_total,3\n"
+    )
+    a, b = usar.read_trials_long(small), usar.read_trials_long(big)
+    assert a["seed"].dtype == np.uint64 and b["seed"].dtype == np.uint64
+    both = pd.concat([a, b], ignore_index=True)
+    assert both["seed"].dtype == np.uint64
+    assert int(both["seed"].iloc[1]) == 11487996472437173461
+    frame = usar.sweep(paper, methods=["dis"], trials=2, duration_s=SHORT_S)
+    assert frame["seed"].dtype == np.uint64 and frame["trial"].dtype == np.int64
+    # A trial repeats from its row of the frame.
+    row = frame.iloc[0]
+    again = usar.run(paper, "dis", seed=row["seed"], duration_s=SHORT_S)
+    assert again.seed == int(row["seed"])
+    with pytest.raises(TypeError, match="a float cannot hold every 64-bit integer"):
+        usar.run(paper, "dis", seed=float(row["seed"]), duration_s=SHORT_S)

@@ -29,7 +29,13 @@ def _scenario(scenario: Any) -> Scenario:
 
 def _count(name: str, value: Any, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name}: expected an integer, found {type(value).__name__}")
+        hint = ""
+        if isinstance(value, (float, np.floating)):
+            hint = (
+                " (a float cannot hold every 64-bit integer; a seed column read by"
+                " usar.read_trials_long or returned by usar.sweep is uint64)"
+            )
+        raise TypeError(f"{name}: expected an integer, found {type(value).__name__}{hint}")
     if not minimum <= int(value) < maximum:
         raise ValueError(f"{name} must be in {minimum}..{maximum - 1}, not {value}")
     return int(value)
@@ -100,10 +106,18 @@ def _progress(progress: Optional[bool], total: int) -> tuple:
 _EXACT = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
 
 
+# Column types that do not depend on the data: a trial seed is any 64-bit unsigned integer,
+# so `seed` is uint64 even when every seed of a sweep is below 2**63 (pandas would guess int64,
+# and `pd.concat` of an int64 and a uint64 column makes float64, which loses seeds).
+_DTYPES = {"trial": "int64", "seed": "uint64"}
+
+
 def read_trials_long(path: Any) -> pd.DataFrame:
     """Reads a ``trials_long.csv`` (a path or a binary file) as :func:`usar.sweep` returns
-    it: every float exactly the f64 written (shortest round-trip text)."""
-    return pd.read_csv(path, **_EXACT)
+    it: every float exactly the f64 written (shortest round-trip text), ``trial`` int64 and
+    ``seed`` uint64 whatever the values (so frames of several sweeps concatenate without
+    losing a seed, and ``usar.run(seed=row.seed)`` repeats a trial)."""
+    return pd.read_csv(path, dtype=_DTYPES, **_EXACT)
 
 
 def sweep(
