@@ -2,7 +2,7 @@
 //! exceptions: a bad scenario or argument is a `ValueError` with the library's one-line
 //! message, a failed trial a `TrialError`, a grouping method's bad answer a `GroupingError`.
 
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
@@ -19,6 +19,15 @@ pyo3::create_exception!(
     PyRuntimeError,
     "A trial failed while it ran (a grouping method that raised or failed). In a sweep the \
      other trials still ran; the message lists the failed ones."
+);
+
+pyo3::create_exception!(
+    _usar,
+    ScenarioWarning,
+    PyUserWarning,
+    "A valid scenario whose trials will yield less than it suggests: a task no group can \
+     rescue from, or a goal some robots cannot reach from their starts. The lines `usar check` \
+     prints as warnings, given when a Scenario is loaded, made from text or edited."
 );
 
 /// A `ValueError` with `e`'s one-line message (anyhow's `{:#}`: context and cause).

@@ -31,6 +31,7 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scenario::Scenario>()?;
     m.add("GroupingError", py.get_type::<errors::GroupingError>())?;
     m.add("TrialError", py.get_type::<errors::TrialError>())?;
+    m.add("ScenarioWarning", py.get_type::<errors::ScenarioWarning>())?;
     m.add_function(wrap_pyfunction!(run::run_trial, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::run_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;

@@ -11,7 +11,7 @@ use usar_sim::scenario::{self as sc, ScenarioSpec, path_text};
 use experiments::spec_ron::spec_to_ron;
 use experiments::vary::{Override, apply_overrides, brief, validate_overridden};
 
-use crate::errors::{anyhow_value_error, value_error};
+use crate::errors::{ScenarioWarning, anyhow_value_error, value_error};
 use crate::ron_value::ron_text;
 
 /// A validated scenario (see `usar/_usar.pyi` for the Python docstrings).
@@ -57,6 +57,21 @@ impl Scenario {
     }
 
     /// A copy with `more` overrides applied after the earlier ones, validated once.
+    /// `self`, after warning (a [`ScenarioWarning`] each) about what `usar check` warns
+    /// about: `ORIGIN: tasks.west: no kind has a quota for it; the task is never worked`.
+    ///
+    /// # Errors
+    /// A warning the Python warning filters turn into an error.
+    fn warned(self, py: Python<'_>) -> PyResult<Self> {
+        let category = py.get_type::<ScenarioWarning>();
+        for w in usar_sim::mission::scenario_warnings(&self.scenario) {
+            let text = format!("{}: {w}", self.origin).replace('\0', " ");
+            let message = std::ffi::CString::new(text).map_err(value_error)?;
+            PyErr::warn(py, category.as_any(), &message, 1)?;
+        }
+        Ok(self)
+    }
+
     fn with(&self, more: Vec<Override>) -> PyResult<Self> {
         let mut overrides = self.overrides.clone();
         overrides.extend(more);
@@ -89,28 +104,28 @@ impl Scenario {
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let text = crate::read_file::read_source_interruptibly(py, &path)?;
-        Self::from_text(text, path_text(&path), path)
+        Self::from_text(text, path_text(&path), path)?.warned(py)
     }
 
     /// Validates a scenario given as RON text; `origin` names it in errors.
     #[staticmethod]
     #[pyo3(signature = (text, origin = "<string>"))]
-    fn from_ron(text: String, origin: &str) -> PyResult<Self> {
-        Self::from_text(text, origin.to_string(), PathBuf::from(origin))
+    fn from_ron(py: Python<'_>, text: String, origin: &str) -> PyResult<Self> {
+        Self::from_text(text, origin.to_string(), PathBuf::from(origin))?.warned(py)
     }
 
     /// A copy with one field set (validated at once).
-    fn set(&self, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
-        self.with(vec![override_of(path, value)?])
+    fn set(&self, py: Python<'_>, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
+        self.with(vec![override_of(path, value)?])?.warned(py)
     }
 
     /// A copy with several fields set in order, validated once at the end.
-    fn update(&self, fields: &Bound<'_, PyDict>) -> PyResult<Self> {
+    fn update(&self, py: Python<'_>, fields: &Bound<'_, PyDict>) -> PyResult<Self> {
         let more = fields
             .iter()
             .map(|(k, v)| override_of(&k.extract::<String>()?, &v))
             .collect::<PyResult<Vec<_>>>()?;
-        self.with(more)
+        self.with(more)?.warned(py)
     }
 
     /// The scenario as RON, every field written out (as `usar check --print`).

@@ -1,9 +1,11 @@
 """Scenarios: load, text round trip, edits by field path and the check summary."""
 
+import warnings
+
 import pytest
 
 import usar
-from conftest import PAPER
+from conftest import PAPER, ROOT
 
 
 def test_round_trip_through_ron_keeps_the_scenario(paper):
@@ -52,3 +54,25 @@ def test_set_and_run_agree_with_a_set_scenario(paper):
     via_set = usar.run(paper.set("mission.duration_s", 10.0), "dis")
     via_arg = usar.run(paper, "dis", duration_s=10.0)
     assert via_set.to_dict() == via_arg.to_dict()
+
+
+def test_what_usar_check_warns_about_reaches_python(paper):
+    """Issue 58: `usar check` warned "no kind has a quota for it; the task is never worked";
+    Scenario.load, set and usar.run said nothing."""
+    three = ROOT / "scenarios" / "three-tasks.ron"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s = usar.Scenario.load(str(three))
+        paper.set("mission.duration_s", 30.0)
+    idle = {
+        "kinds[0].quota.hard": 4, "kinds[0].quota.easy": 0,
+        "kinds[1].quota.hard": 2, "kinds[1].quota.easy": 0,
+        "kinds[2].quota.hard": 2, "kinds[2].quota.easy": 0,
+    }
+    with pytest.warns(usar.ScenarioWarning, match=r"three-tasks.ron: tasks.easy: no kind has a "
+                      r"quota for it; the task is never worked") as caught:
+        edited = s.update(idle)
+    assert len(caught) == 1 and caught[0].filename == __file__
+    with pytest.warns(usar.ScenarioWarning, match="tasks.easy"):
+        usar.Scenario.from_ron(edited.to_ron(), "mine.ron")
+    assert issubclass(usar.ScenarioWarning, UserWarning)

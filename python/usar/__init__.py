@@ -18,7 +18,7 @@ Units follow the field names: ``_s`` seconds, ``_m`` metres, ``_pct`` percent po
 Documentation: docs/python.md in the repository.
 """
 
-from ._usar import METHOD_NAMES, GroupingError, Scenario, TrialError
+from ._usar import METHOD_NAMES, GroupingError, Scenario, ScenarioWarning, TrialError
 from ._grouping import (
     GroupingMethod,
     GroupingRequest,
@@ -40,6 +40,7 @@ __all__ = [
     "Record",
     "Robot",
     "Scenario",
+    "ScenarioWarning",
     "Task",
     "TrialError",
     "TrialResult",

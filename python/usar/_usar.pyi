@@ -12,6 +12,11 @@ class GroupingError(ValueError):
     """A grouping method's answer broke a rule (not one group per task, a robot in no group
     or two, an unknown id, a kind's quota not met); the message names the rule."""
 
+class ScenarioWarning(UserWarning):
+    """A valid scenario whose trials will yield less than it suggests (a task no group can
+    rescue from, a goal some robots cannot reach): the lines ``usar check`` prints as
+    warnings, given by ``Scenario.load``, ``Scenario.from_ron``, ``set`` and ``update``."""
+
 class TrialError(RuntimeError):
     """A trial failed while running; in a sweep the others still ran (message lists them)."""
 
@@ -25,17 +30,20 @@ class Scenario:
 
     @staticmethod
     def load(path: Union[str, PathLike]) -> Scenario:
-        """Reads and validates a scenario file. ValueError if missing or invalid."""
+        """Reads and validates a scenario file. ValueError if missing or invalid; a
+        :class:`ScenarioWarning` per line ``usar check`` warns with (a task never worked, an
+        unreachable goal)."""
     @staticmethod
     def from_ron(text: str, origin: str = "<string>") -> Scenario:
-        """Validates RON text; ``origin`` names it in errors. ValueError if invalid."""
+        """Validates RON text; ``origin`` names it in errors. ValueError if invalid; warns
+        as :meth:`load`."""
     def set(self, path: str, value: Any) -> Scenario:
         """A copy with the field at ``path`` (any ``usar sweep --vary`` path:
         ``kinds[0].count``, ``mission.duration_s``, ``tasks.hard.goal_m``,
         ``radiation_zones[*].radius_m``) set to ``value`` and validated at once. Values:
         int, float (finite), bool, None, tuple, list, or a str of RON text (``"Aerial"``,
         ``"Some(3)"``; a string field needs its quotes). ValueError on a bad path or value
-        or a broken rule."""
+        or a broken rule; warns as :meth:`load` about the copy."""
     def update(self, fields: Dict[str, Any]) -> Scenario:
         """A copy with several fields set in order, validated once at the end (e.g. a
         count and its quota together)."""

@@ -165,7 +165,10 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
     }
     check_csv(&out);
     let md = read_text(&out.join("multiverse.md"));
-    assert!(md.contains("2/4 (50 %, 95 % CI 7 to 93 %) admissible"), "{md}");
+    assert!(
+        md.contains("2/4 (50 %, 95 % CI 7 to 93 %) admissible"),
+        "{md}"
+    );
     assert!(
         md.contains("of the universes are admissible: the whole factorial ran"),
         "{md}"

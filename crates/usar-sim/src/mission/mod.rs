@@ -16,6 +16,7 @@
 //!   before a trial; `usar check` warns about them).
 //! - [`tasks_without_rescue`]: the tasks no group can rescue from, whatever the method (a
 //!   check before a trial; `usar check` warns about them).
+//! - [`scenario_warnings`]: both checks' findings as warning lines.
 
 mod account;
 mod decide;
@@ -35,6 +36,7 @@ mod rounds;
 mod search_pattern;
 mod simulation;
 mod state;
+mod warnings;
 
 pub use crate::scenario::{sweep_point_count, sweep_spacing_m};
 pub use decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
@@ -52,3 +54,4 @@ pub use robot::{MissionRobot, Phase};
 pub use search_pattern::sweep_waypoints;
 pub use simulation::{Simulation, StepObserver, TrialBuilder, trial_steps, trust_model};
 pub use state::MissionState;
+pub use warnings::scenario_warnings;
