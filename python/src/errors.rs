@@ -40,6 +40,22 @@ pub fn anyhow_value_error(e: &anyhow::Error) -> PyErr {
     PyValueError::new_err(one_line(&format!("{e:#}")))
 }
 
+/// A `ValueError` from a library error of a sweep, its whole chain on one line and in the
+/// package's words ([`python_words`]).
+pub fn sweep_value_error(e: &anyhow::Error) -> PyErr {
+    PyValueError::new_err(python_words(&one_line(&format!("{e:#}"))))
+}
+
+/// `message` (a library error worded for the command line) in the Python package's words:
+/// the flags `--overwrite`, `--resume` and `--out` become the keyword arguments
+/// `overwrite=True`, `resume=True` and `out` of `usar.sweep`.
+pub fn python_words(message: &str) -> String {
+    message
+        .replace("--overwrite", "overwrite=True")
+        .replace("--resume", "resume=True")
+        .replace("--out", "out")
+}
+
 /// `text` on one line: line breaks become spaces.
 pub fn one_line(text: &str) -> String {
     text.split(['\n', '\r'])

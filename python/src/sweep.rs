@@ -24,7 +24,7 @@ use experiments::sweep::{
 };
 
 use crate::detached::run_detached;
-use crate::errors::{TrialError, anyhow_value_error, value_error};
+use crate::errors::{TrialError, anyhow_value_error, sweep_value_error, value_error};
 use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};
 use crate::scenario::Scenario;
 
@@ -112,13 +112,14 @@ type Ran = Option<(Vec<TrialResult>, Vec<Failure>)>;
 /// every 25 ms from the calling thread.
 ///
 /// # Errors
-/// `ValueError` for bad arguments or a journal that cannot be resumed; the first Python
+/// `ValueError` for bad arguments or a journal that cannot be resumed (in the package's
+/// words, [`crate::errors::python_words`]); the first Python
 /// method's exception or `GroupingError`; `TrialError` listing failed trials (with `out`,
 /// after the files are written); `KeyboardInterrupt` on Ctrl-C (with `out`, the finished
 /// trials are in the journal: `resume=True` runs the rest).
 #[pyfunction]
 #[pyo3(signature = (scenario, methods, trials = 10, threads = None, out = None, resume = false,
-    duration_s = None, seed = None, progress = None))]
+    duration_s = None, seed = None, progress = None, overwrite = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn run_sweep(
     py: Python<'_>,
@@ -131,8 +132,14 @@ pub fn run_sweep(
     duration_s: Option<f64>,
     seed: Option<u64>,
     progress: Option<Py<PyAny>>,
+    overwrite: bool,
 ) -> PyResult<Vec<u8>> {
     check_args(trials, threads, duration_s)?;
+    if resume && overwrite {
+        return Err(PyValueError::new_err(
+            "resume=True and overwrite=True: give one (continue the journal, or start afresh)",
+        ));
+    }
     if methods.is_empty() {
         return Err(PyValueError::new_err("methods: give at least one method"));
     }
@@ -150,6 +157,7 @@ pub fn run_sweep(
         threads: threads
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from)),
         resume,
+        overwrite,
         progress: false,
         ..SweepConfig::new(s, scenario.path())
     };
@@ -165,7 +173,7 @@ pub fn run_sweep(
             None => Ok(()),
         }
     };
-    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| anyhow_value_error(&e))?;
+    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| sweep_value_error(&e))?;
     let results = successful_trials(ran, &first_error, &stop, total)?;
     let tasks = cfg.scenario.task_names();
     trials_long_csv(&results, &tasks).map_err(|e| anyhow_value_error(&e))

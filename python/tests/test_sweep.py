@@ -159,3 +159,25 @@ def test_the_seed_column_is_uint64_whatever_the_seeds(paper, tmp_path):
     assert again.seed == int(row["seed"])
     with pytest.raises(TypeError, match="a float cannot hold every 64-bit integer"):
         usar.run(paper, "dis", seed=float(row["seed"]), duration_s=SHORT_S)
+
+
+def test_a_refused_out_speaks_python_and_overwrite_starts_afresh(paper, tmp_path):
+    """Issue 58: a sweep with other parameters into an existing `out` advised `--overwrite`
+    and `--resume` (no such arguments in Python) and called a `set()` an edited file."""
+    out = tmp_path / "out"
+    usar.sweep(paper, methods=["dis"], trials=1, duration_s=SHORT_S, out=out)
+    with pytest.raises(ValueError) as refused:
+        usar.sweep(paper, methods=["dis"], trials=2, duration_s=SHORT_S, out=out)
+    message = str(refused.value)
+    assert "overwrite=True" in message and "resume=True" in message, message
+    assert "--" not in message, message
+    edited = paper.set("mission.pickup_s", 2.0)
+    with pytest.raises(ValueError, match="the scenario changed") as refused:
+        usar.sweep(edited, methods=["dis"], trials=1, duration_s=SHORT_S, out=out)
+    assert "scenario file was edited" not in str(refused.value)
+    again = usar.sweep(paper, methods=["dis"], trials=2, duration_s=SHORT_S, out=out,
+                       overwrite=True)
+    assert sorted(again["trial"].unique()) == [0, 1]
+    assert len(pd.read_csv(out / "trials.csv")) == 2
+    with pytest.raises(ValueError, match="give one"):
+        usar.sweep(paper, methods=["dis"], trials=2, out=out, resume=True, overwrite=True)

@@ -130,6 +130,7 @@ def sweep(
     duration_s: Optional[float] = None,
     seed: Optional[int] = None,
     progress: Optional[bool] = None,
+    overwrite: bool = False,
 ) -> pd.DataFrame:
     """Runs every method for ``trials`` trials, as ``usar sweep``, and returns the long table.
 
@@ -139,8 +140,10 @@ def sweep(
     (default all cores; results do not depend on it). ``duration_s``: simulated seconds per
     trial (> 0), default ``mission.duration_s``. ``out``: a folder to write what
     ``usar sweep --out`` writes (journal.jsonl, trials.csv, trials_long.csv, summary.csv,
-    report.md, figures); ``resume=True`` continues its journal. ``progress``: a tqdm bar
-    (default: on a terminal or in a notebook, when tqdm is installed).
+    report.md, figures); ``resume=True`` continues its journal; ``overwrite=True`` discards
+    a sweep's journal, tables and figures already in ``out`` and starts afresh (other files
+    stay; a folder of another kind, such as a calibration's, is refused). ``progress``: a tqdm
+    bar (default: on a terminal or in a notebook, when tqdm is installed).
 
     Returns a DataFrame equal to ``trials_long.csv`` read by :func:`usar.read_trials_long`:
     columns ``scenario, method, trial, seed, task, metric, value``, the same rows in the
@@ -164,7 +167,8 @@ def sweep(
     callback, close = _progress(progress, len(args) * trials)
     try:
         data = _usar.run_sweep(
-            s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback
+            s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback,
+            bool(overwrite),
         )
     finally:
         close()

@@ -95,6 +95,7 @@ def run_sweep(
     duration_s: Optional[float] = None,
     seed: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
+    overwrite: bool = False,
 ) -> bytes:
     """A sweep; returns the bytes of ``trials_long.csv``. Use ``usar.sweep``."""
 

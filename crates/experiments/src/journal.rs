@@ -628,7 +628,8 @@ pub fn header_diff(old: &SweepHeader, new: &SweepHeader) -> String {
 }
 
 /// What a changed scenario hash means ([`crate::fingerprint::scenario_hash`]).
-const EDITED: &str = "the scenario file was edited: a value or its description";
+const EDITED: &str =
+    "the scenario changed: a value or its description, in its file or set on top of it";
 
 fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
     if old.fields != new.fields {
@@ -969,8 +970,8 @@ pub(crate) mod tests {
         }
         assert_eq!(
             header_diff(&header(), &edited),
-            "journal has another scenario in every cell (the scenario file was edited: a value \
-             or its description)"
+            "journal has another scenario in every cell (the scenario changed: a value or its \
+             description, in its file or set on top of it)"
         );
         edited.grid.cells[0] = header().grid.cells[0].clone();
         let one = header_diff(&header(), &edited);
@@ -978,7 +979,9 @@ pub(crate) mod tests {
             one.starts_with("journal has cell 1 scenario hash "),
             "{one}"
         );
-        assert!(one.ends_with(" (the scenario file was edited: a value or its description)"));
+        assert!(one.ends_with(
+            " (the scenario changed: a value or its description, in its file or set on top of it)"
+        ));
         // Another value of the varied field gives another hash: the value says it.
         edited.grid.cells[1].values = vec!["30".into()];
         assert_eq!(
