@@ -17,6 +17,7 @@ pub mod check_data;
 pub mod core_fns;
 pub mod detached;
 pub mod errors;
+pub mod json_value;
 pub mod py_method;
 pub mod read_file;
 pub mod ron_value;

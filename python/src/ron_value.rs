@@ -1,8 +1,9 @@
 //! A Python value as the RON text of a `--set`/`--vary` value: `True` -> `true`, `None` ->
 //! `None`, an int or float as written in RON (floats in their shortest round-trip form), a
 //! tuple -> `(a, b)`, a list -> `[a, b]`, a numpy scalar or array as its Python value
-//! (`tolist()`); a `str` is taken as RON text itself (`"Aerial"`,
-//! `"Some(3)"`, `"Grid(spacing_m: 2.0)"`; a string field needs its quotes: `'"my name"'`).
+//! (`tolist()`); a `str` is taken as RON text itself (`"Some(3)"`,
+//! `"Grid(spacing_m: 2.0)"`). A `str` set on a field that holds text is quoted before it
+//! gets here (`Scenario.set`, `src/scenario.rs`).
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};

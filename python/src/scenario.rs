@@ -5,13 +5,18 @@
 use std::path::PathBuf;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 use usar_sim::scenario::{self as sc, ScenarioSpec, path_text};
 
 use experiments::spec_ron::spec_to_ron;
-use experiments::vary::{Override, apply_overrides, brief, validate_overridden};
+use experiments::vary::{
+    FieldPath, Override, Step, apply_overrides, brief, spec_from_json, spec_json,
+    validate_overridden,
+};
+use serde_json::Value;
 
 use crate::errors::{ScenarioWarning, anyhow_value_error, value_error};
+use crate::json_value::{from_python, to_python, values_at};
 use crate::ron_value::ron_text;
 
 /// A validated scenario (see `usar/_usar.pyi` for the Python docstrings).
@@ -72,6 +77,11 @@ impl Scenario {
         Ok(self)
     }
 
+    /// The spec's JSON form (what field paths walk).
+    fn json(&self) -> PyResult<Value> {
+        spec_json(&self.spec).map_err(value_error)
+    }
+
     fn with(&self, more: Vec<Override>) -> PyResult<Self> {
         let mut overrides = self.overrides.clone();
         overrides.extend(more);
@@ -91,11 +101,43 @@ impl Scenario {
     }
 }
 
-/// One `FIELD=VALUE` override from a path and a Python value.
-fn override_of(path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
-    let ron = ron_text(value).map_err(|e| value_error(format!("set {path}: {e}")))?;
+/// One `FIELD=VALUE` override from a path and a Python value, for the spec whose JSON form is
+/// `json`. Where the path names a string (a name, a description, a unit variant such as
+/// `Aerial`), a `str` is that string (quoted for RON) and anything else is refused; elsewhere a
+/// `str` is RON text (`"Some(3)"`) and other values are converted ([`ron_text`]).
+fn override_of(json: &Value, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
+    let fail = |e: String| value_error(format!("set {path}: {e}"));
+    // A path that names nothing is refused below, by the override's own message.
+    let field = FieldPath::parse(path).ok();
+    let current = field.as_ref().and_then(|f| values_at(json, f).ok());
+    let strings = match (&current, &field) {
+        (Some(Value::String(_)), _) => true,
+        (Some(Value::Array(all)), Some(f)) => {
+            has_all(f) && !all.is_empty() && all.iter().all(Value::is_string)
+        }
+        _ => false,
+    };
+    let ron = if strings {
+        let text: String = value.extract().map_err(|_| {
+            fail(format!(
+                "expected a str (the field holds text), found {}",
+                value
+                    .get_type()
+                    .name()
+                    .map_or_else(|_| "?".into(), |n| n.to_string())
+            ))
+        })?;
+        ron::to_string(&text).map_err(|e| fail(e.to_string()))?
+    } else {
+        ron_text(value).map_err(fail)?
+    };
     let arg = format!("{path}={ron}");
     Override::parse(&arg).map_err(|e| value_error(format!("set {}: {e}", brief(&arg))))
+}
+
+/// Whether `path` has a `[*]` step (its values are a list of every element's).
+fn has_all(path: &FieldPath) -> bool {
+    path.steps().iter().any(|s| matches!(s, Step::All))
 }
 
 #[pymethods]
@@ -116,14 +158,17 @@ impl Scenario {
 
     /// A copy with one field set (validated at once).
     fn set(&self, py: Python<'_>, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
-        self.with(vec![override_of(path, value)?])?.warned(py)
+        let json = self.json()?;
+        self.with(vec![override_of(&json, path, value)?])?
+            .warned(py)
     }
 
     /// A copy with several fields set in order, validated once at the end.
     fn update(&self, py: Python<'_>, fields: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let json = self.json()?;
         let more = fields
             .iter()
-            .map(|(k, v)| override_of(&k.extract::<String>()?, &v))
+            .map(|(k, v)| override_of(&json, &k.extract::<String>()?, &v))
             .collect::<PyResult<Vec<_>>>()?;
         self.with(more)?.warned(py)
     }
@@ -171,6 +216,75 @@ impl Scenario {
     #[getter]
     fn task_names(&self) -> Vec<String> {
         self.scenario.task_names()
+    }
+
+    /// The value at a field path (any path `set` takes), as Python data; a `[*]` path gives
+    /// the list of every element's value.
+    fn get<'py>(&self, py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyAny>> {
+        let fail = |e: String| value_error(format!("get {path}: {e}"));
+        let field = FieldPath::parse(path).map_err(fail)?;
+        to_python(py, &values_at(&self.json()?, &field).map_err(fail)?)
+    }
+
+    /// Every field as Python data (dicts, lists, str, numbers, bool, None): the JSON form of
+    /// the scenario, an enum variant with data as a one-key dict (`{"Some": 3}`).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_python(py, &self.json()?)
+    }
+
+    /// A scenario from the data `to_dict` gives; `origin` names it in errors, which point
+    /// into its RON text (`to_ron`).
+    #[staticmethod]
+    #[pyo3(signature = (data, origin = "<dict>"))]
+    fn from_dict(py: Python<'_>, data: &Bound<'_, PyAny>, origin: &str) -> PyResult<Self> {
+        let spec = spec_from_json(from_python(data)?)
+            .map_err(|e| value_error(format!("{origin}: {e}")))?;
+        let text = spec_to_ron(&spec, &[origin.to_string()]).map_err(|e| anyhow_value_error(&e))?;
+        Self::from_text(text, origin.to_string(), PathBuf::from(origin))?.warned(py)
+    }
+
+    /// Equal when every field is (wherever each was read from, however it was edited).
+    fn __eq__(&self, other: &Self) -> PyResult<bool> {
+        Ok(self.json()? == other.json()?)
+    }
+
+    fn __hash__(&self) -> PyResult<u64> {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.json()?.to_string().hash(&mut h);
+        Ok(h.finish())
+    }
+
+    /// Pickling (and so `copy`, `multiprocessing`, joblib): rebuilt from its source text,
+    /// origin, path and overrides.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let restore = py.get_type::<Self>().getattr("_restore")?;
+        let sets: Vec<String> = self.overrides.iter().map(ToString::to_string).collect();
+        let args = (
+            self.text.clone(),
+            self.origin.clone(),
+            path_text(&self.path),
+            sets,
+        )
+            .into_pyobject(py)?;
+        Ok((restore, args))
+    }
+
+    /// The inverse of `__reduce__` (not for direct use).
+    #[staticmethod]
+    fn _restore(text: String, origin: String, path: String, sets: Vec<String>) -> PyResult<Self> {
+        let base = Self::from_text(text, origin, PathBuf::from(path))?;
+        let overrides = sets
+            .iter()
+            .map(|a| Override::parse(a).map_err(value_error))
+            .collect::<PyResult<Vec<_>>>()?;
+        if overrides.is_empty() {
+            return Ok(base);
+        }
+        base.with(overrides)
     }
 
     fn __repr__(&self) -> String {

@@ -5,7 +5,7 @@ import warnings
 import pytest
 
 import usar
-from conftest import PAPER, ROOT
+from conftest import PAPER, ROOT, SHORT_S
 
 
 def test_round_trip_through_ron_keeps_the_scenario(paper):
@@ -76,3 +76,40 @@ def test_what_usar_check_warns_about_reaches_python(paper):
     with pytest.warns(usar.ScenarioWarning, match="tasks.easy"):
         usar.Scenario.from_ron(edited.to_ron(), "mine.ron")
     assert issubclass(usar.ScenarioWarning, UserWarning)
+
+
+def test_a_scenario_is_data_pickles_and_compares_by_value(paper, tmp_path):
+    """Issue 58: Scenario could not be pickled or deep-copied, `==` was identity, there was no
+    get(path), to_dict() or building from a dict, and a string value needed RON quotes while
+    a number was accepted for a text field."""
+    import copy
+    import pickle
+
+    again = usar.Scenario.load(str(PAPER))
+    assert again == paper and hash(again) == hash(paper)
+    edited = paper.set("mission.pickup_s", 2.0)
+    assert edited != paper
+    for twin in (pickle.loads(pickle.dumps(edited)), copy.deepcopy(edited), copy.copy(edited)):
+        assert twin == edited and twin.overrides == edited.overrides
+        assert twin.to_ron() == edited.to_ron()
+    assert paper.get("mission.pickup_s") == paper.to_dict()["mission"]["pickup_s"]
+    assert edited.get("mission.pickup_s") == 2.0
+    assert paper.get("kinds[*].count") == [k["count"] for k in paper.to_dict()["kinds"]]
+    with pytest.raises(ValueError, match=r"get mission.pickup_sec: .*pickup_s"):
+        paper.get("mission.pickup_sec")
+    built = usar.Scenario.from_dict(paper.to_dict())
+    assert built == paper and built.origin == "<dict>"
+    named = paper.set("name", "my paper")
+    assert named.name == "my paper" and named.get("name") == "my paper"
+    assert paper.set("description", 'with "quotes"').get("description") == 'with "quotes"'
+    with pytest.raises(ValueError, match="expected a str"):
+        paper.set("description", 5)
+    # A unit variant is a str too; RON text still goes where the field is not text.
+    aerial = paper.set("kinds[0].locomotion", "Aerial")
+    assert aerial.get("kinds[0].locomotion") == "Aerial"
+    assert paper.set("mission.search_time_budget_s", "Some(20.0)").get(
+        "mission.search_time_budget_s") == 20.0
+    # Results are the same for an equal scenario, whichever way it was built.
+    a = usar.run(built, "dis", duration_s=SHORT_S)
+    b = usar.run(pickle.loads(pickle.dumps(paper)), "dis", duration_s=SHORT_S)
+    assert a == b

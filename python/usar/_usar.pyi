@@ -41,12 +41,24 @@ class Scenario:
         """A copy with the field at ``path`` (any ``usar sweep --vary`` path:
         ``kinds[0].count``, ``mission.duration_s``, ``tasks.hard.goal_m``,
         ``radiation_zones[*].radius_m``) set to ``value`` and validated at once. Values:
-        int, float (finite), bool, None, tuple, list, or a str of RON text (``"Aerial"``,
-        ``"Some(3)"``; a string field needs its quotes). ValueError on a bad path or value
-        or a broken rule; warns as :meth:`load` about the copy."""
+        int, float (finite), bool, None, tuple, list, or a str: the text itself where the
+        field holds text (a name, the description, a unit variant such as ``"Aerial"``),
+        RON text elsewhere (``"Some(3)"``). ValueError on a bad path or value or a broken
+        rule; warns as :meth:`load` about the copy."""
     def update(self, fields: Dict[str, Any]) -> Scenario:
         """A copy with several fields set in order, validated once at the end (e.g. a
         count and its quota together)."""
+    def get(self, path: str) -> Any:
+        """The value at a field path as Python data; a ``[*]`` path gives every element's,
+        as a list. ValueError if the path names nothing."""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as Python data (the scenario's JSON form; an enum variant with data
+        is a one-key dict)."""
+    @staticmethod
+    def from_dict(data: Dict[str, Any], origin: str = "<dict>") -> Scenario:
+        """A scenario from ``to_dict()``'s data; ValueError if invalid."""
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
     def to_ron(self) -> str:
         """The scenario as RON, every field written out (``usar check --print``); reads
         back as the same scenario."""
