@@ -47,3 +47,11 @@ def test_result_attributes_add_up(paper):
     assert r.total.energy_spent_pct == pytest.approx(sum(r.energy_spent_pct), abs=1e-9)
     assert all(0.0 <= robot.final_energy_pct <= 100.0 for robot in r.robots)
     assert all(w.end_s >= w.start_s for w in r.rounds)
+
+
+def test_trial_with_seed_is_refused_as_on_the_command_line(paper):
+    """Issue 58: `trial=0, seed=3` was accepted though the docs call it an error."""
+    with pytest.raises(ValueError, match="give trial or seed, not both"):
+        usar.run(paper, "dis", trial=0, seed=3, duration_s=1.0)
+    assert usar.run(paper, "dis", seed=3, duration_s=1.0).seed == 3
+    assert usar.run(paper, "dis", duration_s=1.0) == usar.run(paper, "dis", trial=0, duration_s=1.0)

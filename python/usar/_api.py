@@ -55,7 +55,7 @@ def _seconds(value: Any) -> Optional[float]:
 def run(
     scenario: Union[Scenario, str, os.PathLike],
     method: MethodLike = "rne",
-    trial: int = 0,
+    trial: Optional[int] = None,
     duration_s: Optional[float] = None,
     seed: Optional[int] = None,
 ) -> TrialResult:
@@ -63,8 +63,9 @@ def run(
 
     ``method``: a built-in name (``rne``, ``dis``, ``eng``, ``hp_dis``), a
     :class:`usar.GroupingMethod` (instance or subclass) or any callable ``group(request)``.
-    ``trial`` (>= 0) picks the starting team, seed ``trial_seed(sim.seed, trial)``; ``seed``
-    (0 <= seed < 2**64) is used as is instead (give one of them). ``duration_s``: simulated
+    ``trial`` (>= 0, default 0) picks the starting team, seed ``trial_seed(sim.seed, trial)``;
+    ``seed`` (0 <= seed < 2**64) is used as is instead (give one of them: both is a
+    ValueError, as ``--trial`` with ``--seed`` is). ``duration_s``: simulated
     seconds (> 0), default the scenario's ``mission.duration_s`` (rounded up to whole steps).
 
     Returns a :class:`usar.TrialResult`, equal to ``usar run --json``'s output. The trial
@@ -75,8 +76,13 @@ def run(
     answer), the Python method's own exception, :class:`usar.TrialError` (another failure)
     and KeyboardInterrupt (Ctrl-C).
     """
+    if trial is not None and seed is not None:
+        raise ValueError(
+            "trial and seed: give trial or seed, not both"
+            " (a trial's seed is trial_seed(sim.seed, trial))"
+        )
     s = _scenario(scenario)
-    trial = _count("trial", trial, 0, 2**32)
+    trial = _count("trial", 0 if trial is None else trial, 0, 2**32)
     seed = None if seed is None else _count("seed", seed, 0, _U64)
     arg = method_arg(method, s)
     return TrialResult(json.loads(_usar.run_trial(s, arg, trial, _seconds(duration_s), seed)))
