@@ -55,3 +55,27 @@ def test_trial_with_seed_is_refused_as_on_the_command_line(paper):
         usar.run(paper, "dis", trial=0, seed=3, duration_s=1.0)
     assert usar.run(paper, "dis", seed=3, duration_s=1.0).seed == 3
     assert usar.run(paper, "dis", duration_s=1.0) == usar.run(paper, "dis", trial=0, duration_s=1.0)
+
+
+def test_rounds_frame_is_the_rounds_csv_of_the_cli(paper, usar_cli, tmp_path):
+    """Issue 58: `pd.DataFrame(r.rounds)` gave one column of objects; the tidy frame equals
+    `usar run --rounds-csv` (without its `cell` column)."""
+    import numpy as np
+    import pandas as pd
+
+    csv = tmp_path / "rounds.csv"
+    subprocess.run(
+        [usar_cli, "run", str(PAPER), "--method", "rne", "--duration", "200",
+         "--rounds-csv", str(csv)],
+        check=True, capture_output=True,
+    )
+    want = pd.read_csv(csv, dtype={"seed": "uint64"}, keep_default_na=False, na_values=[""])
+    want = want.drop(columns=["cell"])
+    got = usar.run(paper, "rne", duration_s=200).rounds_frame()
+    assert list(got.columns) == list(want.columns)
+    assert len(got) == len(want) > 2
+    for column in want.columns:
+        for a, b in zip(got[column], want[column]):
+            missing_a = a is None or (isinstance(a, float) and np.isnan(a))
+            missing_b = b is None or (isinstance(b, float) and np.isnan(b))
+            assert missing_a == missing_b and (missing_a or a == b), (column, a, b)

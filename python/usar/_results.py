@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import re
 from typing import Any, Dict, List
 
 
@@ -59,7 +60,60 @@ class TrialResult(Record):
         self.by_task = {k: Record(v) for k, v in data.get("by_task", {}).items()}
         self.total = Record(data.get("total", {}))
 
+    def rounds_frame(self) -> "pandas.DataFrame":  # noqa: F821
+        """The per-round yields as a tidy DataFrame, one row per round and task: the columns
+        of ``usar run --rounds-csv`` but ``cell`` (``method, trial, seed, round, task,
+        start_s, end_s, completed, group_size, rescued, left_area_s, left_because,
+        deliveries, empty_deliveries, left_for_rest, back_s, wait_s``), the same values
+        (``left_because`` as ``search_budget``, ``capacity_full``, ...; ``wait_s`` is
+        ``end_s - back_s``; a figure the round does not have is missing, NaN or None)."""
+        import pandas as pd
+
+        rows = []
+        for i, r in enumerate(self._data.get("rounds", [])):
+            for t, task in enumerate(self._data["tasks"]):
+                def at(key: str) -> Any:
+                    values = r.get(key) or []
+                    return values[t] if t < len(values) else None
+
+                back = at("back_s")
+                cause = at("left_because")
+                groups = r.get("groups") or []
+                rows.append({
+                    "method": self._data["method"],
+                    "trial": self._data["trial"],
+                    "seed": self._data["seed"],
+                    "round": i,
+                    "task": task,
+                    "start_s": r["start_s"],
+                    "end_s": r["end_s"],
+                    "completed": r["completed"],
+                    "group_size": len(groups[t]) if t < len(groups) else 0,
+                    "rescued": at("rescued") or 0,
+                    "left_area_s": at("left_area_s"),
+                    "left_because": None if cause is None else _snake(cause),
+                    "deliveries": at("deliveries"),
+                    "empty_deliveries": at("empty_deliveries"),
+                    "left_for_rest": at("left_for_rest"),
+                    "back_s": back,
+                    "wait_s": None if back is None else r["end_s"] - back,
+                })
+        frame = pd.DataFrame(rows, columns=_ROUND_COLUMNS)
+        return frame.astype({"trial": "int64", "seed": "uint64"})
+
     @property
     def rescued_total(self) -> int:
         """Rescuees delivered over all tasks."""
         return int(sum(self._data["rescued"]))
+
+
+_ROUND_COLUMNS = [
+    "method", "trial", "seed", "round", "task", "start_s", "end_s", "completed", "group_size",
+    "rescued", "left_area_s", "left_because", "deliveries", "empty_deliveries", "left_for_rest",
+    "back_s", "wait_s",
+]
+
+
+def _snake(name: str) -> str:
+    """``SearchBudget`` -> ``search_budget``, as the rounds CSV writes a leave cause."""
+    return re.sub(r"(?<!^)(?=[A-Z])", "_", name).lower()
