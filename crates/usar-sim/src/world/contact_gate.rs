@@ -143,7 +143,7 @@ impl PhysicsScene {
     /// Whether `static_distance(p, with_debris) - radius_m <= reach_m`, answered obstacle by
     /// obstacle (the same answer: `f32` subtraction keeps the order of the distances) and
     /// skipping an obstacle whose bounding box is farther than that by
-    /// [`BOX_SKIP_MARGIN_M`] (a box's distance bounds its obstacle's from below).
+    /// `BOX_SKIP_MARGIN_M` (a box's distance bounds its obstacle's from below).
     pub fn static_within(&self, p: Vec2, with_debris: bool, radius_m: f32, reach_m: f32) -> bool {
         let box_reach = radius_m + reach_m + BOX_SKIP_MARGIN_M;
         self.statics
