@@ -70,6 +70,8 @@ pub struct PyMethod {
     pub round: Cell<u32>,
     /// Where the first failure goes.
     pub first_error: FirstError,
+    /// The scenario's kind names, by kind index (errors name a kind by both).
+    pub kind_names: Arc<Vec<String>>,
 }
 
 impl PyMethod {
@@ -107,6 +109,16 @@ impl PyMethod {
         Ok(d)
     }
 
+    /// `e`'s message with each `kind K` followed by the kind's name: `kind 1 (supplier) got
+    /// [1, 3] robots per task but the quotas are [2, 2]`.
+    fn with_kind_names(&self, e: &impl std::fmt::Display) -> String {
+        let mut text = e.to_string();
+        for (k, name) in self.kind_names.iter().enumerate() {
+            text = text.replace(&format!("kind {k} "), &format!("kind {k} ({name}) "));
+        }
+        text
+    }
+
     /// Calls the adapter and reads its answer.
     fn call(&self, req: &GroupingRequest) -> PyResult<Vec<Vec<usize>>> {
         Python::attach(|py| {
@@ -134,7 +146,7 @@ impl GroupingMethod for PyMethod {
             Ok(groups) => {
                 let assignment = Assignment::new(groups);
                 if let Err(e) = assignment.validate(request) {
-                    let message = format!("method {}: {e}", self.name);
+                    let message = format!("method {}: {}", self.name, self.with_kind_names(&e));
                     keep_first(&self.first_error, GroupingError::new_err(message));
                     return Err(e);
                 }

@@ -52,6 +52,7 @@ pub fn run_trial(
                 seed: seed.unwrap_or_else(|| usar_sim::mission::trial_seed(s.sim().seed, trial)),
                 round: Cell::new(0),
                 first_error: first_error.clone(),
+                kind_names: Arc::new(s.kinds().iter().map(|k| k.name.clone()).collect()),
             };
             builder.method(Box::new(m) as Box<dyn GroupingMethod>)
         }

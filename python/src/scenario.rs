@@ -19,7 +19,13 @@ use crate::errors::{ScenarioWarning, anyhow_value_error, value_error};
 use crate::json_value::{from_python, to_python, values_at};
 use crate::ron_value::ron_text;
 
-/// A validated scenario (see `usar/_usar.pyi` for the Python docstrings).
+/// A validated scenario: `Scenario.load(path)`, `Scenario.from_ron(text)` or
+/// `Scenario.from_dict(data)`; edited by field path into a new one (`s.set("kinds[0].count",
+/// 8)`, `s.update({...})`), read by path (`s.get("mission.duration_s")`, `s.to_dict()`),
+/// written as RON (`s.to_ron()`) and summarised (`s.check()`). Immutable, compared by value,
+/// picklable. A bad file or edit is a `ValueError` naming the file, line and field; what
+/// `usar check` warns about is a `usar.ScenarioWarning`. Pass it to `usar.run` and
+/// `usar.sweep`. docs/python.md has the whole of it.
 #[pyclass(module = "usar", frozen)]
 #[derive(Clone)]
 pub struct Scenario {

@@ -57,9 +57,11 @@ fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)> {
     Ok((names, python))
 }
 
-/// The factory: Python methods by name, the built-ins otherwise.
-fn factory(python: &PyMethods, first_error: &FirstError) -> MethodFactory {
+/// The factory: Python methods by name (`kinds`: the scenario's kind names, for their
+/// errors), the built-ins otherwise.
+fn factory(python: &PyMethods, first_error: &FirstError, kinds: Vec<String>) -> MethodFactory {
     let (python, first_error) = (python.clone(), first_error.clone());
+    let kind_names = Arc::new(kinds);
     MethodFactory::new(move |name, model, ctx| match python.get(name) {
         Some(adapter) => Ok(Box::new(PyMethod {
             name: name.to_string(),
@@ -68,6 +70,7 @@ fn factory(python: &PyMethods, first_error: &FirstError) -> MethodFactory {
             seed: ctx.seed,
             round: Cell::new(0),
             first_error: first_error.clone(),
+            kind_names: kind_names.clone(),
         }) as Box<dyn GroupingMethod>),
         None => MethodFactory::builtin().build(name, model, ctx),
     })
@@ -150,7 +153,11 @@ pub fn run_sweep(
     let s = scenario.inner().clone();
     let mut cfg = SweepConfig {
         methods: names,
-        method_factory: factory(&python, &first_error),
+        method_factory: factory(
+            &python,
+            &first_error,
+            s.kinds().iter().map(|k| k.name.clone()).collect(),
+        ),
         trials,
         base_seed: seed.unwrap_or(s.sim().seed),
         duration_s,

@@ -105,7 +105,8 @@ def _named(name):
         (lambda r: [[0, 0], list(range(1, 12))], "assigned more than once"),
         (lambda r: [[99], list(range(12))], "not in the team"),
         (lambda r: [[], list(range(11))], "is not assigned"),
-        (lambda r: [list(range(6)), list(range(6, 12))], "quotas are"),
+        # Issue 58: the kind is named, not only numbered.
+        (lambda r: [list(range(6)), list(range(6, 12))], r"kind 0 \(carrier\) got .* quotas are"),
         (lambda r: "hard", "one list of robot ids per task"),
         (lambda r: [["a"], []], "robot ids must be integers"),
         (lambda r: {"medium": []}, "unknown task 'medium'"),
