@@ -293,6 +293,42 @@ impl Scenario {
         base.with(overrides)
     }
 
+    /// A table for notebooks: the name, origin and edits, the kinds (role, locomotion,
+    /// count) and the tasks, HTML-escaped.
+    fn _repr_html_(&self) -> String {
+        let esc = |t: &str| {
+            t.replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;")
+                .replace('"', "&quot;")
+        };
+        let s = &self.scenario;
+        let mut h = format!(
+            "<div><b>usar.Scenario</b> {} <small>from {}</small>",
+            esc(s.name()),
+            esc(&self.origin)
+        );
+        for o in &self.overrides {
+            h += &format!("<br><small>set {}</small>", esc(&o.to_string()));
+        }
+        h += "<table><tr><th>kind</th><th>role</th><th>locomotion</th><th>robots</th></tr>";
+        for k in s.kinds() {
+            h += &format!(
+                "<tr><td>{}</td><td>{:?}</td><td>{:?}</td><td>{}</td></tr>",
+                esc(&k.name),
+                k.role,
+                k.locomotion,
+                k.count
+            );
+        }
+        h += &format!(
+            "</table><small>tasks: {}; {} s per trial</small></div>",
+            esc(&s.task_names().join(", ")),
+            s.mission().duration_s
+        );
+        h
+    }
+
     fn __repr__(&self) -> String {
         let sets: Vec<String> = self.overrides.iter().map(ToString::to_string).collect();
         let with = if sets.is_empty() {

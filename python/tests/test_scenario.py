@@ -113,3 +113,15 @@ def test_a_scenario_is_data_pickles_and_compares_by_value(paper, tmp_path):
     a = usar.run(built, "dis", duration_s=SHORT_S)
     b = usar.run(pickle.loads(pickle.dumps(paper)), "dis", duration_s=SHORT_S)
     assert a == b
+
+
+def test_notebooks_get_html_tables(paper):
+    """Issue 58: no `_repr_html_` for a Scenario or a TrialResult."""
+    edited = paper.set("name", "<mine>")
+    html = edited._repr_html_()
+    assert "&lt;mine&gt;" in html and "<mine>" not in html
+    assert "<td>carrier</td>" in html and "set name=" in html
+    result = usar.run(paper, "dis", duration_s=SHORT_S)
+    table = result._repr_html_()
+    assert "<td>hard</td>" in table and "usar.TrialResult" in table
+    assert f"<td>{result.rescued_total}</td>" in table

@@ -101,6 +101,27 @@ class TrialResult(Record):
         frame = pd.DataFrame(rows, columns=_ROUND_COLUMNS)
         return frame.astype({"trial": "int64", "seed": "uint64"})
 
+    def _repr_html_(self) -> str:
+        """A table for notebooks: rescuees, energy and HP spent per task and in total."""
+        from html import escape
+
+        rows = "".join(
+            f"<tr><td>{escape(str(t))}</td><td>{r}</td><td>{e:.1f}</td><td>{h:.1f}</td></tr>"
+            for t, r, e, h in zip(
+                self._data["tasks"], self._data["rescued"],
+                self._data["energy_spent_pct"], self._data["hp_lost_pct"],
+            )
+        )
+        return (
+            f"<div><b>usar.TrialResult</b> {escape(str(self._data['scenario']))}, "
+            f"{escape(str(self._data['method']))}, trial {self._data['trial']}, "
+            f"{self._data['duration_s']} s, {len(self.rounds)} rounds"
+            "<table><tr><th>task</th><th>rescued</th><th>energy spent, % points</th>"
+            f"<th>HP lost, % points</th></tr>{rows}"
+            f"<tr><td><i>total</i></td><td>{self.rescued_total}</td><td></td><td></td></tr>"
+            "</table></div>"
+        )
+
     @property
     def rescued_total(self) -> int:
         """Rescuees delivered over all tasks."""
