@@ -69,7 +69,7 @@ trace of another calibration is refused (--overwrite starts afresh). The date is
 clock's (UTC), or SOURCE_DATE_EPOCH when set. Same inputs, same trace.csv and calibrated
 scenario on any --threads and after any interruption.
 
-TARGETS.ron (default: the paper's twelve targets, scenarios/paper-targets.ron, built in):
+TARGETS.ron (default: the paper's eighteen targets, scenarios/paper-targets.ron, built in):
   Targets(targets: [
       (name: \"rounds per trial\", statistic: Mean(\"rounds\"), value: 6.2, band: PlusMinus(0.6)),
       (name: \"easy / hard\", statistic: RatioOfMeans(\"rescued_easy\", \"rescued_hard\"),
