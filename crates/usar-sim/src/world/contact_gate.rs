@@ -1,6 +1,8 @@
-//! `sim.physics: NearContacts` ([`crate::scenario::PhysicsStepping`]): whether a contact may
-//! begin or go on within the next step ([`World::near_contact`]), and the straight move of every
-//! body on a step without one ([`PhysicsScene::move_free`]).
+//! `sim.physics: NearContacts` and `NearBodies` ([`crate::scenario::PhysicsStepping`]):
+//! whether a contact may begin or go on within the next step, for the team
+//! ([`World::near_contact`]) or robot by robot ([`World::mark_near_bodies`]); the straight move
+//! of every body on a step without one ([`PhysicsScene::move_free`]); and the bodies enabled
+//! in Rapier only while their robots are near a contact ([`PhysicsScene::gate_bodies`]).
 
 use parry2d::math::Vector as Vec2;
 

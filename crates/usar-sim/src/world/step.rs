@@ -24,7 +24,9 @@ impl World {
     ///    and list flags;
     /// 2. the commanded velocities are set on the bodies (held robots count a held step) and
     ///    Rapier steps once (with `sim.physics: NearContacts`, only when a contact may begin
-    ///    or go on, see `world/contact_gate.rs`; otherwise every body moves straight);
+    ///    or go on, see `world/contact_gate.rs`; otherwise every body moves straight; with
+    ///    `NearBodies`, only the bodies of the robots near a contact, the others disabled and
+    ///    moved straight by the read-back);
     /// 3. positions, velocities, flags and counters are read back, and before a control step
     ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
