@@ -18,14 +18,21 @@ pub fn to_python<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyA
 }
 
 /// Python data as JSON, through `json.dumps` (`allow_nan=False`: a NaN or infinity is an
-/// error, as in a scenario file).
+/// error, as in a scenario file; numpy scalars and arrays as their Python values).
 ///
 /// # Errors
-/// `TypeError` for a value `json` cannot write (an object), `ValueError` for a NaN.
+/// `TypeError` for a value with no JSON form (an object), `ValueError` for a NaN.
 pub fn from_python(data: &Bound<'_, PyAny>) -> PyResult<Value> {
     let py = data.py();
     let kwargs = pyo3::types::PyDict::new(py);
     kwargs.set_item("allow_nan", false)?;
+    // numpy scalars and arrays (a DataFrame's int64) as their Python values.
+    let plain = py.eval(
+        c"lambda o: o.tolist() if hasattr(o, 'tolist') else (_ for _ in ()).throw(TypeError(f'{type(o).__name__} has no JSON form'))",
+        None,
+        None,
+    )?;
+    kwargs.set_item("default", plain)?;
     let text: String = py
         .import("json")?
         .call_method("dumps", (data,), Some(&kwargs))?

@@ -67,7 +67,6 @@ impl Scenario {
         })
     }
 
-    /// A copy with `more` overrides applied after the earlier ones, validated once.
     /// `self`, after warning (a [`ScenarioWarning`] each) about what `usar check` warns
     /// about: `ORIGIN: tasks.west: no kind has a quota for it; the task is never worked`.
     ///
@@ -88,6 +87,7 @@ impl Scenario {
         spec_json(&self.spec).map_err(value_error)
     }
 
+    /// A copy with `more` overrides applied after the earlier ones, validated once.
     fn with(&self, more: Vec<Override>) -> PyResult<Self> {
         let mut overrides = self.overrides.clone();
         overrides.extend(more);
@@ -108,37 +108,55 @@ impl Scenario {
 }
 
 /// One `FIELD=VALUE` override from a path and a Python value, for the spec whose JSON form is
-/// `json`. Where the path names a string (a name, a description, a unit variant such as
-/// `Aerial`), a `str` is that string (quoted for RON) and anything else is refused; elsewhere a
-/// `str` is RON text (`"Some(3)"`) and other values are converted ([`ron_text`]).
+/// `json`. Where the path names text (a name, the description, a file path, a unit variant
+/// such as `Aerial`), a `str` is read as RON when the field takes it so
+/// (`Threshold(below_pct: 50.0, factor: 0.6)`, `Aerial`) and else as the text itself (`my
+/// paper`), `None` clears an optional field, and a number or bool is refused; elsewhere a `str`
+/// is RON text (`"Some(3)"`) and other values are converted ([`ron_text`]).
 fn override_of(json: &Value, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
     let fail = |e: String| value_error(format!("set {path}: {e}"));
-    // A path that names nothing is refused below, by the override's own message.
+    let parse = |ron: &str| {
+        let arg = format!("{path}={ron}");
+        Override::parse(&arg).map_err(|e| value_error(format!("set {}: {e}", brief(&arg))))
+    };
+    // A path that names nothing is refused by the override's own message.
     let field = FieldPath::parse(path).ok();
     let current = field.as_ref().and_then(|f| values_at(json, f).ok());
-    let strings = match (&current, &field) {
+    let text_field = match (&current, &field) {
         (Some(Value::String(_)), _) => true,
         (Some(Value::Array(all)), Some(f)) => {
             has_all(f) && !all.is_empty() && all.iter().all(Value::is_string)
         }
         _ => false,
     };
-    let ron = if strings {
-        let text: String = value.extract().map_err(|_| {
-            fail(format!(
-                "expected a str (the field holds text), found {}",
-                value
-                    .get_type()
-                    .name()
-                    .map_or_else(|_| "?".into(), |n| n.to_string())
-            ))
-        })?;
-        ron::to_string(&text).map_err(|e| fail(e.to_string()))?
-    } else {
-        ron_text(value).map_err(fail)?
-    };
-    let arg = format!("{path}={ron}");
-    Override::parse(&arg).map_err(|e| value_error(format!("set {}: {e}", brief(&arg))))
+    if !text_field {
+        return parse(&ron_text(value).map_err(fail)?);
+    }
+    if let Ok(text) = value.extract::<String>() {
+        if let Ok(o) = parse(&text)
+            && takes(json, &o)
+        {
+            return Ok(o);
+        }
+        return parse(&ron::to_string(&text).map_err(|e| fail(e.to_string()))?);
+    }
+    if value.is_none() {
+        return parse("None");
+    }
+    Err(fail(format!(
+        "expected a str (the field holds text), found {}",
+        value
+            .get_type()
+            .name()
+            .map_or_else(|_| "?".into(), |n| n.to_string())
+    )))
+}
+
+/// Whether the spec whose JSON form is `json` still reads as a spec with `o` applied (its
+/// value of the field's type; the rules are checked later).
+fn takes(json: &Value, o: &Override) -> bool {
+    let mut copy = json.clone();
+    o.apply(&mut copy).is_ok() && spec_from_json(copy).is_ok()
 }
 
 /// Whether `path` has a `[*]` step (its values are a list of every element's).
@@ -233,20 +251,28 @@ impl Scenario {
     }
 
     /// Every field as Python data (dicts, lists, str, numbers, bool, None): the JSON form of
-    /// the scenario, an enum variant with data as a one-key dict (`{"Some": 3}`).
+    /// the scenario, an enum variant with data as a one-key dict (`{"Grid": {...}}`), an
+    /// optional value as the value or None.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_python(py, &self.json()?)
     }
 
     /// A scenario from the data `to_dict` gives; `origin` names it in errors, which point
-    /// into its RON text (`to_ron`).
+    /// into its RON text (`to_ron`); `path` (default `origin`) is the file its relative paths
+    /// (`report.targets`) are read beside.
     #[staticmethod]
-    #[pyo3(signature = (data, origin = "<dict>"))]
-    fn from_dict(py: Python<'_>, data: &Bound<'_, PyAny>, origin: &str) -> PyResult<Self> {
+    #[pyo3(signature = (data, origin = "<dict>", path = None))]
+    fn from_dict(
+        py: Python<'_>,
+        data: &Bound<'_, PyAny>,
+        origin: &str,
+        path: Option<PathBuf>,
+    ) -> PyResult<Self> {
         let spec = spec_from_json(from_python(data)?)
             .map_err(|e| value_error(format!("{origin}: {e}")))?;
         let text = spec_to_ron(&spec, &[origin.to_string()]).map_err(|e| anyhow_value_error(&e))?;
-        Self::from_text(text, origin.to_string(), PathBuf::from(origin))?.warned(py)
+        let path = path.unwrap_or_else(|| PathBuf::from(origin));
+        Self::from_text(text, origin.to_string(), path)?.warned(py)
     }
 
     /// Equal when every field is (wherever each was read from, however it was edited).

@@ -125,3 +125,27 @@ def test_notebooks_get_html_tables(paper):
     table = result._repr_html_()
     assert "<td>hard</td>" in table and "usar.TrialResult" in table
     assert f"<td>{result.rescued_total}</td>" in table
+
+
+def test_a_str_is_ron_where_the_field_takes_it_and_text_elsewhere(paper):
+    """Review of issue 58's fix: an enum field holding a unit variant still takes a variant
+    with data; an optional text field takes None and a plain path."""
+    threshold = paper.set("mission.hp_effect", "Threshold(below_pct: 50.0, factor: 0.6)")
+    assert threshold.get("mission.hp_effect") == {"Threshold": {"below_pct": 50.0, "factor": 0.6}}
+    assert paper.get("report.targets") == "paper-targets.ron"
+    assert paper.set("report.targets", None).get("report.targets") is None
+    assert paper.set("report.targets", "other.ron").get("report.targets") == "other.ron"
+    assert paper.set("name", "5").get("name") == "5"
+
+
+def test_from_dict_takes_numpy_values_and_a_path(paper):
+    import numpy as np
+
+    data = paper.to_dict()
+    data["mission"]["duration_s"] = np.float64(300.0)
+    data["kinds"][0]["count"] = np.int64(data["kinds"][0]["count"])
+    built = usar.Scenario.from_dict(data, path=str(PAPER))
+    assert built.get("mission.duration_s") == 300.0
+    with pytest.raises(TypeError, match="has no JSON form"):
+        data["name"] = object()
+        usar.Scenario.from_dict(data)

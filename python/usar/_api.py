@@ -30,7 +30,7 @@ def _scenario(scenario: Any) -> Scenario:
 def _count(name: str, value: Any, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         hint = ""
-        if isinstance(value, (float, np.floating)):
+        if name == "seed" and isinstance(value, (float, np.floating)):
             hint = (
                 " (a float cannot hold every 64-bit integer; a seed column read by"
                 " usar.read_trials_long or returned by usar.sweep is uint64)"

@@ -206,7 +206,24 @@ impl Targets {
     /// A name no target has (the message lists the names there are), or every target left
     /// out of the loss (nothing would be fitted).
     pub fn set_report_only(&mut self, names: &[String]) -> Result<(), TargetsError> {
-        self.mark(names, "--report-only", true)
+        self.mark(names, "--report-only", true)?;
+        self.check_some_fitted()
+    }
+
+    /// Fits the targets called `required` and leaves out those called `report_only`, then
+    /// checks once that some target is fitted (a multiverse universe's flags, from every axis
+    /// at once: `Axes::universe_targets` of the multiverse).
+    ///
+    /// # Errors
+    /// As [`Targets::set_report_only`].
+    pub fn set_flags(
+        &mut self,
+        required: &[String],
+        report_only: &[String],
+    ) -> Result<(), TargetsError> {
+        self.mark(required, "--require", false)?;
+        self.mark(report_only, "--report-only", true)?;
+        self.check_some_fitted()
     }
 
     /// Puts the targets called `names` back into the loss although the file marks them
@@ -216,7 +233,8 @@ impl Targets {
     /// # Errors
     /// A name no target has (the message lists the names there are).
     pub fn set_required(&mut self, names: &[String]) -> Result<(), TargetsError> {
-        self.mark(names, "--require", false)
+        self.mark(names, "--require", false)?;
+        self.check_some_fitted()
     }
 
     fn mark(
@@ -247,10 +265,22 @@ impl Targets {
             };
             self.targets[i].report_only = report_only;
         }
+        Ok(())
+    }
+
+    /// Refuses targets that are all report-only (nothing would be fitted).
+    fn check_some_fitted(&self) -> Result<(), TargetsError> {
         if self.targets.iter().all(|t| t.report_only) {
-            return Err(fail(
-                "every target is report-only (--report-only): at least one must be fitted".into(),
-            ));
+            return Err(TargetsError {
+                location: SourceLocation {
+                    origin: self.origin.clone(),
+                    line_col: None,
+                },
+                field: None,
+                message: "every target is report-only (--report-only): at least one must be \
+                          fitted"
+                    .into(),
+            });
         }
         Ok(())
     }

@@ -14,8 +14,9 @@ use crate::calibrate::targets::{Targets, TargetsError};
 
 impl Axes {
     /// The targets of a universe that takes alternative `choices[i]` of axis `i`: `base` with
-    /// each chosen alternative's [`Alternative::require`] fitted and
-    /// [`Alternative::report_only`] left out, axis by axis.
+    /// every chosen alternative's [`Alternative::require`] fitted and
+    /// [`Alternative::report_only`] left out (each target belongs to one axis, so the order
+    /// does not matter), checked once.
     ///
     /// # Errors
     /// A name no target has, or every target left out of the loss (see
@@ -29,11 +30,13 @@ impl Axes {
         base: &Targets,
     ) -> Result<Targets, TargetsError> {
         let mut targets = base.clone();
+        let (mut required, mut report_only) = (Vec::new(), Vec::new());
         for (axis, &alt) in choices.iter().enumerate() {
             let a = &self.axes[axis].alternatives[alt];
-            targets.set_required(&a.require)?;
-            targets.set_report_only(&a.report_only)?;
+            required.extend(a.require.iter().cloned());
+            report_only.extend(a.report_only.iter().cloned());
         }
+        targets.set_flags(&required, &report_only)?;
         Ok(targets)
     }
 

@@ -32,10 +32,9 @@ pub fn multiverse_md(plan: &MultiversePlan, records: &[UniverseRecord]) -> Strin
     let mut r = String::new();
     let _ = writeln!(r, "# Multiverse: {}\n", plan.identity.scenario);
     set_up(&mut r, plan, records.len());
-    claims(&mut r, &tally);
+    claims(&mut r, &tally, plan.sampled());
     let _ = writeln!(r, "## What this run can conclude\n");
-    let sampled = plan.identity.sample.is_some();
-    let _ = writeln!(r, "{}", conclusions(&tally, sampled, plan.factorial()));
+    let _ = writeln!(r, "{}", conclusions(&tally, plan));
     targets(&mut r, plan, records);
     by_axis(&mut r, plan, &tally);
     figures(&mut r);
@@ -152,13 +151,13 @@ fn axes_and_targets(r: &mut String, plan: &MultiversePlan) {
 }
 
 /// The admissible share and the share per claim.
-fn claims(r: &mut String, t: &Tally) {
+fn claims(r: &mut String, t: &Tally, sampled: bool) {
     let _ = writeln!(r, "## Admissible universes\n");
     let _ = writeln!(
         r,
         "{} admissible, {} not admissible; {} invalid (their choices break a rule), {} failed \
          (run the command again to retry them).\n",
-        share(t.admissible, t.universes),
+        share(t.admissible, t.universes, sampled),
         t.universes - t.admissible,
         t.invalid,
         t.failed
@@ -181,10 +180,10 @@ fn claims(r: &mut String, t: &Tally) {
             "| ({}) {} | {} | {} | {} | {} | [{file}]({file}) |",
             c.id,
             c.text,
-            share(count.holds, count.universes),
-            share(count.not_significant, count.universes),
-            share(count.does_not_hold, count.universes),
-            share(count.other, count.universes),
+            share(count.holds, count.universes, sampled),
+            share(count.not_significant, count.universes, sampled),
+            share(count.does_not_hold, count.universes, sampled),
+            share(count.other, count.universes, sampled),
         );
     }
     let _ = writeln!(r);
@@ -214,7 +213,10 @@ fn by_axis(r: &mut String, plan: &MultiversePlan, t: &Tally) {
                 .and_then(|x| x.get(k))
                 .map_or(&[], |v| v.as_slice());
             let n = counts.first().map_or(0, |c| c.universes);
-            let holds: Vec<String> = counts.iter().map(|c| share(c.holds, c.universes)).collect();
+            let holds: Vec<String> = counts
+                .iter()
+                .map(|c| share(c.holds, c.universes, plan.sampled()))
+                .collect();
             let _ = writeln!(r, "| {} | {n} | {} |", cell(&alt.name), holds.join(" | "));
         }
         let _ = writeln!(r);
@@ -232,7 +234,8 @@ fn targets(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) {
     let _ = writeln!(
         r,
         "Each target's statistic over each compared universe's comparison trials (at its \
-         calibrated values): the universes in its band. Report-only targets are not part of \
+         calibrated values): the universes in its band. Report-only targets (as the targets \
+         file marks them; an axis may fit or report them in its universes) are not part of \
          admissibility.\n"
     );
     let _ = writeln!(
@@ -267,7 +270,7 @@ fn targets(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) {
             "| {} | {} | {} | {lo} | {hi} |",
             cell(&name),
             cell(&t.describe()),
-            share(inside, xs.len())
+            share(inside, xs.len(), plan.sampled())
         );
     }
     let _ = writeln!(
@@ -358,11 +361,11 @@ mod tests {
             "| a | \"x\" (I) | **a0**: the base scenario's values; **a1**: `mission.pickup_s=2` |",
             "- `--free mission.hp_pct_per_step_in_radiation=0.001..0.02:log`",
             "| rounds | `Mean(rounds)` | 6 ± 1 |",
-            "1/2 (50 %, 95 % CI 1 to 99 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
-            "| (1) RNE rescues the most in total | 1/1 (100 %, 95 % CI 3 to 100 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | 0/1 (0 %, 95 % CI 0 to 98 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
-            "## What this run can conclude\n\n- 1/2 (50 %, 95 % CI 1 to 99 %) of the universes are admissible: only 2 of the factorial's 6 universes have a record",
+            "1/2 (50 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
+            "| (1) RNE rescues the most in total | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
+            "## What this run can conclude\n\n- 1/2 (50 %) of the universes are admissible: only 2 of the 6 universes this run makes have a record",
             "### b\n\n| alternative | admissible universes | (1) holds |",
-            "| b0 | 1 | 1/1 (100 %, 95 % CI 3 to 100 %) | 0/1 (0 %, 95 % CI 0 to 98 %) |",
+            "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",
             "| b2 | 0 | 0/0 |",
             "![Claim 4b: RNE has the lowest HP cost per rescuee in the hard task](spec_curve_4b.svg)",
             "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25 | 0.003 | ok |  |",

@@ -160,6 +160,14 @@ impl MultiversePlan {
         Ok(Some(plan))
     }
 
+    /// Whether the universes are a `--sample` smaller than the factorial (their shares are
+    /// estimates of the factorial's, with intervals).
+    pub fn sampled(&self) -> bool {
+        self.identity
+            .sample
+            .is_some_and(|s| (s.n as u64) < self.factorial())
+    }
+
     /// The size of the full factorial.
     pub fn factorial(&self) -> u64 {
         factorial_size(&self.identity.axes.sizes()).unwrap_or(0)

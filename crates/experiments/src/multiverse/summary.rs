@@ -29,7 +29,7 @@ pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String 
     let _ = writeln!(
         s,
         "admissible: {}; invalid {}, failed {}",
-        share(t.admissible, t.universes),
+        share(t.admissible, t.universes, plan.sampled()),
         t.invalid,
         t.failed
     );
@@ -45,9 +45,9 @@ pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String 
             "  ({}) {}: holds {}, not significant {}, does not hold {}",
             c.id,
             c.text,
-            share(count.holds, count.universes),
-            share(count.not_significant, count.universes),
-            share(count.does_not_hold, count.universes)
+            share(count.holds, count.universes, plan.sampled()),
+            share(count.not_significant, count.universes, plan.sampled()),
+            share(count.does_not_hold, count.universes, plan.sampled())
         );
     }
     let _ = writeln!(s, "\nwrote:");

@@ -71,17 +71,19 @@ pub fn clopper_pearson(k: usize, n: usize) -> Option<(f64, f64)> {
     Some((lower, upper))
 }
 
-/// `k/n (p %, 95 % CI lo to hi %)` with the [`clopper_pearson`] interval, or `0/0` for none:
-/// a share as the report writes it.
-pub fn share(k: usize, n: usize) -> String {
+/// A share as the report writes it: `k/n (p %)`, with `with_interval` `k/n (p %, 95 % CI lo to
+/// hi %)` (the [`clopper_pearson`] interval; for the shares of a `--sample` of the
+/// factorial), or `0/0` for none.
+pub fn share(k: usize, n: usize, with_interval: bool) -> String {
     match clopper_pearson(k, n) {
         None => "0/0".into(),
-        Some((lo, hi)) => format!(
+        Some((lo, hi)) if with_interval => format!(
             "{k}/{n} ({:.0} %, 95 % CI {:.0} to {:.0} %)",
             100.0 * k as f64 / n as f64,
             100.0 * lo,
             100.0 * hi
         ),
+        Some(_) => format!("{k}/{n} ({:.0} %)", 100.0 * k as f64 / n as f64),
     }
 }
 
@@ -170,8 +172,9 @@ mod tests {
         assert_eq!(t.by_alternative[0][1][0].holds, 1);
         assert_eq!(t.by_alternative[1][0][0].universes, 0);
         assert_eq!(t.by_alternative[1][1][0].universes, 2);
-        assert_eq!(share(1, 3), "1/3 (33 %, 95 % CI 1 to 91 %)");
-        assert_eq!(share(0, 0), "0/0");
+        assert_eq!(share(1, 3, true), "1/3 (33 %, 95 % CI 1 to 91 %)");
+        assert_eq!(share(1, 3, false), "1/3 (33 %)");
+        assert_eq!(share(0, 0, true), "0/0");
     }
 
     /// Against the closed forms of the end cases and R's `binom.test` (its Clopper-Pearson

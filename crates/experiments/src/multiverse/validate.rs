@@ -11,7 +11,7 @@
 
 use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 
-use super::axes::{Axes, AxesError};
+use super::axes::{Alternative, Axes, AxesError};
 use crate::calibrate::FreeField;
 use crate::calibrate::targets::Targets;
 use crate::vary::{Override, apply_overrides, spec_json, touching};
@@ -58,8 +58,8 @@ pub fn check_axes(
                     k,
                     "name",
                     format!(
-                        "gives the same scenario as alternative {:?} (alternatives[{m}]): \
-                         alternatives of an axis must differ",
+                        "gives the same scenario and target flags as alternative {:?} \
+                         (alternatives[{m}]): alternatives of an axis must differ",
                         axis.alternatives[m].name
                     ),
                 ));
@@ -67,7 +67,7 @@ pub fn check_axes(
             specs.push(json);
         }
     }
-    Ok(())
+    check_some_target_fitted(axes, targets)
 }
 
 /// Each target's `report_only` flag in a universe of `targets` that takes alternative `k`
@@ -80,16 +80,71 @@ fn target_flags(
     targets: &Targets,
 ) -> Result<Vec<bool>, AxesError> {
     let alt = &axes.axes[i].alternatives[k];
-    let mut t = targets.clone();
-    let field = if alt.require.is_empty() {
+    let known = |n: &String| targets.targets().iter().any(|t| &t.name == n);
+    let field = if alt.require.iter().all(known) {
         "report_only"
     } else {
         "require"
     };
-    t.set_required(&alt.require)
-        .and_then(|()| t.set_report_only(&alt.report_only))
+    let mut t = targets.clone();
+    t.set_flags(&alt.require, &alt.report_only)
         .map_err(|e| alt_error(axes, i, k, field, e.message))?;
     Ok(t.targets().iter().map(|t| t.report_only).collect())
+}
+
+/// Refuses axes of which some combination of alternatives leaves every target out of the
+/// loss. Each target belongs to one axis, so the worst combination takes, on each axis, the
+/// alternative that fits the fewest of the targets the axis flags.
+fn check_some_target_fitted(axes: &Axes, targets: &Targets) -> Result<(), AxesError> {
+    let names: Vec<&str> = targets.targets().iter().map(|t| t.name.as_str()).collect();
+    let base: Vec<bool> = targets.targets().iter().map(|t| !t.report_only).collect();
+    let mut touched = vec![false; names.len()];
+    let mut fitted_at_worst = 0;
+    let mut worst: Vec<String> = Vec::new();
+    for axis in &axes.axes {
+        let flags =
+            |a: &Alternative, name: &str| a.require.iter().chain(&a.report_only).any(|n| n == name);
+        let own: Vec<usize> = (0..names.len())
+            .filter(|&t| axis.alternatives.iter().any(|a| flags(a, names[t])))
+            .collect();
+        if own.is_empty() {
+            continue;
+        }
+        let fitted = |a: &Alternative| {
+            own.iter()
+                .filter(|&&t| {
+                    let name = names[t];
+                    !a.report_only.iter().any(|n| n == name)
+                        && (base[t] || a.require.iter().any(|n| n == name))
+                })
+                .count()
+        };
+        let Some((alt, least)) = axis
+            .alternatives
+            .iter()
+            .map(|a| (a, fitted(a)))
+            .min_by_key(|&(_, n)| n)
+        else {
+            continue;
+        };
+        for &t in &own {
+            touched[t] = true;
+        }
+        fitted_at_worst += least;
+        worst.push(format!("{:?} of axis {:?}", alt.name, axis.name));
+    }
+    fitted_at_worst += (0..names.len()).filter(|&t| !touched[t] && base[t]).count();
+    if fitted_at_worst == 0 {
+        return Err(axes.error(
+            "axes",
+            format!(
+                "the universes taking {} fit no target (every one report-only): give those \
+                 alternatives fewer report_only targets",
+                worst.join(" and ")
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// An error about `field` of alternative `k` of axis `i` (`name`, `set[2]`), naming both.
@@ -286,7 +341,7 @@ mod tests {
         assert!(
             e.contains(
                 "axes[1].alternatives[1].name: axis \"b\", alternative \"same\": gives the same \
-                 scenario as alternative \"base\" (alternatives[0])"
+                 scenario and target flags as alternative \"base\" (alternatives[0])"
             ),
             "{e}"
         );
@@ -317,5 +372,42 @@ mod tests {
         assert!(e.contains("every target is report-only"), "{e}");
         let e = check("(name: \"x\"), (name: \"y\", report_only: [])", &[]).unwrap_err();
         assert!(e.contains("gives the same scenario"), "{e}");
+    }
+
+    /// Two axes that each leave one of the two fitted targets out pass alternative by
+    /// alternative, but their combination fits nothing: refused before anything runs. And a
+    /// universe's flags do not depend on the order of the axes.
+    #[test]
+    fn a_combination_of_alternatives_that_fits_nothing_is_refused() {
+        let two = Targets::parse(
+            "Targets(targets: [(name: \"rounds\", statistic: Mean(\"rounds\"), value: 6.0, \
+             band: PlusMinus(1.0)), (name: \"total\", statistic: Mean(\"rescued_total\"), \
+             value: 100.0, band: PlusMinus(10.0))])",
+            "t.ron",
+        )
+        .unwrap();
+        let src = "Axes(axes: [(name: \"a\", alternatives: [(name: \"a0\"), (name: \"a1\", \
+                   report_only: [\"rounds\"])]), (name: \"b\", alternatives: [(name: \"b0\"), \
+                   (name: \"b1\", report_only: [\"total\"])])])";
+        let a = Axes::parse(src, "a.ron").unwrap();
+        let e = check_axes(&a, &base(), "corridor.ron", &[], &two)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(
+                "the universes taking \"a1\" of axis \"a\" and \"b1\" of axis \"b\" fit no target"
+            ),
+            "{e}"
+        );
+        let energy = targets();
+        let src = "Axes(axes: [(name: \"a\", alternatives: [(name: \"a0\"), (name: \"a1\", \
+                   report_only: [\"rounds\"])]), (name: \"b\", alternatives: [(name: \"b0\"), \
+                   (name: \"b1\", require: [\"energy\"])])])";
+        let a = Axes::parse(src, "a.ron").unwrap();
+        // a1 alone leaves nothing to fit; with b1 (after it in axis order) it does.
+        let t = a.universe_targets(&[1, 1], &energy).unwrap();
+        let flags: Vec<bool> = t.targets().iter().map(|t| t.report_only).collect();
+        assert_eq!(flags, [true, false]);
+        assert!(a.universe_targets(&[1, 0], &energy).is_err());
     }
 }

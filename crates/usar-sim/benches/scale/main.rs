@@ -13,7 +13,10 @@
 //! Teams (`teams.rs`): 12 robots is `scenarios/paper.ron`; a team of `n` is
 //! `scenarios/swarm-<n>.ron` when that file exists (or a `--scenario` file with `n` robots),
 //! else `swarm-1000.ron` with its kinds' counts and quotas scaled to `n`, and beyond 1,000
-//! robots its plan stretched by `sqrt(n / 1000)` so each robot has the base's room. Rates are
+//! robots its plan stretched by `sqrt(n / 1000)` so each robot has the base's room; every team
+//! steps Rapier every step (`sim.physics: EveryStep`, whatever its file says, so the replay is
+//! the same motion; the gated steppings are measured by `experiments`' `trials_per_cpu`
+//! bench). Rates are
 //! per CPU second of the stepping thread (`clock_gettime`'s thread CPU clock), so other load
 //! on a shared machine does not count; logic and replay alternate block by block.
 //!

@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use usar_sim::scenario::{
-    self, CircleSpec, DebrisSpec, Locomotion, Positive, RectSpec, RescueeLayoutSpec, Scenario,
-    ScenarioSpec, StartsSpec, XyM,
+    self, CircleSpec, DebrisSpec, Locomotion, PhysicsStepping, Positive, RectSpec,
+    RescueeLayoutSpec, Scenario, ScenarioSpec, StartsSpec, XyM,
 };
 
 /// The scenario whose kind counts are scaled (`--base`): its `Grid` start layouts follow the
@@ -251,7 +251,15 @@ pub fn team(n: usize, base: &str, given: &[String]) -> Result<Team, String> {
     validated(spec, &format!("{base} x {n}"), source)
 }
 
-fn validated(spec: ScenarioSpec, file: &str, source: String) -> Result<Team, String> {
+/// The team of `spec`, with Rapier stepped every step (`sim.physics: EveryStep`, whatever the
+/// file says): the bare-Rapier replay steps every body every step, so only then do the
+/// replayed bodies stand where the world's do (`measure.rs`); `docs/scaling.md`, "Physics
+/// only near contacts", measures the gated steppings.
+fn validated(mut spec: ScenarioSpec, file: &str, mut source: String) -> Result<Team, String> {
+    if spec.sim.physics != PhysicsStepping::EveryStep {
+        spec.sim.physics = PhysicsStepping::EveryStep;
+        source = format!("{source}, physics every step");
+    }
     let scenario = spec.validate(file).map_err(|e| format!("{file}: {e}"))?;
     Ok(Team { scenario, source })
 }

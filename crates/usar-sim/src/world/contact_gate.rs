@@ -28,33 +28,47 @@ impl World {
     /// the first robot near a contact.
     pub(super) fn near_contact(&mut self) -> bool {
         let gate = self.gate();
-        let near = (0..self.nav.len()).any(|i| self.robot_near_contact(i, &gate));
+        let near = (0..self.nav.len()).any(|i| self.robot_near_contact(i, &gate, |_| {}));
         self.gate_speeds = gate.speeds_m_per_s;
         near
     }
 
     /// `sim.physics: NearBodies`: marks in `near[id]` whether robot `id` may touch a wall,
-    /// debris or another robot within the next step ([`World::robot_near_contact`]); returns
-    /// whether any may. `near` holds one flag per robot.
+    /// debris or another robot within the next step ([`World::robot_near_contact`]; both
+    /// robots of a pair found near from either side are marked); returns whether any may.
+    /// `near` holds one flag per robot.
     pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
         let gate = self.gate();
+        near.fill(false);
         let mut any = false;
-        for (i, flag) in near.iter_mut().enumerate() {
-            *flag = self.robot_near_contact(i, &gate);
-            any |= *flag;
+        let mut partners = Vec::new();
+        for i in 0..near.len() {
+            partners.clear();
+            let hit = self.robot_near_contact(i, &gate, |j| partners.push(j));
+            near[i] |= hit;
+            for &j in &partners {
+                near[j] = true;
+            }
+            any |= hit;
         }
         self.gate_speeds = gate.speeds_m_per_s;
         any
     }
 
-    /// What every robot's gate shares on one step: each body's speed, the fastest, and the
+    /// What every robot's gate shares on one step: each robot's speed, the fastest, and the
     /// slack every gap is allowed (Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]).
+    /// A robot's speed is the larger of its command's and its body's: with `NearContacts` the
+    /// bodies were driven at the commands before the gate, so the two are one; with
+    /// `NearBodies` a body Rapier pushed last step may still move faster than its command.
     fn gate(&mut self) -> Gate {
-        // A body's velocity is its robot's command on every step the gate runs (`World::step`
-        // drives the bodies first; with `NearBodies` a disabled body keeps its command).
+        let bodies = &self.scene.physics.bodies;
         let mut speeds = std::mem::take(&mut self.gate_speeds);
         speeds.clear();
-        speeds.extend(self.nav.iter().map(|n| n.command.length()));
+        speeds.extend(
+            self.nav
+                .iter()
+                .map(|n| n.command.length().max(bodies[n.body].linvel().length())),
+        );
         Gate {
             slack_m: self
                 .scene
@@ -69,11 +83,12 @@ impl World {
 
     /// Whether robot `i` may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step: its gap (distance between the surfaces, negative when they
-    /// overlap) is at most what the two can close in a step at their bodies' velocities, plus
+    /// overlap) is at most what the two can close in a step at their speeds ([`Gate`]), plus
     /// Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]. Statics by the clearance
     /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
-    /// then exactly; robots through the neighbour index. Symmetric between two robots.
-    fn robot_near_contact(&self, i: usize, gate: &Gate) -> bool {
+    /// then exactly; robots through the neighbour index, calling `partner(j)` for each robot
+    /// `j` found near (the test of a pair is the same from both sides up to rounding).
+    fn robot_near_contact(&self, i: usize, gate: &Gate, mut partner: impl FnMut(usize)) -> bool {
         let dt = self.dt as f32;
         let speed = &gate.speeds_m_per_s;
         // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
@@ -95,7 +110,10 @@ impl World {
         self.for_each_near(a.layer, a.pos, radius, |j| {
             let b = &self.nav[j];
             let gap = (b.pos - a.pos).length() - a.radius - b.radius;
-            near |= j != i && gap <= (va + speed[j]) * dt + gate.slack_m;
+            if j != i && gap <= (va + speed[j]) * dt + gate.slack_m {
+                near = true;
+                partner(j);
+            }
         });
         near
     }
@@ -105,7 +123,7 @@ impl World {
 struct Gate {
     slack_m: f32,
     fastest_m_per_s: f32,
-    /// Each robot's body speed, by id, m/s.
+    /// Each robot's speed (the larger of its command's and its body's), by id, m/s.
     speeds_m_per_s: Vec<f32>,
 }
 

@@ -27,8 +27,9 @@
 //!   memory budget.
 //! - `plan_cache`: the planner's plan cache, bounded in entries and bytes.
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
-//! - `contact_gate`: `sim.physics: NearContacts`, whether a contact may begin within the next
-//!   step, and the straight move of every body on a step without one.
+//! - `contact_gate`: `sim.physics: NearContacts` and `NearBodies`, whether a contact may begin
+//!   within the next step (for the team or per robot), the straight move of every body on a
+//!   step without one, and the bodies enabled in Rapier only near a contact.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,

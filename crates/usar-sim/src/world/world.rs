@@ -41,8 +41,8 @@ pub const CLEARANCE_CAP_MARGIN_M: f64 = 4.0;
 pub struct WorldStats {
     /// Steps taken.
     pub steps: u64,
-    /// Steps Rapier took: every step, or with `sim.physics: NearContacts` those near a
-    /// contact.
+    /// Steps Rapier took: every step, or with `sim.physics: NearContacts` or `NearBodies`
+    /// those on which some robot was near a contact.
     pub physics_steps: u64,
     /// Deadlocks detected (one per list and rotation, not per member).
     pub deadlocks_detected: u64,
