@@ -215,7 +215,7 @@ fn report_options(cfg: &mut SweepConfig, out: Option<&PathBuf>) -> PyResult<Opti
         Some(dir) => {
             cfg.out_dir = dir.clone();
             Ok(Some(
-                ReportOptions::resolve(None, false, &cfg.scenario, &cfg.scenario_path)
+                ReportOptions::resolve(None, None, &cfg.scenario, &cfg.scenario_path, &cfg.methods)
                     .map_err(value_error)?,
             ))
         }

@@ -1,5 +1,5 @@
 //! One analysis pass over a sweep's results, once per grid cell: per method and metric the
-//! summary statistics, the paper's claims checked, the round lengths and, when the reports
+//! summary statistics, the report's claims checked, the round lengths and, when the reports
 //! compare with targets, the pooled statistics. Every output (CSV files, figures,
 //! `report.md`, `grid.*`, the terminal summary) is rendered from it, so the numbers are
 //! computed once and agree everywhere; its [`ReportOptions`] say which sections the reports
@@ -10,7 +10,7 @@ use usar_sim::mission::TrialResult;
 
 pub use crate::calibration::ReportOptions;
 use crate::calibration::{Target, Targets};
-use crate::claims::{CLAIMS, ClaimCheck, check_claim};
+use crate::claims::{ClaimCheck, Claims, check_claim};
 use crate::metrics::{Metric, values_of};
 use crate::stats::Summary;
 use crate::sweep::SweepOutcome;
@@ -43,6 +43,7 @@ impl Analysis {
                     CellAnalysis::of(&c.results, &outcome.header.methods, &h.tasks)
                         .with_difficulty(h.hardest_first.clone())
                         .with_targets(report.targets.as_ref(), &c.results)
+                        .with_claims(report.claims.as_ref(), &c.results, &outcome.header.methods)
                 })
                 .collect(),
             report,
@@ -61,8 +62,8 @@ pub struct CellAnalysis {
     pub metrics: Vec<Metric>,
     /// Per method, in sweep order.
     pub methods: Vec<MethodStats>,
-    /// The paper's claims ([`CLAIMS`]) checked, in that order (always computed; the
-    /// reports show them only when asked, [`ReportOptions::claims`]).
+    /// The report's claims ([`ReportOptions::claims`]) checked, in file order; empty without
+    /// claims.
     pub claims: Vec<ClaimCheck>,
     /// Completed-round lengths over all methods (label `all`), then per method.
     pub rounds: Vec<RoundStats>,
@@ -132,10 +133,6 @@ impl CellAnalysis {
                     .collect(),
             })
             .collect();
-        let claims = CLAIMS
-            .iter()
-            .map(|c| check_claim(*c, results, methods, tasks))
-            .collect();
         let all = std::iter::once("all").chain(methods.iter().map(String::as_str));
         let rounds = all
             .map(|label| {
@@ -151,7 +148,7 @@ impl CellAnalysis {
             hardest_first: (0..tasks.len()).collect(),
             metrics,
             methods: stats,
-            claims,
+            claims: Vec::new(),
             rounds,
             pooled: Vec::new(),
             pooled_left_out: Vec::new(),
@@ -174,6 +171,23 @@ impl CellAnalysis {
             .map(|(t, _)| t.statistic.left_out(results))
             .collect();
         self.trials = results.len();
+        self
+    }
+
+    /// The same analysis with every claim of `claims` checked against `results` (the cell's)
+    /// of `methods` ([`check_claim`]; none without claims).
+    pub fn with_claims(
+        mut self,
+        claims: Option<&Claims>,
+        results: &[TrialResult],
+        methods: &[String],
+    ) -> Self {
+        self.claims = claims.map_or_else(Vec::new, |c| {
+            c.claims()
+                .iter()
+                .map(|c| check_claim(c, results, methods, &self.tasks))
+                .collect()
+        });
         self
     }
 

@@ -1,8 +1,8 @@
 //! The calibration targets a sweep's reports compare with, and the paper's own.
 //!
 //! [`ReportOptions`] says what a sweep's reports say about a paper: the pooled statistics
-//! against a targets file (`--targets FILE`) and the paper's claims (`--claims`); neither by
-//! default, so the report of a user's own scenario is about that scenario alone.
+//! against a targets file (`--targets FILE`) and the claims of a claims file (`--claims
+//! FILE`); neither by default, so the report of a user's own scenario is about that scenario alone.
 //! [`ReportOptions::resolve`] is the one place they are decided.
 //!
 //! The paper's targets are the method-independent statistics `scenarios/paper.ron` is
@@ -23,6 +23,7 @@ use usar_sim::scenario::{Scenario, path_text};
 
 use crate::calibrate::TargetsError;
 pub use crate::calibrate::{Target, Targets};
+use crate::claims::{Claims, ClaimsError};
 
 /// What a sweep's reports (`report.md`, `grid.md`, the terminal summary) say beyond the
 /// scenario's own results. Default: nothing (no targets, no claims).
@@ -35,71 +36,109 @@ pub struct ReportOptions {
     /// section, and a line of the terminal summary); `None`: no such section. The paper's are
     /// `scenarios/paper-targets.ron` ([`paper_targets`]).
     pub targets: Option<Targets>,
-    /// Check the paper's claims ([`crate::claims::CLAIMS`], about tasks named `easy` and
-    /// `hard`) in the reports; default `false`.
-    pub claims: bool,
+    /// Claims to check the results against (the "Claims" section, and lines of the terminal
+    /// summary); `None`: no such section. The paper's are `scenarios/paper-claims.ron`
+    /// ([`crate::claims::paper_claims`]).
+    pub claims: Option<Claims>,
+}
+
+/// Why a sweep's report options could not be resolved: a targets file or a claims file that
+/// cannot be read, parsed or used with the scenario (one line, naming the file, line and
+/// field).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ReportOptionsError {
+    /// The targets file ([`Targets::load`], [`Targets::check_tasks`]).
+    #[error(transparent)]
+    Targets(#[from] TargetsError),
+    /// The claims file ([`Claims::load`], [`Claims::check_tasks`], [`Claims::check_methods`]).
+    #[error(transparent)]
+    Claims(#[from] ClaimsError),
 }
 
 impl ReportOptions {
-    /// The report options of a sweep of `scenario` (loaded from `scenario_path`): the targets
-    /// file `cli_targets` (`--targets FILE`) or else the one the scenario's `report` section
-    /// names (`report: (targets: "paper-targets.ron")`, relative to the scenario file's
-    /// folder), read and checked now, before any trial runs; and the claims when `cli_claims`
-    /// (`--claims`) or the scenario's `report: (claims: true)` asks for them. A flag given on
-    /// the command line overrides the scenario's targets; with neither flags nor a `report`
-    /// section, the reports say nothing about the paper. A targets file the scenario names
-    /// that does not exist (a copy of paper.ron in another folder) is a warning on stderr,
-    /// and the reports leave the bands out; one given by `--targets` must exist.
+    /// The report options of a sweep of `scenario` (loaded from `scenario_path`) with
+    /// `methods` (as given or canonical; case and `-`/`_` ignored): the targets file
+    /// `cli_targets` (`--targets FILE`) or else the one the scenario's `report` section names
+    /// (`report: (targets: "paper-targets.ron")`, relative to the scenario file's folder), and
+    /// likewise the claims file `cli_claims` (`--claims FILE`) or the scenario's
+    /// `report: (claims: "paper-claims.ron")`; both read and checked now, before any trial
+    /// runs. A file given on the command line overrides the scenario's; with neither flags
+    /// nor a `report` section, the reports say nothing beyond the results. A file the
+    /// scenario names that does not exist (a copy of paper.ron in another folder) is a
+    /// warning on stderr, and the reports leave its section out; one given by a flag must
+    /// exist.
     ///
     /// # Errors
-    /// A targets file that cannot be read or parsed ([`Targets::load`]), or one with a metric
-    /// the scenario lacks (a task it does not have: [`Targets::check_tasks`]).
+    /// A targets or claims file that cannot be read or parsed ([`Targets::load`],
+    /// [`Claims::load`]), one with a metric the scenario lacks (a task it does not have), or
+    /// a claim naming a method that is neither built in nor one of `methods`.
     pub fn resolve(
         cli_targets: Option<&Path>,
-        cli_claims: bool,
+        cli_claims: Option<&Path>,
         scenario: &Scenario,
         scenario_path: &Path,
-    ) -> Result<Self, TargetsError> {
+        methods: &[String],
+    ) -> Result<Self, ReportOptionsError> {
         let asked = scenario.report();
-        let from_scenario = asked.targets.as_ref().and_then(|file| {
+        let named = |file: &Option<String>, field: &str, flag: &str, cli: bool| {
+            let file = file.as_ref()?;
             let folder = scenario_path.parent().unwrap_or(Path::new(""));
             let path = folder.join(file);
-            // A copy of paper.ron elsewhere still runs: its reports leave the bands out.
-            if cli_targets.is_none() && !path.exists() {
+            // A copy of paper.ron elsewhere still runs: its reports leave the section out.
+            if !cli && !path.exists() {
                 crate::stderr::warn(format!(
-                    "warning: {}: report.targets: {} not found (relative to the scenario's \
-                     folder); the reports leave out the calibration bands (--targets FILE \
-                     gives them)",
+                    "warning: {}: report.{field}: {} not found (relative to the scenario's \
+                     folder); the reports leave out its section ({flag} FILE gives it)",
                     path_text(scenario_path),
                     path_text(&path)
                 ));
                 return None;
             }
             Some(path)
-        });
-        let targets = match cli_targets.or(from_scenario.as_deref()) {
+        };
+        let tasks = scenario.task_names();
+        let in_scenario = |message: &mut String| {
+            *message = format!("{message}; scenario: {}", path_text(scenario_path));
+        };
+        let targets_path = named(
+            &asked.targets,
+            "targets",
+            "--targets",
+            cli_targets.is_some(),
+        );
+        let targets = match cli_targets.or(targets_path.as_deref()) {
             None => None,
             Some(path) => {
                 let t = Targets::load(path)?;
-                t.check_tasks(&scenario.task_names()).map_err(|mut e| {
-                    e.message = format!("{}; scenario: {}", e.message, path_text(scenario_path));
+                t.check_tasks(&tasks).map_err(|mut e| {
+                    in_scenario(&mut e.message);
                     e
                 })?;
                 Some(t)
             }
         };
-        Ok(Self {
-            targets,
-            claims: cli_claims || asked.claims,
-        })
+        let claims_path = named(&asked.claims, "claims", "--claims", cli_claims.is_some());
+        let claims = match cli_claims.or(claims_path.as_deref()) {
+            None => None,
+            Some(path) => {
+                let c = Claims::load(path)?;
+                c.check_tasks(&tasks).map_err(|mut e| {
+                    in_scenario(&mut e.message);
+                    e
+                })?;
+                c.check_methods(methods)?;
+                Some(c)
+            }
+        };
+        Ok(Self { targets, claims })
     }
 
     /// The options of a report that checks the paper: `scenarios/paper-targets.ron`
-    /// ([`paper_targets`]) and the claims.
+    /// ([`paper_targets`]) and `scenarios/paper-claims.ron` ([`crate::claims::paper_claims`]).
     pub fn paper() -> Self {
         Self {
             targets: Some(paper_targets().clone()),
-            claims: true,
+            claims: Some(crate::claims::paper_claims().clone()),
         }
     }
 
@@ -113,8 +152,9 @@ impl ReportOptions {
               targets file (the paper's: `scenarios/paper-targets.ron`)",
             ),
             (
-                !self.claims,
-                "`--claims` checks the paper's claims (tasks named `easy` and `hard`)",
+                self.claims.is_none(),
+                "`--claims FILE` checks the claims of a claims file (the paper's: \
+                 `scenarios/paper-claims.ron`)",
             ),
         ]
         .into_iter()

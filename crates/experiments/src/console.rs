@@ -1,7 +1,7 @@
 //! The terminal summary of `usar sweep`, rendered from the sweep's analysis: what ran, a table
 //! of the main metrics per method (per cell and chosen metric for a grid), when asked
 //! ([`crate::calibration::ReportOptions`]) how many pooled statistics lie in their target
-//! bands and the paper's claims (without a grid; a grid has them per cell in `grid.md`), and
+//! bands and the claims (without a grid; a grid has them per cell in `grid.md`), and
 //! the files written.
 
 use std::io::Write;
@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
-use crate::claims::ClaimCheck;
+use crate::claims::{ClaimCheck, Test};
 use crate::data::config::SweepConfig;
 use crate::data::outcome::{JournalUse, SweepOutcome};
 use crate::metrics::{Metric, Quantity, Scope};
@@ -95,8 +95,8 @@ pub fn print_sweep(
         None => {
             method_table(out, &analysis.cells[0])?;
             pooled(out, analysis)?;
-            if analysis.report.claims {
-                claims(out, &analysis.cells[0])?;
+            if let Some(c) = &analysis.report.claims {
+                claims(out, &analysis.cells[0], c.origin())?;
             }
             writeln!(out, "\nwrote:")?;
             for f in files {
@@ -234,24 +234,22 @@ fn pooled(out: &mut dyn Write, analysis: &Analysis) -> Result<()> {
     Ok(())
 }
 
-fn claims(out: &mut dyn Write, a: &CellAnalysis) -> Result<()> {
-    writeln!(out, "\nclaims (one-sided Welch, p < 0.05):")?;
+fn claims(out: &mut dyn Write, a: &CellAnalysis, origin: &str) -> Result<()> {
+    writeln!(out, "\nclaims of {origin}:")?;
     for chk in &a.claims {
-        match chk.metric {
-            Some(_) => writeln!(
+        match &chk.reason {
+            None => writeln!(
                 out,
                 "  ({}) {}: {} ({})",
                 chk.claim.id,
-                chk.claim.text,
+                chk.claim.sentence,
                 chk.verdict.words(),
                 max_p_text(chk)
             )?,
-            None => writeln!(
+            Some(why) => writeln!(
                 out,
-                "  ({}) {}: not applicable (no task named {:?})",
-                chk.claim.id,
-                chk.claim.text,
-                chk.claim.task.unwrap_or_default()
+                "  ({}) {}: not tested ({why})",
+                chk.claim.id, chk.claim.sentence
             )?,
         }
     }
@@ -295,8 +293,9 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
     Ok(())
 }
 
-/// `max p = ...` of a claim, or why there is none: with fewer than two trials of a method,
-/// Welch's test has no variance to work with (`max p = n/a` said nothing of the cause).
+/// `max p = ...` of a claim (its test's, after its correction), or why there is none: with
+/// fewer than two trials of a method, Welch's test has no variance to work with (`max p = n/a`
+/// said nothing of the cause).
 fn max_p_text(chk: &ClaimCheck) -> String {
     let p = chk.worst_p();
     let fewest = chk
@@ -307,7 +306,11 @@ fn max_p_text(chk: &ClaimCheck) -> String {
         .min()
         .unwrap_or(0);
     if p.is_nan() && fewest < 2 {
-        "no p: Welch's test needs at least 2 trials per method".to_string()
+        let test = match chk.claim.test {
+            Test::Welch => "Welch's test",
+            Test::MannWhitney => "the Mann-Whitney U test",
+        };
+        format!("no p: {test} needs at least 2 trials per method")
     } else {
         format!("max p = {}", pval(p))
     }

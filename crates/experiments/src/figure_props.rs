@@ -15,7 +15,7 @@ use crate::calibrate::metric_ref::MetricRef;
 use crate::calibrate::statistic::tests::trial;
 use crate::calibrate::targets_figure::targets_svg;
 use crate::calibrate::{Band, Statistic, Target};
-use crate::claims::CLAIMS;
+use crate::claims::paper_claims;
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid_outputs::grid_figures::{heat_maps, line_chart};
 use crate::multiverse::plan::tests::plan;
@@ -198,7 +198,7 @@ fn spec_curves_are_drawn_from_any_finite_effect() {
                     r
                 })
                 .collect();
-            let svg = spec_curve_svg(&plan(), &records, &CLAIMS[0]).unwrap();
+            let svg = spec_curve_svg(&plan(), &records, &paper_claims().claims()[0]).unwrap();
             prop_assert!(svg.contains("</svg>"));
         });
     });

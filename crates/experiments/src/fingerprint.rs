@@ -27,7 +27,8 @@ const ADDED_FIELDS: [(&str, &str, &str); 4] = [
 
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
 /// the fields added later (`ADDED_FIELDS`) that hold their old value. Any change to what the
-/// scenario means changes it; comments, layout, and writing out a default value or leaving it
+/// scenario means changes it; comments, layout, the `report` section (data no trial reads;
+/// not part of the validated scenario's JSON), and writing out a default value or leaving it
 /// out do not.
 ///
 /// # Errors
@@ -65,6 +66,21 @@ mod tests {
             usar_sim::scenario::from_str(&src.replace("recharge_s: 30.0", "recharge_s: 31.0"), "c")
                 .unwrap();
         assert_ne!(scenario_hash(&a).unwrap(), scenario_hash(&c).unwrap());
+    }
+
+    #[test]
+    fn the_report_section_is_not_hashed() {
+        let src = include_str!("../../../scenarios/paper.ron");
+        let hash =
+            |text: &str| scenario_hash(&usar_sim::scenario::from_str(text, "s").unwrap()).unwrap();
+        let none = src.replace(
+            "report: (targets: \"paper-targets.ron\", claims: \"paper-claims.ron\"),",
+            "",
+        );
+        assert_ne!(none, src);
+        let other = src.replace("paper-claims.ron", "mine.ron");
+        assert_eq!(hash(&none), hash(src));
+        assert_eq!(hash(&other), hash(src));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! `report.md`: one cell's parameters, results table, round lengths, failed trials and
 //! timings, rendered from the cell's [`CellAnalysis`]; when asked ([`ReportOptions`]), its
-//! statistics pooled over methods against a targets file and the paper's claims checked one
-//! by one with significance tests.
+//! statistics pooled over methods against a targets file and the claims of a claims file
+//! checked one by one with significance tests.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -11,7 +11,7 @@ use usar_sim::scenario::Scenario;
 
 use crate::analysis::CellAnalysis;
 use crate::calibration::ReportOptions;
-use crate::claims::{ALPHA, ClaimCheck, Verdict};
+use crate::claims::{ClaimCheck, Claims, Correction};
 use crate::data::figure_list::FIGURES;
 use crate::data::grid_cells::GridCell;
 use crate::data::outcome::SweepOutcome;
@@ -40,7 +40,7 @@ pub struct ReportInput<'a> {
 }
 
 /// The text of `report.md`: set-up, results and round lengths; the "Pooled statistics"
-/// section only with targets and the paper's claims only with `claims`
+/// section only with targets and the claims section only with `claims`
 /// ([`ReportOptions`]; a line says how to ask for what is left out); then figures, failed
 /// trials and timings.
 pub fn report_md(input: &ReportInput<'_>) -> String {
@@ -52,8 +52,8 @@ pub fn report_md(input: &ReportInput<'_>) -> String {
     if let Some(targets) = &input.options.targets {
         pooled(&mut r, input.analysis, targets.origin());
     }
-    if input.options.claims {
-        claims(&mut r, input.analysis);
+    if let Some(c) = &input.options.claims {
+        claims(&mut r, input.analysis, c);
     }
     if let Some(line) = input.options.how_to_ask() {
         let _ = writeln!(r, "{line}\n");
@@ -245,32 +245,37 @@ fn round_lengths(r: &mut String, a: &CellAnalysis) {
     r.push('\n');
 }
 
-/// The report's section on the paper's claims: how a verdict is reached, a table of the
-/// verdicts, and one subsection per claim ([`claim_section`]).
-fn claims(r: &mut String, a: &CellAnalysis) {
-    let _ = writeln!(r, "## The paper's claims (section VI, Fig. 3)\n");
+/// The report's section on its claims (`claims`, a claims file): how a verdict is reached, a
+/// table of the verdicts, and one subsection per claim ([`claim_section`]).
+fn claims(r: &mut String, a: &CellAnalysis, claims: &Claims) {
+    let _ = writeln!(r, "## Claims\n");
     let _ = writeln!(
         r,
-        "Each claim says one method has the best mean of all methods. It **holds** when that \
-         method's mean is better than every other method's and each pairwise one-sided Welch \
-         t-test (unequal variances) has p < {ALPHA}; it is **not significant** when the means \
-         point the claimed way but some p >= {ALPHA}; it **does not hold** when another method's \
-         mean is as good or better. Requiring every pairwise test to reject is an \
-         intersection-union test, so no multiplicity correction is needed for a claim. The \
-         Welch statistic and its Welch-Satterthwaite degrees of freedom are computed here and \
-         the p-value comes from statrs's Student's t CDF (statrs has no two-sample t-test); the \
-         one-sided Mann-Whitney U test (statrs `mannwhitneyu`) is shown as a check that does \
-         not assume normality. Both statistics are oriented so that a positive t (a U above \
-         n²/2) points the claimed way; `difference` is the subject's mean minus the other's. \
-         `p(reverse)` is Welch's p for the opposite direction.\n"
+        "The claims of `{}`. Each says one method (its subject) has a better mean of a metric \
+         than each of its rivals. It **holds** when the subject's mean is better than every \
+         rival's and each pairwise one-sided test (the claim's: Welch's t-test, unequal \
+         variances, or the Mann-Whitney U test) has p < alpha, after the claim's correction \
+         over its rivals if it has one (Holm); it is **not significant** when the means point \
+         the claimed way but some p >= alpha; it **does not hold** when a rival's mean is as \
+         good or better; it is **not tested** when the sweep lacks what it needs. Requiring \
+         every pairwise test to reject is an intersection-union test, so a claim needs no \
+         correction for its error rate to stay at alpha. The Welch statistic and its \
+         Welch-Satterthwaite degrees of freedom are computed here and the p-value comes from \
+         statrs's Student's t CDF (statrs has no two-sample t-test); the one-sided \
+         Mann-Whitney U test is statrs `mannwhitneyu`. Both tests are shown for every rival, \
+         oriented so that a positive t (a U above n²/2) points the claimed way; `difference` \
+         is the subject's mean minus the rival's. `p(reverse)` is Welch's p for the opposite \
+         direction.\n",
+        claims.origin()
     );
-    let _ = writeln!(r, "| claim | verdict |\n|---|---|");
+    let _ = writeln!(r, "| claim | test | verdict |\n|---|---|---|");
     for c in &a.claims {
         let _ = writeln!(
             r,
-            "| ({}) {} | **{}** |",
+            "| ({}) {} | {} | **{}** |",
             c.claim.id,
-            c.claim.text,
+            c.claim.sentence,
+            c.claim.test_words(),
             c.verdict.words()
         );
     }
@@ -281,49 +286,43 @@ fn claims(r: &mut String, a: &CellAnalysis) {
 }
 
 /// One claim's subsection: its verdict and, when it was tested, the subject's mean and one
-/// row per other method (the difference, Welch's t-test, the Mann-Whitney U test and the
-/// reverse direction's p).
+/// row per rival (the difference, Welch's t-test, the Mann-Whitney U test, the reverse
+/// direction's p and, with a correction, the claim's test's corrected p).
 fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
     let _ = writeln!(
         r,
         "### ({}) {}: **{}**\n",
         c.claim.id,
-        c.claim.text,
+        c.claim.sentence,
         c.verdict.words()
     );
-    if c.verdict == Verdict::NotApplicable {
-        let _ = writeln!(
-            r,
-            "Not applicable: the scenario has no task named {:?}; the paper's claims are \
-             about its tasks named \"easy\" and \"hard\".\n",
-            c.claim.task.unwrap_or_default()
-        );
-        return;
-    }
-    if c.verdict == Verdict::NotTested {
-        let _ = writeln!(
-            r,
-            "Not tested: the sweep has no results for {} or for any other method.\n",
-            c.claim.subject
-        );
+    if let Some(why) = &c.reason {
+        let _ = writeln!(r, "Not tested: {why}.\n");
         return;
     }
     let label = c.metric.map_or_else(String::new, |m| m.label(&a.tasks));
     let _ = writeln!(
         r,
         "{} {}: {} (n = {}).\n",
-        c.claim.subject,
+        c.subject,
         label,
         mean_sd(&c.subject_summary),
         c.subject_summary.n
     );
+    let corrected = c.claim.correction != Correction::None;
     let _ = writeln!(
         r,
-        "| vs | other's mean ± sd (n) | difference | Welch t (dof) | p | Mann-Whitney U | p | p(reverse) |"
+        "| vs | other's mean ± sd (n) | difference | Welch t (dof) | p | Mann-Whitney U | p | \
+         p(reverse) |{}",
+        if corrected { " p (Holm) |" } else { "" }
     );
-    let _ = writeln!(r, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(
+        r,
+        "|---|---|---|---|---|---|---|---|{}",
+        if corrected { "---|" } else { "" }
+    );
     for cmp in &c.comparisons {
-        let _ = writeln!(
+        let _ = write!(
             r,
             "| {} | {} ({}) | {} | {} ({}) | {} | {} | {} | {} |",
             cmp.other,
@@ -337,6 +336,10 @@ fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
             pval(cmp.mann_whitney.p),
             pval(cmp.welch_reverse.p),
         );
+        if corrected {
+            let _ = write!(r, " {} |", pval(cmp.p_adjusted));
+        }
+        r.push('\n');
     }
     r.push('\n');
 }

@@ -227,3 +227,21 @@ fn the_paper_axes_check_against_paper_ron() {
     let size = experiments::multiverse::universe::factorial_size(&setup.axes.sizes()).unwrap();
     assert!(size >= 4096, "{size}");
 }
+
+/// Every claims file in `scenarios/` (`paper-claims.ron`) parses, and the paper's checks
+/// against paper.ron's tasks and the built-in methods, as a sweep checks it.
+#[test]
+fn the_claims_files_parse_and_fit_paper_ron() {
+    let claims =
+        experiments::claims::Claims::load(std::path::Path::new(&scenario_path("paper-claims.ron")))
+            .expect("paper-claims.ron parses");
+    assert_eq!(claims, *experiments::claims::paper_claims());
+    let paper = usar_sim::scenario::load(scenario_path("paper.ron")).unwrap();
+    claims.check_tasks(&paper.task_names()).unwrap();
+    claims.check_methods(&[]).unwrap();
+    assert_eq!(
+        paper.report().claims.as_deref(),
+        Some("paper-claims.ron"),
+        "paper.ron names its claims"
+    );
+}

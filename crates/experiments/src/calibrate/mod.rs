@@ -27,6 +27,7 @@ pub mod optimizer;
 pub mod outcome;
 pub mod outputs;
 pub mod progress;
+pub(crate) mod ron_file;
 mod run;
 mod searcher;
 pub mod setup;

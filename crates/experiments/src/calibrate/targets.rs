@@ -16,15 +16,15 @@
 //! line naming the file, line, column and field: `paper-targets.ron:12:9:
 //! targets[3].statistic: unknown metric "rescued_eazy" (metrics: ...)`.
 
-use std::io::Read;
 use std::path::Path;
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
-use usar_sim::scenario::{SourceLocation, path_text};
+use usar_sim::scenario::SourceLocation;
 
 use super::band::Band;
+use super::ron_file;
 use super::source_map::SourceMap;
 use super::statistic::Statistic;
 
@@ -96,6 +96,16 @@ pub struct TargetsError {
     pub message: String,
 }
 
+impl From<ron_file::Located> for TargetsError {
+    fn from(e: ron_file::Located) -> Self {
+        Self {
+            location: e.location,
+            field: e.field,
+            message: e.message,
+        }
+    }
+}
+
 /// A checked list of targets (at least one, names unique, every band usable, every metric
 /// name a `trials.csv` column for some task names), with where it came from.
 #[derive(Debug, Clone)]
@@ -144,19 +154,7 @@ impl Targets {
     /// finite and > 0; a `Between` with bounds not finite or `low >= high`; a value outside
     /// its own `Between` band. Each names the line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, TargetsError> {
-        let src = src.strip_prefix('\u{feff}').unwrap_or(src);
-        let map = Arc::new(SourceMap::build(src));
-        let file: TargetsFile = ron::Options::default().from_str(src).map_err(|e| {
-            let offset = map.offset_of(e.span.start.line, e.span.start.col);
-            TargetsError {
-                location: SourceLocation {
-                    origin: origin.to_owned(),
-                    line_col: Some((e.span.start.line, e.span.start.col)),
-                },
-                field: map.path_at(offset).map(str::to_owned),
-                message: e.code.to_string(),
-            }
-        })?;
+        let (file, map): (TargetsFile, _) = ron_file::parse(src, origin)?;
         let t = Self {
             origin: origin.to_owned(),
             targets: file.targets,
@@ -172,26 +170,7 @@ impl Targets {
     /// The file cannot be read, is longer than [`MAX_TARGETS_BYTES`] or is not UTF-8; else as
     /// [`Targets::parse`].
     pub fn load(path: &Path) -> Result<Self, TargetsError> {
-        let origin = path_text(path);
-        let fail = |message: String| TargetsError {
-            location: SourceLocation {
-                origin: origin.clone(),
-                line_col: None,
-            },
-            field: None,
-            message,
-        };
-        let mut bytes = Vec::new();
-        std::fs::File::open(path)
-            .and_then(|f| f.take(MAX_TARGETS_BYTES + 1).read_to_end(&mut bytes))
-            .map_err(|e| fail(format!("cannot read targets file: {e}")))?;
-        if bytes.len() as u64 > MAX_TARGETS_BYTES {
-            return Err(fail(format!(
-                "longer than the limit of {MAX_TARGETS_BYTES} bytes for a targets file"
-            )));
-        }
-        let text = String::from_utf8(bytes)
-            .map_err(|_| fail("not UTF-8 text; a targets file is RON text".into()))?;
+        let (text, origin) = ron_file::read_text(path, MAX_TARGETS_BYTES, "a targets file")?;
         Self::parse(&text, &origin)
     }
 

@@ -46,9 +46,34 @@ pub struct SweepPlan {
     /// `working_dir`); `None`: none. A report option: `usar merge` renders with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub targets: Option<PathBuf>,
-    /// `--claims`: the reports check the paper's claims (default `false`).
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub claims: bool,
+    /// `--claims`: the claims file the reports check, as given (relative to `working_dir`);
+    /// `None`: none. A report option: `usar merge` renders with it. (A plan of an older
+    /// `usar` with `"claims": true` is refused with a message naming `--claims FILE`.)
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_claims"
+    )]
+    pub claims: Option<PathBuf>,
+}
+
+/// A claims path, or the former boolean (`false`: none; `true`: an error naming the flag
+/// that now says which claims).
+fn de_claims<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<PathBuf>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum PathOrBool {
+        Bool(bool),
+        Path(Option<PathBuf>),
+    }
+    match PathOrBool::deserialize(d)? {
+        PathOrBool::Bool(false) => Ok(None),
+        PathOrBool::Bool(true) => Err(serde::de::Error::custom(
+            "\"claims\": true comes from an older usar; give the claims file to `usar merge \
+             --claims FILE` (the paper's: scenarios/paper-claims.ron)",
+        )),
+        PathOrBool::Path(p) => Ok(p),
+    }
 }
 
 impl SweepPlan {
@@ -82,22 +107,31 @@ impl SweepPlan {
     /// `--seed`, `--duration`, each `--vary`, `--grid-metrics`, `--targets` and `--claims`
     /// when given. Numbers are written so that they parse back to the same value.
     pub fn sweep_options(&self) -> Vec<String> {
-        self.options_with_targets(self.targets.as_deref())
+        self.options_with_files(self.targets.as_deref(), self.claims.as_deref())
     }
 
     /// The targets file of `--targets` as a path from `here` (the current folder): as given
     /// when `here` is [`SweepPlan::working_dir`] (or either is unknown), else joined to the
     /// folder the shard ran in.
     pub fn targets_path(&self, here: Option<&Path>) -> Option<PathBuf> {
-        let t = self.targets.as_ref()?;
+        self.seen_from(self.targets.as_ref()?, here)
+    }
+
+    /// The claims file of `--claims` as a path from `here`, as [`SweepPlan::targets_path`].
+    pub fn claims_path(&self, here: Option<&Path>) -> Option<PathBuf> {
+        self.seen_from(self.claims.as_ref()?, here)
+    }
+
+    /// `t` (relative to [`SweepPlan::working_dir`]) as a path from `here`.
+    fn seen_from(&self, t: &Path, here: Option<&Path>) -> Option<PathBuf> {
         Some(match (&self.working_dir, here) {
             (Some(wd), Some(here)) if wd != here => wd.join(t),
-            _ => t.clone(),
+            _ => t.to_path_buf(),
         })
     }
 
-    /// [`SweepPlan::sweep_options`] with `targets` for the targets file.
-    fn options_with_targets(&self, targets: Option<&Path>) -> Vec<String> {
+    /// [`SweepPlan::sweep_options`] with `targets` and `claims` for the report files.
+    fn options_with_files(&self, targets: Option<&Path>, claims: Option<&Path>) -> Vec<String> {
         let mut a = vec![
             "--methods".to_string(),
             self.methods.join(","),
@@ -119,8 +153,8 @@ impl SweepPlan {
         if let Some(t) = targets {
             a.extend(["--targets".to_string(), t.display().to_string()]);
         }
-        if self.claims {
-            a.push("--claims".to_string());
+        if let Some(c) = claims {
+            a.extend(["--claims".to_string(), c.display().to_string()]);
         }
         a
     }
@@ -141,12 +175,13 @@ impl SweepPlan {
             _ => (self.scenario_path.clone(), out_dir.to_path_buf()),
         };
         let targets = self.targets_path(here);
+        let claims = self.claims_path(here);
         let mut words = vec![
             "usar".to_string(),
             "sweep".to_string(),
             scenario.display().to_string(),
         ];
-        words.extend(self.options_with_targets(targets.as_deref()));
+        words.extend(self.options_with_files(targets.as_deref(), claims.as_deref()));
         words.extend([
             "--shard".to_string(),
             shard.to_string(),
@@ -183,7 +218,7 @@ mod tests {
             grid_metrics: Vec::new(),
             working_dir: working_dir.map(PathBuf::from),
             targets: None,
-            claims: false,
+            claims: None,
         }
     }
 
@@ -216,15 +251,15 @@ mod tests {
         let shard = Shard::new(0, 2).unwrap();
         let mut p = plan(Some("/home/me"));
         p.targets = Some("t.ron".into());
-        p.claims = true;
+        p.claims = Some("c.ron".into());
         let out = Path::new("o");
         assert!(
             p.shard_command(shard, out, Some(Path::new("/home/me")))
-                .ends_with("--trials 2 --targets t.ron --claims --shard 0/2 --out o")
+                .ends_with("--trials 2 --targets t.ron --claims c.ron --shard 0/2 --out o")
         );
         assert!(
             p.shard_command(shard, out, Some(Path::new("/tmp")))
-                .contains("--targets /home/me/t.ron --claims")
+                .contains("--targets /home/me/t.ron --claims /home/me/c.ron")
         );
         let targets = |here: &str| p.targets_path(Some(Path::new(here)));
         assert_eq!(targets("/tmp"), Some(PathBuf::from("/home/me/t.ron")));
@@ -240,5 +275,19 @@ mod tests {
         json.as_object_mut().unwrap().remove("working_dir");
         let read: SweepPlan = serde_json::from_value(json).unwrap();
         assert_eq!(read, plan(None));
+    }
+
+    #[test]
+    fn an_older_plans_claims_flag_reads_as_none_or_names_the_file_flag() {
+        let mut json = serde_json::to_value(plan(None)).unwrap();
+        json["claims"] = false.into();
+        let read: SweepPlan = serde_json::from_value(json.clone()).unwrap();
+        assert_eq!(read.claims, None);
+        json["claims"] = true.into();
+        let err = serde_json::from_value::<SweepPlan>(json.clone()).unwrap_err();
+        assert!(err.to_string().contains("--claims FILE"), "{err}");
+        json["claims"] = "c.ron".into();
+        let read: SweepPlan = serde_json::from_value(json).unwrap();
+        assert_eq!(read.claims, Some(PathBuf::from("c.ron")));
     }
 }

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::analysis::Analysis;
-use crate::claims::CLAIMS;
+use crate::claims::Claims;
 use crate::grid::Grid;
 use crate::metrics::Metric;
 use crate::report::software_version;
@@ -47,8 +47,8 @@ pub fn grid_md(input: &GridReportInput<'_>) -> String {
     for (i, m) in input.metrics.iter().enumerate() {
         metric_section(&mut r, input, *m, input.figures.get(i));
     }
-    if options.claims {
-        claims(&mut r, input);
+    if let Some(c) = &options.claims {
+        claims(&mut r, input, c);
     }
     if let Some(line) = options.how_to_ask() {
         let _ = writeln!(r, "{line}\n");
@@ -256,19 +256,23 @@ fn metric_section(
     }
 }
 
-fn claims(r: &mut String, input: &GridReportInput<'_>) {
+fn claims(r: &mut String, input: &GridReportInput<'_>, claims: &Claims) {
     let h = &input.outcome.header;
-    let _ = writeln!(r, "## The paper's claims per cell\n");
+    let _ = writeln!(r, "## Claims per cell\n");
     let _ = writeln!(
         r,
-        "Verdicts as in each cell's `report.md` (one-sided Welch t-tests against every other \
-         method, p < 0.05):\n"
+        "The claims of `{}`, with verdicts as in each cell's `report.md`:\n",
+        claims.origin()
     );
-    for c in &CLAIMS {
-        let _ = writeln!(r, "- ({}) {}", c.id, c.text);
+    for c in claims.claims() {
+        let _ = writeln!(r, "- ({}) {} ({})", c.id, c.sentence, c.test_words());
     }
     r.push('\n');
-    let ids: Vec<String> = CLAIMS.iter().map(|c| format!("({})", c.id)).collect();
+    let ids: Vec<String> = claims
+        .claims()
+        .iter()
+        .map(|c| format!("({})", c.id))
+        .collect();
     table_head(r, &h.grid.fields, &ids);
     for (index, (c, a)) in h.grid.cells.iter().zip(&input.analysis.cells).enumerate() {
         cell_start(r, index, &c.values);

@@ -25,14 +25,14 @@
 //! is one line naming the file, line, column and field:
 //! `axes.ron:12:21: axes[1].alternatives[0].set[1]: ...`.
 
-use std::io::Read;
 use std::path::Path;
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
-use usar_sim::scenario::{SourceLocation, path_text};
+use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
+use crate::calibrate::ron_file;
 use crate::calibrate::source_map::SourceMap;
 use crate::vary::{FieldPath, Override};
 
@@ -108,6 +108,16 @@ pub struct AxesError {
     pub message: String,
 }
 
+impl From<ron_file::Located> for AxesError {
+    fn from(e: ron_file::Located) -> Self {
+        Self {
+            location: e.location,
+            field: e.field,
+            message: e.message,
+        }
+    }
+}
+
 impl Axes {
     /// Checks `axes` (named `origin` in errors; no line numbers), as [`Axes::parse`] does
     /// after parsing.
@@ -135,19 +145,7 @@ impl Axes {
     /// setting a field twice; two axes setting the same field (or overlapping ones, such as
     /// `kinds[*].count` and `kinds[0].count`). Each names the line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, AxesError> {
-        let src = src.strip_prefix('\u{feff}').unwrap_or(src);
-        let map = Arc::new(SourceMap::build(src));
-        let mut axes: Axes = ron::Options::default().from_str(src).map_err(|e| {
-            let offset = map.offset_of(e.span.start.line, e.span.start.col);
-            AxesError {
-                location: SourceLocation {
-                    origin: origin.to_owned(),
-                    line_col: Some((e.span.start.line, e.span.start.col)),
-                },
-                field: map.path_at(offset).map(str::to_owned),
-                message: e.code.to_string(),
-            }
-        })?;
+        let (mut axes, map): (Axes, _) = ron_file::parse(src, origin)?;
         axes.origin = origin.to_owned();
         axes.map = Some(map);
         axes.check()?;
@@ -160,26 +158,7 @@ impl Axes {
     /// The file cannot be read, is longer than [`MAX_AXES_BYTES`] or is not UTF-8; else as
     /// [`Axes::parse`].
     pub fn load(path: &Path) -> Result<Self, AxesError> {
-        let origin = path_text(path);
-        let fail = |message: String| AxesError {
-            location: SourceLocation {
-                origin: origin.clone(),
-                line_col: None,
-            },
-            field: None,
-            message,
-        };
-        let mut bytes = Vec::new();
-        std::fs::File::open(path)
-            .and_then(|f| f.take(MAX_AXES_BYTES + 1).read_to_end(&mut bytes))
-            .map_err(|e| fail(format!("cannot read axes file: {e}")))?;
-        if bytes.len() as u64 > MAX_AXES_BYTES {
-            return Err(fail(format!(
-                "longer than the limit of {MAX_AXES_BYTES} bytes for an axes file"
-            )));
-        }
-        let text = String::from_utf8(bytes)
-            .map_err(|_| fail("not UTF-8 text; an axes file is RON text".into()))?;
+        let (text, origin) = ron_file::read_text(path, MAX_AXES_BYTES, "an axes file")?;
         Self::parse(&text, &origin)
     }
 

@@ -7,7 +7,6 @@ use std::fmt::Write;
 
 use super::plan::MultiversePlan;
 use super::tally::{Tally, clopper_pearson, share};
-use crate::claims::CLAIMS;
 
 /// The paragraph of conclusions for the counts `t` of `plan`'s universes. Shares are
 /// estimates with intervals only when the run is complete and its universes are a `--sample`
@@ -62,7 +61,7 @@ pub fn conclusions(t: &Tally, plan: &MultiversePlan) -> String {
         );
         return r;
     }
-    for (c, count) in CLAIMS.iter().zip(&t.claims) {
+    for (c, count) in plan.identity.claims.iter().zip(&t.claims) {
         let (k, n) = (count.holds, count.universes);
         let Some(interval) = clopper_pearson(k, n) else {
             continue;
@@ -92,7 +91,7 @@ pub fn conclusions(t: &Tally, plan: &MultiversePlan) -> String {
         let _ = writeln!(
             r,
             "- ({}) {}: {verdict}; it holds in {k} of {n}.",
-            c.id, c.text
+            c.id, c.sentence
         );
     }
     if sampled {
@@ -116,7 +115,7 @@ mod tests {
     fn tally(n: u64, admissible: bool) -> Tally {
         let loss = if admissible { 0.0 } else { 3.0 };
         let records: Vec<_> = (0..n).map(|i| record(i, &[0, 1], loss)).collect();
-        Tally::of(&records, &[2, 3])
+        Tally::of(&records, &[2, 3], &plan().identity.claims)
     }
 
     /// The test plan's factorial has 6 universes.
@@ -158,6 +157,8 @@ mod tests {
         );
         assert!(!partial.contains("CI"), "{partial}");
         assert!(conclusions(&tally(6, false), &plan()).contains("No universe is admissible"));
-        assert!(conclusions(&Tally::of(&[], &[2, 3]), &plan()).contains("nothing to conclude"));
+        assert!(
+            conclusions(&Tally::of(&[], &[2, 3], &[]), &plan()).contains("nothing to conclude")
+        );
     }
 }

@@ -6,7 +6,7 @@
 //! ci_high, p, rival, message` ([`super::columns`]). Each universe has one row with `row =
 //! universe` (its status and message), one `row = metric` per method x metric of its
 //! comparison (`method, metric, n, mean, sd`, as `summary.csv`) and one `row = claim` per
-//! claim of [`crate::claims::CLAIMS`] (`claim, verdict, effect, ci_low, ci_high, p, rival`)
+//! claim of the multiverse's claims (`claim, verdict, effect, ci_low, ci_high, p, rival`)
 //! and one `row = target` per calibration target (`metric` the target's name, `mean` its
 //! statistic over the comparison's trials, `verdict` `in`, `OUT`, `in (reported)` or `OUT
 //! (reported)` as [`crate::calibrate::Target::mark`]); every row repeats the universe's

@@ -19,7 +19,7 @@ use crate::stats::{Summary, welch_interval};
 /// One claim's effect and verdict in one universe.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ClaimEffect {
-    /// The claim's id (`1`, `4a`; [`crate::claims::CLAIMS`]).
+    /// The claim's id (`1`, `4a`; [`crate::claims::Claim::id`]).
     pub claim: String,
     /// The verdict in words ([`crate::claims::Verdict::words`]: `holds`, `not significant`,
     /// `does not hold`, `not tested`, `not applicable`).
@@ -46,8 +46,8 @@ pub struct ClaimEffect {
 /// The effect of a checked claim.
 pub fn claim_effect(check: &ClaimCheck) -> ClaimEffect {
     let sign = match check.claim.direction {
-        Direction::Highest => 1.0,
-        Direction::Lowest => -1.0,
+        Direction::More => 1.0,
+        Direction::Less => -1.0,
     };
     let rival = check
         .comparisons
@@ -85,7 +85,12 @@ mod tests {
     use usar_sim::mission::TrialResult;
 
     use super::*;
-    use crate::claims::{CLAIMS, check_claim};
+    use crate::claims::{Claim, check_claim, paper_claims};
+
+    /// The paper's claim `i` (0-based, file order).
+    fn paper(i: usize) -> &'static Claim {
+        &paper_claims().claims()[i]
+    }
 
     /// A trial of `method` with `hard` and `easy` rescuees and `energy_hard` percent points
     /// spent in the hard task (tasks `[hard, easy]`).
@@ -132,7 +137,7 @@ mod tests {
     #[test]
     fn a_highest_claim_is_measured_against_the_best_rival() {
         // Claim 2: RNE rescues the most in the hard task. Strongest rival: ENG (mean 9).
-        let check = check_claim(CLAIMS[1], &results(), &methods(), &tasks());
+        let check = check_claim(paper(1), &results(), &methods(), &tasks());
         let e = claim_effect(&check);
         assert_eq!(e.rival.as_deref(), Some("ENG"));
         assert_eq!(e.verdict, "holds");
@@ -148,7 +153,7 @@ mod tests {
     fn a_lowest_claim_is_signed_so_that_positive_is_its_direction() {
         // Claim 4a: RNE has the lowest energy per hard rescuee. RNE 30/13, 30/14, 30/15 (2.14
         // on average); ENG 40/8, 40/9, 40/10 (4.48); DIS 60/5, 60/6, 60/7 (10.2). Rival: ENG.
-        let check = check_claim(CLAIMS[3], &results(), &methods(), &tasks());
+        let check = check_claim(paper(3), &results(), &methods(), &tasks());
         let e = claim_effect(&check);
         assert_eq!(e.rival.as_deref(), Some("ENG"));
         let rne = (30.0 / 13.0 + 30.0 / 14.0 + 2.0) / 3.0;
@@ -164,7 +169,7 @@ mod tests {
     fn a_claim_that_fails_has_a_negative_effect_and_no_values_give_nan() {
         // Claim 3: DIS rescues the most in the easy task; every method rescues 1 there, so the
         // effect is 0 with a point interval and the claim does not hold.
-        let check = check_claim(CLAIMS[2], &results(), &methods(), &tasks());
+        let check = check_claim(paper(2), &results(), &methods(), &tasks());
         let e = claim_effect(&check);
         assert_eq!(e.verdict, "does not hold");
         assert_eq!((e.effect, e.ci_low, e.ci_high), (0.0, 0.0, 0.0));
@@ -174,7 +179,7 @@ mod tests {
         for t in r.iter_mut().filter(|t| t.method == "DIS") {
             t.rescued[0] += 20;
         }
-        let e = claim_effect(&check_claim(CLAIMS[1], &r, &methods()[..2], &tasks()));
+        let e = claim_effect(&check_claim(paper(1), &r, &methods()[..2], &tasks()));
         assert_eq!(e.rival.as_deref(), Some("DIS"));
         assert!((e.effect + 12.0).abs() < 1e-12 && e.ci_high < 0.0, "{e:?}");
         // No rival at all.
@@ -182,7 +187,7 @@ mod tests {
             .into_iter()
             .filter(|t| t.method == "RNE")
             .collect();
-        let e = claim_effect(&check_claim(CLAIMS[1], &only, &methods()[..1], &tasks()));
+        let e = claim_effect(&check_claim(paper(1), &only, &methods()[..1], &tasks()));
         assert_eq!(e.rival, None);
         assert!(e.effect.is_nan() && e.ci_low.is_nan() && e.p.is_nan());
         assert_eq!(e.verdict, "not tested");

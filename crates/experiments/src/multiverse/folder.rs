@@ -11,6 +11,7 @@
 //!   shards/0-of-4/multiverse.json, sweep.lock                  (a shard's plan and lock)
 //! ```
 
+use std::fs;
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
@@ -77,6 +78,28 @@ pub fn refuse_others(dir: &Path, plan: &MultiversePlan) -> Result<()> {
     Ok(())
 }
 
+/// The names of the specification curves in `dir` (`spec_curve_<id>.svg`, whatever the
+/// claims were).
+fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
+    let mut names = Vec::new();
+    let entries = match fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(names),
+        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(dir))),
+    };
+    for entry in entries {
+        let entry = entry.with_context(|| format!("listing {}", path_text(dir)))?;
+        if let Some(name) = entry.file_name().to_str()
+            && name.starts_with("spec_curve_")
+            && name.ends_with(".svg")
+        {
+            names.push(name.to_owned());
+        }
+    }
+    names.sort();
+    Ok(names)
+}
+
 /// `--overwrite`: removes from `dir` what a multiverse writes there and nothing else: the
 /// plan and the top files; in each shard's folder (`shards/<I>-of-<N>/`) its plan, lock and
 /// owner manifest; in each universe's folder (`universes/u<digits>/`) its scenario, record,
@@ -88,7 +111,9 @@ pub fn refuse_others(dir: &Path, plan: &MultiversePlan) -> Result<()> {
 /// # Errors
 /// An I/O error listing a folder or removing something.
 pub fn clear(dir: &Path) -> Result<()> {
-    let mut files = output_files();
+    // Every claims file's figures: the plan that named them may be another's.
+    let mut files = output_files(&[]);
+    files.extend(spec_curve_files(dir)?);
     files.push(super::plan::PLAN_FILE.to_string());
     let names: Vec<&str> = files.iter().map(String::as_str).collect();
     remove_named(dir, &names)?;

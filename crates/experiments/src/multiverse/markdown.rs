@@ -16,7 +16,7 @@ use super::record::UniverseRecord;
 use super::spec_curve::spec_curve_file;
 use super::tally::{Tally, VerdictCount, share};
 use crate::calibrate::progress::loss_text;
-use crate::claims::CLAIMS;
+use crate::claims::Claim;
 
 /// The figure of each target's statistic per universe (`super::outputs` draws it).
 pub const TARGETS_FIGURE_FILE: &str = "targets.svg";
@@ -28,16 +28,18 @@ fn cell(text: &str) -> String {
 
 /// The text of `multiverse.md` for the records (in universe order).
 pub fn multiverse_md(plan: &MultiversePlan, records: &[UniverseRecord]) -> String {
-    let tally = Tally::of(records, &plan.identity.axes.sizes());
+    let tally = Tally::of(records, &plan.identity.axes.sizes(), &plan.identity.claims);
     let mut r = String::new();
     let _ = writeln!(r, "# Multiverse: {}\n", plan.identity.scenario);
     set_up(&mut r, plan, records.len());
-    claims(&mut r, &tally, plan.sampled());
+    claims(&mut r, &tally, plan.sampled(), &plan.identity.claims);
     let _ = writeln!(r, "## What this run can conclude\n");
     let _ = writeln!(r, "{}", conclusions(&tally, plan));
     targets(&mut r, plan, records);
     by_axis(&mut r, plan, &tally);
-    figures(&mut r);
+    if !plan.identity.claims.is_empty() {
+        figures(&mut r, &plan.identity.claims);
+    }
     universes(&mut r, plan, records);
     r
 }
@@ -151,7 +153,7 @@ fn axes_and_targets(r: &mut String, plan: &MultiversePlan) {
 }
 
 /// The admissible share and the share per claim.
-fn claims(r: &mut String, t: &Tally, sampled: bool) {
+fn claims(r: &mut String, t: &Tally, sampled: bool, claims_of: &[Claim]) {
     let _ = writeln!(r, "## Admissible universes\n");
     let _ = writeln!(
         r,
@@ -162,24 +164,33 @@ fn claims(r: &mut String, t: &Tally, sampled: bool) {
         t.invalid,
         t.failed
     );
-    let _ = writeln!(r, "## The paper's claims across the admissible universes\n");
+    if claims_of.is_empty() {
+        let _ = writeln!(
+            r,
+            "No claims were checked (`--claims FILE`, or the scenario's `report: (claims: \
+             ...)`, gives them).\n"
+        );
+        return;
+    }
+    let _ = writeln!(r, "## Claims across the admissible universes\n");
     let _ = writeln!(
         r,
-        "Verdicts as in the sweep's reports (one-sided Welch tests against every other method, \
-         p < 0.05); shares of the {} admissible universes.\n",
+        "Verdicts as in the sweep's reports (each claim's test, level and correction below); \
+         shares of the {} admissible universes.\n",
         t.admissible
     );
     let _ = writeln!(
         r,
         "| claim | holds | not significant | does not hold | no verdict | figure |\n|---|---|---|---|---|---|"
     );
-    for (c, count) in CLAIMS.iter().zip(&t.claims) {
+    for (c, count) in claims_of.iter().zip(&t.claims) {
         let file = spec_curve_file(c);
         let _ = writeln!(
             r,
-            "| ({}) {} | {} | {} | {} | {} | [{file}]({file}) |",
+            "| ({}) {} ({}) | {} | {} | {} | {} | [{file}]({file}) |",
             c.id,
-            c.text,
+            c.sentence,
+            c.test_words(),
             share(count.holds, count.universes, sampled),
             share(count.not_significant, count.universes, sampled),
             share(count.does_not_hold, count.universes, sampled),
@@ -197,7 +208,12 @@ fn by_axis(r: &mut String, plan: &MultiversePlan, t: &Tally) {
         "Per alternative: the admissible universes that take it, and the share of them in which \
          each claim holds.\n"
     );
-    let heads: Vec<String> = CLAIMS.iter().map(|c| format!("({}) holds", c.id)).collect();
+    let heads: Vec<String> = plan
+        .identity
+        .claims
+        .iter()
+        .map(|c| format!("({}) holds", c.id))
+        .collect();
     for (a, axis) in plan.identity.axes.axes.iter().enumerate() {
         let _ = writeln!(r, "### {}\n", axis.name);
         let _ = writeln!(
@@ -280,7 +296,7 @@ fn targets(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) {
 }
 
 /// The specification curves.
-fn figures(r: &mut String) {
+fn figures(r: &mut String, claims: &[Claim]) {
     let _ = writeln!(r, "## Specification curves\n");
     let _ = writeln!(
         r,
@@ -288,9 +304,9 @@ fn figures(r: &mut String) {
          direction) per admissible universe, sorted, with its 95 % Welch confidence interval, \
          coloured by verdict. Bottom: the alternatives each universe takes.\n"
     );
-    for c in &CLAIMS {
+    for c in claims {
         let file = spec_curve_file(c);
-        let _ = writeln!(r, "![Claim {}: {}]({file})\n", c.id, c.text);
+        let _ = writeln!(r, "![Claim {}: {}]({file})\n", c.id, c.sentence);
     }
 }
 
@@ -362,7 +378,7 @@ mod tests {
             "- `--free mission.hp_pct_per_step_in_radiation=0.001..0.02:log`",
             "| rounds | `Mean(rounds)` | 6 ± 1 |",
             "1/2 (50 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
-            "| (1) RNE rescues the most in total | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
+            "| (1) RNE rescues the most in total (one-sided Welch, alpha 0.05) | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
             "## What this run can conclude\n\n- 1/2 (50 %) of the universes are admissible: only 2 of the 6 universes this run makes have a record",
             "### b\n\n| alternative | admissible universes | (1) holds |",
             "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",

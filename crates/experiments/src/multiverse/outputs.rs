@@ -15,17 +15,18 @@ use super::spec_curve::{spec_curve_file, spec_curve_svg};
 use crate::atomic::FileSet;
 use crate::calibrate::targets_figure::targets_svg;
 use crate::chart::figure_or_warn;
-use crate::claims::CLAIMS;
+use crate::claims::Claim;
 
 /// The long-form table.
 pub const CSV_FILE: &str = "multiverse.csv";
 /// The report.
 pub const REPORT_FILE: &str = "multiverse.md";
 
-/// The names of every file [`write_outputs`] writes, in that order.
-pub fn output_files() -> Vec<String> {
+/// The names of every file [`write_outputs`] writes for a multiverse checking `claims`, in
+/// that order.
+pub fn output_files(claims: &[Claim]) -> Vec<String> {
     let mut out = vec![CSV_FILE.to_string()];
-    out.extend(CLAIMS.iter().map(spec_curve_file));
+    out.extend(claims.iter().map(spec_curve_file));
     out.push(TARGETS_FIGURE_FILE.to_string());
     out.push(REPORT_FILE.to_string());
     out
@@ -44,7 +45,7 @@ pub fn write_outputs(
 ) -> Result<Vec<PathBuf>> {
     let mut files = FileSet::new();
     files.stage(&dir.join(CSV_FILE), &multiverse_csv(plan, records)?)?;
-    for c in &CLAIMS {
+    for c in &plan.identity.claims {
         let name = spec_curve_file(c);
         if let Some(svg) = figure_or_warn(&name, || spec_curve_svg(plan, records, c)) {
             files.stage(&dir.join(name), svg.as_bytes())?;

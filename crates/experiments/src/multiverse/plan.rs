@@ -17,6 +17,7 @@ use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
 use crate::atomic::write_atomic;
 use crate::calibrate::{FreeField, Target};
+use crate::claims::Claim;
 use crate::fingerprint::{fnv1a64_hex, scenario_hash};
 use crate::shard::{Shard, shell_join};
 use crate::slurm::ShardedWork;
@@ -45,6 +46,11 @@ pub struct MultiverseIdentity {
     pub axes: Axes,
     /// The calibration targets.
     pub targets: Vec<Target>,
+    /// The claims each universe's comparison checks, in file order (none: only
+    /// admissibility). A plan written before claims files read as the paper's five
+    /// (`scenarios/paper-claims.ron`), which every multiverse then checked.
+    #[serde(default = "paper_claims_list")]
+    pub claims: Vec<Claim>,
     /// The free fields.
     pub free: Vec<FreeField>,
     /// The methods' display names, in order.
@@ -67,6 +73,11 @@ pub struct MultiverseIdentity {
     pub sample: Option<Sample>,
 }
 
+/// The paper's claims, for a plan written before claims files ([`MultiverseIdentity::claims`]).
+fn paper_claims_list() -> Vec<Claim> {
+    crate::claims::paper_claims().claims().to_vec()
+}
+
 /// A multiverse's plan: its identity and how it was asked for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MultiversePlan {
@@ -78,6 +89,9 @@ pub struct MultiversePlan {
     pub axes_path: String,
     /// The targets file's path as given.
     pub targets_path: String,
+    /// The claims file's path as given (`None`: no claims).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub claims_path: Option<String>,
     /// The output folder as given.
     pub out: PathBuf,
     /// The folder the paths are relative to (absolute), when known.
@@ -99,6 +113,10 @@ impl MultiversePlan {
                 scenario_hash: scenario_hash(&checked.scenario)?,
                 axes: setup.axes.clone(),
                 targets: setup.targets.targets().to_vec(),
+                claims: setup
+                    .claims
+                    .as_ref()
+                    .map_or_else(Vec::new, |c| c.claims().to_vec()),
                 free: setup.free.clone(),
                 methods: checked.methods.clone(),
                 trials: setup.trials,
@@ -113,6 +131,7 @@ impl MultiversePlan {
             scenario_path: setup.origin.clone(),
             axes_path: setup.axes.origin().to_owned(),
             targets_path: setup.targets.origin().to_owned(),
+            claims_path: setup.claims.as_ref().map(|c| c.origin().to_owned()),
             out: out.to_path_buf(),
             working_dir: setup.working_dir.clone(),
         })
@@ -188,6 +207,9 @@ impl MultiversePlan {
         for t in id.targets.iter().filter(|t| t.report_only) {
             a.extend(["--report-only".to_string(), t.name.clone()]);
         }
+        if let Some(c) = &self.claims_path {
+            a.extend(["--claims".to_string(), c.clone()]);
+        }
         for f in &id.free {
             a.extend(["--free".to_string(), f.to_string()]);
         }
@@ -243,6 +265,7 @@ impl MultiversePlan {
         let mut plan = self.clone();
         plan.axes_path = file(&self.axes_path);
         plan.targets_path = file(&self.targets_path);
+        plan.claims_path = self.claims_path.as_deref().map(file);
         let mut words = vec![
             "usar".to_string(),
             "multiverse".to_string(),
@@ -338,6 +361,7 @@ pub(crate) mod tests {
                     band: Band::PlusMinus(1.0),
                     report_only: false,
                 }],
+                claims: crate::claims::paper_claims().claims().to_vec(),
                 free: vec![
                     FreeField::parse("mission.energy_pct_per_m=0.05..0.2").unwrap(),
                     FreeField::parse("mission.hp_pct_per_step_in_radiation=0.001..0.02:log")
@@ -356,6 +380,7 @@ pub(crate) mod tests {
             scenario_path: "scenarios/paper.ron".into(),
             axes_path: "my axes.ron".into(),
             targets_path: "t.ron".into(),
+            claims_path: None,
             out: "out".into(),
             working_dir: Some("/home/me".into()),
         }

@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
 use crate::calibrate::progress::loss_text;
-use crate::claims::{CLAIMS, Verdict};
+use crate::claims::Verdict;
 
 /// What a multiverse shows while it runs. [`MultiverseProgress::off`] shows nothing;
 /// [`MultiverseProgress::terminal`] is `usar multiverse`'s (without `--quiet`).
@@ -102,14 +102,17 @@ pub fn universe_line(plan: &MultiversePlan, r: &UniverseRecord) -> String {
         (Status::Invalid, _) => format!("invalid: {}", r.message.as_deref().unwrap_or("")),
         (Status::Failed, _) => format!("failed ({loss}): {}", r.message.as_deref().unwrap_or("")),
         (Status::Ok, false) => format!("not admissible ({loss})"),
+        (Status::Ok, true) if plan.identity.claims.is_empty() => "admissible".to_string(),
         (Status::Ok, true) => {
-            let holding: Vec<&str> = CLAIMS
+            let holding: Vec<&str> = plan
+                .identity
+                .claims
                 .iter()
                 .filter(|c| {
-                    r.claim(c.id)
+                    r.claim(&c.id)
                         .is_some_and(|e| e.verdict == Verdict::Holds.words())
                 })
-                .map(|c| c.id)
+                .map(|c| c.id.as_str())
                 .collect();
             let holds = if holding.is_empty() {
                 "none".into()

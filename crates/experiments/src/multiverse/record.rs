@@ -95,7 +95,7 @@ pub struct ComparisonResult {
     pub trials_failed: usize,
     /// Per method (in `--methods` order) and metric (in `summary.csv` order).
     pub metrics: Vec<MetricSummary>,
-    /// Per claim of [`crate::claims::CLAIMS`], in that order.
+    /// Per claim of the plan's ([`super::plan::MultiverseIdentity::claims`]), in that order.
     pub claims: Vec<ClaimEffect>,
     /// Each target's statistic over the comparison's trials (more trials than a calibration
     /// evaluation holds), in target order (NaN when undefined).

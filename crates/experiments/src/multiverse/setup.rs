@@ -15,6 +15,7 @@ use super::universe::{
 use super::validate::check_axes;
 use crate::calibrate::setup::DEFAULT_DIGITS;
 use crate::calibrate::{CalibrationSetup, EvaluationHook, FreeField, SetupError, Targets};
+use crate::claims::{Claims, ClaimsError};
 use crate::method_factory::MethodFactory;
 use crate::shard::Shard;
 use crate::sweep::{SweepHooks, check_sweep_size};
@@ -66,6 +67,10 @@ pub struct MultiverseSetup {
     pub axes: Axes,
     /// What each universe's calibration must reach (admissible: every band, loss 0).
     pub targets: Targets,
+    /// The claims each admissible universe's comparison checks (`--claims FILE`, or the base
+    /// scenario's `report: (claims: ...)`); default `None`: no claims, the multiverse says
+    /// only which universes are admissible.
+    pub claims: Option<Claims>,
     /// The fields each universe's calibration fits, with their ranges (at least one, each
     /// once, none set by an axis).
     pub free: Vec<FreeField>,
@@ -133,6 +138,7 @@ impl MultiverseSetup {
             origin: origin.into(),
             axes,
             targets,
+            claims: None,
             free,
             methods: rne_core::grouping::METHOD_NAMES
                 .iter()
@@ -187,8 +193,8 @@ impl MultiverseSetup {
     }
 
     /// Checks the setup before anything runs: the options, the base scenario (validated),
-    /// the targets and free fields against it, the methods, the axes against it and the free
-    /// fields, the universes (count, sample) and the shard.
+    /// the targets and free fields against it, the methods, the claims against both, the axes
+    /// against it and the free fields, the universes (count, sample) and the shard.
     ///
     /// # Errors
     /// One line: an option out of range (naming its flag), what
@@ -219,6 +225,10 @@ impl MultiverseSetup {
             &self.free,
             &self.targets,
         )?;
+        if let Some(claims) = &self.claims {
+            claims.check_tasks(&checked.scenario.task_names())?;
+            claims.check_methods(&checked.methods)?;
+        }
         let sizes = self.axes.sizes();
         let universes = select(&sizes, self.sample)?;
         if let Some(s) = self.shard {
@@ -270,6 +280,9 @@ pub enum MultiverseError {
     /// Too many universes, or a bad sample.
     #[error(transparent)]
     Universes(#[from] UniverseError),
+    /// A claim names a task the base scenario lacks or a method neither built in nor run.
+    #[error(transparent)]
+    Claims(#[from] ClaimsError),
     /// An option out of range.
     #[error("{0}")]
     Invalid(String),

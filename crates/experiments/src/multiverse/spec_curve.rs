@@ -80,7 +80,7 @@ fn points<'a>(records: &'a [UniverseRecord], claim: &Claim) -> Vec<Point<'a>> {
         .iter()
         .filter(|r| r.admissible())
         .filter_map(|r| {
-            let c = r.claim(claim.id)?;
+            let c = r.claim(&claim.id)?;
             c.effect.is_finite().then_some(Point {
                 record: r,
                 effect: c.effect,
@@ -149,7 +149,7 @@ fn font(size: u32) -> TextStyle<'static> {
 /// The claim in words and the legend of the verdict colours.
 fn draw_title(area: &Root<'_>, claim: &Claim) -> Result<()> {
     area.draw(&Text::new(
-        format!("Claim {}: {}", claim.id, claim.text),
+        format!("Claim {}: {}", claim.id, claim.sentence),
         (16, 20),
         font(18).pos(Pos::new(HPos::Left, VPos::Center)),
     ))
@@ -316,7 +316,7 @@ fn draw_caption(area: &Root<'_>, records: &[UniverseRecord], pts: &[Point<'_>]) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::claims::CLAIMS;
+    use crate::claims::paper_claims;
     use crate::multiverse::plan::tests::plan;
     use crate::multiverse::record::tests::record;
 
@@ -333,12 +333,12 @@ mod tests {
             x.claims[0].verdict = "does not hold".into();
         }
         let records = [a, b, c];
-        let pts = points(&records, &CLAIMS[0]);
+        let pts = points(&records, &paper_claims().claims()[0]);
         let order: Vec<u64> = pts.iter().map(|p| p.record.index).collect();
         assert_eq!(order, [1, 0]);
         let (lo, hi) = y_range(&pts);
         assert!(lo < -1.0 && hi > 5.0);
-        let svg = spec_curve_svg(&plan(), &records, &CLAIMS[0]).unwrap();
+        let svg = spec_curve_svg(&plan(), &records, &paper_claims().claims()[0]).unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
         assert!(svg.contains("Claim 1: RNE rescues the most in total"));
         assert!(svg.contains("a: a1") && svg.contains("b: b2"));
@@ -347,7 +347,7 @@ mod tests {
         assert_eq!(short("abc", 3), "abc");
         assert_eq!(short("abcd", 3), "ab…");
         // A claim no universe has an effect for still gives a figure.
-        let empty = spec_curve_svg(&plan(), &records, &CLAIMS[1]).unwrap();
+        let empty = spec_curve_svg(&plan(), &records, &paper_claims().claims()[1]).unwrap();
         assert!(empty.contains("no admissible universe with an effect"));
     }
 }

@@ -5,7 +5,6 @@ use std::fmt::Write;
 
 use super::outcome::MultiverseOutcome;
 use super::tally::{Tally, share};
-use crate::claims::CLAIMS;
 use crate::shard::shell_join;
 
 /// The summary text of `o`, one item per line; `out_dir` is the output folder as given.
@@ -25,7 +24,11 @@ pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String 
         o.reused,
         o.wall_s
     );
-    let t = Tally::of(&o.records, &plan.identity.axes.sizes());
+    let t = Tally::of(
+        &o.records,
+        &plan.identity.axes.sizes(),
+        &plan.identity.claims,
+    );
     let _ = writeln!(
         s,
         "admissible: {}; invalid {}, failed {}",
@@ -39,12 +42,15 @@ pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String 
         return s;
     }
     let _ = writeln!(s, "\nclaims (share of the admissible universes):");
-    for (c, count) in CLAIMS.iter().zip(&t.claims) {
+    if plan.identity.claims.is_empty() {
+        return s;
+    }
+    for (c, count) in plan.identity.claims.iter().zip(&t.claims) {
         let _ = writeln!(
             s,
             "  ({}) {}: holds {}, not significant {}, does not hold {}",
             c.id,
-            c.text,
+            c.sentence,
             share(count.holds, count.universes, plan.sampled()),
             share(count.not_significant, count.universes, plan.sampled()),
             share(count.does_not_hold, count.universes, plan.sampled())

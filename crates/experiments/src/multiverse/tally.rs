@@ -3,7 +3,7 @@
 //! alternative of each axis. `multiverse.md` and the terminal summary show them.
 
 use super::record::{Status, UniverseRecord};
-use crate::claims::{CLAIMS, Verdict};
+use crate::claims::{Claim, Verdict};
 
 /// The verdicts a claim got in some universes.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -98,7 +98,7 @@ pub struct Tally {
     pub invalid: usize,
     /// Universes that failed (calibration error or failed trials).
     pub failed: usize,
-    /// Per claim of [`CLAIMS`], the verdicts among the admissible universes.
+    /// Per claim (of the plan's, in order), the verdicts among the admissible universes.
     pub claims: Vec<VerdictCount>,
     /// Per axis, per alternative, per claim: the verdicts among the admissible universes
     /// that take the alternative (`by_alternative[axis][alt][claim]`).
@@ -106,9 +106,10 @@ pub struct Tally {
 }
 
 impl Tally {
-    /// Counts `records` of a multiverse whose axes have `sizes` alternatives.
-    pub fn of(records: &[UniverseRecord], sizes: &[usize]) -> Self {
-        let blank = vec![VerdictCount::default(); CLAIMS.len()];
+    /// Counts `records` of a multiverse whose axes have `sizes` alternatives and whose
+    /// universes check `claims`.
+    pub fn of(records: &[UniverseRecord], sizes: &[usize], claims: &[Claim]) -> Self {
+        let blank = vec![VerdictCount::default(); claims.len()];
         let mut t = Self {
             universes: records.len(),
             admissible: 0,
@@ -127,12 +128,12 @@ impl Tally {
                 continue;
             }
             t.admissible += 1;
-            for (c, claim) in CLAIMS.iter().enumerate() {
-                t.claims[c].add(r, claim.id);
+            for (c, claim) in claims.iter().enumerate() {
+                t.claims[c].add(r, &claim.id);
                 for (axis, &alt) in r.choices.iter().enumerate() {
                     if let Some(count) = t.by_alternative.get_mut(axis).and_then(|a| a.get_mut(alt))
                     {
-                        count[c].add(r, claim.id);
+                        count[c].add(r, &claim.id);
                     }
                 }
             }
@@ -158,7 +159,11 @@ mod tests {
         d.status = Status::Invalid;
         d.calibration = None;
         d.comparison = None;
-        let t = Tally::of(&[a, b, c, d], &[2, 2]);
+        let t = Tally::of(
+            &[a, b, c, d],
+            &[2, 2],
+            crate::claims::paper_claims().claims(),
+        );
         assert_eq!(
             (t.universes, t.admissible, t.invalid, t.failed),
             (4, 2, 1, 0)

@@ -187,7 +187,7 @@ impl UniverseRun<'_> {
         };
         let report = ReportOptions {
             targets: Some(targets.clone()),
-            claims: true,
+            claims: self.setup.claims.clone(),
         };
         match compare(&cfg, report) {
             Ok((o, analysis)) => {
@@ -216,7 +216,7 @@ impl UniverseRun<'_> {
 }
 
 /// Runs the comparison and writes its files, whose reports show `report`'s sections (a
-/// universe's report checks its targets and the paper's claims).
+/// universe's report checks its targets and the multiverse's claims).
 fn compare(cfg: &SweepConfig, report: ReportOptions) -> Result<(SweepOutcome, Analysis)> {
     let o = run_sweep(cfg)?;
     let analysis = Analysis::with_report(&o, report);

@@ -464,7 +464,7 @@ mod tests {
             grid_metrics: Vec::new(),
             working_dir: None,
             targets: None,
-            claims: false,
+            claims: None,
         }
     }
 

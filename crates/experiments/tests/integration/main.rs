@@ -8,6 +8,7 @@
 mod calibrate_cli;
 mod calibrate_lib;
 mod check_cli;
+mod claims_files;
 mod common;
 mod json_schema;
 mod multiverse_cli;

@@ -22,12 +22,19 @@ const TARGETS: &str = concat!(
     "/tests/data/multiverse-targets.ron"
 );
 
+const CLAIMS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../scenarios/paper-claims.ron"
+);
+
 /// The options of every multiverse here after the scenario, but `--out`.
-const OPTIONS: [&str; 17] = [
+const OPTIONS: [&str; 19] = [
     "--axes",
     AXES,
     "--targets",
     TARGETS,
+    "--claims",
+    CLAIMS,
     "--free",
     "mission.pickup_s=0.5..2",
     "--methods",

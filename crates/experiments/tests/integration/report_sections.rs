@@ -49,6 +49,17 @@ fn paper_targets() -> String {
     format!("{ROOT}/scenarios/paper-targets.ron")
 }
 
+fn paper_claims() -> String {
+    format!("{ROOT}/scenarios/paper-claims.ron")
+}
+
+/// Claims of a user's own for [`USER_SCENARIO`]: nothing of the paper's.
+const USER_CLAIMS: &str = r#"Claims(claims: [
+    (id: "dis-easy", sentence: "DIS rescues more in room easy than RNE", subject: "DIS",
+     rivals: Only(["rne"]), metric: "rescued_easy", direction: More),
+])
+"#;
+
 /// `usar sweep SCENARIO` of rne,dis x 2 trials x 4 s into `out`, then `extra`; succeeds.
 fn sweep(scenario: &str, out: &Path, extra: &[&str]) -> String {
     let mut args = vec![
@@ -73,7 +84,7 @@ fn sweep(scenario: &str, out: &Path, extra: &[&str]) -> String {
 /// Whether a report (or summary) `text` has the pooled statistics and the claims.
 fn sections(text: &str) -> (bool, bool) {
     let pooled = text.contains("# Pooled statistics") || text.contains("pooled statistics against");
-    let claims = text.contains("## The paper's claims") || text.contains("claims (one-sided");
+    let claims = text.contains("## Claims") || text.contains("\nclaims of ");
     (pooled, claims)
 }
 
@@ -93,7 +104,7 @@ fn assert_plain(report: &str) {
         .filter(|l| l.contains("--targets FILE"))
         .collect();
     assert_eq!(asks.len(), 1, "{report}");
-    assert!(asks[0].contains("`--claims`"), "{}", asks[0]);
+    assert!(asks[0].contains("`--claims FILE`"), "{}", asks[0]);
 }
 
 /// Default, then both options on the same folder (all trials from the journal), then
@@ -105,8 +116,12 @@ fn sections_follow_the_options(scenario: &str) {
     assert_eq!(sections(&summary), (false, false), "{summary}");
     assert_plain(&read_text(&out.join("report.md")));
 
-    let targets = paper_targets();
-    let summary = sweep(scenario, &out, &["--targets", &targets, "--claims"]);
+    let (targets, claims) = (paper_targets(), paper_claims());
+    let summary = sweep(
+        scenario,
+        &out,
+        &["--targets", &targets, "--claims", &claims],
+    );
     assert!(
         summary.contains("all 4 trials came from the journal"),
         "{summary}"
@@ -127,11 +142,11 @@ fn sections_follow_the_options(scenario: &str) {
     assert!(!report.contains("--targets FILE"), "{report}");
 
     // Only the claims: the line asks for the targets alone.
-    let summary = sweep(scenario, &out, &["--claims"]);
+    let summary = sweep(scenario, &out, &["--claims", &claims]);
     assert!(summary.contains("all 4 trials came from the journal"));
     let report = read_text(&out.join("report.md"));
     assert_eq!(sections(&report), (false, true), "{report}");
-    assert!(report.contains("--targets FILE") && !report.contains("`--claims`"));
+    assert!(report.contains("--targets FILE") && !report.contains("`--claims FILE`"));
 
     sweep(scenario, &out, &[]);
     assert_plain(&read_text(&out.join("report.md")));
@@ -169,7 +184,8 @@ fn grid_reports_show_the_sections_only_when_asked() {
 
     let targets = paper_targets();
     let mut asked = vary.to_vec();
-    asked.extend(["--targets", &targets, "--claims"]);
+    let claims = paper_claims();
+    asked.extend(["--targets", &targets, "--claims", &claims]);
     let summary = sweep(text(&path), &out, &asked);
     assert!(
         summary.contains("all 8 trials came from the journal"),
@@ -190,13 +206,13 @@ fn a_merge_renders_with_the_options_its_shards_were_given() {
     let tmp = tempfile::tempdir().unwrap();
     let path = tmp.path().join("my-site.ron");
     std::fs::write(&path, USER_SCENARIO).unwrap();
-    let targets = paper_targets();
+    let (targets, claims) = (paper_targets(), paper_claims());
     let out = tmp.path().join("big");
     for shard in ["0/2", "1/2"] {
         sweep(
             text(&path),
             &out,
-            &["--claims", "--targets", &targets, "--shard", shard],
+            &["--claims", &claims, "--targets", &targets, "--shard", shard],
         );
     }
     let merged = ok(&common::merge(&out));
@@ -210,7 +226,7 @@ fn a_merge_renders_with_the_options_its_shards_were_given() {
     }
     ok(&common::merge(&plain));
     assert_plain(&read_text(&plain.join("report.md")));
-    ok(&usar(["merge", text(&plain), "--claims"]));
+    ok(&usar(["merge", text(&plain), "--claims", &claims]));
     assert_eq!(
         sections(&read_text(&plain.join("report.md"))),
         (false, true)
@@ -247,8 +263,9 @@ fn targets_for_tasks_the_scenario_lacks_are_refused_before_any_trial() {
 }
 
 /// A scenario's `report` section asks for the sections itself: paper.ron names its targets
-/// (relative to its folder) and the claims, so its plain sweep checks both; a user's scenario
-/// that asks for the claims only gets the claims only.
+/// and claims files (relative to its folder), so its plain sweep checks both; a user's
+/// scenario that names a claims file of its own gets those claims only, nothing of the
+/// paper's.
 #[test]
 fn the_scenarios_report_section_asks_for_the_sections() {
     let tmp = tempfile::tempdir().unwrap();
@@ -261,18 +278,33 @@ fn the_scenarios_report_section_asks_for_the_sections() {
     let file = tmp.path().join("claims-only.ron");
     let asked = USER_SCENARIO.replace(
         "    mission: (duration_s: 60.0),\n",
-        "    mission: (duration_s: 60.0),\n    report: (claims: true),\n",
+        "    mission: (duration_s: 60.0),\n    report: (claims: \"mine.ron\"),\n",
     );
     assert_ne!(asked, USER_SCENARIO);
     std::fs::write(&file, asked).unwrap();
+    std::fs::write(tmp.path().join("mine.ron"), USER_CLAIMS).unwrap();
     let out = tmp.path().join("mine");
-    sweep(text(&file), &out, &[]);
+    let summary = sweep(text(&file), &out, &[]);
     let report = read_text(&out.join("report.md"));
     assert_eq!(sections(&report), (false, true), "{report}");
+    for text in [&report, &summary] {
+        assert!(
+            text.contains("(dis-easy) DIS rescues more in room easy than RNE"),
+            "{text}"
+        );
+        assert!(
+            !text.contains("(4b)") && !text.contains("hard task"),
+            "{text}"
+        );
+    }
+    let section = &report[report.find("### (dis-easy)").expect("its section")..];
+    assert!(section.contains("| vs | other's mean"), "{report}");
+    assert_eq!(section.matches("\n| RNE | ").count(), 1, "{section}");
 }
 
-/// A copy of paper.ron in a folder without `paper-targets.ron` still sweeps: a one-line
-/// warning names the missing file, and the reports leave the bands out (the claims stay).
+/// A copy of paper.ron in a folder without `paper-targets.ron` and `paper-claims.ron` still
+/// sweeps: a one-line warning names each missing file, and the reports leave out the bands
+/// and the claims (`--claims FILE` brings the claims back).
 #[test]
 fn a_copy_of_the_paper_elsewhere_sweeps_without_its_targets_file() {
     let tmp = tempfile::tempdir().unwrap();
@@ -298,6 +330,11 @@ fn a_copy_of_the_paper_elsewhere_sweeps_without_its_targets_file() {
         warning.contains("report.targets:") && warning.contains("paper-targets.ron not found"),
         "{warning}"
     );
+    assert!(
+        warning.contains("report.claims:") && warning.contains("paper-claims.ron not found"),
+        "{warning}"
+    );
+    assert_eq!(warning.lines().count(), 2, "{warning}");
     let report = read_text(&out.join("report.md"));
-    assert_eq!(sections(&report), (false, true), "{report}");
+    assert_eq!(sections(&report), (false, false), "{report}");
 }

@@ -566,12 +566,12 @@ mod tests {
         let paper = crate::scenario::load(paper_path()).expect("paper.ron");
         let want = ReportSpec {
             targets: Some("paper-targets.ron".into()),
-            claims: true,
+            claims: Some("paper-claims.ron".into()),
         };
         assert_eq!(*paper.report(), want);
         // RON written from the spec reads back to an equal spec.
         let text = ron::to_string(paper.spec()).expect("RON");
-        assert!(text.contains(r#"report:(targets:"paper-targets.ron",claims:true)"#));
+        assert!(text.contains(r#"report:(targets:"paper-targets.ron",claims:"paper-claims.ron")"#));
         assert_eq!(
             parse_spec(&text, "back.ron").expect("parses"),
             *paper.spec()
@@ -585,10 +585,16 @@ mod tests {
         let src = tiny_ron_with(r#"report: (targets: Some("t.ron"))"#);
         let s = from_str(&src, "t.ron").expect("Some(...) is read too");
         assert_eq!(s.report().targets.as_deref(), Some("t.ron"));
-        assert!(!s.report().claims);
+        assert_eq!(s.report().claims, None);
         let err = from_str(&tiny_ron_with("report: (claim: true)"), "t.ron").expect_err("typo");
         assert_eq!(err.field(), Some("report.claim"), "{err}");
         assert!(err.to_string().contains("did you mean `claims`?"), "{err}");
+        // The former boolean: `false` is none, `true` names the file that holds the claims.
+        let s = from_str(&tiny_ron_with("report: (claims: false)"), "t.ron").expect("false");
+        assert_eq!(s.report().claims, None);
+        let err = from_str(&tiny_ron_with("report: (claims: true)"), "t.ron").expect_err("true");
+        assert_eq!(err.field(), Some("report.claims"), "{err}");
+        assert!(err.to_string().contains("\"paper-claims.ron\""), "{err}");
     }
 
     /// The RON of [`tiny`] with `extra` as its last field.

@@ -80,7 +80,8 @@ pub struct ScenarioSpec {
     pub report: ReportSpec,
 }
 
-/// The `report` section: `report: (targets: "paper-targets.ron", claims: true)`. Data for the
+/// The `report` section: `report: (targets: "paper-targets.ron", claims: "paper-claims.ron")`.
+/// Data for the
 /// reports of a sweep (the `experiments` crate); the simulator does not read it. Both fields
 /// may be omitted, and unknown fields are rejected.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -95,9 +96,36 @@ pub struct ReportSpec {
         deserialize_with = "de_path_or_none"
     )]
     pub targets: Option<String>,
-    /// Whether report.md checks the paper's claims (section VI); default `false`. Set for the
-    /// paper's scenario and its variants.
-    pub claims: bool,
+    /// Claims to check the results against: a path to a claims file (such as
+    /// `scenarios/paper-claims.ron`, the paper's claims of section VI), relative to the scenario
+    /// file's folder; default none (no claims section). Written as a plain string, `claims:
+    /// "paper-claims.ron"` (`Some("...")` and `None` are read too; the former `claims: true`
+    /// is refused with a message naming the paper's file, `false` reads as none).
+    #[serde(
+        serialize_with = "ser_path_or_none",
+        deserialize_with = "de_claims_path"
+    )]
+    pub claims: Option<String>,
+}
+
+/// [`de_path_or_none`], and a former boolean: `false` is none, `true` an error naming the file
+/// that holds the claims it meant.
+fn de_claims_path<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum PathOrBool {
+        Bool(bool),
+        #[serde(deserialize_with = "de_path_or_none")]
+        Path(Option<String>),
+    }
+    match PathOrBool::deserialize(d)? {
+        PathOrBool::Bool(false) => Ok(None),
+        PathOrBool::Bool(true) => Err(serde::de::Error::custom(
+            "claims: true is no longer read: name a claims file, such as claims: \
+             \"paper-claims.ron\" for the paper's claims (scenarios/paper-claims.ron)",
+        )),
+        PathOrBool::Path(p) => Ok(p),
+    }
 }
 
 fn ser_path_or_none<S: serde::Serializer>(v: &Option<String>, s: S) -> Result<S::Ok, S::Error> {

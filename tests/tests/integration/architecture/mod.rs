@@ -80,8 +80,8 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 // Design, run, fit, analyse, write, study.
                 &["grid"],
                 &["executor", "stale_outputs", "sweep", "shard", "slurm"],
-                &["calibrate", "calibration"],
-                &["claims", "analysis"],
+                &["calibrate", "claims", "calibration"],
+                &["analysis"],
                 &[
                     "csv_tables",
                     "figures",

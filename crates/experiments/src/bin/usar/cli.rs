@@ -30,7 +30,8 @@ Examples:
   # calibration targets and claims checked in report.md)
   usar check scenarios/paper.ron
   usar run scenarios/paper.ron --method rne --trial 0
-  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron --claims --out results/paper
+  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron \\
+      --claims scenarios/paper-claims.ron --out results/paper
 
   # A parameter sweep: the comparison once per value of a scenario field (see docs/sweeps.md)
   usar sweep scenarios/paper.ron --vary mission.hp_pct_per_step_in_radiation=0.0003,0.003

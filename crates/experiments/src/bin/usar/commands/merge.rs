@@ -38,7 +38,8 @@ machine. A shard with no journal, or with trials it has not run, stops the merge
 names it and gives the `usar sweep ... --shard I/N` command that runs it (again). Failed trials
 are reported the same way after the files are written (non-zero exit status). See
 docs/cluster.md. The reports compare with the targets and check the claims the shards were
-given (--targets, --claims, recorded in their plan.json); --targets and --claims here override.
+given (--targets FILE, --claims FILE, recorded in their plan.json); --targets and --claims
+here override.
 
 A multiverse's folder (one with multiverse.json at its top or in its shard folders) is merged
 from its universes' records: once every universe of the plan has its universes/<id>/
@@ -67,10 +68,10 @@ pub struct MergeArgs {
 /// different sweeps, an I/O error, or failed trials (after the files are written).
 pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     if is_multiverse_dir(&args.dir) {
-        if args.report.targets.is_some() || args.report.claims {
+        if args.report.targets.is_some() || args.report.claims.is_some() {
             bail!(
                 "--targets and --claims are for a sweep's folder; a multiverse's reports \
-                 always check its targets and the paper's claims"
+                 check the targets and claims its plan records"
             );
         }
         let here = std::env::current_dir().ok();
@@ -98,9 +99,13 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     let here = std::env::current_dir().ok();
     let report = ReportArgs {
         targets: (args.report.targets.clone()).or_else(|| m.plan.targets_path(here.as_deref())),
-        claims: args.report.claims || m.plan.claims,
+        claims: (args.report.claims.clone()).or_else(|| m.plan.claims_path(here.as_deref())),
     }
-    .resolve(&m.config.scenario, &m.config.scenario_path)?;
+    .resolve(
+        &m.config.scenario,
+        &m.config.scenario_path,
+        &m.config.methods,
+    )?;
     let analysis = Analysis::with_report(&m.outcome, report);
     let files = write_outputs(&m.config, &m.outcome, &analysis, &metrics)?;
     writeln!(

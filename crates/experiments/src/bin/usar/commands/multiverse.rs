@@ -59,8 +59,9 @@ In each universe the --free fields are calibrated to TARGETS.ron as `usar calibr
 (--calibration-trials per method and evaluation, at most --max-evals evaluations); the universe
 is admissible when every target's statistic lies in its band (loss 0). Then every method runs
 --trials trials on the calibrated scenario (trial k from seed trial_seed(SEED, k) in every
-universe), and each of the paper's claims gets its verdict (one-sided Welch tests, as in a
-sweep's report) and its effect: the subject minus its strongest rival, > 0 in the claim's
+universe), and each claim of --claims FILE (default: the file the scenario's `report` section
+names; paper.ron names the paper's five) gets its verdict (as in a sweep's report) and its
+effect: the subject minus its strongest rival, > 0 in the claim's
 direction, with a 95 % Welch confidence interval.
 
 Output folder (default results/multiverse-<scenario name>/): universes/<id>/ per universe

@@ -112,10 +112,10 @@ pub struct SlurmMultiverseArgs {
     #[arg(long, value_name = "TARGETS.ron")]
     pub targets: Option<PathBuf>,
 
-    /// Without --axes: the sweep's reports check the paper's claims (as `usar sweep
-    /// --claims`).
-    #[arg(long, conflicts_with = "axes")]
-    pub claims: bool,
+    /// The claims file: with --axes, the claims each universe checks (as `usar multiverse
+    /// --claims`); without, the claims the sweep's reports check (as `usar sweep --claims`).
+    #[arg(long, value_name = "CLAIMS.ron")]
+    pub claims: Option<PathBuf>,
 
     /// With --axes: a target reported but left out of the loss and admissibility
     /// (repeatable; as `usar multiverse --report-only`).
@@ -171,7 +171,7 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     }
     let mut plan = args.spec.plan()?;
     plan.targets.clone_from(&args.multiverse.targets);
-    plan.claims = args.multiverse.claims;
+    plan.claims.clone_from(&args.multiverse.claims);
     let out_dir = match &args.spec.out {
         Some(o) => o.clone(),
         None => default_out_dir(&scenario::load(&args.spec.scenario)?),
@@ -183,9 +183,9 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     experiments::sweep::check_config(&cfg, &header)?;
     ReportArgs {
         targets: plan.targets.clone(),
-        claims: plan.claims,
+        claims: plan.claims.clone(),
     }
-    .resolve(&cfg.scenario, &cfg.scenario_path)?;
+    .resolve(&cfg.scenario, &cfg.scenario_path, &cfg.methods)?;
     if let Some(d) = args.spec.duration {
         warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
     }
@@ -206,6 +206,7 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         axes: m.axes.clone().unwrap_or_default(),
         targets: m.targets.clone().unwrap_or_default(),
         report_only: m.report_only.clone(),
+        claims: m.claims.clone(),
         free: m.free.clone(),
         methods: s.methods.clone(),
         trials: s.trials,

@@ -40,7 +40,8 @@ const EXAMPLES: &str = "\
 Examples:
   # The paper's comparison: RNE, DIS, ENG, HP_DIS x 10 trials x 600 s, all cores, with the
   # paper's calibration targets and claims checked in report.md
-  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron --claims
+  usar sweep scenarios/paper.ron --targets scenarios/paper-targets.ron \\
+      --claims scenarios/paper-claims.ron
 
   # A quick look: two methods, 2 trials of 60 s, into a chosen folder
   usar sweep scenarios/paper.ron --methods rne,dis --trials 2 --duration 60 --out /tmp/quick
@@ -77,8 +78,9 @@ writes into a folder: it holds a lock on sweep.lock there (the file keeps the pi
 holder; a killed sweep's lock ends with it). Every journal line carries a checksum: an edited
 record is reported by line and its trial runs again; an edited header is refused.
 report.md, grid.md and the summary compare with calibration targets only with --targets FILE,
-and check the paper's claims only with --claims; these change no trial, so running the same
-sweep again with other ones only rewrites the reports.
+and check the claims of a claims file only with --claims FILE (or the scenario's `report`
+section: paper.ron names the paper's); these change no trial, so running the same sweep again
+with other ones only rewrites the reports.
 Trial k of every method starts from the same team, seed trial_seed(SEED, k); reproduce one row
 with `usar run SCENARIO --method M --seed <seed column>`. The exit status is non-zero when a
 trial failed; the others still run and are written.";
@@ -265,7 +267,9 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let replays = replays_of(args, &cfg)?;
     // Options first (a bad one is the only line), then what the scenario warns about.
     experiments::sweep::check_trial_count(&cfg)?;
-    let report = args.report.resolve(&cfg.scenario, &cfg.scenario_path)?;
+    let report = args
+        .report
+        .resolve(&cfg.scenario, &cfg.scenario_path, &cfg.methods)?;
     warn_about(
         &path_text(&cfg.scenario_path),
         &cfg.scenario,
@@ -331,7 +335,7 @@ fn shard_run(args: &SweepArgs) -> Result<Option<ShardRun>> {
     };
     let mut plan = args.spec.plan()?;
     plan.targets.clone_from(&args.report.targets);
-    plan.claims = args.report.claims;
+    plan.claims.clone_from(&args.report.claims);
     Ok(Some(ShardRun {
         shard: text.parse()?,
         plan,

@@ -2,14 +2,15 @@
 //! ([`MultiverseSpecArgs`]), its setup and default folder, and the error that lists failed
 //! universes (`usar multiverse`, `usar merge`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
-use usar_sim::scenario::{self, path_text};
+use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
 use experiments::calibrate::{Targets, parse_free};
+use experiments::claims::Claims;
 use experiments::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED, DEFAULT_TRIALS,
 };
@@ -33,6 +34,13 @@ pub struct MultiverseSpecArgs {
     /// The targets file each universe is calibrated to (RON, as `usar calibrate --targets`).
     #[arg(long, value_name = "TARGETS.ron")]
     pub targets: PathBuf,
+
+    /// The claims each admissible universe's comparison checks (RON; the paper's:
+    /// scenarios/paper-claims.ron; see docs/sweeps.md, "Claims"). Default: the file the
+    /// scenario's `report: (claims: ...)` names, else none (the multiverse then says only
+    /// which universes are admissible).
+    #[arg(long, value_name = "CLAIMS.ron")]
+    pub claims: Option<PathBuf>,
 
     /// The name of a target to compute and report but leave out of the loss (and so out of
     /// what makes a universe admissible): a target known to conflict with the others, or one
@@ -108,7 +116,9 @@ pub fn setup_of(
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);
+    let claims = claims_of(spec, &base)?;
     Ok(MultiverseSetup {
+        claims,
         methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
         trials: spec.trials,
         seed,
@@ -125,6 +135,32 @@ pub fn setup_of(
         date: source_date()?,
         ..MultiverseSetup::new(base, origin, axes, targets, free)
     })
+}
+
+/// The claims of `--claims FILE`, or else of the file the scenario's `report: (claims: ...)`
+/// names (relative to its folder; a missing one is a warning and no claims).
+///
+/// # Errors
+/// A claims file that cannot be read or parsed.
+fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Claims>> {
+    let path = match (&spec.claims, &base.report.claims) {
+        (Some(p), _) => p.clone(),
+        (None, None) => return Ok(None),
+        (None, Some(file)) => {
+            let p = spec.scenario.parent().unwrap_or(Path::new("")).join(file);
+            if !p.exists() {
+                experiments::console::warn(format!(
+                    "warning: {}: report.claims: {} not found (relative to the scenario's \
+                     folder); no claims are checked (--claims FILE gives them)",
+                    path_text(&spec.scenario),
+                    path_text(&p)
+                ));
+                return Ok(None);
+            }
+            p
+        }
+    };
+    Ok(Some(Claims::load(&path).context("--claims")?))
 }
 
 /// The default output folder: `results/multiverse-<scenario name>/` (the name made safe as

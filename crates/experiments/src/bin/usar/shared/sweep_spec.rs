@@ -11,7 +11,7 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, Scenario};
 
-use experiments::calibration::ReportOptions;
+use experiments::calibration::{ReportOptions, ReportOptionsError};
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::shard::SweepPlan;
@@ -80,12 +80,13 @@ impl SweepSpecArgs {
             grid_metrics: self.grid_metrics.clone(),
             working_dir: std::env::current_dir().ok(),
             targets: None,
-            claims: false,
+            claims: None,
         })
     }
 }
 
-/// `--targets FILE` and `--claims`: what the reports say beyond the scenario's own results.
+/// `--targets FILE` and `--claims FILE`: what the reports say beyond the scenario's own
+/// results.
 #[derive(Debug, Clone, Default, Args)]
 pub struct ReportArgs {
     /// Compare the statistics pooled over all trials of all methods with the targets in FILE
@@ -95,25 +96,40 @@ pub struct ReportArgs {
     #[arg(long, value_name = "FILE")]
     pub targets: Option<PathBuf>,
 
-    /// Check the paper's claims (about tasks named easy and hard: Welch and Mann-Whitney
-    /// tests) in report.md, grid.md and the summary. Default: not checked.
-    #[arg(long)]
-    pub claims: bool,
+    /// Check the claims in FILE (RON; the paper's: scenarios/paper-claims.ron; see
+    /// docs/sweeps.md, "Claims") in report.md, grid.md and the summary. Default: the file the
+    /// scenario's `report: (claims: ...)` names, else none. Changing it re-renders a
+    /// journaled sweep's reports without running its trials again.
+    #[arg(long, value_name = "FILE")]
+    pub claims: Option<PathBuf>,
 }
 
 impl ReportArgs {
-    /// The report options for `scenario` (loaded from `scenario_path`).
+    /// The report options for `scenario` (loaded from `scenario_path`) swept with `methods`.
     ///
     /// # Errors
-    /// A targets file that cannot be read or parsed, or that names a task the scenario lacks.
-    pub fn resolve(&self, scenario: &Scenario, scenario_path: &Path) -> Result<ReportOptions> {
+    /// A targets or claims file that cannot be read or parsed, that names a task the
+    /// scenario lacks, or a claim naming a method neither built in nor among `methods`.
+    pub fn resolve(
+        &self,
+        scenario: &Scenario,
+        scenario_path: &Path,
+        methods: &[String],
+    ) -> Result<ReportOptions> {
         ReportOptions::resolve(
             self.targets.as_deref(),
-            self.claims,
+            self.claims.as_deref(),
             scenario,
             scenario_path,
+            methods,
         )
-        .context("--targets")
+        .map_err(|e| {
+            let flag = match e {
+                ReportOptionsError::Targets(_) => "--targets",
+                ReportOptionsError::Claims(_) => "--claims",
+            };
+            anyhow::Error::new(e).context(flag)
+        })
     }
 }
 

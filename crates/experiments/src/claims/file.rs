@@ -1,0 +1,357 @@
+//! A claims file (`CLAIMS.ron`) and the checked list of claims it holds.
+//!
+//! ```ron
+//! Claims(
+//!     claims: [
+//!         (id: "1", sentence: "RNE rescues the most in total", subject: "RNE",
+//!          metric: "rescued_total", direction: More),
+//!         (id: "4b", sentence: "RNE has the lowest HP cost per rescuee in the hard task",
+//!          subject: "RNE", rivals: Only(["DIS", "ENG"]), metric: "hp_per_hard_rescuee_pct",
+//!          direction: Less, test: MannWhitney, alpha: 0.01, correction: Holm),
+//!     ],
+//! )
+//! ```
+//!
+//! Fields and defaults: [`Claim`]. Errors are one line naming the file, line, column and
+//! field: `my-claims.ron:7:20: claims[1].rivals: the subject "RNE" is among its rivals`.
+
+use std::path::Path;
+use std::sync::{Arc, OnceLock};
+
+use rne_core::grouping::METHOD_NAMES;
+use usar_sim::scenario::{SourceLocation, did_you_mean};
+
+use super::claim::{Claim, Rivals, method_key};
+use crate::calibrate::ron_file;
+use crate::calibrate::source_map::SourceMap;
+
+/// Longest claims file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
+/// instead of read into memory.
+pub const MAX_CLAIMS_BYTES: u64 = 1 << 20;
+
+/// Longest claim id, characters.
+const MAX_ID_CHARS: usize = 32;
+
+/// Why claims could not be read or used: one line, `origin[:line:col]: [field: ]message`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
+pub struct ClaimsError {
+    /// The file (as given) and, when known, the line and column.
+    pub location: SourceLocation,
+    /// The field the error is about (`claims[1].rivals`), when known.
+    pub field: Option<String>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl From<ron_file::Located> for ClaimsError {
+    fn from(e: ron_file::Located) -> Self {
+        Self {
+            location: e.location,
+            field: e.field,
+            message: e.message,
+        }
+    }
+}
+
+/// A checked list of claims (at least one; ids unique and usable in file names; sentences
+/// one line; no subject among its rivals; every metric a `trials.csv` column name for some
+/// task names; every alpha in (0, 0.5]), with where it came from.
+#[derive(Debug, Clone)]
+pub struct Claims {
+    origin: String,
+    claims: Vec<Claim>,
+    map: Option<Arc<SourceMap>>,
+}
+
+impl PartialEq for Claims {
+    /// The same claims, wherever they were read from.
+    fn eq(&self, other: &Self) -> bool {
+        self.claims == other.claims
+    }
+}
+
+/// The file's top level, `Claims(claims: [...])`.
+#[derive(serde::Deserialize)]
+#[serde(rename = "Claims", deny_unknown_fields)]
+struct ClaimsFile {
+    claims: Vec<Claim>,
+}
+
+/// The text of `scenarios/paper-claims.ron` (through the crate's `data/paper-claims.ron`, a
+/// link to it, so that the packaged crate carries the file).
+pub const PAPER_CLAIMS_RON: &str = include_str!("../../data/paper-claims.ron");
+
+/// The paper's five claims (section VI, Fig. 3), parsed once from [`PAPER_CLAIMS_RON`]: what
+/// `scenarios/paper.ron`'s reports check. Nothing checks them unless a scenario or a command
+/// names the file.
+///
+/// # Panics
+/// Never: the embedded file is checked by this module's tests.
+pub fn paper_claims() -> &'static Claims {
+    static CLAIMS: OnceLock<Claims> = OnceLock::new();
+    CLAIMS.get_or_init(|| {
+        Claims::parse(PAPER_CLAIMS_RON, "scenarios/paper-claims.ron")
+            .unwrap_or_else(|e| panic!("the embedded paper claims do not parse: {e}"))
+    })
+}
+
+impl Claims {
+    /// Checks `claims` (named `origin` in errors; no line numbers).
+    ///
+    /// # Errors
+    /// As [`Claims::parse`] for the checks after parsing.
+    pub fn new(claims: Vec<Claim>, origin: &str) -> Result<Self, ClaimsError> {
+        let c = Self {
+            origin: origin.to_owned(),
+            claims,
+            map: None,
+        };
+        c.check()?;
+        Ok(c)
+    }
+
+    /// Parses and checks the RON text `src` of a claims file named `origin` in errors (a
+    /// leading byte-order mark is skipped).
+    ///
+    /// # Errors
+    /// RON syntax or shape (unknown field or variant, missing field), with ron's line and
+    /// column; no claims; an id that is empty, too long, repeated or has other characters than
+    /// letters, digits, `_`, `-` and `.`; an empty sentence or one with a line break; an empty
+    /// subject; `Only([])`, a rival named twice or the subject among its rivals; an unknown
+    /// metric (the message lists the metric names); an alpha outside (0, 0.5]. Each names the
+    /// line, column and field.
+    pub fn parse(src: &str, origin: &str) -> Result<Self, ClaimsError> {
+        let (file, map): (ClaimsFile, _) = ron_file::parse(src, origin)?;
+        let c = Self {
+            origin: origin.to_owned(),
+            claims: file.claims,
+            map: Some(map),
+        };
+        c.check()?;
+        Ok(c)
+    }
+
+    /// Reads and parses the claims file at `path` (named in errors as given).
+    ///
+    /// # Errors
+    /// The file cannot be read, is longer than [`MAX_CLAIMS_BYTES`] or is not UTF-8; else as
+    /// [`Claims::parse`].
+    pub fn load(path: &Path) -> Result<Self, ClaimsError> {
+        let (text, origin) = ron_file::read_text(path, MAX_CLAIMS_BYTES, "a claims file")?;
+        Self::parse(&text, &origin)
+    }
+
+    /// The claims, in file order.
+    pub fn claims(&self) -> &[Claim] {
+        &self.claims
+    }
+
+    /// Where they were read from (a path as given, or the origin given to [`Claims::new`]).
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// Checks that every claim's metric exists for a scenario with task names `tasks`.
+    ///
+    /// # Errors
+    /// The first metric naming a task not in `tasks`, at the claim's metric, naming the
+    /// scenario's tasks.
+    pub fn check_tasks(&self, tasks: &[String]) -> Result<(), ClaimsError> {
+        for (i, c) in self.claims.iter().enumerate() {
+            c.metric
+                .resolve(tasks)
+                .map_err(|e| self.error(&format!("claims[{i}].metric"), e))?;
+        }
+        Ok(())
+    }
+
+    /// Checks that every method a claim names is one of `methods` (a sweep's, or the methods
+    /// a factory knows) or a built-in method (`rne_core::grouping::METHOD_NAMES`; a built-in
+    /// method left out of a sweep leaves its claims untested, not wrong).
+    ///
+    /// # Errors
+    /// The first unknown name, at the claim's subject or rivals, with the names there are and
+    /// the nearest one.
+    pub fn check_methods(&self, methods: &[String]) -> Result<(), ClaimsError> {
+        let mut known: Vec<String> = METHOD_NAMES.iter().map(|m| method_key(m)).collect();
+        for m in methods {
+            if !known.contains(&method_key(m)) {
+                known.push(method_key(m));
+            }
+        }
+        for (i, c) in self.claims.iter().enumerate() {
+            let rivals = match &c.rivals {
+                Rivals::Every => &[][..],
+                Rivals::Only(names) => &names[..],
+            };
+            let named = std::iter::once((c.subject.as_str(), "subject"))
+                .chain(rivals.iter().map(|r| (r.as_str(), "rivals")));
+            for (name, field) in named {
+                if !known.contains(&method_key(name)) {
+                    return Err(self.error(
+                        &format!("claims[{i}].{field}"),
+                        format!(
+                            "unknown method {name:?} (methods: {}){}",
+                            known.join(", "),
+                            did_you_mean(&method_key(name), known.iter().map(String::as_str))
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// An error about `field`, placed where the field is in the file when known.
+    fn error(&self, field: &str, message: String) -> ClaimsError {
+        ClaimsError {
+            location: SourceLocation {
+                origin: self.origin.clone(),
+                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
+            },
+            field: Some(field.to_owned()),
+            message,
+        }
+    }
+
+    /// The checks after parsing (see [`Claims::parse`]).
+    fn check(&self) -> Result<(), ClaimsError> {
+        if self.claims.is_empty() {
+            return Err(self.error("claims", "no claims: give at least one".into()));
+        }
+        for (i, c) in self.claims.iter().enumerate() {
+            let at = |field: &str| format!("claims[{i}].{field}");
+            self.check_id(i, c).map_err(|m| self.error(&at("id"), m))?;
+            if c.sentence.trim().is_empty() || c.sentence.chars().any(char::is_control) {
+                return Err(self.error(
+                    &at("sentence"),
+                    "expected the claim in words on one line (not empty, no line break or \
+                     control character)"
+                        .into(),
+                ));
+            }
+            if c.subject.trim().is_empty() {
+                return Err(self.error(&at("subject"), "empty: name a method".into()));
+            }
+            Self::check_rivals(c).map_err(|m| self.error(&at("rivals"), m))?;
+            c.metric.task().map_err(|e| self.error(&at("metric"), e))?;
+            if !(c.alpha > 0.0 && c.alpha <= 0.5) {
+                return Err(self.error(
+                    &at("alpha"),
+                    format!("expected a one-sided level in (0, 0.5], found {}", c.alpha),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_id(&self, i: usize, c: &Claim) -> Result<(), String> {
+        let id = &c.id;
+        if id.is_empty()
+            || id.chars().count() > MAX_ID_CHARS
+            || !id
+                .chars()
+                .all(|ch| ch.is_ascii_alphanumeric() || matches!(ch, '_' | '-' | '.'))
+            || id.starts_with('.')
+        {
+            return Err(format!(
+                "{id:?}: an id is 1 to {MAX_ID_CHARS} letters, digits, `_`, `-` or `.` (not \
+                 first): it names the claim's files"
+            ));
+        }
+        if let Some(j) = self.claims[..i].iter().position(|o| &o.id == id) {
+            return Err(format!("duplicate id {id:?} (claims[{j}] has it too)"));
+        }
+        Ok(())
+    }
+
+    fn check_rivals(c: &Claim) -> Result<(), String> {
+        let Rivals::Only(names) = &c.rivals else {
+            return Ok(());
+        };
+        if names.is_empty() {
+            return Err("Only([]) names no rival: name one, or write Every".into());
+        }
+        for (k, name) in names.iter().enumerate() {
+            if c.is_subject(name) {
+                return Err(format!(
+                    "the subject {:?} is among its rivals ({name:?})",
+                    c.subject
+                ));
+            }
+            if names[..k].iter().any(|o| method_key(o) == method_key(name)) {
+                return Err(format!("{name:?} is named twice"));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::{Correction, DEFAULT_ALPHA, Direction, Test};
+
+    #[test]
+    fn the_paper_file_holds_the_five_claims_of_section_vi() {
+        let c = paper_claims();
+        let ids: Vec<&str> = c.claims().iter().map(|c| c.id.as_str()).collect();
+        assert_eq!(ids, ["1", "2", "3", "4a", "4b"]);
+        let metrics: Vec<&str> = c.claims().iter().map(|c| c.metric.0.as_str()).collect();
+        assert_eq!(
+            metrics,
+            [
+                "rescued_total",
+                "rescued_hard",
+                "rescued_easy",
+                "energy_per_hard_rescuee_pct",
+                "hp_per_hard_rescuee_pct"
+            ]
+        );
+        for claim in c.claims() {
+            assert_eq!(claim.rivals, Rivals::Every);
+            assert_eq!(
+                (claim.test, claim.correction),
+                (Test::Welch, Correction::None)
+            );
+            assert!((claim.alpha - 0.05).abs() < 1e-15);
+        }
+        assert_eq!(c.claims()[3].direction, Direction::Less);
+        let tasks = ["easy".to_string(), "hard".to_string()];
+        assert!(c.check_tasks(&tasks).is_ok());
+        assert!(c.check_tasks(&tasks[..1]).is_err());
+    }
+
+    #[test]
+    fn defaults_fill_what_a_claim_leaves_out() {
+        let c = Claims::parse(
+            "(claims: [(id: \"a\", sentence: \"s\", subject: \"x\", metric: \"rounds\", \
+             direction: Less)])",
+            "c.ron",
+        )
+        .unwrap();
+        let claim = &c.claims()[0];
+        assert_eq!(claim.rivals, Rivals::Every);
+        assert_eq!(
+            (claim.test, claim.correction),
+            (Test::Welch, Correction::None)
+        );
+        assert!((claim.alpha - DEFAULT_ALPHA).abs() < 1e-15);
+        // A method of one's own is known once it is among the sweep's methods.
+        assert!(c.check_methods(&[]).is_err());
+        assert!(c.check_methods(&["X".to_string()]).is_ok());
+    }
+
+    #[test]
+    fn ids_must_name_files() {
+        for bad in ["", "a b", "../x", ".hidden", &"x".repeat(33)] {
+            let src = format!(
+                "(claims: [(id: {bad:?}, sentence: \"s\", subject: \"x\", metric: \"rounds\", \
+                 direction: Less)])"
+            );
+            let e = Claims::parse(&src, "c.ron").unwrap_err();
+            assert_eq!(e.field.as_deref(), Some("claims[0].id"), "{e}");
+        }
+    }
+}
