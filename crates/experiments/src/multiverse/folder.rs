@@ -78,8 +78,8 @@ pub fn refuse_others(dir: &Path, plan: &MultiversePlan) -> Result<()> {
     Ok(())
 }
 
-/// The names of the specification curves in `dir` (`spec_curve_<id>.svg`, whatever the
-/// claims were).
+/// The names of the claims' figures in `dir` (`spec_curve_<id>.svg`,
+/// `sensitivity_<id>.svg`), whatever the claims were.
 fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
     let mut names = Vec::new();
     let entries = match fs::read_dir(dir) {
@@ -90,7 +90,7 @@ fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
     for entry in entries {
         let entry = entry.with_context(|| format!("listing {}", path_text(dir)))?;
         if let Some(name) = entry.file_name().to_str()
-            && name.starts_with("spec_curve_")
+            && (name.starts_with("spec_curve_") || name.starts_with("sensitivity_"))
             && name.ends_with(".svg")
         {
             names.push(name.to_owned());

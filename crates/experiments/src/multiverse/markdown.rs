@@ -13,6 +13,7 @@ use std::fmt::Write;
 use super::conclusions::conclusions;
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
+use super::sensitivity_md::{deciding_choices, near_admissible};
 use super::spec_curve::spec_curve_file;
 use super::tally::{Tally, VerdictCount, share};
 use crate::calibrate::progress::loss_text;
@@ -35,8 +36,10 @@ pub fn multiverse_md(plan: &MultiversePlan, records: &[UniverseRecord]) -> Strin
     claims(&mut r, &tally, plan.sampled(), &plan.identity.claims);
     let _ = writeln!(r, "## What this run can conclude\n");
     let _ = writeln!(r, "{}", conclusions(&tally, plan));
+    near_admissible(&mut r, plan, records);
     targets(&mut r, plan, records);
     by_axis(&mut r, plan, &tally);
+    deciding_choices(&mut r, plan, records);
     if !plan.identity.claims.is_empty() {
         figures(&mut r, &plan.identity.claims);
     }

@@ -11,6 +11,7 @@ use super::csv::multiverse_csv;
 use super::markdown::{TARGETS_FIGURE_FILE, multiverse_md};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
+use super::sensitivity_figure::{sensitivity_file, sensitivity_svg};
 use super::spec_curve::{spec_curve_file, spec_curve_svg};
 use crate::atomic::FileSet;
 use crate::calibrate::targets_figure::targets_svg;
@@ -27,6 +28,7 @@ pub const REPORT_FILE: &str = "multiverse.md";
 pub fn output_files(claims: &[Claim]) -> Vec<String> {
     let mut out = vec![CSV_FILE.to_string()];
     out.extend(claims.iter().map(spec_curve_file));
+    out.extend(claims.iter().map(sensitivity_file));
     out.push(TARGETS_FIGURE_FILE.to_string());
     out.push(REPORT_FILE.to_string());
     out
@@ -48,6 +50,12 @@ pub fn write_outputs(
     for c in &plan.identity.claims {
         let name = spec_curve_file(c);
         if let Some(svg) = figure_or_warn(&name, || spec_curve_svg(plan, records, c)) {
+            files.stage(&dir.join(name), svg.as_bytes())?;
+        }
+    }
+    for c in &plan.identity.claims {
+        let name = sensitivity_file(c);
+        if let Some(svg) = figure_or_warn(&name, || sensitivity_svg(plan, records, c)) {
             files.stage(&dir.join(name), svg.as_bytes())?;
         }
     }

@@ -92,6 +92,11 @@ pub struct MultiversePlan {
     /// The claims file's path as given (`None`: no claims).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub claims_path: Option<String>,
+    /// `--near-loss`: the largest calibration loss of a near-admissible universe, whose shares
+    /// `multiverse.md` gives as a sensitivity variant (`None`: none). A report option, not
+    /// part of the identity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub near_loss: Option<f64>,
     /// The output folder as given.
     pub out: PathBuf,
     /// The folder the paths are relative to (absolute), when known.
@@ -132,6 +137,7 @@ impl MultiversePlan {
             axes_path: setup.axes.origin().to_owned(),
             targets_path: setup.targets.origin().to_owned(),
             claims_path: setup.claims.as_ref().map(|c| c.origin().to_owned()),
+            near_loss: setup.near_loss,
             out: out.to_path_buf(),
             working_dir: setup.working_dir.clone(),
         })
@@ -209,6 +215,9 @@ impl MultiversePlan {
         }
         if let Some(c) = &self.claims_path {
             a.extend(["--claims".to_string(), c.clone()]);
+        }
+        if let Some(l) = self.near_loss {
+            a.extend(["--near-loss".to_string(), l.to_string()]);
         }
         for f in &id.free {
             a.extend(["--free".to_string(), f.to_string()]);
@@ -381,6 +390,7 @@ pub(crate) mod tests {
             axes_path: "my axes.ron".into(),
             targets_path: "t.ron".into(),
             claims_path: None,
+            near_loss: None,
             out: "out".into(),
             working_dir: Some("/home/me".into()),
         }

@@ -125,7 +125,15 @@ pub struct UniverseRecord {
 impl UniverseRecord {
     /// Whether the universe is admissible: its calibration reached every band (loss 0).
     pub fn admissible(&self) -> bool {
-        self.calibration.as_ref().is_some_and(|c| c.loss == 0.0)
+        self.within_loss(0.0)
+    }
+
+    /// Whether the universe's calibration reached a loss of at most `max_loss` (0: admissible;
+    /// a larger one: near-admissible, `--near-loss`).
+    pub fn within_loss(&self, max_loss: f64) -> bool {
+        self.calibration
+            .as_ref()
+            .is_some_and(|c| c.loss <= max_loss)
     }
 
     /// The effect of the claim with id `claim`, when the comparison ran.

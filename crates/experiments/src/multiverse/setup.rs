@@ -71,6 +71,10 @@ pub struct MultiverseSetup {
     /// scenario's `report: (claims: ...)`); default `None`: no claims, the multiverse says
     /// only which universes are admissible.
     pub claims: Option<Claims>,
+    /// `--near-loss LOSS`: also report the shares among the universes whose calibration
+    /// reached a loss of at most LOSS (> 0, finite), a sensitivity variant of admissibility
+    /// (loss 0); default `None`. Changes no universe.
+    pub near_loss: Option<f64>,
     /// The fields each universe's calibration fits, with their ranges (at least one, each
     /// once, none set by an axis).
     pub free: Vec<FreeField>,
@@ -139,6 +143,7 @@ impl MultiverseSetup {
             axes,
             targets,
             claims: None,
+            near_loss: None,
             free,
             methods: rne_core::grouping::METHOD_NAMES
                 .iter()
@@ -208,6 +213,13 @@ impl MultiverseSetup {
         }
         if self.calibration_trials == 0 {
             return bad("--calibration-trials must be at least 1".into());
+        }
+        if let Some(l) = self.near_loss
+            && !(l.is_finite() && l > 0.0)
+        {
+            return bad(format!(
+                "--near-loss must be a finite loss above 0 (0 is admissibility itself), not {l}"
+            ));
         }
         check_sweep_size(1, self.methods.len(), self.trials)
             .map_err(|e| MultiverseError::Invalid(format!("{e:#}")))?;

@@ -109,6 +109,17 @@ impl Tally {
     /// Counts `records` of a multiverse whose axes have `sizes` alternatives and whose
     /// universes check `claims`.
     pub fn of(records: &[UniverseRecord], sizes: &[usize], claims: &[Claim]) -> Self {
+        Self::within(records, sizes, claims, 0.0)
+    }
+
+    /// [`Tally::of`] with "admissible" read as a loss of at most `max_loss` (the
+    /// near-admissible universes of `--near-loss`: [`UniverseRecord::within_loss`]).
+    pub fn within(
+        records: &[UniverseRecord],
+        sizes: &[usize],
+        claims: &[Claim],
+        max_loss: f64,
+    ) -> Self {
         let blank = vec![VerdictCount::default(); claims.len()];
         let mut t = Self {
             universes: records.len(),
@@ -124,7 +135,7 @@ impl Tally {
                 Status::Failed => t.failed += 1,
                 Status::Ok => {}
             }
-            if !r.admissible() {
+            if !r.within_loss(max_loss) {
                 continue;
             }
             t.admissible += 1;

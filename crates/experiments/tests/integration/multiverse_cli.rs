@@ -51,7 +51,7 @@ const OPTIONS: [&str; 19] = [
 ];
 
 /// The files at the top of a multiverse's folder.
-const TOP_FILES: [&str; 7] = [
+const TOP_FILES: [&str; 12] = [
     "multiverse.csv",
     "multiverse.md",
     "spec_curve_1.svg",
@@ -59,6 +59,11 @@ const TOP_FILES: [&str; 7] = [
     "spec_curve_3.svg",
     "spec_curve_4a.svg",
     "spec_curve_4b.svg",
+    "sensitivity_1.svg",
+    "sensitivity_2.svg",
+    "sensitivity_3.svg",
+    "sensitivity_4a.svg",
+    "sensitivity_4b.svg",
 ];
 
 /// Two empty working folders `names` under `root`, for two runs to compare.
@@ -202,6 +207,24 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
         "{again}"
     );
     assert_eq!(top_files(&out), before);
+    // Which choices decide each claim, and a sensitivity figure per claim.
+    assert!(md.contains("## Which choices decide each claim"), "{md}");
+    assert!(
+        md.contains("![Claim 4b: what decides it](sensitivity_4b.svg)"),
+        "{md}"
+    );
+    // --near-loss is a report option: the same universes, one more section.
+    let near = ok(&multiverse_in(tmp.path(), &["--near-loss", "1e9"]));
+    assert!(near.contains("(0 run now, 4 from earlier runs)"), "{near}");
+    let md = read_text(&out.join("multiverse.md"));
+    assert!(
+        md.contains("## Sensitivity: near-admissible universes (loss <= 1000000000)"),
+        "{md}"
+    );
+    assert!(
+        md.contains("counted as admissible (`--near-loss 1000000000`): 3/4 (75 %)"),
+        "{md}"
+    );
 }
 
 #[test]
@@ -352,6 +375,10 @@ fn bad_input_is_one_line_and_nothing_runs() {
             vec!["--shard 0/5: the multiverse runs 4 universe(s), so at most 4 shards have work"],
         ),
         (vec!["--sample", "0"], vec!["--sample must be at least 1"]),
+        (
+            vec!["--near-loss", "0"],
+            vec!["--near-loss must be a finite loss above 0 (0 is admissibility itself), not 0"],
+        ),
     ];
     for (extra, parts) in cases {
         // `--axes FILE` in `extra` stands for the good axes file.

@@ -117,6 +117,16 @@ pub struct SlurmMultiverseArgs {
     #[arg(long, value_name = "CLAIMS.ron")]
     pub claims: Option<PathBuf>,
 
+    /// With --axes: also give the shares among the universes whose calibration loss is at
+    /// most LOSS (as `usar multiverse --near-loss`).
+    #[arg(
+        long,
+        value_name = "LOSS",
+        requires = "axes",
+        allow_hyphen_values = true
+    )]
+    pub near_loss: Option<f64>,
+
     /// With --axes: a target reported but left out of the loss and admissibility
     /// (repeatable; as `usar multiverse --report-only`).
     #[arg(long = "report-only", value_name = "NAME", requires = "axes")]
@@ -207,6 +217,7 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         targets: m.targets.clone().unwrap_or_default(),
         report_only: m.report_only.clone(),
         claims: m.claims.clone(),
+        near_loss: m.near_loss,
         free: m.free.clone(),
         methods: s.methods.clone(),
         trials: s.trials,

@@ -42,6 +42,12 @@ pub struct MultiverseSpecArgs {
     #[arg(long, value_name = "CLAIMS.ron")]
     pub claims: Option<PathBuf>,
 
+    /// Also give the shares among the near-admissible universes: those whose calibration
+    /// reached a loss of at most LOSS (> 0), a sensitivity variant of admissibility (loss 0)
+    /// in multiverse.md. Changes no universe. Default: none.
+    #[arg(long, value_name = "LOSS", allow_hyphen_values = true)]
+    pub near_loss: Option<f64>,
+
     /// The name of a target to compute and report but leave out of the loss (and so out of
     /// what makes a universe admissible): a target known to conflict with the others, or one
     /// only watched; repeatable. A file can mark one with `report_only: true`.
@@ -119,6 +125,7 @@ pub fn setup_of(
     let claims = claims_of(spec, &base)?;
     Ok(MultiverseSetup {
         claims,
+        near_loss: spec.near_loss,
         methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
         trials: spec.trials,
         seed,

@@ -1,0 +1,264 @@
+//! Which choices decide a claim: the variance of a claim's effect over the admissible
+//! universes, split by axis (and by each calibrated value), with the interaction of the two
+//! axes that matter most. `multiverse.md` shows it under "Which choices decide each claim".
+//!
+//! For axis `i`, the share is the correlation ratio
+//!
+//! ```text
+//! eta2_i = sum_g n_g (mean_g - mean)^2 / sum_u (y_u - mean)^2
+//! ```
+//!
+//! over the admissible universes `u` with an effect `y_u`, grouped by the alternative `g` they
+//! take of axis `i`: the first-order (main-effect) Sobol index estimated by binning, which
+//! for a complete factorial is the ANOVA main-effect share. It is biased upward in a small
+//! sample: with `k` alternatives seen among `n` universes its mean under no effect at all is
+//! `(k - 1) / (n - 1)`, reported as the share's chance level; a share near its chance level
+//! says nothing. For a calibrated (free) value the share is the squared correlation of the
+//! value with the effect (a linear fit; chance level `1 / (n - 1)`). The two-way interaction of
+//! the two axes with the largest shares is the share of their joint cells beyond the two main
+//! effects, `eta2_ij - eta2_i - eta2_j`, clamped at 0 (exact for a balanced factorial,
+//! approximate for a sample). Total-order indices need a designed sample (Saltelli's) and are
+//! not estimated.
+//!
+//! # Reference
+//! A. Saltelli et al., *Global Sensitivity Analysis: The Primer*, Wiley 2008, ch. 1 and 4
+//! (first-order indices, their estimation by conditional means); K. Pearson's correlation ratio
+//! (eta squared) and its bias `(k - 1) / (n - 1)` under the null (Kelley 1935).
+
+use super::plan::MultiversePlan;
+use super::record::UniverseRecord;
+use crate::claims::Claim;
+
+/// One input's share of a claim's effect variance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Share {
+    /// The axis's name, or the free field's path.
+    pub name: String,
+    /// The share of the variance, in [0, 1].
+    pub share: f64,
+    /// Its mean under no effect (chance level), in [0, 1].
+    pub chance: f64,
+}
+
+/// How a claim's effect varies over the admissible universes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decomposition {
+    /// Admissible universes with a finite effect.
+    pub n: usize,
+    /// Per axis, in axis order.
+    pub axes: Vec<Share>,
+    /// Per free field, in `--free` order.
+    pub free: Vec<Share>,
+    /// The two axes with the largest shares (their indices) and their interaction, when at
+    /// least two axes vary.
+    pub interaction: Option<(usize, usize, Share)>,
+}
+
+impl Decomposition {
+    /// The indices of the axes by share, largest first (ties by axis order).
+    pub fn strongest(&self) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..self.axes.len()).collect();
+        order.sort_by(|&a, &b| self.axes[b].share.total_cmp(&self.axes[a].share));
+        order
+    }
+}
+
+/// The decomposition of `claim`'s effect over `records` of `plan`; `None` with fewer than 3
+/// admissible universes with a finite effect, or when the effect does not vary.
+pub fn decompose(
+    plan: &MultiversePlan,
+    records: &[UniverseRecord],
+    claim: &Claim,
+) -> Option<Decomposition> {
+    let rows: Vec<(&UniverseRecord, f64)> = records
+        .iter()
+        .filter(|r| r.admissible())
+        .filter_map(|r| Some((r, r.claim(&claim.id)?.effect)))
+        .filter(|(_, y)| y.is_finite())
+        .collect();
+    let n = rows.len();
+    let y: Vec<f64> = rows.iter().map(|(_, y)| *y).collect();
+    let mean = y.iter().sum::<f64>() / n.max(1) as f64;
+    let total: f64 = y.iter().map(|v| (v - mean).powi(2)).sum();
+    if n < 3 || total <= 0.0 {
+        return None;
+    }
+    let id = &plan.identity;
+    let key = |axes: &[usize], r: &UniverseRecord| -> Vec<usize> {
+        axes.iter()
+            .map(|&a| r.choices.get(a).copied().unwrap_or(0))
+            .collect()
+    };
+    let eta2 = |axes: &[usize]| -> (f64, usize) {
+        let keys: Vec<Vec<usize>> = rows.iter().map(|(r, _)| key(axes, r)).collect();
+        between(&keys, &y, mean, total)
+    };
+    let chance = |groups: usize| (groups.saturating_sub(1)) as f64 / (n - 1) as f64;
+    let axes: Vec<Share> = id
+        .axes
+        .axes
+        .iter()
+        .enumerate()
+        .map(|(a, axis)| {
+            let (share, groups) = eta2(&[a]);
+            Share {
+                name: axis.name.clone(),
+                share,
+                chance: chance(groups),
+            }
+        })
+        .collect();
+    let free = id
+        .free
+        .iter()
+        .enumerate()
+        .map(|(f, field)| {
+            let x: Vec<f64> = rows
+                .iter()
+                .map(|(r, _)| {
+                    r.calibration
+                        .as_ref()
+                        .and_then(|c| c.values.get(f).copied())
+                        .unwrap_or(f64::NAN)
+                })
+                .collect();
+            Share {
+                name: field.label(),
+                share: r_squared(&x, &y),
+                chance: 1.0 / (n - 1) as f64,
+            }
+        })
+        .collect();
+    let mut d = Decomposition {
+        n,
+        axes,
+        free,
+        interaction: None,
+    };
+    let order = d.strongest();
+    if let [a, b, ..] = order[..] {
+        let (joint, cells) = eta2(&[a, b]);
+        let (ga, gb) = (eta2(&[a]).1, eta2(&[b]).1);
+        let share = (joint - d.axes[a].share - d.axes[b].share).max(0.0);
+        let name = format!("{} x {}", d.axes[a].name, d.axes[b].name);
+        let expected = chance(cells) - chance(ga) - chance(gb);
+        d.interaction = Some((
+            a,
+            b,
+            Share {
+                name,
+                share,
+                chance: expected.max(0.0),
+            },
+        ));
+    }
+    Some(d)
+}
+
+/// The between-group share of `y` grouped by `keys` (and the number of groups seen).
+fn between(keys: &[Vec<usize>], y: &[f64], mean: f64, total: f64) -> (f64, usize) {
+    let mut groups: Vec<(&Vec<usize>, f64, usize)> = Vec::new();
+    for (k, v) in keys.iter().zip(y) {
+        match groups.iter_mut().find(|(g, _, _)| *g == k) {
+            Some((_, sum, count)) => {
+                *sum += v;
+                *count += 1;
+            }
+            None => groups.push((k, *v, 1)),
+        }
+    }
+    let ss: f64 = groups
+        .iter()
+        .map(|(_, sum, count)| {
+            let m = sum / *count as f64;
+            *count as f64 * (m - mean).powi(2)
+        })
+        .sum();
+    ((ss / total).clamp(0.0, 1.0), groups.len())
+}
+
+/// The squared Pearson correlation of `x` and `y` (0 when either does not vary or `x` has a
+/// NaN).
+fn r_squared(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    if x.iter().any(|v| !v.is_finite()) || n < 2.0 {
+        return 0.0;
+    }
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx).powi(2);
+        syy += (b - my).powi(2);
+    }
+    if sxx <= 0.0 || syy <= 0.0 {
+        return 0.0;
+    }
+    (sxy * sxy / (sxx * syy)).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::multiverse::plan::tests::plan;
+    use crate::multiverse::record::tests::record;
+
+    /// The test plan's axes: `a` (2 alternatives) and `b` (3); universes of every pair with
+    /// claim 1's effect `f(a, b)`, all admissible.
+    fn records(f: impl Fn(usize, usize) -> f64) -> Vec<UniverseRecord> {
+        let mut out = Vec::new();
+        let mut i = 0;
+        for a in 0..2 {
+            for b in 0..3 {
+                let mut r = record(i, &[a, b], 0.0);
+                if let Some(c) = r.comparison.as_mut() {
+                    c.claims[0].effect = f(a, b);
+                }
+                out.push(r);
+                i += 1;
+            }
+        }
+        out
+    }
+
+    fn claim1() -> Claim {
+        crate::claims::paper_claims().claims()[0].clone()
+    }
+
+    #[test]
+    fn an_effect_of_one_axis_is_all_its_share() {
+        let d = decompose(&plan(), &records(|a, _| a as f64 * 3.0), &claim1()).unwrap();
+        assert_eq!(d.n, 6);
+        assert!((d.axes[0].share - 1.0).abs() < 1e-12, "{d:?}");
+        assert!(d.axes[1].share.abs() < 1e-12);
+        // Chance levels: (2 - 1) / 5 and (3 - 1) / 5.
+        assert!((d.axes[0].chance - 0.2).abs() < 1e-12);
+        assert!((d.axes[1].chance - 0.4).abs() < 1e-12);
+        assert_eq!(d.strongest(), [0, 1]);
+        let (a, b, i) = d.interaction.clone().unwrap();
+        assert_eq!((a, b), (0, 1));
+        assert!(i.share.abs() < 1e-12);
+    }
+
+    #[test]
+    fn additive_effects_split_and_an_interaction_is_what_they_leave() {
+        // y = a + b: balanced, so the shares are the ANOVA's: SS_a = 6 * 0.25 = 1.5,
+        // SS_b = 2 * (1 + 0 + 1) = 4, total 5.5.
+        let d = decompose(&plan(), &records(|a, b| (a + b) as f64), &claim1()).unwrap();
+        assert!((d.axes[0].share - 1.5 / 5.5).abs() < 1e-12, "{d:?}");
+        assert!((d.axes[1].share - 4.0 / 5.5).abs() < 1e-12);
+        assert!(d.interaction.unwrap().2.share < 1e-12);
+        // y = a * b (b in 0..3): an interaction beyond the main effects.
+        let d = decompose(&plan(), &records(|a, b| (a * b) as f64), &claim1()).unwrap();
+        let (_, _, i) = d.interaction.unwrap();
+        let sum = d.axes[0].share + d.axes[1].share + i.share;
+        assert!(i.share > 0.05 && (sum - 1.0).abs() < 1e-12, "{i:?} {sum}");
+    }
+
+    #[test]
+    fn too_few_or_constant_effects_give_nothing() {
+        assert!(decompose(&plan(), &records(|_, _| 2.0), &claim1()).is_none());
+        let few: Vec<_> = records(|a, _| a as f64).into_iter().take(2).collect();
+        assert!(decompose(&plan(), &few, &claim1()).is_none());
+    }
+}

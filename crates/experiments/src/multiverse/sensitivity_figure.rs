@@ -1,0 +1,143 @@
+//! `sensitivity_<claim>.svg`: per claim, the share of its effect's variance each axis, the
+//! interaction of the two strongest and each calibrated value explains ([`decompose`]), a bar
+//! each (largest first), with the share's chance level as a black tick.
+
+use anyhow::Result;
+use plotters::prelude::*;
+
+use super::decompose::{Share, decompose};
+use super::plan::MultiversePlan;
+use super::record::UniverseRecord;
+use crate::chart::{draw_err, method_color};
+use crate::claims::Claim;
+
+/// The file name of `claim`'s figure: `sensitivity_<id>.svg`.
+pub fn sensitivity_file(claim: &Claim) -> String {
+    format!("sensitivity_{}.svg", claim.id)
+}
+
+/// Row height, pixels.
+const ROW: u32 = 22;
+
+/// The SVG text of `claim`'s sensitivity figure over `records` of `plan`; a short figure
+/// saying so when there is nothing to split (fewer than 3 admissible universes with an
+/// effect, or one that does not vary).
+///
+/// # Errors
+/// If plotters fails to draw.
+pub fn sensitivity_svg(
+    plan: &MultiversePlan,
+    records: &[UniverseRecord],
+    claim: &Claim,
+) -> Result<String> {
+    let d = decompose(plan, records, claim);
+    let mut rows: Vec<(String, &Share)> = Vec::new();
+    if let Some(d) = &d {
+        for a in d.strongest() {
+            rows.push((format!("axis: {}", d.axes[a].name), &d.axes[a]));
+        }
+        if let Some((_, _, i)) = &d.interaction {
+            rows.push((format!("interaction: {}", i.name), i));
+        }
+        for f in &d.free {
+            rows.push((format!("calibrated: {}", f.name), f));
+        }
+    }
+    let height = 90 + ROW * rows.len().max(1) as u32;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let title = format!(
+            "Claim {}: {} - share of the effect's variance ({})",
+            claim.id,
+            claim.sentence,
+            d.as_ref()
+                .map_or("nothing to split".to_string(), |d| format!(
+                    "{} admissible universes",
+                    d.n
+                ))
+        );
+        let n = rows.len().max(1);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 14))
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(330)
+            .build_cartesian_2d(0f64..1f64, (0..n).into_segmented())
+            .map_err(draw_err)?;
+        let labels: Vec<String> = rows.iter().map(|(l, _)| l.clone()).collect();
+        chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .x_desc("share of the variance (black tick: chance level)")
+            .x_label_formatter(&|x| format!("{:.0} %", 100.0 * x))
+            .y_label_formatter(&|y| match y {
+                SegmentValue::CenterOf(i) => labels.get(*i).cloned().unwrap_or_default(),
+                _ => String::new(),
+            })
+            .label_style(("sans-serif", 11))
+            .draw()
+            .map_err(draw_err)?;
+        let bar = method_color(0).filled();
+        chart
+            .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
+                Rectangle::new(
+                    [
+                        (0.0, SegmentValue::Exact(i)),
+                        (s.share.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                    ],
+                    bar,
+                )
+            }))
+            .map_err(draw_err)?;
+        chart
+            .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
+                PathElement::new(
+                    vec![
+                        (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i)),
+                        (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                    ],
+                    BLACK.stroke_width(2),
+                )
+            }))
+            .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::multiverse::plan::tests::plan;
+    use crate::multiverse::record::tests::record;
+
+    #[test]
+    fn a_figure_names_its_claim_and_every_input() {
+        let records: Vec<_> = (0..6u64)
+            .map(|i| {
+                let mut r = record(i, &[(i % 2) as usize, (i % 3) as usize], 0.0);
+                if let Some(c) = r.comparison.as_mut() {
+                    c.claims[0].effect = (i % 3) as f64;
+                }
+                r
+            })
+            .collect();
+        let claim = &crate::claims::paper_claims().claims()[0];
+        assert_eq!(sensitivity_file(claim), "sensitivity_1.svg");
+        let svg = sensitivity_svg(&plan(), &records, claim).unwrap();
+        assert!(svg.starts_with("<svg"));
+        for part in [
+            "Claim 1: RNE rescues the most",
+            "6 admissible universes",
+            "axis: b",
+            "interaction: b x a",
+            "calibrated: mission.energy_pct_per_m",
+        ] {
+            assert!(svg.contains(part), "{part}");
+        }
+        let empty = sensitivity_svg(&plan(), &records[..2], claim).unwrap();
+        assert!(empty.contains("nothing to split"));
+    }
+}
