@@ -321,7 +321,7 @@ fn universes(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) 
     let free: Vec<String> = id.free.iter().map(|f| format!("`{}`", f.field)).collect();
     let _ = writeln!(
         r,
-        "| universe | {} | admissible | loss | {} | status | message |\n|---|{}---|---|{}---|---|",
+        "| universe | {} | admissible | loss | {} | bands missed | status | message |\n|---|{}---|---|{}---|---|---|",
         axes.join(" | "),
         free.join(" | "),
         "---|".repeat(axes.len()),
@@ -348,16 +348,34 @@ fn universes(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) 
             .collect();
         let _ = writeln!(
             r,
-            "| [{id}](universes/{id}/) | {} | {} | {} | {} | {} | {} |",
+            "| [{id}](universes/{id}/) | {} | {} | {} | {} | {} | {} | {} |",
             choices.join(" | "),
             if rec.admissible() { "yes" } else { "no" },
             cal.map_or(String::new(), |c| loss_text(c.loss)),
             values.join(" | "),
+            cell(&missed(plan, rec)),
             rec.status.word(),
             cell(rec.message.as_deref().unwrap_or("")),
             id = rec.id,
         );
     }
+}
+
+/// The targets whose statistic at the universe's calibrated values lies outside its band
+/// (every target, fitted or reported only: a universe's axes may flag them differently), by
+/// name; empty without a calibration.
+fn missed(plan: &MultiversePlan, rec: &UniverseRecord) -> String {
+    let Some(cal) = &rec.calibration else {
+        return String::new();
+    };
+    plan.identity
+        .targets
+        .iter()
+        .zip(&cal.statistics)
+        .filter(|(t, x)| !t.holds(**x))
+        .map(|(t, _)| t.name.clone())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]
@@ -372,6 +390,9 @@ mod tests {
         let mut failed = record(5, &[1, 2], 0.4);
         failed.status = Status::Failed;
         failed.message = Some("comparison: 1 of 4 trials failed | x".into());
+        if let Some(c) = failed.calibration.as_mut() {
+            c.statistics[0] = 9.0;
+        }
         let md = multiverse_md(&plan(), &[record(0, &[0, 0], 0.0), failed]);
         for part in [
             "# Multiverse: paper",
@@ -387,8 +408,8 @@ mod tests {
             "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",
             "| b2 | 0 | 0/0 |",
             "![Claim 4b: RNE has the lowest HP cost per rescuee in the hard task](spec_curve_4b.svg)",
-            "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25 | 0.003 | ok |  |",
-            "| [u005](universes/u005/) | a1 | b2 | no | 0.400 | 1.25 | 0.003 | failed | comparison: 1 of 4 trials failed \\| x |",
+            "| [u000](universes/u000/) | a0 | b0 | yes | 0 | 1.25 | 0.003 |  | ok |  |",
+            "| [u005](universes/u005/) | a1 | b2 | no | 0.400 | 1.25 | 0.003 | rounds | failed | comparison: 1 of 4 trials failed \\| x |",
         ] {
             assert!(md.contains(part), "missing {part:?} in\n{md}");
         }

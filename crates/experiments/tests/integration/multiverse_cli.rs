@@ -183,7 +183,9 @@ fn a_multiverse_writes_consistent_files_and_a_rerun_changes_nothing() {
         "{md}"
     );
     assert!(
-        md.contains("| [u003](universes/u003/) | three east-bound | crawl | no |  |  | invalid |"),
+        md.contains(
+            "| [u003](universes/u003/) | three east-bound | crawl | no |  |  |  | invalid |"
+        ),
         "{md}"
     );
     // Each universe's folder: its scenario (which loads), calibration, comparison, record.
