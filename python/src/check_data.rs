@@ -67,6 +67,7 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
     d.set_item("radiation_zones", zones)?;
     let hash = experiments::fingerprint::scenario_hash(s).map_err(|e| anyhow_value_error(&e))?;
     d.set_item("hash", hash)?;
+    d.set_item("needs_len", usar_sim::scenario::NEEDS_LEN)?;
     Ok(d)
 }
 
@@ -141,6 +142,7 @@ fn robots<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyList>> {
         let d = PyDict::new(py);
         d.set_item("id", id)?;
         d.set_item("kind", &s.kind_of(id).name)?;
+        d.set_item("kind_index", r.kind)?;
         d.set_item("start_m", xy(&r.start_in_world))?;
         let to = PyDict::new(py);
         for t in s.tasks() {

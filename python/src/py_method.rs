@@ -5,9 +5,9 @@
 //! ids; this side checks the answer (`Assignment::validate`) and keeps the first Python
 //! exception or broken rule so that `usar.run` and `usar.sweep` raise it.
 //!
-//! Robot positions are not part of rne-core's request: a step observer ([`track_positions`])
-//! copies them after every step into a thread-local that the method reads (a trial runs on
-//! one thread: its method and its observer share it).
+//! Robot positions, the rescuees so far and the time are not part of rne-core's request: a
+//! step observer ([`track_positions`]) copies them after every step into a thread-local that
+//! the method reads (a trial runs on one thread: its method and its observer share it).
 
 use std::cell::{Cell, RefCell};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -20,29 +20,48 @@ use usar_sim::mission::Simulation;
 
 use crate::errors::GroupingError;
 
-thread_local! {
-    /// The positions (x, y metres) of the robots of the trial running on this thread, by id,
-    /// as of the last step.
-    static POSITIONS: RefCell<Vec<(f64, f64)>> = const { RefCell::new(Vec::new()) };
+/// What a Python method sees of the trial beyond rne-core's request, as of the last step.
+#[derive(Default)]
+struct Observed {
+    /// The robots' positions (x, y metres), by id.
+    positions: Vec<(f64, f64)>,
+    /// Rescuees so far per task (the rounds' counts summed), by task id.
+    rescued: Vec<u32>,
+    /// Simulated time, seconds.
+    time_s: f64,
 }
 
-/// Copies `sim`'s robot positions into this thread's table (call after every step).
+thread_local! {
+    /// What the trial running on this thread looked like after its last step.
+    static OBSERVED: RefCell<Observed> = RefCell::new(Observed::default());
+}
+
+/// Copies `sim`'s robot positions, rescuees so far and time into this thread's table (call
+/// after every step).
 pub fn track_positions(sim: &Simulation) {
-    POSITIONS.with(|p| {
-        let mut p = p.borrow_mut();
-        p.clear();
-        p.extend(
+    OBSERVED.with(|o| {
+        let mut o = o.borrow_mut();
+        o.positions.clear();
+        o.positions.extend(
             sim.world()
                 .robots()
                 .iter()
                 .map(|r| (r.position.x, r.position.y)),
         );
+        o.rescued.clear();
+        o.rescued.resize(sim.scenario().tasks().len(), 0);
+        for round in sim.rounds() {
+            for (sum, n) in o.rescued.iter_mut().zip(&round.rescued) {
+                *sum += n;
+            }
+        }
+        o.time_s = sim.time_s();
     });
 }
 
 /// Empties this thread's table (before a trial without a Python method).
 pub fn clear_positions() {
-    POSITIONS.with(|p| p.borrow_mut().clear());
+    OBSERVED.with(|o| *o.borrow_mut() = Observed::default());
 }
 
 /// The first error a Python method met, shared by every trial of a run or sweep.
@@ -99,11 +118,16 @@ impl PyMethod {
             .map(|r| r.distance_to_goal_m.clone())
             .collect();
         d.set_item("distance_to_goal_m", dist)?;
-        let positions: Vec<Option<(f64, f64)>> = POSITIONS.with(|p| {
-            let p = p.borrow();
-            robots.iter().map(|r| p.get(r.id).copied()).collect()
-        });
-        d.set_item("positions", positions)?;
+        OBSERVED.with(|o| {
+            let o = o.borrow();
+            let positions: Vec<Option<(f64, f64)>> = robots
+                .iter()
+                .map(|r| o.positions.get(r.id).copied())
+                .collect();
+            d.set_item("positions", positions)?;
+            d.set_item("rescued_so_far", o.rescued.clone())?;
+            d.set_item("time_s", o.time_s)
+        })?;
         d.set_item("quotas", req.quotas().to_vec())?;
         d.set_item("hardest_first", req.hardest_first().to_vec())?;
         Ok(d)

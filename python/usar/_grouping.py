@@ -50,7 +50,9 @@ class Task:
 class GroupingRequest:
     """What a grouping method sees each round: the ``robots`` (sorted by id) and the
     ``tasks`` (scenario order), the ``trial`` index, the trial's ``seed``, the ``round``
-    (0, 1, ... within the trial) and the ``scenario``.
+    (0, 1, ... within the trial), the ``scenario``, ``time_s`` (simulated seconds when the
+    round starts) and ``rescued_so_far`` (rescuees per task, scenario order, over the rounds
+    before this one).
 
     A method answers one group of robot ids per task, in task order (a list of lists), or a
     dict task name -> ids; ids may be ints, numpy integers or :class:`Robot` objects. The
@@ -66,6 +68,8 @@ class GroupingRequest:
     scenario: Optional[Scenario]
     hardest_first: Tuple[int, ...]
     quotas: Tuple[Tuple[int, ...], ...]
+    time_s: float = 0.0
+    rescued_so_far: Tuple[int, ...] = ()
 
     def needs_matrix(self) -> np.ndarray:
         """The robots' needs vectors as rows: shape (robots, needs categories), float."""
@@ -134,6 +138,8 @@ def _request(raw: Dict[str, Any], info: Dict[str, Any], scenario: Scenario) -> G
         scenario=scenario,
         hardest_first=tuple(order),
         quotas=tuple(tuple(q) for q in quotas),
+        time_s=float(raw.get("time_s", 0.0)),
+        rescued_so_far=tuple(int(n) for n in raw.get("rescued_so_far", [0] * len(task_list))),
     )
 
 

@@ -70,9 +70,10 @@ class Scenario:
         radius m, ``carrying_capacity``, ``rescuing_resources``), ``tasks`` (``name``,
         ``difficulty``, ``rank`` 1 = hardest, ``rescuees``, ``search_area_m``, ``goal_m``,
         ``drop_off`` ((x, y), r), ``quota`` by kind, ``start_to_goal_m`` (min, max, mean)),
-        ``robots`` (``id``, ``kind``, ``start_m``, ``distance_to_goal_m`` by task),
-        ``rest_stations``, ``debris_rects``, ``debris_circles``, ``radiation_zones``
-        ((x, y), r, dose factor) and ``hash`` (the scenario hash)."""
+        ``robots`` (``id``, ``kind``, ``kind_index``, ``start_m``, ``distance_to_goal_m`` by
+        task), ``rest_stations``, ``debris_rects``, ``debris_circles``, ``radiation_zones``
+        ((x, y), r, dose factor), ``hash`` (the scenario hash) and ``needs_len`` (the length
+        of a needs vector, 7)."""
     @property
     def overrides(self) -> List[str]:
         """The edits applied so far, as ``FIELD=VALUE`` texts, in order."""
