@@ -1,6 +1,7 @@
 //! `Scenario.check()`: what `usar check` prints about a valid scenario (arena and timing, the
 //! kinds with their quotas, the tasks, every robot's start and distances, debris, radiation,
-//! rest stations, the scenario hash), as a Python dict of plain values (metres, seconds).
+//! rest stations, the scenario hash) and the mission's parameters, as a Python dict of plain
+//! values (metres, seconds).
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -68,6 +69,10 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
     let hash = experiments::fingerprint::scenario_hash(s).map_err(|e| anyhow_value_error(&e))?;
     d.set_item("hash", hash)?;
     d.set_item("needs_len", usar_sim::scenario::NEEDS_LEN)?;
+    // The mission's parameters as the scenario file writes them (every field, defaults too).
+    let mission =
+        serde_json::to_value(&s.spec().mission).map_err(|e| anyhow_value_error(&e.into()))?;
+    d.set_item("mission", crate::json_value::to_python(py, &mission)?)?;
     Ok(d)
 }
 
@@ -106,8 +111,8 @@ fn tasks<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyList>> {
         let d = PyDict::new(py);
         d.set_item("name", &task.name)?;
         d.set_item("difficulty", task.difficulty)?;
-        // 1 = the hardest task.
-        let rank = order.iter().position(|&x| x == t).map_or(0, |r| r + 1);
+        // 0 = the hardest task, as `GroupingRequest`'s tasks count.
+        let rank = order.iter().position(|&x| x == t).unwrap_or(0);
         d.set_item("rank", rank)?;
         d.set_item("rescuees", task.rescuees.len())?;
         let area = &task.search_area;

@@ -29,7 +29,11 @@ def test_check_is_the_summary_as_data(paper):
     assert [k["count"] for k in c["kinds"]] == [6, 4, 2]
     assert c["kinds"][0]["quota"] == {"hard": 3, "easy": 3}
     assert [t["name"] for t in c["tasks"]] == ["hard", "easy"]
-    assert c["tasks"][0]["rank"] == 1
+    # Ranks count from 0 (the hardest), as a GroupingRequest's tasks do.
+    assert c["tasks"][0]["rank"] == 0
+    # The mission's parameters, every one, as the scenario file names them.
+    assert c["mission"]["duration_s"] == 600.0
+    assert c["mission"]["pickup_s"] == paper.get("mission.pickup_s")
     assert len(c["robots"]) == 12
     assert c["steps"] > 0 and c["dt_s"] > 0
     assert len(c["hash"]) > 8

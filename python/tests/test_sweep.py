@@ -44,6 +44,12 @@ def test_sweep_with_out_writes_the_cli_files(paper, usar_cli, tmp_path):
         assert (tmp_path / "py" / name).exists(), name
     pd.testing.assert_frame_equal(got, usar.read_trials_long(cli / "trials_long.csv"),
                                   check_exact=True)
+    # The wide table is trials.csv's: the same columns in its order, the same values.
+    want = pd.read_csv(cli / "trials.csv", dtype={"trial": "int64", "seed": "uint64"},
+                       **usar._api._EXACT)
+    pd.testing.assert_frame_equal(usar.wide(got), want, check_exact=True)
+    with pytest.raises(ValueError, match="no column 'task'"):
+        usar.wide(want)
     # The same call again reads every trial back from the journal.
     again = usar.sweep(paper, methods=["rne", "eng"], trials=2, duration_s=SHORT_S,
                        out=tmp_path / "py", resume=True)

@@ -9,7 +9,8 @@ command line: the same scenario and seed give the same results, bit for bit.
   field path (``scenario.set("kinds[0].count", 8)``), write (``to_ron()``), summarise
   (``check()``).
 - :func:`run`: one trial -> :class:`TrialResult` (as ``usar run --json``).
-- :func:`sweep`: methods x trials in parallel -> pandas DataFrame (as ``trials_long.csv``).
+- :func:`sweep`: methods x trials in parallel -> pandas DataFrame (as ``trials_long.csv``);
+  :func:`wide` turns it into ``trials.csv``'s wide table.
 - :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
 - :class:`GroupingMethod` or any callable ``group(request) -> list of groups``: a grouping
   method written in Python, run by :func:`run` and :func:`sweep` once per grouping round.
@@ -30,7 +31,7 @@ from ._grouping import (
     rne,
 )
 from ._results import Record, TrialResult
-from ._api import read_trials_long, run, sweep, trust
+from ._api import read_trials_long, run, sweep, trust, wide
 
 __all__ = [
     "METHOD_NAMES",
@@ -52,5 +53,6 @@ __all__ = [
     "run",
     "sweep",
     "trust",
+    "wide",
 ]
 __version__ = "0.1.0"

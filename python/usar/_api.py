@@ -6,7 +6,7 @@ import io
 import json
 import os
 import sys
-from typing import Any, Optional, Sequence, Union
+from typing import Any, List, Optional, Sequence, Union
 
 import numpy as np
 import pandas as pd
@@ -124,6 +124,73 @@ def read_trials_long(path: Any) -> pd.DataFrame:
     ``seed`` uint64 whatever the values (so frames of several sweeps concatenate without
     losing a seed, and ``usar.run(seed=row.seed)`` repeats a trial)."""
     return pd.read_csv(path, dtype=_DTYPES, **_EXACT)
+
+
+#: How a long row's (metric, task) names its trials.csv column; ``{t}`` is the task's name.
+_WIDE_NAMES = {
+    "rescued": ("rescued_total", "rescued_{t}"),
+    "energy_pct": ("energy_total_pct", "energy_{t}_pct"),
+    "hp_pct": ("hp_total_pct", "hp_{t}_pct"),
+    "energy_per_rescuee_pct": ("energy_per_rescuee_pct", "energy_per_{t}_rescuee_pct"),
+    "hp_per_rescuee_pct": ("hp_per_rescuee_pct", "hp_per_{t}_rescuee_pct"),
+}
+
+#: The trials.csv columns of each long metric, per-task ones first (``{t}``), then the total.
+_WIDE_ORDER = [
+    ("rescued", True),
+    ("energy_pct", False),
+    ("hp_pct", False),
+    ("rounds", None),
+    ("energy_per_rescuee_pct", False),
+    ("hp_per_rescuee_pct", False),
+    ("mean_round_s", None),
+]
+
+
+def wide(frame: pd.DataFrame) -> pd.DataFrame:
+    """The long table of :func:`usar.sweep` (or :func:`usar.read_trials_long`) as
+    ``trials.csv`` has it: one row per trial (``scenario, method, trial, seed``, in the long
+    table's order) and one column per metric and task, named as ``trials.csv`` names them
+    (``rescued_total``, ``rescued_hard``, ``energy_hard_pct``, ``energy_total_pct``, ...,
+    ``rounds``, ``energy_per_hard_rescuee_pct``, ..., ``mean_round_s``), in its column order.
+    Counts (``rescued_*``, ``rounds``) are int64; a cost per rescuee without rescuees is NaN.
+
+    Raises ValueError for a frame without the long table's columns.
+    """
+    keys = ["scenario", "method", "trial", "seed"]
+    missing = [c for c in keys + ["task", "metric", "value"] if c not in frame.columns]
+    if missing:
+        raise ValueError(f"frame: not a long table of usar.sweep (no column {missing[0]!r})")
+    tasks = [t for t in pd.unique(frame["task"].fillna("")) if t not in ("", "total")]
+
+    def column(metric: str, task: Any) -> str:
+        if metric not in _WIDE_NAMES:
+            return metric
+        total, per_task = _WIDE_NAMES[metric]
+        return total if task == "total" else per_task.format(t=task)
+
+    names = [column(m, t) for m, t in zip(frame["metric"], frame["task"].fillna(""))]
+    rows = pd.MultiIndex.from_frame(frame[keys].drop_duplicates())
+    table = (
+        frame.assign(_column=names)
+        .set_index(keys + ["_column"])["value"]
+        .unstack("_column")
+        .reindex(rows)
+    )
+    order: List[str] = []
+    for metric, total_first in _WIDE_ORDER:
+        if total_first is None:
+            order.append(metric)
+            continue
+        per_task = [column(metric, t) for t in tasks]
+        total = [column(metric, "total")]
+        order += total + per_task if total_first else per_task + total
+    out = table.reindex(columns=[c for c in order if c in table.columns]).reset_index()
+    out.columns.name = None
+    for c in out.columns:
+        if c == "rounds" or c.startswith("rescued_"):
+            out[c] = out[c].astype("int64")
+    return out.astype({"trial": "int64", "seed": "uint64"})
 
 
 def sweep(

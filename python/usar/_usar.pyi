@@ -68,12 +68,13 @@ class Scenario:
         ``simulated_s``, ``steps``, ``seed``, ``control_period_s``, ``kinds`` (``name``,
         ``role``, ``locomotion``, ``count``, ``quota`` by task, speeds m/s, ranges and
         radius m, ``carrying_capacity``, ``rescuing_resources``), ``tasks`` (``name``,
-        ``difficulty``, ``rank`` 1 = hardest, ``rescuees``, ``search_area_m``, ``goal_m``,
+        ``difficulty``, ``rank`` 0 = hardest, as in a ``GroupingRequest``, ``rescuees``, ``search_area_m``, ``goal_m``,
         ``drop_off`` ((x, y), r), ``quota`` by kind, ``start_to_goal_m`` (min, max, mean)),
         ``robots`` (``id``, ``kind``, ``kind_index``, ``start_m``, ``distance_to_goal_m`` by
         task), ``rest_stations``, ``debris_rects``, ``debris_circles``, ``radiation_zones``
-        ((x, y), r, dose factor), ``hash`` (the scenario hash) and ``needs_len`` (the length
-        of a needs vector, 7)."""
+        ((x, y), r, dose factor), ``hash`` (the scenario hash), ``needs_len`` (the length
+        of a needs vector, 7) and ``mission`` (every mission parameter, as the scenario file
+        names it: ``duration_s``, ``pickup_s``, ``hp_pct_per_step_in_radiation``, ...)."""
     @property
     def overrides(self) -> List[str]:
         """The edits applied so far, as ``FIELD=VALUE`` texts, in order."""
