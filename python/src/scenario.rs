@@ -180,7 +180,11 @@ impl Scenario {
         Self::from_text(text, origin.to_string(), PathBuf::from(origin))?.warned(py)
     }
 
-    /// A copy with one field set (validated at once).
+    /// A copy with one field set (validated at once): `s.set("kinds[0].count", 8)`,
+    /// `s.set("kinds[*].max_speed_m_per_s", 1.2)`, `s.set("name", "my paper")` (a `str` on a
+    /// text field is the text; elsewhere RON, `"Some(3)"`), `None` clears an optional field.
+    /// A bad path or value is a `ValueError` naming the field (with the nearest name); what
+    /// `usar check` warns about is a `usar.ScenarioWarning`.
     fn set(&self, py: Python<'_>, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Self> {
         let json = self.json()?;
         self.with(vec![override_of(&json, path, value)?])?
@@ -213,7 +217,12 @@ impl Scenario {
         spec_to_ron(&self.spec, &[head]).map_err(|e| anyhow_value_error(&e))
     }
 
-    /// What `usar check` prints, as a dict.
+    /// What `usar check` prints, as a dict of plain values: `name`, `description`, `arena`,
+    /// `dt_s`, `duration_s`, `steps`, `seed`, `kinds` (with `quota` by task), `tasks`
+    /// (`rank` 0 = the hardest, `quota` by kind, goals and areas in metres), `robots` (`id`,
+    /// `kind`, `kind_index`, `start_m`, `distance_to_goal_m`), `rest_stations`, debris,
+    /// `radiation_zones`, `hash` (the scenario hash), `needs_len` and `mission` (every
+    /// mission parameter, as the scenario file names it). Keys in full: `usar/_usar.pyi`.
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         crate::check_data::summary(py, &self.scenario)
     }
