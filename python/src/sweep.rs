@@ -5,7 +5,7 @@
 
 use std::cell::Cell;
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
@@ -16,6 +16,7 @@ use usar_sim::mission::TrialResult;
 
 use experiments::analysis::Analysis;
 use experiments::calibration::ReportOptions;
+use experiments::claims::{Claim, Claims};
 use experiments::csv_tables::trials_long_csv;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
@@ -122,7 +123,8 @@ type Ran = Option<(Vec<TrialResult>, Vec<Failure>)>;
 /// trials are in the journal: `resume=True` runs the rest).
 #[pyfunction]
 #[pyo3(signature = (scenario, methods, trials = 10, threads = None, out = None, resume = false,
-    duration_s = None, seed = None, progress = None, overwrite = false))]
+    duration_s = None, seed = None, progress = None, overwrite = false, targets = None,
+    claims = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run_sweep(
     py: Python<'_>,
@@ -136,6 +138,8 @@ pub fn run_sweep(
     seed: Option<u64>,
     progress: Option<Py<PyAny>>,
     overwrite: bool,
+    targets: Option<PathBuf>,
+    claims: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<u8>> {
     check_args(trials, threads, duration_s)?;
     if resume && overwrite {
@@ -169,7 +173,7 @@ pub fn run_sweep(
         ..SweepConfig::new(s, scenario.path())
     };
     add_hooks(&mut cfg, &python, &stop, &done);
-    let report = report_options(&mut cfg, out.as_ref())?;
+    let report = report_options(&mut cfg, out.as_ref(), targets.as_deref(), claims)?;
     let total = cfg.methods.len() * trials as usize;
     let cfg_ref = &cfg;
     let stopped = stop.clone();
@@ -204,23 +208,63 @@ fn add_hooks(
     }
 }
 
-/// With `out`, points the sweep's output folder at it and returns the report options the
-/// scenario's `report` section asks for (no `--targets` or `--claims`); without, `None` (an
-/// in-memory sweep).
+/// With `out`, points the sweep's output folder at it and returns the report options: the
+/// targets file `targets` and the claims `claims` (a claims file's path, or a list of claims
+/// as dicts with a claims file's fields) or else those the scenario's `report` section names;
+/// without, `None` (an in-memory sweep; `targets` or `claims` then are an error: only
+/// report.md shows them).
 ///
 /// # Errors
-/// `ValueError` when the report options cannot be resolved.
-fn report_options(cfg: &mut SweepConfig, out: Option<&PathBuf>) -> PyResult<Option<ReportOptions>> {
-    match out {
-        Some(dir) => {
-            cfg.out_dir = dir.clone();
-            Ok(Some(
-                ReportOptions::resolve(None, None, &cfg.scenario, &cfg.scenario_path, &cfg.methods)
-                    .map_err(value_error)?,
-            ))
+/// `ValueError` when the report options cannot be resolved or are given without `out`.
+fn report_options(
+    cfg: &mut SweepConfig,
+    out: Option<&PathBuf>,
+    targets: Option<&Path>,
+    claims: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<ReportOptions>> {
+    let Some(dir) = out else {
+        if targets.is_some() || claims.is_some() {
+            return Err(PyValueError::new_err(
+                "targets and claims are checked in report.md: give out= too",
+            ));
         }
-        None => Ok(None),
+        return Ok(None);
+    };
+    cfg.out_dir = dir.clone();
+    let file = match claims {
+        Some(c) if c.extract::<PathBuf>().is_ok() => Some(c.extract::<PathBuf>()?),
+        _ => None,
+    };
+    let mut report = ReportOptions::resolve(
+        targets,
+        file.as_deref(),
+        &cfg.scenario,
+        &cfg.scenario_path,
+        &cfg.methods,
+    )
+    .map_err(value_error)?;
+    if let Some(list) = claims.filter(|_| file.is_none()) {
+        report.claims = Some(claims_of(list, cfg)?);
     }
+    Ok(Some(report))
+}
+
+/// Claims given as Python objects: a list of dicts with a claims file's fields (`id`,
+/// `sentence`, `subject`, `metric`, `direction` `"More"` or `"Less"`, and optionally
+/// `rivals` `"Every"` or `{"Only": [...]}`, `test`, `alpha`, `correction`), checked as a
+/// claims file is.
+///
+/// # Errors
+/// `ValueError` naming the claim and field that is wrong.
+fn claims_of(list: &Bound<'_, PyAny>, cfg: &SweepConfig) -> PyResult<Claims> {
+    let json = crate::json_value::from_python(list)?;
+    let claims: Vec<Claim> =
+        serde_json::from_value(json).map_err(|e| PyValueError::new_err(format!("claims: {e}")))?;
+    let c = Claims::new(claims, "claims").map_err(value_error)?;
+    c.check_tasks(&cfg.scenario.task_names())
+        .map_err(value_error)?;
+    c.check_methods(&cfg.methods).map_err(value_error)?;
+    Ok(c)
 }
 
 /// The sweep's work, off the Python thread: without `report`, the trials in memory; with

@@ -187,3 +187,30 @@ def test_a_refused_out_speaks_python_and_overwrite_starts_afresh(paper, tmp_path
     assert len(pd.read_csv(out / "trials.csv")) == 2
     with pytest.raises(ValueError, match="give one"):
         usar.sweep(paper, methods=["dis"], trials=2, out=out, resume=True, overwrite=True)
+
+
+def test_claims_of_ones_own_from_python_reach_report_md(paper, tmp_path):
+    mine = [{"id": "hard-rne", "sentence": "RNE rescues more in the hard task than DIS",
+             "subject": "rne", "rivals": {"Only": ["dis"]}, "metric": "rescued_hard",
+             "direction": "More", "test": "MannWhitney"}]
+    usar.sweep(paper, methods=["rne", "dis"], trials=2, duration_s=SHORT_S,
+               out=tmp_path / "a", claims=mine)
+    report = (tmp_path / "a" / "report.md").read_text()
+    assert "(hard-rne) RNE rescues more in the hard task than DIS" in report
+    assert "(4b)" not in report and "one-sided Mann-Whitney U, alpha 0.05" in report
+    # A claims file, as --claims FILE.
+    path = tmp_path / "mine.ron"
+    path.write_text('Claims(claims: [(id: "x", sentence: "DIS rescues the most", '
+                    'subject: "DIS", metric: "rescued_total", direction: More)])')
+    usar.sweep(paper, methods=["rne", "dis"], trials=2, duration_s=SHORT_S,
+               out=tmp_path / "b", claims=path)
+    assert "(x) DIS rescues the most" in (tmp_path / "b" / "report.md").read_text()
+    with pytest.raises(ValueError, match="give out= too"):
+        usar.sweep(paper, methods=["rne"], trials=1, duration_s=SHORT_S, claims=mine)
+    bad = [dict(mine[0], metric="rescued_north")]
+    with pytest.raises(ValueError, match=r"claims\[0\]\.metric: .*rescued_north"):
+        usar.sweep(paper, methods=["rne", "dis"], trials=1, duration_s=SHORT_S,
+                   out=tmp_path / "c", claims=bad)
+    with pytest.raises(ValueError, match="unknown variant `Most`"):
+        usar.sweep(paper, methods=["rne", "dis"], trials=1, duration_s=SHORT_S,
+                   out=tmp_path / "d", claims=[dict(mine[0], direction="Most")])

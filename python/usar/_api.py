@@ -204,6 +204,8 @@ def sweep(
     seed: Optional[int] = None,
     progress: Optional[bool] = None,
     overwrite: bool = False,
+    targets: Optional[Union[str, os.PathLike]] = None,
+    claims: Optional[Union[str, os.PathLike, Sequence[dict]]] = None,
 ) -> pd.DataFrame:
     """Runs every method for ``trials`` trials, as ``usar sweep``, and returns the long table.
 
@@ -216,7 +218,12 @@ def sweep(
     report.md, figures); ``resume=True`` continues its journal; ``overwrite=True`` discards
     a sweep's journal, tables and figures already in ``out`` and starts afresh (other files
     stay; a folder of another kind, such as a calibration's, is refused). ``progress``: a tqdm
-    bar (default: on a terminal or in a notebook, when tqdm is installed).
+    bar (default: on a terminal or in a notebook, when tqdm is installed). With ``out``,
+    ``targets`` (a targets file, as ``--targets``) and ``claims`` (a claims file, as
+    ``--claims``, or a list of claims as dicts with a claims file's fields: ``{"id": "1",
+    "sentence": ..., "subject": "my_method", "metric": "rescued_hard", "direction": "More",
+    "rivals": {"Only": ["DIS"]}}``) are checked in ``out/report.md``; default those the
+    scenario's ``report`` section names.
 
     Returns a DataFrame equal to ``trials_long.csv`` read by :func:`usar.read_trials_long`:
     columns ``scenario, method, trial, seed, task, metric, value``, the same rows in the
@@ -242,6 +249,8 @@ def sweep(
         data = _usar.run_sweep(
             s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback,
             bool(overwrite),
+            None if targets is None else os.fspath(targets),
+            os.fspath(claims) if isinstance(claims, (str, os.PathLike)) else claims,
         )
     finally:
         close()

@@ -110,6 +110,8 @@ def run_sweep(
     seed: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
     overwrite: bool = False,
+    targets: Optional[str] = None,
+    claims: Optional[Union[str, Sequence[Dict[str, Any]]]] = None,
 ) -> bytes:
     """A sweep; returns the bytes of ``trials_long.csv``. Use ``usar.sweep``."""
 
