@@ -18,6 +18,7 @@ use experiments::analysis::Analysis;
 use experiments::calibration::ReportOptions;
 use experiments::claims::{Claim, Claims};
 use experiments::csv_tables::trials_long_csv;
+use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
 use experiments::sweep::{
@@ -108,9 +109,9 @@ fn check_args(trials: u32, threads: Option<usize>, duration_s: Option<f64>) -> P
     Ok(())
 }
 
-/// What a sweep gave: its successful trials (trials.csv order) and failures, or `None` when
-/// stopped.
-type Ran = Option<(Vec<TrialResult>, Vec<Failure>)>;
+/// What a sweep gave, per cell (one without a grid): its successful trials (trials.csv order)
+/// and failures, or `None` when stopped.
+type Ran = Option<Vec<(Vec<TrialResult>, Vec<Failure>)>>;
 
 /// Runs a sweep; returns `trials_long.csv`'s bytes. `progress(done, total)` is called about
 /// every 25 ms from the calling thread.
@@ -124,7 +125,7 @@ type Ran = Option<(Vec<TrialResult>, Vec<Failure>)>;
 #[pyfunction]
 #[pyo3(signature = (scenario, methods, trials = 10, threads = None, out = None, resume = false,
     duration_s = None, seed = None, progress = None, overwrite = false, targets = None,
-    claims = None))]
+    claims = None, vary = Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub fn run_sweep(
     py: Python<'_>,
@@ -140,7 +141,8 @@ pub fn run_sweep(
     overwrite: bool,
     targets: Option<PathBuf>,
     claims: Option<&Bound<'_, PyAny>>,
-) -> PyResult<Vec<u8>> {
+    vary: Vec<String>,
+) -> PyResult<Vec<(Vec<String>, Vec<u8>)>> {
     check_args(trials, threads, duration_s)?;
     if resume && overwrite {
         return Err(PyValueError::new_err(
@@ -172,9 +174,14 @@ pub fn run_sweep(
         progress: false,
         ..SweepConfig::new(s, scenario.path())
     };
+    if !vary.is_empty() {
+        let grid = Grid::build(cfg.scenario.spec(), &vary).map_err(|e| anyhow_value_error(&e))?;
+        cfg.grid = Some(grid);
+    }
     add_hooks(&mut cfg, &python, &stop, &done);
     let report = report_options(&mut cfg, out.as_ref(), targets.as_deref(), claims)?;
-    let total = cfg.methods.len() * trials as usize;
+    let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
+    let total = cells * cfg.methods.len() * trials as usize;
     let cfg_ref = &cfg;
     let stopped = stop.clone();
     let work = move || sweep_trials(cfg_ref, report, &stopped);
@@ -185,9 +192,19 @@ pub fn run_sweep(
         }
     };
     let ran = run_detached(py, &stop, work, tick)?.map_err(|e| sweep_value_error(&e))?;
-    let results = successful_trials(ran, &first_error, &stop, total)?;
-    let tasks = cfg.scenario.task_names();
-    trials_long_csv(&results, &tasks).map_err(|e| anyhow_value_error(&e))
+    let per_cell = successful_trials(ran, &first_error, &stop, total)?;
+    per_cell
+        .iter()
+        .enumerate()
+        .map(|(i, results)| {
+            let (values, tasks) = match &cfg.grid {
+                Some(g) => (g.cells[i].values(), g.cells[i].scenario.task_names()),
+                None => (Vec::new(), cfg.scenario.task_names()),
+            };
+            let csv = trials_long_csv(results, &tasks).map_err(|e| anyhow_value_error(&e))?;
+            Ok((values, csv))
+        })
+        .collect()
 }
 
 /// Sets the sweep's hooks: each journaled trial counts into `done` (for `progress`), `stop`
@@ -277,8 +294,12 @@ fn sweep_trials(
 ) -> anyhow::Result<Ran> {
     let Some(report) = report else {
         let r = run_in_memory(cfg)?;
-        let cell = r.cells.into_iter().next();
-        return Ok(cell.map(|c| (c.results, c.failures)));
+        return Ok(Some(
+            r.cells
+                .into_iter()
+                .map(|c| (c.results, c.failures))
+                .collect(),
+        ));
     };
     let o = experiments::sweep::run_sweep(cfg)?;
     if stopped.load(Ordering::SeqCst) {
@@ -289,11 +310,15 @@ fn sweep_trials(
     metrics.extend((0..tasks.len()).map(|t| Metric::new(Quantity::Rescued, Scope::Task(t))));
     let analysis = Analysis::with_report(&o, report);
     write_outputs(cfg, &o, &analysis, &metrics)?;
-    let cell = o.cells.into_iter().next();
-    Ok(cell.map(|c| (c.results, c.failures)))
+    Ok(Some(
+        o.cells
+            .into_iter()
+            .map(|c| (c.results, c.failures))
+            .collect(),
+    ))
 }
 
-/// The successful trials of a finished sweep (`ran`) of `total` trials.
+/// The successful trials of a finished sweep (`ran`) of `total` trials, per cell.
 ///
 /// # Errors
 /// In this order: the first Python method's exception; `KeyboardInterrupt` when `stop` is
@@ -303,20 +328,29 @@ fn successful_trials(
     first_error: &FirstError,
     stop: &AtomicBool,
     total: usize,
-) -> PyResult<Vec<TrialResult>> {
+) -> PyResult<Vec<Vec<TrialResult>>> {
     if let Some(e) = first_error.lock().ok().and_then(|mut e| e.take()) {
         return Err(e);
     }
     if stop.load(Ordering::SeqCst) {
         return Err(PyKeyboardInterrupt::new_err("the sweep was stopped"));
     }
-    let Some((results, failures)) = ran else {
+    let Some(cells) = ran.filter(|c| !c.is_empty()) else {
         return Err(PyKeyboardInterrupt::new_err("the sweep was stopped"));
     };
+    let failures: Vec<&Failure> = cells.iter().flat_map(|(_, f)| f).collect();
     if !failures.is_empty() {
+        let grid = cells.len() > 1;
         let list: Vec<String> = failures
             .iter()
-            .map(|f| format!("{} trial {} ({})", f.method, f.trial, f.message))
+            .map(|f| {
+                let cell = if grid {
+                    format!("cell {} ", f.cell)
+                } else {
+                    String::new()
+                };
+                format!("{cell}{} trial {} ({})", f.method, f.trial, f.message)
+            })
             .collect();
         return Err(TrialError::new_err(format!(
             "{} of {total} trials failed: {}",
@@ -324,5 +358,5 @@ fn successful_trials(
             list.join("; ")
         )));
     }
-    Ok(results)
+    Ok(cells.into_iter().map(|(results, _)| results).collect())
 }

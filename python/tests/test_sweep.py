@@ -214,3 +214,26 @@ def test_claims_of_ones_own_from_python_reach_report_md(paper, tmp_path):
     with pytest.raises(ValueError, match="unknown variant `Most`"):
         usar.sweep(paper, methods=["rne", "dis"], trials=1, duration_s=SHORT_S,
                    out=tmp_path / "d", claims=[dict(mine[0], direction="Most")])
+
+
+def test_a_grid_is_the_sweep_once_per_cell_with_the_cells_values(paper, usar_cli, tmp_path):
+    vary = ["mission.pickup_s=0,2"]
+    got = usar.grid(paper, vary, methods=["rne", "dis"], trials=2, threads=2,
+                    duration_s=SHORT_S, out=tmp_path / "py")
+    assert list(got.columns[:2]) == ["cell", "mission.pickup_s"]
+    assert sorted(set(zip(got["cell"], got["mission.pickup_s"]))) == [(0, "0"), (1, "2")]
+    # Each cell's rows are the sweep of that cell's scenario, as the CLI's cell folders hold.
+    for cell, value in [(0, "0"), (1, "2")]:
+        one = usar.sweep(paper.set("mission.pickup_s", float(value)), methods=["rne", "dis"],
+                         trials=2, duration_s=SHORT_S)
+        rows = got[got["cell"] == cell].drop(columns=["cell", "mission.pickup_s"])
+        pd.testing.assert_frame_equal(rows.reset_index(drop=True), one, check_exact=True)
+    cli = tmp_path / "cli"
+    subprocess.run([usar_cli, "sweep", str(PAPER), "--vary", vary[0], "--methods", "rne,dis",
+                    "--trials", "2", "--duration", str(SHORT_S), "--quiet", "--out", str(cli)],
+                   check=True)
+    assert (tmp_path / "py" / "grid.csv").read_bytes() == (cli / "grid.csv").read_bytes()
+    with pytest.raises(ValueError, match="vary: give at least one"):
+        usar.grid(paper, [], trials=1)
+    with pytest.raises(ValueError, match="mission.pikup_s"):
+        usar.grid(paper, ["mission.pikup_s=0,1"], trials=1)

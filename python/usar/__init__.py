@@ -10,7 +10,8 @@ command line: the same scenario and seed give the same results, bit for bit.
   (``check()``).
 - :func:`run`: one trial -> :class:`TrialResult` (as ``usar run --json``).
 - :func:`sweep`: methods x trials in parallel -> pandas DataFrame (as ``trials_long.csv``);
-  :func:`wide` turns it into ``trials.csv``'s wide table.
+  :func:`wide` turns it into ``trials.csv``'s wide table; :func:`grid` runs it once per
+  cell of a parameter grid (``--vary``).
 - :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
 - :class:`GroupingMethod` or any callable ``group(request) -> list of groups``: a grouping
   method written in Python, run by :func:`run` and :func:`sweep` once per grouping round.
@@ -31,7 +32,7 @@ from ._grouping import (
     rne,
 )
 from ._results import Record, TrialResult
-from ._api import read_trials_long, run, sweep, trust, wide
+from ._api import grid, read_trials_long, run, sweep, trust, wide
 
 __all__ = [
     "METHOD_NAMES",
@@ -46,6 +47,7 @@ __all__ = [
     "TrialError",
     "TrialResult",
     "dis",
+    "grid",
     "eng",
     "hp_dis",
     "read_trials_long",

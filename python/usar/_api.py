@@ -100,7 +100,10 @@ def _progress(progress: Optional[bool], total: int) -> tuple:
         return None, lambda: None
     bar = tqdm(total=total, unit="trial", desc="sweep")
 
-    def update(done: int, _total: int) -> None:
+    def update(done: int, total: int) -> None:
+        if total != bar.total:  # a grid's trials: every cell's
+            bar.total = total
+            bar.refresh()
         if done > bar.n:
             bar.update(done - bar.n)
 
@@ -193,6 +196,36 @@ def wide(frame: pd.DataFrame) -> pd.DataFrame:
     return out.astype({"trial": "int64", "seed": "uint64"})
 
 
+def _run_cells(
+    scenario: Any, methods: Any, trials: Any, threads: Any, out: Any, resume: bool,
+    duration_s: Any, seed: Any, progress: Optional[bool], overwrite: bool, targets: Any,
+    claims: Any, vary: List[str],
+) -> list:
+    """The arguments of :func:`sweep` and :func:`grid` checked, then the native sweep: per
+    cell, the varied fields' values and the bytes of its ``trials_long.csv``."""
+    s = _scenario(scenario)
+    if methods is None:
+        methods = list(METHOD_NAMES)
+    if isinstance(methods, (str, bytes)) or callable(methods):
+        methods = [methods]
+    args = [method_arg(m, s) for m in methods]
+    trials = _count("trials", trials, 1, 2**32)
+    threads = None if threads is None else _count("threads", threads, 1, 2**16)
+    seed = None if seed is None else _count("seed", seed, 0, _U64)
+    folder = None if out is None else os.fspath(out)
+    callback, close = _progress(progress, len(args) * trials)
+    try:
+        return _usar.run_sweep(
+            s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback,
+            bool(overwrite),
+            None if targets is None else os.fspath(targets),
+            os.fspath(claims) if isinstance(claims, (str, os.PathLike)) else claims,
+            vary,
+        )
+    finally:
+        close()
+
+
 def sweep(
     scenario: Union[Scenario, str, os.PathLike],
     methods: Optional[Sequence[MethodLike]] = None,
@@ -234,27 +267,60 @@ def sweep(
     exception (the first one met), :class:`usar.TrialError` (failed trials, after the others
     ran) and KeyboardInterrupt.
     """
-    s = _scenario(scenario)
-    if methods is None:
-        methods = list(METHOD_NAMES)
-    if isinstance(methods, (str, bytes)) or callable(methods):
-        methods = [methods]
-    args = [method_arg(m, s) for m in methods]
-    trials = _count("trials", trials, 1, 2**32)
-    threads = None if threads is None else _count("threads", threads, 1, 2**16)
-    seed = None if seed is None else _count("seed", seed, 0, _U64)
-    folder = None if out is None else os.fspath(out)
-    callback, close = _progress(progress, len(args) * trials)
-    try:
-        data = _usar.run_sweep(
-            s, args, trials, threads, folder, bool(resume), _seconds(duration_s), seed, callback,
-            bool(overwrite),
-            None if targets is None else os.fspath(targets),
-            os.fspath(claims) if isinstance(claims, (str, os.PathLike)) else claims,
-        )
-    finally:
-        close()
-    return read_trials_long(io.BytesIO(bytes(data)))
+    data = _run_cells(
+        scenario, methods, trials, threads, out, resume, duration_s, seed, progress,
+        overwrite, targets, claims, [],
+    )
+    return read_trials_long(io.BytesIO(bytes(data[0][1])))
+
+
+def grid(
+    scenario: Union[Scenario, str, os.PathLike],
+    vary: Sequence[str],
+    methods: Optional[Sequence[MethodLike]] = None,
+    trials: int = 10,
+    threads: Optional[int] = None,
+    out: Optional[Union[str, os.PathLike]] = None,
+    resume: bool = False,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+    progress: Optional[bool] = None,
+    overwrite: bool = False,
+    targets: Optional[Union[str, os.PathLike]] = None,
+    claims: Optional[Union[str, os.PathLike, Sequence[dict]]] = None,
+) -> pd.DataFrame:
+    """A parameter grid, as ``usar sweep SCENARIO --vary FIELD=V1,V2 ...``: the comparison once
+    per cell, every combination of the ``vary`` values (``["mission.pickup_s=0,1",
+    "kinds[*].max_speed_m_per_s=1,1.5"]``; the first varies slowest), the same trials and
+    seeds in every cell. The other arguments are :func:`usar.sweep`'s; with ``out`` it writes
+    what ``usar sweep --vary ... --out`` writes (a folder per cell, ``grid.csv``,
+    ``grid.md``, the grid figures).
+
+    Returns the long table of every cell, cell after cell, with the cell's index (``cell``)
+    and the value of each varied field as written (a column named by its path) before the
+    long table's columns.
+
+    Raises ValueError for a bad ``vary`` (naming the argument and what is wrong), else as
+    :func:`usar.sweep`.
+    """
+    if isinstance(vary, (str, bytes)):
+        vary = [vary]
+    vary = [str(v) for v in vary]
+    if not vary:
+        raise ValueError("vary: give at least one FIELD=V1,V2,... (usar.sweep runs one cell)")
+    fields = [v.split("=", 1)[0].strip() for v in vary]
+    data = _run_cells(
+        scenario, methods, trials, threads, out, resume, duration_s, seed, progress,
+        overwrite, targets, claims, vary,
+    )
+    frames = []
+    for cell, (values, csv) in enumerate(data):
+        frame = read_trials_long(io.BytesIO(bytes(csv)))
+        for position, (field, value) in enumerate(zip(fields, values)):
+            frame.insert(position, field, value)
+        frame.insert(0, "cell", cell)
+        frames.append(frame)
+    return pd.concat(frames, ignore_index=True)
 
 
 def trust(

@@ -112,8 +112,10 @@ def run_sweep(
     overwrite: bool = False,
     targets: Optional[str] = None,
     claims: Optional[Union[str, Sequence[Dict[str, Any]]]] = None,
-) -> bytes:
-    """A sweep; returns the bytes of ``trials_long.csv``. Use ``usar.sweep``."""
+    vary: Sequence[str] = (),
+) -> List[Tuple[List[str], bytes]]:
+    """A sweep or, with ``vary``, a grid; returns per cell the varied fields' values and the
+    bytes of its ``trials_long.csv``. Use ``usar.sweep`` or ``usar.grid``."""
 
 def trust(weights: List[float], needs_a: List[float], needs_b: List[float]) -> float:
     """Trust of A in B, nats (paper Eq. 7). Use ``usar.trust``."""
