@@ -275,8 +275,19 @@ fn report_options(
 /// `ValueError` naming the claim and field that is wrong.
 fn claims_of(list: &Bound<'_, PyAny>, cfg: &SweepConfig) -> PyResult<Claims> {
     let json = crate::json_value::from_python(list)?;
-    let claims: Vec<Claim> =
-        serde_json::from_value(json).map_err(|e| PyValueError::new_err(format!("claims: {e}")))?;
+    let serde_json::Value::Array(items) = json else {
+        return Err(PyValueError::new_err(
+            "claims: expected a claims file's path or a list of claims (dicts)",
+        ));
+    };
+    let claims = items
+        .into_iter()
+        .enumerate()
+        .map(|(i, item)| {
+            serde_json::from_value::<Claim>(item)
+                .map_err(|e| PyValueError::new_err(format!("claims[{i}]: {e}")))
+        })
+        .collect::<PyResult<Vec<Claim>>>()?;
     let c = Claims::new(claims, "claims").map_err(value_error)?;
     c.check_tasks(&cfg.scenario.task_names())
         .map_err(value_error)?;

@@ -136,3 +136,28 @@ def test_an_abandoned_episode_ends_with_a_reset_or_close():
         e.step(e.action_space.sample())
     with pytest.raises(ValueError, match="reward"):
         usar.gym.GroupingEnv(PAPER, reward="fun")
+
+
+def test_a_scenario_whose_rounds_group_part_of_the_team_is_refused():
+    corridor = pathlib.Path(PAPER).parent / "corridor.ron"
+    s = usar.Scenario.load(corridor).set("mission.round_start", "Available")
+    with pytest.raises(ValueError, match="round_start is Available; GroupingEnv needs AllBack"):
+        usar.gym.GroupingEnv(s)
+
+
+def test_an_environment_dropped_mid_episode_ends_its_trial():
+    import gc
+    import threading
+
+    before = threading.active_count()
+    e = env()
+    e.reset(seed=2)
+    e.step(e.action_space.sample())
+    assert threading.active_count() == before + 1
+    del e
+    gc.collect()
+    for _ in range(100):
+        if threading.active_count() == before:
+            break
+        threading.Event().wait(0.02)
+    assert threading.active_count() == before

@@ -211,7 +211,7 @@ def test_claims_of_ones_own_from_python_reach_report_md(paper, tmp_path):
     with pytest.raises(ValueError, match=r"claims\[0\]\.metric: .*rescued_north"):
         usar.sweep(paper, methods=["rne", "dis"], trials=1, duration_s=SHORT_S,
                    out=tmp_path / "c", claims=bad)
-    with pytest.raises(ValueError, match="unknown variant `Most`"):
+    with pytest.raises(ValueError, match=r"claims\[0\]: unknown variant `Most`"):
         usar.sweep(paper, methods=["rne", "dis"], trials=1, duration_s=SHORT_S,
                    out=tmp_path / "d", claims=[dict(mine[0], direction="Most")])
 
@@ -233,6 +233,11 @@ def test_a_grid_is_the_sweep_once_per_cell_with_the_cells_values(paper, usar_cli
                     "--trials", "2", "--duration", str(SHORT_S), "--quiet", "--out", str(cli)],
                    check=True)
     assert (tmp_path / "py" / "grid.csv").read_bytes() == (cli / "grid.csv").read_bytes()
+    # The wide table of a grid keeps the cell and its values as keys.
+    wide = usar.wide(got)
+    assert list(wide.columns[:6]) == ["cell", "mission.pickup_s", "scenario", "method", "trial",
+                                      "seed"]
+    assert len(wide) == 2 * 2 * 2
     with pytest.raises(ValueError, match="vary: give at least one"):
         usar.grid(paper, [], trials=1)
     with pytest.raises(ValueError, match="mission.pikup_s"):

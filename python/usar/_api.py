@@ -151,19 +151,21 @@ _WIDE_ORDER = [
 
 
 def wide(frame: pd.DataFrame) -> pd.DataFrame:
-    """The long table of :func:`usar.sweep` (or :func:`usar.read_trials_long`) as
-    ``trials.csv`` has it: one row per trial (``scenario, method, trial, seed``, in the long
-    table's order) and one column per metric and task, named as ``trials.csv`` names them
+    """The long table of :func:`usar.sweep` (or :func:`usar.read_trials_long`, or
+    :func:`usar.grid`) as ``trials.csv`` has it: one row per trial (``scenario, method,
+    trial, seed``, after a grid's ``cell`` and varied fields; in the long table's order) and one column per metric and task, named as ``trials.csv`` names them
     (``rescued_total``, ``rescued_hard``, ``energy_hard_pct``, ``energy_total_pct``, ...,
     ``rounds``, ``energy_per_hard_rescuee_pct``, ..., ``mean_round_s``), in its column order.
     Counts (``rescued_*``, ``rounds``) are int64; a cost per rescuee without rescuees is NaN.
 
     Raises ValueError for a frame without the long table's columns.
     """
-    keys = ["scenario", "method", "trial", "seed"]
-    missing = [c for c in keys + ["task", "metric", "value"] if c not in frame.columns]
+    needed = ["scenario", "method", "trial", "seed", "task", "metric", "value"]
+    missing = [c for c in needed if c not in frame.columns]
     if missing:
         raise ValueError(f"frame: not a long table of usar.sweep (no column {missing[0]!r})")
+    # A grid's frame (usar.grid) leads with the cell and its values: they are keys too.
+    keys = list(frame.columns[: list(frame.columns).index("task")])
     tasks = [t for t in pd.unique(frame["task"].fillna("")) if t not in ("", "total")]
 
     def column(metric: str, task: Any) -> str:

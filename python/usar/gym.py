@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import queue
 import threading
+import weakref
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -38,16 +39,46 @@ class _Stop(Exception):
 
 
 class _EnvMethod(GroupingMethod):
-    """The grouping method of an episode's trial: each round, the environment's action.
-    Results name it ``gym``."""
+    """The grouping method of an episode's trial: each round, it hands the request over and
+    answers the groups the environment's action gives (``None``: the episode is abandoned).
+    Results name it ``gym``. It holds the queues, not the environment, so that an
+    environment dropped without ``close()`` is collected and its trial ended."""
 
     name = "gym"
 
-    def __init__(self, env: "GroupingEnv") -> None:
-        self._env = env
+    def __init__(self, to_trial: "queue.Queue[Any]", from_trial: "queue.Queue[Any]") -> None:
+        self._to_trial, self._from_trial = to_trial, from_trial
 
     def group(self, request: GroupingRequest) -> List[List[int]]:
-        return self._env._method(request)
+        self._from_trial.put(("request", request))
+        groups = self._to_trial.get()
+        if groups is None:
+            raise _Stop()
+        return groups
+
+
+def _run_trial(
+    scenario: Scenario,
+    duration_s: Optional[float],
+    trial: Optional[int],
+    seed: Optional[int],
+    to_trial: "queue.Queue[Any]",
+    from_trial: "queue.Queue[Any]",
+) -> None:
+    """The episode's trial, in its thread: its result, `stopped` or its error at the end."""
+    try:
+        result = _api.run(
+            scenario,
+            method=_EnvMethod(to_trial, from_trial),
+            trial=trial,
+            seed=seed,
+            duration_s=duration_s,
+        )
+        from_trial.put(("done", result))
+    except _Stop:
+        from_trial.put(("stopped", None))
+    except BaseException as e:  # noqa: BLE001 - handed to the caller of step()
+        from_trial.put(("error", e))
 
 
 def repair_assignment(
@@ -94,6 +125,10 @@ class GroupingEnv(gymnasium.Env):
     the trial's time is up; ``info["result"]`` then holds the :class:`usar.TrialResult`
     (its method named ``gym``).
 
+    The scenario must start its rounds with every robot back (``mission.round_start:
+    AllBack``, as paper.ron does): each round then groups the whole team, and the
+    observation and action keep their sizes (a ValueError otherwise).
+
     ``reset(seed=S)`` starts the trial whose seed is ``S`` (as ``usar.run(seed=S)``); without
     one, ``trial`` (default 0) picks it as ``usar.run(trial=...)`` does, and a reset with
     ``options={"trial": k}`` picks another. The same seed and the same actions give the same
@@ -113,10 +148,16 @@ class GroupingEnv(gymnasium.Env):
         if reward not in ("rescued", "hard"):
             raise ValueError(f"reward: expected 'rescued' or 'hard', found {reward!r}")
         self.scenario = _api._scenario(scenario)
+        info = self.scenario.check()
+        if info["mission"].get("round_start", "AllBack") != "AllBack":
+            raise ValueError(
+                f"scenario: mission.round_start is {info['mission']['round_start']}; "
+                "GroupingEnv needs AllBack (every robot grouped every round, a fixed-size "
+                "observation and action)"
+            )
         self.duration_s = duration_s
         self.trial = int(trial)
         self.reward_kind = reward
-        info = self.scenario.check()
         self._kinds = [k["name"] for k in info["kinds"]]
         self._tasks = [t["name"] for t in info["tasks"]]
         #: Task ids from the hardest to the easiest (the scenario's difficulty order).
@@ -154,32 +195,8 @@ class GroupingEnv(gymnasium.Env):
         self._request: Optional[GroupingRequest] = None
         self._obs: Optional[Dict[str, np.ndarray]] = None
 
-    # The trial runs in a thread: its grouping method hands each request over and waits for
-    # the groups; usar.run releases the GIL between rounds.
-    def _method(self, request: GroupingRequest) -> List[List[int]]:
-        self._from_trial.put(("request", request))
-        groups = self._to_trial.get()
-        if groups is None:
-            raise _Stop()
-        return groups
-
-    def _run(
-        self, trial: Optional[int], seed: Optional[int], out: "queue.Queue[Tuple[str, Any]]"
-    ) -> None:
-        try:
-            result = _api.run(
-                self.scenario,
-                method=_EnvMethod(self),
-                trial=trial,
-                seed=seed,
-                duration_s=self.duration_s,
-            )
-            out.put(("done", result))
-        except _Stop:
-            out.put(("stopped", None))
-        except BaseException as e:  # noqa: BLE001 - handed to the caller of step()
-            out.put(("error", e))
-
+    # The trial runs in a thread (`_run_trial`): its grouping method hands each request over
+    # and waits for the groups; usar.run releases the GIL between rounds.
     def _stop(self) -> None:
         if self._thread is not None and self._thread.is_alive():
             self._to_trial.put(None)
@@ -190,6 +207,7 @@ class GroupingEnv(gymnasium.Env):
                 self._to_trial.put(None)
             self._thread.join()
         self._thread = None
+        self._request = None
         self._to_trial = queue.Queue()
         self._from_trial = queue.Queue()
 
@@ -218,7 +236,10 @@ class GroupingEnv(gymnasium.Env):
     def _next(self) -> Tuple[str, Any]:
         kind, value = self._from_trial.get()
         if kind == "error":
+            if self._thread is not None:
+                self._thread.join()
             self._thread = None
+            self._request = None
             raise value
         return kind, value
 
@@ -229,11 +250,17 @@ class GroupingEnv(gymnasium.Env):
         self._stop()
         trial = None if seed is not None else int((options or {}).get("trial", self.trial))
         self._thread = threading.Thread(
-            target=self._run, args=(trial, seed, self._from_trial), daemon=True
+            target=_run_trial,
+            args=(self.scenario, self.duration_s, trial, seed, self._to_trial, self._from_trial),
+            daemon=True,
         )
         self._thread.start()
+        # Dropped without close(): the trial is told to stop.
+        weakref.finalize(self, self._to_trial.put, None)
         kind, value = self._next()
         if kind != "request":
+            self._thread.join()
+            self._thread = None
             raise RuntimeError("the trial ended before its first grouping round")
         self._seed = trial_seed = value.seed
         self._request = value

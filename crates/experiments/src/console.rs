@@ -305,12 +305,13 @@ fn max_p_text(chk: &ClaimCheck) -> String {
         .chain([chk.subject_summary.n])
         .min()
         .unwrap_or(0);
-    if p.is_nan() && fewest < 2 {
-        let test = match chk.claim.test {
-            Test::Welch => "Welch's test",
-            Test::MannWhitney => "the Mann-Whitney U test",
-        };
-        format!("no p: {test} needs at least 2 trials per method")
+    if p.is_nan() && fewest < 2 && chk.claim.test == Test::Welch {
+        "no p: Welch's test needs at least 2 trials per method".to_string()
+    } else if p.is_nan() {
+        format!(
+            "no p: the {} test is undefined here",
+            chk.claim.test.words()
+        )
     } else {
         format!("max p = {}", pval(p))
     }

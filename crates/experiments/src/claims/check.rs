@@ -3,7 +3,7 @@
 
 use usar_sim::mission::TrialResult;
 
-use super::claim::{Claim, Correction, Direction, Test};
+use super::claim::{Claim, Correction, Direction, Rivals, Test};
 use crate::metrics::{Metric, values_of};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
 
@@ -14,7 +14,7 @@ pub enum Verdict {
     /// claim's test is below its alpha.
     Holds,
     /// The subject's mean is better than every rival's but some (corrected) p is at least
-    /// alpha, or cannot be computed (fewer than 2 trials of a method).
+    /// alpha, or cannot be computed (Welch's test with fewer than 2 trials of a method).
     NotSignificant,
     /// Some rival's mean is as good or better.
     DoesNotHold,
@@ -127,6 +127,13 @@ pub fn check_claim(
     }
     let in_sweep = methods.iter().any(|m| claim.is_subject(m));
     let column = &claim.metric;
+    // A rival the claim names must have values: without them it was not compared.
+    let named_without_values = match &claim.rivals {
+        Rivals::Only(_) => rivals
+            .iter()
+            .find(|r| !comparisons.iter().any(|c| &c.other == **r)),
+        Rivals::Every => None,
+    };
     let reason = if !in_sweep {
         Some(format!(
             "{} is not among the sweep's methods",
@@ -136,6 +143,8 @@ pub fn check_claim(
         Some(format!("no trial of {subject} has a value of {column}"))
     } else if let Some(m) = missing.first() {
         Some(format!("its rival {m} is not among the sweep's methods"))
+    } else if let Some(r) = named_without_values {
+        Some(format!("no trial of its rival {r} has a value of {column}"))
     } else if comparisons.is_empty() {
         Some(format!(
             "no rival of {subject} has a trial with a value of {column}"

@@ -101,7 +101,7 @@ pub enum Correction {
 #[serde(deny_unknown_fields)]
 pub struct Claim {
     /// Short id, unique in its file: letters, digits, `_`, `-` and `.`, at most 32 characters
-    /// (`1`, `4a`); it names the claim's files (`spec-curve-<id>.svg`).
+    /// (`1`, `4a`); it names the claim's files (`spec_curve_<id>.svg`).
     pub id: String,
     /// The claim in words, one line (the paper's sentence, for the paper's claims).
     pub sentence: String,

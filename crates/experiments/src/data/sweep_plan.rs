@@ -48,7 +48,7 @@ pub struct SweepPlan {
     pub targets: Option<PathBuf>,
     /// `--claims`: the claims file the reports check, as given (relative to `working_dir`);
     /// `None`: none. A report option: `usar merge` renders with it. (A plan of an older
-    /// `usar` with `"claims": true` is refused with a message naming `--claims FILE`.)
+    /// `usar` with `"claims": true` reads as none: `usar merge --claims FILE` gives them.)
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
@@ -57,21 +57,18 @@ pub struct SweepPlan {
     pub claims: Option<PathBuf>,
 }
 
-/// A claims path, or the former boolean (`false`: none; `true`: an error naming the flag
-/// that now says which claims).
+/// A claims path, or the former boolean, read as none either way (the file it meant is not
+/// known; `usar merge --claims scenarios/paper-claims.ron` checks the paper's).
 fn de_claims<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<PathBuf>, D::Error> {
     #[derive(Deserialize)]
     #[serde(untagged)]
     enum PathOrBool {
-        Bool(bool),
+        // The former flag; its value no longer says which claims.
+        Bool(#[allow(dead_code)] bool),
         Path(Option<PathBuf>),
     }
     match PathOrBool::deserialize(d)? {
-        PathOrBool::Bool(false) => Ok(None),
-        PathOrBool::Bool(true) => Err(serde::de::Error::custom(
-            "\"claims\": true comes from an older usar; give the claims file to `usar merge \
-             --claims FILE` (the paper's: scenarios/paper-claims.ron)",
-        )),
+        PathOrBool::Bool(_) => Ok(None),
         PathOrBool::Path(p) => Ok(p),
     }
 }
@@ -278,14 +275,14 @@ mod tests {
     }
 
     #[test]
-    fn an_older_plans_claims_flag_reads_as_none_or_names_the_file_flag() {
+    fn an_older_plans_claims_flag_reads_as_none() {
+        // Shards of an older usar still merge (`usar merge --claims FILE` adds the claims).
         let mut json = serde_json::to_value(plan(None)).unwrap();
-        json["claims"] = false.into();
-        let read: SweepPlan = serde_json::from_value(json.clone()).unwrap();
-        assert_eq!(read.claims, None);
-        json["claims"] = true.into();
-        let err = serde_json::from_value::<SweepPlan>(json.clone()).unwrap_err();
-        assert!(err.to_string().contains("--claims FILE"), "{err}");
+        for old in [false, true] {
+            json["claims"] = old.into();
+            let read: SweepPlan = serde_json::from_value(json.clone()).unwrap();
+            assert_eq!(read.claims, None);
+        }
         json["claims"] = "c.ron".into();
         let read: SweepPlan = serde_json::from_value(json).unwrap();
         assert_eq!(read.claims, Some(PathBuf::from("c.ron")));

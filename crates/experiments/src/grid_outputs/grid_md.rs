@@ -1,6 +1,6 @@
 //! `grid.md`: a grid's set-up, its cells, one table (and figure) per chosen metric and the
 //! failed trials; when asked (the analysis's [`crate::calibration::ReportOptions`]), each
-//! cell's pooled statistics against a targets file and the paper's claims per cell. It holds
+//! cell's pooled statistics against a targets file and the claims of a claims file per cell. It holds
 //! no timings, so it is the same on any thread count.
 
 use std::fmt::Write as _;
@@ -33,7 +33,7 @@ pub struct GridReportInput<'a> {
 }
 
 /// The text of `grid.md`: set-up, cells, the pooled statistics (only with targets), the
-/// chosen metrics, the paper's claims (only when asked; a line says how to ask for what is
+/// chosen metrics, the claims (only with a claims file; a line says how to ask for what is
 /// left out) and the failed trials.
 pub fn grid_md(input: &GridReportInput<'_>) -> String {
     let mut r = String::new();

@@ -14,10 +14,10 @@
 //! sample: with `k` alternatives seen among `n` universes its mean under no effect at all is
 //! `(k - 1) / (n - 1)`, reported as the share's chance level; a share near its chance level
 //! says nothing. For a calibrated (free) value the share is the squared correlation of the
-//! value with the effect (a linear fit; chance level `1 / (n - 1)`). The two-way interaction of
-//! the two axes with the largest shares is the share of their joint cells beyond the two main
-//! effects, `eta2_ij - eta2_i - eta2_j`, clamped at 0 (exact for a balanced factorial,
-//! approximate for a sample). Total-order indices need a designed sample (Saltelli's) and are
+//! value with the effect (a linear fit, on the log scale for a `:log` field; chance level
+//! `1 / (n - 1)`). The two-way interaction of the two varying axes with the largest shares
+//! is the share of their joint cells beyond the two main effects, `eta2_ij - eta2_i -
+//! eta2_j`, clamped at 0 (exact for a balanced factorial, approximate for a sample). Total-order indices need a designed sample (Saltelli's) and are
 //! not estimated.
 //!
 //! # Reference
@@ -116,10 +116,13 @@ pub fn decompose(
             let x: Vec<f64> = rows
                 .iter()
                 .map(|(r, _)| {
-                    r.calibration
+                    let x = r
+                        .calibration
                         .as_ref()
                         .and_then(|c| c.values.get(f).copied())
-                        .unwrap_or(f64::NAN)
+                        .unwrap_or(f64::NAN);
+                    // A field searched on a log scale is correlated on that scale.
+                    if field.log { x.ln() } else { x }
                 })
                 .collect();
             Share {
@@ -135,8 +138,14 @@ pub fn decompose(
         free,
         interaction: None,
     };
-    let order = d.strongest();
-    if let [a, b, ..] = order[..] {
+    // The two strongest axes that vary among these universes (an axis seen with one
+    // alternative has no share and no interaction).
+    let varying: Vec<usize> = d
+        .strongest()
+        .into_iter()
+        .filter(|&a| eta2(&[a]).1 >= 2)
+        .collect();
+    if let [a, b, ..] = varying[..] {
         let (joint, cells) = eta2(&[a, b]);
         let (ga, gb) = (eta2(&[a]).1, eta2(&[b]).1);
         let share = (joint - d.axes[a].share - d.axes[b].share).max(0.0);

@@ -22,7 +22,7 @@ pub struct ClaimEffect {
     /// The claim's id (`1`, `4a`; [`crate::claims::Claim::id`]).
     pub claim: String,
     /// The verdict in words ([`crate::claims::Verdict::words`]: `holds`, `not significant`,
-    /// `does not hold`, `not tested`, `not applicable`).
+    /// `does not hold`, `not tested`).
     pub verdict: String,
     /// The strongest rival (display name), `None` when no other method has a value.
     pub rival: Option<String>,
@@ -37,8 +37,8 @@ pub struct ClaimEffect {
     /// Upper end of that interval; NaN likewise.
     #[serde(with = "float_text")]
     pub ci_high: f64,
-    /// The largest one-sided Welch p over every rival (the p the verdict is decided by,
-    /// [`ClaimCheck::worst_p`]); NaN when some test is undefined.
+    /// The largest p over every rival of the claim's own test after its correction (the p
+    /// the verdict is decided by, [`ClaimCheck::worst_p`]); NaN when some test is undefined.
     #[serde(with = "float_text")]
     pub p: f64,
 }
@@ -147,6 +147,27 @@ mod tests {
         assert!((e.ci_low - (5.0 - 2.266_958)).abs() < 1e-5, "{e:?}");
         assert!((e.ci_high - (5.0 + 2.266_958)).abs() < 1e-5, "{e:?}");
         assert!((e.p - check.worst_p()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_named_rival_without_values_leaves_the_claim_untested() {
+        // ENG rescues nobody in the hard task: its cost per hard rescuee has no value.
+        let mut r = results();
+        for t in r.iter_mut().filter(|t| t.method == "ENG") {
+            t.rescued[0] = 0;
+        }
+        let mut claim = paper(3).clone();
+        claim.rivals = crate::claims::Rivals::Only(vec!["eng".into()]);
+        let check = check_claim(&claim, &r, &methods(), &tasks());
+        assert_eq!(check.verdict, crate::claims::Verdict::NotTested);
+        assert_eq!(
+            check.reason.as_deref(),
+            Some("no trial of its rival ENG has a value of energy_per_hard_rescuee_pct")
+        );
+        // Against every rival, ENG is left out and DIS decides.
+        let check = check_claim(paper(3), &r, &methods(), &tasks());
+        assert_eq!(check.comparisons.len(), 1);
+        assert_eq!(check.verdict, crate::claims::Verdict::Holds);
     }
 
     #[test]

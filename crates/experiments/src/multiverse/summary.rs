@@ -41,9 +41,8 @@ pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String 
         let _ = writeln!(s, "when every shard is done: {merge}");
         return s;
     }
-    let _ = writeln!(s, "\nclaims (share of the admissible universes):");
-    if plan.identity.claims.is_empty() {
-        return s;
+    if !plan.identity.claims.is_empty() {
+        let _ = writeln!(s, "\nclaims (share of the admissible universes):");
     }
     for (c, count) in plan.identity.claims.iter().zip(&t.claims) {
         let _ = writeln!(

@@ -99,8 +99,9 @@ pub struct ReportSpec {
     /// Claims to check the results against: a path to a claims file (such as
     /// `scenarios/paper-claims.ron`, the paper's claims of section VI), relative to the scenario
     /// file's folder; default none (no claims section). Written as a plain string, `claims:
-    /// "paper-claims.ron"` (`Some("...")` and `None` are read too; the former `claims: true`
-    /// is refused with a message naming the paper's file, `false` reads as none).
+    /// "paper-claims.ron"` (`Some("...")` and `None` are read too). The former boolean still
+    /// reads: `claims: true` (which checked the paper's claims) as `"paper-claims.ron"`, the
+    /// file that now holds them, and `false` as none.
     #[serde(
         serialize_with = "ser_path_or_none",
         deserialize_with = "de_claims_path"
@@ -108,8 +109,8 @@ pub struct ReportSpec {
     pub claims: Option<String>,
 }
 
-/// [`de_path_or_none`], and a former boolean: `false` is none, `true` an error naming the file
-/// that holds the claims it meant.
+/// [`de_path_or_none`], and the former boolean: `false` is none, `true` the file that now
+/// holds the paper's claims it meant, `paper-claims.ron` (next to `paper.ron`).
 fn de_claims_path<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
     #[derive(Deserialize)]
     #[serde(untagged)]
@@ -120,10 +121,7 @@ fn de_claims_path<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::
     }
     match PathOrBool::deserialize(d)? {
         PathOrBool::Bool(false) => Ok(None),
-        PathOrBool::Bool(true) => Err(serde::de::Error::custom(
-            "claims: true is no longer read: name a claims file, such as claims: \
-             \"paper-claims.ron\" for the paper's claims (scenarios/paper-claims.ron)",
-        )),
+        PathOrBool::Bool(true) => Ok(Some("paper-claims.ron".to_owned())),
         PathOrBool::Path(p) => Ok(p),
     }
 }
@@ -345,7 +343,7 @@ pub enum StartsSpec {
 #[serde(deny_unknown_fields)]
 pub struct TaskSpec {
     /// Unique, non-empty name (e.g. `"hard"`); kinds' quotas and the outputs name the task by
-    /// it. The paper's claims are checked for scenarios with tasks named `easy` and `hard`.
+    /// it (claims and targets files name a task's metrics by it: `rescued_hard`).
     pub name: String,
     /// Difficulty rank, >= 0, higher is harder; default 0. Grouping methods fill tasks from the
     /// hardest down (paper: the hard task); on equal ranks the task listed first counts as the
