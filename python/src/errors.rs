@@ -47,13 +47,32 @@ pub fn sweep_value_error(e: &anyhow::Error) -> PyErr {
 }
 
 /// `message` (a library error worded for the command line) in the Python package's words:
-/// the flags `--overwrite`, `--resume` and `--out` become the keyword arguments
-/// `overwrite=True`, `resume=True` and `out` of `usar.sweep`.
+/// each flag becomes its keyword argument (`--max-evals` `max_evals`, `--duration`
+/// `duration_s`, `--max-time` `max_time_s`), and the switches `--overwrite` and `--resume`
+/// become `overwrite=True` and `resume=True`.
 pub fn python_words(message: &str) -> String {
-    message
-        .replace("--overwrite", "overwrite=True")
-        .replace("--resume", "resume=True")
-        .replace("--out", "out")
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find("--") {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 2..];
+        let len = after
+            .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
+            .unwrap_or(after.len());
+        let flag = &after[..len];
+        if flag.is_empty() || !flag.starts_with(|c: char| c.is_ascii_lowercase()) {
+            out.push_str("--");
+        } else {
+            out.push_str(&match flag {
+                "overwrite" | "resume" => format!("{flag}=True"),
+                "duration" | "max-time" => format!("{}_s", flag.replace('-', "_")),
+                _ => flag.replace('-', "_"),
+            });
+        }
+        rest = &after[len..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// `text` on one line: line breaks become spaces.
@@ -63,4 +82,22 @@ pub fn one_line(text: &str) -> String {
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::python_words;
+
+    #[test]
+    fn flags_become_keyword_arguments() {
+        assert_eq!(
+            python_words("--max-evals must be at least 1; pass --overwrite, or --out"),
+            "max_evals must be at least 1; pass overwrite=True, or out"
+        );
+        assert_eq!(python_words("--duration: 0 -- x"), "duration_s: 0 -- x");
+        assert_eq!(
+            python_words("--max-time --resume"),
+            "max_time_s resume=True"
+        );
+    }
 }

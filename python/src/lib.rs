@@ -18,11 +18,14 @@ pub mod core_fns;
 pub mod detached;
 pub mod errors;
 pub mod json_value;
+pub mod methods;
+pub mod pictures;
 pub mod py_method;
 pub mod read_file;
 pub mod ron_value;
 pub mod run;
 pub mod scenario;
+pub mod studies;
 pub mod sweep;
 
 /// The native module `usar._usar`.
@@ -35,6 +38,10 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ScenarioWarning", py.get_type::<errors::ScenarioWarning>())?;
     m.add_function(wrap_pyfunction!(run::run_trial, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::run_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(pictures::render, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::run_calibration, m)?)?;
+    m.add_function(wrap_pyfunction!(studies::run_multiverse_py, m)?)?;
+    m.add_function(wrap_pyfunction!(pictures::replay, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
     m.add("METHOD_NAMES", rne_core::grouping::METHOD_NAMES.to_vec())?;

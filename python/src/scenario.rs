@@ -54,6 +54,16 @@ impl Scenario {
         &self.path
     }
 
+    /// Its spec (the source with every `set` applied), unvalidated as a calibration takes it.
+    pub fn spec(&self) -> &ScenarioSpec {
+        &self.spec
+    }
+
+    /// Its file's path as errors name it (`<string>` for one made from text).
+    pub fn origin_text(&self) -> &str {
+        &self.origin
+    }
+
     fn from_text(text: String, origin: String, path: PathBuf) -> PyResult<Self> {
         let spec = sc::parse_spec(&text, &origin).map_err(value_error)?;
         let scenario = sc::validate_in_source(&spec, &text, &origin).map_err(value_error)?;

@@ -3,93 +3,27 @@
 //! `usar sweep` writes (`write_outputs`). Returns the bytes of `trials_long.csv`, which the
 //! Python side reads into a pandas DataFrame.
 
-use std::cell::Cell;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
-use rne_core::grouping::{GroupingMethod, METHOD_NAMES};
 use usar_sim::mission::TrialResult;
 
 use experiments::analysis::Analysis;
 use experiments::calibration::ReportOptions;
-use experiments::claims::{Claim, Claims};
 use experiments::csv_tables::trials_long_csv;
 use experiments::grid::Grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
-use experiments::sweep::{
-    Failure, MethodFactory, SweepConfig, TrialObserverFactory, run_in_memory,
-};
+use experiments::sweep::{Failure, SweepConfig, run_in_memory};
 
 use crate::detached::run_detached;
 use crate::errors::{TrialError, anyhow_value_error, sweep_value_error, value_error};
-use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};
+use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
+use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
-
-/// The Python methods of a sweep by name.
-type PyMethods = HashMap<String, Arc<Py<PyAny>>>;
-
-/// The sweep's methods: names for `SweepConfig::methods` and the Python ones by name.
-fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)> {
-    let mut names = Vec::new();
-    let mut python = PyMethods::new();
-    for m in methods {
-        match m {
-            MethodArg::Name(n) => names.push(n),
-            MethodArg::Python((n, adapter)) => {
-                let lower = n.trim().to_ascii_lowercase().replace('-', "_");
-                if METHOD_NAMES.contains(&lower.as_str()) {
-                    return Err(PyValueError::new_err(format!(
-                        "methods: a Python method may not be named {n:?}, a built-in's name"
-                    )));
-                }
-                if python.insert(n.clone(), Arc::new(adapter)).is_some() {
-                    return Err(PyValueError::new_err(format!(
-                        "methods: two Python methods are named {n:?}"
-                    )));
-                }
-                names.push(n);
-            }
-        }
-    }
-    Ok((names, python))
-}
-
-/// The factory: Python methods by name (`kinds`: the scenario's kind names, for their
-/// errors), the built-ins otherwise.
-fn factory(python: &PyMethods, first_error: &FirstError, kinds: Vec<String>) -> MethodFactory {
-    let (python, first_error) = (python.clone(), first_error.clone());
-    let kind_names = Arc::new(kinds);
-    MethodFactory::new(move |name, model, ctx| match python.get(name) {
-        Some(adapter) => Ok(Box::new(PyMethod {
-            name: name.to_string(),
-            adapter: adapter.clone(),
-            trial: ctx.trial,
-            seed: ctx.seed,
-            round: Cell::new(0),
-            first_error: first_error.clone(),
-            kind_names: kind_names.clone(),
-        }) as Box<dyn GroupingMethod>),
-        None => MethodFactory::builtin().build(name, model, ctx),
-    })
-}
-
-/// A position tracker for the trials of Python methods (by display name).
-fn tracker(python: &PyMethods) -> TrialObserverFactory {
-    let names: Vec<String> = python.keys().cloned().collect();
-    Arc::new(move |key| {
-        if names.contains(&key.method) {
-            Some(Box::new(PositionTracker) as Box<dyn usar_sim::mission::StepObserver>)
-        } else {
-            clear_positions();
-            None
-        }
-    })
-}
 
 /// The checks of `usar sweep`'s options, in the Python arguments' names.
 fn check_args(trials: u32, threads: Option<usize>, duration_s: Option<f64>) -> PyResult<()> {
@@ -261,38 +195,9 @@ fn report_options(
     )
     .map_err(value_error)?;
     if let Some(list) = claims.filter(|_| file.is_none()) {
-        report.claims = Some(claims_of(list, cfg)?);
+        report.claims = Some(claims_of(list, &cfg.scenario.task_names(), &cfg.methods)?);
     }
     Ok(Some(report))
-}
-
-/// Claims given as Python objects: a list of dicts with a claims file's fields (`id`,
-/// `sentence`, `subject`, `metric`, `direction` `"More"` or `"Less"`, and optionally
-/// `rivals` `"Every"` or `{"Only": [...]}`, `test`, `alpha`, `correction`), checked as a
-/// claims file is.
-///
-/// # Errors
-/// `ValueError` naming the claim and field that is wrong.
-fn claims_of(list: &Bound<'_, PyAny>, cfg: &SweepConfig) -> PyResult<Claims> {
-    let json = crate::json_value::from_python(list)?;
-    let serde_json::Value::Array(items) = json else {
-        return Err(PyValueError::new_err(
-            "claims: expected a claims file's path or a list of claims (dicts)",
-        ));
-    };
-    let claims = items
-        .into_iter()
-        .enumerate()
-        .map(|(i, item)| {
-            serde_json::from_value::<Claim>(item)
-                .map_err(|e| PyValueError::new_err(format!("claims[{i}]: {e}")))
-        })
-        .collect::<PyResult<Vec<Claim>>>()?;
-    let c = Claims::new(claims, "claims").map_err(value_error)?;
-    c.check_tasks(&cfg.scenario.task_names())
-        .map_err(value_error)?;
-    c.check_methods(&cfg.methods).map_err(value_error)?;
-    Ok(c)
 }
 
 /// The sweep's work, off the Python thread: without `report`, the trials in memory; with

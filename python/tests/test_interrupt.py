@@ -42,3 +42,41 @@ def test_sigint_stops_a_sweep_and_keeps_its_journal(tmp_path):
     journal = (out / "journal.jsonl").read_text().splitlines()
     assert 1 <= len(journal) < 200
     assert not (out / "trials.csv").exists()
+
+
+CALIBRATE = f"""
+import signal, sys, usar
+signal.signal(signal.SIGINT, signal.default_int_handler)
+print("started", flush=True)
+args = dict(methods=["rne", "dis"], trials=2, threads=1, duration_s=100, max_evals=int(sys.argv[2]),
+            check_trials=0, out=sys.argv[1], progress=False)
+try:
+    c = usar.calibrate({str(PAPER)!r}, ["mission.pickup_s=0.5..2",
+                       "mission.search_time_budget_s=8..30"], **args)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+    sys.exit(3)
+print("finished", c.ran, c.reused, flush=True)
+"""
+
+
+def test_sigint_stops_a_calibration_and_the_same_call_continues(tmp_path):
+    out = tmp_path / "calibration"
+    child = subprocess.Popen(
+        [sys.executable, "-c", CALIBRATE, str(out), "200"], stdout=subprocess.PIPE, text=True
+    )
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(2.0)
+    child.send_signal(signal.SIGINT)
+    rest, _ = child.communicate(timeout=60)
+    assert child.returncode == 3, rest
+    trace = (out / "trace.jsonl").read_text().splitlines()
+    done = len(trace) - 1
+    assert 1 <= done < 200
+    assert not (out / "calibrated.ron").exists()
+    again = subprocess.run(
+        [sys.executable, "-c", CALIBRATE, str(out), str(done + 1)], capture_output=True,
+        text=True, timeout=120,
+    )
+    assert again.returncode == 0, again.stderr
+    assert again.stdout.splitlines()[-1] == f"finished 1 {done}"

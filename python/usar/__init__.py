@@ -12,9 +12,13 @@ command line: the same scenario and seed give the same results, bit for bit.
 - :func:`sweep`: methods x trials in parallel -> pandas DataFrame (as ``trials_long.csv``);
   :func:`wide` turns it into ``trials.csv``'s wide table; :func:`grid` runs it once per
   cell of a parameter grid (``--vary``).
+- :func:`calibrate`: fit free fields to a targets file -> :class:`Calibration`;
+  :func:`multiverse`: the comparison in every universe of an axes file -> :class:`Multiverse`.
+- :func:`render` (an SVG picture, with a trial's paths) and :func:`replay` (an HTML page
+  that plays a trial).
 - :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
 - :class:`GroupingMethod` or any callable ``group(request) -> list of groups``: a grouping
-  method written in Python, run by :func:`run` and :func:`sweep` once per grouping round.
+  method written in Python, run by :func:`run`, :func:`sweep` and the studies once per grouping round.
 
 Units follow the field names: ``_s`` seconds, ``_m`` metres, ``_pct`` percent points.
 Documentation: docs/python.md in the repository.
@@ -33,9 +37,12 @@ from ._grouping import (
 )
 from ._results import Record, TrialResult
 from ._api import grid, read_trials_long, run, sweep, trust, wide
+from ._studies import Calibration, Multiverse, calibrate, multiverse, render, replay
 
 __all__ = [
     "METHOD_NAMES",
+    "Calibration",
+    "Multiverse",
     "GroupingError",
     "GroupingMethod",
     "GroupingRequest",
@@ -46,11 +53,15 @@ __all__ = [
     "Task",
     "TrialError",
     "TrialResult",
+    "calibrate",
     "dis",
     "grid",
     "eng",
     "hp_dis",
+    "multiverse",
     "read_trials_long",
+    "render",
+    "replay",
     "rne",
     "run",
     "sweep",

@@ -88,8 +88,10 @@ def run(
     return TrialResult(json.loads(_usar.run_trial(s, arg, trial, _seconds(duration_s), seed)))
 
 
-def _progress(progress: Optional[bool], total: int) -> tuple:
-    """(callback, closer) of a tqdm bar, or (None, no-op)."""
+def _progress(
+    progress: Optional[bool], total: int, unit: str = "trial", desc: str = "sweep"
+) -> tuple:
+    """(callback, closer) of a tqdm bar over ``total`` ``unit``\ s, or (None, no-op)."""
     if progress is None:
         progress = sys.stderr.isatty() or "ipykernel" in sys.modules
     if not progress:
@@ -98,10 +100,10 @@ def _progress(progress: Optional[bool], total: int) -> tuple:
         from tqdm.auto import tqdm
     except ImportError:
         return None, lambda: None
-    bar = tqdm(total=total, unit="trial", desc="sweep")
+    bar = tqdm(total=total, unit=unit, desc=desc)
 
     def update(done: int, total: int) -> None:
-        if total != bar.total:  # a grid's trials: every cell's
+        if total != bar.total:  # a grid's trials (every cell's), a resumed study
             bar.total = total
             bar.refresh()
         if done > bar.n:

@@ -1,6 +1,6 @@
 """Type stubs of the native module ``usar._usar`` (Rust, PyO3). Use the ``usar`` package:
-``usar.Scenario`` and the exceptions are these; ``usar.run`` and ``usar.sweep`` wrap the
-functions below."""
+``usar.Scenario`` and the exceptions are these; ``usar.run``, ``usar.sweep``, ``usar.calibrate``,
+``usar.multiverse``, ``usar.render`` and ``usar.replay`` wrap the functions below."""
 
 from os import PathLike
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
@@ -116,6 +116,41 @@ def run_sweep(
 ) -> List[Tuple[List[str], bytes]]:
     """A sweep or, with ``vary``, a grid; returns per cell the varied fields' values and the
     bytes of its ``trials_long.csv``. Use ``usar.sweep`` or ``usar.grid``."""
+
+def run_calibration(
+    scenario: Scenario, free: List[str], out: str, targets: Optional[str],
+    methods: Sequence[MethodArg], trials: int, seed: Optional[int], duration_s: Optional[float],
+    digits: int, max_evals: int, max_time_s: Optional[float], threads: Optional[int],
+    check_seed: Optional[int], check_trials: int, optimizer: str, start_mid: bool,
+    overwrite: bool, report_only: List[str], require: List[str], command: str,
+    progress: Optional[Callable[[int, int], None]],
+) -> str:
+    """A calibration into ``out``; returns a JSON text of its outcome. Use
+    ``usar.calibrate``."""
+
+def run_multiverse_py(
+    scenario: Scenario, axes: str, targets: str, free: List[str], out: str,
+    methods: Sequence[MethodArg], claims: Optional[Union[str, Sequence[Dict[str, Any]]]],
+    near_loss: Optional[float], report_only: List[str], trials: int, seed: Optional[int],
+    duration_s: Optional[float], calibration_trials: int, calibration_seed: Optional[int],
+    max_evals: int, sample: Optional[int], sample_seed: int, threads: Optional[int],
+    overwrite: bool, progress: Optional[Callable[[int, int], None]],
+) -> str:
+    """A multiverse into ``out``; returns a JSON text of its outcome. Use
+    ``usar.multiverse``."""
+
+def render(
+    scenario: Scenario, out: str, method: Optional[MethodArg] = None, trial: int = 0,
+    duration_s: Optional[float] = None, seed: Optional[int] = None,
+) -> int:
+    """Writes ``usar render``'s SVG; returns samples per robot. Use ``usar.render``."""
+
+def replay(
+    scenario: Scenario, out: str, method: MethodArg, trial: int = 0,
+    duration_s: Optional[float] = None, seed: Optional[int] = None, hz: Optional[float] = None,
+) -> Tuple[str, int]:
+    """Writes ``usar replay``'s page; returns the trial's JSON and the page's bytes. Use
+    ``usar.replay``."""
 
 def trust(weights: List[float], needs_a: List[float], needs_b: List[float]) -> float:
     """Trust of A in B, nats (paper Eq. 7). Use ``usar.trust``."""

@@ -189,6 +189,22 @@ pub fn paper_targets() -> &'static Targets {
     })
 }
 
+/// The targets of the file at `path`, or, without one, the paper's eighteen as `usar
+/// calibrate` uses them by default (named `scenarios/paper-targets.ron (built in)` in the
+/// outputs).
+///
+/// # Errors
+/// A targets file that cannot be read or parsed ([`Targets::load`]).
+pub fn targets_or_paper(path: Option<&Path>) -> Result<Targets, TargetsError> {
+    match path {
+        Some(p) => Targets::load(p),
+        None => Targets::parse(
+            PAPER_TARGETS_RON,
+            &format!("{PAPER_TARGETS_ORIGIN} (built in)"),
+        ),
+    }
+}
+
 /// Whether a scenario with these task names has the statistics: every metric of
 /// [`paper_targets`] exists for it (tasks named `easy` and `hard`; without them every
 /// statistic is NaN and the reports say so in one sentence).

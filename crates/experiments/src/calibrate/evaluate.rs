@@ -253,7 +253,10 @@ impl<'a> Evaluator<'a> {
                 })
             })
             .collect();
-        let hooks = SweepHooks::default();
+        let hooks = SweepHooks {
+            trial_observer: self.setup.hooks.trial_observer.clone(),
+            ..SweepHooks::default()
+        };
         let runner = Runner {
             factory: &self.setup.method_factory,
             hooks: &hooks,

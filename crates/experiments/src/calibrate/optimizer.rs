@@ -61,6 +61,9 @@ pub enum StopReason {
     Converged,
     /// [`STALL_LIMIT`] points in a row brought nothing new.
     Stalled,
+    /// The caller's stop flag was set ([`crate::data::hooks::CalibrationHooks::stop`]); a
+    /// calibration so stopped writes no outputs.
+    Interrupted,
     /// CMA-ES stopped by its own criteria (its step size or its recent losses too small to
     /// go on; `--optimizer cma-es`).
     Settled,
@@ -74,6 +77,7 @@ impl fmt::Display for StopReason {
             StopReason::MaxTime => "the time budget (--max-time) is spent",
             StopReason::Converged => "the simplex is flat (every vertex has the same loss)",
             StopReason::Stalled => "the search stalled (no new point in a long run)",
+            StopReason::Interrupted => "stopped by the caller (its stop flag)",
             StopReason::Settled => {
                 "CMA-ES settled (its step size or its recent losses too small to go on)"
             }

@@ -20,6 +20,7 @@ use super::searcher::{Searcher, key};
 use super::setup::{CalibrationSetup, Checked};
 use super::trace::{TRACE_FORMAT, Trace, TraceHeader, header_diff, read_trace};
 use crate::atomic::{remove_named, remove_stale_temps};
+use crate::data::hooks::Stopped;
 use crate::data::owner::{RunKind, claim};
 use crate::fingerprint::scenario_hash;
 use crate::journal::{holds_no_line, something_at};
@@ -89,6 +90,9 @@ pub fn calibrate(
         })
         .collect();
     let search = search(setup, &evaluator, trace, recorded, &starts, &progress, t0)?;
+    if search.stop == StopReason::Interrupted || setup.hooks.stopped() {
+        return Err(Stopped.into());
+    }
     let evaluations = search.sequence;
     let best = best_index(&evaluations).context("no evaluation ran")?;
     let (best_spec, best_scenario) = evaluator
@@ -157,6 +161,7 @@ fn search(
         trace,
         max_evals: setup.max_evals,
         deadline: setup.max_time.map(|d| t0 + d),
+        stop: setup.hooks.stop.clone(),
         display: Display::new(progress, setup.max_evals),
         ran: 0,
         reused: 0,

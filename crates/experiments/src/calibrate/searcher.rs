@@ -34,6 +34,8 @@ pub(crate) struct Searcher<'a> {
     pub(crate) max_evals: usize,
     /// No new evaluation starts after this (the first always runs).
     pub(crate) deadline: Option<Instant>,
+    /// No new evaluation starts once this is set ([`crate::data::hooks::CalibrationHooks`]).
+    pub(crate) stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     pub(crate) display: Display,
     /// Evaluations run now, and taken from the trace.
     pub(crate) ran: usize,
@@ -77,6 +79,9 @@ impl Objective for Searcher<'_> {
                 (e, false)
             }
             None => {
+                if crate::data::hooks::is_set(self.stop.as_ref()) {
+                    return Err(StopReason::Interrupted);
+                }
                 if index > 0 && self.deadline.is_some_and(|d| Instant::now() >= d) {
                     return Err(StopReason::MaxTime);
                 }

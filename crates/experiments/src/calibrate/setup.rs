@@ -8,6 +8,7 @@ use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use super::free::{FreeError, FreeField, check_distinct};
 use super::optimizer::Optimizer;
 use super::targets::{Targets, TargetsError};
+use crate::data::hooks::CalibrationHooks;
 use crate::data::limits::{MAX_SWEEP_TRIALS, max_threads};
 use crate::method_factory::{MethodFactory, canonical_method, trust_model};
 
@@ -91,6 +92,9 @@ pub struct CalibrationSetup {
     pub command: String,
     /// The time stamp of the outputs (default `None`: the system clock, UTC, to the second).
     pub date: Option<String>,
+    /// Extension points: a step observer per trial, a stop flag (default none). Not part of
+    /// the calibration's identity.
+    pub hooks: CalibrationHooks,
 }
 
 impl CalibrationSetup {
@@ -130,6 +134,7 @@ impl CalibrationSetup {
             start_mid: false,
             optimizer: Optimizer::NelderMead,
             date: None,
+            hooks: CalibrationHooks::default(),
             base,
         }
     }

@@ -62,3 +62,45 @@ impl fmt::Debug for SweepHooks {
             .finish()
     }
 }
+
+/// Extension points of a calibration ([`crate::calibrate::CalibrationSetup::hooks`]); none by
+/// default.
+#[derive(Clone, Default)]
+pub struct CalibrationHooks {
+    /// Makes a step observer for each trial of each evaluation (and of the check on unseen
+    /// trials), as [`SweepHooks::trial_observer`] does for a sweep's. The Python package uses
+    /// it to show a Python grouping method the robots' positions.
+    pub trial_observer: Option<TrialObserverFactory>,
+    /// Set to `true` to stop (e.g. on Ctrl-C in the Python package): the evaluation running
+    /// ends and is kept in the trace, no new one starts, and the calibration returns
+    /// [`Stopped`] without writing its outputs (running it again continues). Default `None`.
+    pub stop: Option<Arc<AtomicBool>>,
+}
+
+impl CalibrationHooks {
+    /// Whether [`CalibrationHooks::stop`] is set.
+    pub fn stopped(&self) -> bool {
+        is_set(self.stop.as_ref())
+    }
+}
+
+impl fmt::Debug for CalibrationHooks {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("CalibrationHooks")
+            .field("trial_observer", &self.trial_observer.is_some())
+            .field("stop", &self.stop)
+            .finish()
+    }
+}
+
+/// Whether a stop flag is given and set.
+pub fn is_set(stop: Option<&Arc<AtomicBool>>) -> bool {
+    stop.is_some_and(|s| s.load(std::sync::atomic::Ordering::SeqCst))
+}
+
+/// A calibration or multiverse stopped by its stop flag before its end. Its finished work is
+/// kept (the calibration's trace, the universes' records and journals): running it again
+/// with the same parameters continues.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("stopped before the end; its finished work is kept: run it again to continue")]
+pub struct Stopped;

@@ -5,7 +5,7 @@
 //! extension points, [`hooks`], and its shard, [`shard_split`], [`shard_folders`] and
 //! [`sweep_plan`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
 //! [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
-//! [`out_dir`], [`figure_list`], [`trial_length`] and [`software`]
+//! [`out_dir`], [`figure_list`], [`trial_length`], [`software`] and [`source_date`]
 //! name and describe what it writes. The modules above (run, design, analyse, write) build,
 //! run, judge and write this data.
 
@@ -21,5 +21,6 @@ pub mod owner;
 pub mod shard_folders;
 pub mod shard_split;
 pub mod software;
+pub mod source_date;
 pub mod sweep_plan;
 pub mod trial_length;

@@ -16,6 +16,7 @@ use super::record::{RecordRead, Status, UniverseRecord};
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe_run::{UniverseRun, universe_dir};
 use crate::atomic::remove_stale_temps;
+use crate::data::hooks::Stopped;
 use crate::data::owner::{RunKind, claim};
 use crate::lock::OutputLock;
 use crate::shard::shard_dir;
@@ -139,6 +140,9 @@ fn run_universes(
     let mut records = Vec::with_capacity(own.len());
     let mut ran = 0;
     for &j in &own {
+        if setup.hooks.stopped() {
+            return Err(Stopped.into());
+        }
         let u = &checked.universes[j];
         let id = u.id(checked.factorial);
         match UniverseRecord::read(&universe_dir(dir, &id), &sum) {

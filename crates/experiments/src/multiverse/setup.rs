@@ -4,6 +4,7 @@
 use std::fmt;
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use usar_sim::scenario::{Scenario, ScenarioSpec};
 
@@ -16,6 +17,7 @@ use super::validate::check_axes;
 use crate::calibrate::setup::DEFAULT_DIGITS;
 use crate::calibrate::{CalibrationSetup, EvaluationHook, FreeField, SetupError, Targets};
 use crate::claims::{Claims, ClaimsError};
+use crate::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
 use crate::method_factory::MethodFactory;
 use crate::shard::Shard;
 use crate::sweep::{SweepHooks, check_sweep_size};
@@ -43,6 +45,21 @@ pub struct MultiverseHooks {
     pub sweep: SweepHooks,
     /// Called after each universe's record is written.
     pub universe_done: Option<UniverseHook>,
+    /// A step observer per calibration trial (the comparison's are `sweep.trial_observer`).
+    pub calibration_trials: Option<TrialObserverFactory>,
+    /// Set to `true` to stop (e.g. on Ctrl-C in the Python package): the calibration
+    /// evaluation or comparison trials running end and are kept (trace, journal), nothing new
+    /// starts, the universe running writes no record, and [`super::run_multiverse`] returns
+    /// [`crate::data::hooks::Stopped`] without writing the top files; running it again
+    /// continues. Default `None`.
+    pub stop: Option<Arc<AtomicBool>>,
+}
+
+impl MultiverseHooks {
+    /// Whether [`MultiverseHooks::stop`] is set.
+    pub fn stopped(&self) -> bool {
+        is_set(self.stop.as_ref())
+    }
 }
 
 impl fmt::Debug for MultiverseHooks {
@@ -51,6 +68,8 @@ impl fmt::Debug for MultiverseHooks {
             .field("calibration", &self.calibration.is_some())
             .field("sweep", &self.sweep)
             .field("universe_done", &self.universe_done.is_some())
+            .field("calibration_trials", &self.calibration_trials.is_some())
+            .field("stop", &self.stop)
             .finish()
     }
 }
@@ -193,6 +212,10 @@ impl MultiverseSetup {
             overwrite: false,
             command,
             date: self.date.clone(),
+            hooks: CalibrationHooks {
+                trial_observer: self.hooks.calibration_trials.clone(),
+                stop: self.hooks.stop.clone(),
+            },
             ..CalibrationSetup::new(spec, origin, targets, self.free.clone())
         }
     }

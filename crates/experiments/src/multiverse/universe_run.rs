@@ -29,6 +29,7 @@ use super::universe::Universe;
 use crate::analysis::{Analysis, CellAnalysis, ReportOptions};
 use crate::atomic::{remove_stale_temps, write_atomic};
 use crate::calibrate::{CalibrationOutcome, Progress, Target, Targets, calibrate};
+use crate::data::hooks::{Stopped, SweepHooks};
 use crate::output::write_outputs;
 use crate::spec_ron::spec_to_ron;
 use crate::sweep::{SweepConfig, SweepOutcome, run_sweep};
@@ -65,8 +66,10 @@ impl UniverseRun<'_> {
     /// Runs universe `u` (or continues it) and writes its record.
     ///
     /// # Errors
-    /// Only an I/O error writing the universe's own files (its folder, `scenario.ron`,
-    /// `universe.json`); everything else is in the record.
+    /// An I/O error writing the universe's own files (its folder, `scenario.ron`,
+    /// `universe.json`), or [`Stopped`] when the stop flag was set while it ran (no record is
+    /// written: its calibration's trace and its comparison's journal keep what finished);
+    /// everything else is in the record.
     pub fn run(&self, u: &Universe) -> Result<UniverseRecord> {
         let id = u.id(self.plan.factorial());
         let dir = universe_dir(self.root, &id);
@@ -98,6 +101,9 @@ impl UniverseRun<'_> {
             (Ok(spec), Ok(targets)) => {
                 self.calibrate_and_compare(spec, &targets, &dir, &mut record);
             }
+        }
+        if self.setup.hooks.stopped() {
+            return Err(Stopped.into());
         }
         record.write(&dir, self.identity_sum)?;
         Ok(record)
@@ -182,7 +188,10 @@ impl UniverseRun<'_> {
             threads: self.setup.threads,
             out_dir: dir.join(COMPARISON_DIR),
             progress: false,
-            hooks: self.setup.hooks.sweep.clone(),
+            hooks: SweepHooks {
+                stop: self.setup.hooks.stop.clone(),
+                ..self.setup.hooks.sweep.clone()
+            },
             ..SweepConfig::new(calibrated.best_scenario.clone(), dir)
         };
         let report = ReportOptions {

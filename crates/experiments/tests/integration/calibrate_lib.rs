@@ -215,3 +215,57 @@ fn a_larger_budget_continues_the_same_search() {
     let csv = |d: &Path| std::fs::read(d.join("trace.csv")).unwrap();
     assert!(csv(a.path()) == csv(b.path()));
 }
+
+/// The stop flag ends a calibration after the evaluation running: no outputs, the trace keeps
+/// what ran, and running it again gives the files of an uninterrupted run. The trial observer
+/// sees every trial of every evaluation.
+#[test]
+fn a_stopped_calibration_writes_nothing_and_continues() {
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    let free = [
+        "mission.pickup_s=0.5..2",
+        "mission.search_time_budget_s=8..30",
+    ];
+    let stop = Arc::new(AtomicBool::new(false));
+    let observed = Arc::new(AtomicUsize::new(0));
+    let (flag, count) = (stop.clone(), observed.clone());
+    let mut s = setup(&free, targets(Some(300.0)), 4);
+    s.hooks.stop = Some(stop.clone());
+    s.hooks.trial_observer = Some(Arc::new(move |_| {
+        count.fetch_add(1, Ordering::SeqCst);
+        None
+    }));
+    let progress = Progress {
+        on_evaluated: Some(Arc::new(move |_, n| {
+            if n == 2 {
+                flag.store(true, Ordering::SeqCst);
+            }
+        })),
+        ..Progress::off()
+    };
+    let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let e = calibrate(&s, a.path(), progress).unwrap_err();
+    assert!(
+        e.downcast_ref::<experiments::data::hooks::Stopped>()
+            .is_some(),
+        "{e:#}"
+    );
+    assert_eq!(observed.load(Ordering::SeqCst), 2);
+    let trace = std::fs::read_to_string(a.path().join("trace.jsonl")).unwrap();
+    assert_eq!(trace.lines().count(), 1 + 2);
+    assert!(!a.path().join("calibrated.ron").exists());
+    stop.store(false, Ordering::SeqCst);
+    let resumed = calibrate(&s, a.path(), Progress::off()).unwrap();
+    assert_eq!((resumed.ran, resumed.reused), (2, 2));
+    let fresh = calibrate(
+        &setup(&free, targets(Some(300.0)), 4),
+        b.path(),
+        Progress::off(),
+    )
+    .unwrap();
+    for f in ["trace.csv", "calibrated.ron"] {
+        let read = |d: &Path| std::fs::read(d.join(f)).unwrap();
+        assert!(read(a.path()) == read(b.path()), "{f} differs");
+    }
+    assert_eq!(fresh.ran, 4);
+}

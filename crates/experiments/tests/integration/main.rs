@@ -12,6 +12,7 @@ mod claims_files;
 mod common;
 mod json_schema;
 mod multiverse_cli;
+mod multiverse_lib;
 mod output_owners;
 mod output_paths;
 mod render_cli;

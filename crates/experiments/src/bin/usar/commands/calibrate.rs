@@ -3,7 +3,7 @@
 
 use std::io::Write;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use std::sync::Arc;
 
@@ -21,19 +21,17 @@ use experiments::calibrate::setup::{
     DEFAULT_CHECK_TRIALS, DEFAULT_DIGITS, DEFAULT_MAX_EVALS, DEFAULT_TRIALS, default_check_seed,
 };
 
-use experiments::calibrate::{
-    CalibrationSetup, Progress, Targets, calibrate, parse_free, summary_text,
-};
+use experiments::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, summary_text};
 
-use experiments::calibration::{PAPER_TARGETS_ORIGIN, PAPER_TARGETS_RON};
+use experiments::calibration::targets_or_paper;
 
 use experiments::shard::shell_join;
 
 use experiments::sweep::default_out_dir_of;
 
-use crate::shared::source_date::source_date;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
+use experiments::data::source_date::source_date;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -210,23 +208,12 @@ fn parse_time(text: &str) -> Result<Duration, String> {
     humantime::parse_duration(text).map_err(|e| format!("{e} (write it like 90s, 30m or 2h)"))
 }
 
-/// The targets of `--targets`, or the built-in paper targets.
-fn targets_of(path: Option<&Path>) -> Result<Targets> {
-    Ok(match path {
-        Some(p) => Targets::load(p)?,
-        None => Targets::parse(
-            PAPER_TARGETS_RON,
-            &format!("{PAPER_TARGETS_ORIGIN} (built in)"),
-        )?,
-    })
-}
-
 /// The calibration's setup from the arguments.
 fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
-    let mut targets = targets_of(args.targets.as_deref())?;
+    let mut targets = targets_or_paper(args.targets.as_deref())?;
     targets.set_required(&args.require)?;
     targets.set_report_only(&args.report_only)?;
     let free = parse_free(&args.free)?;

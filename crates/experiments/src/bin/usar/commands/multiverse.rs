@@ -144,7 +144,7 @@ fn stop_hooks(limit: usize) -> MultiverseHooks {
             on_journaled: Some(Arc::new(move |_, _| again())),
             stop: None,
         },
-        universe_done: None,
+        ..MultiverseHooks::default()
     }
 }
 

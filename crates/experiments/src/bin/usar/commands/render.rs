@@ -9,10 +9,7 @@ use clap::Args;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario, path_text};
 
-use experiments::render::{Trace, render_svg};
-
-/// Simulated time between two samples of a robot's path, seconds.
-pub const TRACE_SAMPLE_S: f64 = 0.5;
+use experiments::render::{PathRecorder, Trace, render_svg};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -64,8 +61,8 @@ pub struct RenderArgs {
     pub threads: Option<usize>,
 }
 
-/// Runs one trial of `scenario` in `pool` and returns every robot's path, sampled every
-/// [`TRACE_SAMPLE_S`] of simulated time (the start and the final position included).
+/// Runs one trial of `scenario` in `pool` and returns every robot's path, as
+/// [`PathRecorder`] samples it.
 ///
 /// # Errors
 /// An unknown method name, bad needs weights, a non-positive duration, or a failing trial.
@@ -84,22 +81,10 @@ pub fn trace_trial(
     }
     let mut sim = crate::shared::trial_build::build_trial(builder)?;
     crate::shared::trial_build::warn_if_rounded(duration_s, &sim);
-    let every = ((TRACE_SAMPLE_S / scenario.sim().dt_s.get()).round() as u64).max(1);
-    let sample = |sim: &Simulation, traces: &mut [Trace]| {
-        for (id, t) in traces.iter_mut().enumerate() {
-            t.push(sim.world().robot(id).position);
-        }
-    };
-    let mut traces: Vec<Trace> = vec![Vec::new(); scenario.robots().len()];
-    sample(&sim, &mut traces);
-    let mut observe = |sim: &Simulation| {
-        let (steps, _) = sim.progress();
-        if steps.is_multiple_of(every) || sim.is_finished() {
-            sample(sim, &mut traces);
-        }
-    };
-    pool.install(|| sim.run_observed(&mut observe))
+    let mut recorder = PathRecorder::new();
+    pool.install(|| sim.run_observed(&mut recorder))
         .with_context(|| format!("trial {trial}"))?;
+    let traces = recorder.into_traces();
     Ok(traces)
 }
 

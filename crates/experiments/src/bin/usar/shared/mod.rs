@@ -1,11 +1,10 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
-//! sweep and of a multiverse, building a trial, the scenario warnings, the outputs' date,
+//! sweep and of a multiverse, building a trial, the scenario warnings,
 //! the per-round yields' file and the hidden test hooks.
 
 pub mod multiverse_spec;
 pub mod rounds_csv;
 pub mod scenario_warnings;
-pub mod source_date;
 pub mod sweep_spec;
 pub mod test_hooks;
 pub mod trial_build;

@@ -18,7 +18,7 @@ use experiments::multiverse::{Axes, MultiverseSetup, Sample};
 use experiments::shard::Shard;
 use experiments::sweep::default_out_dir_of;
 
-use crate::shared::source_date::source_date;
+use experiments::data::source_date::source_date;
 
 /// The arguments of `usar multiverse` that decide what it runs.
 #[derive(Debug, Clone, Args)]

@@ -1,0 +1,110 @@
+//! The grouping methods and claims a run is given from Python: built-in names beside Python
+//! methods (their factory and the position tracker their trials need), and claims as a list
+//! of dicts. Shared by `usar.sweep`, `usar.grid`, `usar.calibrate` and `usar.multiverse`.
+
+use std::cell::Cell;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use rne_core::grouping::{GroupingMethod, METHOD_NAMES};
+
+use experiments::claims::{Claim, Claims};
+use experiments::sweep::{MethodFactory, TrialObserverFactory};
+
+use crate::errors::value_error;
+use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};
+
+/// The Python methods of a sweep by name.
+pub type PyMethods = HashMap<String, Arc<Py<PyAny>>>;
+
+/// The sweep's methods: names for `SweepConfig::methods` and the Python ones by name.
+pub fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)> {
+    let mut names = Vec::new();
+    let mut python = PyMethods::new();
+    for m in methods {
+        match m {
+            MethodArg::Name(n) => names.push(n),
+            MethodArg::Python((n, adapter)) => {
+                let lower = n.trim().to_ascii_lowercase().replace('-', "_");
+                if METHOD_NAMES.contains(&lower.as_str()) {
+                    return Err(PyValueError::new_err(format!(
+                        "methods: a Python method may not be named {n:?}, a built-in's name"
+                    )));
+                }
+                if python.insert(n.clone(), Arc::new(adapter)).is_some() {
+                    return Err(PyValueError::new_err(format!(
+                        "methods: two Python methods are named {n:?}"
+                    )));
+                }
+                names.push(n);
+            }
+        }
+    }
+    Ok((names, python))
+}
+
+/// The factory: Python methods by name (`kinds`: the scenario's kind names, for their
+/// errors), the built-ins otherwise.
+pub fn factory(python: &PyMethods, first_error: &FirstError, kinds: Vec<String>) -> MethodFactory {
+    let (python, first_error) = (python.clone(), first_error.clone());
+    let kind_names = Arc::new(kinds);
+    MethodFactory::new(move |name, model, ctx| match python.get(name) {
+        Some(adapter) => Ok(Box::new(PyMethod {
+            name: name.to_string(),
+            adapter: adapter.clone(),
+            trial: ctx.trial,
+            seed: ctx.seed,
+            round: Cell::new(0),
+            first_error: first_error.clone(),
+            kind_names: kind_names.clone(),
+        }) as Box<dyn GroupingMethod>),
+        None => MethodFactory::builtin().build(name, model, ctx),
+    })
+}
+
+/// A position tracker for the trials of Python methods (by display name).
+pub fn tracker(python: &PyMethods) -> TrialObserverFactory {
+    let names: Vec<String> = python.keys().cloned().collect();
+    Arc::new(move |key| {
+        if names.contains(&key.method) {
+            Some(Box::new(PositionTracker) as Box<dyn usar_sim::mission::StepObserver>)
+        } else {
+            clear_positions();
+            None
+        }
+    })
+}
+
+/// Claims given as Python objects: a list of dicts with a claims file's fields (`id`,
+/// `sentence`, `subject`, `metric`, `direction` `"More"` or `"Less"`, and optionally
+/// `rivals` `"Every"` or `{"Only": [...]}`, `test`, `alpha`, `correction`), checked as a
+/// claims file is, against the scenario's `tasks` and the run's `methods`.
+///
+/// # Errors
+/// `ValueError` naming the claim and field that is wrong.
+pub fn claims_of(
+    list: &Bound<'_, PyAny>,
+    tasks: &[String],
+    methods: &[String],
+) -> PyResult<Claims> {
+    let json = crate::json_value::from_python(list)?;
+    let serde_json::Value::Array(items) = json else {
+        return Err(PyValueError::new_err(
+            "claims: expected a claims file's path or a list of claims (dicts)",
+        ));
+    };
+    let claims = items
+        .into_iter()
+        .enumerate()
+        .map(|(i, item)| {
+            serde_json::from_value::<Claim>(item)
+                .map_err(|e| PyValueError::new_err(format!("claims[{i}]: {e}")))
+        })
+        .collect::<PyResult<Vec<Claim>>>()?;
+    let c = Claims::new(claims, "claims").map_err(value_error)?;
+    c.check_tasks(tasks).map_err(value_error)?;
+    c.check_methods(methods).map_err(value_error)?;
+    Ok(c)
+}
