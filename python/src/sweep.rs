@@ -14,7 +14,7 @@ use usar_sim::mission::TrialResult;
 use experiments::analysis::Analysis;
 use experiments::calibration::ReportOptions;
 use experiments::csv_tables::trials_long_csv;
-use experiments::grid::Grid;
+use experiments::grid::build_grid;
 use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
 use experiments::sweep::{Failure, SweepConfig, run_in_memory};
@@ -109,7 +109,7 @@ pub fn run_sweep(
         ..SweepConfig::new(s, scenario.path())
     };
     if !vary.is_empty() {
-        let grid = Grid::build(cfg.scenario.spec(), &vary).map_err(|e| anyhow_value_error(&e))?;
+        let grid = build_grid(cfg.scenario.spec(), &vary).map_err(|e| anyhow_value_error(&e))?;
         cfg.grid = Some(grid);
     }
     add_hooks(&mut cfg, &python, &stop, &done);

@@ -45,65 +45,63 @@ fn count_text(n: usize) -> String {
     }
 }
 
-impl Grid {
-    /// Parses the `--vary` arguments `args` and builds every cell from `base`.
-    ///
-    /// # Errors
-    /// One line naming the `--vary` argument and what is wrong: a malformed argument, a field
-    /// given twice (or two overlapping fields, such as `zones[*].r` and `zones[2].r`), a path
-    /// that names nothing (`--vary mission.hp_rate=1: no field "hp_rate" in mission (fields:
-    /// duration_s, ...)`), a value of the wrong type, two values giving the same scenario, or
-    /// a cell that breaks a rule (`--vary mission.duration_s=-5: mission.duration_s: expected
-    /// a finite number > 0, found -5`; a rule broken only by a combination names every value
-    /// of the cell), or more cells than [`MAX_SWEEP_TRIALS`] (checked before any cell is made).
-    pub fn build(base: &ScenarioSpec, args: &[String]) -> Result<Self> {
-        let varies = parse_varies(args)?;
-        check_distinct(&varies)?;
-        let n_cells = cells_of(&varies);
-        if n_cells > MAX_SWEEP_TRIALS {
-            bail!(
-                "the grid's {} make {} cells, more than the limit of {MAX_SWEEP_TRIALS} trials \
-                 per sweep",
-                shape_text(&varies),
-                count_text(n_cells)
-            );
-        }
-        let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
-        for (v, arg) in varies.iter().zip(args) {
-            check_values(base, &base_json, v, arg)?;
-        }
-        let labels = names::field_labels(&varies.iter().map(|v| &v.path).collect::<Vec<_>>());
-        let mut cells = Vec::with_capacity(n_cells);
-        for index in 0..n_cells {
-            let overrides = cell_overrides(&varies, index);
-            let origin = format!("cell {index}");
-            let spec = apply_overrides(base, &overrides)
-                .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i].brief()))?;
-            let scenario = spec
-                .validate(&origin)
-                .map_err(|e| anyhow!(rule_error("--vary", &overrides, &e)))?;
-            let values: Vec<&str> = overrides.iter().map(|o| o.value.text.as_str()).collect();
-            cells.push(GridCell {
-                index,
-                dir: names::cell_dir(index, n_cells, &labels, &values),
-                overrides,
-                spec,
-                scenario,
-            });
-        }
-        check_same_scenarios(&varies, args, &cells)?;
-        Ok(Self { varies, cells })
+/// Parses the `--vary` arguments `args` and builds every cell from `base`.
+///
+/// # Errors
+/// One line naming the `--vary` argument and what is wrong: a malformed argument, a field
+/// given twice (or two overlapping fields, such as `zones[*].r` and `zones[2].r`), a path
+/// that names nothing (`--vary mission.hp_rate=1: no field "hp_rate" in mission (fields:
+/// duration_s, ...)`), a value of the wrong type, two values giving the same scenario, or
+/// a cell that breaks a rule (`--vary mission.duration_s=-5: mission.duration_s: expected
+/// a finite number > 0, found -5`; a rule broken only by a combination names every value
+/// of the cell), or more cells than [`MAX_SWEEP_TRIALS`] (checked before any cell is made).
+pub fn build_grid(base: &ScenarioSpec, args: &[String]) -> Result<Grid> {
+    let varies = parse_varies(args)?;
+    check_distinct(&varies)?;
+    let n_cells = cells_of(&varies);
+    if n_cells > MAX_SWEEP_TRIALS {
+        bail!(
+            "the grid's {} make {} cells, more than the limit of {MAX_SWEEP_TRIALS} trials \
+             per sweep",
+            shape_text(&varies),
+            count_text(n_cells)
+        );
     }
+    let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
+    for (v, arg) in varies.iter().zip(args) {
+        check_values(base, &base_json, v, arg)?;
+    }
+    let labels = names::field_labels(&varies.iter().map(|v| &v.path).collect::<Vec<_>>());
+    let mut cells = Vec::with_capacity(n_cells);
+    for index in 0..n_cells {
+        let overrides = cell_overrides(&varies, index);
+        let origin = format!("cell {index}");
+        let spec = apply_overrides(base, &overrides)
+            .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i].brief()))?;
+        let scenario = spec
+            .validate(&origin)
+            .map_err(|e| anyhow!(rule_error("--vary", &overrides, &e)))?;
+        let values: Vec<&str> = overrides.iter().map(|o| o.value.text.as_str()).collect();
+        cells.push(GridCell {
+            index,
+            dir: names::cell_dir(index, n_cells, &labels, &values),
+            overrides,
+            spec,
+            scenario,
+        });
+    }
+    check_same_scenarios(&varies, args, &cells)?;
+    Ok(Grid { varies, cells })
+}
 
-    /// How many cells the `--vary` arguments `args` make (the product of their value
-    /// counts; `usize::MAX` when that overflows), without building any: a caller checks a
-    /// sweep's size with it before [`Grid::build`] validates every cell.
-    ///
-    /// # Errors
-    /// As [`Grid::build`] for a malformed argument or none at all.
-    pub fn cell_count(args: &[String]) -> Result<usize> {
-        parse_varies(args).map(|v| cells_of(&v))
-    }
+/// How many cells the `--vary` arguments `args` make (the product of their value
+/// counts; `usize::MAX` when that overflows), without building any: a caller checks a
+/// sweep's size with it before [`build_grid`] validates every cell.
+///
+/// # Errors
+/// As [`build_grid`] for a malformed argument or none at all.
+pub fn cell_count(args: &[String]) -> Result<usize> {
+    parse_varies(args).map(|v| cells_of(&v))
 }
 
 /// The overrides of cell `index`: the first `--vary` varies slowest.
@@ -213,7 +211,7 @@ mod tests {
 
     fn build(args: &[&str]) -> Result<Grid> {
         let base = parse_spec(PAPER, "paper.ron").unwrap();
-        Grid::build(
+        build_grid(
             &base,
             &args.iter().map(|s| s.to_string()).collect::<Vec<_>>(),
         )
@@ -273,7 +271,7 @@ mod tests {
         ];
         let args: Vec<String> = fields.iter().map(|f| format!("{f}{ten}")).collect();
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-        assert_eq!(Grid::cell_count(&args).unwrap(), 10_000_000);
+        assert_eq!(cell_count(&args).unwrap(), 10_000_000);
         assert_eq!(
             err(&refs),
             "the grid's 10 x 10 x 10 x 10 x 10 x 10 x 10 values make 10000000 cells, more \
@@ -281,8 +279,8 @@ mod tests {
         );
         // The count saturates instead of overflowing.
         let many = vec![format!("mission.pickup_s{ten}"); 30];
-        assert_eq!(Grid::cell_count(&many).unwrap(), usize::MAX);
-        assert!(Grid::cell_count(&[]).is_err());
+        assert_eq!(cell_count(&many).unwrap(), usize::MAX);
+        assert!(cell_count(&[]).is_err());
     }
 
     #[test]

@@ -261,8 +261,7 @@ fn plan_and_header(
         );
     };
     let plan = SweepPlan::read(&first.dir)?;
-    let config = plan
-        .config(dir)
+    let config = super::plan_config::plan_config(&plan, dir)
         .with_context(|| path_text(&SweepPlan::path_in(&first.dir)))?;
     let mut header = header_of(&config)?;
     // The shards must share one build, not that of the binary that merges (which runs no

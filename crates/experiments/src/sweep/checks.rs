@@ -5,8 +5,8 @@ use anyhow::{Result, bail};
 use usar_sim::scenario::trial_steps;
 
 use crate::data::config::SweepConfig;
-use crate::data::grid_cells::Grid;
 use crate::data::limits::{check_shard_count, check_sweep_size};
+use crate::grid::build::cell_count;
 use crate::journal::SweepHeader;
 
 /// Refuses a sweep of more than [`MAX_SWEEP_TRIALS`](crate::sweep::MAX_SWEEP_TRIALS) trials (grid cells x methods x trials),
@@ -30,13 +30,13 @@ pub fn check_trial_count(cfg: &SweepConfig) -> Result<()> {
 
 /// Refuses the sweep of `--vary` arguments `vary` x `methods` methods x `trials` trials above
 /// [`MAX_SWEEP_TRIALS`](crate::sweep::MAX_SWEEP_TRIALS) before its grid is built: the cells are counted from the value lists
-/// ([`crate::grid::Grid::cell_count`]), none is made. `usar sweep` and `usar slurm` call it
-/// before [`crate::grid::Grid::build`].
+/// ([`crate::grid::cell_count`]), none is made. `usar sweep` and `usar slurm` call it
+/// before [`crate::grid::build_grid`].
 ///
 /// # Errors
 /// A malformed `--vary` argument, or the counts and the limit when the sweep is above it.
 pub fn check_grid_size(vary: &[String], methods: usize, trials: u32) -> Result<()> {
-    check_sweep_size(Grid::cell_count(vary)?, methods, trials)
+    check_sweep_size(cell_count(vary)?, methods, trials)
 }
 
 /// The sweep's trials in all shards together: grid cells x methods x trials (saturating).

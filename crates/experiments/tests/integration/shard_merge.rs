@@ -8,7 +8,7 @@ use std::collections::HashSet;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use experiments::grid::Grid;
+use experiments::grid::build_grid;
 use experiments::shard::Shard;
 use experiments::sweep::{SweepConfig, header_of, job_list};
 use usar_sim::scenario;
@@ -59,7 +59,7 @@ fn every_split_covers_every_job_exactly_once() {
     let spec = scenario::parse_spec(&std::fs::read_to_string(PAPER).unwrap(), PAPER).unwrap();
     let scenario = scenario::load(PAPER).unwrap();
     // Cells of different trial lengths: the split balances simulated time.
-    let grid = Grid::build(&spec, &["mission.duration_s=30,60,90".to_string()]).unwrap();
+    let grid = build_grid(&spec, &["mission.duration_s=30,60,90".to_string()]).unwrap();
     let cfg = SweepConfig {
         grid: Some(grid),
         methods: vec!["rne".into(), "dis".into(), "eng".into()],

@@ -3,7 +3,10 @@
 //!
 //! A name that a module re-exports (`pub use`, a glob `pub use x::*`, or a plain `use` that a
 //! child reaches through `super::`) is followed to the file that defines it, so a `mod.rs`
-//! facade hides no edge.
+//! facade hides no edge. A second name of the crate (`extern crate self as name;`) reads as
+//! `crate`; a `#[macro_export]` macro is an import of the file that defines it wherever it is
+//! invoked; and [`inherent_impls`] lists each `impl Type { .. }` with the file that defines
+//! `Type`.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -29,37 +32,120 @@ struct Bindings {
     defined: BTreeMap<ModulePath, BTreeSet<String>>,
     used: BTreeMap<ModulePath, BTreeMap<String, ModulePath>>,
     globs: BTreeMap<ModulePath, Vec<ModulePath>>,
+    /// The crate's second names (`extern crate self as name;`).
+    aliases: BTreeSet<String>,
+    /// `#[macro_export]` macros by name: the file that defines each.
+    macro_exports: BTreeMap<String, usize>,
+}
+
+/// What reading every file of a crate gives.
+struct Read {
+    bindings: Bindings,
+    /// Each file's paths into the crate, from the crate root.
+    paths: Vec<(usize, ModulePath)>,
+    /// Each file's single-name macro invocations (`name!(..)`).
+    macro_calls: Vec<(usize, String)>,
+    /// Each inherent `impl`: its file, its module and the self type's path as written.
+    impls: Vec<(usize, ModulePath, Vec<String>)>,
+}
+
+fn read_crate(tree: &ModuleTree) -> Read {
+    let mut bindings = Bindings::default();
+    let (mut paths, mut macro_calls, mut impls) = (Vec::new(), Vec::new(), Vec::new());
+    for (index, file) in tree.files.iter().enumerate() {
+        let mut reader = Reader {
+            tree,
+            file: index,
+            scope: file.module.clone(),
+            bindings: &mut bindings,
+            paths: Vec::new(),
+            macro_calls: Vec::new(),
+            impls: Vec::new(),
+        };
+        reader.visit_file(&file.ast);
+        paths.extend(reader.paths.into_iter().map(|p| (index, p)));
+        macro_calls.extend(reader.macro_calls.into_iter().map(|m| (index, m)));
+        impls.extend(reader.impls);
+    }
+    Read {
+        bindings,
+        paths,
+        macro_calls,
+        impls,
+    }
+}
+
+/// Every inherent `impl` of `tree` whose self type resolves into the crate: the file of the
+/// `impl`, the type's name and the file that defines the type.
+pub fn inherent_impls(tree: &ModuleTree) -> Vec<(usize, String, usize)> {
+    let read = read_crate(tree);
+    let mut out = Vec::new();
+    for (file, scope, segments) in &read.impls {
+        let Some(name) = segments.last() else {
+            continue;
+        };
+        let path = match (
+            segments.len(),
+            read.bindings.used.get(scope).and_then(|u| u.get(name)),
+        ) {
+            (1, Some(target)) => target.clone(),
+            (1, None) => [scope.clone(), segments.clone()].concat(),
+            _ => {
+                let reader_scope = Reader::absolute_in(tree, &read.bindings, scope, segments);
+                let Some(abs) = reader_scope else { continue };
+                abs
+            }
+        };
+        if let Some((module, true)) = resolve(tree, &read.bindings, &path, 0)
+            && let Some(to) = tree.file_of(&module)
+        {
+            out.push((*file, name.clone(), to));
+        }
+    }
+    out
 }
 
 /// Every import between two different files of `tree`, sorted and without repeats.
 pub fn imports(tree: &ModuleTree) -> Vec<Import> {
-    let mut bindings = Bindings::default();
-    let mut raw: Vec<(usize, ModulePath)> = Vec::new();
-    for (index, file) in tree.files.iter().enumerate() {
-        let mut reader = Reader {
-            tree,
-            scope: file.module.clone(),
-            bindings: &mut bindings,
-            paths: Vec::new(),
-        };
-        reader.visit_file(&file.ast);
-        raw.extend(reader.paths.into_iter().map(|p| (index, p)));
-    }
+    let Read {
+        bindings,
+        paths: raw,
+        macro_calls,
+        ..
+    } = read_crate(tree);
     let mut out = BTreeSet::new();
+    for (from, name) in macro_calls {
+        if let Some(&to) = bindings.macro_exports.get(&name)
+            && to != from
+        {
+            out.insert(Import { from, to, name });
+        }
+    }
     for (from, path) in raw {
-        if let Some((module, _)) = resolve(tree, &bindings, &path, 0) {
-            let Some(to) = tree.file_of(&module) else {
-                continue;
-            };
+        if let [name] = path.as_slice()
+            && let Some(&to) = bindings.macro_exports.get(name)
+        {
             if to != from {
-                let name = path
-                    .get(module.len())
-                    .unwrap_or_else(|| path.last().expect("path"));
                 out.insert(Import {
                     from,
                     to,
                     name: name.clone(),
                 });
+            }
+            continue;
+        }
+        if let Some((module, _)) = resolve(tree, &bindings, &path, 0) {
+            let Some(to) = tree.file_of(&module) else {
+                continue;
+            };
+            if to != from {
+                // A glob of the crate root (`use crate::*;`) names no item: `*`.
+                let name = path
+                    .get(module.len())
+                    .or(path.last())
+                    .cloned()
+                    .unwrap_or_else(|| "*".into());
+                out.insert(Import { from, to, name });
             }
         }
     }
@@ -108,20 +194,35 @@ fn resolve(
 /// Walks one file: records its definitions and `use` bindings, and every path into the crate.
 struct Reader<'a> {
     tree: &'a ModuleTree,
+    file: usize,
     scope: ModulePath,
     bindings: &'a mut Bindings,
     paths: Vec<ModulePath>,
+    macro_calls: Vec<String>,
+    impls: Vec<(usize, ModulePath, Vec<String>)>,
 }
 
 impl Reader<'_> {
     /// `segments` as a path from the crate root, if it points into the crate.
     fn absolute(&self, segments: &[String]) -> Option<ModulePath> {
+        Self::absolute_in(self.tree, self.bindings, &self.scope, segments)
+    }
+
+    /// `segments`, written in module `scope`, as a path from the crate root, if it points
+    /// into the crate.
+    fn absolute_in(
+        tree: &ModuleTree,
+        bindings: &Bindings,
+        scope: &[String],
+        segments: &[String],
+    ) -> Option<ModulePath> {
         let first = segments.first()?;
         match first.as_str() {
             "crate" => Some(segments[1..].to_vec()),
-            "self" => Some([self.scope.clone(), segments[1..].to_vec()].concat()),
+            alias if bindings.aliases.contains(alias) => Some(segments[1..].to_vec()),
+            "self" => Some([scope.to_vec(), segments[1..].to_vec()].concat()),
             "super" => {
-                let mut base = self.scope.clone();
+                let mut base = scope.to_vec();
                 let mut rest = segments;
                 while rest.first().is_some_and(|s| s == "super") {
                     base.pop()?;
@@ -130,11 +231,10 @@ impl Reader<'_> {
                 Some([base, rest.to_vec()].concat())
             }
             _ => {
-                let mut child = self.scope.clone();
+                let mut child = scope.to_vec();
                 child.push(first.clone());
-                self.tree
-                    .is_module(&child)
-                    .then(|| [self.scope.clone(), segments.to_vec()].concat())
+                tree.is_module(&child)
+                    .then(|| [scope.to_vec(), segments.to_vec()].concat())
             }
         }
     }
@@ -251,6 +351,29 @@ impl<'ast> Visit<'ast> for Reader<'_> {
             syn::Item::Union(i) => Some(i.ident.to_string()),
             _ => None,
         };
+        if let syn::Item::Macro(m) = item
+            && let Some(ident) = &m.ident
+            && m.attrs.iter().any(|a| a.path().is_ident("macro_export"))
+        {
+            self.bindings
+                .macro_exports
+                .insert(ident.to_string(), self.file);
+        }
+        if let syn::Item::ExternCrate(e) = item
+            && e.ident == "self"
+            && let Some((_, alias)) = &e.rename
+        {
+            self.bindings.aliases.insert(alias.to_string());
+        }
+        if let syn::Item::Impl(i) = item
+            && i.trait_.is_none()
+            && let syn::Type::Path(p) = &*i.self_ty
+            && p.qself.is_none()
+        {
+            let segments = p.path.segments.iter().map(|s| s.ident.to_string());
+            self.impls
+                .push((self.file, self.scope.clone(), segments.collect()));
+        }
         if let Some(name) = name {
             self.define(name);
         }
@@ -284,6 +407,9 @@ impl<'ast> Visit<'ast> for Reader<'_> {
     }
 
     fn visit_macro(&mut self, mac: &'ast syn::Macro) {
+        if let Some(name) = mac.path.get_ident() {
+            self.macro_calls.push(name.to_string());
+        }
         self.macro_tokens(mac.tokens.clone());
         syn::visit::visit_macro(self, mac);
     }

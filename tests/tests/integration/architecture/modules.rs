@@ -69,10 +69,17 @@ impl ModuleTree {
         let index = self.files.len();
         self.modules.insert(module.clone(), index);
         let child_dir = child_dir(&path);
+        let own_dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut children = Vec::new();
-        collect_mods(&ast.items, &module, &child_dir, &mut |m, file| {
-            children.push((m, file));
-        });
+        collect_mods(
+            &ast.items,
+            &module,
+            &child_dir,
+            Some(&own_dir),
+            &mut |m, file| {
+                children.push((m, file));
+            },
+        );
         self.files.push(SourceFile {
             path,
             module: module.clone(),
@@ -102,11 +109,15 @@ fn child_dir(path: &Path) -> PathBuf {
 }
 
 /// Calls `found(module path, Some(file))` for every `mod x;` and `(module path, None)` for
-/// every inline `mod x { .. }` (whose own `mod` items are visited too).
+/// every inline `mod x { .. }` (whose own `mod` items are visited too). `dir` holds the file
+/// modules declared here; a `#[path]` is relative to `own_dir` (the folder of the source file)
+/// outside inline modules and to `dir` inside them, as rustc reads it (the Rust Reference,
+/// "Modules: the path attribute").
 fn collect_mods(
     items: &[syn::Item],
     module: &[String],
     dir: &Path,
+    own_dir: Option<&Path>,
     found: &mut dyn FnMut(ModulePath, Option<PathBuf>),
 ) {
     for item in items {
@@ -117,11 +128,11 @@ fn collect_mods(
         match &m.content {
             Some((_, inner)) => {
                 found(child.clone(), None);
-                collect_mods(inner, &child, &dir.join(&name), found);
+                collect_mods(inner, &child, &dir.join(&name), None, found);
             }
             None => {
                 let file = path_attribute(&m.attrs)
-                    .map(|p| dir.join(p))
+                    .map(|p| own_dir.unwrap_or(dir).join(p))
                     .unwrap_or_else(|| {
                         let flat = dir.join(format!("{name}.rs"));
                         if flat.exists() {

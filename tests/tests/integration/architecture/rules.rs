@@ -45,6 +45,7 @@ pub fn layering_problems(tree: &ModuleTree, layout: &CrateLayout) -> Vec<String>
             ties.join("; ")
         ));
     }
+    problems.extend(module_cycles(tree, &edges, layout.name));
     let mut layer_of = BTreeMap::new();
     for (depth, layer) in layout.layers.iter().enumerate() {
         for module in *layer {
@@ -94,6 +95,74 @@ pub fn layering_problems(tree: &ModuleTree, layout: &CrateLayout) -> Vec<String>
                 ));
             }
         }
+    }
+    problems
+}
+
+/// The cycles between sibling modules (two folders, or a folder and a file, under one parent)
+/// that no file cycle already shows: `a/x.rs` imports `b/y.rs` and `b/z.rs` imports `a/w.rs`.
+fn module_cycles(tree: &ModuleTree, edges: &[Import], name: &str) -> Vec<String> {
+    let mut modules: Vec<Vec<String>> = Vec::new();
+    let mut index = BTreeMap::new();
+    let mut module_edges = Vec::new();
+    let mut why: BTreeMap<(usize, usize), String> = BTreeMap::new();
+    for e in edges {
+        let (a, b) = (&tree.files[e.from].module, &tree.files[e.to].module);
+        let Some(d) = (0..a.len().min(b.len())).find(|&d| a[d] != b[d]) else {
+            continue;
+        };
+        let mut node = |m: &[String]| -> usize {
+            *index.entry(m.to_vec()).or_insert_with(|| {
+                modules.push(m.to_vec());
+                modules.len() - 1
+            })
+        };
+        let (from, to) = (node(&a[..=d]), node(&b[..=d]));
+        why.entry((from, to)).or_insert_with(|| {
+            format!(
+                "{} -> {} ({})",
+                tree.files[e.from].path.display(),
+                tree.files[e.to].path.display(),
+                e.name
+            )
+        });
+        module_edges.push(Import {
+            from,
+            to,
+            name: e.name.clone(),
+        });
+    }
+    let file_cycles = cycles(tree.files.len(), edges);
+    let inside = |file: usize, m: &[String]| tree.files[file].module.starts_with(m);
+    let mut problems = Vec::new();
+    for c in cycles(modules.len(), &module_edges) {
+        let shown = file_cycles.iter().any(|fc| {
+            let touched = c
+                .iter()
+                .filter(|&&m| fc.iter().any(|&f| inside(f, &modules[m])))
+                .count();
+            touched >= 2
+        });
+        if shown {
+            continue;
+        }
+        let names: Vec<String> = c
+            .iter()
+            .map(|&m| format!("`{}`", modules[m].join("::")))
+            .collect();
+        let ties: Vec<&String> = why
+            .iter()
+            .filter(|((a, b), _)| c.contains(a) && c.contains(b))
+            .map(|(_, w)| w)
+            .collect();
+        problems.push(format!(
+            "{name}: module cycle between {}: {}",
+            names.join(", "),
+            ties.iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
     }
     problems
 }

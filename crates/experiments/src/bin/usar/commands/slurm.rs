@@ -188,7 +188,7 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     };
     let out_dir = absolute(&out_dir)?;
     // The sweep must be one `usar sweep` accepts: build it (and its header) now.
-    let cfg = plan.config(&out_dir)?;
+    let cfg = experiments::shard::plan_config::plan_config(&plan, &out_dir)?;
     let header = experiments::sweep::header_of(&cfg)?;
     experiments::sweep::check_config(&cfg, &header)?;
     ReportArgs {

@@ -23,7 +23,7 @@ use crate::shared::test_hooks::test_hooks;
 
 use experiments::console::print_sweep;
 
-use experiments::grid::Grid;
+use experiments::grid::{Grid, build_grid};
 
 use experiments::output::write_outputs;
 
@@ -178,7 +178,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
-    Grid::build(&spec, &args.vary).map(Some)
+    build_grid(&spec, &args.vary).map(Some)
 }
 
 /// The sweep's configuration from the arguments.
