@@ -17,12 +17,28 @@
 //! value with the effect (a linear fit, on the log scale for a `:log` field; chance level
 //! `1 / (n - 1)`). The two-way interaction of the two varying axes with the largest shares
 //! is the share of their joint cells beyond the two main effects, `eta2_ij - eta2_i -
-//! eta2_j`, clamped at 0 (exact for a balanced factorial, approximate for a sample). Total-order indices need a designed sample (Saltelli's) and are
-//! not estimated.
+//! eta2_j`, clamped at 0 (exact for a balanced factorial, approximate for a sample).
+//!
+//! The total-order share of axis `i` (its main effect and every interaction it is part of) is
+//! the expected variance left when every other axis is fixed:
+//!
+//! ```text
+//! T_i = (sum_h sum_{u in h} (y_u - mean_h)^2 / m) / (sum_u (y_u - mean)^2 / n)
+//! ```
+//!
+//! over the groups `h` of admissible universes that agree on every axis but `i` and hold at
+//! least two of them (`m` universes in all): the within-group (Jansen-type) estimator on the
+//! pairs the factorial itself provides, exact (`1 - eta2` of the other axes) for a complete
+//! factorial, clamped to [0, 1]. With no such group it is not estimated. Its chance level is
+//! the mean under no effect, `((m - G) / m) / ((n - 1) / n)` with `G` groups. A total-order
+//! share well above the first-order share says the axis acts through interactions.
+//! Calibrated values have no total-order share (they are not a factorial design).
 //!
 //! # Reference
 //! A. Saltelli et al., *Global Sensitivity Analysis: The Primer*, Wiley 2008, ch. 1 and 4
-//! (first-order indices, their estimation by conditional means); K. Pearson's correlation ratio
+//! (first-order indices, their estimation by conditional means); M. J. W. Jansen, "Analysis
+//! of variance designs for model output", Comput. Phys. Commun. 117 (1999) 35-43 (the
+//! total-order index from pairs that differ in one input); K. Pearson's correlation ratio
 //! (eta squared) and its bias `(k - 1) / (n - 1)` under the null (Kelley 1935).
 
 use super::plan::MultiversePlan;
@@ -40,6 +56,18 @@ pub struct Share {
     pub chance: f64,
 }
 
+/// One axis's total-order share of a claim's effect variance (see the module's estimator).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TotalShare {
+    /// The share of the variance, in [0, 1].
+    pub share: f64,
+    /// Its mean under no effect (chance level), in [0, 1].
+    pub chance: f64,
+    /// The universes it is estimated from: those in a group of at least two that agree on
+    /// every other axis.
+    pub universes: usize,
+}
+
 /// How a claim's effect varies over the admissible universes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Decomposition {
@@ -47,6 +75,9 @@ pub struct Decomposition {
     pub n: usize,
     /// Per axis, in axis order.
     pub axes: Vec<Share>,
+    /// Per axis, in axis order, its total-order share (`None`: no two universes differ in
+    /// that axis alone).
+    pub total: Vec<Option<TotalShare>>,
     /// Per free field, in `--free` order.
     pub free: Vec<Share>,
     /// The two axes with the largest shares (their indices) and their interaction, when at
@@ -132,9 +163,17 @@ pub fn decompose(
             }
         })
         .collect();
+    let others = |a: usize| -> Vec<usize> { (0..id.axes.axes.len()).filter(|&b| b != a).collect() };
+    let total = (0..id.axes.axes.len())
+        .map(|a| {
+            let keys: Vec<Vec<usize>> = rows.iter().map(|(r, _)| key(&others(a), r)).collect();
+            within(&keys, &y, total / n as f64)
+        })
+        .collect();
     let mut d = Decomposition {
         n,
         axes,
+        total,
         free,
         interaction: None,
     };
@@ -184,6 +223,41 @@ fn between(keys: &[Vec<usize>], y: &[f64], mean: f64, total: f64) -> (f64, usize
         })
         .sum();
     ((ss / total).clamp(0.0, 1.0), groups.len())
+}
+
+/// The total-order share from the groups of `keys` with at least two members: their mean
+/// within-group variance over `variance` (the population variance of every `y`).
+fn within(keys: &[Vec<usize>], y: &[f64], variance: f64) -> Option<TotalShare> {
+    let mut groups: Vec<(&Vec<usize>, Vec<f64>)> = Vec::new();
+    for (k, v) in keys.iter().zip(y) {
+        match groups.iter_mut().find(|(g, _)| *g == k) {
+            Some((_, values)) => values.push(*v),
+            None => groups.push((k, vec![*v])),
+        }
+    }
+    let informative: Vec<&Vec<f64>> = groups
+        .iter()
+        .map(|(_, v)| v)
+        .filter(|v| v.len() >= 2)
+        .collect();
+    let m: usize = informative.iter().map(|v| v.len()).sum();
+    if m == 0 || variance <= 0.0 {
+        return None;
+    }
+    let ss: f64 = informative
+        .iter()
+        .map(|v| {
+            let mean = v.iter().sum::<f64>() / v.len() as f64;
+            v.iter().map(|x| (x - mean).powi(2)).sum::<f64>()
+        })
+        .sum();
+    let n = y.len() as f64;
+    let g = informative.len() as f64;
+    Some(TotalShare {
+        share: (ss / m as f64 / variance).clamp(0.0, 1.0),
+        chance: (((m as f64 - g) / m as f64) / ((n - 1.0) / n)).clamp(0.0, 1.0),
+        universes: m,
+    })
 }
 
 /// The squared Pearson correlation of `x` and `y` (0 when either does not vary or `x` has a
@@ -262,6 +336,42 @@ mod tests {
         let (_, _, i) = d.interaction.unwrap();
         let sum = d.axes[0].share + d.axes[1].share + i.share;
         assert!(i.share > 0.05 && (sum - 1.0).abs() < 1e-12, "{i:?} {sum}");
+        // The total-order shares hold the interaction: each axis's main effect plus it.
+        for a in 0..2 {
+            let t = d.total[a].as_ref().unwrap();
+            assert!(
+                (t.share - (d.axes[a].share + i.share)).abs() < 1e-12,
+                "{t:?}"
+            );
+            assert_eq!(t.universes, 6);
+        }
+    }
+
+    #[test]
+    fn total_order_shares_use_universes_that_differ_in_one_axis_only() {
+        // Additive: the total-order share is the main effect's.
+        let d = decompose(&plan(), &records(|a, b| (a + b) as f64), &claim1()).unwrap();
+        assert!((d.total[0].as_ref().unwrap().share - 1.5 / 5.5).abs() < 1e-12);
+        assert!((d.total[1].as_ref().unwrap().share - 4.0 / 5.5).abs() < 1e-12);
+        // Chance for axis a: 3 groups of 2 among 6: ((6 - 3) / 6) / (5 / 6) = 0.6.
+        assert!((d.total[0].as_ref().unwrap().chance - 0.6).abs() < 1e-12);
+        // Keep (0,0), (1,0), (0,1), (0,2): only b = 0 pairs the a's; a = 0 groups the b's.
+        let kept: Vec<_> = records(|a, b| (a + 2 * b) as f64)
+            .into_iter()
+            .filter(|r| r.choices[0] == 0 || r.choices[1] == 0)
+            .collect();
+        let d = decompose(&plan(), &kept, &claim1()).unwrap();
+        let (ta, tb) = (d.total[0].clone().unwrap(), d.total[1].clone().unwrap());
+        assert_eq!((ta.universes, tb.universes), (2, 3));
+        // y: 0, 1, 2, 4 (mean 1.75, variance 2.1875); a's pair 0, 1: 0.25 / 2.1875.
+        assert!((ta.share - 0.25 / 2.1875).abs() < 1e-12, "{ta:?}");
+        // No pair differs in one axis alone: not estimated.
+        let lone: Vec<_> = records(|a, b| (a + b) as f64)
+            .into_iter()
+            .filter(|r| r.choices == [0, 0] || r.choices == [1, 1] || r.choices == [0, 2])
+            .collect();
+        let d = decompose(&plan(), &lone, &claim1()).unwrap();
+        assert!(d.total[0].is_none(), "{:?}", d.total);
     }
 
     #[test]

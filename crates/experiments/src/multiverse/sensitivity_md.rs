@@ -68,9 +68,12 @@ pub fn deciding_choices(r: &mut String, plan: &MultiversePlan, records: &[Univer
          each axis explains (the correlation ratio: the first-order Sobol index estimated from \
          the means per alternative; the ANOVA main-effect share for a whole factorial), each \
          calibrated value explains (its squared correlation with the effect), and the \
-         interaction of the two strongest axes adds. In brackets, the share's chance level, \
-         its mean were the input to have no effect at all: a share near it says nothing. \
-         Estimator and references: `experiments::multiverse::decompose`.\n"
+         interaction of the two strongest axes adds; and each axis's total-order share (its \
+         main effect and every interaction it is part of: the variance left when every other \
+         axis is fixed, from the admissible universes that differ in that axis alone, counted \
+         in the column). In brackets, the share's chance level, its mean were the input to \
+         have no effect at all: a share near it says nothing. Estimators and references: \
+         `experiments::multiverse::decompose`.\n"
     );
     for c in &id.claims {
         let _ = writeln!(r, "### ({}) {}\n", c.id, c.sentence);
@@ -103,15 +106,33 @@ fn claim_table(r: &mut String, d: &Decomposition) {
             .collect::<Vec<_>>()
             .join(" and ")
     );
-    let _ = writeln!(r, "| input | share of the variance (chance) |\n|---|---|");
+    let _ = writeln!(
+        r,
+        "| input | share of the variance (chance) | total-order share (chance; universes) \
+         |\n|---|---|---|"
+    );
     for &a in &order {
-        let _ = writeln!(r, "| axis: {} | {} |", d.axes[a].name, pct(&d.axes[a]));
+        let total = match &d.total[a] {
+            Some(t) => format!(
+                "{:.0} % (chance {:.0} %; {})",
+                100.0 * t.share,
+                100.0 * t.chance,
+                t.universes
+            ),
+            None => "no two differ in it alone".into(),
+        };
+        let _ = writeln!(
+            r,
+            "| axis: {} | {} | {total} |",
+            d.axes[a].name,
+            pct(&d.axes[a])
+        );
     }
     if let Some((_, _, i)) = &d.interaction {
-        let _ = writeln!(r, "| interaction: {} | {} |", i.name, pct(i));
+        let _ = writeln!(r, "| interaction: {} | {} | |", i.name, pct(i));
     }
     for f in &d.free {
-        let _ = writeln!(r, "| calibrated: {} | {} |", f.name, pct(f));
+        let _ = writeln!(r, "| calibrated: {} | {} | |", f.name, pct(f));
     }
     let _ = writeln!(r);
 }
