@@ -5,9 +5,10 @@
 use std::fmt;
 use std::sync::Arc;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 
 use super::evaluate::Evaluation;
+use crate::progress_bar::count_bar;
 use crate::table::num;
 
 /// Called after each new evaluation is in the trace, with it and how many this run has made
@@ -65,20 +66,7 @@ impl Display {
     /// A display for a search of at most `max_evals` evaluations, with the field names
     /// `fields` for the improvement lines.
     pub(crate) fn new(progress: &Progress, max_evals: usize) -> Self {
-        let pb = if progress.bar && std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-            let pb =
-                ProgressBar::with_draw_target(Some(max_evals as u64), ProgressDrawTarget::stderr());
-            let style = ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:32.cyan/blue}] {pos}/{len} evaluations, {msg}, ETA {eta}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> ");
-            pb.set_style(style);
-            pb.enable_steady_tick(std::time::Duration::from_millis(250));
-            pb
-        } else {
-            ProgressBar::hidden()
-        };
+        let pb = count_bar(progress.bar, max_evals as u64, "evaluations");
         Self {
             pb,
             progress: progress.clone(),

@@ -21,6 +21,7 @@ pub mod owner;
 pub mod shard_folders;
 pub mod shard_split;
 pub mod software;
+#[cfg(feature = "outputs")]
 pub mod source_date;
 pub mod sweep_plan;
 pub mod trial_length;

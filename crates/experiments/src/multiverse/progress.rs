@@ -1,12 +1,13 @@
 //! What a multiverse shows while it runs: an indicatif bar over its universes with an ETA
 //! (drawn only on a terminal), and one line on stderr per universe it finishes.
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
 use crate::calibrate::progress::loss_text;
 use crate::claims::Verdict;
+use crate::progress_bar::count_bar;
 
 /// What a multiverse shows while it runs. [`MultiverseProgress::off`] shows nothing;
 /// [`MultiverseProgress::terminal`] is `usar multiverse`'s (without `--quiet`).
@@ -42,20 +43,7 @@ pub(crate) struct Display {
 impl Display {
     /// A display over `count` universes.
     pub(crate) fn new(progress: MultiverseProgress, count: usize) -> Self {
-        let pb = if progress.bar && std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-            let pb =
-                ProgressBar::with_draw_target(Some(count as u64), ProgressDrawTarget::stderr());
-            let style = ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:32.cyan/blue}] {pos}/{len} universes, {msg}, ETA {eta}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> ");
-            pb.set_style(style);
-            pb.enable_steady_tick(std::time::Duration::from_millis(250));
-            pb
-        } else {
-            ProgressBar::hidden()
-        };
+        let pb = count_bar(progress.bar, count as u64, "universes");
         Self {
             pb,
             lines: progress.lines,
