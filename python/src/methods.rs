@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rne_core::grouping::{GroupingMethod, METHOD_NAMES};
+use rne_core::grouping::{GroupingMethod, builtin_name};
 
 use experiments::claims::{Claim, Claims};
 use experiments::sweep::{MethodFactory, TrialObserverFactory};
@@ -27,8 +27,7 @@ pub fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)>
         match m {
             MethodArg::Name(n) => names.push(n),
             MethodArg::Python((n, adapter)) => {
-                let lower = n.trim().to_ascii_lowercase().replace('-', "_");
-                if METHOD_NAMES.contains(&lower.as_str()) {
+                if builtin_name(&n).is_some() {
                     return Err(PyValueError::new_err(format!(
                         "methods: a Python method may not be named {n:?}, a built-in's name"
                     )));

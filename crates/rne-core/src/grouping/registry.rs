@@ -11,6 +11,21 @@ use crate::rne::TrustModel;
 /// The names accepted by [`method_from_name`], in the paper's order of Sec. VI.C.
 pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
 
+/// The built-in method a name means (case-insensitive, surrounding spaces ignored, `-` read
+/// as `_`): one of [`METHOD_NAMES`], or `None`. The one place method names are normalised:
+/// [`method_from_name`] and every caller that asks whether a name is a built-in's use it.
+///
+/// ```
+/// use rne_core::grouping::builtin_name;
+///
+/// assert_eq!(builtin_name(" HP-dis "), Some("hp_dis"));
+/// assert_eq!(builtin_name("mine"), None);
+/// ```
+pub fn builtin_name(name: &str) -> Option<&'static str> {
+    let key = name.trim().to_ascii_lowercase().replace('-', "_");
+    METHOD_NAMES.iter().copied().find(|m| *m == key)
+}
+
 /// Builds a built-in grouping method from its name (case-insensitive, surrounding spaces
 /// ignored): `"rne"` ([`HierarchicalRne`] with `rne_model`), `"dis"` ([`Dis`]), `"eng"`
 /// ([`Eng`]), `"hp_dis"` ([`HpDis`]; `"hp-dis"` is accepted too). `rne_model` is only used by
@@ -32,11 +47,11 @@ pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
 /// # Errors
 /// [`RneError::UnknownMethod`] listing the valid names.
 pub fn method_from_name(name: &str, rne_model: &TrustModel) -> Result<Box<dyn GroupingMethod>> {
-    match name.trim().to_ascii_lowercase().replace('-', "_").as_str() {
-        "rne" => Ok(Box::new(HierarchicalRne::new(rne_model.clone()))),
-        "dis" => Ok(Box::new(Dis)),
-        "eng" => Ok(Box::new(Eng)),
-        "hp_dis" => Ok(Box::new(HpDis)),
+    match builtin_name(name) {
+        Some("rne") => Ok(Box::new(HierarchicalRne::new(rne_model.clone()))),
+        Some("dis") => Ok(Box::new(Dis)),
+        Some("eng") => Ok(Box::new(Eng)),
+        Some("hp_dis") => Ok(Box::new(HpDis)),
         _ => Err(RneError::UnknownMethod {
             name: name.to_string(),
             valid: METHOD_NAMES.join(", "),
