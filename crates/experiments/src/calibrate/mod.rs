@@ -11,7 +11,7 @@
 //! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
 //! Files depend one way (each imports only from those before it): band, metric_ref,
-//! statistic, source_map, targets, loss, free, setup, float_text, evaluate, optimizer, cma_es, trace,
+//! statistic, targets, loss, free, setup, float_text, evaluate, optimizer, cma_es, trace,
 //! outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs, searcher, run, summary.
 
 pub mod band;
@@ -31,7 +31,6 @@ pub(crate) mod ron_file;
 mod run;
 mod searcher;
 pub mod setup;
-pub(crate) mod source_map;
 pub mod statistic;
 pub mod summary;
 pub mod targets;

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use serde::de::DeserializeOwned;
 use usar_sim::scenario::{SourceLocation, path_text};
 
-use super::source_map::SourceMap;
+use usar_sim::scenario::SourceMap;
 
 /// A positioned error before it becomes a file type's own error (`TargetsError`, `AxesError`,
 /// `ClaimsError`, which have these three fields).

@@ -25,8 +25,8 @@ use usar_sim::scenario::SourceLocation;
 
 use super::band::Band;
 use super::ron_file;
-use super::source_map::SourceMap;
 use super::statistic::Statistic;
+use usar_sim::scenario::SourceMap;
 
 /// Longest targets file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.

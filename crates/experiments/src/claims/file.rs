@@ -23,7 +23,7 @@ use usar_sim::scenario::{SourceLocation, did_you_mean};
 
 use super::claim::{Claim, Rivals, method_key};
 use crate::calibrate::ron_file;
-use crate::calibrate::source_map::SourceMap;
+use usar_sim::scenario::SourceMap;
 
 /// Longest claims file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.

@@ -33,8 +33,8 @@ use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
 use crate::calibrate::ron_file;
-use crate::calibrate::source_map::SourceMap;
 use crate::vary::{FieldPath, Override};
+use usar_sim::scenario::SourceMap;
 
 /// Longest axes file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.

@@ -22,9 +22,11 @@ struct Entry {
     end: usize,
 }
 
-/// Field paths of a RON source and where they are.
+/// Field paths of a RON source and where they are: the one source map of the workspace,
+/// used by the scenario loader and by every other RON file the tools read (targets, axes,
+/// claims), so that an error found after parsing names `file:line:col` and the field.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct SourceMap {
+pub struct SourceMap {
     /// Byte offset of the start of every line.
     line_starts: Vec<usize>,
     src: String,
@@ -39,7 +41,7 @@ pub(crate) struct SourceMap {
 
 impl SourceMap {
     /// Skims `src` and records every field/element path it finds.
-    pub(crate) fn build(src: &str) -> SourceMap {
+    pub fn build(src: &str) -> SourceMap {
         let mut line_starts = vec![0];
         line_starts.extend(src.match_indices('\n').map(|(i, _)| i + 1));
         let mut sc = Scanner {
@@ -95,7 +97,7 @@ impl SourceMap {
     /// `kinds`), or else of the top-level value (`Scenario(`: a field whose whole block is
     /// left to its defaults, such as `sim.dt_s` without `sim`); `None` only for a source
     /// without a value.
-    pub(crate) fn line_col_of(&self, path: &str) -> Option<(usize, usize)> {
+    pub fn line_col_of(&self, path: &str) -> Option<(usize, usize)> {
         let mut p = path;
         loop {
             if let Some(&i) = self.by_path.get(p) {
@@ -115,7 +117,7 @@ impl SourceMap {
 
     /// The path of the innermost recorded field or element whose range contains `offset`
     /// (key through value, ends inclusive), if any.
-    pub(crate) fn path_at(&self, offset: usize) -> Option<&str> {
+    pub fn path_at(&self, offset: usize) -> Option<&str> {
         self.innermost(|e| e.start <= offset && offset <= e.end)
     }
 
@@ -137,7 +139,7 @@ impl SourceMap {
     }
 
     /// Byte offset of a 1-based line and character column (clamped to the source).
-    pub(crate) fn offset_of(&self, line: usize, col: usize) -> usize {
+    pub fn offset_of(&self, line: usize, col: usize) -> usize {
         let Some(&ls) = self.line_starts.get(line.saturating_sub(1)) else {
             return self.src.len();
         };
@@ -148,7 +150,7 @@ impl SourceMap {
     }
 
     /// 1-based line and character column of a byte offset.
-    pub(crate) fn line_col(&self, offset: usize) -> (usize, usize) {
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let line_idx = match self.line_starts.binary_search(&offset) {
             Ok(i) => i,
             Err(i) => i - 1,
