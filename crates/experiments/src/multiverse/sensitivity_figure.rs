@@ -1,6 +1,7 @@
 //! `sensitivity_<claim>.svg`: per claim, the share of its effect's variance each axis, the
 //! interaction of the two strongest and each calibrated value explains ([`decompose`]), a bar
-//! each (largest first), with the share's chance level as a black tick.
+//! each (largest first), with the share's chance level as a black tick and, for an axis, its
+//! total-order share as an outlined bar.
 
 use anyhow::Result;
 use plotters::prelude::*;
@@ -32,8 +33,12 @@ pub fn sensitivity_svg(
 ) -> Result<String> {
     let d = decompose(plan, records, claim);
     let mut rows: Vec<(String, &Share)> = Vec::new();
+    let mut totals: Vec<(usize, f64)> = Vec::new();
     if let Some(d) = &d {
         for a in d.strongest() {
+            if let Some(t) = &d.total[a] {
+                totals.push((rows.len(), t.share));
+            }
             rows.push((format!("axis: {}", d.axes[a].name), &d.axes[a]));
         }
         if let Some((_, _, i)) = &d.interaction {
@@ -70,7 +75,7 @@ pub fn sensitivity_svg(
         chart
             .configure_mesh()
             .disable_y_mesh()
-            .x_desc("share of the variance (black tick: chance level)")
+            .x_desc("share of the variance (outline: an axis's total-order share; black tick: chance level)")
             .x_label_formatter(&|x| format!("{:.0} %", 100.0 * x))
             .y_label_formatter(&|y| match y {
                 SegmentValue::CenterOf(i) => labels.get(*i).cloned().unwrap_or_default(),
@@ -88,6 +93,17 @@ pub fn sensitivity_svg(
                         (s.share.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
                     ],
                     bar,
+                )
+            }))
+            .map_err(draw_err)?;
+        chart
+            .draw_series(totals.iter().map(|&(i, t)| {
+                Rectangle::new(
+                    [
+                        (0.0, SegmentValue::Exact(i)),
+                        (t.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                    ],
+                    method_color(1).stroke_width(2),
                 )
             }))
             .map_err(draw_err)?;
@@ -134,9 +150,23 @@ mod tests {
             "axis: b",
             "interaction: b x a",
             "calibrated: mission.energy_pct_per_m",
+            "total-order share",
         ] {
             assert!(svg.contains(part), "{part}");
         }
+        // Two axes: two outlined total-order bars (orange, #E69F00); none for an axis in which
+        // no two universes differ alone (a, among (0, 0), (0, 1), (0, 2)).
+        let outlined = |svg: &str| {
+            svg.lines()
+                .filter(|l| l.contains("<rect") && l.contains("#E69F00"))
+                .count()
+        };
+        assert_eq!(outlined(&svg), 2, "{svg}");
+        let alone = [records[0].clone(), records[4].clone(), records[2].clone()];
+        assert_eq!(
+            outlined(&sensitivity_svg(&plan(), &alone, claim).unwrap()),
+            1
+        );
         let empty = sensitivity_svg(&plan(), &records[..2], claim).unwrap();
         assert!(empty.contains("nothing to split"));
     }
