@@ -56,20 +56,26 @@ pub fn python_words(message: &str) -> String {
     while let Some(at) = rest.find("--") {
         out.push_str(&rest[..at]);
         let after = &rest[at + 2..];
+        // A flag starts a word (`runs/my--out` is a path) and a lowercase letter follows.
+        let starts_word = !out
+            .chars()
+            .last()
+            .is_some_and(|c| c.is_alphanumeric() || "-_/.".contains(c));
         let len = after
             .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
             .unwrap_or(after.len());
-        let flag = &after[..len];
-        if flag.is_empty() || !flag.starts_with(|c: char| c.is_ascii_lowercase()) {
+        let flag = after[..len].trim_end_matches('-');
+        if !starts_word || !flag.starts_with(|c: char| c.is_ascii_lowercase()) {
             out.push_str("--");
-        } else {
-            out.push_str(&match flag {
-                "overwrite" | "resume" => format!("{flag}=True"),
-                "duration" | "max-time" => format!("{}_s", flag.replace('-', "_")),
-                _ => flag.replace('-', "_"),
-            });
+            rest = after;
+            continue;
         }
-        rest = &after[len..];
+        out.push_str(&match flag {
+            "overwrite" | "resume" => format!("{flag}=True"),
+            "duration" | "max-time" => format!("{}_s", flag.replace('-', "_")),
+            _ => flag.replace('-', "_"),
+        });
+        rest = &after[flag.len()..];
     }
     out.push_str(rest);
     out

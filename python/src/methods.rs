@@ -5,6 +5,7 @@
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -45,8 +46,14 @@ pub fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)>
 }
 
 /// The factory: Python methods by name (`kinds`: the scenario's kind names, for their
-/// errors), the built-ins otherwise.
-pub fn factory(python: &PyMethods, first_error: &FirstError, kinds: Vec<String>) -> MethodFactory {
+/// errors; `stop_on_error`: set at a Python method's first failure, see
+/// [`PyMethod::stop_on_error`]), the built-ins otherwise.
+pub fn factory(
+    python: &PyMethods,
+    first_error: &FirstError,
+    kinds: Vec<String>,
+    stop_on_error: Option<Arc<AtomicBool>>,
+) -> MethodFactory {
     let (python, first_error) = (python.clone(), first_error.clone());
     let kind_names = Arc::new(kinds);
     MethodFactory::new(move |name, model, ctx| match python.get(name) {
@@ -58,6 +65,7 @@ pub fn factory(python: &PyMethods, first_error: &FirstError, kinds: Vec<String>)
             round: Cell::new(0),
             first_error: first_error.clone(),
             kind_names: kind_names.clone(),
+            stop_on_error: stop_on_error.clone(),
         }) as Box<dyn GroupingMethod>),
         None => MethodFactory::builtin().build(name, model, ctx),
     })

@@ -91,9 +91,19 @@ pub struct PyMethod {
     pub first_error: FirstError,
     /// The scenario's kind names, by kind index (errors name a kind by both).
     pub kind_names: Arc<Vec<String>>,
+    /// Set at the method's first failure, when given: a study stops at once (a sweep runs
+    /// its other trials and lists the failed ones).
+    pub stop_on_error: Option<Arc<std::sync::atomic::AtomicBool>>,
 }
 
 impl PyMethod {
+    /// Sets [`PyMethod::stop_on_error`], if any.
+    fn stop_run(&self) {
+        if let Some(stop) = &self.stop_on_error {
+            stop.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+    }
+
     /// The raw request dict the adapter turns into a `usar.GroupingRequest`.
     fn raw<'py>(&self, py: Python<'py>, req: &GroupingRequest) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
@@ -172,6 +182,7 @@ impl GroupingMethod for PyMethod {
                 if let Err(e) = assignment.validate(request) {
                     let message = format!("method {}: {}", self.name, self.with_kind_names(&e));
                     keep_first(&self.first_error, GroupingError::new_err(message));
+                    self.stop_run();
                     return Err(e);
                 }
                 Ok(assignment)
@@ -182,6 +193,7 @@ impl GroupingMethod for PyMethod {
                     text.unwrap_or_else(|_| "an exception".into())
                 });
                 keep_first(&self.first_error, e);
+                self.stop_run();
                 Err(RneError::InvalidAssignment(format!(
                     "method {} raised {message}",
                     self.name

@@ -53,6 +53,7 @@ pub fn trial_builder<'a>(
                 round: Cell::new(0),
                 first_error: first_error.clone(),
                 kind_names: Arc::new(s.kinds().iter().map(|k| k.name.clone()).collect()),
+                stop_on_error: None,
             };
             builder.method(Box::new(m) as Box<dyn GroupingMethod>)
         }

@@ -25,7 +25,7 @@ use experiments::multiverse::{
 };
 
 use crate::detached::run_detached;
-use crate::errors::python_words;
+use crate::errors::{python_words, sweep_value_error};
 use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
 use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
@@ -58,7 +58,12 @@ impl Run {
     /// The method factory over `scenario`'s kinds.
     fn factory(&self, scenario: &Scenario) -> experiments::sweep::MethodFactory {
         let kinds = scenario.inner().kinds().iter().map(|k| k.name.clone());
-        factory(&self.python, &self.first_error, kinds.collect())
+        factory(
+            &self.python,
+            &self.first_error,
+            kinds.collect(),
+            Some(self.stop.clone()),
+        )
     }
 
     /// The step observer of the Python methods' trials (none without one).
@@ -84,6 +89,8 @@ impl Run {
             }
         };
         let outcome = run_detached(py, &self.stop, work, tick)?;
+        // A Python method's failure stopped the run (nothing of the evaluation or universe it
+        // was in is kept): its own exception.
         if let Some(e) = self.first_error.lock().ok().and_then(|mut e| e.take()) {
             return Err(e);
         }
@@ -101,7 +108,7 @@ impl Run {
 
 /// A one-line `ValueError` of an anyhow error, in the package's words.
 fn py_error(e: anyhow::Error) -> PyErr {
-    PyValueError::new_err(python_words(&crate::errors::one_line(&format!("{e:#}"))))
+    sweep_value_error(&e)
 }
 
 /// A target check as JSON.
@@ -129,7 +136,7 @@ fn calibration_json(o: &CalibrationOutcome) -> serde_json::Value {
         "summary": experiments::calibrate::summary_text(o),
         "loss": o.loss.is_finite().then_some(o.loss),
         "admissible": o.admissible,
-        "stop": o.stop.to_string(),
+        "stop": python_words(&o.stop.to_string()),
         "best": best,
         "best_index": o.best,
         "evaluations": o.evaluations.len(),
@@ -240,6 +247,7 @@ pub fn run_calibration(
 /// The claims of a multiverse: `claims` (a file's path, or a list of dicts), else the file
 /// the scenario's `report: (claims: ...)` names (relative to its folder; none when missing).
 fn multiverse_claims(
+    py: Python<'_>,
     claims: Option<&Bound<'_, PyAny>>,
     scenario: &Scenario,
     methods: &[String],
@@ -253,7 +261,18 @@ fn multiverse_claims(
         None => match &scenario.spec().report.claims {
             Some(file) => {
                 let p = scenario.path().parent().unwrap_or(Path::new("")).join(file);
-                if p.exists() { load(&p) } else { Ok(None) }
+                if p.exists() {
+                    return load(&p);
+                }
+                let message = format!(
+                    "{}: report.claims: {} not found (relative to the scenario's folder); no \
+                     claims are checked (claims= gives them)",
+                    scenario.origin_text(),
+                    p.display()
+                );
+                let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+                PyErr::warn(py, &category, &std::ffi::CString::new(message)?, 1)?;
+                Ok(None)
             }
             None => Ok(None),
         },
@@ -312,7 +331,7 @@ pub fn run_multiverse_py(
     t.set_report_only(&report_only)
         .map_err(|e| py_error(e.into()))?;
     let free = parse_free(&free).map_err(|e| py_error(e.into()))?;
-    let claims = multiverse_claims(claims, scenario, &run.names)?;
+    let claims = multiverse_claims(py, claims, scenario, &run.names)?;
     let seed = seed.unwrap_or(scenario.spec().sim.seed);
     let mut setup = MultiverseSetup {
         claims,

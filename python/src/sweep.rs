@@ -97,6 +97,7 @@ pub fn run_sweep(
             &python,
             &first_error,
             s.kinds().iter().map(|k| k.name.clone()).collect(),
+            None,
         ),
         trials,
         base_seed: seed.unwrap_or(s.sim().seed),

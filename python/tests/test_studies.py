@@ -66,10 +66,15 @@ def test_calibrate_with_a_python_method_writes_the_cli_files(usar_cli, tmp_path,
     assert (more.ran, more.reused) == (1, 4)
 
 
-def test_calibrate_without_out_leaves_no_folder_and_speaks_python(tmp_path):
+def test_calibrate_without_out_leaves_no_folder_and_speaks_python(tmp_path, monkeypatch):
+    import tempfile
+    (tmp_path / "tmp").mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
     c = usar.calibrate(PAPER, {"mission.pickup_s": (0.5, 2)}, targets=TARGETS, methods="rne",
                        trials=1, duration_s=30, max_evals=1, check_trials=0, progress=False)
     assert c.out is None and c.files == [] and c.evaluations == 1
+    assert list((tmp_path / "tmp").iterdir()) == []
+    assert "--" not in c.stop
     assert "<b>usar.Calibration</b>" in c._repr_html_()
     with pytest.raises(ValueError, match=r"^max_evals must be at least 1"):
         usar.calibrate(PAPER, "mission.pickup_s=0.5..2", targets=TARGETS, max_evals=0,
@@ -178,3 +183,39 @@ def test_render_and_replay_write_the_cli_files(usar_cli, tmp_path):
         usar.render(PAPER, tmp_path / "x.svg", trial=3)
     with pytest.raises(ValueError, match="hz"):
         usar.replay(PAPER, tmp_path / "x.html", hz=-1)
+
+
+BROKEN = {"on": True}
+
+
+def flaky(request):
+    """HP_DIS, or an exception while BROKEN is on."""
+    if BROKEN["on"]:
+        raise RuntimeError("broken on purpose")
+    return usar.hp_dis(request)
+
+
+def test_a_python_method_that_raises_stops_a_calibration_and_keeps_nothing_of_it(tmp_path):
+    free = ["mission.pickup_s=0.5..2", "mission.search_time_budget_s=8..30"]
+    args = dict(methods=["rne", flaky], out=tmp_path / "cal", progress=False, **CALIBRATION)
+    BROKEN["on"] = True
+    with pytest.raises(RuntimeError, match="broken on purpose"):
+        usar.calibrate(PAPER, free, **args)
+    # Nothing of the evaluation it was in: the trace holds its header only.
+    assert len((tmp_path / "cal" / "trace.jsonl").read_text().splitlines()) == 1
+    assert not (tmp_path / "cal" / "calibrated.ron").exists()
+    BROKEN["on"] = False
+    fixed = usar.calibrate(PAPER, free, **args)
+    fresh = usar.calibrate(PAPER, free, **dict(args, out=tmp_path / "fresh"))
+    assert (fixed.ran, fixed.reused) == (4, 0)
+    assert fixed.trace.equals(fresh.trace)
+
+
+def test_a_missing_claims_file_of_the_scenario_is_a_warning(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    s = usar.Scenario.load(CORRIDOR).set("report.claims", "missing-claims.ron")
+    with pytest.warns(UserWarning, match="report.claims: .*missing-claims.ron not found"):
+        m = usar.multiverse(s, AXES, TARGETS, "mission.pickup_s=0.5..2", "mv",
+                            methods=["rne", "dis"], trials=1, duration_s=30,
+                            calibration_trials=1, max_evals=1, progress=False)
+    assert len(m.claims) == 0

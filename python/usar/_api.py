@@ -91,7 +91,7 @@ def run(
 def _progress(
     progress: Optional[bool], total: int, unit: str = "trial", desc: str = "sweep"
 ) -> tuple:
-    """(callback, closer) of a tqdm bar over ``total`` ``unit``\ s, or (None, no-op)."""
+    """(callback, closer) of a tqdm bar over ``total`` steps named ``unit``, or (None, no-op)."""
     if progress is None:
         progress = sys.stderr.isatty() or "ipykernel" in sys.modules
     if not progress:

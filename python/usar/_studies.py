@@ -3,7 +3,6 @@ the ``usar`` command line, with Python grouping methods beside the built-in ones
 
 from __future__ import annotations
 
-import io
 import json
 import os
 import shutil
@@ -175,9 +174,12 @@ def calibrate(
     removed before returning. The date in the files is ``SOURCE_DATE_EPOCH``'s when set.
 
     Returns a :class:`usar.Calibration`. Raises ValueError (bad arguments or files, a folder
-    holding something else), TypeError, a Python method's own exception (the first met;
-    the files are written) and KeyboardInterrupt (Ctrl-C: the evaluations finished are kept
-    in the trace; the same call continues).
+    holding something else), TypeError, a Python method's own exception or
+    :class:`usar.GroupingError` (the first met: the calibration stops at once and keeps
+    nothing of the evaluation it was in, so the same call continues once the method is
+    fixed) and KeyboardInterrupt (Ctrl-C: the trials not started are skipped and the
+    evaluation running is dropped; with ``out``, the trace keeps every finished evaluation
+    and the same call continues).
     """
     s = _scenario(scenario)
     args = _methods(methods, s)
@@ -196,7 +198,11 @@ def calibrate(
     names = [a if isinstance(a, str) else a[0] for a in args]
     call = _command("calibrate", s.origin, _free(free), {
         "targets": _path(targets), "out": _path(out), "methods": names, "trials": trials,
-        "seed": seed, "duration_s": duration_s, "max_evals": max_evals,
+        "seed": seed, "duration_s": duration_s, "digits": digits, "max_evals": max_evals,
+        "max_time_s": max_time_s, "check_seed": check_seed, "check_trials": check_trials,
+        "optimizer": optimizer, "start_mid": start_mid or None,
+        "report_only": list(_names(report_only)) or None,
+        "require": list(_names(require)) or None,
     })
     keep = out is not None
     folder = Path(os.fspath(out)) if keep else Path(tempfile.mkdtemp(prefix="usar-calibrate-"))
@@ -296,8 +302,12 @@ def multiverse(
     ``usar multiverse --out`` writes for the same arguments, and calling again continues
     (``overwrite=True`` discards another multiverse there).
 
-    Returns a :class:`usar.Multiverse`. Raises as :func:`usar.calibrate`; a failed
-    universe is no error (``failed`` lists it; calling again retries it).
+    Returns a :class:`usar.Multiverse`. Raises as :func:`usar.calibrate` (a Python
+    method's exception or Ctrl-C stops it with no record of the universe running: its
+    calibration trace and comparison journal keep what finished, and the same call
+    continues); a universe that fails otherwise is no error (``failed`` lists it; calling
+    again retries it). A ``report`` claims file the scenario names but that is missing is a
+    UserWarning (no claims are checked).
     """
     s = _scenario(scenario)
     args = _methods(methods, s)

@@ -267,7 +267,14 @@ impl<'a> Evaluator<'a> {
         let outcomes: Vec<Result<TrialResult, String>> = self.pool.install(|| {
             use rayon::prelude::*;
             jobs.par_iter()
-                .map(|job| run_trial(&plan, &runner, job, &|_| {}))
+                .map(|job| {
+                    // Stopped: the trials not started are skipped (their evaluation is not
+                    // kept, see the searcher).
+                    if self.setup.hooks.stopped() {
+                        return Err("stopped before it ran".to_string());
+                    }
+                    run_trial(&plan, &runner, job, &|_| {})
+                })
                 .collect()
         });
         let mut set = TrialSet::default();

@@ -99,6 +99,9 @@ pub fn calibrate(
         .scenario_at(&evaluations[best].values)
         .map_err(|e| anyhow!("no evaluated point gives a valid scenario; the best one: {e}"))?;
     let check = (setup.check_trials > 0).then(|| unseen(setup, &evaluator, &best_scenario));
+    if setup.hooks.stopped() {
+        return Err(Stopped.into());
+    }
     let mut outcome = CalibrationOutcome {
         header,
         origin: setup.origin.clone(),

@@ -86,6 +86,10 @@ impl Objective for Searcher<'_> {
                     return Err(StopReason::MaxTime);
                 }
                 let mut e = self.evaluator.evaluate(&values);
+                if crate::data::hooks::is_set(self.stop.as_ref()) {
+                    // Stopped while it ran: some trials were skipped, so it is not kept.
+                    return Err(StopReason::Interrupted);
+                }
                 e.index = index;
                 if let Err(err) = self.trace.append(&e) {
                     // The search only knows reasons to stop; the caller sees `error` first

@@ -71,9 +71,10 @@ pub struct CalibrationHooks {
     /// trials), as [`SweepHooks::trial_observer`] does for a sweep's. The Python package uses
     /// it to show a Python grouping method the robots' positions.
     pub trial_observer: Option<TrialObserverFactory>,
-    /// Set to `true` to stop (e.g. on Ctrl-C in the Python package): the evaluation running
-    /// ends and is kept in the trace, no new one starts, and the calibration returns
-    /// [`Stopped`] without writing its outputs (running it again continues). Default `None`.
+    /// Set to `true` to stop (e.g. on Ctrl-C in the Python package): the trials not started
+    /// are skipped, the evaluation running is not kept (the trace holds only whole ones), no
+    /// new one starts, and the calibration returns [`Stopped`] without writing its outputs
+    /// (running it again continues). Default `None`.
     pub stop: Option<Arc<AtomicBool>>,
 }
 

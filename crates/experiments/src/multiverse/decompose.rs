@@ -20,18 +20,21 @@
 //! eta2_j`, clamped at 0 (exact for a balanced factorial, approximate for a sample).
 //!
 //! The total-order share of axis `i` (its main effect and every interaction it is part of) is
-//! the expected variance left when every other axis is fixed:
+//! the expected variance left when every other axis is fixed, `E[Var(y | other axes)] /
+//! Var(y)`, estimated as
 //!
 //! ```text
-//! T_i = (sum_h sum_{u in h} (y_u - mean_h)^2 / m) / (sum_u (y_u - mean)^2 / n)
+//! T_i = mean_h ( (L - 1) / L * sum_{u in h} (y_u - mean_h)^2 / (n_h - 1) ) / (sum_u (y_u - mean)^2 / n)
 //! ```
 //!
-//! over the groups `h` of admissible universes that agree on every axis but `i` and hold at
-//! least two of them (`m` universes in all): the within-group (Jansen-type) estimator on the
-//! pairs the factorial itself provides, exact (`1 - eta2` of the other axes) for a complete
-//! factorial, clamped to [0, 1]. With no such group it is not estimated. Its chance level is
-//! the mean under no effect, `((m - G) / m) / ((n - 1) / n)` with `G` groups. A total-order
-//! share well above the first-order share says the axis acts through interactions.
+//! over the `G` groups `h` of admissible universes that agree on every axis but `i` and hold
+//! at least two of them (`n_h` each, `m` in all), `L` the axis's alternatives: each group's
+//! sample variance (unbiased for the `n_h` of `L` alternatives it holds), made a variance over
+//! all `L` alternatives. It is the within-group form of Jansen's estimator (pairs of
+//! universes that differ in that axis alone), exact (`1 - eta2` of the other axes) for a
+//! complete factorial, clamped to [0, 1]; with no such group it is not estimated. Its chance
+//! level, its mean under no effect, is `((L - 1) / L) / ((n - 1) / n)`. A total-order share
+//! well above the first-order share says the axis acts through interactions.
 //! Calibrated values have no total-order share (they are not a factorial design).
 //!
 //! # Reference
@@ -163,11 +166,13 @@ pub fn decompose(
             }
         })
         .collect();
-    let others = |a: usize| -> Vec<usize> { (0..id.axes.axes.len()).filter(|&b| b != a).collect() };
-    let total = (0..id.axes.axes.len())
+    let count = id.axes.axes.len();
+    let others = |a: usize| -> Vec<usize> { (0..count).filter(|&b| b != a).collect() };
+    let total = (0..count)
         .map(|a| {
             let keys: Vec<Vec<usize>> = rows.iter().map(|(r, _)| key(&others(a), r)).collect();
-            within(&keys, &y, total / n as f64)
+            let alternatives = id.axes.axes[a].alternatives.len();
+            within(&keys, &y, total / n as f64, alternatives)
         })
         .collect();
     let mut d = Decomposition {
@@ -177,30 +182,39 @@ pub fn decompose(
         free,
         interaction: None,
     };
-    // The two strongest axes that vary among these universes (an axis seen with one
-    // alternative has no share and no interaction).
+    d.interaction = interaction(&d, &eta2, &chance);
+    Some(d)
+}
+
+/// The interaction of the two strongest axes of `d` that vary among its universes (an axis
+/// seen with one alternative has no share and no interaction), from `eta2` of a set of axes
+/// (share, groups seen) and the `chance` level of a number of groups.
+fn interaction(
+    d: &Decomposition,
+    eta2: &dyn Fn(&[usize]) -> (f64, usize),
+    chance: &dyn Fn(usize) -> f64,
+) -> Option<(usize, usize, Share)> {
     let varying: Vec<usize> = d
         .strongest()
         .into_iter()
         .filter(|&a| eta2(&[a]).1 >= 2)
         .collect();
-    if let [a, b, ..] = varying[..] {
-        let (joint, cells) = eta2(&[a, b]);
-        let (ga, gb) = (eta2(&[a]).1, eta2(&[b]).1);
-        let share = (joint - d.axes[a].share - d.axes[b].share).max(0.0);
-        let name = format!("{} x {}", d.axes[a].name, d.axes[b].name);
-        let expected = chance(cells) - chance(ga) - chance(gb);
-        d.interaction = Some((
-            a,
-            b,
-            Share {
-                name,
-                share,
-                chance: expected.max(0.0),
-            },
-        ));
-    }
-    Some(d)
+    let [a, b, ..] = varying[..] else {
+        return None;
+    };
+    let (joint, cells) = eta2(&[a, b]);
+    let (ga, gb) = (eta2(&[a]).1, eta2(&[b]).1);
+    let share = (joint - d.axes[a].share - d.axes[b].share).max(0.0);
+    let expected = chance(cells) - chance(ga) - chance(gb);
+    Some((
+        a,
+        b,
+        Share {
+            name: format!("{} x {}", d.axes[a].name, d.axes[b].name),
+            share,
+            chance: expected.max(0.0),
+        },
+    ))
 }
 
 /// The between-group share of `y` grouped by `keys` (and the number of groups seen).
@@ -225,9 +239,15 @@ fn between(keys: &[Vec<usize>], y: &[f64], mean: f64, total: f64) -> (f64, usize
     ((ss / total).clamp(0.0, 1.0), groups.len())
 }
 
-/// The total-order share from the groups of `keys` with at least two members: their mean
-/// within-group variance over `variance` (the population variance of every `y`).
-fn within(keys: &[Vec<usize>], y: &[f64], variance: f64) -> Option<TotalShare> {
+/// The total-order share from the groups of `keys` with at least two members, for an axis of
+/// `alternatives` (`L`): the mean over them of `(L - 1) / L` times their sample variance, over
+/// `variance` (the population variance of every `y`).
+fn within(
+    keys: &[Vec<usize>],
+    y: &[f64],
+    variance: f64,
+    alternatives: usize,
+) -> Option<TotalShare> {
     let mut groups: Vec<(&Vec<usize>, Vec<f64>)> = Vec::new();
     for (k, v) in keys.iter().zip(y) {
         match groups.iter_mut().find(|(g, _)| *g == k) {
@@ -244,18 +264,20 @@ fn within(keys: &[Vec<usize>], y: &[f64], variance: f64) -> Option<TotalShare> {
     if m == 0 || variance <= 0.0 {
         return None;
     }
-    let ss: f64 = informative
+    let l = alternatives.max(2) as f64;
+    let mean_variance = informative
         .iter()
         .map(|v| {
             let mean = v.iter().sum::<f64>() / v.len() as f64;
-            v.iter().map(|x| (x - mean).powi(2)).sum::<f64>()
+            let ss = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>();
+            (l - 1.0) / l * ss / (v.len() - 1) as f64
         })
-        .sum();
+        .sum::<f64>()
+        / informative.len() as f64;
     let n = y.len() as f64;
-    let g = informative.len() as f64;
     Some(TotalShare {
-        share: (ss / m as f64 / variance).clamp(0.0, 1.0),
-        chance: (((m as f64 - g) / m as f64) / ((n - 1.0) / n)).clamp(0.0, 1.0),
+        share: (mean_variance / variance).clamp(0.0, 1.0),
+        chance: (((l - 1.0) / l) / ((n - 1.0) / n)).clamp(0.0, 1.0),
         universes: m,
     })
 }
@@ -353,7 +375,7 @@ mod tests {
         let d = decompose(&plan(), &records(|a, b| (a + b) as f64), &claim1()).unwrap();
         assert!((d.total[0].as_ref().unwrap().share - 1.5 / 5.5).abs() < 1e-12);
         assert!((d.total[1].as_ref().unwrap().share - 4.0 / 5.5).abs() < 1e-12);
-        // Chance for axis a: 3 groups of 2 among 6: ((6 - 3) / 6) / (5 / 6) = 0.6.
+        // Chance for axis a (2 alternatives) among 6: (1 / 2) / (5 / 6) = 0.6.
         assert!((d.total[0].as_ref().unwrap().chance - 0.6).abs() < 1e-12);
         // Keep (0,0), (1,0), (0,1), (0,2): only b = 0 pairs the a's; a = 0 groups the b's.
         let kept: Vec<_> = records(|a, b| (a + 2 * b) as f64)
@@ -365,6 +387,17 @@ mod tests {
         assert_eq!((ta.universes, tb.universes), (2, 3));
         // y: 0, 1, 2, 4 (mean 1.75, variance 2.1875); a's pair 0, 1: 0.25 / 2.1875.
         assert!((ta.share - 0.25 / 2.1875).abs() < 1e-12, "{ta:?}");
+        // y = 3a + b without (0, 1): the group a = 0 holds 2 of b's 3 alternatives (0 and 2:
+        // sample variance 2, times 2 / 3), a = 1 all three (3, 4, 5: 1, times 2 / 3); their
+        // mean 1 over the variance of 0, 2, 3, 4, 5 (2.96).
+        let part: Vec<_> = records(|a, b| (3 * a + b) as f64)
+            .into_iter()
+            .filter(|r| r.choices != [0, 1])
+            .collect();
+        let d = decompose(&plan(), &part, &claim1()).unwrap();
+        let tb = d.total[1].clone().unwrap();
+        assert!((tb.share - 1.0 / 2.96).abs() < 1e-12, "{tb:?}");
+        assert_eq!(tb.universes, 5);
         // No pair differs in one axis alone: not estimated.
         let lone: Vec<_> = records(|a, b| (a + b) as f64)
             .into_iter()

@@ -48,8 +48,9 @@ pub struct MultiverseHooks {
     /// A step observer per calibration trial (the comparison's are `sweep.trial_observer`).
     pub calibration_trials: Option<TrialObserverFactory>,
     /// Set to `true` to stop (e.g. on Ctrl-C in the Python package): the calibration
-    /// evaluation or comparison trials running end and are kept (trace, journal), nothing new
-    /// starts, the universe running writes no record, and [`super::run_multiverse`] returns
+    /// evaluation running is dropped (see [`CalibrationHooks::stop`]), the comparison trials
+    /// running end and are kept in its journal, nothing new starts, the universe running
+    /// writes no record and no comparison files, and [`super::run_multiverse`] returns
     /// [`crate::data::hooks::Stopped`] without writing the top files; running it again
     /// continues. Default `None`.
     pub stop: Option<Arc<AtomicBool>>,

@@ -228,6 +228,11 @@ impl UniverseRun<'_> {
 /// universe's report checks its targets and the multiverse's claims).
 fn compare(cfg: &SweepConfig, report: ReportOptions) -> Result<(SweepOutcome, Analysis)> {
     let o = run_sweep(cfg)?;
+    if crate::data::hooks::is_set(cfg.hooks.stop.as_ref()) {
+        // Some trials were skipped: no files of a partial comparison (its journal keeps the
+        // trials that ran; a rerun continues it).
+        return Err(Stopped.into());
+    }
     let analysis = Analysis::with_report(&o, report);
     write_outputs(cfg, &o, &analysis, &[])?;
     Ok((o, analysis))

@@ -56,6 +56,10 @@ fn a_stopped_multiverse_keeps_no_partial_record_and_continues() {
     assert!(!a.path().join("multiverse.csv").exists());
     let records = walk(a.path(), "universe.json");
     assert!(records.is_empty(), "{records:?}");
+    // The comparison it stopped in wrote no tables of a partial set of trials.
+    let tables = walk(a.path(), "trials.csv");
+    assert!(tables.is_empty(), "{tables:?}");
+    assert_eq!(walk(a.path(), "journal.jsonl").len(), 1);
     stop.store(false, Ordering::SeqCst);
     s.hooks = Default::default();
     run_multiverse(&s, a.path(), MultiverseProgress::off()).unwrap();

@@ -84,17 +84,20 @@ pub fn inherent_impls(tree: &ModuleTree) -> Vec<(usize, String, usize)> {
         let Some(name) = segments.last() else {
             continue;
         };
-        let path = match (
-            segments.len(),
-            read.bindings.used.get(scope).and_then(|u| u.get(name)),
-        ) {
-            (1, Some(target)) => target.clone(),
-            (1, None) => [scope.clone(), segments.clone()].concat(),
-            _ => {
-                let reader_scope = Reader::absolute_in(tree, &read.bindings, scope, segments);
-                let Some(abs) = reader_scope else { continue };
-                abs
-            }
+        // The first segment as the module binds it (`use crate::low;` then `low::World`),
+        // else as written.
+        let bound = read
+            .bindings
+            .used
+            .get(scope)
+            .and_then(|u| u.get(&segments[0]));
+        let path = match bound {
+            Some(target) => [target.clone(), segments[1..].to_vec()].concat(),
+            None if segments.len() == 1 => [scope.clone(), segments.clone()].concat(),
+            None => match Reader::absolute_in(tree, &read.bindings, scope, segments) {
+                Some(abs) => abs,
+                None => continue,
+            },
         };
         if let Some((module, true)) = resolve(tree, &read.bindings, &path, 0)
             && let Some(to) = tree.file_of(&module)

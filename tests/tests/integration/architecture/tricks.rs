@@ -84,9 +84,13 @@ impl<'ast> Visit<'ast> for Finder {
 
     fn visit_item_mod(&mut self, m: &'ast syn::ItemMod) {
         for a in &m.attrs {
+            let compact = |list: &syn::MetaList| -> String {
+                let text = list.tokens.to_string();
+                text.chars().filter(|c| !c.is_whitespace()).collect()
+            };
             if let syn::Meta::List(list) = &a.meta
                 && list.path.is_ident("cfg_attr")
-                && list.tokens.to_string().contains("path")
+                && compact(list).contains(",path=")
             {
                 self.found.push(format!(
                     "`mod {}` with `#[cfg_attr(.., path = ..)]`: a module file chosen by a \
@@ -109,7 +113,10 @@ impl<'ast> Visit<'ast> for Finder {
     }
 
     fn visit_macro(&mut self, mac: &'ast syn::Macro) {
-        if mac.path.is_ident("include") {
+        let last = mac.path.segments.last().map(|s| s.ident.to_string());
+        let std_path = mac.path.segments.len() == 1
+            || ["std", "core"].contains(&mac.path.segments[0].ident.to_string().as_str());
+        if last.as_deref() == Some("include") && std_path {
             self.found.push(
                 "`include!`: code no `mod` item reaches, which the layers cannot see; make it \
                  a module"

@@ -60,7 +60,33 @@ fn an_impl_of_a_lower_type_in_a_higher_module_is_refused() {
     assert!(
         has(&p, "`impl World` outside the module tree of `World`"),
         "{p:?}"
+    ); // The same through a module imported by name, and `std::include!`.
+    let p = all_problems(
+        &[
+            ("lib.rs", "//! Root.\nmod low;\nmod high;\n"),
+            ("low.rs", "//! Low.\npub struct World;\n"),
+            (
+                "high.rs",
+                "//! High.\nuse crate::low;\nimpl low::World {}\nstd::include!(\"x.rs\");\n",
+            ),
+        ],
+        &TWO,
     );
+    assert!(has(&p, "`impl World` outside"), "{p:?}");
+    assert!(has(&p, "`include!`"), "{p:?}");
+    // A feature named like the attribute is no module file chosen by a condition.
+    let p = all_problems(
+        &[
+            (
+                "lib.rs",
+                "//! Root.\n#[cfg_attr(feature = \"xpath\", allow(dead_code))]\nmod low;\nmod high;\n",
+            ),
+            ("low.rs", "//! Low.\n"),
+            ("high.rs", "//! High.\n"),
+        ],
+        &TWO,
+    );
+    assert!(p.is_empty(), "{p:?}");
 }
 
 #[test]
