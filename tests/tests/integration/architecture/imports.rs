@@ -194,6 +194,30 @@ fn resolve(
     Some((module, false))
 }
 
+/// A visitor that knows the module path it is in (an inline `mod x { .. }` adds `x`).
+pub trait Scoped<'ast>: Visit<'ast> {
+    /// The module path being visited.
+    fn scope(&mut self) -> &mut ModulePath;
+}
+
+/// Visits the items of the inline module `m` (nothing for a `mod x;`) with `x` on the
+/// visitor's scope.
+pub fn visit_inline_module<'ast, V: Scoped<'ast>>(v: &mut V, m: &'ast syn::ItemMod) {
+    if let Some((_, items)) = &m.content {
+        v.scope().push(m.ident.to_string());
+        for item in items {
+            v.visit_item(item);
+        }
+        v.scope().pop();
+    }
+}
+
+impl<'ast> Scoped<'ast> for Reader<'_> {
+    fn scope(&mut self) -> &mut ModulePath {
+        &mut self.scope
+    }
+}
+
 /// Walks one file: records its definitions and `use` bindings, and every path into the crate.
 struct Reader<'a> {
     tree: &'a ModuleTree,
@@ -384,13 +408,7 @@ impl<'ast> Visit<'ast> for Reader<'_> {
     }
 
     fn visit_item_mod(&mut self, m: &'ast syn::ItemMod) {
-        if let Some((_, items)) = &m.content {
-            self.scope.push(m.ident.to_string());
-            for item in items {
-                self.visit_item(item);
-            }
-            self.scope.pop();
-        }
+        visit_inline_module(self, m);
     }
 
     fn visit_item_use(&mut self, u: &'ast syn::ItemUse) {

@@ -5,7 +5,7 @@
 
 use syn::visit::Visit;
 
-use super::imports::inherent_impls;
+use super::imports::{Scoped, inherent_impls, visit_inline_module};
 use super::modules::ModuleTree;
 
 /// Every such construct in `tree`, one line each (`file: what: why`).
@@ -71,6 +71,12 @@ impl Finder {
     }
 }
 
+impl<'ast> Scoped<'ast> for Finder {
+    fn scope(&mut self) -> &mut Vec<String> {
+        &mut self.scope
+    }
+}
+
 impl<'ast> Visit<'ast> for Finder {
     fn visit_item_extern_crate(&mut self, e: &'ast syn::ItemExternCrate) {
         if e.ident == "self" {
@@ -99,13 +105,7 @@ impl<'ast> Visit<'ast> for Finder {
                 ));
             }
         }
-        if let Some((_, items)) = &m.content {
-            self.scope.push(m.ident.to_string());
-            for item in items {
-                self.visit_item(item);
-            }
-            self.scope.pop();
-        }
+        visit_inline_module(self, m);
     }
 
     fn visit_item_use(&mut self, u: &'ast syn::ItemUse) {
