@@ -49,19 +49,11 @@ pub struct Evaluation {
     /// checks unseen trials; NaN otherwise (and absent from the trace). A point is accepted
     /// only when it is 0 too ([`Evaluation::search_loss`]).
     #[serde(
-        default = "not_checked",
+        default = "float_text::nan",
         with = "float_text",
-        skip_serializing_if = "is_not_checked"
+        skip_serializing_if = "float_text::is_nan"
     )]
     pub unseen_loss: f64,
-}
-
-fn not_checked() -> f64 {
-    f64::NAN
-}
-
-fn is_not_checked(x: &f64) -> bool {
-    x.is_nan()
 }
 
 impl Evaluation {

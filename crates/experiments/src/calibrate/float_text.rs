@@ -68,6 +68,17 @@ pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     from_text(Text::deserialize(d)?)
 }
 
+/// NaN: the serde default of an optional number written only when known
+/// (`#[serde(default = "float_text::nan", skip_serializing_if = "float_text::is_nan")]`).
+pub fn nan() -> f64 {
+    f64::NAN
+}
+
+/// Whether `x` is NaN (an optional number not known: not written).
+pub fn is_nan(x: &f64) -> bool {
+    x.is_nan()
+}
+
 /// The same for a list of numbers.
 pub mod vec {
     use super::*;

@@ -77,18 +77,21 @@ pub fn calibrate(
     remove_stale_temps(dir)?;
     let (trace, recorded) = open_trace(dir, &header, setup.overwrite)?;
     let evaluator = Evaluator::new(setup, &checked)?;
-    let starts: Vec<f64> = setup
-        .free
-        .iter()
-        .zip(&checked.base_values)
-        .map(|(f, base)| {
-            if setup.start_mid {
-                f.midpoint()
-            } else {
-                f.start(*base)
-            }
-        })
-        .collect();
+    let starts: Vec<f64> = match &setup.start {
+        Some(start) => start.clone(),
+        None => setup
+            .free
+            .iter()
+            .zip(&checked.base_values)
+            .map(|(f, base)| {
+                if setup.start_mid {
+                    f.midpoint()
+                } else {
+                    f.start(*base)
+                }
+            })
+            .collect(),
+    };
     let search = search(setup, &evaluator, trace, recorded, &starts, &progress, t0)?;
     if search.stop == StopReason::Interrupted || setup.hooks.stopped() {
         return Err(Stopped.into());
@@ -237,10 +240,18 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         base_seed: setup.base_seed,
         duration_s: setup.duration_s,
         digits: setup.digits,
-        search: if setup.start_mid {
-            format!("{}; start: the ranges' middles", search_text(setup))
-        } else {
-            search_text(setup)
+        search: match (&setup.start, setup.start_mid) {
+            (Some(start), _) => format!(
+                "{}; start: {}",
+                search_text(setup),
+                start
+                    .iter()
+                    .map(|x| format!("{x:?}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            (None, true) => format!("{}; start: the ranges' middles", search_text(setup)),
+            (None, false) => search_text(setup),
         },
     })
 }

@@ -87,6 +87,12 @@ pub struct CalibrationSetup {
     /// instead of the scenario's own values (default `false`): a fit that does not depend on
     /// the values the file holds (`--start-mid`). Part of the calibration's identity.
     pub start_mid: bool,
+    /// Start the search at these values of the free fields (in `--free` order, each inside
+    /// its range; default `None`: the scenario's own values, or the middles with
+    /// [`CalibrationSetup::start_mid`]). A multiverse with a shared design starts each
+    /// universe where the design's emulator predicts the least loss
+    /// (`crate::multiverse::emulator`). Part of the calibration's identity.
+    pub start: Option<Vec<f64>>,
     /// How the calibration was asked for, quoted in `calibrated.ron` and `calibration.md`
     /// (`usar calibrate` puts its command line; default a description of the call).
     pub command: String,
@@ -132,6 +138,7 @@ impl CalibrationSetup {
             check_trials: DEFAULT_CHECK_TRIALS,
             overwrite: false,
             start_mid: false,
+            start: None,
             optimizer: Optimizer::NelderMead,
             date: None,
             hooks: CalibrationHooks::default(),
@@ -178,6 +185,9 @@ impl CalibrationSetup {
                 self.trials
             ));
         }
+        if let Some(start) = &self.start {
+            self.check_start(start)?;
+        }
         let scenario = self.base.validate(&self.origin)?;
         self.targets.check_tasks(&scenario.task_names())?;
         check_distinct(&self.free)?;
@@ -192,6 +202,31 @@ impl CalibrationSetup {
             scenario,
             base_values,
         })
+    }
+
+    /// Checks a given start point: one value per free field, each inside its range, and not
+    /// together with [`CalibrationSetup::start_mid`].
+    fn check_start(&self, start: &[f64]) -> Result<(), SetupError> {
+        let bad = |m: String| Err(SetupError::Invalid(m));
+        if self.start_mid {
+            return bad("--start-mid and a given start point exclude each other".into());
+        }
+        if start.len() != self.free.len() {
+            return bad(format!(
+                "the start point has {} values for {} free fields",
+                start.len(),
+                self.free.len()
+            ));
+        }
+        for (f, &x) in self.free.iter().zip(start) {
+            if !(f.lo..=f.hi).contains(&x) {
+                return bad(format!(
+                    "the start point's {x} for {} lies outside its range",
+                    f.label()
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The methods' display names (as written; see [`canonical_method`]).

@@ -17,6 +17,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
+use super::design::DESIGN_DIR;
 use super::outputs::output_files;
 use super::plan::{MultiversePlan, identity_diff};
 use super::record::RECORD_FILE;
@@ -102,7 +103,7 @@ fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
 
 /// `--overwrite`: removes from `dir` what a multiverse writes there and nothing else: the
 /// plan and the top files; in each shard's folder (`shards/<I>-of-<N>/`) its plan, lock and
-/// owner manifest; in each universe's folder (`universes/u<digits>/`) its scenario, record,
+/// owner manifest; the design's point files (`design/d<digits>.json`); in each universe's folder (`universes/u<digits>/`) its scenario, record,
 /// its calibration's files ([`crate::calibrate::outputs::clear`]) and its comparison's
 /// ([`crate::stale_outputs::clear_sweep`]), with their locks and owner manifests. A folder is
 /// removed once that leaves it empty; a file the multiverse does not write stays, and so does
@@ -128,7 +129,33 @@ pub fn clear(dir: &Path) -> Result<()> {
     for u in universe_folders(&universes)? {
         clear_universe(&u)?;
     }
-    remove_dir_if_empty(&universes)
+    remove_dir_if_empty(&universes)?;
+    clear_design(&dir.join(DESIGN_DIR))
+}
+
+/// Removes the design's point files (`d` and digits `.json`) from `design` and the folder
+/// once empty.
+fn clear_design(design: &Path) -> Result<()> {
+    let entries = match std::fs::read_dir(design) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(design))),
+    };
+    let mut names = Vec::new();
+    for e in entries {
+        let e = e.with_context(|| format!("listing {}", path_text(design)))?;
+        if let Some(n) = e.file_name().to_str()
+            && let Some(digits) = n.strip_prefix('d').and_then(|n| n.strip_suffix(".json"))
+            && !digits.is_empty()
+            && digits.bytes().all(|b| b.is_ascii_digit())
+        {
+            names.push(n.to_owned());
+        }
+    }
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    remove_named(design, &names)?;
+    remove_stale_temps(design)?;
+    remove_dir_if_empty(design)
 }
 
 /// The universes' folders under `universes` (`u` and digits, as

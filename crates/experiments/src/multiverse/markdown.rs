@@ -65,9 +65,9 @@ fn set_up(r: &mut String, plan: &MultiversePlan, count: usize) {
         r,
         "- base scenario: `{}` (scenario hash `{}`); build `{}`\n- universes: {count} of the \
          factorial's {} ({drawn}), one alternative per axis\n- in each: the free fields are \
-         calibrated to the targets (Nelder-Mead, at most {} evaluations of {} x {} trials, base \
-         seed {}, values to {} significant digits); the universe is **admissible** when every \
-         target's statistic lies in its band (loss 0)\n- then the comparison on the calibrated \
+         calibrated to the targets ({}, at most {} evaluations of {} x {} trials, base \
+         seed {}, values to {} significant digits{}{}); the universe is **admissible** when every \
+         target's statistic lies in its band (loss 0){}\n- then the comparison on the calibrated \
          scenario: {} x {} trials of {length}, base seed {} (common random numbers)\n",
         plan.scenario_path,
         id.scenario_hash,
@@ -77,11 +77,34 @@ fn set_up(r: &mut String, plan: &MultiversePlan, count: usize) {
             &id.build
         },
         plan.factorial(),
+        if id.optimizer.is_some() {
+            "CMA-ES"
+        } else {
+            "Nelder-Mead"
+        },
         id.max_evals,
         id.methods.join(", "),
         id.calibration_trials,
         id.calibration_seed,
         id.digits,
+        if id.design > 0 {
+            format!(
+                "; starting where an emulator fitted to {} shared design evaluations predicts \
+                 the least loss",
+                id.design
+            )
+        } else {
+            String::new()
+        },
+        id.check.map_or(String::new(), |c| format!(
+            "; a point in band is checked on {} unseen trials per method, base seed {}",
+            c.trials, c.seed
+        )),
+        if id.check.is_some() {
+            ", on the calibration's trials and on the unseen ones"
+        } else {
+            ""
+        },
         id.methods.join(", "),
         id.trials,
         id.seed,

@@ -13,8 +13,8 @@
 //! ([`merge_multiverse`]) multiverse writes the same bytes as one uninterrupted run.
 //!
 //! Files depend one way (each imports only from those before it): columns, axes, axis_targets,
-//! validate, universe, effect, record, setup, plan, universe_run, tally, conclusions, csv,
-//! spec_curve, markdown, outputs, progress, outcome, summary, folder, run, merge.
+//! validate, universe, effect, record, setup, plan, design, design_run, emulator, universe_run, tally, conclusions, csv,
+//! spec_curve, markdown, emulator_md, outputs, progress, outcome, summary, folder, run, merge.
 
 pub mod axes;
 mod axis_targets;
@@ -22,7 +22,11 @@ pub mod columns;
 pub mod conclusions;
 pub mod csv;
 pub mod decompose;
+pub mod design;
+pub mod design_run;
 pub mod effect;
+pub mod emulator;
+pub mod emulator_md;
 pub mod folder;
 pub mod markdown;
 mod merge;

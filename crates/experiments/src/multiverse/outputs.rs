@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use super::csv::multiverse_csv;
+use super::emulator_md::design_section;
 use super::markdown::{TARGETS_FIGURE_FILE, multiverse_md};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
@@ -62,10 +63,11 @@ pub fn write_outputs(
     if let Some(svg) = figure_or_warn(TARGETS_FIGURE_FILE, || targets_figure(plan, records)) {
         files.stage(&dir.join(TARGETS_FIGURE_FILE), svg.as_bytes())?;
     }
-    files.stage(
-        &dir.join(REPORT_FILE),
-        multiverse_md(plan, records).as_bytes(),
-    )?;
+    let mut md = multiverse_md(plan, records);
+    if let Some(section) = design_section(plan, records, dir) {
+        md.push_str(&section);
+    }
+    files.stage(&dir.join(REPORT_FILE), md.as_bytes())?;
     files.commit()
 }
 

@@ -16,7 +16,7 @@ use super::axes::Axes;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
 use crate::atomic::write_atomic;
-use crate::calibrate::{FreeField, Target};
+use crate::calibrate::{FreeField, Optimizer, Target};
 use crate::claims::Claim;
 use crate::fingerprint::{fnv1a64_hex, scenario_hash};
 use crate::shard::{Shard, shell_join};
@@ -71,6 +71,38 @@ pub struct MultiverseIdentity {
     pub digits: u32,
     /// The sample of universes (`None`: the full factorial).
     pub sample: Option<Sample>,
+    /// Design evaluations shared by the universes' calibrations (`--design`; 0: none, and
+    /// then absent from the JSON, as in plans written before designs).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub design: usize,
+    /// The calibrations' search, `cma-es` (`None`: Nelder-Mead, absent from the JSON).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub optimizer: Option<String>,
+    /// The calibrations' check on unseen trials (`None`: none, absent from the JSON).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<UnseenCheck>,
+}
+
+/// A check of each calibration's points in band on unseen trials
+/// ([`MultiverseIdentity::check`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct UnseenCheck {
+    /// Trials per method (>= 1).
+    pub trials: u32,
+    /// Their base seed.
+    pub seed: u64,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// The name `--optimizer` takes for `o`, or `None` for the default (Nelder-Mead).
+fn optimizer_name(o: Optimizer) -> Option<String> {
+    match o {
+        Optimizer::NelderMead => None,
+        Optimizer::CmaEs => Some("cma-es".into()),
+    }
 }
 
 /// The paper's claims, for a plan written before claims files ([`MultiverseIdentity::claims`]).
@@ -132,6 +164,12 @@ impl MultiversePlan {
                 max_evals: setup.max_evals,
                 digits: setup.digits,
                 sample: setup.sample,
+                design: setup.design,
+                optimizer: optimizer_name(setup.optimizer),
+                check: (setup.check_trials > 0).then_some(UnseenCheck {
+                    trials: setup.check_trials,
+                    seed: setup.check_seed,
+                }),
             },
             scenario_path: setup.origin.clone(),
             axes_path: setup.axes.origin().to_owned(),
@@ -242,6 +280,20 @@ impl MultiversePlan {
                 s.n.to_string(),
                 "--sample-seed".to_string(),
                 s.seed.to_string(),
+            ]);
+        }
+        if id.design > 0 {
+            a.extend(["--design".to_string(), id.design.to_string()]);
+        }
+        if let Some(o) = &id.optimizer {
+            a.extend(["--optimizer".to_string(), o.clone()]);
+        }
+        if let Some(c) = id.check {
+            a.extend([
+                "--check-trials".to_string(),
+                c.trials.to_string(),
+                "--check-seed".to_string(),
+                c.seed.to_string(),
             ]);
         }
         a
@@ -385,6 +437,9 @@ pub(crate) mod tests {
                 max_evals: 3,
                 digits: 4,
                 sample: None,
+                design: 0,
+                optimizer: None,
+                check: None,
             },
             scenario_path: "scenarios/paper.ron".into(),
             axes_path: "my axes.ron".into(),

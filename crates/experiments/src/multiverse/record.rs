@@ -67,6 +67,14 @@ pub struct CalibrationResult {
     pub evaluations: usize,
     /// Why the search stopped.
     pub stop: StopReason,
+    /// The loss the design's emulator predicted at the search's start (`--design`;
+    /// [`super::emulator::Start`]); NaN without a design, and then absent from the record.
+    #[serde(
+        default = "float_text::nan",
+        with = "float_text",
+        skip_serializing_if = "float_text::is_nan"
+    )]
+    pub predicted_loss: f64,
 }
 
 /// One method's summary of one metric in a universe's comparison (as `summary.csv`).
@@ -227,6 +235,7 @@ pub(crate) mod tests {
                 statistics: vec![6.0, f64::NAN],
                 evaluations: 4,
                 stop: StopReason::TargetReached,
+                predicted_loss: f64::NAN,
             }),
             comparison: Some(ComparisonResult {
                 trials_ok: 4,

@@ -5,8 +5,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, bail};
+use anyhow::{Result, anyhow, bail};
 
+use super::design_run::{missing_message, read_design, run_design};
+use super::emulator::Emulator;
 use super::folder::{clear, refuse_others};
 use super::outcome::MultiverseOutcome;
 use super::outputs::write_outputs;
@@ -90,7 +92,20 @@ pub fn run_multiverse(
         Some(s) => plan.write(&shard_dir(dir, s))?,
         None => plan.write(dir)?,
     }
-    let (records, ran) = run_universes(setup, &checked, &plan, dir, progress)?;
+    let emulator = match setup.design {
+        0 => None,
+        n => {
+            run_design(setup, &checked, &plan, dir, progress.bar)?;
+            let points = read_design(&plan, dir).map_err(|m| anyhow!(missing_message(&m, n)))?;
+            Some(Emulator::fit(
+                &points,
+                &setup.axes.sizes(),
+                &setup.free,
+                setup.targets.targets().len(),
+            ))
+        }
+    };
+    let (records, ran) = run_universes(setup, &checked, &plan, dir, progress, emulator.as_ref())?;
     let files = match setup.shard {
         Some(_) => Vec::new(),
         None => write_outputs(&plan, &records, dir)?,
@@ -127,6 +142,7 @@ fn run_universes(
     plan: &MultiversePlan,
     dir: &Path,
     progress: MultiverseProgress,
+    emulator: Option<&Emulator>,
 ) -> Result<(Vec<UniverseRecord>, usize)> {
     let sum = plan.identity_sum();
     let run = UniverseRun {
@@ -134,6 +150,7 @@ fn run_universes(
         plan,
         identity_sum: &sum,
         root: dir,
+        emulator,
     };
     let own = checked.own(setup.shard);
     let display = Display::new(progress, own.len());

@@ -14,8 +14,10 @@ use super::universe::{
     Sample, Universe, UniverseError, check_shards, factorial_size, select, shard_of,
 };
 use super::validate::check_axes;
-use crate::calibrate::setup::DEFAULT_DIGITS;
-use crate::calibrate::{CalibrationSetup, EvaluationHook, FreeField, SetupError, Targets};
+use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed};
+use crate::calibrate::{
+    CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets,
+};
 use crate::claims::{Claims, ClaimsError};
 use crate::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
 use crate::method_factory::MethodFactory;
@@ -28,6 +30,11 @@ pub const DEFAULT_TRIALS: u32 = 10;
 pub const DEFAULT_CALIBRATION_TRIALS: u32 = 5;
 /// Evaluations of each universe's calibration at most by default (30).
 pub const DEFAULT_MAX_EVALS: usize = 30;
+/// Design evaluations shared by the universes' calibrations by default (0: none; each
+/// universe's search starts from the scenario's own values).
+pub const DEFAULT_DESIGN: usize = 0;
+/// The most design evaluations a multiverse takes (100,000).
+pub const MAX_DESIGN: usize = 100_000;
 /// Seed of `--sample`'s draw by default (0).
 pub const DEFAULT_SAMPLE_SEED: u64 = 0;
 
@@ -120,6 +127,23 @@ pub struct MultiverseSetup {
     pub calibration_seed: u64,
     /// Most evaluations of each calibration (>= 1; default [`DEFAULT_MAX_EVALS`]).
     pub max_evals: usize,
+    /// `--design N`: evaluations of a design shared by every universe (0 to
+    /// [`MAX_DESIGN`]; default [`DEFAULT_DESIGN`], none). With a design, N
+    /// points spread over the universes and the free ranges are evaluated first
+    /// ([`super::design`]), an emulator of every target's statistic is fitted to them
+    /// ([`super::emulator`]), and each universe's calibration starts where the emulator
+    /// predicts its least loss.
+    pub design: usize,
+    /// The search of each calibration (`--optimizer`; default Nelder-Mead).
+    pub optimizer: Optimizer,
+    /// Trials per method of each calibration's check on unseen trials (`--check-trials`;
+    /// default 0: no check). With a check, a point in band counts only when the unseen
+    /// trials are in band too ([`crate::calibrate::Evaluation::search_loss`]), so an
+    /// admissible universe is confirmed on trials its calibration did not see.
+    pub check_trials: u32,
+    /// Base seed of that check (`--check-seed`; default
+    /// [`crate::calibrate::setup::default_check_seed`] of the calibration seed).
+    pub check_seed: u64,
     /// Significant digits of the calibrated values (1 to 17; default
     /// [`DEFAULT_DIGITS`]).
     pub digits: u32,
@@ -176,6 +200,10 @@ impl MultiverseSetup {
             calibration_trials: DEFAULT_CALIBRATION_TRIALS,
             calibration_seed: seed,
             max_evals: DEFAULT_MAX_EVALS,
+            design: DEFAULT_DESIGN,
+            optimizer: Optimizer::NelderMead,
+            check_trials: 0,
+            check_seed: default_check_seed(seed),
             digits: DEFAULT_DIGITS,
             sample: None,
             threads: std::thread::available_parallelism().map_or(1, usize::from),
@@ -190,8 +218,8 @@ impl MultiverseSetup {
 
     /// The calibration of one universe: `spec` (the base with the universe's choices, read
     /// from `origin`), fitted to `targets` (this setup's, with the universe's target flags,
-    /// [`Axes::universe_targets`]) with this setup's free fields, methods and budget, no
-    /// check on unseen trials, described by `command`.
+    /// [`Axes::universe_targets`]) with this setup's free fields, methods, budget, search and
+    /// check on unseen trials, from the scenario's own values, described by `command`.
     pub fn calibration_setup(
         &self,
         spec: ScenarioSpec,
@@ -209,7 +237,9 @@ impl MultiverseSetup {
             max_evals: self.max_evals,
             max_time: None,
             threads: self.threads,
-            check_trials: 0,
+            check_trials: self.check_trials,
+            check_seed: self.check_seed,
+            optimizer: self.optimizer,
             overwrite: false,
             command,
             date: self.date.clone(),
@@ -237,6 +267,12 @@ impl MultiverseSetup {
         }
         if self.calibration_trials == 0 {
             return bad("--calibration-trials must be at least 1".into());
+        }
+        if self.design > MAX_DESIGN {
+            return bad(format!(
+                "--design {} is more than the limit of {} design evaluations",
+                self.design, MAX_DESIGN
+            ));
         }
         if let Some(l) = self.near_loss
             && !(l.is_finite() && l > 0.0)

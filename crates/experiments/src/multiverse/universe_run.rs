@@ -22,6 +22,7 @@ use anyhow::Result;
 use usar_sim::scenario::{ScenarioSpec, path_text};
 
 use super::effect::claim_effect;
+use super::emulator::Emulator;
 use super::plan::MultiversePlan;
 use super::record::{CalibrationResult, ComparisonResult, MetricSummary, Status, UniverseRecord};
 use super::setup::MultiverseSetup;
@@ -60,6 +61,9 @@ pub struct UniverseRun<'a> {
     pub identity_sum: &'a str,
     /// The output folder.
     pub root: &'a Path,
+    /// The emulator of the multiverse's design (`--design`): each calibration starts where
+    /// it predicts the least loss ([`Emulator::start`]); `None`: at the scenario's values.
+    pub emulator: Option<&'a Emulator>,
 }
 
 impl UniverseRun<'_> {
@@ -159,12 +163,18 @@ impl UniverseRun<'_> {
         dir: &Path,
         record: &mut UniverseRecord,
     ) {
-        let setup = self.setup.calibration_setup(
+        let mut setup = self.setup.calibration_setup(
             spec,
             targets.clone(),
             path_text(&dir.join(SCENARIO_FILE)),
             format!("{} (universe {})", self.plan.command(None), record.id),
         );
+        let start = self
+            .emulator
+            .map(|e| e.start(&record.choices, targets.targets(), self.setup.digits));
+        if let Some(s) = &start {
+            setup.start = Some(s.values.clone());
+        }
         let progress = Progress {
             on_evaluated: self.setup.hooks.calibration.clone(),
             ..Progress::off()
@@ -177,7 +187,10 @@ impl UniverseRun<'_> {
                 return;
             }
         };
-        record.calibration = Some(calibration_result(&calibrated));
+        record.calibration = Some(CalibrationResult {
+            predicted_loss: start.map_or(f64::NAN, |s| s.predicted_loss),
+            ..calibration_result(&calibrated)
+        });
         let cfg = SweepConfig {
             scenario_path: dir.join(CALIBRATION_DIR).join("calibrated.ron"),
             methods: self.setup.methods.clone(),
@@ -246,6 +259,7 @@ fn calibration_result(c: &CalibrationOutcome) -> CalibrationResult {
         statistics: c.best().statistics.clone(),
         evaluations: c.evaluations.len(),
         stop: c.stop,
+        predicted_loss: f64::NAN,
     }
 }
 

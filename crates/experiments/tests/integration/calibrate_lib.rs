@@ -123,6 +123,61 @@ fn start_mid_starts_at_the_middle_of_the_range_and_is_another_calibration() {
 }
 
 #[test]
+fn a_given_start_is_the_first_point_checked_against_the_ranges_and_another_calibration() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = CalibrationSetup {
+        start: Some(vec![1.75]),
+        ..setup(&["mission.pickup_s=0.5..2"], targets(None), 10)
+    };
+    let o = calibrate(&s, dir.path(), Progress::off()).unwrap();
+    assert_eq!(o.evaluations[0].values, [1.75]);
+    assert_eq!(
+        o.best_values(),
+        [1.75],
+        "loss 0 at the start stops the search"
+    );
+    assert!(
+        o.header.search.ends_with("start: 1.75"),
+        "{}",
+        o.header.search
+    );
+    let other = CalibrationSetup {
+        start: Some(vec![1.5]),
+        ..setup(&["mission.pickup_s=0.5..2"], targets(None), 10)
+    };
+    let e = calibrate(&other, dir.path(), Progress::off()).unwrap_err();
+    assert!(
+        format!("{e:#}").contains("holds another calibration"),
+        "{e:#}"
+    );
+    for (start, mid, message) in [
+        (
+            vec![2.5],
+            false,
+            "the start point's 2.5 for mission.pickup_s lies outside its range",
+        ),
+        (
+            vec![1.0, 1.0],
+            false,
+            "the start point has 2 values for 1 free fields",
+        ),
+        (
+            vec![1.0],
+            true,
+            "--start-mid and a given start point exclude each other",
+        ),
+    ] {
+        let bad = CalibrationSetup {
+            start: Some(start),
+            start_mid: mid,
+            ..setup(&["mission.pickup_s=0.5..2"], targets(None), 10)
+        };
+        let e = bad.check().unwrap_err().to_string();
+        assert!(e.contains(message), "{e}");
+    }
+}
+
+#[test]
 fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
     let dir = tempfile::tempdir().unwrap();
     let mut s = setup(&["mission.pickup_s=0.5..2"], targets(None), 2);

@@ -324,6 +324,66 @@ fn shards_merged_give_the_files_of_one_run() {
     assert_same_files(&one.join("out"), &split.join("out"));
 }
 
+#[test]
+fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_sharded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let [one, split] = working_dirs(tmp.path(), ["one", "split"]);
+    let design = ["--design", "12", "--check-trials", "1"];
+    ok(&multiverse_in(
+        &one,
+        &[&design[..], &["--threads", "2"]].concat(),
+    ));
+    let out = one.join("out");
+    let points = |d: &Path| std::fs::read_dir(d.join("design")).unwrap().count();
+    assert_eq!(points(&out), 12);
+    // Every calibrated universe started at the emulator's point, recorded with its
+    // predicted loss; the report says so and gives the emulator's error.
+    let record = read_text(&out.join("universes/u000/universe.json"));
+    assert!(record.contains("\"predicted_loss\":"), "{record}");
+    let trace = read_text(&out.join("universes/u000/calibration/trace.jsonl"));
+    assert!(trace.contains("; start: "), "{trace}");
+    let md = read_text(&out.join("multiverse.md"));
+    for part in [
+        "--design 12 --check-trials 1 --check-seed 7",
+        "starting where an emulator fitted to 12 shared design evaluations predicts",
+        "checked on 1 unseen trials per method",
+        "## The design shared by the universes",
+        "| rescuees | 4 in [3, 100] |",
+    ] {
+        assert!(md.contains(part), "no {part:?} in {md}");
+    }
+    let again = ok(&multiverse_in(&one, &design));
+    assert!(
+        again.contains("(0 run now, 4 from earlier runs)"),
+        "{again}"
+    );
+    // A design point removed runs again, to the same files.
+    std::fs::remove_file(out.join("design/d0005.json")).unwrap();
+    std::fs::remove_file(out.join("multiverse.md")).unwrap();
+    ok(&multiverse_in(&one, &design));
+    assert_eq!(points(&out), 12);
+    // Shard 1 of 2 alone runs the whole design (its own points first), then its universes;
+    // shard 0 finds the design done; merged, the files are the one run's.
+    ok(&multiverse_in(
+        &split,
+        &[&design[..], &["--shard", "1/2", "--threads", "1"]].concat(),
+    ));
+    assert_eq!(points(&split.join("out")), 12);
+    ok(&multiverse_in(
+        &split,
+        &[&design[..], &["--shard", "0/2", "--threads", "1"]].concat(),
+    ));
+    ok(&usar_in(&split, ["merge", "out"]));
+    assert_same_files(&out, &split.join("out"));
+    let md_split = read(&split.join("out/multiverse.md"));
+    assert_eq!(read(&out.join("multiverse.md")), md_split);
+    // Another design is another multiverse; too large a design is refused in one line.
+    let other = multiverse_in(&one, &["--design", "13"]);
+    one_line_error(&other, &["holds another multiverse", "design 12 vs 13"]);
+    let huge = multiverse_in(&split, &["--design", "100001"]);
+    one_line_error(&huge, &["--design 100001 is more than the limit of 100000"]);
+}
+
 /// Writes `text` as the axes file `name` in `dir`; returns its path.
 fn axes_with(dir: &Path, name: &str, text: &str) -> String {
     let path = dir.join(name);

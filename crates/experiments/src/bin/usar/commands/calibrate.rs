@@ -29,6 +29,7 @@ use experiments::shard::shell_join;
 
 use experiments::sweep::default_out_dir_of;
 
+use crate::shared::optimizer_arg::OptimizerArg;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
 use experiments::data::source_date::source_date;
@@ -183,24 +184,6 @@ pub struct CalibrateArgs {
     /// Test hook: exit abruptly (status 75, no output files) after N new evaluations.
     #[arg(long, value_name = "N", hide = true)]
     pub stop_after: Option<usize>,
-}
-
-/// `--optimizer`'s values.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum OptimizerArg {
-    /// Nelder-Mead (argmin).
-    NelderMead,
-    /// CMA-ES (fcmaes-core).
-    CmaEs,
-}
-
-impl From<OptimizerArg> for experiments::calibrate::Optimizer {
-    fn from(a: OptimizerArg) -> Self {
-        match a {
-            OptimizerArg::NelderMead => Self::NelderMead,
-            OptimizerArg::CmaEs => Self::CmaEs,
-        }
-    }
 }
 
 /// `--max-time`: a duration as humantime reads it (`90s`, `30m`, `1h 30m`).

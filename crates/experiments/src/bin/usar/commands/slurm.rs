@@ -18,7 +18,9 @@ use experiments::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scri
 use experiments::sweep::default_out_dir;
 use usar_sim::scenario;
 
-use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, setup_of};
+use crate::shared::multiverse_spec::{
+    MultiverseSearchArgs, MultiverseSpecArgs, default_dir, setup_of,
+};
 use crate::shared::sweep_spec::{ReportArgs, SweepSpecArgs, warn_if_rounded};
 
 const EXAMPLES: &str = "\
@@ -160,6 +162,10 @@ pub struct SlurmMultiverseArgs {
     /// With --axes: seed of --sample's draw.
     #[arg(long, value_name = "S", requires = "sample", default_value_t = DEFAULT_SAMPLE_SEED)]
     pub sample_seed: u64,
+
+    /// With --axes: the calibrations' design, search and check (as `usar multiverse`).
+    #[command(flatten)]
+    pub search: MultiverseSearchArgs,
 }
 
 /// `path` made absolute against the current folder (not resolved: links stay).
@@ -228,6 +234,7 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         max_evals: m.max_evals,
         sample: m.sample,
         sample_seed: m.sample_seed,
+        search: m.search.clone(),
         out: s.out.clone(),
     };
     let setup = setup_of(&spec, 1, None)?;

@@ -3,6 +3,7 @@
 //! the per-round yields' file and the hidden test hooks.
 
 pub mod multiverse_spec;
+pub mod optimizer_arg;
 pub mod rounds_csv;
 pub mod scenario_warnings;
 pub mod sweep_spec;

@@ -9,16 +9,20 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
+use experiments::calibrate::setup::default_check_seed;
 use experiments::calibrate::{Targets, parse_free};
 use experiments::claims::Claims;
 use experiments::multiverse::setup::{
-    DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED, DEFAULT_TRIALS,
+    DEFAULT_CALIBRATION_TRIALS, DEFAULT_DESIGN, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
+    DEFAULT_TRIALS,
 };
 use experiments::multiverse::{Axes, MultiverseSetup, Sample};
 use experiments::shard::Shard;
 use experiments::sweep::default_out_dir_of;
 
 use experiments::data::source_date::source_date;
+
+use super::optimizer_arg::OptimizerArg;
 
 /// The arguments of `usar multiverse` that decide what it runs.
 #[derive(Debug, Clone, Args)]
@@ -100,9 +104,46 @@ pub struct MultiverseSpecArgs {
     #[arg(long, value_name = "S", default_value_t = DEFAULT_SAMPLE_SEED, requires = "sample")]
     pub sample_seed: u64,
 
+    /// How each universe's calibration searches and is confirmed.
+    #[command(flatten)]
+    pub search: MultiverseSearchArgs,
+
     /// Output folder; default `results/multiverse-<scenario name>/`. Locked while it runs.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+}
+
+/// How each universe's calibration searches and is confirmed (`usar multiverse` and `usar
+/// slurm --axes`).
+#[derive(Debug, Clone, Args)]
+pub struct MultiverseSearchArgs {
+    /// Evaluate N design points spread over the universes and the free ranges first, fit an
+    /// emulator of every target's statistic to them, and start each universe's calibration
+    /// where it predicts the least loss (docs/multiverse.md, "A design shared by the
+    /// universes"). Default 0: no design, each search starts at the scenario's values.
+    #[arg(long, value_name = "N", requires = "axes", default_value_t = DEFAULT_DESIGN)]
+    pub design: usize,
+
+    /// Each calibration's search: `nelder-mead` or `cma-es` (as `usar calibrate
+    /// --optimizer`).
+    #[arg(
+        long,
+        value_enum,
+        value_name = "SEARCH",
+        requires = "axes",
+        default_value_t = OptimizerArg::NelderMead
+    )]
+    pub optimizer: OptimizerArg,
+
+    /// Trials per method of each calibration's check on unseen trials: a point in band
+    /// counts only when these trials are in band too (as `usar calibrate --check-trials`).
+    /// Default 0: no check.
+    #[arg(long, value_name = "N", requires = "axes", default_value_t = 0)]
+    pub check_trials: u32,
+
+    /// Base seed of that check; default 7 (8 when the calibration seed is 7).
+    #[arg(long, value_name = "SEED", requires = "check_trials")]
+    pub check_seed: Option<u64>,
 }
 
 /// The setup of `spec` with `threads` worker threads, run as `shard`.
@@ -133,6 +174,13 @@ pub fn setup_of(
         calibration_trials: spec.calibration_trials,
         calibration_seed: spec.calibration_seed.unwrap_or(seed),
         max_evals: spec.max_evals,
+        design: spec.search.design,
+        optimizer: spec.search.optimizer.into(),
+        check_trials: spec.search.check_trials,
+        check_seed: spec
+            .search
+            .check_seed
+            .unwrap_or_else(|| default_check_seed(spec.calibration_seed.unwrap_or(seed))),
         sample: spec.sample.map(|n| Sample {
             n,
             seed: spec.sample_seed,
