@@ -362,17 +362,20 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
     std::fs::remove_file(out.join("multiverse.md")).unwrap();
     ok(&multiverse_in(&one, &design));
     assert_eq!(points(&out), 12);
-    // Shard 1 of 2 alone runs the whole design (its own points first), then its universes;
-    // shard 0 finds the design done; merged, the files are the one run's.
-    ok(&multiverse_in(
-        &split,
-        &[&design[..], &["--shard", "1/2", "--threads", "1"]].concat(),
-    ));
+    // Shard 1 of 4 alone runs the whole design (its own points first), then its universe;
+    // the others find the design done; merged, the files are the one run's.
+    let shard = |s: &str| {
+        multiverse_in(
+            &split,
+            &[&design[..], &["--shard", s, "--threads", "1"]].concat(),
+        )
+    };
+    ok(&shard("1/4"));
     assert_eq!(points(&split.join("out")), 12);
-    ok(&multiverse_in(
-        &split,
-        &[&design[..], &["--shard", "0/2", "--threads", "1"]].concat(),
-    ));
+    for s in ["3/4", "0/4", "2/4"] {
+        let o = ok(&shard(s));
+        assert!(o.contains("1 of 4 universes"), "{o}");
+    }
     ok(&usar_in(&split, ["merge", "out"]));
     assert_same_files(&out, &split.join("out"));
     let md_split = read(&split.join("out/multiverse.md"));
@@ -382,6 +385,9 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
     one_line_error(&other, &["holds another multiverse", "design 12 vs 13"]);
     let huge = multiverse_in(&split, &["--design", "100001"]);
     one_line_error(&huge, &["--design 100001 is more than the limit of 100000"]);
+    // --overwrite removes the design with the rest.
+    ok(&multiverse_in(&one, &["--overwrite"]));
+    assert!(!out.join("design").exists());
 }
 
 /// Writes `text` as the axes file `name` in `dir`; returns its path.
