@@ -105,10 +105,16 @@ impl DesignPoint {
         write_atomic(&path, line.as_bytes())
     }
 
-    /// Reads design point `index` under `root` for the multiverse with `identity_sum`:
-    /// `None` when it is missing, or does not verify (edited, damaged, another multiverse's;
-    /// it runs again).
-    pub fn read(root: &Path, index: usize, design: usize, identity_sum: &str) -> Option<Self> {
+    /// Reads design point `index` under `root` for the multiverse with `identity_sum`, `free`
+    /// free fields and `targets` targets: `None` when it is missing, or does not verify
+    /// (edited, damaged, another multiverse's, or not of that many values; it runs again).
+    pub fn read(
+        root: &Path,
+        index: usize,
+        design: usize,
+        identity_sum: &str,
+        (free, targets): (usize, usize),
+    ) -> Option<Self> {
         #[derive(Deserialize)]
         #[serde(deny_unknown_fields)]
         struct Line<'a> {
@@ -122,7 +128,8 @@ impl DesignPoint {
             return None;
         }
         let point: Self = serde_json::from_str(line.design.get()).ok()?;
-        (point.index == index).then_some(point)
+        (point.index == index && point.values.len() == free && point.statistics.len() == targets)
+            .then_some(point)
     }
 }
 
@@ -223,10 +230,12 @@ mod tests {
         };
         p.write(dir.path(), 100, "abc").unwrap();
         assert!(point_path(dir.path(), 7, 100).ends_with("design/d0007.json"));
-        let back = DesignPoint::read(dir.path(), 7, 100, "abc").unwrap();
+        let back = DesignPoint::read(dir.path(), 7, 100, "abc", (2, 2)).unwrap();
         assert_eq!(back.values, p.values);
         assert!(back.statistics[1].is_nan());
-        assert!(DesignPoint::read(dir.path(), 7, 100, "abd").is_none());
-        assert!(DesignPoint::read(dir.path(), 8, 100, "abc").is_none());
+        assert!(DesignPoint::read(dir.path(), 7, 100, "abd", (2, 2)).is_none());
+        assert!(DesignPoint::read(dir.path(), 8, 100, "abc", (2, 2)).is_none());
+        assert!(DesignPoint::read(dir.path(), 7, 100, "abc", (3, 2)).is_none());
+        assert!(DesignPoint::read(dir.path(), 7, 100, "abc", (2, 1)).is_none());
     }
 }

@@ -31,6 +31,7 @@ pub fn run_design(
 ) -> Result<usize> {
     let n = setup.design;
     let sum = plan.identity_sum();
+    let sizes = (setup.free.len(), setup.targets.targets().len());
     let points = design_plan(
         n,
         checked.universes.len(),
@@ -41,7 +42,7 @@ pub fn run_design(
     let first = setup.shard.map_or(0, |s| s.index);
     let order = (0..n).map(|k| (k + first) % n);
     let (own, others): (Vec<usize>, Vec<usize>) = order
-        .filter(|&j| DesignPoint::read(dir, j, n, &sum).is_none())
+        .filter(|&j| DesignPoint::read(dir, j, n, &sum, sizes).is_none())
         .partition(|j| setup.shard.is_none_or(|s| j % s.count == s.index));
     let pb = count_bar(bar, (own.len() + others.len()) as u64, "design points");
     let mut ran = 0;
@@ -49,7 +50,7 @@ pub fn run_design(
         if setup.hooks.stopped() {
             return Err(Stopped.into());
         }
-        if DesignPoint::read(dir, j, n, &sum).is_some() {
+        if DesignPoint::read(dir, j, n, &sum, sizes).is_some() {
             pb.inc(1);
             continue;
         }
@@ -71,10 +72,11 @@ pub fn run_design(
 pub fn read_design(plan: &MultiversePlan, dir: &Path) -> Result<Vec<DesignPoint>, Vec<usize>> {
     let n = plan.identity.design;
     let sum = plan.identity_sum();
+    let sizes = (plan.identity.free.len(), plan.identity.targets.len());
     let mut points = Vec::with_capacity(n);
     let mut missing = Vec::new();
     for j in 0..n {
-        match DesignPoint::read(dir, j, n, &sum) {
+        match DesignPoint::read(dir, j, n, &sum, sizes) {
             Some(p) => points.push(p),
             None => missing.push(j),
         }

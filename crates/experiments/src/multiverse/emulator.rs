@@ -9,9 +9,11 @@
 //! values whose intercept and slopes shift with every alternative (no interaction between
 //! axes). The coefficients minimise `sum (y - x b)^2 + lambda * |b without the intercept|^2`
 //! (solved by Cholesky, nalgebra), `lambda` chosen from [`LAMBDAS`] by [`FOLDS`]-fold
-//! cross-validation (point `j` in fold `j mod 5`; the smallest held-out error, the
-//! smaller `lambda` on a tie). Design points whose statistic is NaN are left out of that
-//! target's fit.
+//! cross-validation (the `k`-th point fitted in fold `p(k) mod 5`, `p` a fixed random
+//! permutation, ChaCha8 seed 0, so that no fold lines up with a universe or an alternative;
+//! the smallest held-out error, the smaller `lambda` on a tie). Design points whose
+//! statistic is NaN are left out of that target's fit, and points where trials failed (a
+//! calibration scores them +inf) out of every fit.
 //!
 //! **Fidelity.** Each fit reports its cross-validated root-mean-square error, which
 //! `multiverse.md` sets against the target's band half-width: an emulator whose error is a
@@ -37,8 +39,9 @@ use crate::calibrate::{FreeField, Target, target_loss};
 pub const LAMBDAS: [f64; 7] = [1e-6, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0];
 /// Cross-validation folds (5).
 pub const FOLDS: usize = 5;
-/// Fewest design points with a statistic for its target to be emulated (`2 * FOLDS`).
-pub const MIN_POINTS: usize = 2 * FOLDS;
+/// Fewest design points with a statistic for its target to be emulated (two a fold:
+/// [`super::setup::MIN_DESIGN`]).
+pub const MIN_POINTS: usize = super::setup::MIN_DESIGN;
 
 /// One target's fit.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -69,8 +72,8 @@ pub struct Emulator {
 pub struct Start {
     /// The free values, rounded, in `--free` order.
     pub values: Vec<f64>,
-    /// The loss of the predicted statistics ([`crate::calibrate::loss()`]; +inf when a
-    /// required target has no fit).
+    /// The loss of the predicted statistics over the targets the emulator fits
+    /// ([`crate::calibrate::loss()`] without the others).
     pub predicted_loss: f64,
 }
 
@@ -106,6 +109,7 @@ impl Emulator {
         free: &[FreeField],
         targets: usize,
     ) -> Self {
+        let points: Vec<&DesignPoint> = points.iter().filter(|p| p.message.is_none()).collect();
         let rows: Vec<Vec<f64>> = points
             .iter()
             .map(|p| {
@@ -121,7 +125,7 @@ impl Emulator {
             .map(|t| {
                 let (x, y): (Vec<&Vec<f64>>, Vec<f64>) = rows
                     .iter()
-                    .zip(points)
+                    .zip(&points)
                     .filter_map(|(r, p)| {
                         p.statistics
                             .get(t)
@@ -160,14 +164,24 @@ impl Emulator {
     }
 
     /// Where the calibration of a universe taking `choices`, held to `targets` (its flags),
-    /// starts: the free values of least predicted loss (ties: nearest the targets' values,
-    /// in half-widths), rounded to `digits`. Searched on a fixed set of 2,048 points of
-    /// `[0, 1]^d` (ChaCha8, seed 0), then by a compass search from the best of them (steps
-    /// from 1/16 down to 1/1024 of each range). Deterministic.
-    pub fn start(&self, choices: &[usize], targets: &[Target], digits: u32) -> Start {
+    /// starts: the free values of least predicted loss over the targets with a fit (ties:
+    /// nearest the targets' values, in half-widths), rounded to `digits`. Searched on a fixed
+    /// set of 2,048 points of `[0, 1]^d` (ChaCha8, seed 0), then by a compass search from the
+    /// best of them (steps from 1/16 down to 1/1024 of each range). Deterministic. `None`
+    /// when no target the loss counts has a fit: the search then starts at the scenario's
+    /// values, as without a design.
+    pub fn start(&self, choices: &[usize], targets: &[Target], digits: u32) -> Option<Start> {
+        let fitted: Vec<bool> = self.fits.iter().map(Option::is_some).collect();
+        if !targets
+            .iter()
+            .zip(&fitted)
+            .any(|(t, &f)| f && !t.report_only)
+        {
+            return None;
+        }
         use rand::{RngExt, SeedableRng};
         let d = self.free.len();
-        let score = |z: &[f64]| objective(targets, &self.predict_unit(choices, z));
+        let score = |z: &[f64]| objective(targets, &fitted, &self.predict_unit(choices, z));
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0);
         let mut best: Vec<f64> = vec![0.5; d];
         let mut best_score = score(&best);
@@ -202,24 +216,26 @@ impl Emulator {
             .map(|(f, &u)| f.from_unit(u, digits))
             .collect();
         let predicted = self.predict(choices, &values);
-        Start {
-            predicted_loss: crate::calibrate::loss(targets, &predicted),
+        Some(Start {
+            predicted_loss: objective(targets, &fitted, &predicted).0,
             values,
-        }
+        })
     }
 }
 
 /// The search's score of predicted statistics: (loss, squared distance from the targets'
-/// values in half-widths over the required targets).
-fn objective(targets: &[Target], predicted: &[f64]) -> (f64, f64) {
-    let loss: f64 = targets
-        .iter()
-        .zip(predicted)
-        .map(|(t, &x)| target_loss(t, x))
-        .sum();
-    let centre: f64 = targets
-        .iter()
-        .zip(predicted)
+/// values in half-widths over the required targets), both over the `fitted` targets only.
+fn objective(targets: &[Target], fitted: &[bool], predicted: &[f64]) -> (f64, f64) {
+    let known = || {
+        targets
+            .iter()
+            .zip(predicted)
+            .zip(fitted)
+            .filter(|(_, f)| **f)
+            .map(|(tx, _)| tx)
+    };
+    let loss: f64 = known().map(|(t, &x)| target_loss(t, x)).sum();
+    let centre: f64 = known()
         .filter(|(t, _)| !t.report_only)
         .map(|(t, &x)| {
             let w = t.band.half_width(t.value);
@@ -257,10 +273,11 @@ fn fit_one(x: &[&Vec<f64>], y: &[f64]) -> Option<Fit> {
         return None;
     }
     let p = x[0].len();
+    let folds = folds(n);
     let mut grams = vec![(DMatrix::<f64>::zeros(p, p), DVector::<f64>::zeros(p)); FOLDS];
     for (j, (row, &yj)) in x.iter().zip(y).enumerate() {
         let r = DVector::from_column_slice(row);
-        let (g, b) = &mut grams[j % FOLDS];
+        let (g, b) = &mut grams[folds[j]];
         g.ger(1.0, &r, &r, 1.0);
         b.axpy(yj, &r, 1.0);
     }
@@ -280,7 +297,7 @@ fn fit_one(x: &[&Vec<f64>], y: &[f64]) -> Option<Fit> {
                 .iter()
                 .zip(y)
                 .enumerate()
-                .filter(|(j, _)| j % FOLDS == f)
+                .filter(|(j, _)| folds[*j] == f)
                 .map(|(_, (row, &yj))| (yj - dot(beta.as_slice(), row)).powi(2))
                 .sum::<f64>();
         }
@@ -299,6 +316,17 @@ fn fit_one(x: &[&Vec<f64>], y: &[f64]) -> Option<Fit> {
         sd,
         points: n,
     })
+}
+
+/// The fold of each of `n` points fitted: `p(k) mod FOLDS`, `p` a permutation of `0..n`
+/// shuffled by ChaCha8 seeded with 0 (balanced folds that line up with nothing in the
+/// design's order).
+fn folds(n: usize) -> Vec<usize> {
+    use rand::SeedableRng;
+    use rand::seq::SliceRandom;
+    let mut p: Vec<usize> = (0..n).collect();
+    p.shuffle(&mut rand_chacha::ChaCha8Rng::seed_from_u64(0));
+    p.into_iter().map(|k| k % FOLDS).collect()
 }
 
 /// `(G + lambda * diag(0, 1, ..., 1)) b = r`, by Cholesky; `None` when not positive
@@ -373,14 +401,52 @@ mod tests {
         )
         .unwrap();
         // Universe 1: 5 + z0 - 4 (z1 - 0.5)^2 = 5.5 at z1 = 0.5, z0 = 0.5 (among others).
-        let s = e.start(&[1], targets.targets(), 6);
+        let s = e.start(&[1], targets.targets(), 6).unwrap();
         assert_eq!(s.predicted_loss, 0.0);
         let y = 5.0 + s.values[0] - 4.0 * (s.values[1] - 0.5).powi(2);
         approx::assert_abs_diff_eq!(y, 5.5, epsilon = 0.01);
-        assert_eq!(s, e.start(&[1], targets.targets(), 6), "deterministic");
+        assert_eq!(
+            Some(s),
+            e.start(&[1], targets.targets(), 6),
+            "deterministic"
+        );
         // Universe 0 reaches at most 4: the start is at z0 = 1, z1 = 0.5, loss > 0.
-        let s0 = e.start(&[0], targets.targets(), 6);
+        let s0 = e.start(&[0], targets.targets(), 6).unwrap();
         assert!(s0.predicted_loss > 0.0);
         approx::assert_abs_diff_eq!(s0.values[0], 1.0, epsilon = 1e-3);
+    }
+
+    #[test]
+    fn targets_without_a_fit_are_left_out_of_the_start_and_none_fitted_gives_no_start() {
+        let e = Emulator::fit(&points(60), &[2], &free(), 2);
+        let two = Targets::parse(
+            r#"Targets(targets: [(name: "a", statistic: Mean("rounds"), value: 5.5, band: PlusMinus(0.1)), (name: "b", statistic: Mean("rescued_total"), value: 1.0, band: PlusMinus(0.1))])"#,
+            "t.ron",
+        )
+        .unwrap();
+        // Target "b" never has a statistic: the start is where "a" is in band.
+        let s = e.start(&[1], two.targets(), 6).unwrap();
+        assert_eq!(s.predicted_loss, 0.0);
+        // Only "b" fitted... none: no start (the scenario's own values are used).
+        let mut only_b = two.clone();
+        only_b.set_report_only(&["a".to_string()]).unwrap();
+        assert_eq!(e.start(&[1], only_b.targets(), 6), None);
+    }
+
+    #[test]
+    fn folds_are_balanced_and_points_with_failed_trials_are_not_fitted() {
+        let f = folds(20);
+        for k in 0..FOLDS {
+            assert_eq!(f.iter().filter(|&&x| x == k).count(), 4);
+        }
+        assert_ne!(f, (0..20).map(|j| j % FOLDS).collect::<Vec<_>>());
+        let mut pts = points(60);
+        for p in pts.iter_mut().take(5) {
+            p.message = Some("1 of 2 trials failed".into());
+            p.statistics[0] = 1e6;
+        }
+        let e = Emulator::fit(&pts, &[2], &free(), 1);
+        assert_eq!(e.fits[0].as_ref().unwrap().points, 55);
+        assert!(e.fits[0].as_ref().unwrap().cv_rmse < 1e-3);
     }
 }

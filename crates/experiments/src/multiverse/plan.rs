@@ -168,7 +168,7 @@ impl MultiversePlan {
                 optimizer: optimizer_name(setup.optimizer),
                 check: (setup.check_trials > 0).then_some(UnseenCheck {
                     trials: setup.check_trials,
-                    seed: setup.check_seed,
+                    seed: setup.check_seed(),
                 }),
             },
             scenario_path: setup.origin.clone(),
@@ -373,14 +373,15 @@ pub fn identity_diff(old: &MultiverseIdentity, new: &MultiverseIdentity) -> Stri
     let (Some(a), Some(b)) = (a.as_object(), b.as_object()) else {
         return "another multiverse".into();
     };
-    let diffs: Vec<String> = a
-        .iter()
-        .filter(|(k, v)| b.get(*k) != Some(*v))
-        .map(|(k, v)| {
-            let (x, y) = (
-                v.to_string(),
-                b.get(k).map_or("none".into(), |w| w.to_string()),
-            );
+    // Both plans' keys: a field at its default is left out of the JSON (a design, a check).
+    let keys = a.keys().chain(b.keys().filter(|k| !a.contains_key(*k)));
+    let diffs: Vec<String> = keys
+        .filter(|k| a.get(*k) != b.get(*k))
+        .map(|k| {
+            let text = |m: &serde_json::Map<String, serde_json::Value>| {
+                m.get(k).map_or("none".into(), |w| w.to_string())
+            };
+            let (x, y) = (text(a), text(b));
             if x.len() <= 40 && y.len() <= 40 {
                 format!("{k} {x} vs {y}")
             } else {
@@ -495,6 +496,18 @@ pub(crate) mod tests {
         assert_eq!(
             identity_diff(&p.identity, &q),
             "axes differ, trials 2 vs 10"
+        );
+        // A field left out of one plan's JSON at its default is named too, either way.
+        let mut d = p.identity.clone();
+        d.design = 12;
+        d.check = Some(UnseenCheck { trials: 1, seed: 7 });
+        assert_eq!(
+            identity_diff(&p.identity, &d),
+            "design none vs 12, check none vs {\"trials\":1,\"seed\":7}"
+        );
+        assert_eq!(
+            identity_diff(&d, &p.identity),
+            "design 12 vs none, check {\"trials\":1,\"seed\":7} vs none"
         );
         assert_ne!(
             MultiversePlan {

@@ -35,6 +35,9 @@ pub const DEFAULT_MAX_EVALS: usize = 30;
 pub const DEFAULT_DESIGN: usize = 0;
 /// The most design evaluations a multiverse takes (100,000).
 pub const MAX_DESIGN: usize = 100_000;
+/// The fewest design evaluations of a design (10: the emulator's 5-fold cross-validation
+/// holds out two points a fold).
+pub const MIN_DESIGN: usize = 10;
 /// Seed of `--sample`'s draw by default (0).
 pub const DEFAULT_SAMPLE_SEED: u64 = 0;
 
@@ -141,9 +144,10 @@ pub struct MultiverseSetup {
     /// trials are in band too ([`crate::calibrate::Evaluation::search_loss`]), so an
     /// admissible universe is confirmed on trials its calibration did not see.
     pub check_trials: u32,
-    /// Base seed of that check (`--check-seed`; default
-    /// [`crate::calibrate::setup::default_check_seed`] of the calibration seed).
-    pub check_seed: u64,
+    /// Base seed of that check (`--check-seed`; `None`, the default:
+    /// [`crate::calibrate::setup::default_check_seed`] of the calibration seed, so never the
+    /// calibration's own trials).
+    pub check_seed: Option<u64>,
     /// Significant digits of the calibrated values (1 to 17; default
     /// [`DEFAULT_DIGITS`]).
     pub digits: u32,
@@ -168,6 +172,13 @@ pub struct MultiverseSetup {
 }
 
 impl MultiverseSetup {
+    /// The base seed of the check on unseen trials: [`MultiverseSetup::check_seed`], or by
+    /// default [`default_check_seed`] of the calibration seed.
+    pub fn check_seed(&self) -> u64 {
+        self.check_seed
+            .unwrap_or_else(|| default_check_seed(self.calibration_seed))
+    }
+
     /// The defaults of `usar multiverse` for `axes` over `base` (read from `origin`),
     /// calibrating `free` to `targets`: the four built-in methods, [`DEFAULT_TRIALS`]
     /// comparison trials, the scenario's `sim.seed` for both seeds, each universe's
@@ -203,7 +214,7 @@ impl MultiverseSetup {
             design: DEFAULT_DESIGN,
             optimizer: Optimizer::NelderMead,
             check_trials: 0,
-            check_seed: default_check_seed(seed),
+            check_seed: None,
             digits: DEFAULT_DIGITS,
             sample: None,
             threads: std::thread::available_parallelism().map_or(1, usize::from),
@@ -238,7 +249,7 @@ impl MultiverseSetup {
             max_time: None,
             threads: self.threads,
             check_trials: self.check_trials,
-            check_seed: self.check_seed,
+            check_seed: self.check_seed(),
             optimizer: self.optimizer,
             overwrite: false,
             command,
@@ -267,6 +278,13 @@ impl MultiverseSetup {
         }
         if self.calibration_trials == 0 {
             return bad("--calibration-trials must be at least 1".into());
+        }
+        if self.design > 0 && self.design < MIN_DESIGN {
+            return bad(format!(
+                "--design {} is too few: a design needs at least {MIN_DESIGN} points (the \
+                 emulator's 5-fold cross-validation)",
+                self.design
+            ));
         }
         if self.design > MAX_DESIGN {
             return bad(format!(

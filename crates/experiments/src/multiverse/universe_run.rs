@@ -171,7 +171,7 @@ impl UniverseRun<'_> {
         );
         let start = self
             .emulator
-            .map(|e| e.start(&record.choices, targets.targets(), self.setup.digits));
+            .and_then(|e| e.start(&record.choices, targets.targets(), self.setup.digits));
         if let Some(s) = &start {
             setup.start = Some(s.values.clone());
         }

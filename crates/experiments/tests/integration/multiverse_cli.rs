@@ -328,14 +328,15 @@ fn shards_merged_give_the_files_of_one_run() {
 fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_sharded() {
     let tmp = tempfile::tempdir().unwrap();
     let [one, split] = working_dirs(tmp.path(), ["one", "split"]);
-    let design = ["--design", "12", "--check-trials", "1"];
+    // 16 points, 12 of them in the three valid universes (the emulator fits at least 10).
+    let design = ["--design", "16", "--check-trials", "1"];
     ok(&multiverse_in(
         &one,
         &[&design[..], &["--threads", "2"]].concat(),
     ));
     let out = one.join("out");
     let points = |d: &Path| std::fs::read_dir(d.join("design")).unwrap().count();
-    assert_eq!(points(&out), 12);
+    assert_eq!(points(&out), 16);
     // Every calibrated universe started at the emulator's point, recorded with its
     // predicted loss; the report says so and gives the emulator's error.
     let record = read_text(&out.join("universes/u000/universe.json"));
@@ -344,8 +345,8 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
     assert!(trace.contains("; start: "), "{trace}");
     let md = read_text(&out.join("multiverse.md"));
     for part in [
-        "--design 12 --check-trials 1 --check-seed 7",
-        "starting where an emulator fitted to 12 shared design evaluations predicts",
+        "--design 16 --check-trials 1 --check-seed 7",
+        "starting where an emulator fitted to 16 shared design evaluations predicts",
         "checked on 1 unseen trials per method",
         "## The design shared by the universes",
         "| rescuees | 4 in [3, 100] |",
@@ -361,7 +362,7 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
     std::fs::remove_file(out.join("design/d0005.json")).unwrap();
     std::fs::remove_file(out.join("multiverse.md")).unwrap();
     ok(&multiverse_in(&one, &design));
-    assert_eq!(points(&out), 12);
+    assert_eq!(points(&out), 16);
     // Shard 1 of 4 alone runs the whole design (its own points first), then its universe;
     // the others find the design done; merged, the files are the one run's.
     let shard = |s: &str| {
@@ -371,7 +372,7 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
         )
     };
     ok(&shard("1/4"));
-    assert_eq!(points(&split.join("out")), 12);
+    assert_eq!(points(&split.join("out")), 16);
     for s in ["3/4", "0/4", "2/4"] {
         let o = ok(&shard(s));
         assert!(o.contains("1 of 4 universes"), "{o}");
@@ -381,13 +382,20 @@ fn a_shared_design_starts_the_calibrations_and_gives_the_same_files_resumed_and_
     let md_split = read(&split.join("out/multiverse.md"));
     assert_eq!(read(&out.join("multiverse.md")), md_split);
     // Another design is another multiverse; too large a design is refused in one line.
-    let other = multiverse_in(&one, &["--design", "13"]);
-    one_line_error(&other, &["holds another multiverse", "design 12 vs 13"]);
+    let other = multiverse_in(&one, &["--design", "17"]);
+    one_line_error(&other, &["holds another multiverse", "design 16 vs 17"]);
     let huge = multiverse_in(&split, &["--design", "100001"]);
     one_line_error(&huge, &["--design 100001 is more than the limit of 100000"]);
-    // --overwrite removes the design with the rest.
+    let few = multiverse_in(&split, &["--design", "5"]);
+    one_line_error(
+        &few,
+        &["--design 5 is too few: a design needs at least 10 points"],
+    );
+    // --overwrite removes the design with the rest; a design is then another multiverse.
     ok(&multiverse_in(&one, &["--overwrite"]));
     assert!(!out.join("design").exists());
+    let added = multiverse_in(&one, &design);
+    one_line_error(&added, &["holds another multiverse", "design none vs 16"]);
 }
 
 /// Writes `text` as the axes file `name` in `dir`; returns its path.

@@ -9,7 +9,6 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
-use experiments::calibrate::setup::default_check_seed;
 use experiments::calibrate::{Targets, parse_free};
 use experiments::claims::Claims;
 use experiments::multiverse::setup::{
@@ -177,10 +176,7 @@ pub fn setup_of(
         design: spec.search.design,
         optimizer: spec.search.optimizer.into(),
         check_trials: spec.search.check_trials,
-        check_seed: spec
-            .search
-            .check_seed
-            .unwrap_or_else(|| default_check_seed(spec.calibration_seed.unwrap_or(seed))),
+        check_seed: spec.search.check_seed,
         sample: spec.sample.map(|n| Sample {
             n,
             seed: spec.sample_seed,
