@@ -104,9 +104,20 @@ pub fn decompose(
     records: &[UniverseRecord],
     claim: &Claim,
 ) -> Option<Decomposition> {
+    decompose_within(plan, records, claim, 0.0)
+}
+
+/// [`decompose`] over the universes whose calibration loss is at most `max_loss` (0: the
+/// admissible ones; larger: the near-admissible ones of `--near-loss`).
+pub fn decompose_within(
+    plan: &MultiversePlan,
+    records: &[UniverseRecord],
+    claim: &Claim,
+    max_loss: f64,
+) -> Option<Decomposition> {
     let rows: Vec<(&UniverseRecord, f64)> = records
         .iter()
-        .filter(|r| r.admissible())
+        .filter(|r| r.within_loss(max_loss))
         .filter_map(|r| Some((r, r.claim(&claim.id)?.effect)))
         .filter(|(_, y)| y.is_finite())
         .collect();
@@ -328,6 +339,28 @@ mod tests {
 
     fn claim1() -> Claim {
         crate::claims::paper_claims().claims()[0].clone()
+    }
+
+    #[test]
+    fn near_admissible_universes_join_the_decomposition_up_to_their_loss() {
+        let mut rs = records(|a, b| (3 * a + b) as f64);
+        for r in rs.iter_mut().filter(|r| r.choices[0] == 1) {
+            r.calibration.as_mut().unwrap().loss = 2.0;
+        }
+        // Admissible: a = 0 only, so a explains nothing; within loss 2, a explains most.
+        let only = decompose(&plan(), &rs, &claim1()).unwrap();
+        assert_eq!((only.n, only.axes[0].share), (3, 0.0));
+        assert_eq!(
+            decompose_within(&plan(), &rs, &claim1(), 1.9).unwrap(),
+            only
+        );
+        let near = decompose_within(&plan(), &rs, &claim1(), 2.0).unwrap();
+        assert_eq!(near.n, 6);
+        assert_eq!(near.strongest()[0], 0);
+        assert_eq!(
+            near,
+            decompose(&plan(), &records(|a, b| (3 * a + b) as f64), &claim1()).unwrap()
+        );
     }
 
     #[test]

@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::decompose::{Decomposition, Share, decompose};
+use super::decompose::{Decomposition, Share, decompose, decompose_within};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
 use super::sensitivity_figure::sensitivity_file;
@@ -49,6 +49,25 @@ pub fn near_admissible(r: &mut String, plan: &MultiversePlan, records: &[Univers
             share(count.does_not_hold, count.universes, sampled),
             share(count.other, count.universes, sampled),
         );
+    }
+    let _ = writeln!(
+        r,
+        "\nPer claim, the two axes that explain the most of its effect's variance among these \
+         universes (first-order share, chance level in brackets; as in \"Which choices decide \
+         each claim\"):\n"
+    );
+    for c in &id.claims {
+        let strongest = match decompose_within(plan, records, c, max_loss) {
+            Some(d) => d
+                .strongest()
+                .iter()
+                .take(2)
+                .map(|&a| format!("{} ({})", d.axes[a].name, pct(&d.axes[a])))
+                .collect::<Vec<_>>()
+                .join(" and "),
+            None => "fewer than 3 universes with an effect, or an effect that does not vary".into(),
+        };
+        let _ = writeln!(r, "- ({}): {strongest}", c.id);
     }
     let _ = writeln!(r);
 }
@@ -175,6 +194,12 @@ mod tests {
         );
         assert!(
             r.contains("| (1) RNE rescues the most in total | 2/2 (100 %) |"),
+            "{r}"
+        );
+        assert!(
+            r.contains(
+                "- (1): fewer than 3 universes with an effect, or an effect that does not vary"
+            ),
             "{r}"
         );
         let options = p.options();
