@@ -518,6 +518,15 @@ fn slurm_writes_a_multiverse_array_and_its_merge() {
     let mut args = vec!["slurm", CORRIDOR];
     args.extend(OPTIONS.iter().filter(|a| **a != "--quiet"));
     args.extend(["--out", "out", "--shards", "2", "--time", "30"]);
+    // A shared design needs no other job: each task runs the design's missing points first.
+    args.extend([
+        "--design",
+        "16",
+        "--check-trials",
+        "2",
+        "--optimizer",
+        "cma-es",
+    ]);
     let printed = ok(&usar_in(tmp.path(), &args));
     assert!(
         printed.contains("multiverse.sbatch (an array of 2 tasks"),
@@ -530,6 +539,7 @@ fn slurm_writes_a_multiverse_array_and_its_merge() {
         "--axes ",
         "--free 'mission.pickup_s=0.5..2'",
         "--calibration-trials 1",
+        "--design 16 --optimizer cma-es --check-trials 2 --check-seed 7",
         "--shard \"${SLURM_ARRAY_TASK_ID}/2\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" --quiet",
         "logs/multiverse-%A_%a.out",
     ] {
