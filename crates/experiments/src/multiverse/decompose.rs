@@ -71,10 +71,10 @@ pub struct TotalShare {
     pub universes: usize,
 }
 
-/// How a claim's effect varies over the admissible universes.
+/// How a claim's effect varies over a set of universes (the admissible ones, [`Scope`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Decomposition {
-    /// Admissible universes with a finite effect.
+    /// Universes of the set with a finite effect.
     pub n: usize,
     /// Per axis, in axis order.
     pub axes: Vec<Share>,
@@ -97,6 +97,46 @@ impl Decomposition {
     }
 }
 
+/// The universes a decomposition is over.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scope {
+    /// The admissible universes (calibration loss 0): the verdict's own set.
+    Admissible,
+    /// Every universe whose comparison ran, admissible or not: how the rules move the claim
+    /// across the whole space of readings, whether the bands hold or not.
+    Compared,
+}
+
+impl Scope {
+    /// The largest calibration loss a universe of the scope may have: 0, or unbounded.
+    pub fn max_loss(self) -> f64 {
+        match self {
+            Scope::Admissible => 0.0,
+            Scope::Compared => f64::INFINITY,
+        }
+    }
+
+    /// The scope's universes in a sentence: `admissible universes`, `compared universes`.
+    pub fn noun(self) -> &'static str {
+        match self {
+            Scope::Admissible => "admissible universes",
+            Scope::Compared => "compared universes",
+        }
+    }
+}
+
+/// The decomposition of `claim`'s effect over the universes of `scope` among `records` of
+/// `plan`; `None` with fewer than 3 of them with a finite effect, or when the effect does not
+/// vary.
+pub fn decompose_over(
+    plan: &MultiversePlan,
+    records: &[UniverseRecord],
+    claim: &Claim,
+    scope: Scope,
+) -> Option<Decomposition> {
+    decompose_within(plan, records, claim, scope.max_loss())
+}
+
 /// The decomposition of `claim`'s effect over `records` of `plan`; `None` with fewer than 3
 /// admissible universes with a finite effect, or when the effect does not vary.
 pub fn decompose(
@@ -108,7 +148,8 @@ pub fn decompose(
 }
 
 /// [`decompose`] over the universes whose calibration loss is at most `max_loss` (0: the
-/// admissible ones; larger: the near-admissible ones of `--near-loss`).
+/// admissible ones; larger: the near-admissible ones of `--near-loss`; infinite: every
+/// universe whose calibration ran).
 pub fn decompose_within(
     plan: &MultiversePlan,
     records: &[UniverseRecord],

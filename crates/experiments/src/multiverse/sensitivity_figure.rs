@@ -1,12 +1,13 @@
 //! `sensitivity_<claim>.svg`: per claim, the share of its effect's variance each axis, the
-//! interaction of the two strongest and each calibrated value explains ([`decompose`]), a bar
-//! each (largest first), with the share's chance level as a black tick and, for an axis, its
-//! total-order share as an outlined bar.
+//! interaction of the two strongest and each calibrated value explains
+//! ([`super::decompose`]), a bar each (largest first), with the share's chance level as a
+//! black tick and, for an axis, its total-order share as an outlined bar; one panel over the
+//! admissible universes, one over every compared universe.
 
 use anyhow::Result;
 use plotters::prelude::*;
 
-use super::decompose::{Share, decompose};
+use super::decompose::{Decomposition, Scope, Share, decompose_over};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
 use crate::chart::{draw_err, method_color};
@@ -20,9 +21,13 @@ pub fn sensitivity_file(claim: &Claim) -> String {
 /// Row height, pixels.
 const ROW: u32 = 22;
 
-/// The SVG text of `claim`'s sensitivity figure over `records` of `plan`; a short figure
-/// saying so when there is nothing to split (fewer than 3 admissible universes with an
-/// effect, or one that does not vary).
+/// The width of one panel, pixels.
+const PANEL_W: u32 = 760;
+
+/// The SVG text of `claim`'s sensitivity figure over `records` of `plan`: two panels, the
+/// decomposition over the admissible universes (left) and over every compared universe,
+/// admissible or not (right, [`Scope::Compared`]); a panel with nothing to split (fewer than
+/// 3 universes with an effect, or one that does not vary) says so.
 ///
 /// # Errors
 /// If plotters fails to draw.
@@ -31,96 +36,122 @@ pub fn sensitivity_svg(
     records: &[UniverseRecord],
     claim: &Claim,
 ) -> Result<String> {
-    let d = decompose(plan, records, claim);
-    let mut rows: Vec<(String, &Share)> = Vec::new();
-    let mut totals: Vec<(usize, f64)> = Vec::new();
-    if let Some(d) = &d {
-        for a in d.strongest() {
-            if let Some(t) = &d.total[a] {
-                totals.push((rows.len(), t.share));
-            }
-            rows.push((format!("axis: {}", d.axes[a].name), &d.axes[a]));
-        }
-        if let Some((_, _, i)) = &d.interaction {
-            rows.push((format!("interaction: {}", i.name), i));
-        }
-        for f in &d.free {
-            rows.push((format!("calibrated: {}", f.name), f));
-        }
-    }
-    let height = 90 + ROW * rows.len().max(1) as u32;
+    let panels: Vec<(Scope, Option<Decomposition>)> = [Scope::Admissible, Scope::Compared]
+        .into_iter()
+        .map(|s| (s, decompose_over(plan, records, claim, s)))
+        .collect();
+    let rows_max = panels
+        .iter()
+        .map(|(_, d)| d.as_ref().map_or(1, |d| rows_of(d).0.len().max(1)))
+        .max()
+        .unwrap_or(1);
+    let height = 110 + ROW * rows_max as u32;
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, height)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (2 * PANEL_W, height)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         let title = format!(
-            "Claim {}: {} - share of the effect's variance ({})",
-            claim.id,
-            claim.sentence,
-            d.as_ref()
-                .map_or("nothing to split".to_string(), |d| format!(
-                    "{} admissible universes",
-                    d.n
-                ))
+            "Claim {}: {} - share of the effect's variance",
+            claim.id, claim.sentence
         );
-        let n = rows.len().max(1);
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 14))
-            .margin(10)
-            .x_label_area_size(30)
-            .y_label_area_size(330)
-            .build_cartesian_2d(0f64..1f64, (0..n).into_segmented())
-            .map_err(draw_err)?;
-        let labels: Vec<String> = rows.iter().map(|(l, _)| l.clone()).collect();
-        chart
-            .configure_mesh()
-            .disable_y_mesh()
-            .x_desc("share of the variance (outline: an axis's total-order share; black tick: chance level)")
-            .x_label_formatter(&|x| format!("{:.0} %", 100.0 * x))
-            .y_label_formatter(&|y| match y {
-                SegmentValue::CenterOf(i) => labels.get(*i).cloned().unwrap_or_default(),
-                _ => String::new(),
-            })
-            .label_style(("sans-serif", 11))
-            .draw()
-            .map_err(draw_err)?;
-        let bar = method_color(0).filled();
-        chart
-            .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
-                Rectangle::new(
-                    [
-                        (0.0, SegmentValue::Exact(i)),
-                        (s.share.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
-                    ],
-                    bar,
-                )
-            }))
-            .map_err(draw_err)?;
-        chart
-            .draw_series(totals.iter().map(|&(i, t)| {
-                Rectangle::new(
-                    [
-                        (0.0, SegmentValue::Exact(i)),
-                        (t.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
-                    ],
-                    method_color(1).stroke_width(2),
-                )
-            }))
-            .map_err(draw_err)?;
-        chart
-            .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
-                PathElement::new(
-                    vec![
-                        (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i)),
-                        (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
-                    ],
-                    BLACK.stroke_width(2),
-                )
-            }))
-            .map_err(draw_err)?;
+        let body = root.titled(&title, ("sans-serif", 15)).map_err(draw_err)?;
+        let (left, right) = body.split_horizontally(PANEL_W);
+        for ((scope, d), area) in panels.iter().zip([left, right]) {
+            draw_panel(&area, *scope, d.as_ref())?;
+        }
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
+}
+
+/// The rows of a panel, strongest axis first (label, share), and the rows with a
+/// total-order share (row, share).
+fn rows_of(d: &Decomposition) -> (Vec<(String, &Share)>, Vec<(usize, f64)>) {
+    let mut rows: Vec<(String, &Share)> = Vec::new();
+    let mut totals: Vec<(usize, f64)> = Vec::new();
+    for a in d.strongest() {
+        if let Some(t) = &d.total[a] {
+            totals.push((rows.len(), t.share));
+        }
+        rows.push((format!("axis: {}", d.axes[a].name), &d.axes[a]));
+    }
+    if let Some((_, _, i)) = &d.interaction {
+        rows.push((format!("interaction: {}", i.name), i));
+    }
+    for f in &d.free {
+        rows.push((format!("calibrated: {}", f.name), f));
+    }
+    (rows, totals)
+}
+
+/// One panel: a bar per input, the chance level as a black tick, an axis's total-order share
+/// outlined.
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    scope: Scope,
+    d: Option<&Decomposition>,
+) -> Result<()> {
+    let (rows, totals) = d.map(rows_of).unwrap_or_default();
+    let caption = match d {
+        Some(d) => format!("over {} {}", d.n, scope.noun()),
+        None => format!("over the {}: nothing to split", scope.noun()),
+    };
+    let n = rows.len().max(1);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 13))
+        .margin(10)
+        .x_label_area_size(30)
+        .y_label_area_size(330)
+        .build_cartesian_2d(0f64..1f64, (0..n).into_segmented())
+        .map_err(draw_err)?;
+    let labels: Vec<String> = rows.iter().map(|(l, _)| l.clone()).collect();
+    chart
+        .configure_mesh()
+        .disable_y_mesh()
+        .x_desc("share (outline: total-order share; black tick: chance level)")
+        .x_label_formatter(&|x| format!("{:.0} %", 100.0 * x))
+        .y_label_formatter(&|y| match y {
+            SegmentValue::CenterOf(i) => labels.get(*i).cloned().unwrap_or_default(),
+            _ => String::new(),
+        })
+        .label_style(("sans-serif", 11))
+        .draw()
+        .map_err(draw_err)?;
+    let bar = method_color(0).filled();
+    chart
+        .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
+            Rectangle::new(
+                [
+                    (0.0, SegmentValue::Exact(i)),
+                    (s.share.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                ],
+                bar,
+            )
+        }))
+        .map_err(draw_err)?;
+    chart
+        .draw_series(totals.iter().map(|&(i, t)| {
+            Rectangle::new(
+                [
+                    (0.0, SegmentValue::Exact(i)),
+                    (t.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                ],
+                method_color(1).stroke_width(2),
+            )
+        }))
+        .map_err(draw_err)?;
+    chart
+        .draw_series(rows.iter().enumerate().map(|(i, (_, s))| {
+            PathElement::new(
+                vec![
+                    (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i)),
+                    (s.chance.clamp(0.0, 1.0), SegmentValue::Exact(i + 1)),
+                ],
+                BLACK.stroke_width(2),
+            )
+        }))
+        .map_err(draw_err)?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -146,7 +177,8 @@ mod tests {
         assert!(svg.starts_with("<svg"));
         for part in [
             "Claim 1: RNE rescues the most",
-            "6 admissible universes",
+            "over 6 admissible universes",
+            "over 6 compared universes",
             "axis: b",
             "interaction: b x a",
             "calibrated: mission.energy_pct_per_m",
@@ -161,13 +193,28 @@ mod tests {
                 .filter(|l| l.contains("<rect") && l.contains("#E69F00"))
                 .count()
         };
-        assert_eq!(outlined(&svg), 2, "{svg}");
+        assert_eq!(outlined(&svg), 4, "two in each panel: {svg}");
         let alone = [records[0].clone(), records[4].clone(), records[2].clone()];
         assert_eq!(
             outlined(&sensitivity_svg(&plan(), &alone, claim).unwrap()),
-            1
+            2
         );
+        // Two admissible of six compared: nothing to split among the admissible, the six
+        // compared split as before.
+        let mut loose = records.clone();
+        for r in &mut loose[2..] {
+            if let Some(c) = r.calibration.as_mut() {
+                c.loss = 1.5;
+            }
+        }
+        let split = sensitivity_svg(&plan(), &loose, claim).unwrap();
+        assert!(
+            split.contains("over the admissible universes: nothing to split"),
+            "{split}"
+        );
+        assert!(split.contains("over 6 compared universes"), "{split}");
+        assert!(split.contains("axis: b"), "{split}");
         let empty = sensitivity_svg(&plan(), &records[..2], claim).unwrap();
-        assert!(empty.contains("nothing to split"));
+        assert!(empty.contains("over the compared universes: nothing to split"));
     }
 }

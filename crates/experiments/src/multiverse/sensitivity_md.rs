@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::decompose::{Decomposition, Share, decompose, decompose_within};
+use super::decompose::{Decomposition, Scope, Share, decompose_over, decompose_within};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
 use super::sensitivity_figure::sensitivity_file;
@@ -74,7 +74,8 @@ pub fn near_admissible(r: &mut String, plan: &MultiversePlan, records: &[Univers
 
 /// "Which choices decide each claim": per claim, the share of its effect's variance over the
 /// admissible universes that each axis and each calibrated value explains (with its chance
-/// level), and the interaction of the two strongest axes ([`decompose`], its estimator).
+/// level), and the interaction of the two strongest axes ([`super::decompose`], its
+/// estimator); then the same over every compared universe, admissible or not.
 pub fn deciding_choices(r: &mut String, plan: &MultiversePlan, records: &[UniverseRecord]) {
     let id = &plan.identity;
     if id.claims.is_empty() {
@@ -91,19 +92,31 @@ pub fn deciding_choices(r: &mut String, plan: &MultiversePlan, records: &[Univer
          main effect and every interaction it is part of: the variance left when every other \
          axis is fixed, from the admissible universes that differ in that axis alone, counted \
          in the column). In brackets, the share's chance level, its mean were the input to \
-         have no effect at all: a share near it says nothing. Estimators and references: \
+         have no effect at all: a share near it says nothing. Then the same over every \
+         compared universe, admissible or not: what moves the claim across the readings, \
+         whether or not they fit the authors' statistics. Estimators and references: \
          `experiments::multiverse::decompose`.\n"
     );
     for c in &id.claims {
         let _ = writeln!(r, "### ({}) {}\n", c.id, c.sentence);
-        match decompose(plan, records, c) {
-            Some(d) => claim_table(r, &d),
-            None => {
+        for scope in [Scope::Admissible, Scope::Compared] {
+            if scope == Scope::Compared {
                 let _ = writeln!(
                     r,
-                    "Fewer than 3 admissible universes with an effect, or an effect that does \
-                     not vary: nothing to split.\n"
+                    "Over every compared universe, admissible or not (how the readings move \
+                     the effect, whether the bands hold or not):\n"
                 );
+            }
+            match decompose_over(plan, records, c, scope) {
+                Some(d) => claim_table(r, &d, scope),
+                None => {
+                    let _ = writeln!(
+                        r,
+                        "Fewer than 3 {} with an effect, or an effect that does not vary: \
+                         nothing to split.\n",
+                        scope.noun()
+                    );
+                }
             }
         }
         let file = sensitivity_file(c);
@@ -111,13 +124,15 @@ pub fn deciding_choices(r: &mut String, plan: &MultiversePlan, records: &[Univer
     }
 }
 
-/// One claim's table, strongest axis first, and the sentence naming the two strongest.
-fn claim_table(r: &mut String, d: &Decomposition) {
+/// One claim's table over the universes of `scope`, strongest axis first, and the sentence
+/// naming the two strongest.
+fn claim_table(r: &mut String, d: &Decomposition, scope: Scope) {
     let order = d.strongest();
     let _ = writeln!(
         r,
-        "{} admissible universes with an effect. The two axes that matter most: {}.\n",
+        "{} {} with an effect. The two axes that matter most: {}.\n",
         d.n,
+        scope.noun(),
         order
             .iter()
             .take(2)
@@ -233,6 +248,33 @@ mod tests {
             "{r}"
         );
         assert!(r.contains("| calibrated: mission.energy_pct_per_m | 0 % (chance 20 %) |"));
+        assert!(
+            r.contains(
+                "Over every compared universe, admissible or not (how the readings move the \
+                 effect, whether the bands hold or not):\n\n6 compared universes with an effect. \
+                 The two axes that matter most: b (100 % (chance 40 %))"
+            ),
+            "{r}"
+        );
+        // Four of them out of the bands: two admissible are too few, the six compared are not.
+        for rec in &mut records[2..] {
+            if let Some(c) = rec.calibration.as_mut() {
+                c.loss = 0.5;
+            }
+        }
+        let mut loose = String::new();
+        deciding_choices(&mut loose, &plan(), &records);
+        assert!(
+            loose.contains(
+                "Fewer than 3 admissible universes with an effect, or an effect that does not \
+                 vary: nothing to split."
+            ),
+            "{loose}"
+        );
+        assert!(
+            loose.contains("6 compared universes with an effect"),
+            "{loose}"
+        );
         // The paper's other claims have no effect in these records.
         assert!(r.contains(
             "### (2) RNE rescues more in the hard task than every baseline\n\n\
