@@ -64,10 +64,13 @@ pub fn sensitivity_svg(
     Ok(svg)
 }
 
+/// A panel's rows, strongest axis first: (label, share).
+type Rows<'a> = Vec<(String, &'a Share)>;
+
 /// The rows of a panel, strongest axis first (label, share), and the rows with a
 /// total-order share (row, share).
-fn rows_of(d: &Decomposition) -> (Vec<(String, &Share)>, Vec<(usize, f64)>) {
-    let mut rows: Vec<(String, &Share)> = Vec::new();
+fn rows_of(d: &Decomposition) -> (Rows<'_>, Vec<(usize, f64)>) {
+    let mut rows: Rows = Vec::new();
     let mut totals: Vec<(usize, f64)> = Vec::new();
     for a in d.strongest() {
         if let Some(t) = &d.total[a] {
