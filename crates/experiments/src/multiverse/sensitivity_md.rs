@@ -1,6 +1,6 @@
 //! The two sections of `multiverse.md` that test how far its verdicts lean on its choices:
 //! the shares among the near-admissible universes (`--near-loss`), and which axes and
-//! calibrated values decide each claim ([`decompose`]).
+//! calibrated values decide each claim ([`super::decompose`]).
 
 use std::fmt::Write;
 
