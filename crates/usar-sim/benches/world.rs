@@ -6,8 +6,8 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use usar_sim::scenario::{self, Scenario};
-use usar_sim::world::World;
 use usar_sim::world::bodies::{PhysicsScene, to_vec2};
+use usar_sim::world::{ControlClock, World};
 
 fn paper() -> Scenario {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
@@ -24,14 +24,15 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("world_step_12_robots");
     group.throughput(Throughput::Elements(1));
 
-    let mut world = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut world = World::new(&s, &clock);
     let mut legs = vec![0usize; s.robots().len()];
     for id in 0..s.robots().len() {
         world.set_goal(id, Some(far_goal(&s, id, 0))).unwrap();
     }
     group.bench_function("world_with_logic", |b| {
         b.iter(|| {
-            world.step();
+            world.step(&clock);
             for (id, leg) in legs.iter_mut().enumerate() {
                 if world.robot(id).goal_reached {
                     *leg += 1;

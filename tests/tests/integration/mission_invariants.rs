@@ -5,13 +5,14 @@
 use integration_tests::{method, paper, paper_with};
 use usar_sim::mission::{Phase, RescueeStatus, Simulation};
 use usar_sim::scenario::{Positive, RestAt, Scenario};
+use usar_sim::world::ControlClock;
 
 const EPS: f64 = 1e-9;
 
 /// paper.ron with the robots deciding every 0.1 s (five steps).
 fn paper_at_10_hz() -> Scenario {
     let s = paper_with(|s| s.sim.control_period_s = Some(Positive::new(0.1).expect("positive")));
-    assert_eq!(s.sim().control_steps(), 5);
+    assert_eq!(ControlClock::of(s.sim()).period_steps(), 5);
     s
 }
 
@@ -35,10 +36,10 @@ fn check(name: &str, s: &Scenario) {
     while !sim.is_finished() {
         // The mission decides before a control step, and reviews phases after the step before
         // a control step and after the last.
-        let decided = sim.world().is_control_step();
+        let decided = sim.clock().is_control_step(sim.world().steps());
         sim.step().expect("built-in methods do not fail");
         let world = sim.world();
-        let reviewed = decided || world.is_control_step() || sim.is_finished();
+        let reviewed = decided || sim.clock().is_control_step(world.steps()) || sim.is_finished();
         for r in sim.robots() {
             let kind = s.kind_of(r.id);
             let w = world.robot(r.id);

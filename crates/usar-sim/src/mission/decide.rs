@@ -355,6 +355,7 @@ mod tests {
     use super::*;
     use crate::mission::draw_initial_levels;
     use crate::scenario;
+    use crate::world::ControlClock;
 
     fn three_tasks() -> &'static Scenario {
         static S: std::sync::OnceLock<Scenario> = std::sync::OnceLock::new();
@@ -449,7 +450,8 @@ mod tests {
             let s = three_tasks()
                 .edit(|spec| spec.mission.idle_before_area = rule)
                 .unwrap();
-            let mut world = World::new(&s);
+            let clock = ControlClock::of(&s.sim);
+            let mut world = World::new(&s, &clock);
             let mut st = MissionState::new(&s, &draw_initial_levels(&s, 7));
             let id = (0..s.robots.len())
                 .find(|&id| s.kind_of(id).locomotion == Locomotion::Ground)
@@ -484,7 +486,8 @@ mod tests {
             let s = three_tasks()
                 .edit(|spec| spec.mission.empty_on_leave = rule)
                 .unwrap();
-            let mut world = World::new(&s);
+            let clock = ControlClock::of(&s.sim);
+            let mut world = World::new(&s, &clock);
             let mut st = MissionState::new(&s, &draw_initial_levels(&s, 7));
             let ground: Vec<usize> = (0..s.robots.len())
                 .filter(|&id| s.kind_of(id).locomotion == Locomotion::Ground)

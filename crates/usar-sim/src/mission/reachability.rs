@@ -10,7 +10,7 @@
 use std::fmt;
 
 use crate::scenario::{Locomotion, PointM, Scenario};
-use crate::world::World;
+use crate::world::{ControlClock, World};
 
 /// A mission goal that some robots cannot reach from their start positions.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,7 +69,7 @@ impl fmt::Display for UnreachableGoal {
 /// field would find one; no field is made, so many shared goals on a large grid cost no
 /// memory per goal).
 pub fn unreachable_goals(s: &Scenario) -> Vec<UnreachableGoal> {
-    let mut world = World::new(s);
+    let mut world = World::new(s, &ControlClock::of(&s.sim));
     // Every robot and goal is checked from the grid's regions (`World::is_goal_reachable`).
     // Robots go by body radius, so each
     // clearance class's regions are labelled once even when more classes than the planner

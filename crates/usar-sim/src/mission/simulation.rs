@@ -18,7 +18,7 @@ use super::robot::MissionRobot;
 use super::rounds::{close_round, round_complete, start_round};
 use super::state::MissionState;
 use crate::scenario::Scenario;
-use crate::world::World;
+use crate::world::{ControlClock, World};
 
 /// Sees every step of a trial (after the step), e.g. to draw a progress bar, sample robot
 /// paths or record a replay. Any `FnMut(&Simulation)` is one.
@@ -56,6 +56,9 @@ pub struct Simulation {
     scenario: Scenario,
     method: Box<dyn GroupingMethod>,
     world: World,
+    /// When the robots' software runs, from `scenario.sim`, computed once: passed to the
+    /// world and to every step.
+    clock: ControlClock,
     state: MissionState,
     steps_done: u64,
     total_steps: u64,
@@ -103,8 +106,10 @@ impl Simulation {
     /// result is 0.
     pub fn new(scenario: &Scenario, method: Box<dyn GroupingMethod>, seed: u64) -> Self {
         let levels = draw_initial_levels(scenario, seed);
+        let clock = ControlClock::of(&scenario.sim);
         Self {
-            world: World::new(scenario),
+            world: World::new(scenario, &clock),
+            clock,
             state: MissionState::new(scenario, &levels),
             scenario: scenario.clone(),
             method,
@@ -136,6 +141,12 @@ impl Simulation {
     /// The physical world (positions, velocities, resolver counters).
     pub fn world(&self) -> &World {
         &self.world
+    }
+
+    /// The trial's control clock ([`ControlClock::of`] the scenario's `sim`): the next step
+    /// is a control step when `clock().is_control_step(world().steps())`.
+    pub fn clock(&self) -> &ControlClock {
+        &self.clock
     }
 
     /// Lets (`true`, the default) or forbids (`false`) the world's per-robot phases to run on
@@ -239,19 +250,20 @@ impl Simulation {
             return Ok(());
         }
         let (sc, world, st) = (&self.scenario, &mut self.world, &mut self.state);
+        let clock = &self.clock;
         st.events.clear();
-        if world.is_control_step() {
+        if clock.is_control_step(world.steps()) {
             if !st.round_open {
                 start_round(sc, world, st, self.method.as_ref())?;
             }
             decide(sc, world, st)?;
         }
-        world.step();
+        world.step(clock);
         self.steps_done += 1;
         let last = self.steps_done >= self.total_steps;
         // The review runs after the step before a control step (and after the last step), so
         // the decisions of that control step see what it found.
-        let review = world.is_control_step() || last;
+        let review = clock.is_control_step(world.steps()) || last;
         account(sc, world, st, review)?;
         if review && st.round_open && round_complete(st) {
             close_round(world, st, true);

@@ -361,8 +361,8 @@ pub struct SimParams {
     /// per-step costs (energy, HP in radiation) run every step. `None` (default): every step,
     /// the model `paper.ron` was calibrated with. Not from the paper (its Unity scripts ran at
     /// the engine's rate); large teams use a robot controller's rate, e.g. `Some(0.1)` (10 Hz, the
-    /// default control step of the ARGoS swarm simulator). See `docs/world-model.md`,
-    /// "Control period".
+    /// default control step of the ARGoS swarm simulator). Turned into steps once, by
+    /// `world::ControlClock::of`. See `docs/world-model.md`, "Control period".
     pub control_period_s: Option<Positive>,
     /// When Rapier steps the bodies; default `EveryStep` ([`PhysicsStepping`]).
     pub physics: PhysicsStepping,
@@ -376,19 +376,6 @@ impl Default for SimParams {
             control_period_s: None,
             physics: PhysicsStepping::EveryStep,
         }
-    }
-}
-
-impl SimParams {
-    /// Steps per control period (see [`SimParams::control_period_s`]): 1 without a period,
-    /// else `control_period_s / dt_s` rounded to the nearest whole number, at least 1 (exact
-    /// in a validated scenario, which holds a whole number of steps).
-    pub fn control_steps(&self) -> u64 {
-        self.control_period_s.map_or(1, |p| {
-            let steps = (p.get() / self.dt_s.get()).round();
-            // `as` saturates: a huge ratio (refused by validation) stays finite.
-            (steps as u64).max(1)
-        })
     }
 }
 

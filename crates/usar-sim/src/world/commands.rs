@@ -40,6 +40,7 @@ pub fn drive_bodies(scene: &mut PhysicsScene, commands: &[Vec2]) {
 mod tests {
     use super::*;
     use crate::scenario::{self, PointM, Scenario};
+    use crate::world::ControlClock;
     use crate::world::bodies::to_point;
 
     /// `scenarios/corridor.ron` (two pairs of ground robots that must pass each other in a
@@ -55,7 +56,8 @@ mod tests {
 
     #[test]
     fn no_velocity_is_commanded_before_the_first_step() {
-        let w = World::new(&corridor(None));
+        let s = corridor(None);
+        let w = World::new(&s, &ControlClock::of(&s.sim));
         assert_eq!(w.commanded_velocities().len(), 4);
         assert!(w.commanded_velocities().all(|v| v == Vec2::ZERO));
     }
@@ -68,7 +70,8 @@ mod tests {
     fn replayed_commands_move_a_bare_scene_as_the_world() {
         for period in [None, Some(0.1)] {
             let s = corridor(period);
-            let mut w = World::new(&s);
+            let clock = ControlClock::of(&s.sim);
+            let mut w = World::new(&s, &clock);
             let mut bare = PhysicsScene::new(&s);
             for id in 0..4 {
                 let x = if id < 2 { 22.5 } else { 1.5 };
@@ -76,7 +79,7 @@ mod tests {
             }
             let (mut commands, mut moving, mut stopped) = (Vec::new(), 0, 0);
             for step in 0..800 {
-                w.step();
+                w.step(&clock);
                 commands.clear();
                 commands.extend(w.commanded_velocities());
                 moving += commands.iter().filter(|v| v.length() > 0.5).count();

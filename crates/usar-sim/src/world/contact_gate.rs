@@ -29,7 +29,7 @@ impl World {
     pub(super) fn near_contact(&mut self) -> bool {
         let gate = self.gate();
         let near = (0..self.nav.len()).any(|i| self.robot_near_contact(i, &gate, |_| {}));
-        self.gate_speeds = gate.speeds_m_per_s;
+        self.pipelines.gate_speeds = gate.speeds_m_per_s;
         near
     }
 
@@ -51,7 +51,7 @@ impl World {
             }
             any |= hit;
         }
-        self.gate_speeds = gate.speeds_m_per_s;
+        self.pipelines.gate_speeds = gate.speeds_m_per_s;
         any
     }
 
@@ -62,7 +62,7 @@ impl World {
     /// `NearBodies` a body Rapier pushed last step may still move faster than its command.
     fn gate(&mut self) -> Gate {
         let bodies = &self.scene.physics.bodies;
-        let mut speeds = std::mem::take(&mut self.gate_speeds);
+        let mut speeds = std::mem::take(&mut self.pipelines.gate_speeds);
         speeds.clear();
         speeds.extend(
             self.nav
@@ -193,6 +193,7 @@ impl PhysicsScene {
 mod tests {
     use super::*;
     use crate::scenario::PhysicsStepping;
+    use crate::world::ControlClock;
 
     fn paper(physics: PhysicsStepping) -> crate::scenario::Scenario {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
@@ -207,7 +208,8 @@ mod tests {
     #[test]
     fn a_contact_is_near_only_within_a_steps_closing() {
         let s = paper(PhysicsStepping::NearContacts);
-        let mut w = World::new(&s);
+        let clock = ControlClock::of(&s.sim);
+        let mut w = World::new(&s, &clock);
         assert!(!w.near_contact(), "robots at rest at their starts");
         let (a, b) = (w.nav[0].clone(), w.nav[1].clone());
         let gap = (b.pos - a.pos).length() - a.radius - b.radius;
@@ -231,7 +233,7 @@ mod tests {
     fn a_free_move_is_rapiers_up_to_rounding() {
         let mut ends = Vec::new();
         for physics in [PhysicsStepping::EveryStep, PhysicsStepping::NearContacts] {
-            let mut w = World::new(&paper(physics));
+            let mut w = World::new(&paper(physics), &ControlClock::of(&paper(physics).sim));
             let body = w.nav[0].body;
             for _ in 0..100 {
                 drive(&mut w, 0, Vec2::new(0.0, 0.5));
@@ -244,7 +246,12 @@ mod tests {
             ends.push(w.scene.physics.bodies[body].translation());
         }
         assert!((ends[0] - ends[1]).length() < 1e-4, "{ends:?}");
-        let start = World::new(&paper(PhysicsStepping::EveryStep)).nav[0].pos;
+        let start = World::new(
+            &paper(PhysicsStepping::EveryStep),
+            &ControlClock::of(&paper(PhysicsStepping::EveryStep).sim),
+        )
+        .nav[0]
+            .pos;
         assert!(
             (ends[1].y - start.y - 1.0).abs() < 1e-4,
             "{start:?} {ends:?}"
@@ -277,7 +284,10 @@ mod tests {
     /// moves straight at its command, exactly `position + command * dt` per step.
     #[test]
     fn near_bodies_steps_only_the_robots_near_a_contact() {
-        let mut w = World::new(&paper(PhysicsStepping::NearBodies));
+        let mut w = World::new(
+            &paper(PhysicsStepping::NearBodies),
+            &ControlClock::of(&paper(PhysicsStepping::NearBodies).sim),
+        );
         let (a, b) = (w.nav[0].clone(), w.nav[1].clone());
         let toward = (b.pos - a.pos).normalize();
         let sideways = Vec2::new(-toward.y, toward.x) * 0.3;
@@ -309,7 +319,10 @@ mod tests {
     /// command: the robot driven at a wall ends against it, as Rapier stops it.
     #[test]
     fn a_body_enabled_again_starts_where_its_robot_is() {
-        let mut w = World::new(&paper(PhysicsStepping::NearBodies));
+        let mut w = World::new(
+            &paper(PhysicsStepping::NearBodies),
+            &ControlClock::of(&paper(PhysicsStepping::NearBodies).sim),
+        );
         let mut enabled_again = false;
         for _ in 0..1500 {
             drive(&mut w, 0, Vec2::new(0.0, -0.8));

@@ -131,13 +131,6 @@ pub(super) fn follow(
     Follow::Done
 }
 
-/// Whether robot `id` checks its path on control step `tick` (the control steps taken before
-/// it): when `tick + id` is a multiple of `every` (the world's `path_check_every`, >= 1), so
-/// the checks of a team are spread over the control steps.
-pub(super) fn check_due(tick: u64, id: usize, every: u64) -> bool {
-    (tick + id as u64).is_multiple_of(every)
-}
-
 /// Inflation of a robot's line-of-sight checks while following its path: body radius + half of
 /// `navigation.clearance_m`, metres.
 fn check_inflation(ctx: &FollowCtx<'_>, nav: &Nav) -> f32 {

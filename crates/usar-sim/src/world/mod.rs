@@ -27,6 +27,8 @@
 //!   memory budget.
 //! - `plan_cache`: the planner's plan cache, bounded in entries and bytes.
 //! - `bucket_queue`: Dial's bucket queue, the distance fields' Dijkstra open set.
+//! - `control_clock`: [`ControlClock`], when the robots' software runs (steps per control
+//!   period, path checks), computed once from the scenario and passed to every step.
 //! - `contact_gate`: `sim.physics: NearContacts` and `NearBodies`, whether a contact may begin
 //!   within the next step (for the team or per robot), the straight move of every body on a
 //!   step without one, and the bodies enabled in Rapier only near a contact.
@@ -54,6 +56,8 @@
 //! - `parallel`: the step's per-robot phases (path following, read-back, steering) on a rayon
 //!   pool for a large team ([`PARALLEL_MIN_ROBOTS`]), bit-identical on any number of threads.
 //! - `per_robot`: the per-robot outputs of those phases, and when they run in parallel.
+//! - `pipelines`: the world's pipelines (planner, resolver, contact gate, parallel phases)
+//!   with their memory and scratch, kept apart from the world's state.
 //!
 //! See `docs/world-model.md` for the model and its rules.
 
@@ -64,6 +68,7 @@ mod collision_course;
 mod commands;
 mod conflicts;
 mod contact_gate;
+mod control_clock;
 mod disc_mask;
 pub mod distance_field;
 mod error;
@@ -81,6 +86,7 @@ mod path_following_params;
 pub mod path_planner;
 mod path_smoothing;
 mod per_robot;
+mod pipelines;
 mod plan_cache;
 mod plan_into;
 pub mod plan_query;
@@ -104,6 +110,7 @@ mod world;
 
 pub use commands::drive_bodies;
 pub use contact_gate::NEAR_CONTACT_MARGIN_M;
+pub use control_clock::ControlClock;
 pub use error::{NavError, WorldError};
 pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,

@@ -19,7 +19,8 @@ use rapier2d::dynamics::RigidBodySet;
 use rayon::prelude::*;
 
 use super::bodies::to_point;
-use super::follow::{Follow, Followed, Stage, check_due, follow};
+use super::control_clock::ControlClock;
+use super::follow::{Follow, Followed, Stage, follow};
 use super::nav_state::Nav;
 use super::per_robot::CHUNK_ROBOTS;
 use super::radiation::radiation_factor_at;
@@ -34,7 +35,7 @@ impl World {
     /// the threads of the calling rayon pool. Results are bit-identical either way; a sweep
     /// that runs one trial per thread forbids it so that trials do not compete for threads.
     pub fn set_parallel(&mut self, enabled: bool) {
-        self.per_robot.enabled = enabled;
+        self.pipelines.per_robot.enabled = enabled;
     }
 
     /// Path following of every robot from the start of this control step ([`follow`]) into
@@ -42,22 +43,22 @@ impl World {
     /// the planner (the world then runs that robot's path following serially, in id order:
     /// [`World::update_intent`]). `tick` counts the control steps before this one. Reads only
     /// each robot's own state, the grid and the clock, and writes only the buffer.
-    pub(super) fn follow_all(&mut self, tick: u64) {
-        let mut out = std::mem::take(&mut self.per_robot.followed);
+    pub(super) fn follow_all(&mut self, tick: u64, clock: &ControlClock) {
+        let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
         out.resize(self.nav.len(), None);
-        let ctx = self.follow_ctx();
-        let (nav, robots, every) = (&self.nav[..], &self.robots[..], self.path_check_every);
+        let ctx = self.follow_ctx(clock.period_s(self.dt));
+        let (nav, robots) = (&self.nav[..], &self.robots[..]);
         out.par_iter_mut()
             .enumerate()
             .with_min_len(CHUNK_ROBOTS)
             .for_each(|(id, o)| {
                 let (me, state) = (&nav[id], &robots[id]);
                 let mut f = Followed::of(me, state);
-                let due = check_due(tick, id, every);
+                let due = clock.path_check_due(tick, id);
                 let done = follow(&ctx, me, state, due, &mut f, Stage::Start) == Follow::Done;
                 *o = done.then_some(f);
             });
-        self.per_robot.followed = out;
+        self.pipelines.per_robot.followed = out;
     }
 
     /// Reads every robot's body back after the physics step (see [`read_back`]) and its
@@ -65,7 +66,7 @@ impl World {
     pub(super) fn read_back_all(&mut self) {
         let bodies = &self.scene.physics.bodies;
         let (zones, rule) = (&self.zones[..], self.dose_rule);
-        let per = &mut self.per_robot;
+        let per = &mut self.pipelines.per_robot;
         let parallel = per.parallel_for(self.nav.len());
         let dt = self.dt as f32;
         let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
@@ -93,8 +94,8 @@ impl World {
     /// parallel for a large team. Call after the resolver ran on `self.inputs`.
     pub(super) fn steer_all(&mut self) {
         let n = self.inputs.len();
-        let (resolver, inputs, grid) = (&self.resolver, &self.inputs[..], &self.grid);
-        let per = &mut self.per_robot;
+        let (resolver, inputs, grid) = (&self.pipelines.resolver, &self.inputs[..], &self.grid);
+        let per = &mut self.pipelines.per_robot;
         let parallel = per.parallel_for(n);
         per.steered.resize(n, None);
         let chunks = n.div_ceil(CHUNK_ROBOTS).max(1);

@@ -19,15 +19,16 @@ use super::world::World;
 use crate::scenario::{HoldRule, Locomotion};
 
 impl World {
-    /// What path following reads besides the robot ([`FollowCtx`]).
-    pub(super) fn follow_ctx(&self) -> FollowCtx<'_> {
+    /// What path following reads besides the robot ([`FollowCtx`]), on a control period of
+    /// `period_s` seconds ([`ControlClock::period_s`](super::ControlClock::period_s)).
+    pub(super) fn follow_ctx(&self, period_s: f64) -> FollowCtx<'_> {
         FollowCtx {
             grid: &self.grid,
             navigation: &self.navigation,
             crowd: self.collision.hold_rule == HoldRule::Yield,
             steps: self.stats.steps,
             dt: self.dt,
-            period_s: self.control_period_s(),
+            period_s,
         }
     }
 
@@ -38,12 +39,13 @@ impl World {
     /// [`follow`] does all but the planner's work: a detour when the no-progress clock runs
     /// out ([`World::detour`], then the clock restarts) and a re-plan from where the robot
     /// stands when the periodic check finds its waypoint hidden (on failure the old path is
-    /// kept; physics keeps the robot out of obstacles).
-    pub(super) fn update_intent(&mut self, id: usize, check_due: bool) {
+    /// kept; physics keeps the robot out of obstacles). `period_s` is the control period,
+    /// seconds.
+    pub(super) fn update_intent(&mut self, id: usize, check_due: bool, period_s: f64) {
         let mut f = Followed::of(&self.nav[id], &self.robots[id]);
         let mut from = Stage::Start;
         loop {
-            let ctx = self.follow_ctx();
+            let ctx = self.follow_ctx(period_s);
             let outcome = follow(
                 &ctx,
                 &self.nav[id],
@@ -79,7 +81,7 @@ impl World {
     /// re-plan. The no-progress clock keeps running, measured against the new path.
     fn take_scratch_path(&mut self, id: usize, eff: Vec2) {
         let nav = &mut self.nav[id];
-        std::mem::swap(&mut nav.path, &mut self.scratch);
+        std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
         nav.goal = Some(eff);
         nav.following.wp = 0;
         nav.following.best_remaining = nav.remaining();
@@ -105,7 +107,7 @@ impl World {
             return;
         };
         self.collect_standing(id);
-        if self.standing.is_empty() {
+        if self.pipelines.standing.is_empty() {
             return;
         }
         // The local detour must end on the rejoin point itself: a goal the planner moved (to a
@@ -114,8 +116,8 @@ impl World {
             && self.plan_detour(id, rejoin) == Ok(rejoin)
         {
             let nav = &mut self.nav[id];
-            self.scratch.extend_from_slice(&nav.path[next..]);
-            std::mem::swap(&mut nav.path, &mut self.scratch);
+            self.pipelines.scratch.extend_from_slice(&nav.path[next..]);
+            std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
             nav.following.wp = 0;
             nav.following.best_remaining = nav.remaining();
             self.robots[id].counters.replans += 1;
@@ -126,7 +128,7 @@ impl World {
         }
     }
 
-    /// Plans robot `id` from where it stands to `to` round `self.standing` into the scratch
+    /// Plans robot `id` from where it stands to `to` round `self.pipelines.standing` into the scratch
     /// buffer ([`super::path_planner::PathPlanner::plan_around`]); returns the effective goal.
     fn plan_detour(&mut self, id: usize, to: Vec2) -> Result<Vec2, super::NavError> {
         let query = PlanQuery {
@@ -134,28 +136,28 @@ impl World {
             to,
             inflation_m: self.plan_inflation(id),
         };
-        self.planner.plan_around(
+        self.pipelines.planner.plan_around(
             &self.grid,
             self.arena,
             query,
-            &self.standing,
-            &mut self.scratch,
+            &self.pipelines.standing,
+            &mut self.pipelines.scratch,
         )
     }
 
-    /// Fills `self.standing` with the robots ground robot `id`'s detour goes round (see
+    /// Fills `self.pipelines.standing` with the robots ground robot `id`'s detour goes round (see
     /// [`World::detour`]), in id order.
     fn collect_standing(&mut self, id: usize) {
         let infl = self.plan_inflation(id);
         let me = &self.nav[id];
         let range = me.sensing * self.robots[id].sensing_factor as f32;
-        self.standing.clear();
+        self.pipelines.standing.clear();
         let crowd = self.collision.hold_rule == HoldRule::Yield;
         // Candidates from the neighbour index (robots of this layer only) within the largest
         // reach any robot of the layer can have, in id order (the order of a scan over the team).
         let slot = usize::from(me.layer == Locomotion::Aerial);
         let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
-        let near = &mut self.near_ids;
+        let near = &mut self.pipelines.near_ids;
         near.clear();
         self.neighbours
             .grid(me.layer)
@@ -170,7 +172,7 @@ impl World {
             // cut by low HP still feels the one it is pressed against.
             let reach = range.max(me.radius + other.radius + infl);
             if j != id && still && (other.pos - me.pos).length_squared() <= reach * reach {
-                self.standing.push(StandingDisc {
+                self.pipelines.standing.push(StandingDisc {
                     center: other.pos,
                     radius_m: other.radius + infl,
                 });
@@ -180,7 +182,7 @@ impl World {
 
     /// Where robot `id`'s local detour rejoins its path: the first point along the path (from
     /// the robot through its remaining waypoints) at least [`DETOUR_REJOIN_BEYOND_M`] beyond
-    /// the farthest rim of `self.standing` (path length from the robot) and outside every
+    /// the farthest rim of `self.pipelines.standing` (path length from the robot) and outside every
     /// standing disc, with the index of the first waypoint after it; `None` when the path
     /// ends before such a point, or when the path from that point on passes through a
     /// standing disc (a path winding back past one): the whole path is then planned again.
@@ -189,7 +191,7 @@ impl World {
         let nav = &self.nav[id];
         let mut at = p;
         for &q in &nav.path[next..] {
-            if self.standing.iter().any(|d| d.crosses(at, q)) {
+            if self.pipelines.standing.iter().any(|d| d.crosses(at, q)) {
                 return None;
             }
             at = q;
@@ -201,12 +203,13 @@ impl World {
     fn first_point_beyond_standing(&self, id: usize) -> Option<(Vec2, usize)> {
         let nav = &self.nav[id];
         let beyond = self
+            .pipelines
             .standing
             .iter()
             .map(|d| (d.center - nav.pos).length() + d.radius_m)
             .fold(0.0f32, f32::max)
             + DETOUR_REJOIN_BEYOND_M;
-        let clear = |p: Vec2| !self.standing.iter().any(|d| d.contains(p));
+        let clear = |p: Vec2| !self.pipelines.standing.iter().any(|d| d.contains(p));
         let mut at = nav.pos;
         let mut walked = 0.0f32;
         // The farthest stretch walked before the point is taken: it must lie `beyond` away
@@ -234,6 +237,7 @@ impl World {
 mod tests {
     use super::*;
     use crate::scenario::{self, PointM, Scenario};
+    use crate::world::ControlClock;
 
     /// `scenarios/corridor.ron` (24 m x 3.4 m, no debris) with one robot per end: robot 0 at
     /// the west end, robot 1 at the east end.
@@ -259,7 +263,8 @@ mod tests {
     /// `parked`; robot 0's path and goal before any detour.
     fn parked_in_the_way(goal: PointM, parked: PointM) -> (World, Vec<Vec2>, Option<Vec2>) {
         let s = corridor();
-        let mut w = World::new(&s);
+        let clock = ControlClock::of(&s.sim);
+        let mut w = World::new(&s, &clock);
         w.teleport(0, PointM::new(2.0, 1.7)).expect("in the arena");
         w.teleport(1, parked).expect("in the arena");
         w.set_goal(0, Some(goal)).expect("plans");

@@ -49,7 +49,7 @@ impl World {
                 nav.following.wp = 0;
                 &mut nav.path
             }
-            PlanInto::Scratch => &mut self.scratch,
+            PlanInto::Scratch => &mut self.pipelines.scratch,
         };
         match nav.layer {
             Locomotion::Aerial => {
@@ -72,7 +72,9 @@ impl World {
                     to: goal,
                     inflation_m: infl,
                 };
-                self.planner.plan(&self.grid, self.arena, query, kind, out)
+                self.pipelines
+                    .planner
+                    .plan(&self.grid, self.arena, query, kind, out)
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
-use super::follow::check_due;
+use super::control_clock::ControlClock;
 use super::robot::Motion;
 use super::world::World;
 use crate::scenario::PhysicsStepping;
@@ -14,8 +14,9 @@ use crate::scenario::PhysicsStepping;
 pub const MOVED_TOLERANCE_M: f64 = 1e-4;
 
 impl World {
-    /// Advances the world by one fixed step `dt`:
-    /// 1. on a control step ([`World::is_control_step`]; every step without
+    /// Advances the world by one fixed step `dt`, on the scenario's control clock `clock` (the
+    /// one [`World::new`] was given):
+    /// 1. on a control step ([`ControlClock::is_control_step`]; every step without
     ///    `sim.control_period_s`), every robot (by id) updates its intended velocity from its
     ///    goal and path; if `collision.enabled`, the resolver builds collision lists, holds all
     ///    but each list's head, rotates deadlocked lists, and the moving robots steer around
@@ -31,10 +32,10 @@ impl World {
     ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
     /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
-    pub fn step(&mut self) {
+    pub fn step(&mut self, clock: &ControlClock) {
         let n = self.robots.len();
-        if self.is_control_step() {
-            self.control();
+        if clock.is_control_step(self.stats.steps) {
+            self.control(clock);
         }
         let physics = self.physics;
         for id in 0..n {
@@ -59,7 +60,7 @@ impl World {
                 if !self.index_fresh {
                     self.reindex();
                 }
-                let mut near = std::mem::take(&mut self.near_body);
+                let mut near = std::mem::take(&mut self.pipelines.near_body);
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
                 self.scene.gate_bodies(&self.nav, &near);
@@ -67,7 +68,7 @@ impl World {
                     self.scene.step();
                     self.stats.physics_steps += 1;
                 }
-                self.near_body = near;
+                self.pipelines.near_body = near;
             }
             _ => {
                 self.scene.step();
@@ -76,7 +77,7 @@ impl World {
         }
         self.stats.steps += 1;
         self.read_back_all();
-        if self.is_control_step() {
+        if clock.is_control_step(self.stats.steps) {
             self.reindex();
         } else {
             self.index_fresh = false;
@@ -85,31 +86,33 @@ impl World {
 
     /// The control step's software: intents, the resolver over the control period, and each
     /// robot's command, motion and list flags (see [`World::step`]).
-    fn control(&mut self) {
+    fn control(&mut self, clock: &ControlClock) {
         let n = self.robots.len();
-        // `tick` counts the control steps taken before this one (see `check_due`).
-        let tick = self.stats.steps / self.control_steps;
+        // `tick` counts the control steps taken before this one (see
+        // `ControlClock::path_check_due`).
+        let tick = clock.tick(self.stats.steps);
+        let period_s = clock.period_s(self.dt);
         // A large team follows its paths in parallel up to the planner; the robots that need
         // it, and every robot of a serial trial, follow theirs here, in id order.
-        let parallel = self.per_robot.parallel_for(n);
+        let parallel = self.pipelines.per_robot.parallel_for(n);
         if parallel {
-            self.follow_all(tick);
+            self.follow_all(tick, clock);
         }
         for id in 0..n {
             let followed = if parallel {
-                self.per_robot.followed[id]
+                self.pipelines.per_robot.followed[id]
             } else {
                 None
             };
             match followed {
                 Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
-                None => self.update_intent(id, check_due(tick, id, self.path_check_every)),
+                None => self.update_intent(id, clock.path_check_due(tick, id), period_s),
             }
             self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
         if self.collision.enabled {
-            let period_s = self.control_period_s();
-            self.resolver
+            self.pipelines
+                .resolver
                 .resolve(&self.inputs, &self.neighbours, period_s);
             self.steer_all();
         }
@@ -117,8 +120,11 @@ impl World {
             self.nav[id].command = self.command(id);
         }
         if self.collision.enabled {
-            self.stats.deadlocks_detected += self.resolver.deadlocked_lists();
-            self.stats.max_list_len = self.stats.max_list_len.max(self.resolver.largest_list());
+            self.stats.deadlocks_detected += self.pipelines.resolver.deadlocked_lists();
+            self.stats.max_list_len = self
+                .stats
+                .max_list_len
+                .max(self.pipelines.resolver.largest_list());
         }
     }
 
@@ -137,7 +143,7 @@ impl World {
             Motion::Moving
         };
         let command = if self.collision.enabled {
-            let d = self.resolver.decisions()[id];
+            let d = self.pipelines.resolver.decisions()[id];
             state.in_collision_list = d.in_list;
             state.held = d.held;
             let c = &mut state.counters;
@@ -148,7 +154,7 @@ impl World {
                 motion = Motion::Held;
                 Vec2::ZERO
             } else {
-                match self.per_robot.steered[id] {
+                match self.pipelines.per_robot.steered[id] {
                     Some(v) => v,
                     None => {
                         motion = Motion::Blocked;

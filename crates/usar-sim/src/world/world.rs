@@ -12,16 +12,17 @@ use super::error::{NavError, WorldError};
 use super::nav_state::Nav;
 
 use super::clearance_grid::ClearanceGrid;
+use super::control_clock::ControlClock;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::{PerRobot, radiation_of};
+use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::plan_query::plan_inflation_m;
 use super::radiation::{self, DoseRule};
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
-use super::standing_disc::StandingDisc;
 use crate::scenario::{
     CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, RadiationZone, Scenario,
 };
@@ -59,8 +60,6 @@ pub struct WorldStats {
 pub struct World {
     pub(super) scene: PhysicsScene,
     pub(super) grid: ClearanceGrid,
-    pub(super) planner: PathPlanner,
-    pub(super) resolver: Resolver,
     /// Robot centres by layer (`nav[..].pos`), rebuilt before every control step and after a
     /// teleport: every robot-robot query goes through it (between control steps the public
     /// queries scan the robots instead, see `index_fresh`).
@@ -70,16 +69,9 @@ pub struct World {
     pub(super) inputs: Vec<ResolverInput>,
     pub(super) zones: Vec<RadiationZone>,
     pub(super) dose_rule: DoseRule,
-    /// The per-robot outputs of the parallel phases (`parallel.rs`).
-    pub(super) per_robot: PerRobot,
     /// Arena width and height at physics precision, metres.
     pub(super) arena: (f32, f32),
     pub(super) dt: f64,
-    /// Steps per control period (`sim.control_period_s`, see [`World::control_steps`]), >= 1.
-    pub(super) control_steps: u64,
-    /// A ground robot checks its path every this many control steps (see
-    /// [`super::path_following_params::PATH_CHECK_INTERVAL_STEPS`]), >= 1.
-    pub(super) path_check_every: u64,
     /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
     /// every control step and after a teleport, not after the steps in between.
     pub(super) index_fresh: bool,
@@ -90,26 +82,21 @@ pub struct World {
     pub(super) stats: WorldStats,
     /// Largest body radius of the ground and the aerial robots, metres (0 without robots).
     pub(super) max_radius_m: [f64; 2],
-    /// Plans that may be discarded (goal checks, re-plans) are written here.
-    pub(super) scratch: Vec<Vec2>,
     /// The goals many robots share, at physics precision: each task's goal point and drop-off
     /// centre, then the rest-station centre. Ground robots reach them by shared distance fields.
     /// Empty when `navigation.shared_goal_fields` is off (every goal by A*).
     pub(super) shared_goals: Vec<Vec2>,
-    /// Robots standing in the way of a detour (scratch of `path_following.rs`).
-    pub(super) standing: Vec<StandingDisc>,
-    /// Robot ids from the neighbour index (scratch of `path_following.rs`).
-    pub(super) near_ids: Vec<usize>,
-    /// `sim.physics: NearBodies`: whether robot `id` is near a contact this step (scratch).
-    pub(super) near_body: Vec<bool>,
-    /// Each robot's body speed on this step, m/s (scratch of `contact_gate.rs`).
-    pub(super) gate_speeds: Vec<f32>,
+    /// The systems that update the fields above on a step (planning, path following, the
+    /// resolver, the contact gate, the parallel phases), each with its own memory and scratch.
+    pub(super) pipelines: Pipelines,
 }
 
 impl World {
     /// Builds the world of a validated scenario: physics bodies, the clearance grid (cell
-    /// `navigation.grid_cell_m`) and an idle robot at each start position.
-    pub fn new(s: &Scenario) -> Self {
+    /// `navigation.grid_cell_m`) and an idle robot at each start position. `clock` is the
+    /// scenario's control clock ([`ControlClock::of`]`(&s.sim)`), the one the caller passes to
+    /// every [`World::step`]: the resolver sizes its neighbour lists for its period.
+    pub fn new(s: &Scenario, clock: &ControlClock) -> Self {
         let scene = PhysicsScene::new(s);
         let max_radius = s.kinds.iter().map(|k| k.body_radius_m).fold(0.0, f64::max);
         let cap = (max_radius
@@ -153,22 +140,25 @@ impl World {
         Self {
             scene,
             grid,
-            planner: PathPlanner::new(),
-            resolver: Resolver::new(s.collision, nav.len())
-                .for_control_steps(s.sim.control_steps()),
+            pipelines: Pipelines {
+                planner: PathPlanner::new(),
+                scratch: Vec::with_capacity(64),
+                standing: Vec::new(),
+                near_ids: Vec::new(),
+                resolver: Resolver::new(s.collision, nav.len())
+                    .for_control_steps(clock.period_steps()),
+                near_body: Vec::new(),
+                gate_speeds: Vec::new(),
+                per_robot,
+            },
             neighbours,
             nav,
             robots,
             inputs,
             zones,
             dose_rule,
-            per_robot,
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
-            control_steps: s.sim.control_steps(),
-            path_check_every: (super::path_following_params::PATH_CHECK_INTERVAL_STEPS
-                / s.sim.control_steps())
-            .max(1),
             index_fresh: true,
             physics: s.sim.physics,
             collision: s.collision,
@@ -181,16 +171,11 @@ impl World {
                     .map(|k| f64::from(k.body_radius_m as f32))
                     .fold(0.0, f64::max)
             }),
-            scratch: Vec::with_capacity(64),
             shared_goals: if s.navigation.shared_goal_fields {
                 shared_goals(s)
             } else {
                 Vec::new()
             },
-            standing: Vec::new(),
-            near_ids: Vec::new(),
-            near_body: Vec::new(),
-            gate_speeds: Vec::new(),
         }
     }
 
@@ -296,7 +281,7 @@ impl World {
         self.check_goal(id, goal).ok()?;
         let mut at = self.nav[id].pos;
         let mut length = 0.0;
-        for &wp in &self.scratch {
+        for &wp in &self.pipelines.scratch {
             length += f64::from((wp - at).length());
             at = wp;
         }
@@ -313,7 +298,11 @@ impl World {
             return false;
         }
         match self.ground_query(id, to_vec2(&goal)) {
-            Some(query) => self.planner.connects(&self.grid, self.arena, query).is_ok(),
+            Some(query) => self
+                .pipelines
+                .planner
+                .connects(&self.grid, self.arena, query)
+                .is_ok(),
             None => self.check_goal(id, goal).is_ok(),
         }
     }
@@ -394,7 +383,7 @@ impl World {
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
-        self.per_robot.radiation[id] =
+        self.pipelines.per_robot.radiation[id] =
             radiation::radiation_factor_at(&self.zones, &state.position, self.dose_rule);
         state.velocity = Vector2::zeros();
         // At rest without a goal until the next control step decides again.
@@ -458,24 +447,10 @@ impl World {
         self.dt
     }
 
-    /// Steps per control period, >= 1 (`scenario.sim.control_period_s / dt_s`; 1 without a
-    /// period): see [`World::is_control_step`].
-    pub fn control_steps(&self) -> u64 {
-        self.control_steps
-    }
-
-    /// The control period, seconds: [`World::control_steps`] times the step.
-    pub fn control_period_s(&self) -> f64 {
-        self.control_steps as f64 * self.dt
-    }
-
-    /// Whether the next [`World::step`] is a control step: the number of steps taken so far is
-    /// a multiple of [`World::control_steps`] (every step without a control period). A control
-    /// step updates every robot's intent and runs the resolver; the steps between hold each
-    /// robot's commanded velocity. The mission runs its decisions before a control step and
-    /// its reviews (detection, phases) after the step before one.
-    pub fn is_control_step(&self) -> bool {
-        self.stats.steps.is_multiple_of(self.control_steps)
+    /// Steps taken so far (`stats().steps`): the next [`World::step`] is a control step when
+    /// [`ControlClock::is_control_step`] of it holds.
+    pub fn steps(&self) -> u64 {
+        self.stats.steps
     }
 
     /// World-level totals.
@@ -525,7 +500,7 @@ impl World {
     pub fn radiation_factor(&self, id: usize) -> f64 {
         // Computed where the position changes (after each physics step, in parallel for a
         // large team, and on a teleport): the same value as computing it here.
-        self.per_robot.radiation[id]
+        self.pipelines.per_robot.radiation[id]
     }
 
     /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);

@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario, ScenarioError, limits};
+use usar_sim::world::ControlClock;
 
 fn paper() -> String {
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper.ron");
@@ -601,12 +602,12 @@ fn control_periods_of_whole_steps_are_accepted_and_run() {
             &format!("sim: (dt_s: 0.02, seed: 2021, control_period_s: Some({period}),"),
         );
         let s = scenario::from_str(&src, "t.ron").unwrap_or_else(|e| panic!("{period}: {e}"));
-        assert_eq!(s.sim().control_steps(), steps, "{period}");
+        assert_eq!(ControlClock::of(s.sim()).period_steps(), steps, "{period}");
         short_run(&s);
     }
     let s = scenario::from_str(&paper(), "paper.ron").expect("paper.ron");
     assert_eq!(s.sim().control_period_s, None);
-    assert_eq!(s.sim().control_steps(), 1);
+    assert_eq!(ControlClock::of(s.sim()).period_steps(), 1);
 }
 
 // A start touching debris is accepted as two touching starts are (`START_TOLERANCE`).

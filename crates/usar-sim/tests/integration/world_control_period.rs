@@ -5,7 +5,7 @@ use crate::common;
 
 use common::{corridor, swap_goals};
 use usar_sim::scenario::{Positive, Scenario};
-use usar_sim::world::{Motion, World};
+use usar_sim::world::{ControlClock, Motion, World};
 
 /// `corridor(per_side)` with a control period of `steps` steps (`None`: no period).
 fn with_period(per_side: usize, steps: Option<u32>) -> Scenario {
@@ -23,14 +23,15 @@ const GOLDEN_CORRIDOR_SWAP: u64 = 15_994_870_929_765_887_161;
 
 /// f32 bit patterns of every robot's position and velocity at every step of the corridor swap.
 fn trajectory(s: &Scenario, steps: usize) -> Vec<u32> {
-    let mut w = World::new(s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(s, &clock);
     for (id, g) in swap_goals(s).iter().enumerate() {
         w.set_goal(id, Some(*g)).expect("goal plans");
         w.set_priority_key(id, (id * 7 % 5) as f64).expect("key");
     }
     let mut bits = Vec::new();
     for _ in 0..steps {
-        w.step();
+        w.step(&clock);
         for r in w.robots() {
             for v in [r.position.x, r.position.y, r.velocity.x, r.velocity.y] {
                 bits.push((v as f32).to_bits());
@@ -55,7 +56,7 @@ fn fnv(bits: &[u32]) -> u64 {
 fn a_period_of_one_step_is_the_model_without_a_period() {
     let none = with_period(4, None);
     let one = with_period(4, Some(1));
-    assert_eq!(one.sim().control_steps(), 1);
+    assert_eq!(ControlClock::of(one.sim()).period_steps(), 1);
     let reference = trajectory(&none, 1500);
     assert_eq!(
         fnv(&reference),
@@ -76,20 +77,21 @@ fn a_period_of_one_step_is_the_model_without_a_period() {
 fn a_goal_set_between_control_steps_is_driven_to_from_the_next_one() {
     for period in [1u64, 5] {
         let s = with_period(1, Some(period as u32));
-        let mut w = World::new(&s);
-        assert_eq!(w.control_steps(), period);
+        let clock = ControlClock::of(s.sim());
+        let mut w = World::new(&s, &clock);
+        assert_eq!(clock.period_steps(), period);
         let goal = swap_goals(&s)[0];
-        w.step(); // step 0 is a control step: no goal yet
+        w.step(&clock); // step 0 is a control step: no goal yet
         w.set_goal(0, Some(goal)).expect("goal plans");
         let start = w.robot(0).position;
         // Until the next control step the robot keeps its command (standing still).
-        while !w.is_control_step() {
-            w.step();
+        while !clock.is_control_step(w.steps()) {
+            w.step(&clock);
             assert_eq!(w.robot(0).position, start, "period {period}: moved early");
             assert_eq!(w.robot(0).motion, Motion::Idle, "period {period}");
         }
         assert_eq!(w.stats().steps, period, "period {period}");
-        w.step();
+        w.step(&clock);
         assert!(
             (w.robot(0).position - start).norm() > 1e-3,
             "period {period}: did not set off at the control step"
@@ -101,7 +103,8 @@ fn a_goal_set_between_control_steps_is_driven_to_from_the_next_one() {
 #[test]
 fn commands_change_only_at_control_steps() {
     let s = with_period(4, Some(5));
-    let mut w = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(&s, &clock);
     for (id, g) in swap_goals(&s).iter().enumerate() {
         w.set_goal(id, Some(*g)).expect("goal plans");
     }
@@ -109,8 +112,8 @@ fn commands_change_only_at_control_steps() {
     let mut changes_between = 0;
     let mut changes_at = 0;
     for _ in 0..1500 {
-        let control = w.is_control_step();
-        w.step();
+        let control = clock.is_control_step(w.steps());
+        w.step(&clock);
         let now: Vec<(Motion, bool, bool)> = w
             .robots()
             .iter()
@@ -143,14 +146,15 @@ fn commands_change_only_at_control_steps() {
 fn a_goal_is_not_overshot_on_the_last_leg_with_a_control_period() {
     for period in [1u32, 5, 25] {
         let s = with_period(1, Some(period));
-        let mut w = World::new(&s);
+        let clock = ControlClock::of(s.sim());
+        let mut w = World::new(&s, &clock);
         let start = w.robot(0).position;
         // 3.37 m straight ahead along the corridor, reached within 1 mm.
         let goal = usar_sim::scenario::PointM::new(start.x + 3.37, start.y);
         w.set_goal_within(0, goal, 1e-3).expect("goal plans");
         let mut closest = f64::INFINITY;
         for _ in 0..2000 {
-            w.step();
+            w.step(&clock);
             let d = (w.robot(0).position - goal).norm();
             closest = closest.min(d);
             // Never past the goal along x (beyond the 1 mm tolerance and f32 rounding).
@@ -178,14 +182,15 @@ fn spot_queries_between_control_steps_see_where_robots_are_now() {
     // so an index of the positions at the control step would no longer find it near where it
     // stands.
     let s = with_period(1, Some(100));
-    let mut w = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(&s, &clock);
     w.set_goal(0, Some(swap_goals(&s)[0])).expect("goal plans");
     let start = w.robot(0).position;
     let radius = w.robot(0).radius_m;
-    w.step(); // the control step: robot 0 sets off
+    w.step(&clock); // the control step: robot 0 sets off
     let mut moved = 0.0;
-    while !w.is_control_step() {
-        w.step();
+    while !clock.is_control_step(w.steps()) {
+        w.step(&clock);
         let here = w.robot(0).position;
         moved = (here - start).norm();
         assert!(

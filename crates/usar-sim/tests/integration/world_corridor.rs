@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::{corridor, swap_goals};
-use usar_sim::world::World;
+use usar_sim::world::{ControlClock, World};
 
 /// Every robot must reach its goal within this simulated time, seconds.
 const BOUND_S: f64 = 90.0;
@@ -27,7 +27,8 @@ fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {
         .edit(|s| s.collision.enabled = enabled)
         .unwrap_or_else(|e| panic!("{e}"));
     let goals = swap_goals(&s);
-    let mut w = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(&s, &clock);
     for (id, g) in goals.iter().enumerate() {
         w.set_goal(id, Some(*g))
             .expect("corridor goals are reachable");
@@ -39,7 +40,7 @@ fn run(per_side: usize, enabled: bool, keys: Option<&[f64]>) -> Outcome {
     let mut all_arrived_at_s = None;
     let steps = (BOUND_S / s.sim().dt_s.get()).round() as u64;
     for _ in 0..steps {
-        w.step();
+        w.step(&clock);
         max_pen = max_pen.max(w.max_penetration_m());
         if w.robots().iter().all(|r| r.goal_reached) {
             all_arrived_at_s = Some(w.time_s());

@@ -4,7 +4,7 @@
 use crate::common;
 use usar_sim::scenario::{Debris, PointM};
 
-use usar_sim::world::World;
+use usar_sim::world::{ControlClock, World};
 
 /// Simulated time within which both robots must arrive, seconds (straight line: 14 m).
 const BOUND_S: f64 = 30.0;
@@ -25,7 +25,8 @@ fn inside_block(p: &PointM, grow: f64) -> bool {
 #[test]
 fn aerial_flies_over_debris_ground_goes_around() {
     let s = common::debris_crossing();
-    let mut w = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(&s, &clock);
     w.set_goal(0, Some(s.tasks()[0].goal)).unwrap();
     w.set_goal(1, Some(s.tasks()[1].goal)).unwrap();
     // The ground path's waypoints keep the body clear of the block.
@@ -40,7 +41,7 @@ fn aerial_flies_over_debris_ground_goes_around() {
     let mut max_aerial_dev = 0.0f64;
     let steps = (BOUND_S / s.sim().dt_s.get()) as usize;
     for _ in 0..steps {
-        w.step();
+        w.step(&clock);
         let g = w.robot(0);
         assert!(
             !inside_block(&g.position, r - 0.05),
@@ -71,7 +72,8 @@ fn aerial_flies_over_debris_ground_goes_around() {
 #[test]
 fn unreachable_goal_is_reported_not_panicking() {
     let s = common::debris_crossing();
-    let mut w = World::new(&s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(&s, &clock);
     let err = w.set_goal(0, Some(PointM::new(50.0, 5.0))).unwrap_err();
     assert!(matches!(
         err,
@@ -94,13 +96,14 @@ fn a_goal_set_within_a_tolerance_is_reached_within_it() {
     let tol = s.navigation().waypoint_tolerance_m.get();
     let goal = s.tasks()[0].goal;
     let stop_distance = |tolerance_m: Option<f64>| {
-        let mut w = World::new(&s);
+        let clock = ControlClock::of(s.sim());
+        let mut w = World::new(&s, &clock);
         match tolerance_m {
             Some(t) => w.set_goal_within(0, goal, t).unwrap(),
             None => w.set_goal(0, Some(goal)).unwrap(),
         }
         for _ in 0..(BOUND_S / s.sim().dt_s.get()) as usize {
-            w.step();
+            w.step(&clock);
             if w.robot(0).goal_reached {
                 break;
             }
@@ -108,7 +111,7 @@ fn a_goal_set_within_a_tolerance_is_reached_within_it() {
         assert!(w.robot(0).goal_reached, "{tolerance_m:?}: not reached");
         // Standing still after arrival.
         let at = w.robot(0).position;
-        w.step();
+        w.step(&clock);
         assert!((w.robot(0).position - at).norm() < 1e-6);
         (at - goal).norm()
     };

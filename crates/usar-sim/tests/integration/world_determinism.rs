@@ -5,7 +5,7 @@ use crate::common;
 
 use common::{corridor, swap_goals};
 use usar_sim::scenario::Scenario;
-use usar_sim::world::World;
+use usar_sim::world::{ControlClock, World};
 
 /// `scenarios/corridor.ron` with 4 robots at each end.
 fn corridor_8() -> Scenario {
@@ -15,14 +15,15 @@ fn corridor_8() -> Scenario {
 /// f32 bit patterns of every robot's position at every step of the 8-robot corridor swap.
 fn trajectory(s: &Scenario) -> Vec<u32> {
     let goals = swap_goals(s);
-    let mut w = World::new(s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(s, &clock);
     for (id, g) in goals.iter().enumerate() {
         w.set_goal(id, Some(*g)).unwrap();
         w.set_priority_key(id, (id * 7 % 5) as f64).unwrap();
     }
     let mut bits = Vec::new();
     for _ in 0..1500 {
-        w.step();
+        w.step(&clock);
         for r in w.robots() {
             bits.push((r.position.x as f32).to_bits());
             bits.push((r.position.y as f32).to_bits());

@@ -6,7 +6,7 @@ use std::sync::LazyLock;
 
 use proptest::prelude::*;
 use usar_sim::scenario::{Locomotion, PointM, Scenario};
-use usar_sim::world::World;
+use usar_sim::world::{ControlClock, World};
 
 fn scenario(file: &str) -> Scenario {
     let path = format!("{}/../../scenarios/{file}", env!("CARGO_MANIFEST_DIR"));
@@ -32,7 +32,8 @@ fn shared_goals(s: &Scenario) -> Vec<PointM> {
 /// grid cell is free for its planning inflation, sends it to every shared goal and checks every
 /// leg of the path, sampled each centimetre, against the exact distance to the statics.
 fn check_paths_from(s: &Scenario, fx: f64, fy: f64) -> Result<(), TestCaseError> {
-    let mut w = World::new(s);
+    let clock = ControlClock::of(s.sim());
+    let mut w = World::new(s, &clock);
     let start = PointM::new(fx * s.arena().width_m.get(), fy * s.arena().height_m.get());
     let cell = s.navigation().grid_cell_m.get();
     for kind in 0..s.kinds().len() {

@@ -11,6 +11,7 @@ use anyhow::{Result, anyhow};
 use clap::Args;
 
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario, number_text, path_text};
+use usar_sim::world::ControlClock;
 
 use experiments::fingerprint::scenario_hash;
 
@@ -182,7 +183,7 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
     };
     let control = match s.sim().control_period_s {
         Some(p) => {
-            let k = s.sim().control_steps();
+            let k = ControlClock::of(s.sim()).period_steps();
             let steps = if k == 1 {
                 "1 step".to_string()
             } else {

@@ -1,0 +1,40 @@
+//! [`Pipelines`]: the systems that update the world's state on a step, each with the scratch
+//! it owns, held apart from that state (as rapier keeps its pipelines apart from its body and
+//! collider sets).
+
+use parry2d::math::Vector as Vec2;
+
+use super::path_planner::PathPlanner;
+use super::per_robot::PerRobot;
+use super::resolver::Resolver;
+use super::standing_disc::StandingDisc;
+
+/// The world's pipelines and what each owns: the memory it keeps between steps (the
+/// resolver's per-robot memory, the planner's caches, the parallel phases' outputs) and its
+/// scratch buffers, each cleared or overwritten before it is read. The world's state (bodies,
+/// robots, navigation state, radiation zones, counters) stays in [`super::World`]'s own
+/// fields.
+#[derive(Debug)]
+pub(super) struct Pipelines {
+    /// Path planning: the plan cache, A* and the shared distance fields
+    /// ([`super::path_planner`]).
+    pub(super) planner: PathPlanner,
+    /// Plans that may be discarded (goal checks, re-plans, detours) are written here (planning
+    /// and path following).
+    pub(super) scratch: Vec<Vec2>,
+    /// Robots standing in the way of a detour (path following).
+    pub(super) standing: Vec<StandingDisc>,
+    /// Robot ids from the neighbour index (path following).
+    pub(super) near_ids: Vec<usize>,
+    /// Collision avoidance and deadlock solving, with its neighbour lists
+    /// ([`super::resolver`]).
+    pub(super) resolver: Resolver,
+    /// `sim.physics: NearBodies`: whether robot `id` is near a contact this step (the
+    /// contact gate).
+    pub(super) near_body: Vec<bool>,
+    /// Each robot's body speed on this step, m/s (the contact gate).
+    pub(super) gate_speeds: Vec<f32>,
+    /// The per-robot outputs of the parallel phases (`parallel.rs`) and whether they run in
+    /// parallel.
+    pub(super) per_robot: PerRobot,
+}
