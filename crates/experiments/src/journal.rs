@@ -7,7 +7,8 @@
 //! [`TrialRecord`], appended and flushed as soon as its trial ends, in completion order.
 //!
 //! Every line carries a checksum of its content, `{"header":{..},"sum":"<hex>"}` and
-//! `{"trial":{..},"sum":"<hex>"}`: [`header_sum`] of the header's JSON, and [`record_sum`] of
+//! `{"trial":{..},"sum":"<hex>"}` ([`crate::checked_log`], the plumbing the journal shares
+//! with a calibration's trace): [`header_sum`] of the header's JSON, and [`record_sum`] of
 //! the header's sum and the record's JSON (as written, compact, fields in declaration order),
 //! so a record verifies only in the journal of its own sweep. A header that does not verify
 //! makes the journal unusable; a record that does not verify is left out (listed in
@@ -21,18 +22,20 @@
 //! [`read_journal`], checking their headers agree and keeping the last record per key. A kill
 //! can leave a last line cut short; [`Journal::open_resume`] drops it.
 
-use std::fs::{self, File, OpenOptions};
-use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
+use std::fs::{self, File};
+use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use serde_json::value::RawValue;
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario::path_text;
 
-use crate::fingerprint::fnv1a64_hex;
+use crate::checked_log::{LogWriter, RecordLine, parse_line, read_records};
+/// The checksums of the journal's lines (from [`crate::checked_log`], kept here for callers
+/// that verify a journal by hand).
+pub use crate::checked_log::{header_sum, record_sum};
 
 /// File name of the journal inside the output folder.
 pub const JOURNAL_FILE: &str = "journal.jsonl";
@@ -157,35 +160,6 @@ impl TrialRecord {
 
 /// One line of the journal as read back: the header's or the record's JSON as written, and
 /// the line's checksum.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLine<'a> {
-    #[serde(borrow, default)]
-    header: Option<&'a RawValue>,
-    #[serde(borrow, default)]
-    trial: Option<&'a RawValue>,
-    #[serde(default)]
-    sum: Option<String>,
-}
-
-/// The checksum of a header line: FNV-1a 64 ([`fnv1a64_hex`]) of the header's JSON as
-/// written. Every record's checksum includes it ([`record_sum`]).
-pub fn header_sum(header_json: &str) -> String {
-    fnv1a64_hex(header_json.as_bytes())
-}
-
-/// The checksum of a record line in the journal whose header has checksum `header_sum`:
-/// FNV-1a 64 of `<header_sum>:<record JSON as written>`.
-pub fn record_sum(header_sum: &str, record_json: &str) -> String {
-    fnv1a64_hex(format!("{header_sum}:{record_json}").as_bytes())
-}
-
-/// A journal line: `{"<kind>":<json>,"sum":"<sum>"}` and its newline (a calibration's trace,
-/// `crate::calibrate::trace`, writes its lines the same way).
-pub(crate) fn journal_line(kind: &str, json: &str, sum: &str) -> String {
-    format!("{{\"{kind}\":{json},\"sum\":\"{sum}\"}}\n")
-}
-
 /// A complete record line whose checksum does not verify (an edit, or damage that left valid
 /// JSON): it is not used, nor are earlier records of its trial.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -255,15 +229,8 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
             path_text(path)
         );
     }
-    let Ok(RawLine {
-        header: Some(raw),
-        trial: None,
-        sum,
-    }) = serde_json::from_str::<RawLine<'_>>(line.trim_end())
-    else {
-        return Err(not_a_header());
-    };
-    let expected = header_sum(raw.get());
+    let (json, sum) = parse_line(line, "header").ok_or_else(not_a_header)?;
+    let expected = header_sum(json);
     if sum.as_deref() != Some(expected.as_str()) {
         bail!(
             "{}:1: the header does not verify (edited?), so no record of the journal can be \
@@ -271,7 +238,7 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
             path_text(path)
         );
     }
-    let header = serde_json::from_str::<SweepHeader>(raw.get()).map_err(|_| not_a_header())?;
+    let header = serde_json::from_str::<SweepHeader>(json).map_err(|_| not_a_header())?;
     Ok((header, expected))
 }
 
@@ -288,56 +255,39 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
 pub fn read_journal(path: &Path) -> Result<JournalContents> {
     check_regular_file(path)?;
     let bytes = fs::read(path).with_context(|| format!("cannot read {}", path_text(path)))?;
-    let mut lines = bytes
-        .split_inclusive(|&b| b == b'\n')
-        .enumerate()
-        .peekable();
-    let Some((_, first)) = lines.next() else {
+    let Some(first) = bytes.split_inclusive(|&b| b == b'\n').next() else {
         bail!("{}: empty journal (no header line)", path_text(path));
     };
     let (header, sum) = parse_header_line(path, first)?;
-    let mut contents = JournalContents {
-        header,
-        header_sum: sum,
-        records: Vec::new(),
-        rejected: Vec::new(),
-        complete_bytes: first.len() as u64,
-    };
-    while let Some((i, line)) = lines.next() {
-        if lines.peek().is_none() && !line.ends_with(b"\n") {
-            // Cut short by a kill, possibly inside a multi-byte character.
-            break;
-        }
-        let line = std::str::from_utf8(line).map_err(|_| damaged(path, i + 1))?;
-        if line.trim().is_empty() {
-            // A blank line (an editor's final newline) holds nothing.
-            contents.complete_bytes += line.len() as u64;
-            continue;
-        }
-        let Ok(RawLine {
-            header: None,
-            trial: Some(raw),
-            sum,
-        }) = serde_json::from_str::<RawLine<'_>>(line.trim_end())
-        else {
-            return Err(damaged(path, i + 1));
+    let mut records: Vec<TrialRecord> = Vec::new();
+    let mut rejected = Vec::new();
+    let complete_bytes = read_records(&bytes, first.len(), &sum, "trial", |line, r| {
+        let (json, verified) = match r {
+            RecordLine::Verified(json) => (json, true),
+            RecordLine::Unverified(json) => (json, false),
+            RecordLine::Damaged => return Err(damaged(path, line)),
         };
-        let record: TrialRecord =
-            serde_json::from_str(raw.get()).map_err(|_| damaged(path, i + 1))?;
-        if sum.as_deref() == Some(record_sum(&contents.header_sum, raw.get()).as_str()) {
-            contents.records.push(record);
+        let record: TrialRecord = serde_json::from_str(json).map_err(|_| damaged(path, line))?;
+        if verified {
+            records.push(record);
         } else {
-            contents.records.retain(|r| r.key() != record.key());
-            contents.rejected.push(RejectedRecord {
-                line: i + 1,
+            records.retain(|r| r.key() != record.key());
+            rejected.push(RejectedRecord {
+                line,
                 cell: record.cell,
                 method: record.method,
                 trial: record.trial,
             });
         }
-        contents.complete_bytes += line.len() as u64;
-    }
-    Ok(contents)
+        Ok(())
+    })?;
+    Ok(JournalContents {
+        header,
+        header_sum: sum,
+        records,
+        rejected,
+        complete_bytes,
+    })
 }
 
 /// Refuses a journal whose first line is the header of another format.
@@ -380,8 +330,8 @@ fn first_line(path: &Path) -> Result<Vec<u8>> {
 /// regular file at `path` or its first line holds no header of this format's shape.
 pub fn read_header_unverified(path: &Path) -> Option<SweepHeader> {
     let line = first_line(path).ok()?;
-    let raw: RawLine<'_> = serde_json::from_slice(line.trim_ascii_end()).ok()?;
-    serde_json::from_str(raw.header?.get()).ok()
+    let (json, _) = parse_line(std::str::from_utf8(&line).ok()?, "header")?;
+    serde_json::from_str(json).ok()
 }
 
 /// Whether the regular file at `path` holds no complete line and nothing but the start of a
@@ -439,24 +389,11 @@ fn check_regular_file(path: &Path) -> Result<()> {
     }
 }
 
-/// An open journal, appending one flushed line per record.
-///
-/// A line that cannot be written whole (a full disk) is cut back off the file, so the journal
-/// keeps only complete lines and a later append, or a resume, finds it intact; if even that
-/// fails, every later append is refused without writing.
+/// An open journal, appending one flushed line per record ([`LogWriter`]: a line that cannot
+/// be written whole is cut back off the file).
 #[derive(Debug)]
 pub struct Journal {
-    path: PathBuf,
-    file: File,
-    /// The header's checksum, part of every record's.
-    header_sum: String,
-    /// Length of the file up to the end of its last complete line, bytes.
-    complete_bytes: u64,
-    /// Set when a failed append could not be cut back off the file.
-    damaged: bool,
-    /// Tests: the next line is written only up to this many bytes, then fails.
-    #[cfg(test)]
-    fail_after_bytes: Option<usize>,
+    log: LogWriter,
 }
 
 impl Journal {
@@ -471,26 +408,9 @@ impl Journal {
     /// # Errors
     /// An existing journal, or an I/O error.
     pub fn create(dir: &Path, header: &SweepHeader) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
-        let path = Self::path_in(dir);
-        let file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&path)
-            .with_context(|| format!("creating {}", path_text(&path)))?;
         let json = serde_json::to_string(header).context("serialising the journal header")?;
-        let header_sum = header_sum(&json);
-        let mut j = Self {
-            path,
-            file,
-            header_sum,
-            complete_bytes: 0,
-            damaged: false,
-            #[cfg(test)]
-            fail_after_bytes: None,
-        };
-        j.write_line(&journal_line("header", &json, &j.header_sum))?;
-        Ok(j)
+        let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
+        Ok(Self { log })
     }
 
     /// Opens the journal in `dir` to continue it: checks that its header verifies and equals
@@ -513,26 +433,8 @@ impl Journal {
                 header_diff(&contents.header, header)
             );
         }
-        let file = OpenOptions::new()
-            .write(true)
-            .open(&path)
-            .with_context(|| format!("opening {}", path_text(&path)))?;
-        file.set_len(contents.complete_bytes)
-            .with_context(|| format!("truncating {}", path_text(&path)))?;
-        let file = OpenOptions::new()
-            .append(true)
-            .open(&path)
-            .with_context(|| format!("opening {}", path_text(&path)))?;
-        let journal = Self {
-            path,
-            file,
-            header_sum: contents.header_sum.clone(),
-            complete_bytes: contents.complete_bytes,
-            damaged: false,
-            #[cfg(test)]
-            fail_after_bytes: None,
-        };
-        Ok((journal, contents))
+        let log = LogWriter::resume(&path, contents.header_sum.clone(), contents.complete_bytes)?;
+        Ok((Self { log }, contents))
     }
 
     /// Appends `record` as one line with its checksum ([`record_sum`]) and flushes it to the
@@ -542,44 +444,7 @@ impl Journal {
     /// An I/O error.
     pub fn append(&mut self, record: &TrialRecord) -> Result<()> {
         let json = serde_json::to_string(record).context("serialising a journal record")?;
-        let sum = record_sum(&self.header_sum, &json);
-        self.write_line(&journal_line("trial", &json, &sum))
-    }
-
-    fn write_line(&mut self, s: &str) -> Result<()> {
-        if self.damaged {
-            bail!(
-                "{}: an earlier line could not be written nor removed; not appending",
-                path_text(&self.path)
-            );
-        }
-        if let Err(e) = self.write_bytes(s.as_bytes()) {
-            // Cut the part of the line that was written back off, so that the journal ends
-            // with a complete line, and write the next line where it ended.
-            let end = self.complete_bytes;
-            let cut = self.file.set_len(end);
-            if cut
-                .and_then(|()| self.file.seek(SeekFrom::Start(end)))
-                .is_err()
-            {
-                self.damaged = true;
-            }
-            return Err(e).with_context(|| format!("appending to {}", path_text(&self.path)));
-        }
-        self.complete_bytes += s.len() as u64;
-        Ok(())
-    }
-
-    fn write_bytes(&mut self, bytes: &[u8]) -> std::io::Result<()> {
-        #[cfg(test)]
-        if let Some(n) = self.fail_after_bytes.take() {
-            self.file.write_all(&bytes[..n.min(bytes.len())])?;
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::StorageFull,
-                "no space left on device (test)",
-            ));
-        }
-        self.file.write_all(bytes).and_then(|()| self.file.flush())
+        self.log.append("trial", &json)
     }
 }
 
@@ -685,7 +550,12 @@ fn grid_diff(old: &GridHeader, new: &GridHeader, d: &mut Vec<String>) {
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use std::fs::OpenOptions;
+    use std::io::Write;
+
     use super::*;
+    use crate::checked_log::checked_line;
+    use crate::fingerprint::fnv1a64_hex;
 
     /// A header of a 2-cell grid over `mission.duration_s` (values `10` and `20`).
     pub(crate) fn header() -> SweepHeader {
@@ -795,7 +665,7 @@ pub(crate) mod tests {
         assert!(c.rejected.is_empty());
         // A kill after the record but before its newline: the record parses but is redone.
         let json = serde_json::to_string(&record(0, 2)).unwrap();
-        let whole = journal_line("trial", &json, &record_sum(&c.header_sum, &json));
+        let whole = checked_line("trial", &json, &record_sum(&c.header_sum, &json));
         let whole = whole.trim_end();
         let mut f = OpenOptions::new().append(true).open(&path).unwrap();
         f.write_all(whole.as_bytes()).unwrap();
@@ -1107,7 +977,7 @@ pub(crate) mod tests {
         let before = fs::read(&path).unwrap();
         // A full disk cuts the next line after 40 bytes; another thread's record follows
         // once space is back.
-        j.fail_after_bytes = Some(40);
+        j.log.fail_after_bytes = Some(40);
         let msg = format!("{:#}", j.append(&record(1, 1)).unwrap_err());
         assert!(
             msg.contains("appending to") && msg.contains("no space left"),
@@ -1121,7 +991,7 @@ pub(crate) mod tests {
         assert!(c.rejected.is_empty());
         // The same in a resumed journal (opened to append).
         let (mut j, _) = Journal::open_resume(dir.path(), &header()).unwrap();
-        j.fail_after_bytes = Some(30);
+        j.log.fail_after_bytes = Some(30);
         assert!(j.append(&record(1, 0)).is_err());
         j.append(&record(1, 1)).unwrap();
         drop(j);
@@ -1129,10 +999,11 @@ pub(crate) mod tests {
         assert_eq!(c.records, vec![record(0, 0), record(0, 2), record(1, 1)]);
         // If the cut fails too, nothing more is appended after the partial line.
         let (mut j, _) = Journal::open_resume(dir.path(), &header()).unwrap();
-        j.file = File::open(&path).unwrap();
-        j.fail_after_bytes = Some(0);
+        j.log.replace_file(File::open(&path).unwrap());
+        j.log.fail_after_bytes = Some(0);
         assert!(j.append(&record(1, 1)).is_err());
-        j.file = OpenOptions::new().append(true).open(&path).unwrap();
+        j.log
+            .replace_file(OpenOptions::new().append(true).open(&path).unwrap());
         let msg = format!("{:#}", j.append(&record(1, 2)).unwrap_err());
         assert!(msg.contains("could not be written nor removed"), "{msg}");
         assert_eq!(read_journal(&path).unwrap().records.len(), 3);

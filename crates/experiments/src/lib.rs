@@ -62,7 +62,7 @@
 //!
 //! 1. base: [`stats`], [`metrics`], [`table`], [`fingerprint`], [`atomic`], [`lock`],
 //!    [`spec_ron`], [`stderr`], `progress_bar`, [`chart`], [`method_factory`], [`vary`],
-//!    [`journal`], [`trial_json`];
+//!    [`checked_log`], [`journal`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
 //! 4. run: `executor`, [`stale_outputs`], [`sweep`], [`shard`], [`slurm`];
@@ -76,6 +76,7 @@
 pub mod atomic;
 #[cfg(feature = "outputs")]
 pub mod chart;
+pub mod checked_log;
 pub mod fingerprint;
 pub mod journal;
 pub mod lock;

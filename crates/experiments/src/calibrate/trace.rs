@@ -1,6 +1,6 @@
 //! The trace of a calibration: `trace.jsonl` in its output folder, one JSON object per line,
-//! checksummed as the sweep journal's lines are ([`crate::journal::header_sum`],
-//! [`crate::journal::record_sum`]).
+//! checksummed as the sweep journal's lines are, by the same plumbing
+//! ([`crate::checked_log`]: [`header_sum`], [`record_sum`](crate::checked_log::record_sum)).
 //!
 //! The first line is the [`TraceHeader`] (what identifies the calibration: scenario hash,
 //! targets, free fields and ranges, methods, trials, seed, duration, digits, build), every
@@ -17,20 +17,18 @@
 //! is left out (its point runs again); a header that does not verify, or a damaged line
 //! before the last, is refused.
 
-use std::fs::{self, File, OpenOptions};
-use std::io::Write;
+use std::fs;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use serde_json::value::RawValue;
 use usar_sim::scenario::path_text;
 
 use super::evaluate::Evaluation;
 use super::free::FreeField;
 use super::targets::Target;
-use crate::journal::{header_sum, journal_line, record_sum};
+use crate::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
 
 /// File name of the trace in the output folder.
 pub const TRACE_FILE: &str = crate::data::owner::evidence::TRACE;
@@ -162,18 +160,6 @@ fn json_diff(old: &TraceHeader, new: &TraceHeader) -> Vec<String> {
     }
 }
 
-/// One line as read back: the header's or the evaluation's JSON as written, and its sum.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLine<'a> {
-    #[serde(borrow, default)]
-    header: Option<&'a RawValue>,
-    #[serde(borrow, default)]
-    eval: Option<&'a RawValue>,
-    #[serde(default)]
-    sum: Option<String>,
-}
-
 /// A trace read from a file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TraceContents {
@@ -204,11 +190,11 @@ pub fn read_trace(path: &Path) -> Result<TraceContents> {
             path_text(path)
         )
     };
-    let mut lines = bytes
+    let Some(first) = bytes
         .split_inclusive(|&b| b == b'\n')
-        .enumerate()
-        .peekable();
-    let Some((_, first)) = lines.next().filter(|(_, l)| l.ends_with(b"\n")) else {
+        .next()
+        .filter(|l| l.ends_with(b"\n"))
+    else {
         bail!(
             "{}: no complete header line; {START_AFRESH}",
             path_text(path)
@@ -216,22 +202,15 @@ pub fn read_trace(path: &Path) -> Result<TraceContents> {
     };
     let not_header = || anyhow!("{}:1: not a trace header; {START_AFRESH}", path_text(path));
     let text = std::str::from_utf8(first).map_err(|_| not_header())?;
-    let Ok(RawLine {
-        header: Some(raw),
-        eval: None,
-        sum,
-    }) = serde_json::from_str::<RawLine<'_>>(text.trim_end())
-    else {
-        return Err(not_header());
-    };
-    let hsum = header_sum(raw.get());
+    let (raw, sum) = parse_line(text, "header").ok_or_else(not_header)?;
+    let hsum = header_sum(raw);
     if sum.as_deref() != Some(hsum.as_str()) {
         bail!(
             "{}:1: the header does not verify (edited?); {START_AFRESH}",
             path_text(path)
         );
     }
-    let format = serde_json::from_str::<serde_json::Value>(raw.get())
+    let format = serde_json::from_str::<serde_json::Value>(raw)
         .ok()
         .and_then(|v| v.get("format")?.as_u64());
     if format != Some(u64::from(TRACE_FORMAT)) {
@@ -241,48 +220,36 @@ pub fn read_trace(path: &Path) -> Result<TraceContents> {
             format.map_or("unknown".into(), |f| f.to_string())
         );
     }
-    let header: TraceHeader = serde_json::from_str(raw.get()).map_err(|_| not_header())?;
-    let mut c = TraceContents {
+    let header: TraceHeader = serde_json::from_str(raw).map_err(|_| not_header())?;
+    let (mut evaluations, mut rejected) = (Vec::new(), Vec::new());
+    let complete_bytes = read_records(&bytes, first.len(), &hsum, "eval", |line, r| {
+        let not_a_line = || damaged(line, "not a valid trace line");
+        match r {
+            RecordLine::Verified(json) => {
+                evaluations.push(serde_json::from_str(json).map_err(|_| not_a_line())?);
+            }
+            RecordLine::Unverified(json) => {
+                serde_json::from_str::<Evaluation>(json).map_err(|_| not_a_line())?;
+                rejected.push(line);
+            }
+            RecordLine::Damaged => return Err(not_a_line()),
+        }
+        Ok(())
+    })?;
+    Ok(TraceContents {
         header,
-        evaluations: Vec::new(),
-        rejected: Vec::new(),
-        complete_bytes: first.len() as u64,
+        evaluations,
+        rejected,
+        complete_bytes,
         header_sum: hsum,
-    };
-    while let Some((i, line)) = lines.next() {
-        if lines.peek().is_none() && !line.ends_with(b"\n") {
-            break; // cut short by a kill
-        }
-        let text = std::str::from_utf8(line).map_err(|_| damaged(i + 1, "not UTF-8"))?;
-        c.complete_bytes += line.len() as u64;
-        if text.trim().is_empty() {
-            continue;
-        }
-        let Ok(RawLine {
-            header: None,
-            eval: Some(raw),
-            sum,
-        }) = serde_json::from_str::<RawLine<'_>>(text.trim_end())
-        else {
-            return Err(damaged(i + 1, "not a valid trace line"));
-        };
-        let e: Evaluation = serde_json::from_str(raw.get())
-            .map_err(|_| damaged(i + 1, "not a valid trace line"))?;
-        if sum.as_deref() == Some(record_sum(&c.header_sum, raw.get()).as_str()) {
-            c.evaluations.push(e);
-        } else {
-            c.rejected.push(i + 1);
-        }
-    }
-    Ok(c)
+    })
 }
 
-/// An open trace, appending one flushed line per evaluation.
+/// An open trace, appending one flushed line per evaluation ([`LogWriter`]: a line that
+/// cannot be written whole is cut back off the file).
 #[derive(Debug)]
 pub struct Trace {
-    path: PathBuf,
-    file: File,
-    header_sum: String,
+    log: LogWriter,
 }
 
 impl Trace {
@@ -296,22 +263,9 @@ impl Trace {
     /// # Errors
     /// An existing trace, or an I/O error.
     pub fn create(dir: &Path, header: &TraceHeader) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
-        let path = Self::path_in(dir);
-        let file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&path)
-            .with_context(|| format!("creating {}", path_text(&path)))?;
         let json = serde_json::to_string(header).context("serialising the trace header")?;
-        let mut t = Self {
-            path,
-            file,
-            header_sum: header_sum(&json),
-        };
-        let line = journal_line("header", &json, &t.header_sum);
-        t.write(&line)?;
-        Ok(t)
+        let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
+        Ok(Self { log })
     }
 
     /// Continues the trace `contents` was read from, at `path`: a last line cut short is cut
@@ -320,22 +274,8 @@ impl Trace {
     /// # Errors
     /// An I/O error.
     pub fn resume(path: &Path, contents: &TraceContents) -> Result<Self> {
-        let file = OpenOptions::new()
-            .write(true)
-            .open(path)
-            .with_context(|| format!("opening {}", path_text(path)))?;
-        file.set_len(contents.complete_bytes)
-            .with_context(|| format!("truncating {}", path_text(path)))?;
-        drop(file);
-        let file = OpenOptions::new()
-            .append(true)
-            .open(path)
-            .with_context(|| format!("opening {}", path_text(path)))?;
-        Ok(Self {
-            path: path.to_owned(),
-            file,
-            header_sum: contents.header_sum.clone(),
-        })
+        let log = LogWriter::resume(path, contents.header_sum.clone(), contents.complete_bytes)?;
+        Ok(Self { log })
     }
 
     /// Appends `e` as one checksummed line and flushes it.
@@ -344,15 +284,7 @@ impl Trace {
     /// An I/O error.
     pub fn append(&mut self, e: &Evaluation) -> Result<()> {
         let json = serde_json::to_string(e).context("serialising an evaluation")?;
-        let line = journal_line("eval", &json, &record_sum(&self.header_sum, &json));
-        self.write(&line)
-    }
-
-    fn write(&mut self, line: &str) -> Result<()> {
-        self.file
-            .write_all(line.as_bytes())
-            .and_then(|()| self.file.flush())
-            .with_context(|| format!("appending to {}", path_text(&self.path)))
+        self.log.append("eval", &json)
     }
 }
 

@@ -26,13 +26,12 @@ use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
-use serde_json::value::RawValue;
 
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::atomic::write_atomic;
 use crate::calibrate::{Evaluator, FreeField, float_text};
-use crate::journal::{journal_line, record_sum};
+use crate::checked_log::{record_line, verified_record};
 use crate::vary::apply_overrides;
 
 /// The design's folder under the output folder.
@@ -99,7 +98,7 @@ impl DesignPoint {
     /// An I/O error.
     pub fn write(&self, root: &Path, design: usize, identity_sum: &str) -> Result<()> {
         let json = serde_json::to_string(self).context("serialising a design point")?;
-        let line = journal_line("design", &json, &record_sum(identity_sum, &json));
+        let line = record_line("design", &json, identity_sum);
         let path = point_path(root, self.index, design);
         std::fs::create_dir_all(path.parent().unwrap_or(root))?;
         write_atomic(&path, line.as_bytes())
@@ -115,19 +114,9 @@ impl DesignPoint {
         identity_sum: &str,
         (free, targets): (usize, usize),
     ) -> Option<Self> {
-        #[derive(Deserialize)]
-        #[serde(deny_unknown_fields)]
-        struct Line<'a> {
-            #[serde(borrow)]
-            design: &'a RawValue,
-            sum: String,
-        }
         let text = std::fs::read_to_string(point_path(root, index, design)).ok()?;
-        let line: Line<'_> = serde_json::from_str(text.trim_end()).ok()?;
-        if line.sum != record_sum(identity_sum, line.design.get()) {
-            return None;
-        }
-        let point: Self = serde_json::from_str(line.design.get()).ok()?;
+        let json = verified_record(&text, "design", identity_sum)?;
+        let point: Self = serde_json::from_str(json).ok()?;
         (point.index == index && point.values.len() == free && point.statistics.len() == targets)
             .then_some(point)
     }

@@ -4,7 +4,7 @@
 //! uninterrupted run.
 //!
 //! The file is one line, `{"universe":{...},"sum":"<16 hex digits>"}`, written atomically;
-//! `sum` is [`crate::journal::record_sum`] of the multiverse's identity sum
+//! `sum` is [`crate::checked_log::record_sum`] of the multiverse's identity sum
 //! ([`super::plan::MultiversePlan::identity_sum`]) and the record's JSON as written, so a
 //! record verifies only for the multiverse that wrote it (an edited record, or one left by a
 //! multiverse of other parameters, does not, and its universe runs again). Numbers that may
@@ -14,13 +14,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
-use serde_json::value::RawValue;
 use usar_sim::scenario::path_text;
 
 use super::effect::ClaimEffect;
 use crate::atomic::write_atomic;
 use crate::calibrate::{StopReason, float_text};
-use crate::journal::{journal_line, record_sum};
+use crate::checked_log::{record_line, verified_record};
 
 /// The record's file name in a universe's folder.
 pub const RECORD_FILE: &str = "universe.json";
@@ -165,7 +164,7 @@ impl UniverseRecord {
     /// An I/O error.
     pub fn write(&self, dir: &Path, identity_sum: &str) -> Result<()> {
         let json = serde_json::to_string(self).context("serialising a universe record")?;
-        let line = journal_line("universe", &json, &record_sum(identity_sum, &json));
+        let line = record_line("universe", &json, identity_sum);
         write_atomic(&Self::path_in(dir), line.as_bytes())
     }
 
@@ -191,18 +190,7 @@ impl UniverseRecord {
 
 /// The record on one line `text`, when it verifies for `identity_sum`.
 fn parse(text: &str, identity_sum: &str) -> Option<UniverseRecord> {
-    #[derive(Deserialize)]
-    #[serde(deny_unknown_fields)]
-    struct Line<'a> {
-        #[serde(borrow)]
-        universe: &'a RawValue,
-        sum: String,
-    }
-    let line: Line<'_> = serde_json::from_str(text.trim_end()).ok()?;
-    if line.sum != record_sum(identity_sum, line.universe.get()) {
-        return None;
-    }
-    serde_json::from_str(line.universe.get()).ok()
+    serde_json::from_str(verified_record(text, "universe", identity_sum)?).ok()
 }
 
 /// A universe's record as found in its folder.

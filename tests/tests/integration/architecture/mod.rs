@@ -69,6 +69,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 &[
                     "atomic",
                     "chart",
+                    "checked_log",
                     "fingerprint",
                     "journal",
                     "lock",
