@@ -17,7 +17,7 @@ use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::data::limits::{max_threads, sweep_threads};
 use crate::journal::{Journal, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
-use crate::progress_bar::progress_bar;
+use crate::progress::progress_bar;
 
 /// How to run a sweep's jobs.
 pub(crate) struct Runner<'a> {

@@ -27,10 +27,14 @@
 //!
 //! # Features
 //!
-//! - `cli` (default): the `usar` binary (clap); implies `outputs`.
+//! - `cli` (default): the `usar` binary (clap) and the progress bars it draws (indicatif);
+//!   implies `outputs`.
 //! - `outputs`: the analysis, the written outputs (CSV, figures, reports, replay pages), the
-//!   calibration, the multiverse and progress bars (statrs, csv, plotters, flate2, base64,
-//!   argmin, humantime, indicatif, rand). The modules that need them are left out without it.
+//!   calibration and the multiverse (statrs, csv, plotters, flate2, base64, argmin,
+//!   humantime, rand). The modules that need them are left out without it.
+//!
+//! Long runs report their progress to a sink the program installs ([`progress`]); the library
+//! draws nothing.
 //!
 //! With `default-features = false` the crate is the sweep library alone (config, parallel
 //! trials, journal, grids, shards, results and the metric columns), none of those
@@ -61,7 +65,7 @@
 //! it, never from one above (bottom first):
 //!
 //! 1. base: [`stats`], [`metrics`], [`table`], [`fingerprint`], [`atomic`], [`lock`],
-//!    [`spec_ron`], [`stderr`], `progress_bar`, [`chart`], [`method_factory`], [`vary`],
+//!    [`spec_ron`], [`stderr`], [`progress`], [`chart`], [`method_factory`], [`vary`],
 //!    [`checked_log`], [`journal`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
@@ -82,7 +86,7 @@ pub mod journal;
 pub mod lock;
 pub mod method_factory;
 pub mod metrics;
-mod progress_bar;
+pub mod progress;
 pub mod spec_ron;
 #[cfg(feature = "outputs")]
 pub mod stats;

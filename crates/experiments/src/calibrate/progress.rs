@@ -1,14 +1,12 @@
-//! What a calibration shows while it runs: an indicatif bar over the evaluations with an ETA
+//! What a calibration shows while it runs: a bar over the evaluations ([`crate::progress`])
 //! (only drawn on a terminal, as a sweep's), a line per improvement of the best loss, and a
 //! hook per new evaluation.
 
 use std::fmt;
 use std::sync::Arc;
 
-use indicatif::ProgressBar;
-
 use super::evaluate::Evaluation;
-use crate::progress_bar::count_bar;
+use crate::progress::{ProgressBar, count_bar};
 use crate::table::num;
 
 /// Called after each new evaluation is in the trace, with it and how many this run has made

@@ -13,7 +13,7 @@ use super::design::{DesignPoint, design_plan, evaluate_point};
 use super::plan::MultiversePlan;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use crate::data::hooks::Stopped;
-use crate::progress_bar::count_bar;
+use crate::progress::count_bar;
 
 /// Runs the design points not done yet into `dir` (this run's own first, then the rest,
 /// each looked for again just before it runs), each written as it ends; returns how many

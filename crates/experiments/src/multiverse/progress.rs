@@ -1,13 +1,11 @@
-//! What a multiverse shows while it runs: an indicatif bar over its universes with an ETA
+//! What a multiverse shows while it runs: a bar over its universes ([`crate::progress`])
 //! (drawn only on a terminal), and one line on stderr per universe it finishes.
-
-use indicatif::ProgressBar;
 
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
 use crate::calibrate::progress::loss_text;
 use crate::claims::Verdict;
-use crate::progress_bar::count_bar;
+use crate::progress::{ProgressBar, count_bar};
 
 /// What a multiverse shows while it runs. [`MultiverseProgress::off`] shows nothing;
 /// [`MultiverseProgress::terminal`] is `usar multiverse`'s (without `--quiet`).

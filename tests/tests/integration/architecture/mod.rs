@@ -78,7 +78,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "spec_ron",
                     "stats",
                     "stderr",
-                    "progress_bar",
+                    "progress",
                     "rounds_table",
                     "table",
                     "trial_json",

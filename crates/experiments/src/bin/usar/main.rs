@@ -27,6 +27,10 @@ fn main() -> ExitCode {
             };
         }
     };
+    // The library reports progress; `usar` draws it. Installed once, before any run.
+    if experiments::progress::set_sink(Box::new(shared::progress::TerminalBars)).is_err() {
+        unreachable!("the progress sink is installed once, here");
+    }
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     match run(cli, &mut out) {

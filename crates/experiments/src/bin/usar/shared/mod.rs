@@ -1,9 +1,10 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
 //! sweep and of a multiverse, building a trial, the scenario warnings,
-//! the per-round yields' file and the hidden test hooks.
+//! the per-round yields' file, the progress bars and the hidden test hooks.
 
 pub mod multiverse_spec;
 pub mod optimizer_arg;
+pub mod progress;
 pub mod rounds_csv;
 pub mod scenario_warnings;
 pub mod sweep_spec;
