@@ -175,11 +175,12 @@ impl Claim {
     }
 }
 
-/// The key a method name is compared by: upper case, `-` read as `_`, surrounding spaces
-/// dropped (`hp-dis`, `HP_DIS` and ` hp_dis ` are one method), as `rne_core`'s registry reads
-/// built-in names.
+/// The key a method name is compared by in a claims file, as messages show it: `rne_core`'s
+/// [`method_key`](rne_core::grouping::method_key) (the one normalisation of method names) in
+/// upper case, the paper's spelling (`hp-dis`, `HP_DIS` and ` hp_dis ` are one method,
+/// `HP_DIS`).
 pub fn method_key(name: &str) -> String {
-    name.trim().to_ascii_uppercase().replace('-', "_")
+    rne_core::grouping::method_key(name).to_ascii_uppercase()
 }
 
 #[cfg(test)]

@@ -32,6 +32,6 @@ pub use hierarchical::{DEFAULT_EXACT_SPLIT_LIMIT, HierarchicalRne};
 pub use hp_dis::HpDis;
 pub use method::GroupingMethod;
 pub use outcome::{Bisection, HierarchicalOutcome};
-pub use registry::{METHOD_NAMES, builtin_name, method_from_name};
+pub use registry::{METHOD_NAMES, builtin_name, method_from_name, method_key};
 pub use request::GroupingRequest;
 pub use robot::RobotSnapshot;

@@ -11,9 +11,22 @@ use crate::rne::TrustModel;
 /// The names accepted by [`method_from_name`], in the paper's order of Sec. VI.C.
 pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
 
-/// The built-in method a name means (case-insensitive, surrounding spaces ignored, `-` read
-/// as `_`): one of [`METHOD_NAMES`], or `None`. The one place method names are normalised:
-/// [`method_from_name`] and every caller that asks whether a name is a built-in's use it.
+/// The key a method name is compared by, built-in or not: surrounding spaces dropped, lower
+/// case, `-` read as `_` (`" HP-dis "`, `"hp_dis"` and `"HP_DIS"` are one method). The one
+/// place method names are normalised: [`builtin_name`], [`method_from_name`] and every
+/// caller that compares method names (a claims file's subjects and rivals) use it.
+///
+/// ```
+/// use rne_core::grouping::method_key;
+///
+/// assert_eq!(method_key(" HP-dis "), "hp_dis");
+/// assert_eq!(method_key("My-Method"), "my_method");
+/// ```
+pub fn method_key(name: &str) -> String {
+    name.trim().to_ascii_lowercase().replace('-', "_")
+}
+
+/// The built-in method a name means (its [`method_key`]): one of [`METHOD_NAMES`], or `None`.
 ///
 /// ```
 /// use rne_core::grouping::builtin_name;
@@ -22,7 +35,7 @@ pub const METHOD_NAMES: [&str; 4] = ["rne", "dis", "eng", "hp_dis"];
 /// assert_eq!(builtin_name("mine"), None);
 /// ```
 pub fn builtin_name(name: &str) -> Option<&'static str> {
-    let key = name.trim().to_ascii_lowercase().replace('-', "_");
+    let key = method_key(name);
     METHOD_NAMES.iter().copied().find(|m| *m == key)
 }
 
