@@ -33,12 +33,12 @@ test-timed:
 ci:
     bash .ci/run
 
-# The sweep library alone (`default-features = false`: no clap, no outputs): lints and tests.
+# The sweep library alone (usar-sweep: no clap, no figures) and experiments without its
+# command line (`default-features = false`): lints and tests.
 lib-only:
+    cargo clippy -p usar-sweep --all-targets -- -D warnings
+    cargo test -p usar-sweep
     cargo clippy -p experiments --no-default-features --lib -- -D warnings
-    cargo clippy -p experiments --no-default-features --features outputs --lib -- -D warnings
-    cargo test -p experiments --no-default-features --lib
-    cargo test -p experiments --no-default-features --doc
 
 # One trial of paper.ron with a grouping method (rne, dis, eng, hp_dis).
 run METHOD="rne" TRIAL="0":

@@ -35,7 +35,7 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
     d.set_item("duration_s", duration_s)?;
     d.set_item(
         "simulated_s",
-        experiments::sweep::simulated_length_s(duration_s, dt_s),
+        usar_sweep::sweep::simulated_length_s(duration_s, dt_s),
     )?;
     d.set_item("steps", s.steps_per_trial())?;
     d.set_item("seed", s.sim().seed)?;
@@ -66,7 +66,7 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
         .map(|z| (xy(&z.area.center), z.area.radius_m, z.dose_rate_factor))
         .collect();
     d.set_item("radiation_zones", zones)?;
-    let hash = experiments::fingerprint::scenario_hash(s).map_err(|e| anyhow_value_error(&e))?;
+    let hash = usar_sweep::fingerprint::scenario_hash(s).map_err(|e| anyhow_value_error(&e))?;
     d.set_item("hash", hash)?;
     d.set_item("needs_len", usar_sim::scenario::NEEDS_LEN)?;
     // The mission's parameters as the scenario file writes them (every field, defaults too).

@@ -86,7 +86,7 @@ pub fn builtin_group(
     let model = match (weights, scenario) {
         (Some(w), _) => TrustModel::with_weights(Weights::new(w).map_err(value_error)?),
         (None, Some(s)) => {
-            experiments::sweep::trust_model(s.inner()).map_err(|e| anyhow_value_error(&e))?
+            usar_sweep::sweep::trust_model(s.inner()).map_err(|e| anyhow_value_error(&e))?
         }
         (None, None) => {
             let j = request.robots()[0].needs.len();

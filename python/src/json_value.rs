@@ -1,11 +1,11 @@
-//! A scenario's values as Python data and back: the JSON form of a spec (`experiments::vary`'s,
+//! A scenario's values as Python data and back: the JSON form of a spec (`usar_sweep::vary`'s,
 //! the form field paths walk) through Python's `json` module, and the values a field path
 //! names (`Scenario.get`).
 
 use pyo3::prelude::*;
 use serde_json::Value;
 
-use experiments::vary::{FieldPath, Step};
+use usar_sweep::vary::{FieldPath, Step};
 
 /// `value` as Python data (dicts, lists, str, int, float, bool, None), through `json.loads`.
 ///

@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use rne_core::grouping::{GroupingMethod, builtin_name};
 
 use experiments::claims::{Claim, Claims};
-use experiments::sweep::{MethodFactory, TrialObserverFactory};
+use usar_sweep::sweep::{MethodFactory, TrialObserverFactory};
 
 use crate::errors::value_error;
 use crate::py_method::{FirstError, MethodArg, PositionTracker, PyMethod, clear_positions};

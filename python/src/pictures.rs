@@ -97,7 +97,7 @@ pub fn replay(
         .take()
         .ok_or_else(|| value_error("the trial recorded nothing"))?;
     let bytes = write_replay(s, &rec, &out).map_err(value_error)?;
-    let result = experiments::trial_json::TrialJson::of(&sim.result());
+    let result = usar_sweep::trial_json::TrialJson::of(&sim.result());
     let json = serde_json::to_string(&result).map_err(value_error)?;
     Ok((json, bytes))
 }

@@ -13,7 +13,7 @@ use rne_core::grouping::GroupingMethod;
 use usar_sim::mission::{MissionError, Simulation, StepObserver, TrialBuilder};
 use usar_sim::scenario::Scenario as ScenarioData;
 
-use experiments::trial_json::TrialJson;
+use usar_sweep::trial_json::TrialJson;
 
 use crate::detached::run_detached;
 use crate::errors::{TrialError, value_error};

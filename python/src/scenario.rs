@@ -8,12 +8,12 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use usar_sim::scenario::{self as sc, ScenarioSpec, path_text};
 
-use experiments::spec_ron::spec_to_ron;
-use experiments::vary::{
+use serde_json::Value;
+use usar_sweep::spec_ron::spec_to_ron;
+use usar_sweep::vary::{
     FieldPath, Override, Step, apply_overrides, brief, spec_from_json, spec_json,
     validate_overridden,
 };
-use serde_json::Value;
 
 use crate::errors::{ScenarioWarning, anyhow_value_error, value_error};
 use crate::json_value::{from_python, to_python, values_at};
@@ -213,7 +213,7 @@ impl Scenario {
 
     /// The scenario as RON, every field written out (as `usar check --print`).
     fn to_ron(&self) -> PyResult<String> {
-        let hash = experiments::fingerprint::scenario_hash(&self.scenario)
+        let hash = usar_sweep::fingerprint::scenario_hash(&self.scenario)
             .map_err(|e| anyhow_value_error(&e))?;
         let mut head = format!("{}, scenario hash {hash}", self.origin);
         if !self.overrides.is_empty() {

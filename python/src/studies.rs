@@ -18,11 +18,11 @@ use experiments::calibrate::{
 };
 use experiments::calibration::targets_or_paper;
 use experiments::claims::Claims;
-use experiments::data::hooks::Stopped;
-use experiments::data::source_date::source_date;
 use experiments::multiverse::{
     Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
 };
+use experiments::source_date::source_date;
+use usar_sweep::data::hooks::Stopped;
 
 use crate::detached::run_detached;
 use crate::errors::{python_words, sweep_value_error};
@@ -56,7 +56,7 @@ impl Run {
     }
 
     /// The method factory over `scenario`'s kinds.
-    fn factory(&self, scenario: &Scenario) -> experiments::sweep::MethodFactory {
+    fn factory(&self, scenario: &Scenario) -> usar_sweep::sweep::MethodFactory {
         let kinds = scenario.inner().kinds().iter().map(|k| k.name.clone());
         factory(
             &self.python,
@@ -67,7 +67,7 @@ impl Run {
     }
 
     /// The step observer of the Python methods' trials (none without one).
-    fn observer(&self) -> Option<experiments::sweep::TrialObserverFactory> {
+    fn observer(&self) -> Option<usar_sweep::sweep::TrialObserverFactory> {
         (!self.python.is_empty()).then(|| tracker(&self.python))
     }
 
@@ -228,7 +228,7 @@ pub fn run_calibration(
         start_mid,
         command,
         date: source_date().map_err(py_error)?,
-        hooks: experiments::data::hooks::CalibrationHooks {
+        hooks: usar_sweep::data::hooks::CalibrationHooks {
             trial_observer: run.observer(),
             stop: Some(run.stop.clone()),
         },

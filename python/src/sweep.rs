@@ -14,10 +14,10 @@ use usar_sim::mission::TrialResult;
 use experiments::analysis::Analysis;
 use experiments::calibration::ReportOptions;
 use experiments::csv_tables::trials_long_csv;
-use experiments::grid::build_grid;
-use experiments::metrics::{Metric, Quantity, Scope};
 use experiments::output::write_outputs;
-use experiments::sweep::{Failure, SweepConfig, run_in_memory};
+use usar_sweep::grid::build_grid;
+use usar_sweep::metrics::{Metric, Quantity, Scope};
+use usar_sweep::sweep::{Failure, SweepConfig, run_in_memory};
 
 use crate::detached::run_detached;
 use crate::errors::{TrialError, anyhow_value_error, sweep_value_error, value_error};
@@ -218,7 +218,7 @@ fn sweep_trials(
                 .collect(),
         ));
     };
-    let o = experiments::sweep::run_sweep(cfg)?;
+    let o = usar_sweep::sweep::run_sweep(cfg)?;
     if stopped.load(Ordering::SeqCst) {
         return Ok(None);
     }

@@ -12,9 +12,9 @@ use std::time::Instant;
 
 use experiments::analysis::Analysis;
 use experiments::output::write_outputs;
-use experiments::sweep::{SweepConfig, run_sweep, trust_model};
 use rne_core::grouping::{METHOD_NAMES, method_from_name};
 use usar_sim::mission::Simulation;
+use usar_sweep::sweep::{SweepConfig, run_sweep, trust_model};
 
 fn main() {
     let path = PathBuf::from(concat!(

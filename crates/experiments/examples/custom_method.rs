@@ -16,11 +16,11 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use experiments::analysis::Analysis;
 use experiments::output::write_outputs;
-use experiments::sweep::{MethodFactory, SweepConfig, run_sweep};
 use rne_core::grouping::{GroupingMethod, HierarchicalRne};
 use rne_core::{Alignment, RneOptions, TrustModel};
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario;
+use usar_sweep::sweep::{MethodFactory, SweepConfig, run_sweep};
 
 fn main() -> Result<()> {
     let mut args = std::env::args().skip(1);

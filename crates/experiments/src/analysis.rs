@@ -11,9 +11,9 @@ use usar_sim::mission::TrialResult;
 pub use crate::calibration::ReportOptions;
 use crate::calibration::{Target, Targets};
 use crate::claims::{ClaimCheck, Claims, check_claim};
-use crate::metrics::{Metric, values_of};
 use crate::stats::Summary;
-use crate::sweep::SweepOutcome;
+use usar_sweep::metrics::{Metric, values_of};
+use usar_sweep::sweep::SweepOutcome;
 
 /// The analysis of a whole sweep: one [`CellAnalysis`] per grid cell, in cell order.
 #[derive(Debug, Clone)]

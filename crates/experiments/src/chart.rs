@@ -91,11 +91,11 @@ pub fn figure_or_warn<T>(what: &str, draw: impl FnOnce() -> Result<T>) -> Option
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(draw)) {
         Ok(Ok(figure)) => Some(figure),
         Ok(Err(e)) => {
-            crate::stderr::warn(format!("warning: {what} not drawn: {e:#}"));
+            usar_sweep::stderr::warn(format!("warning: {what} not drawn: {e:#}"));
             None
         }
         Err(_) => {
-            crate::stderr::warn(format!(
+            usar_sweep::stderr::warn(format!(
                 "warning: {what} not drawn: the plotting library panicked"
             ));
             None

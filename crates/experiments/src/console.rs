@@ -11,13 +11,13 @@ use anyhow::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
 use crate::claims::{ClaimCheck, Test};
-use crate::data::config::SweepConfig;
-use crate::data::outcome::{JournalUse, SweepOutcome};
-use crate::metrics::{Metric, Quantity, Scope};
 use crate::table::{mean_sd, pval, sig3};
+use usar_sweep::data::config::SweepConfig;
+use usar_sweep::data::outcome::{JournalUse, SweepOutcome};
+use usar_sweep::metrics::{Metric, Quantity, Scope};
 
-/// Re-exported from [`crate::stderr`], where it lives below every module that warns.
-pub use crate::stderr::warn;
+/// Re-exported from [`usar_sweep::stderr`], where it lives below every module that warns.
+pub use usar_sweep::stderr::warn;
 
 /// Columns of the one-cell table: rescuees in total and per task, then the energy and HP cost
 /// per rescuee of the hardest task; each with its heading.
@@ -60,7 +60,7 @@ pub fn print_sweep(
         writeln!(
             out,
             "{} holds this very sweep (same parameters): continuing it as with --resume",
-            crate::journal::Journal::path_in(&cfg.out_dir).display()
+            usar_sweep::journal::Journal::path_in(&cfg.out_dir).display()
         )?;
     }
     let mut durations: Vec<f64> = cfg

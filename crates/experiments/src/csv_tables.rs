@@ -9,7 +9,7 @@ use serde::Serialize;
 use usar_sim::mission::TrialResult;
 
 use crate::analysis::CellAnalysis;
-use crate::metrics::{Cell, Metric};
+use usar_sweep::metrics::{Cell, Metric};
 
 /// One field of a CSV row: the identifying text and integers, then metric cells (serialised by
 /// type, as serde writes struct fields: integers plainly, floats in ryu's shortest form,

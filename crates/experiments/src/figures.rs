@@ -6,13 +6,13 @@
 use crate::analysis::CellAnalysis;
 use crate::chart::{AXIS_LIMIT, draw_err, legend_entry, plotted};
 pub use crate::chart::{FIGURE_SIZE, method_color};
-pub use crate::data::figure_list::{FIGURES, FigureSpec};
-use crate::metrics::{Metric, Quantity, Scope};
 use crate::stats::Summary;
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+pub use usar_sweep::data::figure_list::{FIGURES, FigureSpec};
+use usar_sweep::metrics::{Metric, Quantity, Scope};
 
 /// Width of the legend strip at the right of each figure, pixels.
 const LEGEND_W: u32 = 110;

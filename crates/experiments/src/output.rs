@@ -1,9 +1,9 @@
 //! Writing a sweep's files from its outcome and analysis, every file atomically
-//! ([`crate::atomic`]).
+//! ([`usar_sweep::atomic`]).
 //!
 //! Without a grid, the output folder gets `trials.csv`, `summary.csv`, the three figures and
 //! `report.md` (beside the journal). With a grid, each cell's folder (see
-//! [`crate::grid::names`]) gets those files plus `scenario.ron`, and the top of the output
+//! [`usar_sweep::grid::names`]) gets those files plus `scenario.ron`, and the top of the output
 //! folder gets `grid.csv`, `grid.md` and one `grid_<metric>.svg` per chosen metric (for one or
 //! two varied fields). Nothing written depends on thread count or interruptions except the
 //! timings in `report.md`.
@@ -13,18 +13,18 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 
 use crate::analysis::Analysis;
-use crate::atomic::FileSet;
 use crate::chart::figure_or_warn;
 use crate::csv_tables::{summary_csv, trials_csv, trials_long_csv};
 use crate::figures::{FIGURES, figure_svg};
-use crate::grid::{Grid, GridCell};
 use crate::grid_outputs::grid_csv::grid_csv;
 use crate::grid_outputs::grid_figures::{figure_file, grid_figure_svg};
 use crate::grid_outputs::grid_md::{GridReportInput, grid_md};
-use crate::metrics::Metric;
 use crate::report::{ReportInput, report_md};
-use crate::spec_ron::spec_to_ron;
-use crate::sweep::{SweepConfig, SweepOutcome};
+use usar_sweep::atomic::FileSet;
+use usar_sweep::grid::{Grid, GridCell};
+use usar_sweep::metrics::Metric;
+use usar_sweep::spec_ron::spec_to_ron;
+use usar_sweep::sweep::{SweepConfig, SweepOutcome};
 
 /// Writes every output file of the sweep into `cfg.out_dir`; returns their paths in the order
 /// written. `grid_metrics` chooses the metrics of `grid.md` and its figures (ignored without

@@ -12,12 +12,12 @@ use usar_sim::scenario::Scenario;
 use crate::analysis::CellAnalysis;
 use crate::calibration::ReportOptions;
 use crate::claims::{ClaimCheck, Claims, Correction};
-use crate::data::figure_list::FIGURES;
-use crate::data::grid_cells::GridCell;
-use crate::data::outcome::SweepOutcome;
-pub use crate::data::software::{software_build, software_version};
-use crate::data::trial_length::simulated_length_s;
 use crate::table::{mean_sd, num, pval};
+use usar_sweep::data::figure_list::FIGURES;
+use usar_sweep::data::grid_cells::GridCell;
+use usar_sweep::data::outcome::SweepOutcome;
+pub use usar_sweep::data::software::{software_build, software_version};
+use usar_sweep::data::trial_length::simulated_length_s;
 
 /// What [`report_md`] needs.
 #[derive(Debug)]

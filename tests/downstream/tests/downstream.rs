@@ -6,11 +6,11 @@
 use std::path::{Path, PathBuf};
 
 use downstream_example::factory;
-use experiments::sweep::{SweepConfig, run_in_memory};
 use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario::{
     self, KindDraft, Role, Scenario, ScenarioError, ScenarioSpec, TaskDraft, number_at,
 };
+use usar_sweep::sweep::{SweepConfig, run_in_memory};
 
 fn paper_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper.ron")

@@ -88,7 +88,7 @@ fn a_scenario_built_in_code_with_defaults_runs_a_trial() {
         result.rescued
     );
     // Written as RON and read back, it is the same scenario.
-    let text = experiments::spec_ron::spec_to_ron(s.spec(), &[]).expect("RON");
+    let text = usar_sweep::spec_ron::spec_to_ron(s.spec(), &[]).expect("RON");
     assert_eq!(from_str(&text, "five.ron").expect("valid"), s);
 }
 

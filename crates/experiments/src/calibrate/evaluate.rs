@@ -1,11 +1,11 @@
 //! One evaluation of a calibration: the base scenario with the free values applied
-//! ([`crate::vary::apply_overrides`], then validated), every method x trials `0..n` run in
+//! ([`usar_sweep::vary::apply_overrides`], then validated), every method x trials `0..n` run in
 //! parallel (trial `k` of every method and every evaluation from `trial_seed(base_seed, k)`:
 //! common random numbers), each target's statistic over the results pooled over methods, and
 //! the loss.
 //!
 //! Results are kept in (method order, trial) order, so nothing depends on the thread count. A
-//! trial that fails or panics (isolated as in a sweep, `crate::executor`), or free values
+//! trial that fails or panics (isolated as in a sweep, `usar_sweep::executor`), or free values
 //! that make the scenario break a rule, make the evaluation's loss +inf and its message says
 //! why; the calibration goes on.
 
@@ -19,10 +19,10 @@ use super::float_text;
 use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
-use crate::data::hooks::SweepHooks;
-use crate::executor::{CellPlan, Job, Runner, run_trial};
-use crate::method_factory::trust_model;
-use crate::vary::{Override, apply_overrides, rule_error, spec_from_json, spec_json};
+use usar_sweep::data::hooks::SweepHooks;
+use usar_sweep::executor::{CellPlan, Job, Runner, run_trial};
+use usar_sweep::method_factory::trust_model;
+use usar_sweep::vary::{Override, apply_overrides, rule_error, spec_from_json, spec_json};
 
 /// One evaluated point of a calibration (a line of `trace.jsonl` and a row of `trace.csv`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

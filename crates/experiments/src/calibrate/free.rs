@@ -1,6 +1,6 @@
 //! The scenario fields a calibration fits: `--free FIELD=LO..HI` (linear) or
 //! `FIELD=LO..HI:log` (log scale, `LO > 0`), FIELD any path `--vary` takes
-//! ([`crate::vary::FieldPath`]) that holds a real number (an `Option<f64>` such as
+//! ([`usar_sweep::vary::FieldPath`]) that holds a real number (an `Option<f64>` such as
 //! `mission.search_time_budget_s` included: a number sets it to `Some(number)`).
 //!
 //! With `:factor` (`FIELD=LO..HI:factor`, or `:log,factor`) the free value is a factor of the
@@ -22,7 +22,9 @@ use serde_json::Value;
 use usar_sim::scenario::ScenarioSpec;
 
 use super::float_text::short;
-use crate::vary::{FieldPath, FieldValue, Override, RonValue, apply_overrides, brief, spec_json};
+use usar_sweep::vary::{
+    FieldPath, FieldValue, Override, RonValue, apply_overrides, brief, spec_json,
+};
 
 /// One free field and its range.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

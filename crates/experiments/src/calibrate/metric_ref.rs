@@ -1,4 +1,4 @@
-//! A metric named in a targets file: a `trials.csv` column name ([`crate::metrics::Metric`])
+//! A metric named in a targets file: a `trials.csv` column name ([`usar_sweep::metrics::Metric`])
 //! such as `rounds`, `rescued_total` or `energy_hard_pct`, checked for its shape when the file
 //! is read and resolved against a scenario's task names when a calibration starts.
 
@@ -7,7 +7,7 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
 
-use crate::metrics::Metric;
+use usar_sweep::metrics::Metric;
 
 /// The per-task column names as `(prefix, suffix)` around the task's name, longest first
 /// (`energy_per_hard_rescuee_pct` is a cost per rescuee, not the energy of a task named

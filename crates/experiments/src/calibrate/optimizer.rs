@@ -61,7 +61,7 @@ pub enum StopReason {
     Converged,
     /// [`STALL_LIMIT`] points in a row brought nothing new.
     Stalled,
-    /// The caller's stop flag was set ([`crate::data::hooks::CalibrationHooks::stop`]); a
+    /// The caller's stop flag was set ([`usar_sweep::data::hooks::CalibrationHooks::stop`]); a
     /// calibration so stopped writes no outputs.
     Interrupted,
     /// CMA-ES stopped by its own criteria (its step size or its recent losses too small to

@@ -1,6 +1,6 @@
-//! The files a calibration writes at its end, as one set through [`crate::atomic::FileSet`]
+//! The files a calibration writes at its end, as one set through [`usar_sweep::atomic::FileSet`]
 //! (every file complete or none changed): `calibrated.ron` (the base scenario with the best
-//! values, [`crate::spec_ron::spec_to_ron`], after a header comment), `trace.csv` (one row per
+//! values, [`usar_sweep::spec_ron::spec_to_ron`], after a header comment), `trace.csv` (one row per
 //! evaluation), `calibration.md` (`super::markdown`), `convergence.svg` (`super::figure`),
 //! `statistics.svg` (`super::targets_figure`) and `tradeoff.svg` (`super::tradeoff_figure`;
 //! with at least two fitted targets).
@@ -18,9 +18,9 @@ use super::outcome::{
 };
 use super::targets_figure::statistics_svg;
 use super::tradeoff_figure::tradeoff_svg;
-use crate::atomic::FileSet;
 use crate::chart::figure_or_warn;
-use crate::spec_ron::spec_to_ron;
+use usar_sweep::atomic::FileSet;
+use usar_sweep::spec_ron::spec_to_ron;
 
 /// Writes the outputs of `o` into `dir` as one set; returns their paths.
 ///
@@ -52,9 +52,9 @@ pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>>
 /// # Errors
 /// An I/O error removing a file.
 pub fn clear(dir: &Path) -> Result<()> {
-    crate::atomic::remove_named(dir, &[super::trace::TRACE_FILE])?;
-    crate::atomic::remove_named(dir, &OUTPUT_FILES)?;
-    crate::atomic::remove_stale_temps(dir)?;
+    usar_sweep::atomic::remove_named(dir, &[super::trace::TRACE_FILE])?;
+    usar_sweep::atomic::remove_named(dir, &OUTPUT_FILES)?;
+    usar_sweep::atomic::remove_stale_temps(dir)?;
     Ok(())
 }
 

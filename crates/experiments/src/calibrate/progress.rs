@@ -1,4 +1,4 @@
-//! What a calibration shows while it runs: a bar over the evaluations ([`crate::progress`])
+//! What a calibration shows while it runs: a bar over the evaluations ([`usar_sweep::progress`])
 //! (only drawn on a terminal, as a sweep's), a line per improvement of the best loss, and a
 //! hook per new evaluation.
 
@@ -6,8 +6,8 @@ use std::fmt;
 use std::sync::Arc;
 
 use super::evaluate::Evaluation;
-use crate::progress::{ProgressBar, count_bar};
 use crate::table::num;
+use usar_sweep::progress::{ProgressBar, count_bar};
 
 /// Called after each new evaluation is in the trace, with it and how many this run has made
 /// so far (1, 2, ...). `usar calibrate`'s hidden `--stop-after N` (its tests' stand-in for a
@@ -92,7 +92,7 @@ impl Display {
                     loss_text(e.loss),
                     values.join(" ")
                 );
-                self.pb.suspend(|| crate::stderr::warn(line));
+                self.pb.suspend(|| usar_sweep::stderr::warn(line));
             }
         }
         self.pb

@@ -19,12 +19,12 @@ use super::progress::{Display, Progress};
 use super::searcher::{Searcher, key};
 use super::setup::{CalibrationSetup, Checked};
 use super::trace::{TRACE_FORMAT, Trace, TraceHeader, header_diff, read_trace};
-use crate::atomic::{remove_named, remove_stale_temps};
-use crate::data::hooks::Stopped;
-use crate::data::owner::{RunKind, claim};
-use crate::fingerprint::scenario_hash;
-use crate::journal::{holds_no_line, something_at};
-use crate::lock::OutputLock;
+use usar_sweep::atomic::{remove_named, remove_stale_temps};
+use usar_sweep::data::hooks::Stopped;
+use usar_sweep::data::owner::{RunKind, claim};
+use usar_sweep::fingerprint::scenario_hash;
+use usar_sweep::journal::{holds_no_line, something_at};
+use usar_sweep::lock::OutputLock;
 
 /// Fits the free fields of `setup.base` so that the statistics of its trials fall inside the
 /// bands of `setup.targets`, writing into `dir`: `trace.jsonl` (every evaluation, as it
@@ -36,7 +36,7 @@ use crate::lock::OutputLock;
 /// of the same calibration replays the search with the recorded evaluations and runs only new
 /// points (so a killed calibration continues, and a larger `max_evals` extends one); a trace
 /// of another calibration is refused unless `setup.overwrite`. The folder is locked while it
-/// runs (`crate::lock`).
+/// runs (`usar_sweep::lock`).
 ///
 /// ```no_run
 /// use std::path::Path;
@@ -60,7 +60,7 @@ use crate::lock::OutputLock;
 ///
 /// # Errors
 /// A setup that does not fit its scenario ([`CalibrationSetup::check`]), an output folder
-/// that is not a folder or belongs to another kind of run ([`crate::data::owner`]), a folder
+/// that is not a folder or belongs to another kind of run ([`usar_sweep::data::owner`]), a folder
 /// locked by another run, a trace that cannot be continued (another calibration's, edited, damaged), an
 /// I/O error, or no evaluated point giving a valid scenario. Failing or panicking trials and
 /// free values that break a rule are not errors: their evaluation's loss is +inf.
@@ -230,7 +230,7 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
     Ok(TraceHeader {
         format: TRACE_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
-        build: crate::data::software::software_build().to_owned(),
+        build: usar_sweep::data::software::software_build().to_owned(),
         scenario: checked.scenario.name().to_owned(),
         scenario_hash: scenario_hash(&checked.scenario)?,
         targets: setup.targets.targets().to_vec(),
@@ -290,7 +290,7 @@ fn open_trace(
         );
     }
     for line in &contents.rejected {
-        crate::stderr::warn(format!(
+        usar_sweep::stderr::warn(format!(
             "warning: {}:{line}: evaluation does not verify (edited?); its point runs again \
              if the search comes to it",
             path_text(&path)

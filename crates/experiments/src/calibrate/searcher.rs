@@ -34,7 +34,7 @@ pub(crate) struct Searcher<'a> {
     pub(crate) max_evals: usize,
     /// No new evaluation starts after this (the first always runs).
     pub(crate) deadline: Option<Instant>,
-    /// No new evaluation starts once this is set ([`crate::data::hooks::CalibrationHooks`]).
+    /// No new evaluation starts once this is set ([`usar_sweep::data::hooks::CalibrationHooks`]).
     pub(crate) stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     pub(crate) display: Display,
     /// Evaluations run now, and taken from the trace.
@@ -79,14 +79,14 @@ impl Objective for Searcher<'_> {
                 (e, false)
             }
             None => {
-                if crate::data::hooks::is_set(self.stop.as_ref()) {
+                if usar_sweep::data::hooks::is_set(self.stop.as_ref()) {
                     return Err(StopReason::Interrupted);
                 }
                 if index > 0 && self.deadline.is_some_and(|d| Instant::now() >= d) {
                     return Err(StopReason::MaxTime);
                 }
                 let mut e = self.evaluator.evaluate(&values);
-                if crate::data::hooks::is_set(self.stop.as_ref()) {
+                if usar_sweep::data::hooks::is_set(self.stop.as_ref()) {
                     // Stopped while it ran: some trials were skipped, so it is not kept.
                     return Err(StopReason::Interrupted);
                 }

@@ -8,9 +8,9 @@ use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use super::free::{FreeError, FreeField, check_distinct};
 use super::optimizer::Optimizer;
 use super::targets::{Targets, TargetsError};
-use crate::data::hooks::CalibrationHooks;
-use crate::data::limits::{MAX_SWEEP_TRIALS, max_threads};
-use crate::method_factory::{MethodFactory, canonical_method, trust_model};
+use usar_sweep::data::hooks::CalibrationHooks;
+use usar_sweep::data::limits::{MAX_SWEEP_TRIALS, max_threads};
+use usar_sweep::method_factory::{MethodFactory, canonical_method, trust_model};
 
 /// Trials per method and evaluation by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;

@@ -1,6 +1,6 @@
 //! The trace of a calibration: `trace.jsonl` in its output folder, one JSON object per line,
 //! checksummed as the sweep journal's lines are, by the same plumbing
-//! ([`crate::checked_log`]: [`header_sum`], [`record_sum`](crate::checked_log::record_sum)).
+//! ([`usar_sweep::checked_log`]: [`header_sum`], [`record_sum`](usar_sweep::checked_log::record_sum)).
 //!
 //! The first line is the [`TraceHeader`] (what identifies the calibration: scenario hash,
 //! targets, free fields and ranges, methods, trials, seed, duration, digits, build), every
@@ -28,10 +28,10 @@ use usar_sim::scenario::path_text;
 use super::evaluate::Evaluation;
 use super::free::FreeField;
 use super::targets::Target;
-use crate::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
+use usar_sweep::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
 
 /// File name of the trace in the output folder.
-pub const TRACE_FILE: &str = crate::data::owner::evidence::TRACE;
+pub const TRACE_FILE: &str = usar_sweep::data::owner::evidence::TRACE;
 
 /// Format of the trace's lines; bumped when they change shape.
 pub const TRACE_FORMAT: u32 = 1;
@@ -49,7 +49,7 @@ pub struct TraceHeader {
     pub build: String,
     /// The base scenario's name.
     pub scenario: String,
-    /// [`crate::fingerprint::scenario_hash`] of the validated base scenario.
+    /// [`usar_sweep::fingerprint::scenario_hash`] of the validated base scenario.
     pub scenario_hash: String,
     /// The targets, in order.
     pub targets: Vec<Target>,
@@ -143,7 +143,7 @@ fn json_diff(old: &TraceHeader, new: &TraceHeader) -> Vec<String> {
     };
     let shown = |v: Option<&Value>| {
         let text = v.map_or_else(|| "nothing".to_owned(), Value::to_string);
-        crate::vary::brief(&text)
+        usar_sweep::vary::brief(&text)
     };
     let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
     keys.sort();

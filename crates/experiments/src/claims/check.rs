@@ -4,8 +4,8 @@
 use usar_sim::mission::TrialResult;
 
 use super::claim::{Claim, Correction, Direction, Rivals, Test};
-use crate::metrics::{Metric, values_of};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
+use usar_sweep::metrics::{Metric, values_of};
 
 /// Verdict on a claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -4,12 +4,12 @@ use anyhow::{Context, Result};
 
 use crate::analysis::Analysis;
 use crate::csv_tables::stat_cell;
-use crate::journal::SweepHeader;
+use usar_sweep::journal::SweepHeader;
 
 /// `grid.csv`: one column per varied field (named by its path, holding the cell's value as
 /// written), then `method, metric, n, mean, sd, ci95_low, ci95_high`; one row per cell (in
 /// cell order) x method (in sweep order) x metric (every metric of the cell's tasks,
-/// [`crate::metrics::Metric::all`], in that order). Undefined statistics are empty cells, as in `summary.csv`.
+/// [`usar_sweep::metrics::Metric::all`], in that order). Undefined statistics are empty cells, as in `summary.csv`.
 ///
 /// # Errors
 /// A CSV serialisation error (not expected).

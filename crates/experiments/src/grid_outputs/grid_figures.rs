@@ -16,10 +16,10 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::analysis::Analysis;
 use crate::chart::{FIGURE_SIZE, axis_range, draw_err, legend_entry, method_color, plotted};
-use crate::journal::SweepHeader;
-use crate::metrics::Metric;
 use crate::stats::Summary;
 use crate::table::num;
+use usar_sweep::journal::SweepHeader;
+use usar_sweep::metrics::Metric;
 
 /// A chart on an SVG string with numeric axes.
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;

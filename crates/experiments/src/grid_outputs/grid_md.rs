@@ -8,11 +8,11 @@ use std::path::Path;
 
 use crate::analysis::Analysis;
 use crate::claims::Claims;
-use crate::grid::Grid;
-use crate::metrics::Metric;
 use crate::report::software_version;
-use crate::sweep::{SweepOutcome, simulated_length_s};
 use crate::table::num;
+use usar_sweep::grid::Grid;
+use usar_sweep::metrics::Metric;
+use usar_sweep::sweep::{SweepOutcome, simulated_length_s};
 
 /// What [`grid_md`] needs.
 #[derive(Debug)]

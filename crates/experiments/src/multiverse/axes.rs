@@ -1,6 +1,6 @@
 //! The axes file of `usar multiverse` (`AXES.ron`): the open choices of the paper, each with
 //! the paper's own words and its alternatives, an alternative being a list of `FIELD=VALUE`
-//! overrides as `usar check --set` takes them ([`crate::vary::Override`]).
+//! overrides as `usar check --set` takes them ([`usar_sweep::vary::Override`]).
 //!
 //! ```ron
 //! Axes(
@@ -33,8 +33,8 @@ use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
 use crate::calibrate::ron_file;
-use crate::vary::{FieldPath, Override};
 use usar_sim::scenario::SourceMap;
+use usar_sweep::vary::{FieldPath, Override};
 
 /// Longest axes file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.
@@ -279,7 +279,7 @@ impl Axes {
             let o = Override::parse(text).map_err(|e| {
                 self.error(
                     &field,
-                    format!("{who}: {}: {e}", crate::vary::brief(text.trim())),
+                    format!("{who}: {}: {e}", usar_sweep::vary::brief(text.trim())),
                 )
             })?;
             if let Some(p) = paths.iter().position(|p| p.overlaps(&o.path)) {

@@ -29,10 +29,10 @@ use serde::{Deserialize, Serialize};
 
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
-use crate::atomic::write_atomic;
 use crate::calibrate::{Evaluator, FreeField, float_text};
-use crate::checked_log::{record_line, verified_record};
-use crate::vary::apply_overrides;
+use usar_sweep::atomic::write_atomic;
+use usar_sweep::checked_log::{record_line, verified_record};
+use usar_sweep::vary::apply_overrides;
 
 /// The design's folder under the output folder.
 pub const DESIGN_DIR: &str = "design";

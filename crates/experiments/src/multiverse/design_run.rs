@@ -12,8 +12,8 @@ use anyhow::Result;
 use super::design::{DesignPoint, design_plan, evaluate_point};
 use super::plan::MultiversePlan;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
-use crate::data::hooks::Stopped;
-use crate::progress::count_bar;
+use usar_sweep::data::hooks::Stopped;
+use usar_sweep::progress::count_bar;
 
 /// Runs the design points not done yet into `dir` (this run's own first, then the rest,
 /// each looked for again just before it runs), each written as it ends; returns how many

@@ -4,8 +4,8 @@
 //!
 //! ```text
 //! DIR/
-//!   usar-owner.json   its owner, a multiverse (crate::data::owner)
-//!   multiverse.json   the plan (super::plan)      sweep.lock   the lock (crate::lock)
+//!   usar-owner.json   its owner, a multiverse (usar_sweep::data::owner)
+//!   multiverse.json   the plan (super::plan)      sweep.lock   the lock (usar_sweep::lock)
 //!   multiverse.csv  multiverse.md  spec_curve_<claim>.svg      (super::outputs)
 //!   universes/u000/ ...                                        (super::universe_run)
 //!   shards/0-of-4/multiverse.json, sweep.lock                  (a shard's plan and lock)
@@ -22,11 +22,11 @@ use super::outputs::output_files;
 use super::plan::{MultiversePlan, identity_diff};
 use super::record::RECORD_FILE;
 use super::universe_run::{CALIBRATION_DIR, COMPARISON_DIR, SCENARIO_FILE, UNIVERSES_DIR};
-use crate::atomic::{remove_dir_if_empty, remove_named, remove_stale_temps};
-use crate::data::owner::{OWNER_FILE, RunKind, check_owner};
-use crate::lock::LOCK_FILE;
-use crate::shard::{SHARDS_DIR, Shard, shard_folders};
-use crate::stale_outputs::clear_sweep;
+use usar_sweep::atomic::{remove_dir_if_empty, remove_named, remove_stale_temps};
+use usar_sweep::data::owner::{OWNER_FILE, RunKind, check_owner};
+use usar_sweep::lock::LOCK_FILE;
+use usar_sweep::shard::{SHARDS_DIR, Shard, shard_folders};
+use usar_sweep::stale_outputs::clear_sweep;
 
 /// Every plan in `dir`: the top one (`None`), then each shard folder's, by shard.
 ///
@@ -55,7 +55,7 @@ pub fn is_multiverse_dir(dir: &Path) -> bool {
 /// Where a plan lies, for messages.
 fn plan_path(dir: &Path, shard: Option<Shard>) -> String {
     let folder = match shard {
-        Some(s) => crate::shard::shard_dir(dir, s),
+        Some(s) => usar_sweep::shard::shard_dir(dir, s),
         None => dir.to_path_buf(),
     };
     path_text(&MultiversePlan::path_in(&folder))
@@ -105,7 +105,7 @@ fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
 /// plan and the top files; in each shard's folder (`shards/<I>-of-<N>/`) its plan, lock and
 /// owner manifest; the design's point files (`design/d<digits>.json`); in each universe's folder (`universes/u<digits>/`) its scenario, record,
 /// its calibration's files ([`crate::calibrate::outputs::clear`]) and its comparison's
-/// ([`crate::stale_outputs::clear_sweep`]), with their locks and owner manifests. A folder is
+/// ([`usar_sweep::stale_outputs::clear_sweep`]), with their locks and owner manifests. A folder is
 /// removed once that leaves it empty; a file the multiverse does not write stays, and so does
 /// its folder. Call it only with the folder's exclusive lock held (no shard runs then).
 ///
@@ -205,8 +205,15 @@ fn clear_universe(u: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atomic::tests::names;
     use crate::multiverse::plan::tests::plan;
+
+    /// The names in `dir`, sorted.
+    fn names(dir: &Path) -> Vec<String> {
+        let entries = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name());
+        let sorted: std::collections::BTreeSet<String> =
+            entries.map(|n| n.into_string().unwrap()).collect();
+        sorted.into_iter().collect()
+    }
 
     #[test]
     fn another_identity_is_refused_and_overwrite_clears_what_is_ours() {
@@ -214,7 +221,7 @@ mod tests {
         let d = dir.path();
         assert!(!is_multiverse_dir(d));
         let p = plan();
-        let shard = crate::shard::shard_dir(d, Shard::new(1, 2).unwrap());
+        let shard = usar_sweep::shard::shard_dir(d, Shard::new(1, 2).unwrap());
         p.write(&shard).unwrap();
         assert!(is_multiverse_dir(d));
         refuse_others(d, &p).unwrap();

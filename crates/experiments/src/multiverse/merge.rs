@@ -13,9 +13,9 @@ use super::plan::{MultiversePlan, identity_diff};
 use super::record::{RecordRead, UniverseRecord};
 use super::universe::{Universe, shard_of};
 use super::universe_run::universe_dir;
-use crate::data::owner::{RunKind, check_owner, claim};
-use crate::lock::OutputLock;
-use crate::shard::{Shard, shard_folders};
+use usar_sweep::data::owner::{RunKind, check_owner, claim};
+use usar_sweep::lock::OutputLock;
+use usar_sweep::shard::{Shard, shard_folders};
 
 /// Writes `multiverse.csv`, `multiverse.md` and the figures of the multiverse in `dir` from
 /// its universes' records (the same bytes as the run without shards), locking `dir` while it
@@ -24,7 +24,7 @@ use crate::shard::{Shard, shard_folders};
 ///
 /// # Errors
 /// No plan in `dir`; plans of different multiverses (each odd one named with what differs);
-/// a folder, or a shard's folder, of another kind of run ([`crate::data::owner`]);
+/// a folder, or a shard's folder, of another kind of run ([`usar_sweep::data::owner`]);
 /// universes without a record that verifies (listed, with the command of each shard that
 /// runs them, or the command without `--shard`, which runs only the missing ones); a folder
 /// locked by a running shard; an I/O error. Failed universes are not an error here (the

@@ -4,7 +4,7 @@
 //! In each universe ([`universe`]: the full factorial, or `--sample N` of it) the free
 //! fields are first calibrated to the targets ([`crate::calibrate`]); the universe is
 //! *admissible* when its calibration reaches every band (loss 0). Then every method runs its
-//! trials on the calibrated scenario ([`crate::sweep::run_sweep`], common random numbers),
+//! trials on the calibrated scenario ([`usar_sweep::sweep::run_sweep`], common random numbers),
 //! and each claim of its claims file gets its verdict and its effect ([`effect`]: the subject
 //! minus its strongest rival, with a 95 % Welch interval). Each universe's result is kept as
 //! a checksummed record ([`record`]) in its folder, and the top files (`multiverse.csv`,

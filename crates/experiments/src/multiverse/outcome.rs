@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
-use crate::shard::Shard;
+use usar_sweep::shard::Shard;
 
 /// What a multiverse run produced.
 #[derive(Debug, Clone)]

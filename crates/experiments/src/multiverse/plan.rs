@@ -15,15 +15,15 @@ use usar_sim::scenario::path_text;
 use super::axes::Axes;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
-use crate::atomic::write_atomic;
 use crate::calibrate::{FreeField, Optimizer, Target};
 use crate::claims::Claim;
-use crate::fingerprint::{fnv1a64_hex, scenario_hash};
-use crate::shard::{Shard, shell_join};
-use crate::slurm::ShardedWork;
+use usar_sweep::atomic::write_atomic;
+use usar_sweep::fingerprint::{fnv1a64_hex, scenario_hash};
+use usar_sweep::shard::{Shard, shell_join};
+use usar_sweep::slurm::ShardedWork;
 
 /// The plan's file name.
-pub const PLAN_FILE: &str = crate::data::owner::evidence::MULTIVERSE_PLAN;
+pub const PLAN_FILE: &str = usar_sweep::data::owner::evidence::MULTIVERSE_PLAN;
 
 /// The plan's format (1); another format is another multiverse.
 pub const PLAN_FORMAT: u32 = 1;
@@ -40,7 +40,7 @@ pub struct MultiverseIdentity {
     pub build: String,
     /// The base scenario's name.
     pub scenario: String,
-    /// The base scenario's hash ([`crate::fingerprint::scenario_hash`]).
+    /// The base scenario's hash ([`usar_sweep::fingerprint::scenario_hash`]).
     pub scenario_hash: String,
     /// The axes.
     pub axes: Axes,
@@ -145,7 +145,7 @@ impl MultiversePlan {
             identity: MultiverseIdentity {
                 format: PLAN_FORMAT,
                 version: env!("CARGO_PKG_VERSION").to_string(),
-                build: crate::data::software::software_build().to_owned(),
+                build: usar_sweep::data::software::software_build().to_owned(),
                 scenario: checked.scenario.name().to_owned(),
                 scenario_hash: scenario_hash(&checked.scenario)?,
                 axes: setup.axes.clone(),
@@ -208,7 +208,7 @@ impl MultiversePlan {
     /// An unreadable file, or one that is not a multiverse plan.
     pub fn read(dir: &Path) -> Result<Option<Self>> {
         let path = Self::path_in(dir);
-        if !crate::journal::something_at(&path) {
+        if !usar_sweep::journal::something_at(&path) {
             return Ok(None);
         }
         let text = std::fs::read_to_string(&path)

@@ -1,11 +1,11 @@
-//! What a multiverse shows while it runs: a bar over its universes ([`crate::progress`])
+//! What a multiverse shows while it runs: a bar over its universes ([`usar_sweep::progress`])
 //! (drawn only on a terminal), and one line on stderr per universe it finishes.
 
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
 use crate::calibrate::progress::loss_text;
 use crate::claims::Verdict;
-use crate::progress::{ProgressBar, count_bar};
+use usar_sweep::progress::{ProgressBar, count_bar};
 
 /// What a multiverse shows while it runs. [`MultiverseProgress::off`] shows nothing;
 /// [`MultiverseProgress::terminal`] is `usar multiverse`'s (without `--quiet`).
@@ -58,7 +58,7 @@ impl Display {
         self.pb.inc(1);
         if self.lines && new {
             let line = universe_line(plan, r);
-            self.pb.suspend(|| crate::stderr::warn(line));
+            self.pb.suspend(|| usar_sweep::stderr::warn(line));
         }
     }
 

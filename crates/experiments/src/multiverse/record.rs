@@ -4,7 +4,7 @@
 //! uninterrupted run.
 //!
 //! The file is one line, `{"universe":{...},"sum":"<16 hex digits>"}`, written atomically;
-//! `sum` is [`crate::checked_log::record_sum`] of the multiverse's identity sum
+//! `sum` is [`usar_sweep::checked_log::record_sum`] of the multiverse's identity sum
 //! ([`super::plan::MultiversePlan::identity_sum`]) and the record's JSON as written, so a
 //! record verifies only for the multiverse that wrote it (an edited record, or one left by a
 //! multiverse of other parameters, does not, and its universe runs again). Numbers that may
@@ -17,9 +17,9 @@ use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
 use super::effect::ClaimEffect;
-use crate::atomic::write_atomic;
 use crate::calibrate::{StopReason, float_text};
-use crate::checked_log::{record_line, verified_record};
+use usar_sweep::atomic::write_atomic;
+use usar_sweep::checked_log::{record_line, verified_record};
 
 /// The record's file name in a universe's folder.
 pub const RECORD_FILE: &str = "universe.json";

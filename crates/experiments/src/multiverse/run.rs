@@ -17,11 +17,11 @@ use super::progress::{Display, MultiverseProgress};
 use super::record::{RecordRead, Status, UniverseRecord};
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe_run::{UniverseRun, universe_dir};
-use crate::atomic::remove_stale_temps;
-use crate::data::hooks::Stopped;
-use crate::data::owner::{RunKind, claim};
-use crate::lock::OutputLock;
-use crate::shard::shard_dir;
+use usar_sweep::atomic::remove_stale_temps;
+use usar_sweep::data::hooks::Stopped;
+use usar_sweep::data::owner::{RunKind, claim};
+use usar_sweep::lock::OutputLock;
+use usar_sweep::shard::shard_dir;
 
 /// Runs the paper's method comparison in every universe of `setup` (or of its shard),
 /// writing into `dir`: per universe its folder `universes/<id>/` (scenario, calibration,
@@ -59,7 +59,7 @@ use crate::shard::shard_dir;
 /// # Errors
 /// A setup that does not fit its scenario ([`MultiverseSetup::check`]), `--overwrite` with
 /// a shard, an output folder that is not a folder or belongs to another kind of run
-/// ([`crate::data::owner`]), one locked by another run or holding another multiverse, or an I/O
+/// ([`usar_sweep::data::owner`]), one locked by another run or holding another multiverse, or an I/O
 /// error writing the plan, a universe's own files or the top files. A universe whose
 /// scenario breaks a rule, whose calibration errs or whose trials fail is not an error: its
 /// record says so and the others run.
@@ -169,7 +169,7 @@ fn run_universes(
                 continue;
             }
             RecordRead::Unusable(why) => {
-                crate::stderr::warn(format!("warning: {why}; universe {id} runs again"));
+                usar_sweep::stderr::warn(format!("warning: {why}; universe {id} runs again"));
             }
             RecordRead::Done(_) | RecordRead::Missing => {}
         }

@@ -19,10 +19,10 @@ use crate::calibrate::{
     CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets,
 };
 use crate::claims::{Claims, ClaimsError};
-use crate::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
-use crate::method_factory::MethodFactory;
-use crate::shard::Shard;
-use crate::sweep::{SweepHooks, check_sweep_size};
+use usar_sweep::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
+use usar_sweep::method_factory::MethodFactory;
+use usar_sweep::shard::Shard;
+use usar_sweep::sweep::{SweepHooks, check_sweep_size};
 
 /// Comparison trials per method and universe by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;
@@ -61,7 +61,7 @@ pub struct MultiverseHooks {
     /// evaluation running is dropped (see [`CalibrationHooks::stop`]), the comparison trials
     /// running end and are kept in its journal, nothing new starts, the universe running
     /// writes no record and no comparison files, and [`super::run_multiverse`] returns
-    /// [`crate::data::hooks::Stopped`] without writing the top files; running it again
+    /// [`usar_sweep::data::hooks::Stopped`] without writing the top files; running it again
     /// continues. Default `None`.
     pub stop: Option<Arc<AtomicBool>>,
 }

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use super::outcome::MultiverseOutcome;
 use super::tally::{Tally, share};
-use crate::shard::shell_join;
+use usar_sweep::shard::shell_join;
 
 /// The summary text of `o`, one item per line; `out_dir` is the output folder as given.
 pub fn summary_text(o: &MultiverseOutcome, out_dir: &std::path::Path) -> String {

@@ -7,13 +7,13 @@
 //! sample, so a universe is the same universe in every sample.
 //!
 //! [`shard_of`] deals the selected universes round robin to the shards of `--shard I/N`
-//! ([`crate::shard::split`] with equal costs): fixed, balanced, covering each once.
+//! ([`usar_sweep::shard::split`] with equal costs): fixed, balanced, covering each once.
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::shard::{Shard, split};
+use usar_sweep::shard::{Shard, split};
 
 /// Most universes one multiverse runs (10,000): each holds a calibration and a sweep, so a
 /// larger count is a mistake (a forgotten `--sample`) or several multiverses' work.

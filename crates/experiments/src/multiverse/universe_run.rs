@@ -11,7 +11,7 @@
 //! ```
 //!
 //! The calibration ([`crate::calibrate::calibrate`]) and the comparison
-//! ([`crate::sweep::run_sweep`]) keep their own trace and journal, so a universe stopped
+//! ([`usar_sweep::sweep::run_sweep`]) keep their own trace and journal, so a universe stopped
 //! half-way continues where it stopped. Nothing that goes wrong in a universe stops the
 //! multiverse: a scenario that breaks a rule, a calibration that errs, or failing trials are
 //! written into its record.
@@ -28,13 +28,13 @@ use super::record::{CalibrationResult, ComparisonResult, MetricSummary, Status, 
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::analysis::{Analysis, CellAnalysis, ReportOptions};
-use crate::atomic::{remove_stale_temps, write_atomic};
 use crate::calibrate::{CalibrationOutcome, Progress, Target, Targets, calibrate};
-use crate::data::hooks::{Stopped, SweepHooks};
 use crate::output::write_outputs;
-use crate::spec_ron::spec_to_ron;
-use crate::sweep::{SweepConfig, SweepOutcome, run_sweep};
-use crate::vary::{Override, apply_overrides, rule_error};
+use usar_sweep::atomic::{remove_stale_temps, write_atomic};
+use usar_sweep::data::hooks::{Stopped, SweepHooks};
+use usar_sweep::spec_ron::spec_to_ron;
+use usar_sweep::sweep::{SweepConfig, SweepOutcome, run_sweep};
+use usar_sweep::vary::{Override, apply_overrides, rule_error};
 
 /// The folder, under the output folder, that holds the universes' folders.
 pub const UNIVERSES_DIR: &str = "universes";
@@ -241,7 +241,7 @@ impl UniverseRun<'_> {
 /// universe's report checks its targets and the multiverse's claims).
 fn compare(cfg: &SweepConfig, report: ReportOptions) -> Result<(SweepOutcome, Analysis)> {
     let o = run_sweep(cfg)?;
-    if crate::data::hooks::is_set(cfg.hooks.stop.as_ref()) {
+    if usar_sweep::data::hooks::is_set(cfg.hooks.stop.as_ref()) {
         // Some trials were skipped: no files of a partial comparison (its journal keeps the
         // trials that ran; a rerun continues it).
         return Err(Stopped.into());

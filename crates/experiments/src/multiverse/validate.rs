@@ -14,7 +14,7 @@ use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 use super::axes::{Alternative, Axes, AxesError};
 use crate::calibrate::FreeField;
 use crate::calibrate::targets::Targets;
-use crate::vary::{Override, apply_overrides, spec_json, touching};
+use usar_sweep::vary::{Override, apply_overrides, spec_json, touching};
 
 /// Checks `axes` against the base spec `base` (read from `origin`), the free fields and the
 /// targets.

@@ -7,12 +7,12 @@ use anyhow::Result;
 use plotters::prelude::*;
 use usar_sim::scenario::Scenario;
 
-use crate::atomic::write_atomic;
 use crate::render::canvas::{Area, draw_err, font};
 use crate::render::layout::{DESCRIPTION_CHAR_PX, Layout, wrap};
 use crate::render::legend::{LEGEND_PX, LEGEND_ROW_PX, draw_legend, legend_entries};
 use crate::render::map::draw_static;
 use crate::render::robots::{Trace, draw_ends, draw_paths, draw_robots};
+use usar_sweep::atomic::write_atomic;
 
 /// Draws `scenario` top-down as SVG and writes it to `out` with [`write_atomic`] (atomically
 /// for a regular file, through a symlink, directly to a FIFO or character device).

@@ -29,7 +29,7 @@ pub enum ReplayError {
         /// The page's path.
         path: PathBuf,
         /// What went wrong, naming the path (the message of
-        /// [`write_atomic`](crate::atomic::write_atomic)).
+        /// [`write_atomic`](usar_sweep::atomic::write_atomic)).
         message: String,
     },
 }

@@ -16,11 +16,11 @@ use super::encoding::{compress, encode_recording};
 use super::error::ReplayError;
 use super::marks::MarkKind;
 use super::recording::Recording;
-use crate::atomic::write_atomic;
 use crate::render::{
     MAX_LABELLED_ROBOTS, MapFrame, RESCUEE_COLOR, kind_color, render_map_svg, task_color,
     task_strong_color,
 };
+use usar_sweep::atomic::write_atomic;
 
 const TEMPLATE: &str = include_str!("template.html");
 const CSS: &str = include_str!("replay.css");

@@ -1,5 +1,5 @@
 //! Replays of chosen trials of a sweep (`usar sweep --replay METHOD:TRIAL,...`): recorded by
-//! the sweep's own per-trial observer ([`crate::sweep::SweepHooks::trial_observer`]) while
+//! the sweep's own per-trial observer ([`usar_sweep::sweep::SweepHooks::trial_observer`]) while
 //! the trial runs, and written as `replay-<method>-<trial>.html` into the folder of the
 //! trial's cell (the output folder itself without a grid).
 //!
@@ -17,7 +17,7 @@ use super::error::ReplayError;
 use super::page::write_replay;
 use super::recorder::ReplayRecorder;
 use super::trial::record_trial;
-use crate::sweep::{
+use usar_sweep::sweep::{
     SweepConfig, SweepOutcome, TrialContext, TrialKey, TrialObserverFactory, trust_model,
 };
 
@@ -42,7 +42,7 @@ impl ReplayRequest {
 }
 
 /// Parses `--replay` values (`METHOD:TRIAL`, comma-separated, repeatable) against the
-/// sweep's methods (display names, as [`crate::sweep::canonical_method`] gives them) and
+/// sweep's methods (display names, as [`usar_sweep::sweep::canonical_method`] gives them) and
 /// trial count; `canonical` maps a name as typed (as the factory takes it, e.g. `rne` or
 /// `hp_sort`) to its display name. Duplicates are dropped.
 ///
@@ -237,7 +237,7 @@ impl SweepReplays {
             .methods
             .iter()
             .find(|m| {
-                crate::sweep::canonical_method(m, &cfg.method_factory, &model, cfg.base_seed)
+                usar_sweep::sweep::canonical_method(m, &cfg.method_factory, &model, cfg.base_seed)
                     .is_ok_and(|c| c == r.method)
             })
             .ok_or_else(|| ReplayError::Spec(format!("no method {}", r.method)))?;
@@ -328,7 +328,7 @@ mod tests {
     use rne_core::grouping::{Eng, GroupingMethod};
 
     use super::*;
-    use crate::sweep::{MethodFactory, canonical_method};
+    use usar_sweep::sweep::{MethodFactory, canonical_method};
 
     /// ENG under the name `hp_sort`.
     struct HpSort;

@@ -8,8 +8,8 @@ use std::sync::{Arc, Mutex};
 use experiments::calibrate::{
     CalibrationSetup, Checked, Evaluator, FreeField, Progress, StopReason, Targets, calibrate,
 };
-use experiments::sweep::MethodFactory;
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+use usar_sweep::sweep::MethodFactory;
 
 const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
 
@@ -301,7 +301,7 @@ fn a_stopped_calibration_writes_nothing_and_continues() {
     let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     let e = calibrate(&s, a.path(), progress).unwrap_err();
     assert!(
-        e.downcast_ref::<experiments::data::hooks::Stopped>()
+        e.downcast_ref::<usar_sweep::data::hooks::Stopped>()
             .is_some(),
         "{e:#}"
     );

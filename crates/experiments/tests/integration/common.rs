@@ -96,7 +96,7 @@ pub fn journal_trials(dir: &Path) -> usize {
 /// Rewrites the journal at `path` as if the build `build` had written it: the header's build,
 /// and every line's checksum recomputed so that the journal verifies.
 pub fn set_journal_build(path: &Path, build: &str) {
-    use experiments::checked_log::{header_sum, record_sum};
+    use usar_sweep::checked_log::{header_sum, record_sum};
     let text = std::fs::read_to_string(path).unwrap();
     let body = |line: &str, kind: &str| -> String {
         let prefix = format!("{{\"{kind}\":");

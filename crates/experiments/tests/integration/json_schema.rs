@@ -5,9 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use experiments::journal::JournalLine;
-use experiments::trial_json::TrialJson;
 use serde_json::Value;
+use usar_sweep::journal::JournalLine;
+use usar_sweep::trial_json::TrialJson;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")

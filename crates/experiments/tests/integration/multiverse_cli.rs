@@ -130,7 +130,7 @@ fn check_csv(out: &Path) {
     );
     let rows: Vec<csv::StringRecord> = csv.records().map(Result::unwrap).collect();
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
-    let metrics = experiments::metrics::Metric::all(2).len();
+    let metrics = usar_sweep::metrics::Metric::all(2).len();
     // A universe row, 2 methods x the metrics, the one target and the 5 claims.
     let compared = 1 + 2 * metrics + 1 + 5;
     for (id, admissible, status, count) in [

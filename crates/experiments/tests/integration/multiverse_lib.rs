@@ -7,8 +7,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use experiments::calibrate::{FreeField, Targets};
-use experiments::data::hooks::Stopped;
 use experiments::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
+use usar_sweep::data::hooks::Stopped;
 
 const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");

@@ -1,4 +1,4 @@
-//! Every output folder has an owner (`usar-owner.json`, `experiments::data::owner`): a run of
+//! Every output folder has an owner (`usar-owner.json`, `usar_sweep::data::owner`): a run of
 //! another kind is refused with and without `--overwrite` and the folder's files stay
 //! byte for byte; `usar merge` refuses shards of another kind; and a calibration against a
 //! band reaching 1.7e308 ends (its targets figure once spun forever).

@@ -8,10 +8,10 @@ use std::collections::HashSet;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use experiments::grid::build_grid;
-use experiments::shard::Shard;
-use experiments::sweep::{SweepConfig, header_of, job_list};
 use usar_sim::scenario;
+use usar_sweep::grid::build_grid;
+use usar_sweep::shard::Shard;
+use usar_sweep::sweep::{SweepConfig, header_of, job_list};
 
 use common::{PAPER, STOPPED, merge, ok, read, read_lines, write_lines};
 

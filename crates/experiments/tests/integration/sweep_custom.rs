@@ -1,19 +1,19 @@
 //! A grouping method of the user's own runs through the sweep machinery (journal, analysis,
 //! tables) via `SweepConfig::method_factory`, next to a built-in one: its name kept as
 //! written, the factory's calls and trial contexts, and a stochastic method
-//! (`examples/random_method.rs`) reproducible on any thread count.
+//! (`crates/usar-sweep/examples/random_method.rs`) reproducible on any thread count.
 
 use crate::common;
-#[path = "../../examples/random_method.rs"]
+#[path = "../../../usar-sweep/examples/random_method.rs"]
 mod random_method;
 
 use std::path::PathBuf;
 
 use experiments::analysis::Analysis;
 use experiments::output::write_outputs;
-use experiments::sweep::{MethodFactory, SweepConfig, run_sweep};
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 use usar_sim::scenario;
+use usar_sweep::sweep::{MethodFactory, SweepConfig, run_sweep};
 
 use common::PAPER;
 
@@ -100,8 +100,8 @@ fn an_unknown_name_is_refused_before_anything_runs() {
 fn hooks_observe_trials_and_journaled_records() {
     use std::sync::{Arc, Mutex};
 
-    use experiments::sweep::{SweepHooks, TrialKey};
     use usar_sim::mission::{Simulation, StepObserver};
+    use usar_sweep::sweep::{SweepHooks, TrialKey};
 
     /// Counts steps; panics at the 100th step of trial 1 of DIS.
     struct Probe(TrialKey, Arc<Mutex<Vec<(String, u32, u64)>>>, u64);
@@ -192,8 +192,8 @@ fn a_method_name_is_kept_as_written_and_the_built_ins_keep_the_papers() {
 fn the_factory_is_called_once_per_method_to_name_it_then_once_per_trial() {
     use std::sync::{Arc, Mutex};
 
-    use experiments::sweep::TrialContext;
     use usar_sim::mission::trial_seed;
+    use usar_sweep::sweep::TrialContext;
 
     let tmp = tempfile::tempdir().unwrap();
     let calls: Arc<Mutex<Vec<(String, TrialContext)>>> = Arc::default();
@@ -256,8 +256,8 @@ fn a_seeded_stochastic_method_is_reproducible_on_any_thread_count() {
 /// and need not be `Sync` (the example's method keeps its generator in a `RefCell`).
 #[test]
 fn a_trial_with_a_method_that_is_not_sync_can_move_between_threads() {
-    use experiments::sweep::TrialContext;
     use usar_sim::mission::Simulation;
+    use usar_sweep::sweep::TrialContext;
 
     let scenario = scenario::load(PAPER).unwrap();
     let method = random_method::RandomQuotas::new(&TrialContext::for_trial(3, 0));

@@ -8,8 +8,8 @@ use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use experiments::journal::read_journal;
-use experiments::lock::{LOCK_FILE, OutputLock};
+use usar_sweep::journal::read_journal;
+use usar_sweep::lock::{LOCK_FILE, OutputLock};
 
 use common::{PAPER, read};
 

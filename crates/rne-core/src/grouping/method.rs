@@ -81,7 +81,7 @@ use crate::grouping::request::GroupingRequest;
 /// ```
 ///
 /// A method that draws random numbers should take its generator from the trial it runs in,
-/// so that a sweep stays reproducible: `experiments::sweep::TrialContext::rng` gives each
+/// so that a sweep stays reproducible: `usar_sweep::sweep::TrialContext::rng` gives each
 /// trial's method its own seeded stream.
 pub trait GroupingMethod: Send {
     /// The method's name as its author wrote it (e.g. `"rne"`, `"hp_sort"`): how a method

@@ -61,14 +61,13 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
         },
     ),
     (
-        "crates/experiments/src/lib.rs",
+        "crates/usar-sweep/src/lib.rs",
         CrateLayout {
-            name: "experiments",
+            name: "usar-sweep",
             layers: &[
-                // Base: files, numbers and tables that know nothing of a sweep.
+                // Base: files, logs and names that know nothing of a sweep.
                 &[
                     "atomic",
-                    "chart",
                     "checked_log",
                     "fingerprint",
                     "journal",
@@ -76,19 +75,28 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "method_factory",
                     "metrics",
                     "spec_ron",
-                    "stats",
                     "stderr",
                     "progress",
-                    "rounds_table",
-                    "table",
                     "trial_json",
                     "vary",
                 ],
                 // Data: the sweep's plan, outcome, limits and output names.
                 &["data"],
-                // Design, run, fit, analyse, write, study.
+                // Design, run.
                 &["grid"],
                 &["executor", "stale_outputs", "sweep", "shard", "slurm"],
+            ],
+            peers: &[],
+        },
+    ),
+    (
+        "crates/experiments/src/lib.rs",
+        CrateLayout {
+            name: "experiments",
+            layers: &[
+                // Base: numbers, tables and charts that know nothing of a sweep.
+                &["chart", "source_date", "stats", "rounds_table", "table"],
+                // Fit, analyse, write, study.
                 &["calibrate", "claims", "calibration"],
                 &["analysis"],
                 &[
@@ -128,6 +136,7 @@ const OTHER_CRATES: &[&str] = &[
     "crates/experiments/benches/multiverse.rs",
     "crates/experiments/benches/sweep.rs",
     "crates/experiments/benches/trials_per_cpu.rs",
+    "crates/usar-sweep/examples/random_method.rs",
     "crates/experiments/tests/integration/main.rs",
     "tests/src/lib.rs",
     "tests/downstream/src/lib.rs",

@@ -28,7 +28,7 @@ fn main() -> ExitCode {
         }
     };
     // The library reports progress; `usar` draws it. Installed once, before any run.
-    if experiments::progress::set_sink(Box::new(shared::progress::TerminalBars)).is_err() {
+    if usar_sweep::progress::set_sink(Box::new(shared::progress::TerminalBars)).is_err() {
         unreachable!("the progress sink is installed once, here");
     }
     let stdout = std::io::stdout();

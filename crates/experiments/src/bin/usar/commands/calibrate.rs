@@ -25,14 +25,14 @@ use experiments::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, 
 
 use experiments::calibration::targets_or_paper;
 
-use experiments::shard::shell_join;
+use usar_sweep::shard::shell_join;
 
-use experiments::sweep::default_out_dir_of;
+use usar_sweep::sweep::default_out_dir_of;
 
 use crate::shared::optimizer_arg::OptimizerArg;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
-use experiments::data::source_date::source_date;
+use experiments::source_date::source_date;
 
 const EXAMPLES: &str = "\
 Examples:

@@ -13,11 +13,11 @@ use clap::Args;
 use usar_sim::scenario::{self, Debris, Locomotion, Scenario, number_text, path_text};
 use usar_sim::world::ControlClock;
 
-use experiments::fingerprint::scenario_hash;
+use usar_sweep::fingerprint::scenario_hash;
 
-use experiments::spec_ron::spec_to_ron;
+use usar_sweep::spec_ron::spec_to_ron;
 
-use experiments::vary::{Override, apply_overrides, brief, validate_overridden};
+use usar_sweep::vary::{Override, apply_overrides, brief, validate_overridden};
 
 use crate::shared::scenario_warnings::warn_about;
 
@@ -172,7 +172,7 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
     writeln!(out, "scenario {}: {}", s.name(), s.description())?;
     let (dt_s, duration_s) = (s.sim().dt_s.get(), s.mission().duration_s.get());
     // What a trial runs: whole steps (usar run, sweep and replay report this length).
-    let run_s = experiments::sweep::simulated_length_s(duration_s, dt_s);
+    let run_s = usar_sweep::sweep::simulated_length_s(duration_s, dt_s);
     let rounded = if run_s == duration_s {
         String::new()
     } else {

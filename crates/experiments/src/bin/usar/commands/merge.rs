@@ -14,7 +14,7 @@ use experiments::analysis::Analysis;
 use experiments::console::print_sweep;
 use experiments::multiverse::{is_multiverse_dir, merge_multiverse, summary_text};
 use experiments::output::write_outputs;
-use experiments::shard::merge_shards;
+use usar_sweep::shard::merge_shards;
 
 use crate::shared::multiverse_spec::failed_universes;
 use crate::shared::sweep_spec::{ReportArgs, grid_metrics};

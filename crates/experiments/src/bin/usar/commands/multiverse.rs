@@ -13,10 +13,10 @@ use clap::Args;
 
 use experiments::multiverse::{MultiverseHooks, MultiverseProgress, run_multiverse, summary_text};
 
-use experiments::shard::Shard;
+use usar_sweep::shard::Shard;
 
-use experiments::sweep::{MethodFactory, SweepHooks, canonical_method};
 use rne_core::{TrustModel, Weights};
+use usar_sweep::sweep::{MethodFactory, SweepHooks, canonical_method};
 
 use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, failed_universes, setup_of};
 use crate::shared::sweep_spec::threads_of;

@@ -15,13 +15,13 @@ use usar_sim::mission::{Simulation, TrialResult};
 
 use usar_sim::scenario::{self, path_text};
 
-use experiments::atomic::write_atomic;
+use usar_sweep::atomic::write_atomic;
 
-use experiments::metrics::{Metric, Quantity, Scope};
+use usar_sweep::metrics::{Metric, Quantity, Scope};
 
 use experiments::table::num;
 
-use experiments::trial_json::TrialJson;
+use usar_sweep::trial_json::TrialJson;
 
 use crate::shared::scenario_warnings::warn_about;
 use crate::shared::trial_build::{TRIAL_THREADS_HELP, build_trial, trial_pool, warn_if_rounded};

@@ -13,10 +13,10 @@ use experiments::multiverse::MultiversePlan;
 use experiments::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
 };
-use experiments::shard::shell_join;
-use experiments::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
-use experiments::sweep::default_out_dir;
 use usar_sim::scenario;
+use usar_sweep::shard::shell_join;
+use usar_sweep::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
+use usar_sweep::sweep::default_out_dir;
 
 use crate::shared::multiverse_spec::{
     MultiverseSearchArgs, MultiverseSpecArgs, default_dir, setup_of,
@@ -194,9 +194,9 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     };
     let out_dir = absolute(&out_dir)?;
     // The sweep must be one `usar sweep` accepts: build it (and its header) now.
-    let cfg = experiments::shard::plan_config::plan_config(&plan, &out_dir)?;
-    let header = experiments::sweep::header_of(&cfg)?;
-    experiments::sweep::check_config(&cfg, &header)?;
+    let cfg = usar_sweep::shard::plan_config::plan_config(&plan, &out_dir)?;
+    let header = usar_sweep::sweep::header_of(&cfg)?;
+    usar_sweep::sweep::check_config(&cfg, &header)?;
     ReportArgs {
         targets: plan.targets.clone(),
         claims: plan.claims.clone(),
@@ -205,10 +205,10 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(d) = args.spec.duration {
         warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
     }
-    experiments::sweep::check_shard_count(
+    usar_sweep::sweep::check_shard_count(
         &format!("--shards {}", args.shards),
         args.shards,
-        experiments::sweep::trial_count(&cfg),
+        usar_sweep::sweep::trial_count(&cfg),
     )?;
     write_and_submit(args, &plan, &out_dir, out)
 }

@@ -23,15 +23,15 @@ use crate::shared::test_hooks::test_hooks;
 
 use experiments::console::print_sweep;
 
-use experiments::grid::{Grid, build_grid};
+use usar_sweep::grid::{Grid, build_grid};
 
 use experiments::output::write_outputs;
 
 use experiments::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
 
-use experiments::shard::{Shard, ShardRun, shell_join};
+use usar_sweep::shard::{Shard, ShardRun, shell_join};
 
-use experiments::sweep::{
+use usar_sweep::sweep::{
     MethodFactory, SweepConfig, SweepOutcome, canonical_method, default_out_dir, run_sweep,
     trust_model,
 };
@@ -174,7 +174,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     if args.vary.is_empty() {
         return Ok(None);
     }
-    experiments::sweep::check_grid_size(&args.vary, args.methods.len(), args.trials)?;
+    usar_sweep::sweep::check_grid_size(&args.vary, args.methods.len(), args.trials)?;
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
@@ -266,7 +266,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     let metrics = grid_metrics(&args.spec.grid_metrics, &tasks)?;
     let replays = replays_of(args, &cfg)?;
     // Options first (a bad one is the only line), then what the scenario warns about.
-    experiments::sweep::check_trial_count(&cfg)?;
+    usar_sweep::sweep::check_trial_count(&cfg)?;
     let report = args
         .report
         .resolve(&cfg.scenario, &cfg.scenario_path, &cfg.methods)?;
@@ -368,7 +368,7 @@ fn print_shard(
     writeln!(
         out,
         "journal: {}",
-        experiments::journal::Journal::path_in(&cfg.journal_dir()).display()
+        usar_sweep::journal::Journal::path_in(&cfg.journal_dir()).display()
     )?;
     writeln!(
         out,

@@ -16,10 +16,10 @@ use experiments::multiverse::setup::{
     DEFAULT_TRIALS,
 };
 use experiments::multiverse::{Axes, MultiverseSetup, Sample};
-use experiments::shard::Shard;
-use experiments::sweep::default_out_dir_of;
+use usar_sweep::shard::Shard;
+use usar_sweep::sweep::default_out_dir_of;
 
-use experiments::data::source_date::source_date;
+use experiments::source_date::source_date;
 
 use super::optimizer_arg::OptimizerArg;
 

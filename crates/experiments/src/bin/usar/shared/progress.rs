@@ -1,13 +1,13 @@
 //! The progress bars `usar` draws on stderr (indicatif), in one style, for the runs of the
-//! library ([`experiments::progress`]): a sweep's over the simulated time of all its jobs,
+//! library ([`usar_sweep::progress`]): a sweep's over the simulated time of all its jobs,
 //! with the simulation rate and an ETA, and a study's over a count (a calibration's
 //! evaluations, a multiverse's design points and universes). Drawn only when stderr is a
 //! terminal.
 
 use std::sync::Arc;
 
-use experiments::progress::{Bar, BarUnit, ProgressSink};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
+use usar_sweep::progress::{Bar, BarUnit, ProgressSink};
 
 /// The sink `usar` installs at start.
 pub struct TerminalBars;

@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use anyhow::{Context, Result};
-use experiments::atomic::write_atomic;
+use usar_sweep::atomic::write_atomic;
 
 /// Writes `--rounds-csv` of `cells` (grid cell index, results) to `path` and prints the
 /// summary per task of every result (`experiments::rounds_table`).

@@ -12,9 +12,9 @@ use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, Scenario};
 
 use experiments::calibration::{ReportOptions, ReportOptionsError};
-use experiments::grid::Grid;
-use experiments::metrics::{Metric, Quantity, Scope};
-use experiments::shard::SweepPlan;
+use usar_sweep::grid::Grid;
+use usar_sweep::metrics::{Metric, Quantity, Scope};
+use usar_sweep::shard::SweepPlan;
 
 use crate::shared::trial_build::rounding_warning;
 pub use crate::shared::trial_build::threads_of;

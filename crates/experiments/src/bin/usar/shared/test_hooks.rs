@@ -5,8 +5,8 @@
 
 use std::sync::Arc;
 
-use experiments::sweep::{SweepHooks, TrialKey};
 use usar_sim::mission::{Simulation, StepObserver};
+use usar_sweep::sweep::{SweepHooks, TrialKey};
 
 /// Exit status of a sweep stopped by `--stop-after`.
 pub const STOP_EXIT_CODE: i32 = 75;

@@ -3,9 +3,9 @@
 //! of steps; the `--threads` of every command and the thread pool a trial runs in.
 
 use anyhow::{Context, Result, bail};
-use experiments::sweep::{MAX_THREADS_PER_CORE, max_threads};
 use usar_sim::mission::{MissionError, Simulation, TrialBuilder, trial_steps};
 use usar_sim::scenario::number_text;
+use usar_sweep::sweep::{MAX_THREADS_PER_CORE, max_threads};
 
 /// The worker threads of `--threads`: all cores when not given; more than
 /// [`max_threads`] are capped there with a warning.
@@ -82,7 +82,7 @@ pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
 /// length is refused anyway (the caller reports that error).
 pub fn rounding_warning(requested_s: f64, dt_s: f64) -> Option<String> {
     let steps = trial_steps(requested_s, dt_s).ok()?;
-    let actual_s = experiments::sweep::simulated_length_s(requested_s, dt_s);
+    let actual_s = usar_sweep::sweep::simulated_length_s(requested_s, dt_s);
     if actual_s == requested_s {
         return None;
     }

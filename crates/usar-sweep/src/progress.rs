@@ -51,18 +51,18 @@ pub fn set_sink(sink: Box<dyn ProgressSink>) -> Result<(), Box<dyn ProgressSink>
 
 /// A run's bar: the installed sink's, or nothing when there is no sink or the run asked for
 /// none.
-pub(crate) struct ProgressBar(Option<Arc<dyn Bar>>);
+pub struct ProgressBar(Option<Arc<dyn Bar>>);
 
 impl ProgressBar {
     /// Advances the bar by `delta` units.
-    pub(crate) fn inc(&self, delta: u64) {
+    pub fn inc(&self, delta: u64) {
         if let Some(b) = &self.0 {
             b.inc(delta);
         }
     }
 
     /// Runs `f` with the bar out of the way, and returns what it returns.
-    pub(crate) fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
         let Some(b) = &self.0 else {
             return f();
         };
@@ -72,14 +72,14 @@ impl ProgressBar {
     }
 
     /// Replaces the bar's message.
-    pub(crate) fn set_message(&self, message: String) {
+    pub fn set_message(&self, message: String) {
         if let Some(b) = &self.0 {
             b.set_message(message);
         }
     }
 
     /// Removes the bar.
-    pub(crate) fn finish_and_clear(&self) {
+    pub fn finish_and_clear(&self) {
         if let Some(b) = &self.0 {
             b.finish();
         }
@@ -97,13 +97,12 @@ fn bar(show: bool, len: u64, unit: BarUnit, message: &str) -> ProgressBar {
 }
 
 /// A sweep's bar over the simulated time of all its jobs (`total_us` microseconds).
-pub(crate) fn progress_bar(show: bool, message: &str, total_us: u64) -> ProgressBar {
+pub fn progress_bar(show: bool, message: &str, total_us: u64) -> ProgressBar {
     bar(show, total_us, BarUnit::SimMicros, message)
 }
 
 /// A study's bar over `count` `unit` (`evaluations`, `universes`).
-#[cfg(feature = "outputs")]
-pub(crate) fn count_bar(show: bool, count: u64, unit: &'static str) -> ProgressBar {
+pub fn count_bar(show: bool, count: u64, unit: &'static str) -> ProgressBar {
     bar(show, count, BarUnit::Count(unit), "")
 }
 

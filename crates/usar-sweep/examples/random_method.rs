@@ -6,19 +6,19 @@
 //! This example runs RNE against `random` twice on two threads over `scenarios/paper.ron` and
 //! checks that both runs agree; `crates/experiments/tests/integration/sweep_custom.rs` tests the same
 //! method. Copy [`RandomQuotas`] and [`factory`] into your own crate as they are (`rand` is
-//! the one `experiments::sweep` re-exports).
+//! the one `usar_sweep::sweep` re-exports).
 //!
 //! ```sh
-//! cargo run --release -p experiments --example random_method -- [TRIALS]
+//! cargo run --release -p usar-sweep --example random_method -- [TRIALS]
 //! ```
 
 use std::cell::RefCell;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, ensure};
-use experiments::sweep::rand::seq::SliceRandom;
-use experiments::sweep::{ChaCha8Rng, MethodFactory, SweepConfig, TrialContext, run_sweep};
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+use usar_sweep::sweep::rand::seq::SliceRandom;
+use usar_sweep::sweep::{ChaCha8Rng, MethodFactory, SweepConfig, TrialContext, run_sweep};
 
 /// Deals each kind's robots to the tasks in a random order, each task taking its quota.
 ///

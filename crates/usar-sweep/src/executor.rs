@@ -20,51 +20,51 @@ use crate::method_factory::{MethodFactory, TrialContext};
 use crate::progress::progress_bar;
 
 /// How to run a sweep's jobs.
-pub(crate) struct Runner<'a> {
+pub struct Runner<'a> {
     /// Builds each trial's method.
-    pub(crate) factory: &'a MethodFactory,
+    pub factory: &'a MethodFactory,
     /// Extension points.
-    pub(crate) hooks: &'a SweepHooks,
+    pub hooks: &'a SweepHooks,
     /// Show a progress bar (on a terminal).
-    pub(crate) progress: bool,
+    pub progress: bool,
     /// Worker threads (>= 1).
-    pub(crate) threads: usize,
+    pub threads: usize,
     /// Whether the pool's threads may also run a trial's per-robot phases
     /// ([`crate::sweep::sweep_threads`]); `false`: each trial on one thread.
-    pub(crate) inside_trials: bool,
+    pub inside_trials: bool,
 }
 
 /// Steps between two progress-bar updates from a running trial.
 const PROGRESS_EVERY_STEPS: u64 = 50;
 
 /// A job ready to run.
-pub(crate) struct Job {
+pub struct Job {
     /// Grid cell index.
-    pub(crate) cell: usize,
+    pub cell: usize,
     /// The method's name as given to the factory.
-    pub(crate) method_arg: String,
+    pub method_arg: String,
     /// The method's display name (`GroupingMethod::display_name`, as written).
-    pub(crate) method: String,
+    pub method: String,
     /// Trial index.
-    pub(crate) trial: u32,
+    pub trial: u32,
     /// The trial's seed (`trial_seed(base_seed, trial)`).
-    pub(crate) seed: u64,
+    pub seed: u64,
 }
 
 /// What one cell needs to run trials.
-pub(crate) struct CellPlan<'a> {
+pub struct CellPlan<'a> {
     /// ` in cell <folder>` for a grid cell, empty otherwise (for messages).
-    pub(crate) label: String,
+    pub label: String,
     /// The cell's scenario.
-    pub(crate) scenario: &'a Scenario,
+    pub scenario: &'a Scenario,
     /// Its trust model (its `needs_weights` may be varied).
-    pub(crate) model: TrustModel,
+    pub model: TrustModel,
     /// Trial length, seconds.
-    pub(crate) duration_s: f64,
+    pub duration_s: f64,
     /// Simulated microseconds per step (progress-bar units).
-    pub(crate) step_us: u64,
+    pub step_us: u64,
     /// Steps per trial.
-    pub(crate) steps_per_trial: u64,
+    pub steps_per_trial: u64,
 }
 
 /// The pool's threads and whether they go inside trials
@@ -179,9 +179,9 @@ fn run_job(
 }
 
 /// Runs one trial, turning errors and panics into `Err(message)`. `tick(n)` is called every
-/// [`PROGRESS_EVERY_STEPS`] steps with the number of steps just taken. (A calibration runs its
-/// trials through it too: `crate::calibrate::evaluate`.)
-pub(crate) fn run_trial(
+/// `PROGRESS_EVERY_STEPS` steps with the number of steps just taken. (A calibration runs its
+/// trials through it too: `experiments::calibrate::evaluate`.)
+pub fn run_trial(
     plan: &CellPlan<'_>,
     runner: &Runner<'_>,
     job: &Job,

@@ -56,7 +56,8 @@ impl SweepResults {
 /// A failed trial (an error or a panic, in the method or in a hook) does not stop the sweep:
 /// it is listed in [`SweepResults::failures`] and warned about on stderr, as on disk. The
 /// hooks are called as on disk; `on_journaled` is called as each trial's record is made
-/// (nothing is journaled). `progress` draws a bar on a terminal with feature `outputs` only.
+/// (nothing is journaled). `progress` shows a bar when the program has installed a
+/// [`crate::progress::ProgressSink`] (the `usar` binary draws one on a terminal).
 ///
 /// # Errors
 /// Bad parameters ([`crate::sweep::check_config`], [`crate::sweep::header_of`]), a shard

@@ -1,5 +1,5 @@
 //! Checksummed JSON-lines logs, the plumbing of the sweep journal ([`crate::journal`]) and a
-//! calibration's trace (`crate::calibrate::trace`); a multiverse's universe and design records
+//! calibration's trace (`experiments::calibrate::trace`); a multiverse's universe and design records
 //! are single lines of the same shape.
 //!
 //! A log is a header line and record lines, each `{"<key>":<json>,"sum":"<hex>"}` and its
@@ -57,16 +57,14 @@ pub fn parse_line<'a>(line: &'a str, key: &str) -> Option<(&'a str, Option<Strin
 
 /// A record line on its own (a multiverse's universe or design record, one file each):
 /// [`checked_line`] of `json` under `key` with [`record_sum`] of `identity_sum` (the checksum
-/// of what the record belongs to) and `json`. (Feature `outputs`, the multiverse's.)
-#[cfg(feature = "outputs")]
+/// of what the record belongs to) and `json`. (The multiverse's.)
 pub fn record_line(key: &str, json: &str, identity_sum: &str) -> String {
     checked_line(key, json, &record_sum(identity_sum, json))
 }
 
 /// The JSON under `key` of the line `text` written by [`record_line`] with `identity_sum`:
 /// `None` when it is not such a line or does not verify (edited, damaged, another identity's).
-/// (Feature `outputs`, the multiverse's.)
-#[cfg(feature = "outputs")]
+/// (The multiverse's.)
 pub fn verified_record<'a>(text: &'a str, key: &str, identity_sum: &str) -> Option<&'a str> {
     let (json, sum) = parse_line(text, key)?;
     (sum? == record_sum(identity_sum, json)).then_some(json)
@@ -284,7 +282,6 @@ mod tests {
         }
     }
 
-    #[cfg(feature = "outputs")]
     #[test]
     fn a_record_on_its_own_verifies_only_for_its_identity() {
         let line = record_line("universe", r#"{"u":3}"#, "abcd");

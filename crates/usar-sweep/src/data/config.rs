@@ -21,7 +21,7 @@ use crate::method_factory::MethodFactory;
 /// the fields that differ:
 ///
 /// ```no_run
-/// use experiments::sweep::{SweepConfig, run_sweep};
+/// use usar_sweep::sweep::{SweepConfig, run_sweep};
 ///
 /// let scenario = usar_sim::scenario::load("scenarios/paper.ron")?;
 /// let cfg = SweepConfig {

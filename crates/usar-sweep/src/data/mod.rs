@@ -5,8 +5,8 @@
 //! extension points, [`hooks`], and its shard, [`shard_split`], [`shard_folders`] and
 //! [`sweep_plan`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
 //! [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
-//! [`out_dir`], [`figure_list`], [`trial_length`], [`software`] and [`source_date`]
-//! name and describe what it writes. The modules above (run, design, analyse, write) build,
+//! [`out_dir`], [`figure_list`], [`trial_length`] and [`software`] name and describe what it
+//! writes. The modules above (design, run) and the `experiments` crate (analyse, write) build,
 //! run, judge and write this data.
 
 pub mod config;
@@ -21,7 +21,5 @@ pub mod owner;
 pub mod shard_folders;
 pub mod shard_split;
 pub mod software;
-#[cfg(feature = "outputs")]
-pub mod source_date;
 pub mod sweep_plan;
 pub mod trial_length;

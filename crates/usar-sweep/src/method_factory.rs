@@ -19,7 +19,7 @@ pub use rand_chacha::ChaCha8Rng;
 
 /// The `rand` crate (0.10) that [`ChaCha8Rng`] works with, so that a method of your own can
 /// draw from it without a `rand` dependency of its own at a matching version
-/// (`use experiments::sweep::rand::seq::SliceRandom;`).
+/// (`use usar_sweep::sweep::rand::seq::SliceRandom;`).
 pub use rand;
 
 /// The ChaCha stream [`TrialContext::rng`] draws from. The trial's starting team is drawn
@@ -72,7 +72,7 @@ impl TrialContext {
 /// touching the sweep (a factory that needs no context ignores it):
 ///
 /// ```
-/// use experiments::sweep::{MethodFactory, TrialContext};
+/// use usar_sweep::sweep::{MethodFactory, TrialContext};
 /// use rne_core::grouping::{Eng, GroupingMethod};
 ///
 /// // `my_eng` is ENG under another name; anything else falls back to the built-ins.
@@ -88,7 +88,7 @@ impl TrialContext {
 /// ```
 ///
 /// A stochastic method takes its generator from the context:
-/// `crates/experiments/examples/random_method.rs`.
+/// `crates/usar-sweep/examples/random_method.rs`.
 ///
 /// # How often it is called
 /// A sweep ([`run_sweep`](crate::sweep::run_sweep)) calls it once per method when it starts,
@@ -98,7 +98,7 @@ impl TrialContext {
 /// methods and `T` trials in one grid cell (`M + M x T x C` with `C` cells), and only the `M`
 /// name checks on a resume of a finished sweep. A calibration checks the names once and
 /// builds a method per trial of each evaluation; a multiverse does both for each universe.
-/// Replays of a sweep's trials (`crate::replay::SweepReplays`) call it again to match names
+/// Replays of a sweep's trials (`experiments::replay::SweepReplays`) call it again to match names
 /// and to build a trial they run once more. The factory is shared by the worker threads,
 /// hence `Send + Sync`; the methods it builds are not shared (see `GroupingMethod`).
 #[derive(Clone)]

@@ -1,0 +1,78 @@
+//! The sweep library of the USAR experiments: parallel, resumable sweeps of grouping methods
+//! over trials of a scenario (and over grids of scenario values), with nothing of a command
+//! line, an analysis or a figure in it. The `experiments` crate (tables, figures, reports,
+//! calibration, multiverse and the `usar` binary) is built on it; a researcher's own crate can
+//! depend on this one alone (docs/library.md, "Depending on the library only").
+//!
+//! [`sweep::run_sweep`] runs the trials (of every cell of a [`grid`] built from `--vary`
+//! overrides, [`vary`]) into the [`journal`] and returns data ([`data`]). A sweep holds the
+//! [`lock`] on its output folder while it runs; every file it writes goes through [`atomic`].
+//! [`shard`] splits a sweep over machines and merges their journals; [`slurm`] writes the
+//! batch scripts that run the shards on a cluster.
+//!
+//! # Entry points
+//!
+//! - [`sweep::SweepConfig`] plans a sweep (`SweepConfig::new` gives the defaults of
+//!   `usar sweep`); [`sweep::run_in_memory`] runs it and returns the results, with nothing on
+//!   disk; [`sweep::run_sweep`] runs it into a journal in its output folder (resumable, locked).
+//! - [`sweep::MethodFactory`] adds grouping methods of your own to a sweep.
+//! - [`executor`] runs any set of trials in parallel (a sweep's, a calibration's).
+//!
+//! Long runs report their progress to a sink the program installs ([`progress`]); the library
+//! draws nothing.
+//!
+//! A sweep of paper.ron in memory:
+//!
+//! ```
+//! use usar_sweep::sweep::{SweepConfig, run_in_memory};
+//!
+//! # let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
+//! let scenario = usar_sim::scenario::load(path)?; // path: "scenarios/paper.ron"
+//! let cfg = SweepConfig {
+//!     methods: vec!["rne".into(), "dis".into()],
+//!     trials: 2,
+//!     duration_s: Some(10.0),
+//!     threads: 2,
+//!     progress: false,
+//!     ..SweepConfig::new(scenario, path)
+//! };
+//! let results = run_in_memory(&cfg)?;
+//! assert_eq!(results.failures().count(), 0);
+//! // Sorted as trials.csv: method order, then trial; the same seeds for every method.
+//! let trials: Vec<(&str, u32)> = results.results().map(|r| (r.method.as_str(), r.trial)).collect();
+//! assert_eq!(trials, [("RNE", 0), ("RNE", 1), ("DIS", 0), ("DIS", 1)]);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+//!
+//! The modules stand in layers; a module imports only from its own layer or the layers below
+//! it, never from one above (bottom first):
+//!
+//! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`lock`], [`spec_ron`], [`stderr`],
+//!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`], [`trial_json`];
+//! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
+//! 3. design: [`grid`], the cells of `--vary`;
+//! 4. run: [`executor`], [`stale_outputs`], [`sweep`], [`shard`], [`slurm`].
+
+// 1. base
+pub mod atomic;
+pub mod checked_log;
+pub mod fingerprint;
+pub mod journal;
+pub mod lock;
+pub mod method_factory;
+pub mod metrics;
+pub mod progress;
+pub mod spec_ron;
+pub mod stderr;
+pub mod trial_json;
+pub mod vary;
+// 2. data
+pub mod data;
+// 3. design
+pub mod grid;
+// 4. run
+pub mod executor;
+pub mod shard;
+pub mod slurm;
+pub mod stale_outputs;
+pub mod sweep;
