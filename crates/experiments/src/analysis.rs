@@ -72,7 +72,7 @@ pub struct CellAnalysis {
     /// targets.
     pub pooled: Vec<(Target, f64)>,
     /// Per entry of [`CellAnalysis::pooled`], how many trials its statistic left out (a
-    /// metric undefined there: [`crate::calibrate::Statistic::left_out`]), of
+    /// metric undefined there: [`crate::targets::Statistic::left_out`]), of
     /// [`CellAnalysis::trials`].
     pub pooled_left_out: Vec<usize>,
     /// The cell's trials (every method's).

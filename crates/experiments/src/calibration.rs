@@ -12,7 +12,7 @@
 //! `docs/calibration.md`. They are defined once, in `scenarios/paper-targets.ron` (embedded
 //! here as [`PAPER_TARGETS_RON`], the default of `usar calibrate`): eighteen statistics (nine
 //! means and ratios of means, three pooled within-method standard deviations and six of the
-//! trials' structure, [`crate::calibrate::Statistic`]) over the tasks named `easy` and `hard`; for a scenario
+//! trials' structure, [`crate::targets::Statistic`]) over the tasks named `easy` and `hard`; for a scenario
 //! without them every statistic is NaN ([`applies_to`] says so).
 
 use std::path::Path;
@@ -21,9 +21,9 @@ use std::sync::OnceLock;
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario::{Scenario, path_text};
 
-use crate::calibrate::TargetsError;
-pub use crate::calibrate::{Target, Targets};
 use crate::claims::{Claims, ClaimsError};
+use crate::targets::TargetsError;
+pub use crate::targets::{Target, Targets};
 
 /// What a sweep's reports (`report.md`, `grid.md`, the terminal summary) say beyond the
 /// scenario's own results. Default: nothing (no targets, no claims).
@@ -227,7 +227,7 @@ pub fn check(results: &[TrialResult]) -> Vec<(Target, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::calibrate::statistic::tests::trial;
+    use crate::targets::statistic::tests::trial;
 
     #[test]
     fn the_paper_targets_are_the_eighteen_of_the_sheet() {

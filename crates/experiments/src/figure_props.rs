@@ -11,10 +11,7 @@ use usar_sim::mission::TrialResult;
 
 use crate::analysis::CellAnalysis;
 use crate::calibrate::figure::losses_svg;
-use crate::calibrate::metric_ref::MetricRef;
-use crate::calibrate::statistic::tests::trial;
 use crate::calibrate::targets_figure::targets_svg;
-use crate::calibrate::{Band, Statistic, Target};
 use crate::claims::paper_claims;
 use crate::figures::{FIGURES, figure_svg};
 use crate::grid_outputs::grid_figures::{heat_maps, line_chart};
@@ -22,6 +19,9 @@ use crate::multiverse::plan::tests::plan;
 use crate::multiverse::record::tests::record;
 use crate::multiverse::spec_curve::spec_curve_svg;
 use crate::stats::Summary;
+use crate::targets::metric_ref::MetricRef;
+use crate::targets::statistic::tests::trial;
+use crate::targets::{Band, Statistic, Target};
 
 /// How long all the cases of one figure kind may take together (debug build).
 const LIMIT: Duration = Duration::from_secs(25);

@@ -30,12 +30,14 @@
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it (and from the sweep library), never from one above (bottom first):
 //!
-//! 1. base: [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`];
-//! 2. fit: [`calibrate`], [`calibration`];
-//! 3. analyse: [`claims`], [`analysis`];
+//! 1. base: [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`], [`targets`]
+//!    (the vocabulary of calibration targets);
+//! 2. judge: [`claims`], [`calibration`] (what a report compares with);
+//! 3. analyse: [`analysis`];
 //! 4. write: [`csv_tables`], [`figures`], [`report`], [`grid_outputs`], [`console`],
 //!    [`output`], [`render`], [`replay`];
-//! 5. study: [`multiverse`].
+//! 5. fit: [`calibrate`];
+//! 6. study: [`multiverse`].
 
 // 1. base
 pub mod chart;
@@ -43,12 +45,12 @@ pub mod rounds_table;
 pub mod source_date;
 pub mod stats;
 pub mod table;
-// 2. fit
-pub mod calibrate;
+pub mod targets;
+// 2. judge
 pub mod calibration;
+pub mod claims;
 // 3. analyse
 pub mod analysis;
-pub mod claims;
 // 4. write
 pub mod console;
 pub mod csv_tables;
@@ -58,7 +60,9 @@ pub mod output;
 pub mod render;
 pub mod replay;
 pub mod report;
-// 5. study
+// 5. fit
+pub mod calibrate;
+// 6. study
 pub mod multiverse;
 
 #[cfg(test)]

@@ -15,10 +15,10 @@ use serde::{Deserialize, Serialize};
 use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::{Scenario, ScenarioSpec, trial_steps};
 
-use super::float_text;
 use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
+use crate::targets::float_text;
 use usar_sweep::data::hooks::SweepHooks;
 use usar_sweep::executor::{CellPlan, Job, Runner, run_trial};
 use usar_sweep::method_factory::trust_model;

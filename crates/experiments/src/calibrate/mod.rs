@@ -5,49 +5,42 @@
 //! ([`FreeField`], `--free FIELD=LO..HI[:log][,factor]`) with Nelder-Mead ([`optimizer`]) or
 //! CMA-ES ([`cma_es`]) on normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
 //! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss()`]
-//! against the [`Targets`] (`TARGETS.ron`, [`targets`]). Every evaluation is appended to
+//! against the [`Targets`] (`TARGETS.ron`, [`crate::targets`]). Every evaluation is appended to
 //! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
 //! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
 //! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
-//! Files depend one way (each imports only from those before it): band, metric_ref,
-//! statistic, targets, loss, free, setup, float_text, evaluate, optimizer, cma_es, trace,
-//! outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs, searcher, run, summary.
+//! Files depend one way (each imports only from those before it, and from the targets'
+//! vocabulary below, [`crate::targets`]): loss, free, setup, evaluate, optimizer, cma_es,
+//! trace, outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs,
+//! searcher, run, summary.
 
-pub mod band;
 pub mod cma_es;
 pub mod evaluate;
 pub mod figure;
-pub mod float_text;
 pub mod free;
 pub mod loss;
 pub mod markdown;
-pub mod metric_ref;
 pub mod optimizer;
 pub mod outcome;
 pub mod outputs;
 pub mod progress;
-pub(crate) mod ron_file;
 mod run;
 mod searcher;
 pub mod setup;
-pub mod statistic;
 pub mod summary;
-pub mod targets;
 pub mod targets_figure;
 pub mod trace;
 pub mod tradeoff_figure;
 
-pub use band::Band;
 pub use evaluate::{Evaluation, Evaluator, TrialSet};
 pub use free::{FreeError, FreeField, parse_free, round_significant};
 pub use loss::{loss, target_loss};
-pub use metric_ref::MetricRef;
 pub use optimizer::{Optimizer, StopReason};
 pub use outcome::{CalibrationOutcome, CheckOutcome, TargetCheck};
 pub use progress::{EvaluationHook, Progress};
 pub use run::calibrate;
 pub use setup::{CalibrationSetup, Checked, SetupError};
-pub use statistic::Statistic;
 pub use summary::summary_text;
-pub use targets::{Target, Targets, TargetsError};
+// The targets it fits to (a vocabulary below the calibration, `crate::targets`).
+pub use crate::targets::{Band, MetricRef, Statistic, Target, Targets, TargetsError};

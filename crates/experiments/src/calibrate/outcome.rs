@@ -7,8 +7,8 @@ use usar_sim::scenario::{Scenario, ScenarioSpec};
 
 use super::evaluate::Evaluation;
 use super::optimizer::StopReason;
-use super::targets::Target;
 use super::trace::TraceHeader;
+use crate::targets::file::Target;
 
 /// The calibrated scenario, written at the end.
 pub const CALIBRATED_FILE: &str = "calibrated.ron";

@@ -10,8 +10,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::outcome::CalibrationOutcome;
-use super::targets::Target;
 use crate::chart::{axis_range, draw_err, plotted, tick_label};
+use crate::targets::file::Target;
 
 /// Panels per row.
 const COLUMNS: usize = 4;
@@ -165,8 +165,8 @@ fn panel(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::calibrate::metric_ref::MetricRef;
     use crate::calibrate::{Band, Statistic};
+    use crate::targets::metric_ref::MetricRef;
 
     #[test]
     fn a_panel_spans_its_band_and_every_finite_value() {

@@ -27,7 +27,7 @@ use usar_sim::scenario::path_text;
 
 use super::evaluate::Evaluation;
 use super::free::FreeField;
-use super::targets::Target;
+use crate::targets::file::Target;
 use usar_sweep::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
 
 /// File name of the trace in the output folder.
@@ -291,9 +291,9 @@ impl Trace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::calibrate::band::Band;
-    use crate::calibrate::metric_ref::MetricRef;
-    use crate::calibrate::statistic::Statistic;
+    use crate::targets::band::Band;
+    use crate::targets::metric_ref::MetricRef;
+    use crate::targets::statistic::Statistic;
 
     pub(crate) fn header() -> TraceHeader {
         TraceHeader {

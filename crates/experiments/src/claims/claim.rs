@@ -17,7 +17,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::calibrate::metric_ref::MetricRef;
+use crate::targets::metric_ref::MetricRef;
 
 /// The significance level of a claim that does not give one (one-sided): 0.05.
 pub const DEFAULT_ALPHA: f64 = 0.05;

@@ -22,7 +22,7 @@ use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{SourceLocation, did_you_mean};
 
 use super::claim::{Claim, Rivals, method_key};
-use crate::calibrate::ron_file;
+use crate::targets::ron_file;
 use usar_sim::scenario::SourceMap;
 
 /// Longest claims file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused

@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
-use crate::calibrate::ron_file;
+use crate::targets::ron_file;
 use usar_sim::scenario::SourceMap;
 use usar_sweep::vary::{FieldPath, Override};
 

@@ -9,7 +9,7 @@
 //! claim of the multiverse's claims (`claim, verdict, effect, ci_low, ci_high, p, rival`)
 //! and one `row = target` per calibration target (`metric` the target's name, `mean` its
 //! statistic over the comparison's trials, `verdict` `in`, `OUT`, `in (reported)` or `OUT
-//! (reported)` as [`crate::calibrate::Target::mark`]); every row repeats the universe's
+//! (reported)` as [`crate::targets::Target::mark`]); every row repeats the universe's
 //! columns up to `status`. Cells a row does not use are
 //! empty; so are undefined numbers (NaN), while an infinite loss is `inf`. Universes come in
 //! index order, methods in `--methods` order, metrics in `summary.csv` order. Numbers are

@@ -29,7 +29,8 @@ use serde::{Deserialize, Serialize};
 
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
-use crate::calibrate::{Evaluator, FreeField, float_text};
+use crate::calibrate::{Evaluator, FreeField};
+use crate::targets::float_text;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::checked_log::{record_line, verified_record};
 use usar_sweep::vary::apply_overrides;

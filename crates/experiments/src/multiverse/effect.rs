@@ -12,9 +12,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::calibrate::float_text;
 use crate::claims::{ClaimCheck, Direction};
 use crate::stats::{Summary, welch_interval};
+use crate::targets::float_text;
 
 /// One claim's effect and verdict in one universe.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

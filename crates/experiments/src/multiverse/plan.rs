@@ -418,7 +418,7 @@ pub(crate) mod tests {
                 axes,
                 targets: vec![Target {
                     name: "rounds".into(),
-                    statistic: Statistic::Mean(crate::calibrate::MetricRef("rounds".into())),
+                    statistic: Statistic::Mean(crate::targets::MetricRef("rounds".into())),
                     value: 6.0,
                     band: Band::PlusMinus(1.0),
                     report_only: false,

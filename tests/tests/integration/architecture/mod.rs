@@ -94,10 +94,17 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
         CrateLayout {
             name: "experiments",
             layers: &[
-                // Base: numbers, tables and charts that know nothing of a sweep.
-                &["chart", "source_date", "stats", "rounds_table", "table"],
-                // Fit, analyse, write, study.
-                &["calibrate", "claims", "calibration"],
+                // Base: numbers, tables, charts and the targets' vocabulary.
+                &[
+                    "chart",
+                    "source_date",
+                    "stats",
+                    "rounds_table",
+                    "table",
+                    "targets",
+                ],
+                // Judge, analyse, write; then the studies (fit, multiverse).
+                &["claims", "calibration"],
                 &["analysis"],
                 &[
                     "csv_tables",
@@ -109,6 +116,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "render",
                     "replay",
                 ],
+                &["calibrate"],
                 &["multiverse"],
             ],
             peers: &[],

@@ -22,7 +22,7 @@ pub enum Band {
 }
 
 impl Band {
-    /// The unit of the loss (see [`super::loss()`]), always finite and > 0 for a usable band:
+    /// The unit of the loss (see `calibrate::loss`), always finite and > 0 for a usable band:
     /// half the band's width (`w`, or `high / 2 - low / 2`); for a one-sided band, the
     /// distance from its bound to the target's `value`.
     pub fn half_width(&self, value: f64) -> f64 {
