@@ -33,11 +33,11 @@ test-timed:
 ci:
     bash .ci/run
 
-# The sweep library alone (usar-sweep: no clap, no figures) and experiments without its
-# command line (`default-features = false`): lints and tests.
+# The libraries alone (usar-sweep: no clap, no figures; usar-report: no clap) and experiments
+# without its command line (`default-features = false`): lints and tests.
 lib-only:
-    cargo clippy -p usar-sweep --all-targets -- -D warnings
-    cargo test -p usar-sweep
+    cargo clippy -p usar-sweep -p usar-report --all-targets -- -D warnings
+    cargo test -p usar-sweep -p usar-report
     cargo clippy -p experiments --no-default-features --lib -- -D warnings
 
 # One trial of paper.ron with a grouping method (rne, dis, eng, hp_dis).

@@ -11,7 +11,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rne_core::grouping::{GroupingMethod, builtin_name};
 
-use experiments::claims::{Claim, Claims};
+use usar_report::claims::{Claim, Claims};
 use usar_sweep::sweep::{MethodFactory, TrialObserverFactory};
 
 use crate::errors::value_error;

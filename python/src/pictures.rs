@@ -1,5 +1,5 @@
 //! `usar.render` and `usar.replay`: the picture of `usar render` and the page of `usar
-//! replay`, written by the same library code (`experiments::render`, `experiments::replay`),
+//! replay`, written by the same library code (`usar_report::render`, `usar_report::replay`),
 //! for a built-in or a Python grouping method.
 
 use std::path::PathBuf;
@@ -9,8 +9,8 @@ use std::sync::atomic::AtomicBool;
 use pyo3::prelude::*;
 use usar_sim::mission::{MissionError, Simulation};
 
-use experiments::render::{PathRecorder, render_svg};
-use experiments::replay::{ReplayRecorder, SampleClock, default_hz, write_replay};
+use usar_report::render::{PathRecorder, render_svg};
+use usar_report::replay::{ReplayRecorder, SampleClock, default_hz, write_replay};
 
 use crate::detached::run_detached;
 use crate::errors::{anyhow_value_error, value_error};

@@ -16,12 +16,12 @@ use experiments::calibrate::{
     CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, calibrate,
     parse_free,
 };
-use experiments::calibration::targets_or_paper;
-use experiments::claims::Claims;
 use experiments::multiverse::{
     Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
 };
-use experiments::source_date::source_date;
+use usar_report::calibration::targets_or_paper;
+use usar_report::claims::Claims;
+use usar_report::source_date::source_date;
 use usar_sweep::data::hooks::Stopped;
 
 use crate::detached::run_detached;

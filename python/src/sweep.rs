@@ -11,10 +11,10 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use usar_sim::mission::TrialResult;
 
-use experiments::analysis::Analysis;
-use experiments::calibration::ReportOptions;
-use experiments::csv_tables::trials_long_csv;
-use experiments::output::write_outputs;
+use usar_report::analysis::Analysis;
+use usar_report::calibration::ReportOptions;
+use usar_report::csv_tables::trials_long_csv;
+use usar_report::output::write_outputs;
 use usar_sweep::grid::build_grid;
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 use usar_sweep::sweep::{Failure, SweepConfig, run_in_memory};

@@ -10,9 +10,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use experiments::analysis::Analysis;
-use experiments::output::write_outputs;
 use rne_core::grouping::{METHOD_NAMES, method_from_name};
+use usar_report::analysis::Analysis;
+use usar_report::output::write_outputs;
 use usar_sim::mission::Simulation;
 use usar_sweep::sweep::{SweepConfig, run_sweep, trust_model};
 

@@ -14,10 +14,10 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use experiments::analysis::Analysis;
-use experiments::output::write_outputs;
 use rne_core::grouping::{GroupingMethod, HierarchicalRne};
 use rne_core::{Alignment, RneOptions, TrustModel};
+use usar_report::analysis::Analysis;
+use usar_report::output::write_outputs;
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario;
 use usar_sweep::sweep::{MethodFactory, SweepConfig, run_sweep};

@@ -55,7 +55,7 @@ pub struct SweepHeader {
     pub format: u32,
     /// Version of the `experiments` crate that wrote the journal.
     pub version: String,
-    /// The build of `usar` that wrote the journal (`experiments::report::software_build`: the git
+    /// The build of `usar` that wrote the journal (`usar_report::report::software_build`: the git
     /// commit, with a hash of the uncommitted changes when there are any; empty when built
     /// outside a git checkout). Another build may simulate differently, so its journal is
     /// neither continued nor merged: before format 5, a sweep rerun after the model's code

@@ -98,7 +98,7 @@ impl TrialContext {
 /// methods and `T` trials in one grid cell (`M + M x T x C` with `C` cells), and only the `M`
 /// name checks on a resume of a finished sweep. A calibration checks the names once and
 /// builds a method per trial of each evaluation; a multiverse does both for each universe.
-/// Replays of a sweep's trials (`experiments::replay::SweepReplays`) call it again to match names
+/// Replays of a sweep's trials (`usar_report::replay::SweepReplays`) call it again to match names
 /// and to build a trial they run once more. The factory is shared by the worker threads,
 /// hence `Send + Sync`; the methods it builds are not shared (see `GroupingMethod`).
 #[derive(Clone)]

@@ -38,7 +38,7 @@ pub enum Quantity {
 
 impl Quantity {
     /// Whether the quantity can never be negative, so that its confidence intervals stop at 0
-    /// (`experiments::stats::Summary::of_non_negative`). Every quantity
+    /// (`usar_report::stats::Summary::of_non_negative`). Every quantity
     /// measured now is a count, a cost or a length of time; a new quantity must say.
     pub fn is_non_negative(self) -> bool {
         match self {

@@ -5,7 +5,7 @@
 //!
 //! Only a folder with a journal (its own, or a shard's under `shards/`, whose merge wrote
 //! there) is touched, and in it only names a sweep writes
-//! (`experiments::output::write_outputs`, the grid's files and replays, `experiments::replay`): at the
+//! (`usar_report::output::write_outputs`, the grid's files and replays, `usar_report::replay`): at the
 //! top the tables, figures, reports, replays and grid files (never a `scenario.ron`, which a
 //! sweep writes only into grid cells), and the cell folders the journals' headers name, each
 //! emptied of its outputs and removed only once empty. Anything else stays, the shards'

@@ -11,10 +11,10 @@
 //! not that they hold; so are the six structure targets, which must be defined.
 
 use experiments::calibrate::{FreeField, Targets};
-use experiments::calibration::check;
 use experiments::multiverse::{Axes, MultiverseSetup};
 use integration_tests::{method, paper, scenario_path};
 use rayon::prelude::*;
+use usar_report::calibration::check;
 use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario::Scenario;
 
@@ -212,7 +212,7 @@ fn the_paper_axes_check_against_paper_ron() {
     }
     let text = std::fs::read_to_string(scenario_path("paper.ron")).unwrap();
     let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron").unwrap();
-    let targets = experiments::calibration::paper_targets().clone();
+    let targets = usar_report::calibration::paper_targets().clone();
     let free = vec![
         FreeField::parse("mission.hp_pct_per_step_in_radiation=0.002..0.02:log").unwrap(),
         FreeField::parse("mission.search_time_budget_s=6..30").unwrap(),
@@ -233,9 +233,9 @@ fn the_paper_axes_check_against_paper_ron() {
 #[test]
 fn the_claims_files_parse_and_fit_paper_ron() {
     let claims =
-        experiments::claims::Claims::load(std::path::Path::new(&scenario_path("paper-claims.ron")))
+        usar_report::claims::Claims::load(std::path::Path::new(&scenario_path("paper-claims.ron")))
             .expect("paper-claims.ron parses");
-    assert_eq!(claims, *experiments::claims::paper_claims());
+    assert_eq!(claims, *usar_report::claims::paper_claims());
     let paper = usar_sim::scenario::load(scenario_path("paper.ron")).unwrap();
     claims.check_tasks(&paper.task_names()).unwrap();
     claims.check_methods(&[]).unwrap();

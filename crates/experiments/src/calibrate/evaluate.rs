@@ -18,7 +18,7 @@ use usar_sim::scenario::{Scenario, ScenarioSpec, trial_steps};
 use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
-use crate::targets::float_text;
+use usar_report::targets::float_text;
 use usar_sweep::data::hooks::SweepHooks;
 use usar_sweep::executor::{CellPlan, Job, Runner, run_trial};
 use usar_sweep::method_factory::trust_model;

@@ -10,7 +10,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::outcome::CalibrationOutcome;
-use crate::chart::{FIGURE_SIZE, draw_err};
+use usar_report::chart::{FIGURE_SIZE, draw_err};
 
 /// The axis value of `loss`: `log10(1 + loss)` (0 for 0).
 fn axis(loss: f64) -> f64 {

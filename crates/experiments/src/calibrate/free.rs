@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use usar_sim::scenario::ScenarioSpec;
 
-use crate::targets::float_text::short;
+use usar_report::targets::float_text::short;
 use usar_sweep::vary::{
     FieldPath, FieldValue, Override, RonValue, apply_overrides, brief, spec_json,
 };

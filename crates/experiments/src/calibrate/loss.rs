@@ -3,7 +3,7 @@
 //! is NaN or infinite (never NaN, never a crash). Targets marked
 //! [`Target::report_only`] add nothing.
 
-use crate::targets::file::Target;
+use usar_report::targets::file::Target;
 
 /// One target's share of the loss for statistic `x`: `(distance outside / half-width)^2`, 0
 /// inside the band (and only there: a distance so small that its square underflows counts
@@ -43,9 +43,9 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::targets::band::Band;
-    use crate::targets::metric_ref::MetricRef;
-    use crate::targets::statistic::Statistic;
+    use usar_report::targets::band::Band;
+    use usar_report::targets::metric_ref::MetricRef;
+    use usar_report::targets::statistic::Statistic;
 
     fn target(value: f64, band: Band) -> Target {
         Target {

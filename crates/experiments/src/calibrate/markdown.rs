@@ -8,7 +8,7 @@ use super::outcome::{
     CalibrationOutcome, FIGURE_FILE, STATISTICS_FIGURE_FILE, TRACE_CSV_FILE, TargetCheck,
 };
 use super::progress::loss_text;
-use crate::table::num;
+use usar_report::table::num;
 
 /// The text of `calibration.md`.
 pub fn calibration_md(o: &CalibrationOutcome) -> String {

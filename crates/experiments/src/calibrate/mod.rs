@@ -5,13 +5,13 @@
 //! ([`FreeField`], `--free FIELD=LO..HI[:log][,factor]`) with Nelder-Mead ([`optimizer`]) or
 //! CMA-ES ([`cma_es`]) on normalised coordinates; each point is an [`evaluate`]d sweep (every method x trials from
 //! one base seed, in parallel) whose [`Statistic`]s, pooled over methods, give the [`loss()`]
-//! against the [`Targets`] (`TARGETS.ron`, [`crate::targets`]). Every evaluation is appended to
+//! against the [`Targets`] (`TARGETS.ron`, [`usar_report::targets`]). Every evaluation is appended to
 //! the checksummed [`trace`] as it ends, so a killed calibration continues where it stopped;
 //! at the end the [`outputs`] are written atomically: `calibrated.ron`, `trace.csv`,
 //! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
 //! Files depend one way (each imports only from those before it, and from the targets'
-//! vocabulary below, [`crate::targets`]): loss, free, setup, evaluate, optimizer, cma_es,
+//! vocabulary below, [`usar_report::targets`]): loss, free, setup, evaluate, optimizer, cma_es,
 //! trace, outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs,
 //! searcher, run, summary.
 
@@ -42,5 +42,5 @@ pub use progress::{EvaluationHook, Progress};
 pub use run::calibrate;
 pub use setup::{CalibrationSetup, Checked, SetupError};
 pub use summary::summary_text;
-// The targets it fits to (a vocabulary below the calibration, `crate::targets`).
-pub use crate::targets::{Band, MetricRef, Statistic, Target, Targets, TargetsError};
+// The targets it fits to (a vocabulary below the calibration, `usar_report::targets`).
+pub use usar_report::targets::{Band, MetricRef, Statistic, Target, Targets, TargetsError};

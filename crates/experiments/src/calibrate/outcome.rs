@@ -8,7 +8,7 @@ use usar_sim::scenario::{Scenario, ScenarioSpec};
 use super::evaluate::Evaluation;
 use super::optimizer::StopReason;
 use super::trace::TraceHeader;
-use crate::targets::file::Target;
+use usar_report::targets::file::Target;
 
 /// The calibrated scenario, written at the end.
 pub const CALIBRATED_FILE: &str = "calibrated.ron";

@@ -18,7 +18,7 @@ use super::outcome::{
 };
 use super::targets_figure::statistics_svg;
 use super::tradeoff_figure::tradeoff_svg;
-use crate::chart::figure_or_warn;
+use usar_report::chart::figure_or_warn;
 use usar_sweep::atomic::FileSet;
 use usar_sweep::spec_ron::spec_to_ron;
 

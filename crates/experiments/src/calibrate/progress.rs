@@ -6,7 +6,7 @@ use std::fmt;
 use std::sync::Arc;
 
 use super::evaluate::Evaluation;
-use crate::table::num;
+use usar_report::table::num;
 use usar_sweep::progress::{ProgressBar, count_bar};
 
 /// Called after each new evaluation is in the trace, with it and how many this run has made

@@ -7,7 +7,7 @@ use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 use super::free::{FreeError, FreeField, check_distinct};
 use super::optimizer::Optimizer;
-use crate::targets::file::{Targets, TargetsError};
+use usar_report::targets::file::{Targets, TargetsError};
 use usar_sweep::data::hooks::CalibrationHooks;
 use usar_sweep::data::limits::{MAX_SWEEP_TRIALS, max_threads};
 use usar_sweep::method_factory::{MethodFactory, canonical_method, trust_model};

@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 use super::outcome::{CalibrationOutcome, TargetCheck};
 use super::progress::loss_text;
-use crate::table::num;
+use usar_report::table::num;
 
 /// The summary's text, lines ending in `\n`.
 pub fn summary_text(o: &CalibrationOutcome) -> String {

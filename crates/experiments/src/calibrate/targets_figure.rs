@@ -10,8 +10,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::outcome::CalibrationOutcome;
-use crate::chart::{axis_range, draw_err, plotted, tick_label};
-use crate::targets::file::Target;
+use usar_report::chart::{axis_range, draw_err, plotted, tick_label};
+use usar_report::targets::file::Target;
 
 /// Panels per row.
 const COLUMNS: usize = 4;
@@ -166,7 +166,7 @@ fn panel(
 mod tests {
     use super::*;
     use crate::calibrate::{Band, Statistic};
-    use crate::targets::metric_ref::MetricRef;
+    use usar_report::targets::metric_ref::MetricRef;
 
     #[test]
     fn a_panel_spans_its_band_and_every_finite_value() {

@@ -27,7 +27,7 @@ use usar_sim::scenario::path_text;
 
 use super::evaluate::Evaluation;
 use super::free::FreeField;
-use crate::targets::file::Target;
+use usar_report::targets::file::Target;
 use usar_sweep::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
 
 /// File name of the trace in the output folder.
@@ -44,7 +44,7 @@ pub struct TraceHeader {
     pub format: u32,
     /// Version of the `experiments` crate.
     pub version: String,
-    /// The build of `usar` ([`crate::report::software_build`]): another may simulate
+    /// The build of `usar` ([`usar_report::report::software_build`]): another may simulate
     /// differently.
     pub build: String,
     /// The base scenario's name.
@@ -291,9 +291,9 @@ impl Trace {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::targets::band::Band;
-    use crate::targets::metric_ref::MetricRef;
-    use crate::targets::statistic::Statistic;
+    use usar_report::targets::band::Band;
+    use usar_report::targets::metric_ref::MetricRef;
+    use usar_report::targets::statistic::Statistic;
 
     pub(crate) fn header() -> TraceHeader {
         TraceHeader {

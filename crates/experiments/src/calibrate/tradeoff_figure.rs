@@ -12,8 +12,8 @@ use plotters::prelude::*;
 
 use super::loss::target_loss;
 use super::outcome::CalibrationOutcome;
-use crate::chart::{FIGURE_SIZE, axis_range, draw_err, plotted};
-use crate::targets::file::Target;
+use usar_report::chart::{FIGURE_SIZE, axis_range, draw_err, plotted};
+use usar_report::targets::file::Target;
 
 /// A target's distance outside its band at statistic `x`, in band units (the root of its
 /// share of the loss); +inf for an undefined statistic.

@@ -32,7 +32,7 @@ use serde::{Deserialize, Serialize};
 use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
-use crate::targets::ron_file;
+use usar_report::targets::ron_file;
 use usar_sim::scenario::SourceMap;
 use usar_sweep::vary::{FieldPath, Override};
 

@@ -10,7 +10,7 @@
 //! ([`super::validate::check_axis_targets`]).
 
 use super::axes::{Alternative, Axes, AxesError};
-use crate::targets::file::{Targets, TargetsError};
+use usar_report::targets::file::{Targets, TargetsError};
 
 impl Axes {
     /// The targets of a universe that takes alternative `choices[i]` of axis `i`: `base` with

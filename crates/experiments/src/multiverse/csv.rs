@@ -9,7 +9,7 @@
 //! claim of the multiverse's claims (`claim, verdict, effect, ci_low, ci_high, p, rival`)
 //! and one `row = target` per calibration target (`metric` the target's name, `mean` its
 //! statistic over the comparison's trials, `verdict` `in`, `OUT`, `in (reported)` or `OUT
-//! (reported)` as [`crate::targets::Target::mark`]); every row repeats the universe's
+//! (reported)` as [`usar_report::targets::Target::mark`]); every row repeats the universe's
 //! columns up to `status`. Cells a row does not use are
 //! empty; so are undefined numbers (NaN), while an infinite loss is `inf`. Universes come in
 //! index order, methods in `--methods` order, metrics in `summary.csv` order. Numbers are
@@ -20,7 +20,7 @@ use anyhow::{Context, Result};
 use super::columns::{LEADING, MIDDLE, TRAILING};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::csv_tables::stat_cell;
+use usar_report::csv_tables::stat_cell;
 
 /// A number for the file: shortest round-trip form, `inf`/`-inf`, empty for NaN.
 fn num(x: f64) -> String {

@@ -46,7 +46,7 @@
 
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::claims::Claim;
+use usar_report::claims::Claim;
 
 /// One input's share of a claim's effect variance.
 #[derive(Debug, Clone, PartialEq)]
@@ -379,7 +379,7 @@ mod tests {
     }
 
     fn claim1() -> Claim {
-        crate::claims::paper_claims().claims()[0].clone()
+        usar_report::claims::paper_claims().claims()[0].clone()
     }
 
     #[test]

@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::calibrate::{Evaluator, FreeField};
-use crate::targets::float_text;
+use usar_report::targets::float_text;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::checked_log::{record_line, verified_record};
 use usar_sweep::vary::apply_overrides;

@@ -1,7 +1,7 @@
 //! A claim's effect in one universe: the claim's subject minus its strongest rival, signed so
 //! that a positive effect is the claim's direction, with the 95 % Welch confidence interval
-//! of that difference ([`crate::stats::welch_interval`]), and the verdict and p of
-//! [`crate::claims::check_claim`] as the sweep reports give them.
+//! of that difference ([`usar_report::stats::welch_interval`]), and the verdict and p of
+//! [`usar_report::claims::check_claim`] as the sweep reports give them.
 //!
 //! The strongest rival is the other method with the best mean in the claim's direction (the
 //! highest for a claim that the subject is highest, the lowest for one that it is lowest;
@@ -12,16 +12,16 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::claims::{ClaimCheck, Direction};
-use crate::stats::{Summary, welch_interval};
-use crate::targets::float_text;
+use usar_report::claims::{ClaimCheck, Direction};
+use usar_report::stats::{Summary, welch_interval};
+use usar_report::targets::float_text;
 
 /// One claim's effect and verdict in one universe.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ClaimEffect {
-    /// The claim's id (`1`, `4a`; [`crate::claims::Claim::id`]).
+    /// The claim's id (`1`, `4a`; [`usar_report::claims::Claim::id`]).
     pub claim: String,
-    /// The verdict in words ([`crate::claims::Verdict::words`]: `holds`, `not significant`,
+    /// The verdict in words ([`usar_report::claims::Verdict::words`]: `holds`, `not significant`,
     /// `does not hold`, `not tested`).
     pub verdict: String,
     /// The strongest rival (display name), `None` when no other method has a value.
@@ -85,7 +85,7 @@ mod tests {
     use usar_sim::mission::TrialResult;
 
     use super::*;
-    use crate::claims::{Claim, check_claim, paper_claims};
+    use usar_report::claims::{Claim, check_claim, paper_claims};
 
     /// The paper's claim `i` (0-based, file order).
     fn paper(i: usize) -> &'static Claim {
@@ -157,9 +157,9 @@ mod tests {
             t.rescued[0] = 0;
         }
         let mut claim = paper(3).clone();
-        claim.rivals = crate::claims::Rivals::Only(vec!["eng".into()]);
+        claim.rivals = usar_report::claims::Rivals::Only(vec!["eng".into()]);
         let check = check_claim(&claim, &r, &methods(), &tasks());
-        assert_eq!(check.verdict, crate::claims::Verdict::NotTested);
+        assert_eq!(check.verdict, usar_report::claims::Verdict::NotTested);
         assert_eq!(
             check.reason.as_deref(),
             Some("no trial of its rival ENG has a value of energy_per_hard_rescuee_pct")
@@ -167,7 +167,7 @@ mod tests {
         // Against every rival, ENG is left out and DIS decides.
         let check = check_claim(paper(3), &r, &methods(), &tasks());
         assert_eq!(check.comparisons.len(), 1);
-        assert_eq!(check.verdict, crate::claims::Verdict::Holds);
+        assert_eq!(check.verdict, usar_report::claims::Verdict::Holds);
     }
 
     #[test]

@@ -342,7 +342,7 @@ fn solve(g: &DMatrix<f64>, r: &DVector<f64>, lambda: f64) -> Option<DVector<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::targets::Targets;
+    use usar_report::targets::Targets;
 
     fn free() -> Vec<FreeField> {
         vec![

@@ -10,7 +10,7 @@ use super::design_run::read_design;
 use super::emulator::Emulator;
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::targets::float_text::short;
+use usar_report::targets::float_text::short;
 
 /// The section, or `None` for a multiverse without a design.
 pub fn design_section(

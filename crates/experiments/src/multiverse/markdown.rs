@@ -17,7 +17,7 @@ use super::sensitivity_md::{deciding_choices, near_admissible};
 use super::spec_curve::spec_curve_file;
 use super::tally::{Tally, VerdictCount, share};
 use crate::calibrate::progress::loss_text;
-use crate::claims::Claim;
+use usar_report::claims::Claim;
 
 /// The figure of each target's statistic per universe (`super::outputs` draws it).
 pub const TARGETS_FIGURE_FILE: &str = "targets.svg";

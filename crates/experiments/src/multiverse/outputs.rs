@@ -15,8 +15,8 @@ use super::record::UniverseRecord;
 use super::sensitivity_figure::{sensitivity_file, sensitivity_svg};
 use super::spec_curve::{spec_curve_file, spec_curve_svg};
 use crate::calibrate::targets_figure::targets_svg;
-use crate::chart::figure_or_warn;
-use crate::claims::Claim;
+use usar_report::chart::figure_or_warn;
+use usar_report::claims::Claim;
 use usar_sweep::atomic::FileSet;
 
 /// The long-form table.

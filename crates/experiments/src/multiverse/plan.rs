@@ -16,7 +16,7 @@ use super::axes::Axes;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
 use crate::calibrate::{FreeField, Optimizer, Target};
-use crate::claims::Claim;
+use usar_report::claims::Claim;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::fingerprint::{fnv1a64_hex, scenario_hash};
 use usar_sweep::shard::{Shard, shell_join};
@@ -35,7 +35,7 @@ pub struct MultiverseIdentity {
     pub format: u32,
     /// The version of `usar`.
     pub version: String,
-    /// The build of `usar` (`git describe`, [`crate::report::software_build`]): another build
+    /// The build of `usar` (`git describe`, [`usar_report::report::software_build`]): another build
     /// may simulate differently.
     pub build: String,
     /// The base scenario's name.
@@ -107,7 +107,7 @@ fn optimizer_name(o: Optimizer) -> Option<String> {
 
 /// The paper's claims, for a plan written before claims files ([`MultiverseIdentity::claims`]).
 fn paper_claims_list() -> Vec<Claim> {
-    crate::claims::paper_claims().claims().to_vec()
+    usar_report::claims::paper_claims().claims().to_vec()
 }
 
 /// A multiverse's plan: its identity and how it was asked for.
@@ -418,12 +418,12 @@ pub(crate) mod tests {
                 axes,
                 targets: vec![Target {
                     name: "rounds".into(),
-                    statistic: Statistic::Mean(crate::targets::MetricRef("rounds".into())),
+                    statistic: Statistic::Mean(usar_report::targets::MetricRef("rounds".into())),
                     value: 6.0,
                     band: Band::PlusMinus(1.0),
                     report_only: false,
                 }],
-                claims: crate::claims::paper_claims().claims().to_vec(),
+                claims: usar_report::claims::paper_claims().claims().to_vec(),
                 free: vec![
                     FreeField::parse("mission.energy_pct_per_m=0.05..0.2").unwrap(),
                     FreeField::parse("mission.hp_pct_per_step_in_radiation=0.001..0.02:log")

@@ -4,7 +4,7 @@
 use super::plan::MultiversePlan;
 use super::record::{Status, UniverseRecord};
 use crate::calibrate::progress::loss_text;
-use crate::claims::Verdict;
+use usar_report::claims::Verdict;
 use usar_sweep::progress::{ProgressBar, count_bar};
 
 /// What a multiverse shows while it runs. [`MultiverseProgress::off`] shows nothing;

@@ -8,7 +8,7 @@
 //! ([`super::plan::MultiversePlan::identity_sum`]) and the record's JSON as written, so a
 //! record verifies only for the multiverse that wrote it (an edited record, or one left by a
 //! multiverse of other parameters, does not, and its universe runs again). Numbers that may
-//! not be finite are written as `"NaN"`, `"inf"` ([`crate::targets::float_text`]).
+//! not be finite are written as `"NaN"`, `"inf"` ([`usar_report::targets::float_text`]).
 
 use std::path::{Path, PathBuf};
 
@@ -18,7 +18,7 @@ use usar_sim::scenario::path_text;
 
 use super::effect::ClaimEffect;
 use crate::calibrate::StopReason;
-use crate::targets::float_text;
+use usar_report::targets::float_text;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::checked_log::{record_line, verified_record};
 

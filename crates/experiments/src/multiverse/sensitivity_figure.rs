@@ -10,8 +10,8 @@ use plotters::prelude::*;
 use super::decompose::{Decomposition, Scope, Share, decompose_over};
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::chart::{draw_err, method_color};
-use crate::claims::Claim;
+use usar_report::chart::{draw_err, method_color};
+use usar_report::claims::Claim;
 
 /// The file name of `claim`'s figure: `sensitivity_<id>.svg`.
 pub fn sensitivity_file(claim: &Claim) -> String {
@@ -174,7 +174,7 @@ mod tests {
                 r
             })
             .collect();
-        let claim = &crate::claims::paper_claims().claims()[0];
+        let claim = &usar_report::claims::paper_claims().claims()[0];
         assert_eq!(sensitivity_file(claim), "sensitivity_1.svg");
         let svg = sensitivity_svg(&plan(), &records, claim).unwrap();
         assert!(svg.starts_with("<svg"));

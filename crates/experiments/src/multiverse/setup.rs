@@ -18,7 +18,7 @@ use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed};
 use crate::calibrate::{
     CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets,
 };
-use crate::claims::{Claims, ClaimsError};
+use usar_report::claims::{Claims, ClaimsError};
 use usar_sweep::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
 use usar_sweep::method_factory::MethodFactory;
 use usar_sweep::shard::Shard;

@@ -17,8 +17,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;
-use crate::chart::{axis_range, draw_err, method_color, plotted};
-use crate::claims::{Claim, Verdict};
+use usar_report::chart::{axis_range, draw_err, method_color, plotted};
+use usar_report::claims::{Claim, Verdict};
 
 /// Width of the figure, pixels.
 const WIDTH: u32 = 900;
@@ -316,9 +316,9 @@ fn draw_caption(area: &Root<'_>, records: &[UniverseRecord], pts: &[Point<'_>]) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::claims::paper_claims;
     use crate::multiverse::plan::tests::plan;
     use crate::multiverse::record::tests::record;
+    use usar_report::claims::paper_claims;
 
     #[test]
     fn only_admissible_universes_with_an_effect_are_drawn_in_effect_order() {

@@ -3,7 +3,7 @@
 //! alternative of each axis. `multiverse.md` and the terminal summary show them.
 
 use super::record::{Status, UniverseRecord};
-use crate::claims::{Claim, Verdict};
+use usar_report::claims::{Claim, Verdict};
 
 /// The verdicts a claim got in some universes.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -173,7 +173,7 @@ mod tests {
         let t = Tally::of(
             &[a, b, c, d],
             &[2, 2],
-            crate::claims::paper_claims().claims(),
+            usar_report::claims::paper_claims().claims(),
         );
         assert_eq!(
             (t.universes, t.admissible, t.invalid, t.failed),

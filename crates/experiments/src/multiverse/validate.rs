@@ -13,7 +13,7 @@ use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 
 use super::axes::{Alternative, Axes, AxesError};
 use crate::calibrate::FreeField;
-use crate::targets::file::Targets;
+use usar_report::targets::file::Targets;
 use usar_sweep::vary::{Override, apply_overrides, spec_json, touching};
 
 /// Checks `axes` against the base spec `base` (read from `origin`), the free fields and the

@@ -9,9 +9,9 @@ mod random_method;
 
 use std::path::PathBuf;
 
-use experiments::analysis::Analysis;
-use experiments::output::write_outputs;
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+use usar_report::analysis::Analysis;
+use usar_report::output::write_outputs;
 use usar_sim::scenario;
 use usar_sweep::sweep::{MethodFactory, SweepConfig, run_sweep};
 

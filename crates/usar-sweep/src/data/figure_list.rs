@@ -1,5 +1,5 @@
 //! The figures of a sweep as output names: each figure's file name, title, y-axis label and
-//! quantity ([`FIGURES`]). `experiments::figures` draws them; the reports link them and a new
+//! quantity ([`FIGURES`]). `usar_report::figures` draws them; the reports link them and a new
 //! sweep removes the earlier sweep's copies by these names.
 
 use crate::metrics::Quantity;

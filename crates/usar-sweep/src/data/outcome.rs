@@ -1,6 +1,6 @@
 //! What a sweep produced: per-cell results and failures, how the journal was come by, and
-//! timings ([`SweepOutcome`]). Data only: the analysis (`experiments::analysis`) judges it and
-//! `experiments::output` writes the files.
+//! timings ([`SweepOutcome`]). Data only: the analysis (`usar_report::analysis`) judges it and
+//! `usar_report::output` writes the files.
 
 use std::sync::Arc;
 
@@ -54,7 +54,7 @@ pub enum JournalUse {
     Merged,
 }
 
-/// What a sweep produced: data only (see `experiments::analysis` and `experiments::output`).
+/// What a sweep produced: data only (see `usar_report::analysis` and `usar_report::output`).
 #[derive(Debug, Clone)]
 pub struct SweepOutcome {
     /// The journal header (the sweep's parameters and grid).

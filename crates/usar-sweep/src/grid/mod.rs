@@ -4,7 +4,7 @@
 //! [`build_grid`] makes and validates every cell before anything runs: each cell is the base
 //! scenario spec with the cell's values set ([`crate::vary`]), validated exactly as a scenario
 //! file is; [`names`] makes the cell folders' names. The grid's own files are written by
-//! `experiments::grid_outputs`.
+//! `usar_report::grid_outputs`.
 
 pub mod build;
 pub mod names;

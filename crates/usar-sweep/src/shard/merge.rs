@@ -1,5 +1,5 @@
 //! `usar merge DIR`: the journals of a sweep's shards (`DIR/shards/<I>-of-<N>/`) combined into
-//! one [`SweepOutcome`], from which `experiments::output::write_outputs` writes the same CSV
+//! one [`SweepOutcome`], from which `usar_report::output::write_outputs` writes the same CSV
 //! files as the sweep run on one machine (the records are the same, and every output is
 //! built from records sorted by cell, method order and trial).
 //!

@@ -1,6 +1,6 @@
 //! A sweep: every grouping method for every trial of every grid cell, in parallel, with a
 //! journal that makes it resumable. [`run_sweep`] runs and returns data only; the analysis
-//! (`experiments::analysis`) judges it and `experiments::output` writes the files.
+//! (`usar_report::analysis`) judges it and `usar_report::output` writes the files.
 //!
 //! A sweep without `--vary` is a grid of one cell, the scenario itself. Trial `k` of every
 //! method and every cell starts from the same team (seed `trial_seed(base_seed, k)`: common

@@ -90,9 +90,9 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
         },
     ),
     (
-        "crates/experiments/src/lib.rs",
+        "crates/usar-report/src/lib.rs",
         CrateLayout {
-            name: "experiments",
+            name: "usar-report",
             layers: &[
                 // Base: numbers, tables, charts and the targets' vocabulary.
                 &[
@@ -102,8 +102,9 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "rounds_table",
                     "table",
                     "targets",
+                    "testing",
                 ],
-                // Judge, analyse, write; then the studies (fit, multiverse).
+                // Judge, analyse, write.
                 &["claims", "calibration"],
                 &["analysis"],
                 &[
@@ -116,9 +117,16 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "render",
                     "replay",
                 ],
-                &["calibrate"],
-                &["multiverse"],
             ],
+            peers: &[],
+        },
+    ),
+    (
+        "crates/experiments/src/lib.rs",
+        CrateLayout {
+            name: "experiments",
+            // The studies: a calibration, then the multiverse that runs one per universe.
+            layers: &[&["calibrate"], &["multiverse"]],
             peers: &[],
         },
     ),

@@ -23,7 +23,7 @@ use experiments::calibrate::setup::{
 
 use experiments::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, summary_text};
 
-use experiments::calibration::targets_or_paper;
+use usar_report::calibration::targets_or_paper;
 
 use usar_sweep::shard::shell_join;
 
@@ -32,7 +32,7 @@ use usar_sweep::sweep::default_out_dir_of;
 use crate::shared::optimizer_arg::OptimizerArg;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
-use experiments::source_date::source_date;
+use usar_report::source_date::source_date;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -252,7 +252,7 @@ pub fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(limit) = args.stop_after {
         progress.on_evaluated = Some(Arc::new(move |_, n| {
             if n >= limit {
-                experiments::console::warn(format!("--stop-after {n}: stopping abruptly"));
+                usar_report::console::warn(format!("--stop-after {n}: stopping abruptly"));
                 std::process::exit(STOP_EXIT_CODE);
             }
         }));

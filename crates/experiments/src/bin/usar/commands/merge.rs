@@ -10,10 +10,10 @@ use anyhow::{Result, bail};
 use clap::Args;
 use usar_sim::scenario::path_text;
 
-use experiments::analysis::Analysis;
-use experiments::console::print_sweep;
 use experiments::multiverse::{is_multiverse_dir, merge_multiverse, summary_text};
-use experiments::output::write_outputs;
+use usar_report::analysis::Analysis;
+use usar_report::console::print_sweep;
+use usar_report::output::write_outputs;
 use usar_sweep::shard::merge_shards;
 
 use crate::shared::multiverse_spec::failed_universes;
@@ -85,7 +85,7 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     }
     let m = merge_shards(&args.dir)?;
     for (path, r) in &m.rejected {
-        experiments::console::warn(format!(
+        usar_report::console::warn(format!(
             "warning: {}:{}: record does not verify (edited?); left out (trial {} #{} of cell {})",
             path_text(path),
             r.line,

@@ -9,7 +9,7 @@ use clap::Args;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario, path_text};
 
-use experiments::render::{PathRecorder, Trace, render_svg};
+use usar_report::render::{PathRecorder, Trace, render_svg};
 
 const EXAMPLES: &str = "\
 Examples:

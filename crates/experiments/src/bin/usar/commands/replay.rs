@@ -10,7 +10,7 @@ use clap::Args;
 use usar_sim::mission::{Simulation, trial_seed};
 use usar_sim::scenario;
 
-use experiments::replay::{record_trial, write_replay};
+use usar_report::replay::{record_trial, write_replay};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -101,13 +101,13 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     crate::shared::trial_build::warn_if_rounded(args.duration, &sim);
     let dt_s = scenario.sim().dt_s.get();
     let hz = args.hz.unwrap_or_else(|| {
-        experiments::replay::default_hz(scenario.robots().len(), sim.progress().1, dt_s)
+        usar_report::replay::default_hz(scenario.robots().len(), sim.progress().1, dt_s)
     });
     let clock =
-        experiments::replay::SampleClock::new(hz, dt_s, sim.progress().1).context("--hz")?;
+        usar_report::replay::SampleClock::new(hz, dt_s, sim.progress().1).context("--hz")?;
     let robot_samples = clock.samples().saturating_mul(scenario.robots().len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
-        experiments::console::warn(format!(
+        usar_report::console::warn(format!(
             "warning: {} robots x {} samples: the page will need about {} MB of memory in the \
              browser; a shorter --duration or a lower --hz keeps it light",
             scenario.robots().len(),
@@ -132,7 +132,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         rec.trial,
         rec.seed,
         rec.duration_s(),
-        experiments::table::sig3(rec.clock.actual_hz(rec.dt_s)),
+        usar_report::table::sig3(rec.clock.actual_hz(rec.dt_s)),
         rec.samples,
         rec.robots,
         rec.marks.len(),

@@ -19,7 +19,7 @@ use usar_sweep::atomic::write_atomic;
 
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 
-use experiments::table::num;
+use usar_report::table::num;
 
 use usar_sweep::trial_json::TrialJson;
 
@@ -125,7 +125,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
         "\n{} s simulated in {:.2} s wall-clock ({} sim-s per wall-s)",
         result.duration_s,
         wall,
-        experiments::console::speed(result.duration_s / wall.max(1e-9))
+        usar_report::console::speed(result.duration_s / wall.max(1e-9))
     )?;
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&TrialJson::of(&result))

@@ -13,7 +13,7 @@ use clap::Args;
 
 use usar_sim::scenario::{self, Scenario, path_text};
 
-use experiments::analysis::Analysis;
+use usar_report::analysis::Analysis;
 
 use crate::shared::scenario_warnings::{scenario_warnings, warn_about as warn_about_scenario};
 use crate::shared::sweep_spec::{
@@ -21,13 +21,13 @@ use crate::shared::sweep_spec::{
 };
 use crate::shared::test_hooks::test_hooks;
 
-use experiments::console::print_sweep;
+use usar_report::console::print_sweep;
 
 use usar_sweep::grid::{Grid, build_grid};
 
-use experiments::output::write_outputs;
+use usar_report::output::write_outputs;
 
-use experiments::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
+use usar_report::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
 
 use usar_sweep::shard::{Shard, ShardRun, shell_join};
 
@@ -251,7 +251,7 @@ fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
             let list: Vec<String> = cells.iter().map(usize::to_string).collect();
             format!("cells {}", list.join(", "))
         };
-        experiments::console::warn(format!("warning: {origin} ({at}): {text}"));
+        usar_report::console::warn(format!("warning: {origin} ({at}): {text}"));
     }
 }
 
@@ -323,7 +323,7 @@ fn replays_of(args: &SweepArgs, cfg: &SweepConfig) -> Result<Option<SweepReplays
     let canonical = |m: &str| canonical_method(m, &cfg.method_factory, &model, cfg.base_seed).ok();
     let methods: Vec<String> = cfg.methods.iter().filter_map(|m| canonical(m)).collect();
     let requests = parse_replay_list(&args.replay, &methods, cfg.trials, &canonical)?;
-    experiments::replay::ReplayRecorder::new(args.replay_hz).context("--replay-hz")?;
+    usar_report::replay::ReplayRecorder::new(args.replay_hz).context("--replay-hz")?;
     Ok(Some(SweepReplays::new(cfg, requests, args.replay_hz)?))
 }
 

@@ -9,7 +9,7 @@ use rne_core::{
     RneOptions, Smoothing, TrustModel, Weights,
 };
 
-use experiments::table::{matrix, row_minima, sig6};
+use usar_report::table::{matrix, row_minima, sig6};
 
 const EXAMPLES: &str = "\
 Examples:

@@ -10,16 +10,16 @@ use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
 use experiments::calibrate::{Targets, parse_free};
-use experiments::claims::Claims;
 use experiments::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_DESIGN, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
     DEFAULT_TRIALS,
 };
 use experiments::multiverse::{Axes, MultiverseSetup, Sample};
+use usar_report::claims::Claims;
 use usar_sweep::shard::Shard;
 use usar_sweep::sweep::default_out_dir_of;
 
-use experiments::source_date::source_date;
+use usar_report::source_date::source_date;
 
 use super::optimizer_arg::OptimizerArg;
 
@@ -200,7 +200,7 @@ fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Cl
         (None, Some(file)) => {
             let p = spec.scenario.parent().unwrap_or(Path::new("")).join(file);
             if !p.exists() {
-                experiments::console::warn(format!(
+                usar_report::console::warn(format!(
                     "warning: {}: report.claims: {} not found (relative to the scenario's \
                      folder); no claims are checked (--claims FILE gives them)",
                     path_text(&spec.scenario),

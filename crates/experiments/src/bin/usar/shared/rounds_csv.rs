@@ -1,5 +1,5 @@
 //! `--rounds-csv FILE` of `usar run` and `usar sweep`: the per-round yields written and
-//! summarised (`experiments::rounds_table`).
+//! summarised (`usar_report::rounds_table`).
 
 use std::io::Write;
 
@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use usar_sweep::atomic::write_atomic;
 
 /// Writes `--rounds-csv` of `cells` (grid cell index, results) to `path` and prints the
-/// summary per task of every result (`experiments::rounds_table`).
+/// summary per task of every result (`usar_report::rounds_table`).
 ///
 /// # Errors
 /// An I/O error writing the file or the output.
@@ -16,7 +16,7 @@ pub fn write_rounds_csv(
     cells: &[(usize, &[usar_sim::mission::TrialResult])],
     out: &mut dyn Write,
 ) -> Result<()> {
-    use experiments::rounds_table::{rounds_csv, summary_lines, task_rounds};
+    use usar_report::rounds_table::{rounds_csv, summary_lines, task_rounds};
     write_atomic(path, &rounds_csv(cells)?)
         .with_context(|| format!("--rounds-csv {}", path.display()))?;
     let all: Vec<_> = cells.iter().flat_map(|(_, r)| r.iter().cloned()).collect();

@@ -11,7 +11,7 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, Scenario};
 
-use experiments::calibration::{ReportOptions, ReportOptionsError};
+use usar_report::calibration::{ReportOptions, ReportOptionsError};
 use usar_sweep::grid::Grid;
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 use usar_sweep::shard::SweepPlan;
@@ -177,7 +177,7 @@ pub fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid
     steps.dedup();
     for dt_s in steps {
         if let Some(w) = rounding_warning(requested_s, dt_s) {
-            experiments::console::warn(w);
+            usar_report::console::warn(w);
         }
     }
 }

@@ -14,13 +14,13 @@ use usar_sim::scenario::SourceMap;
 /// A positioned error before it becomes a file type's own error (`TargetsError`, `AxesError`,
 /// `ClaimsError`, which have these three fields).
 #[derive(Debug)]
-pub(crate) struct Located {
+pub struct Located {
     /// The file (as given) and, when known, the line and column.
-    pub(crate) location: SourceLocation,
+    pub location: SourceLocation,
     /// The field the error is about, when known.
-    pub(crate) field: Option<String>,
+    pub field: Option<String>,
     /// What is wrong.
-    pub(crate) message: String,
+    pub message: String,
 }
 
 /// The text of the file at `path` (and its name as errors give it), at most `max_bytes`
@@ -28,11 +28,7 @@ pub(crate) struct Located {
 ///
 /// # Errors
 /// The file cannot be read, is longer than `max_bytes` or is not UTF-8.
-pub(crate) fn read_text(
-    path: &Path,
-    max_bytes: u64,
-    kind: &str,
-) -> Result<(String, String), Located> {
+pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, String), Located> {
     let origin = path_text(path);
     let fail = |message: String| Located {
         location: SourceLocation {
@@ -62,10 +58,7 @@ pub(crate) fn read_text(
 ///
 /// # Errors
 /// RON syntax or shape (an unknown field or variant, a missing field).
-pub(crate) fn parse<T: DeserializeOwned>(
-    src: &str,
-    origin: &str,
-) -> Result<(T, Arc<SourceMap>), Located> {
+pub fn parse<T: DeserializeOwned>(src: &str, origin: &str) -> Result<(T, Arc<SourceMap>), Located> {
     let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     let map = Arc::new(SourceMap::build(src));
     let value = ron::Options::default().from_str(src).map_err(|e| {

@@ -104,7 +104,7 @@ pub fn figure_or_warn<T>(what: &str, draw: impl FnOnce() -> Result<T>) -> Option
 }
 
 /// A plotters drawing error as an [`anyhow::Error`] (`drawing a figure: ...`).
-pub(crate) fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
+pub fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow!("drawing a figure: {e:?}")
 }
 

@@ -1,15 +1,15 @@
 //! The vocabulary of calibration targets, below everything that reads them: a target names a
 //! statistic of a set of trials ([`Statistic`], over metrics named by [`MetricRef`]), the value
 //! it should have and the [`Band`] it must fall in ([`Target`]); a targets file holds them
-//! ([`Targets`], read through `ron_file`). A sweep's reports compare with them
-//! (`crate::calibration`), `crate::calibrate` fits free fields to them and
-//! `crate::multiverse` calibrates each universe against them.
+//! ([`Targets`], read through [`ron_file`]). A sweep's reports compare with them
+//! (`crate::calibration`), `experiments::calibrate` fits free fields to them and
+//! `experiments::multiverse` calibrates each universe against them.
 
 pub mod band;
 pub mod file;
 pub mod float_text;
 pub mod metric_ref;
-pub(crate) mod ron_file;
+pub mod ron_file;
 pub mod statistic;
 
 pub use band::Band;

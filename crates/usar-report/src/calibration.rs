@@ -227,7 +227,7 @@ pub fn check(results: &[TrialResult]) -> Vec<(Target, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::targets::statistic::tests::trial;
+    use crate::testing::trial;
 
     #[test]
     fn the_paper_targets_are_the_eighteen_of_the_sheet() {

@@ -222,39 +222,7 @@ fn pooled_sd(results: &[TrialResult], metric: &MetricRef) -> f64 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-
-    /// A trial of `method` with tasks `hard`, `easy` (in that order, as in paper.ron).
-    pub(crate) fn trial(
-        method: &str,
-        rounds: usize,
-        (easy, hard): (u32, u32),
-        energy: (f64, f64),
-        hp: (f64, f64),
-    ) -> TrialResult {
-        TrialResult {
-            scenario: "t".into(),
-            method: method.into(),
-            trial: 0,
-            seed: 0,
-            duration_s: 600.0,
-            tasks: vec!["hard".into(), "easy".into()],
-            rescued: vec![hard, easy],
-            energy_spent_pct: vec![energy.1, energy.0],
-            hp_lost_pct: vec![hp.1, hp.0],
-            rounds: vec![
-                usar_sim::mission::RoundRecord {
-                    start_s: 0.0,
-                    end_s: 1.0,
-                    completed: true,
-                    groups: vec![vec![], vec![]],
-                    rescued: vec![0, 0],
-                    ..Default::default()
-                };
-                rounds
-            ],
-            robots: vec![],
-        }
-    }
+    use crate::testing::trial;
 
     fn m(name: &str) -> MetricRef {
         MetricRef(name.into())
