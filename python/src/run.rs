@@ -111,7 +111,9 @@ pub fn trial_outcome<T>(
     match outcome {
         Ok(Some(value)) => Ok(value),
         Ok(None) => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err("")),
-        Err(e @ (MissionError::Method(_) | MissionError::Duration(_))) => Err(value_error(e)),
+        Err(e @ MissionError::Method(_)) => Err(value_error(e)),
+        // The length is the keyword argument `duration_s`.
+        Err(MissionError::Duration(reason)) => Err(value_error(format!("duration_s: {reason}"))),
         Err(e) => Err(TrialError::new_err(crate::errors::one_line(&e.to_string()))),
     }
 }

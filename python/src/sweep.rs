@@ -25,24 +25,6 @@ use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
 use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
 
-/// The checks of `usar sweep`'s options, in the Python arguments' names.
-fn check_args(trials: u32, threads: Option<usize>, duration_s: Option<f64>) -> PyResult<()> {
-    if trials == 0 {
-        return Err(PyValueError::new_err("trials must be at least 1"));
-    }
-    if threads == Some(0) {
-        return Err(PyValueError::new_err("threads must be at least 1"));
-    }
-    if let Some(d) = duration_s
-        && !(d.is_finite() && d > 0.0)
-    {
-        return Err(PyValueError::new_err(format!(
-            "duration_s must be a finite number of seconds > 0, not {d}"
-        )));
-    }
-    Ok(())
-}
-
 /// What a sweep gave, per cell (one without a grid): its successful trials (trials.csv order)
 /// and failures, or `None` when stopped.
 type Ran = Option<Vec<(Vec<TrialResult>, Vec<Failure>)>>;
@@ -51,7 +33,8 @@ type Ran = Option<Vec<(Vec<TrialResult>, Vec<Failure>)>>;
 /// every 25 ms from the calling thread.
 ///
 /// # Errors
-/// `ValueError` for bad arguments or a journal that cannot be resumed (in the package's
+/// `ValueError` for bad arguments (the library's checks, [`usar_sweep::sweep::ConfigError`],
+/// named by their keyword arguments) or a journal that cannot be resumed (in the package's
 /// words, [`crate::errors::python_words`]); the first Python
 /// method's exception or `GroupingError`; `TrialError` listing failed trials (with `out`,
 /// after the files are written); `KeyboardInterrupt` on Ctrl-C (with `out`, the finished
@@ -77,14 +60,10 @@ pub fn run_sweep(
     claims: Option<&Bound<'_, PyAny>>,
     vary: Vec<String>,
 ) -> PyResult<Vec<(Vec<String>, Vec<u8>)>> {
-    check_args(trials, threads, duration_s)?;
     if resume && overwrite {
         return Err(PyValueError::new_err(
             "resume=True and overwrite=True: give one (continue the journal, or start afresh)",
         ));
-    }
-    if methods.is_empty() {
-        return Err(PyValueError::new_err("methods: give at least one method"));
     }
     let (names, python) = methods_of(methods)?;
     let first_error = FirstError::default();

@@ -67,7 +67,7 @@ def test_a_set_that_breaks_a_file_rule_points_into_the_file(paper):
 def test_bad_run_arguments(paper):
     with pytest.raises(ValueError, match="unknown grouping method|rne, dis, eng, hp_dis"):
         usar.run(paper, "nope", duration_s=5)
-    with pytest.raises(ValueError, match="duration_s must be"):
+    with pytest.raises(ValueError, match="^duration_s: trial length: expected a number of sec"):
         usar.run(paper, duration_s=-1)
     with pytest.raises(ValueError, match="trial must be"):
         usar.run(paper, trial=-1)
@@ -80,10 +80,17 @@ def test_bad_run_arguments(paper):
 
 
 def test_bad_sweep_arguments(paper):
-    with pytest.raises(ValueError, match="trials must be"):
+    # The library's checks, named by the keyword arguments (usar sweep names its flags).
+    with pytest.raises(ValueError, match="^trials must be at least 1$"):
         usar.sweep(paper, trials=0)
-    with pytest.raises(ValueError, match="threads must be"):
+    with pytest.raises(ValueError, match="^threads must be at least 1$"):
         usar.sweep(paper, threads=0, trials=1)
+    with pytest.raises(ValueError, match="^methods needs at least one method$"):
+        usar.sweep(paper, methods=[], trials=1)
+    with pytest.raises(ValueError, match="^duration_s: trial length: expected a number of sec"):
+        usar.sweep(paper, trials=1, duration_s=float("nan"))
+    with pytest.raises(ValueError, match="^methods lists a method twice: RNE,DIS,RNE$"):
+        usar.sweep(paper, methods=["rne", "dis", "RNE"], trials=1, duration_s=5)
     with pytest.raises(ValueError, match="unknown grouping method|rne, dis, eng, hp_dis"):
         usar.sweep(paper, methods=["rne", "bogus"], trials=1, duration_s=5)
     with pytest.raises(ValueError, match="built-in"):

@@ -42,14 +42,12 @@ def _count(name: str, value: Any, minimum: int, maximum: int) -> int:
 
 
 def _seconds(value: Any) -> Optional[float]:
+    # Only the type: the library refuses a length that is not a positive number of seconds.
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
         raise TypeError(f"duration_s: expected seconds as a number, found {type(value).__name__}")
-    d = float(value)
-    if not (np.isfinite(d) and d > 0):
-        raise ValueError(f"duration_s must be a finite number of seconds > 0, not {value}")
-    return d
+    return float(value)
 
 
 def run(
@@ -213,8 +211,9 @@ def _run_cells(
     if isinstance(methods, (str, bytes)) or callable(methods):
         methods = [methods]
     args = [method_arg(m, s) for m in methods]
-    trials = _count("trials", trials, 1, 2**32)
-    threads = None if threads is None else _count("threads", threads, 1, 2**16)
+    # Only what the native call can hold: the library refuses 0 trials or threads itself.
+    trials = _count("trials", trials, 0, 2**32)
+    threads = None if threads is None else _count("threads", threads, 0, 2**16)
     seed = None if seed is None else _count("seed", seed, 0, _U64)
     folder = None if out is None else os.fspath(out)
     callback, close = _progress(progress, len(args) * trials)

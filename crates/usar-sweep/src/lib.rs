@@ -19,7 +19,9 @@
 //! - [`executor`] runs any set of trials in parallel (a sweep's, a calibration's).
 //!
 //! Long runs report their progress to a sink the program installs ([`progress`]); the library
-//! draws nothing.
+//! draws nothing. A plan refused before it runs is a [`sweep::ConfigError`] naming the field
+//! of the plan (`trials must be at least 1`), and a study's refused option a
+//! [`sweep::SettingError`]; a front end names the field its own way (`usar` by its flag).
 //!
 //! A sweep of paper.ron in memory:
 //!

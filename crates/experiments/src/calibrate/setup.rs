@@ -10,6 +10,7 @@ use super::optimizer::Optimizer;
 use usar_report::targets::file::{Targets, TargetsError};
 use usar_sweep::data::hooks::CalibrationHooks;
 use usar_sweep::data::limits::{MAX_SWEEP_TRIALS, max_threads};
+use usar_sweep::data::setting_error::SettingError;
 use usar_sweep::method_factory::{MethodFactory, canonical_method, trust_model};
 
 /// Trials per method and evaluation by default (10, as a sweep).
@@ -156,25 +157,29 @@ impl CalibrationSetup {
     /// unknown or repeated method.
     pub fn check(&self) -> Result<Checked, SetupError> {
         let bad = |m: String| Err(SetupError::Invalid(m));
+        let refuse = |field, problem: String| Err(SettingError::new(field, problem).into());
         if self.trials == 0 {
-            return bad("--trials must be at least 1".into());
+            return refuse("trials", " must be at least 1".into());
         }
         if !(1..=17).contains(&self.digits) {
-            return bad(format!("--digits must be 1 to 17, found {}", self.digits));
+            return refuse("digits", format!(" must be 1 to 17, found {}", self.digits));
         }
         if self.max_evals == 0 {
-            return bad("--max-evals must be at least 1".into());
+            return refuse("max_evals", " must be at least 1".into());
         }
         if self.threads == 0 {
-            return bad("--threads must be at least 1".into());
+            return refuse("threads", " must be at least 1".into());
         }
         if let Some(d) = self.duration_s
             && !(d.is_finite() && d > 0.0)
         {
-            return bad(format!("--duration must be a finite number > 0, found {d}"));
+            return refuse(
+                "duration_s",
+                format!(" must be a finite number > 0, found {d}"),
+            );
         }
         if self.free.is_empty() {
-            return bad("no free field: give at least one --free FIELD=LO..HI".into());
+            return refuse("free", ": give at least one FIELD=LO..HI".into());
         }
         let total = self.methods.len().saturating_mul(self.trials as usize);
         if total > MAX_SWEEP_TRIALS {
@@ -209,7 +214,11 @@ impl CalibrationSetup {
     fn check_start(&self, start: &[f64]) -> Result<(), SetupError> {
         let bad = |m: String| Err(SetupError::Invalid(m));
         if self.start_mid {
-            return bad("--start-mid and a given start point exclude each other".into());
+            return Err(SettingError::new(
+                "start_mid",
+                " and a given start point exclude each other",
+            )
+            .into());
         }
         if start.len() != self.free.len() {
             return bad(format!(
@@ -232,19 +241,17 @@ impl CalibrationSetup {
     /// The methods' display names (as written; see [`canonical_method`]).
     fn canonical_methods(&self, scenario: &Scenario) -> Result<Vec<String>, SetupError> {
         if self.methods.is_empty() {
-            return Err(SetupError::Invalid(
-                "no method: give at least one in --methods".into(),
-            ));
+            return Err(SettingError::new("methods", " needs at least one method").into());
         }
         let model = trust_model(scenario).map_err(|e| SetupError::Invalid(format!("{e:#}")))?;
         let mut names: Vec<String> = Vec::new();
         for m in &self.methods {
             let name = canonical_method(m, &self.method_factory, &model, self.base_seed)
-                .map_err(|e| SetupError::Invalid(format!("--methods: {e:#}")))?;
+                .map_err(|e| SettingError::new("methods", format!(": {e:#}")))?;
             if names.contains(&name) {
-                return Err(SetupError::Invalid(format!(
-                    "--methods: {name} is given twice"
-                )));
+                return Err(
+                    SettingError::new("methods", format!(": {name} is given twice")).into(),
+                );
             }
             names.push(name);
         }
@@ -278,7 +285,10 @@ pub enum SetupError {
     /// A free field does not fit the scenario, or is given twice.
     #[error(transparent)]
     Free(#[from] FreeError),
-    /// An option out of range, or a method that is unknown or repeated.
+    /// An option out of range, or a method that is unknown or repeated, named by its field.
+    #[error(transparent)]
+    Setting(#[from] SettingError),
+    /// A start point that does not fit the free fields, or a trust model that cannot be built.
     #[error("{0}")]
     Invalid(String),
 }

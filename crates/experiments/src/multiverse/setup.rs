@@ -20,9 +20,10 @@ use crate::calibrate::{
 };
 use usar_report::claims::{Claims, ClaimsError};
 use usar_sweep::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
+use usar_sweep::data::setting_error::SettingError;
 use usar_sweep::method_factory::MethodFactory;
 use usar_sweep::shard::Shard;
-use usar_sweep::sweep::{SweepHooks, check_sweep_size};
+use usar_sweep::sweep::{ConfigError, SweepHooks, check_sweep_size};
 
 /// Comparison trials per method and universe by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;
@@ -272,35 +273,41 @@ impl MultiverseSetup {
     /// checks refuse ([`check_axes`]), too many universes or a sample larger than the
     /// factorial, or a shard count above the universes to run.
     pub fn check(&self) -> Result<CheckedMultiverse, MultiverseError> {
-        let bad = |m: String| Err(MultiverseError::Invalid(m));
+        let refuse = |field, problem: String| Err(SettingError::new(field, problem).into());
         if self.trials == 0 {
-            return bad("--trials must be at least 1".into());
+            return refuse("trials", " must be at least 1".into());
         }
         if self.calibration_trials == 0 {
-            return bad("--calibration-trials must be at least 1".into());
+            return refuse("calibration_trials", " must be at least 1".into());
         }
         if self.design > 0 && self.design < MIN_DESIGN {
-            return bad(format!(
-                "--design {} is too few: a design needs at least {MIN_DESIGN} points (the \
-                 emulator's 5-fold cross-validation)",
-                self.design
-            ));
+            return refuse(
+                "design",
+                format!(
+                    " {} is too few: a design needs at least {MIN_DESIGN} points (the \
+                     emulator's 5-fold cross-validation)",
+                    self.design
+                ),
+            );
         }
         if self.design > MAX_DESIGN {
-            return bad(format!(
-                "--design {} is more than the limit of {} design evaluations",
-                self.design, MAX_DESIGN
-            ));
+            return refuse(
+                "design",
+                format!(
+                    " {} is more than the limit of {MAX_DESIGN} design evaluations",
+                    self.design
+                ),
+            );
         }
         if let Some(l) = self.near_loss
             && !(l.is_finite() && l > 0.0)
         {
-            return bad(format!(
-                "--near-loss must be a finite loss above 0 (0 is admissibility itself), not {l}"
-            ));
+            return refuse(
+                "near_loss",
+                format!(" must be a finite loss above 0 (0 is admissibility itself), not {l}"),
+            );
         }
-        check_sweep_size(1, self.methods.len(), self.trials)
-            .map_err(|e| MultiverseError::Invalid(format!("{e:#}")))?;
+        check_sweep_size(1, self.methods.len(), self.trials)?;
         let calibration = self.calibration_setup(
             self.base.clone(),
             self.targets.clone(),
@@ -373,7 +380,10 @@ pub enum MultiverseError {
     /// A claim names a task the base scenario lacks or a method neither built in nor run.
     #[error(transparent)]
     Claims(#[from] ClaimsError),
-    /// An option out of range.
-    #[error("{0}")]
-    Invalid(String),
+    /// An option out of range, named by its field.
+    #[error(transparent)]
+    Setting(#[from] SettingError),
+    /// The sweep of one universe is above the limit of trials.
+    #[error(transparent)]
+    Sweep(#[from] ConfigError),
 }

@@ -164,7 +164,7 @@ fn a_given_start_is_the_first_point_checked_against_the_ranges_and_another_calib
         (
             vec![1.0],
             true,
-            "--start-mid and a given start point exclude each other",
+            "start_mid and a given start point exclude each other",
         ),
     ] {
         let bad = CalibrationSetup {

@@ -3,6 +3,8 @@
 
 use anyhow::{Result, bail};
 
+use crate::data::config_error::ConfigError;
+
 /// Most worker threads per available core: a sweep never runs more than
 /// `MAX_THREADS_PER_CORE` x [`std::thread::available_parallelism`] threads ([`max_threads`]).
 pub const MAX_THREADS_PER_CORE: usize = 4;
@@ -69,16 +71,20 @@ pub const MAX_SWEEP_TRIALS: usize = 1_000_000;
 /// [`MAX_SWEEP_TRIALS`]: the check of [`check_trial_count`](crate::sweep::check_trial_count) and [`check_grid_size`](crate::sweep::check_grid_size).
 ///
 /// # Errors
-/// The three counts, their product and the limit, when the product is above it.
-pub fn check_sweep_size(cells: usize, methods: usize, trials: u32) -> Result<()> {
+/// [`ConfigError::TooManyTrials`] (the three counts and their product) when the product is
+/// above the limit.
+pub fn check_sweep_size(cells: usize, methods: usize, trials: u32) -> Result<(), ConfigError> {
     let total = cells
         .saturating_mul(methods)
         .saturating_mul(trials as usize);
     if total > MAX_SWEEP_TRIALS {
-        bail!(
-            "the sweep's {cells} cell(s) x {methods} method(s) x {trials} trials make {total} \
-             trials, more than the limit of {MAX_SWEEP_TRIALS} per sweep"
-        );
+        return Err(ConfigError::TooManyTrials {
+            cells,
+            methods,
+            trials,
+            total,
+            limit: MAX_SWEEP_TRIALS,
+        });
     }
     Ok(())
 }

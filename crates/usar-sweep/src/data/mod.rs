@@ -3,13 +3,15 @@
 //!
 //! A sweep's plan is a [`config::SweepConfig`] (with its grid's cells, [`grid_cells`], its
 //! extension points, [`hooks`], and its shard, [`shard_split`], [`shard_folders`] and
-//! [`sweep_plan`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
+//! [`sweep_plan`]), refused before it runs with a [`config_error::ConfigError`] (a study's settings with a
+//! [`setting_error::SettingError`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
 //! [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
 //! [`out_dir`], [`figure_list`], [`trial_length`] and [`software`] name and describe what it
 //! writes. The modules above (design, run) and the `experiments` crate (analyse, write) build,
 //! run, judge and write this data.
 
 pub mod config;
+pub mod config_error;
 pub mod figure_list;
 pub mod grid_cells;
 pub mod hooks;
@@ -18,6 +20,7 @@ pub mod limits;
 pub mod out_dir;
 pub mod outcome;
 pub mod owner;
+pub mod setting_error;
 pub mod shard_folders;
 pub mod shard_split;
 pub mod software;

@@ -216,6 +216,6 @@ mod tests {
             ..config(1, tmp.path())
         };
         let e = run_in_memory(&cfg).unwrap_err();
-        assert_eq!(format!("{e:#}"), "--trials must be at least 1");
+        assert_eq!(format!("{e:#}"), "trials must be at least 1");
     }
 }

@@ -27,6 +27,7 @@ mod records;
 pub mod run;
 
 pub use crate::data::config::SweepConfig;
+pub use crate::data::config_error::{ConfigError, ConfigField};
 pub use crate::data::hooks::{JournaledHook, SweepHooks, TrialKey, TrialObserverFactory};
 pub use crate::data::jobs::{JobId, job_list};
 pub use crate::data::limits::{
@@ -35,6 +36,7 @@ pub use crate::data::limits::{
 };
 pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir, default_out_dir_of};
 pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};
+pub use crate::data::setting_error::SettingError;
 pub use crate::data::trial_length::simulated_length_s;
 pub use crate::method_factory::{
     ChaCha8Rng, METHOD_RNG_STREAM, MethodFactory, TrialContext, canonical_method, rand, trust_model,

@@ -7,6 +7,7 @@ use usar_sim::mission::trial_seed;
 use usar_sim::scenario::trial_steps;
 
 use crate::data::config::SweepConfig;
+use crate::data::config_error::ConfigError;
 use crate::data::jobs::JobId;
 use crate::executor::{CellPlan, Job};
 use crate::journal::SweepHeader;
@@ -28,7 +29,7 @@ pub(crate) fn cell_plans<'a>(
         .enumerate()
         .map(|(i, (scenario, h))| {
             let steps = trial_steps(h.duration_s, scenario.sim().dt_s.get())
-                .map_err(|e| anyhow::anyhow!("--duration: {e}"))?;
+                .map_err(|reason| ConfigError::TrialLength { reason })?;
             Ok(CellPlan {
                 label: match &cfg.grid {
                     Some(g) => format!(" in cell {}", g.cells[i].dir),

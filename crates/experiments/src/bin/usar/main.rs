@@ -41,7 +41,8 @@ fn main() -> ExitCode {
         Err(e) => {
             // Not `eprintln!`, which panics (exit 101) when stderr is a closed pipe: the exit
             // status reports the failure whether or not the message could be written.
-            match writeln!(std::io::stderr(), "error: {e:#}") {
+            let line = shared::error_text::error_line(&e);
+            match writeln!(std::io::stderr(), "error: {line}") {
                 Ok(()) | Err(_) => ExitCode::FAILURE,
             }
         }

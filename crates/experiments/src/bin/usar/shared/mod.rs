@@ -1,7 +1,8 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
-//! sweep and of a multiverse, building a trial, the scenario warnings,
+//! sweep and of a multiverse, building a trial, the error line, the scenario warnings,
 //! the per-round yields' file, the progress bars and the hidden test hooks.
 
+pub mod error_text;
 pub mod multiverse_spec;
 pub mod optimizer_arg;
 pub mod progress;
