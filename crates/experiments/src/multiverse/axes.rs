@@ -26,14 +26,12 @@
 //! `axes.ron:12:21: axes[1].alternatives[0].set[1]: ...`.
 
 use std::path::Path;
-use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
-use usar_report::targets::ron_file;
-use usar_sim::scenario::SourceMap;
+use usar_report::targets::ron_file::{self, Source, StudyFile};
 use usar_sweep::vary::{FieldPath, Override};
 
 /// Longest axes file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
@@ -84,9 +82,7 @@ pub struct Axes {
     /// The axes, in file order (the first varies slowest in universe order).
     pub axes: Vec<Axis>,
     #[serde(skip)]
-    origin: String,
-    #[serde(skip)]
-    map: Option<Arc<SourceMap>>,
+    source: Source,
 }
 
 impl PartialEq for Axes {
@@ -127,10 +123,9 @@ impl Axes {
     pub fn new(axes: Vec<Axis>, origin: &str) -> Result<Self, AxesError> {
         let a = Self {
             axes,
-            origin: origin.to_owned(),
-            map: None,
+            source: Source::given(origin),
         };
-        a.check()?;
+        a.check_file()?;
         Ok(a)
     }
 
@@ -145,11 +140,7 @@ impl Axes {
     /// setting a field twice; two axes setting the same field (or overlapping ones, such as
     /// `kinds[*].count` and `kinds[0].count`). Each names the line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, AxesError> {
-        let (mut axes, map): (Axes, _) = ron_file::parse(src, origin)?;
-        axes.origin = origin.to_owned();
-        axes.map = Some(map);
-        axes.check()?;
-        Ok(axes)
+        Self::parse_checked(src, origin)
     }
 
     /// Reads and parses the axes file at `path` (named in errors as given).
@@ -158,13 +149,12 @@ impl Axes {
     /// The file cannot be read, is longer than [`MAX_AXES_BYTES`] or is not UTF-8; else as
     /// [`Axes::parse`].
     pub fn load(path: &Path) -> Result<Self, AxesError> {
-        let (text, origin) = ron_file::read_text(path, MAX_AXES_BYTES, "an axes file")?;
-        Self::parse(&text, &origin)
+        Self::load_checked(path)
     }
 
     /// Where the axes were read from (a path as given, or the origin given to [`Axes::new`]).
     pub fn origin(&self) -> &str {
-        &self.origin
+        self.source.origin()
     }
 
     /// The number of alternatives of each axis, in axis order.
@@ -201,26 +191,7 @@ impl Axes {
     /// An error about `field` (a path in the file, `axes[1].name`), placed where the field
     /// is in the file when known.
     pub fn error(&self, field: &str, message: String) -> AxesError {
-        AxesError {
-            location: SourceLocation {
-                origin: self.origin.clone(),
-                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
-            },
-            field: Some(field.to_owned()),
-            message,
-        }
-    }
-
-    /// The checks after parsing (see [`Axes::parse`]).
-    fn check(&self) -> Result<(), AxesError> {
-        if self.axes.is_empty() {
-            return Err(self.error("axes", "no axis: give at least one".into()));
-        }
-        for (i, axis) in self.axes.iter().enumerate() {
-            self.check_axis(i, axis)?;
-        }
-        self.check_fields_belong_to_one_axis()?;
-        self.check_targets_belong_to_one_axis()
+        self.source.error(field, message).into()
     }
 
     /// One axis's names and overrides.
@@ -335,6 +306,28 @@ fn check_name(name: &str, what: &str) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+impl StudyFile for Axes {
+    type File = Axes;
+    type Error = AxesError;
+    const MAX_BYTES: u64 = MAX_AXES_BYTES;
+    const KIND: &'static str = "an axes file";
+
+    fn from_file(file: Axes, source: Source) -> Self {
+        Self { source, ..file }
+    }
+
+    fn check_file(&self) -> Result<(), AxesError> {
+        if self.axes.is_empty() {
+            return Err(self.error("axes", "no axis: give at least one".into()));
+        }
+        for (i, axis) in self.axes.iter().enumerate() {
+            self.check_axis(i, axis)?;
+        }
+        self.check_fields_belong_to_one_axis()?;
+        self.check_targets_belong_to_one_axis()
+    }
 }
 
 #[cfg(test)]

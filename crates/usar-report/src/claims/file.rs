@@ -16,14 +16,13 @@
 //! field: `my-claims.ron:7:20: claims[1].rivals: the subject "RNE" is among its rivals`.
 
 use std::path::Path;
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{SourceLocation, did_you_mean};
 
 use super::claim::{Claim, Rivals, method_key};
-use crate::targets::ron_file;
-use usar_sim::scenario::SourceMap;
+use crate::targets::ron_file::{self, Source, StudyFile};
 
 /// Longest claims file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.
@@ -59,9 +58,8 @@ impl From<ron_file::Located> for ClaimsError {
 /// task names; every alpha in (0, 0.5]), with where it came from.
 #[derive(Debug, Clone)]
 pub struct Claims {
-    origin: String,
+    source: Source,
     claims: Vec<Claim>,
-    map: Option<Arc<SourceMap>>,
 }
 
 impl PartialEq for Claims {
@@ -71,10 +69,10 @@ impl PartialEq for Claims {
     }
 }
 
-/// The file's top level, `Claims(claims: [...])`.
+/// The file's top level, `Claims(claims: [...])`, as read before [`Claims`] checks it.
 #[derive(serde::Deserialize)]
 #[serde(rename = "Claims", deny_unknown_fields)]
-struct ClaimsFile {
+pub struct ClaimsFile {
     claims: Vec<Claim>,
 }
 
@@ -103,11 +101,10 @@ impl Claims {
     /// As [`Claims::parse`] for the checks after parsing.
     pub fn new(claims: Vec<Claim>, origin: &str) -> Result<Self, ClaimsError> {
         let c = Self {
-            origin: origin.to_owned(),
+            source: Source::given(origin),
             claims,
-            map: None,
         };
-        c.check()?;
+        c.check_file()?;
         Ok(c)
     }
 
@@ -122,14 +119,7 @@ impl Claims {
     /// metric (the message lists the metric names); an alpha outside (0, 0.5]. Each names the
     /// line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, ClaimsError> {
-        let (file, map): (ClaimsFile, _) = ron_file::parse(src, origin)?;
-        let c = Self {
-            origin: origin.to_owned(),
-            claims: file.claims,
-            map: Some(map),
-        };
-        c.check()?;
-        Ok(c)
+        Self::parse_checked(src, origin)
     }
 
     /// Reads and parses the claims file at `path` (named in errors as given).
@@ -138,8 +128,7 @@ impl Claims {
     /// The file cannot be read, is longer than [`MAX_CLAIMS_BYTES`] or is not UTF-8; else as
     /// [`Claims::parse`].
     pub fn load(path: &Path) -> Result<Self, ClaimsError> {
-        let (text, origin) = ron_file::read_text(path, MAX_CLAIMS_BYTES, "a claims file")?;
-        Self::parse(&text, &origin)
+        Self::load_checked(path)
     }
 
     /// The claims, in file order.
@@ -149,7 +138,7 @@ impl Claims {
 
     /// Where they were read from (a path as given, or the origin given to [`Claims::new`]).
     pub fn origin(&self) -> &str {
-        &self.origin
+        self.source.origin()
     }
 
     /// Checks that every claim's metric exists for a scenario with task names `tasks`.
@@ -205,45 +194,7 @@ impl Claims {
 
     /// An error about `field`, placed where the field is in the file when known.
     fn error(&self, field: &str, message: String) -> ClaimsError {
-        ClaimsError {
-            location: SourceLocation {
-                origin: self.origin.clone(),
-                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
-            },
-            field: Some(field.to_owned()),
-            message,
-        }
-    }
-
-    /// The checks after parsing (see [`Claims::parse`]).
-    fn check(&self) -> Result<(), ClaimsError> {
-        if self.claims.is_empty() {
-            return Err(self.error("claims", "no claims: give at least one".into()));
-        }
-        for (i, c) in self.claims.iter().enumerate() {
-            let at = |field: &str| format!("claims[{i}].{field}");
-            self.check_id(i, c).map_err(|m| self.error(&at("id"), m))?;
-            if c.sentence.trim().is_empty() || c.sentence.chars().any(char::is_control) {
-                return Err(self.error(
-                    &at("sentence"),
-                    "expected the claim in words on one line (not empty, no line break or \
-                     control character)"
-                        .into(),
-                ));
-            }
-            if c.subject.trim().is_empty() {
-                return Err(self.error(&at("subject"), "empty: name a method".into()));
-            }
-            Self::check_rivals(c).map_err(|m| self.error(&at("rivals"), m))?;
-            c.metric.task().map_err(|e| self.error(&at("metric"), e))?;
-            if !(c.alpha > 0.0 && c.alpha <= 0.5) {
-                return Err(self.error(
-                    &at("alpha"),
-                    format!("expected a one-sided level in (0, 0.5], found {}", c.alpha),
-                ));
-            }
-        }
-        Ok(())
+        self.source.error(field, message).into()
     }
 
     fn check_id(&self, i: usize, c: &Claim) -> Result<(), String> {
@@ -282,6 +233,50 @@ impl Claims {
             }
             if names[..k].iter().any(|o| method_key(o) == method_key(name)) {
                 return Err(format!("{name:?} is named twice"));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl StudyFile for Claims {
+    type File = ClaimsFile;
+    type Error = ClaimsError;
+    const MAX_BYTES: u64 = MAX_CLAIMS_BYTES;
+    const KIND: &'static str = "a claims file";
+
+    fn from_file(file: ClaimsFile, source: Source) -> Self {
+        Self {
+            source,
+            claims: file.claims,
+        }
+    }
+
+    fn check_file(&self) -> Result<(), ClaimsError> {
+        if self.claims.is_empty() {
+            return Err(self.error("claims", "no claims: give at least one".into()));
+        }
+        for (i, c) in self.claims.iter().enumerate() {
+            let at = |field: &str| format!("claims[{i}].{field}");
+            self.check_id(i, c).map_err(|m| self.error(&at("id"), m))?;
+            if c.sentence.trim().is_empty() || c.sentence.chars().any(char::is_control) {
+                return Err(self.error(
+                    &at("sentence"),
+                    "expected the claim in words on one line (not empty, no line break or \
+                     control character)"
+                        .into(),
+                ));
+            }
+            if c.subject.trim().is_empty() {
+                return Err(self.error(&at("subject"), "empty: name a method".into()));
+            }
+            Self::check_rivals(c).map_err(|m| self.error(&at("rivals"), m))?;
+            c.metric.task().map_err(|e| self.error(&at("metric"), e))?;
+            if !(c.alpha > 0.0 && c.alpha <= 0.5) {
+                return Err(self.error(
+                    &at("alpha"),
+                    format!("expected a one-sided level in (0, 0.5], found {}", c.alpha),
+                ));
             }
         }
         Ok(())

@@ -17,16 +17,14 @@
 //! targets[3].statistic: unknown metric "rescued_eazy" (metrics: ...)`.
 
 use std::path::Path;
-use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario::SourceLocation;
 
 use super::band::Band;
-use super::ron_file;
+use super::ron_file::{self, Source, StudyFile};
 use super::statistic::Statistic;
-use usar_sim::scenario::SourceMap;
 
 /// Longest targets file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
 /// instead of read into memory.
@@ -110,9 +108,8 @@ impl From<ron_file::Located> for TargetsError {
 /// name a `trials.csv` column for some task names), with where it came from.
 #[derive(Debug, Clone)]
 pub struct Targets {
-    origin: String,
+    source: Source,
     targets: Vec<Target>,
-    map: Option<Arc<SourceMap>>,
 }
 
 impl PartialEq for Targets {
@@ -122,10 +119,10 @@ impl PartialEq for Targets {
     }
 }
 
-/// The file's top level, `Targets(targets: [...])`.
+/// The file's top level, `Targets(targets: [...])`, as read before [`Targets`] checks it.
 #[derive(Deserialize)]
 #[serde(rename = "Targets", deny_unknown_fields)]
-struct TargetsFile {
+pub struct TargetsFile {
     targets: Vec<Target>,
 }
 
@@ -136,11 +133,10 @@ impl Targets {
     /// As [`Targets::parse`] for the checks after parsing.
     pub fn new(targets: Vec<Target>, origin: &str) -> Result<Self, TargetsError> {
         let t = Self {
-            origin: origin.to_owned(),
+            source: Source::given(origin),
             targets,
-            map: None,
         };
-        t.check()?;
+        t.check_file()?;
         Ok(t)
     }
 
@@ -154,14 +150,7 @@ impl Targets {
     /// finite and > 0; a `Between` with bounds not finite or `low >= high`; a value outside
     /// its own `Between` band. Each names the line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, TargetsError> {
-        let (file, map): (TargetsFile, _) = ron_file::parse(src, origin)?;
-        let t = Self {
-            origin: origin.to_owned(),
-            targets: file.targets,
-            map: Some(map),
-        };
-        t.check()?;
-        Ok(t)
+        Self::parse_checked(src, origin)
     }
 
     /// Reads and parses the targets file at `path` (named in errors as given).
@@ -170,8 +159,7 @@ impl Targets {
     /// The file cannot be read, is longer than [`MAX_TARGETS_BYTES`] or is not UTF-8; else as
     /// [`Targets::parse`].
     pub fn load(path: &Path) -> Result<Self, TargetsError> {
-        let (text, origin) = ron_file::read_text(path, MAX_TARGETS_BYTES, "a targets file")?;
-        Self::parse(&text, &origin)
+        Self::load_checked(path)
     }
 
     /// The targets, in file order.
@@ -222,14 +210,7 @@ impl Targets {
         flag: &str,
         report_only: bool,
     ) -> Result<(), TargetsError> {
-        let fail = |message: String| TargetsError {
-            location: SourceLocation {
-                origin: self.origin.clone(),
-                line_col: None,
-            },
-            field: None,
-            message,
-        };
+        let fail = |message: String| TargetsError::from(self.source.whole_error(message));
         for name in names {
             let Some(i) = self.targets.iter().position(|t| &t.name == name) else {
                 let known: Vec<String> = self
@@ -250,23 +231,20 @@ impl Targets {
     /// Refuses targets that are all report-only (nothing would be fitted).
     fn check_some_fitted(&self) -> Result<(), TargetsError> {
         if self.targets.iter().all(|t| t.report_only) {
-            return Err(TargetsError {
-                location: SourceLocation {
-                    origin: self.origin.clone(),
-                    line_col: None,
-                },
-                field: None,
-                message: "every target is report-only (--report-only): at least one must be \
-                          fitted"
-                    .into(),
-            });
+            return Err(self
+                .source
+                .whole_error(
+                    "every target is report-only (--report-only): at least one must be fitted"
+                        .into(),
+                )
+                .into());
         }
         Ok(())
     }
 
     /// Where they were read from (a path as given, or the origin given to [`Targets::new`]).
     pub fn origin(&self) -> &str {
-        &self.origin
+        self.source.origin()
     }
 
     /// Checks that every metric of every target exists for a scenario with task names
@@ -301,18 +279,24 @@ impl Targets {
 
     /// An error about `field`, placed where the field is in the file when known.
     fn error(&self, field: &str, message: String) -> TargetsError {
-        TargetsError {
-            location: SourceLocation {
-                origin: self.origin.clone(),
-                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
-            },
-            field: Some(field.to_owned()),
-            message,
+        self.source.error(field, message).into()
+    }
+}
+
+impl StudyFile for Targets {
+    type File = TargetsFile;
+    type Error = TargetsError;
+    const MAX_BYTES: u64 = MAX_TARGETS_BYTES;
+    const KIND: &'static str = "a targets file";
+
+    fn from_file(file: TargetsFile, source: Source) -> Self {
+        Self {
+            source,
+            targets: file.targets,
         }
     }
 
-    /// The checks after parsing (see [`Targets::parse`]).
-    fn check(&self) -> Result<(), TargetsError> {
+    fn check_file(&self) -> Result<(), TargetsError> {
         if self.targets.is_empty() {
             return Err(self.error("targets", "no targets: give at least one".into()));
         }

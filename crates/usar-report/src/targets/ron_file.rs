@@ -1,6 +1,7 @@
 //! Reading a small RON file of the studies (targets, axes, claims): bounded in size, UTF-8,
 //! parsed with its source map, every error one line placed at its file, line, column and
-//! field ([`Located`], which each file's own error type is made from).
+//! field ([`Located`], which each file's own error type is made from). A checked list keeps
+//! its [`Source`] to place the errors of its later checks.
 
 use std::io::Read;
 use std::path::Path;
@@ -73,4 +74,115 @@ pub fn parse<T: DeserializeOwned>(src: &str, origin: &str) -> Result<(T, Arc<Sou
         }
     })?;
     Ok((value, map))
+}
+
+/// Where a checked list of a study (targets, claims) came from: the origin its errors name
+/// (a path as given, or a name given in code) and, for a file, its source map, which places a
+/// field at its line and column.
+#[derive(Debug, Clone, Default)]
+pub struct Source {
+    origin: String,
+    map: Option<Arc<SourceMap>>,
+}
+
+impl Source {
+    /// Items given in code, named `origin` in errors (no line numbers).
+    pub fn given(origin: &str) -> Self {
+        Self {
+            origin: origin.to_owned(),
+            map: None,
+        }
+    }
+
+    /// The origin errors name.
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// An error about `field` (a path such as `targets[2].band`), placed where the field is
+    /// in the file when known.
+    pub fn error(&self, field: &str, message: String) -> Located {
+        Located {
+            location: SourceLocation {
+                origin: self.origin.clone(),
+                line_col: self.map.as_ref().and_then(|m| m.line_col_of(field)),
+            },
+            field: Some(field.to_owned()),
+            message,
+        }
+    }
+
+    /// An error about the whole list (no field, no line).
+    pub fn whole_error(&self, message: String) -> Located {
+        Located {
+            location: SourceLocation {
+                origin: self.origin.clone(),
+                line_col: None,
+            },
+            field: None,
+            message,
+        }
+    }
+}
+
+/// `src` parsed as [`parse`] does, with its [`Source`] named `origin`.
+///
+/// # Errors
+/// As [`parse`].
+pub fn parse_with_source<T: DeserializeOwned>(
+    src: &str,
+    origin: &str,
+) -> Result<(T, Source), Located> {
+    let (value, map) = parse(src, origin)?;
+    let source = Source {
+        origin: origin.to_owned(),
+        map: Some(map),
+    };
+    Ok((value, source))
+}
+
+/// A study's file kind read through this module (targets, claims, axes): how its top level
+/// becomes the checked value, and the checks after parsing. Its `parse` and `load` are
+/// [`StudyFile::parse_checked`] and [`StudyFile::load_checked`].
+pub trait StudyFile: Sized {
+    /// The file's top level as RON writes it (`Targets(targets: [...])`).
+    type File: DeserializeOwned;
+    /// The kind's own error, made from a [`Located`].
+    type Error: From<Located>;
+    /// Longest file read, bytes.
+    const MAX_BYTES: u64;
+    /// The kind with its article, for messages (`a targets file`).
+    const KIND: &'static str;
+
+    /// The value of a parsed `file` from `source`, before its checks.
+    fn from_file(file: Self::File, source: Source) -> Self;
+
+    /// The checks after parsing, each error placed through the value's [`Source`].
+    ///
+    /// # Errors
+    /// The first check that fails.
+    fn check_file(&self) -> Result<(), Self::Error>;
+
+    /// Parses and checks the RON text `src` of a file named `origin` in errors (a leading
+    /// byte-order mark is skipped).
+    ///
+    /// # Errors
+    /// RON syntax or shape, at ron's line and column; else the first failed check.
+    fn parse_checked(src: &str, origin: &str) -> Result<Self, Self::Error> {
+        let (file, source) = parse_with_source(src, origin)?;
+        let value = Self::from_file(file, source);
+        value.check_file()?;
+        Ok(value)
+    }
+
+    /// Reads (at most [`StudyFile::MAX_BYTES`]), parses and checks the file at `path`, named
+    /// in errors as given.
+    ///
+    /// # Errors
+    /// The file cannot be read, is too long or is not UTF-8; else as
+    /// [`StudyFile::parse_checked`].
+    fn load_checked(path: &Path) -> Result<Self, Self::Error> {
+        let (text, origin) = read_text(path, Self::MAX_BYTES, Self::KIND)?;
+        Self::parse_checked(&text, &origin)
+    }
 }
