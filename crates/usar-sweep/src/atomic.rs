@@ -14,17 +14,18 @@
 //! [`FileSet`] writes several files as a set: every temporary file first, then every rename, so
 //! an error before the renames leaves every file of the set as it was.
 //!
-//! A temporary file is named `.<name>.tmp-<pid>-<n>` ([`is_temp_name`]) and is removed when the
-//! write fails (a full disk, a failed rename) or panics. Only a kill leaves one behind:
+//! A temporary file is made by the `tempfile` crate, named `.<name>.tmp-<pid>-<random>`
+//! ([`is_temp_name`]), and is removed when the write fails (a full disk, a failed rename) or
+//! panics. Only a kill leaves one behind:
 //! [`remove_stale_temps`] clears a folder of them (a sweep does so in its output folder on
 //! every start and resume, under its lock).
 
-use std::fs::{self, File, OpenOptions};
+use std::fs::{self, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use anyhow::{Context, Result, bail};
+use tempfile::NamedTempFile;
 use usar_sim::scenario::path_text;
 
 /// Symbolic links followed at most when resolving a link whose target does not exist yet
@@ -117,48 +118,6 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
     bail!("{}: too many levels of symbolic links", path_text(path))
 }
 
-/// Removes the temporary file it names when dropped, unless [`TempFile::keep`] was called:
-/// on an error path and on a panic alike.
-struct TempFile(Option<PathBuf>);
-
-impl TempFile {
-    /// Renames the temporary file over `target`; on failure it is removed (dropped).
-    fn rename_to(mut self, target: &Path) -> Result<()> {
-        let Some(tmp) = self.0.as_deref() else {
-            return Ok(());
-        };
-        fs::rename(tmp, target)
-            .with_context(|| format!("renaming {} to {}", path_text(tmp), path_text(target)))?;
-        // Renamed into place: nothing to remove.
-        self.0 = None;
-        Ok(())
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        if let Some(p) = self.0.take() {
-            let _ = fs::remove_file(p);
-        }
-    }
-}
-
-/// Temporary files made by this process so far (the `<n>` of their names).
-static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
-
-/// Creates a new temporary file for `name` in `dir` (never opening an existing file or link).
-fn create_temp(dir: &Path, name: &str) -> Result<(PathBuf, File)> {
-    loop {
-        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-        let tmp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
-        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(f) => return Ok((tmp, f)),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && n < 1_000_000 => {}
-            Err(e) => return Err(e).with_context(|| format!("creating {}", path_text(&tmp))),
-        }
-    }
-}
-
 /// Files written as a set: [`FileSet::stage`] writes each file's bytes to a temporary file
 /// next to it (flushed to disk) and [`FileSet::commit`] renames them all into place, in the
 /// order staged. An error while staging (a folder in the way, a read-only folder, a full
@@ -176,7 +135,7 @@ pub struct FileSet {
 enum StagedFile {
     /// A temporary file (removed on drop unless renamed) and the file it replaces.
     Temp {
-        tmp: TempFile,
+        tmp: NamedTempFile,
         target: PathBuf,
         path: PathBuf,
     },
@@ -222,7 +181,7 @@ impl FileSet {
         let mut paths = Vec::with_capacity(self.staged.len());
         for file in self.staged {
             paths.push(match file {
-                StagedFile::Temp { tmp, target, path } => tmp.rename_to(&target).map(|()| path),
+                StagedFile::Temp { tmp, target, path } => rename_over(tmp, &target).map(|()| path),
                 StagedFile::Stream { path, bytes } => write_directly(&path, &bytes).map(|()| path),
             }?);
         }
@@ -233,12 +192,23 @@ impl FileSet {
 /// Writes `bytes` to a temporary file next to `target` and renames it over `target`; the
 /// temporary file is removed if anything fails.
 fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
-    write_temp(target, bytes)?.rename_to(target)
+    rename_over(write_temp(target, bytes)?, target)
+}
+
+/// Renames the temporary file `tmp` over `target`; on failure it is removed.
+fn rename_over(tmp: NamedTempFile, target: &Path) -> Result<()> {
+    let from = tmp.path().to_path_buf();
+    // A failed persist hands the file back inside the error; dropping it removes it.
+    tmp.persist(target)
+        .map(drop)
+        .map_err(|e| e.error)
+        .with_context(|| format!("renaming {} to {}", path_text(&from), path_text(target)))
 }
 
 /// Writes `bytes` to a new temporary file next to `target` (creating its folders), flushed to
-/// disk and with `target`'s permissions if it exists; removed when the guard is dropped.
-fn write_temp(target: &Path, bytes: &[u8]) -> Result<TempFile> {
+/// disk and with `target`'s permissions if it exists (else those a new file gets: 0666 less
+/// the umask); removed when dropped.
+fn write_temp(target: &Path, bytes: &[u8]) -> Result<NamedTempFile> {
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -248,23 +218,36 @@ fn write_temp(target: &Path, bytes: &[u8]) -> Result<TempFile> {
         .file_name()
         .with_context(|| format!("{} has no file name", path_text(target)))?
         .to_string_lossy();
-    let (tmp, mut f) = create_temp(dir, &name)?;
-    let guard = TempFile(Some(tmp.clone()));
-    f.write_all(bytes)
-        .and_then(|()| f.sync_all())
+    let prefix = format!(".{name}.tmp-{}-", std::process::id());
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).rand_bytes(6);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // As a file created by `File::create`, not tempfile's owner-only default.
+        builder.permissions(fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(dir).with_context(|| {
+        format!(
+            "creating a temporary file for {} in {}",
+            path_text(target),
+            path_text(dir)
+        )
+    })?;
+    tmp.write_all(bytes)
+        .and_then(|()| tmp.as_file().sync_all())
         .with_context(|| {
-            let tmp_name = tmp.file_name().unwrap_or_default().to_string_lossy();
+            let tmp_name = tmp.path().file_name().unwrap_or_default().to_string_lossy();
             format!(
                 "writing {} (its temporary file {tmp_name})",
                 path_text(target)
             )
         })?;
-    drop(f);
     if let Ok(old) = fs::metadata(target) {
-        fs::set_permissions(&tmp, old.permissions())
-            .with_context(|| format!("setting the permissions of {}", path_text(&tmp)))?;
+        fs::set_permissions(tmp.path(), old.permissions())
+            .with_context(|| format!("setting the permissions of {}", path_text(tmp.path())))?;
     }
-    Ok(guard)
+    Ok(tmp)
 }
 
 /// Writes `bytes` to an existing FIFO or device as it is (no temporary file, no rename).
@@ -279,20 +262,22 @@ fn write_directly(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Whether `name` is the name of a temporary file of [`write_atomic`]:
-/// `.<name>.tmp-<pid>-<n>`, or `.<name>.tmp-<pid>` as written by earlier versions.
+/// `.<name>.tmp-<pid>-<random>` (ASCII letters and digits), or `.<name>.tmp-<pid>-<n>` and
+/// `.<name>.tmp-<pid>` as written by earlier versions.
 pub fn is_temp_name(name: &str) -> bool {
     let Some((stem, tail)) = name.rsplit_once(".tmp-") else {
         return false;
     };
     let mut parts = tail.split('-');
-    let digits =
-        |s: Option<&str>| s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
+    let all = |s: Option<&str>, ok: fn(&u8) -> bool| {
+        s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| ok(&b)))
+    };
     stem.len() > 1
         && stem.starts_with('.')
-        && digits(parts.next())
+        && all(parts.next(), u8::is_ascii_digit)
         && match parts.next() {
             None => true,
-            n => digits(n) && parts.next().is_none(),
+            n => all(n, u8::is_ascii_alphanumeric) && parts.next().is_none(),
         }
 }
 
@@ -449,6 +434,7 @@ pub(crate) mod tests {
             ".trials.csv.tmp-123",
             ".trials.csv.tmp-123-0",
             ".a.tmp-1-22",
+            ".trials.csv.tmp-123-x7Qz9a",
         ] {
             assert!(is_temp_name(yes), "{yes}");
         }
@@ -458,6 +444,7 @@ pub(crate) mod tests {
             ".trials.csv.tmp-12a",
             ".trials.csv.tmp-1-2-3",
             ".trials.csv.tmp-1-",
+            ".trials.csv.tmp-1-x_y",
             ".tmp-1",
             "..tmp-1",
             ".hidden",
@@ -465,6 +452,31 @@ pub(crate) mod tests {
         ] {
             assert!(!is_temp_name(no), "{no}");
         }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_new_file_gets_a_new_files_permissions_and_its_temp_name_is_known() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        fs::write(dir.path().join("plain"), "x").unwrap();
+        write_atomic(&dir.path().join("atomic"), b"x").unwrap();
+        // Not tempfile's owner-only 0600: what `File::create` gives under the same umask.
+        assert_eq!(
+            mode(&dir.path().join("atomic")),
+            mode(&dir.path().join("plain"))
+        );
+        let tmp = write_temp(&dir.path().join("trials.csv"), b"x").unwrap();
+        let name = tmp
+            .path()
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        assert!(is_temp_name(&name), "{name}");
+        drop(tmp);
+        assert_eq!(names(dir.path()), ["atomic", "plain"]);
     }
 
     #[test]
