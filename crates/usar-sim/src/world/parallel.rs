@@ -66,8 +66,7 @@ impl World {
     pub(super) fn read_back_all(&mut self) {
         let bodies = &self.scene.physics.bodies;
         let (zones, rule) = (&self.zones[..], self.dose_rule);
-        let per = &mut self.pipelines.per_robot;
-        let parallel = per.parallel_for(self.nav.len());
+        let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
         let dt = self.dt as f32;
         let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
             read_back(bodies, nav, state, dt);
@@ -77,25 +76,27 @@ impl World {
             self.nav
                 .par_iter_mut()
                 .zip(&mut self.robots)
-                .zip(&mut per.radiation)
+                .zip(&mut self.radiation_factor)
                 .with_min_len(CHUNK_ROBOTS)
                 .for_each(each);
         } else {
             self.nav
                 .iter_mut()
                 .zip(&mut self.robots)
-                .zip(&mut per.radiation)
+                .zip(&mut self.radiation_factor)
                 .for_each(each);
         }
     }
 
     /// Rule 5 for every robot the resolver did not hold, into `per_robot.steered` (ground
     /// robots keep [`STEER_STATIC_GAP_M`] beyond their radius from walls and debris), in
-    /// parallel for a large team. Call after the resolver ran on `self.inputs`.
+    /// parallel for a large team. Call after the resolver ran on
+    /// `pipelines.resolver_inputs`.
     pub(super) fn steer_all(&mut self) {
-        let n = self.inputs.len();
-        let (resolver, inputs, grid) = (&self.pipelines.resolver, &self.inputs[..], &self.grid);
-        let per = &mut self.pipelines.per_robot;
+        let p = &mut self.pipelines;
+        let n = p.resolver_inputs.len();
+        let (resolver, inputs, grid) = (&p.resolver, &p.resolver_inputs[..], &self.grid);
+        let per = &mut p.per_robot;
         let parallel = per.parallel_for(n);
         per.steered.resize(n, None);
         let chunks = n.div_ceil(CHUNK_ROBOTS).max(1);

@@ -6,9 +6,6 @@
 use parry2d::math::Vector as Vec2;
 
 use super::follow::Followed;
-use super::radiation::{DoseRule, radiation_factor_at};
-use super::robot::RobotState;
-use crate::scenario::RadiationZone;
 
 /// Smallest team whose per-robot phases run on several threads (robots, 512). Smaller teams
 /// stay serial: a phase costs tens of nanoseconds per robot, so below a few hundred robots
@@ -25,8 +22,6 @@ pub(super) const CHUNK_ROBOTS: usize = 256;
 pub(super) struct PerRobot {
     /// `World::set_parallel`: `false` keeps every phase serial.
     pub(super) enabled: bool,
-    /// Each robot's radiation factor at its current position ([`radiation_factor_at`]).
-    pub(super) radiation: Vec<f64>,
     /// Each robot's steered velocity of this control step (rule 5), `None` when blocked;
     /// unused for held robots.
     pub(super) steered: Vec<Option<Vec2>>,
@@ -38,12 +33,10 @@ pub(super) struct PerRobot {
 }
 
 impl PerRobot {
-    /// The buffers of `n` robots standing at `radiation` (their factors), parallel enabled.
-    pub(super) fn new(radiation: Vec<f64>) -> Self {
-        let n = radiation.len();
+    /// The buffers of `n` robots, parallel enabled.
+    pub(super) fn new(n: usize) -> Self {
         Self {
             enabled: true,
-            radiation,
             steered: vec![None; n],
             scratch: (0..n.div_ceil(CHUNK_ROBOTS).max(1))
                 .map(|_| Vec::new())
@@ -58,17 +51,4 @@ impl PerRobot {
     pub(super) fn parallel_for(&self, n: usize) -> bool {
         self.enabled && n >= PARALLEL_MIN_ROBOTS && rayon::current_num_threads() > 1
     }
-}
-
-/// The radiation factor of each of `robots` where it stands (in id order), for
-/// [`PerRobot::new`].
-pub(super) fn radiation_of(
-    robots: &[RobotState],
-    zones: &[RadiationZone],
-    rule: DoseRule,
-) -> Vec<f64> {
-    robots
-        .iter()
-        .map(|r| radiation_factor_at(zones, &r.position, rule))
-        .collect()
 }

@@ -7,6 +7,7 @@ use parry2d::math::Vector as Vec2;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
 use super::resolver::Resolver;
+use super::resolver_input::ResolverInput;
 use super::standing_disc::StandingDisc;
 
 /// The world's pipelines and what each owns: the memory it keeps between steps (the
@@ -34,6 +35,9 @@ pub(super) struct Pipelines {
     pub(super) near_body: Vec<bool>,
     /// Each robot's body speed on this step, m/s (the contact gate).
     pub(super) gate_speeds: Vec<f32>,
+    /// What the resolver reads of each robot on a control step, taken from its navigation
+    /// state and robot state before the resolver runs (indexed by id).
+    pub(super) resolver_inputs: Vec<ResolverInput>,
     /// The per-robot outputs of the parallel phases (`parallel.rs`) and whether they run in
     /// parallel.
     pub(super) per_robot: PerRobot,

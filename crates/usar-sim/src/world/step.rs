@@ -108,12 +108,14 @@ impl World {
                 Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
                 None => self.update_intent(id, clock.path_check_due(tick, id), period_s),
             }
-            self.inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
+            self.pipelines.resolver_inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
         if self.collision.enabled {
-            self.pipelines
-                .resolver
-                .resolve(&self.inputs, &self.neighbours, period_s);
+            self.pipelines.resolver.resolve(
+                &self.pipelines.resolver_inputs,
+                &self.neighbours,
+                period_s,
+            );
             self.steer_all();
         }
         for id in 0..n {
@@ -133,7 +135,7 @@ impl World {
     /// standing still. Records the robot's motion, list flags and resolver counters (a held
     /// step is counted by [`World::step`], every step).
     fn command(&mut self, id: usize) -> Vec2 {
-        let input = self.inputs[id];
+        let input = self.pipelines.resolver_inputs[id];
         let state = &mut self.robots[id];
         let mut motion = if state.goal.is_none() {
             Motion::Idle

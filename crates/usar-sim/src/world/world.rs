@@ -15,13 +15,12 @@ use super::clearance_grid::ClearanceGrid;
 use super::control_clock::ControlClock;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
-use super::per_robot::{PerRobot, radiation_of};
+use super::per_robot::PerRobot;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::plan_query::plan_inflation_m;
 use super::radiation::{self, DoseRule};
 use super::resolver::Resolver;
-use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
 use crate::scenario::{
     CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, RadiationZone, Scenario,
@@ -66,7 +65,10 @@ pub struct World {
     pub(super) neighbours: NeighbourIndex,
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
-    pub(super) inputs: Vec<ResolverInput>,
+    /// Each robot's radiation factor at its current position
+    /// ([`radiation::radiation_factor_at`]): computed where the position changes (when the
+    /// bodies are read back after a physics step, and on a teleport).
+    pub(super) radiation_factor: Vec<f64>,
     pub(super) zones: Vec<RadiationZone>,
     pub(super) dose_rule: DoseRule,
     /// Arena width and height at physics precision, metres.
@@ -124,7 +126,7 @@ impl World {
             nav.push(Nav::new(scene.robot_bodies[id], kind, pos));
             robots.push(RobotState::idle(id, r.kind, kind, to_point(pos)));
         }
-        let inputs = nav
+        let resolver_inputs = nav
             .iter()
             .zip(&robots)
             .map(|(n, r)| n.resolver_input(r))
@@ -134,7 +136,10 @@ impl World {
             overlap: s.mission.radiation_overlap,
             falloff: s.mission.radiation_falloff,
         };
-        let per_robot = PerRobot::new(radiation_of(&robots, &zones, dose_rule));
+        let radiation_factor = robots
+            .iter()
+            .map(|r| radiation::radiation_factor_at(&zones, &r.position, dose_rule))
+            .collect();
         let mut neighbours = NeighbourIndex::new(s);
         neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
         Self {
@@ -149,12 +154,13 @@ impl World {
                     .for_control_steps(clock.period_steps()),
                 near_body: Vec::new(),
                 gate_speeds: Vec::new(),
-                per_robot,
+                resolver_inputs,
+                per_robot: PerRobot::new(nav.len()),
             },
             neighbours,
             nav,
             robots,
-            inputs,
+            radiation_factor,
             zones,
             dose_rule,
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
@@ -383,7 +389,7 @@ impl World {
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
-        self.pipelines.per_robot.radiation[id] =
+        self.radiation_factor[id] =
             radiation::radiation_factor_at(&self.zones, &state.position, self.dose_rule);
         state.velocity = Vector2::zeros();
         // At rest without a goal until the next control step decides again.
@@ -500,7 +506,7 @@ impl World {
     pub fn radiation_factor(&self, id: usize) -> f64 {
         // Computed where the position changes (after each physics step, in parallel for a
         // large team, and on a teleport): the same value as computing it here.
-        self.pipelines.per_robot.radiation[id]
+        self.radiation_factor[id]
     }
 
     /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);
