@@ -89,7 +89,7 @@ pub fn run_sweep(
         ..SweepConfig::new(s, scenario.path())
     };
     if !vary.is_empty() {
-        let grid = build_grid(cfg.scenario.spec(), &vary).map_err(|e| anyhow_value_error(&e))?;
+        let grid = build_grid(cfg.scenario.spec(), &vary).map_err(|e| sweep_value_error(&e))?;
         cfg.grid = Some(grid);
     }
     add_hooks(&mut cfg, &python, &stop, &done);

@@ -240,5 +240,6 @@ def test_a_grid_is_the_sweep_once_per_cell_with_the_cells_values(paper, usar_cli
     assert len(wide) == 2 * 2 * 2
     with pytest.raises(ValueError, match="vary: give at least one"):
         usar.grid(paper, [], trials=1)
-    with pytest.raises(ValueError, match="mission.pikup_s"):
+    # Named by the keyword argument, not `usar sweep`'s flag.
+    with pytest.raises(ValueError, match=r"^vary mission\.pikup_s=0,1: no field \"pikup_s\""):
         usar.grid(paper, ["mission.pikup_s=0,1"], trials=1)
