@@ -33,12 +33,11 @@ test-timed:
 ci:
     bash .ci/run
 
-# The libraries alone (usar-sweep: no clap, no figures; usar-report: no clap) and experiments
-# without its command line (`default-features = false`): lints and tests.
+# The libraries alone (usar-sweep: no clap, no figures; usar-report: no clap; usar-study: the
+# studies without the command line): lints and tests.
 lib-only:
-    cargo clippy -p usar-sweep -p usar-report --all-targets -- -D warnings
-    cargo test -p usar-sweep -p usar-report
-    cargo clippy -p experiments --no-default-features --lib -- -D warnings
+    cargo clippy -p usar-sweep -p usar-report -p usar-study --all-targets -- -D warnings
+    cargo test -p usar-sweep -p usar-report -p usar-study
 
 # One trial of paper.ron with a grouping method (rne, dis, eng, hp_dis).
 run METHOD="rne" TRIAL="0":

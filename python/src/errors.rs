@@ -2,11 +2,9 @@
 //! exceptions: a bad scenario or argument is a `ValueError` with the library's one-line
 //! message, a failed trial a `TrialError`, a grouping method's bad answer a `GroupingError`.
 
-use experiments::calibrate::SetupError;
-use experiments::multiverse::MultiverseError;
 use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
-use usar_sweep::sweep::{ConfigError, SettingError};
+use usar_study::refused_setting::RefusedSetting;
 
 pyo3::create_exception!(
     _usar,
@@ -44,36 +42,19 @@ pub fn anyhow_value_error(e: &anyhow::Error) -> PyErr {
 }
 
 /// A `ValueError` from a library error of a sweep or a study, its whole chain on one line and
-/// in the package's words: a refused setting ([`is_setting`]) names its field, which is the
+/// in the package's words: a refused setting ([`RefusedSetting`]) names its field, which is the
 /// keyword argument that sets it, in its own `Display`; every other cause goes through
 /// [`python_words`].
 pub fn sweep_value_error(e: &anyhow::Error) -> PyErr {
     let line = e
         .chain()
-        .map(|cause| match is_setting(cause) {
-            true => cause.to_string(),
-            false => python_words(&cause.to_string()),
+        .map(|cause| match RefusedSetting::of(cause) {
+            Some(refused) => refused.line(str::to_owned),
+            None => python_words(&cause.to_string()),
         })
         .collect::<Vec<_>>()
         .join(": ");
     PyValueError::new_err(one_line(&line))
-}
-
-/// Whether `cause` is a typed refusal of a setting, which names the setting's field: a sweep
-/// plan's [`ConfigError`], a [`SettingError`], or one inside a calibration's or a
-/// multiverse's setup error.
-fn is_setting(cause: &(dyn std::error::Error + 'static)) -> bool {
-    let setup = |e: &SetupError| matches!(e, SetupError::Setting(_));
-    cause.is::<ConfigError>()
-        || cause.is::<SettingError>()
-        || cause.downcast_ref::<SetupError>().is_some_and(setup)
-        || cause
-            .downcast_ref::<MultiverseError>()
-            .is_some_and(|e| match e {
-                MultiverseError::Setting(_) | MultiverseError::Sweep(_) => true,
-                MultiverseError::Calibration(c) => setup(c),
-                _ => false,
-            })
 }
 
 /// `message` (a library error worded for the command line) in the Python package's words:

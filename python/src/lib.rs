@@ -1,6 +1,7 @@
 //! `usar._usar`: the native module of the Python package `usar` (PyO3). It wraps the library
-//! crates (rne-core, usar-sim, usar-sweep, usar-report, experiments) and nothing else: the Python API, its docstrings
-//! and its argument checks for Python types live in `python/usar/` (see docs/python.md).
+//! crates (rne-core, usar-sim, usar-sweep, usar-report, usar-study) and nothing else: the
+//! Python API, its docstrings and its argument checks for Python types live in `python/usar/`
+//! (see docs/python.md).
 //!
 //! - [`scenario`]: `Scenario` (load, from_ron, set, to_ron, check);
 //! - [`run`]: one trial, as `usar run --json` writes it;

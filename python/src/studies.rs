@@ -12,16 +12,16 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use serde_json::json;
 
-use experiments::calibrate::{
-    CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, calibrate,
-    parse_free,
-};
-use experiments::multiverse::{
-    Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
-};
 use usar_report::calibration::targets_or_paper;
 use usar_report::claims::Claims;
 use usar_report::source_date::source_date;
+use usar_study::calibrate::{
+    CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, calibrate,
+    parse_free,
+};
+use usar_study::multiverse::{
+    Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
+};
 use usar_sweep::data::hooks::Stopped;
 
 use crate::detached::run_detached;
@@ -133,7 +133,7 @@ fn calibration_json(o: &CalibrationOutcome) -> serde_json::Value {
         .map(|(f, x)| json!([f.label(), x]))
         .collect();
     json!({
-        "summary": experiments::calibrate::summary_text(o),
+        "summary": usar_study::calibrate::summary_text(o),
         "loss": o.loss.is_finite().then_some(o.loss),
         "admissible": o.admissible,
         "stop": python_words(&o.stop.to_string()),
@@ -221,7 +221,7 @@ pub fn run_calibration(
         threads: threads
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from)),
         check_seed: check_seed
-            .unwrap_or(experiments::calibrate::setup::default_check_seed(base_seed)),
+            .unwrap_or(usar_study::calibrate::setup::default_check_seed(base_seed)),
         check_trials,
         overwrite,
         optimizer,
@@ -282,7 +282,7 @@ fn multiverse_claims(
 /// What the Python side reads of a multiverse beside its files.
 fn multiverse_json(o: &MultiverseOutcome, dir: &Path) -> serde_json::Value {
     json!({
-        "summary": experiments::multiverse::summary_text(o, dir),
+        "summary": usar_study::multiverse::summary_text(o, dir),
         "universes": o.records.len(),
         "admissible": o.admissible(),
         "failed": o.failed().map(|r| json!([r.id, r.message])).collect::<Vec<_>>(),

@@ -5,8 +5,8 @@
 //! [`grid_outputs::grid_csv`]), figures ([`figures`], [`grid_outputs::grid_figures`]),
 //! reports ([`report`], [`grid_outputs::grid_md`]), the terminal summary ([`console`]),
 //! [`render`]ed pictures and [`replay`] pages that play one trial in a browser. No command line
-//! and no study: the `experiments` crate (calibration, multiverse and the `usar` binary) is
-//! built on this one.
+//! and no study: `usar_study` (calibration, multiverse) and the `experiments` crate (the `usar`
+//! binary) are built on this one.
 //!
 //! A sweep runs, analysis judges, outputs write: [`usar_sweep::sweep::run_sweep`] returns a
 //! `SweepOutcome`; [`analysis::Analysis::of`] computes the statistics and checks the claims

@@ -1,5 +1,5 @@
 //! Checksummed JSON-lines logs, the plumbing of the sweep journal ([`crate::journal`]) and a
-//! calibration's trace (`experiments::calibrate::trace`); a multiverse's universe and design records
+//! calibration's trace (`usar_study::calibrate::trace`); a multiverse's universe and design records
 //! are single lines of the same shape.
 //!
 //! A log is a header line and record lines, each `{"<key>":<json>,"sum":"<hex>"}` and its

@@ -180,7 +180,7 @@ fn run_job(
 
 /// Runs one trial, turning errors and panics into `Err(message)`. `tick(n)` is called every
 /// `PROGRESS_EVERY_STEPS` steps with the number of steps just taken. (A calibration runs its
-/// trials through it too: `experiments::calibrate::evaluate`.)
+/// trials through it too: `usar_study::calibrate::evaluate`.)
 pub fn run_trial(
     plan: &CellPlan<'_>,
     runner: &Runner<'_>,

@@ -1,8 +1,8 @@
 //! The sweep library of the USAR experiments: parallel, resumable sweeps of grouping methods
 //! over trials of a scenario (and over grids of scenario values), with nothing of a command
-//! line, an analysis or a figure in it. The `experiments` crate (tables, figures, reports,
-//! calibration, multiverse and the `usar` binary) is built on it; a researcher's own crate can
-//! depend on this one alone (docs/library.md, "Depending on the library only").
+//! line, an analysis or a figure in it. `usar_report` (tables, figures, reports), `usar_study`
+//! (calibration, multiverse) and the `usar` binary are built on it; a researcher's own crate
+//! can depend on this one alone (docs/library.md, "Depending on the library only").
 //!
 //! [`sweep::run_sweep`] runs the trials (of every cell of a [`grid`] built from `--vary`
 //! overrides, [`vary`]) into the [`journal`] and returns data ([`data`]). A sweep holds the

@@ -10,13 +10,13 @@
 //! they stay defined and keep the order the docs give (ours are larger than the sheet's),
 //! not that they hold; so are the six structure targets, which must be defined.
 
-use experiments::calibrate::{FreeField, Targets};
-use experiments::multiverse::{Axes, MultiverseSetup};
 use integration_tests::{method, paper, scenario_path};
 use rayon::prelude::*;
 use usar_report::calibration::check;
 use usar_sim::mission::{Simulation, TrialResult};
 use usar_sim::scenario::Scenario;
+use usar_study::calibrate::{FreeField, Targets};
+use usar_study::multiverse::{Axes, MultiverseSetup};
 
 /// The spread targets: reported, not fitted (see the module docs).
 const SPREAD: [&str; 3] = [
@@ -221,10 +221,10 @@ fn the_paper_axes_check_against_paper_ron() {
     // More universes than one multiverse runs whole: the committed command draws a sample.
     let whole = setup.check().unwrap_err().to_string();
     assert!(whole.contains("draw some with --sample N"), "{whole}");
-    setup.sample = Some(experiments::multiverse::universe::Sample { n: 64, seed: 2021 });
+    setup.sample = Some(usar_study::multiverse::universe::Sample { n: 64, seed: 2021 });
     let checked = setup.check().unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(checked.universes.len(), 64);
-    let size = experiments::multiverse::universe::factorial_size(&setup.axes.sizes()).unwrap();
+    let size = usar_study::multiverse::universe::factorial_size(&setup.axes.sizes()).unwrap();
     assert!(size >= 4096, "{size}");
 }
 

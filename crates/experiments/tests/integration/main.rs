@@ -1,18 +1,16 @@
 //! The integration tests of `experiments`, one test binary (each file a module: linking the
 //! workspace and Rapier once, not once per file): the `usar` command line run as a process
-//! (`env!("CARGO_BIN_EXE_usar")`) and the library's sweeps, calibrations and multiverses, with
-//! the helpers they share in `common`. The long checks are `#[ignore]`d with their reason
-//! (`cargo test --release -p experiments --test integration -- --ignored`; CI runs them in
-//! release).
+//! (`env!("CARGO_BIN_EXE_usar")`) and the sweeps it is built on, with the helpers they share
+//! in `common`. (The studies' libraries are tested in `usar-study`.) The long checks are
+//! `#[ignore]`d with their reason (`cargo test --release -p experiments --test integration --
+//! --ignored`; CI runs them in release).
 
 mod calibrate_cli;
-mod calibrate_lib;
 mod check_cli;
 mod claims_files;
 mod common;
 mod json_schema;
 mod multiverse_cli;
-mod multiverse_lib;
 mod output_owners;
 mod output_paths;
 mod render_cli;

@@ -2,8 +2,8 @@
 //! statistic of a set of trials ([`Statistic`], over metrics named by [`MetricRef`]), the value
 //! it should have and the [`Band`] it must fall in ([`Target`]); a targets file holds them
 //! ([`Targets`], read through [`ron_file`]). A sweep's reports compare with them
-//! (`crate::calibration`), `experiments::calibrate` fits free fields to them and
-//! `experiments::multiverse` calibrates each universe against them.
+//! (`crate::calibration`), `usar_study::calibrate` fits free fields to them and
+//! `usar_study::multiverse` calibrates each universe against them.
 
 pub mod band;
 pub mod file;

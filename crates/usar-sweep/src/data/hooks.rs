@@ -63,7 +63,7 @@ impl fmt::Debug for SweepHooks {
     }
 }
 
-/// Extension points of a calibration (`experiments::calibrate::CalibrationSetup::hooks`); none by
+/// Extension points of a calibration (`usar_study::calibrate::CalibrationSetup::hooks`); none by
 /// default.
 #[derive(Clone, Default)]
 pub struct CalibrationHooks {

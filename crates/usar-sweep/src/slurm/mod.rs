@@ -1,6 +1,6 @@
 //! A sweep on a Slurm cluster (`usar slurm`): a job array whose task I runs shard I of the
 //! sweep (`usar sweep ... --shard I/N`, [`crate::shard`]; or of a multiverse, `usar
-//! multiverse ... --shard I/N`, `experiments::multiverse`), and a merge job (`usar merge`)
+//! multiverse ... --shard I/N`, `usar_study::multiverse`), and a merge job (`usar merge`)
 //! chained to it with `--dependency=afterok`. [`script`] writes the files, [`mod@submit`] submits
 //! them with `sbatch`.
 

@@ -16,7 +16,7 @@ use usar_sim::scenario::path_text;
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
 
 /// What the tasks of a Slurm array run, shard by shard: a sweep ([`SweepPlan`], `usar sweep
-/// ... --shard I/N`) or a multiverse (`experiments::multiverse::MultiversePlan`, `usar multiverse
+/// ... --shard I/N`) or a multiverse (`usar_study::multiverse::MultiversePlan`, `usar multiverse
 /// ... --shard I/N`); the merge job runs `usar merge OUT` for both.
 pub trait ShardedWork {
     /// The `usar` subcommand each task runs: `sweep` or `multiverse`. It also names the

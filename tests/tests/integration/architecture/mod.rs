@@ -122,11 +122,11 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
         },
     ),
     (
-        "crates/experiments/src/lib.rs",
+        "crates/usar-study/src/lib.rs",
         CrateLayout {
-            name: "experiments",
+            name: "usar-study",
             // The studies: a calibration, then the multiverse that runs one per universe.
-            layers: &[&["calibrate"], &["multiverse"]],
+            layers: &[&["calibrate"], &["multiverse"], &["refused_setting"]],
             peers: &[],
         },
     ),
@@ -149,11 +149,12 @@ const OTHER_CRATES: &[&str] = &[
     "crates/rne-core/benches/grouping.rs",
     "crates/usar-sim/benches/world.rs",
     "crates/usar-sim/tests/integration/main.rs",
-    "crates/experiments/benches/multiverse.rs",
+    "crates/usar-study/benches/multiverse.rs",
     "crates/experiments/benches/sweep.rs",
     "crates/experiments/benches/trials_per_cpu.rs",
     "crates/usar-sweep/examples/random_method.rs",
     "crates/experiments/tests/integration/main.rs",
+    "crates/usar-study/tests/integration/main.rs",
     "tests/src/lib.rs",
     "tests/downstream/src/lib.rs",
     "tests/tests/integration/main.rs",

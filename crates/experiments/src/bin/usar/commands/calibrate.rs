@@ -1,5 +1,5 @@
 //! `usar calibrate`: fits `--free` scenario fields so that the statistics of a sweep of the
-//! scenario fall inside the bands of a targets file (`experiments::calibrate`).
+//! scenario fall inside the bands of a targets file (`usar_study::calibrate`).
 
 use std::io::Write;
 
@@ -17,11 +17,11 @@ use rne_core::grouping::METHOD_NAMES;
 
 use usar_sim::scenario::{self, path_text};
 
-use experiments::calibrate::setup::{
+use usar_study::calibrate::setup::{
     DEFAULT_CHECK_TRIALS, DEFAULT_DIGITS, DEFAULT_MAX_EVALS, DEFAULT_TRIALS, default_check_seed,
 };
 
-use experiments::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, summary_text};
+use usar_study::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, summary_text};
 
 use usar_report::calibration::targets_or_paper;
 

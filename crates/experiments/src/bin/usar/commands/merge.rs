@@ -10,10 +10,10 @@ use anyhow::{Result, bail};
 use clap::Args;
 use usar_sim::scenario::path_text;
 
-use experiments::multiverse::{is_multiverse_dir, merge_multiverse, summary_text};
 use usar_report::analysis::Analysis;
 use usar_report::console::print_sweep;
 use usar_report::output::write_outputs;
+use usar_study::multiverse::{is_multiverse_dir, merge_multiverse, summary_text};
 use usar_sweep::shard::merge_shards;
 
 use crate::shared::multiverse_spec::failed_universes;

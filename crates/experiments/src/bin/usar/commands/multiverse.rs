@@ -1,5 +1,5 @@
 //! `usar multiverse`: the paper's method comparison in every combination of its open choices
-//! (`experiments::multiverse`), each calibrated to the targets first.
+//! (`usar_study::multiverse`), each calibrated to the targets first.
 
 use std::io::Write;
 
@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 
 use clap::Args;
 
-use experiments::multiverse::{MultiverseHooks, MultiverseProgress, run_multiverse, summary_text};
+use usar_study::multiverse::{MultiverseHooks, MultiverseProgress, run_multiverse, summary_text};
 
 use usar_sweep::shard::Shard;
 

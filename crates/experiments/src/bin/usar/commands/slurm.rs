@@ -9,11 +9,11 @@ use anyhow::{Context, Result};
 use clap::Args;
 use usar_sim::scenario::path_text;
 
-use experiments::multiverse::MultiversePlan;
-use experiments::multiverse::setup::{
+use usar_sim::scenario;
+use usar_study::multiverse::MultiversePlan;
+use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
 };
-use usar_sim::scenario;
 use usar_sweep::shard::shell_join;
 use usar_sweep::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
 use usar_sweep::sweep::default_out_dir;
@@ -244,7 +244,7 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     };
     let out_dir = absolute(&out_dir)?;
     let checked = setup.check()?;
-    experiments::multiverse::universe::check_shards(
+    usar_study::multiverse::universe::check_shards(
         &format!("--shards {}", args.shards),
         args.shards,
         checked.universes.len(),

@@ -2,9 +2,7 @@
 //! the command line's words (the field that holds the setting becomes the flag that sets it),
 //! every other cause as it says itself, joined by `: ` as anyhow's `{:#}` joins them.
 
-use experiments::calibrate::SetupError;
-use experiments::multiverse::MultiverseError;
-use usar_sweep::sweep::{ConfigError, SettingError};
+use usar_study::refused_setting::RefusedSetting;
 
 /// `e` and its causes on one line, each refused setting named by its flag.
 pub fn error_line(e: &anyhow::Error) -> String {
@@ -17,30 +15,7 @@ pub fn error_line(e: &anyhow::Error) -> String {
 /// `cause` in `usar`'s words when it is a refused setting (of a sweep, a calibration or a
 /// multiverse): the flag, then the problem (`--max-evals must be at least 1`).
 fn setting_line(cause: &(dyn std::error::Error + 'static)) -> Option<String> {
-    let config = |e: &ConfigError| {
-        let flag = e.field().map_or(String::new(), |f| flag(f.name()));
-        format!("{flag}{}", e.problem())
-    };
-    let setting = |e: &SettingError| format!("{}{}", flag(e.field()), e.problem());
-    let setup = |e: &SetupError| match e {
-        SetupError::Setting(s) => Some(setting(s)),
-        _ => None,
-    };
-    if let Some(e) = cause.downcast_ref::<ConfigError>() {
-        return Some(config(e));
-    }
-    if let Some(e) = cause.downcast_ref::<SettingError>() {
-        return Some(setting(e));
-    }
-    if let Some(e) = cause.downcast_ref::<SetupError>() {
-        return setup(e);
-    }
-    match cause.downcast_ref::<MultiverseError>()? {
-        MultiverseError::Setting(s) => Some(setting(s)),
-        MultiverseError::Sweep(e) => Some(config(e)),
-        MultiverseError::Calibration(e) => setup(e),
-        _ => None,
-    }
+    RefusedSetting::of(cause).map(|refused| refused.line(flag))
 }
 
 /// The flag that sets the field named `field`: `--` and the name with `-` for `_`, but
@@ -55,6 +30,10 @@ fn flag(field: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    use usar_study::calibrate::SetupError;
+    use usar_study::multiverse::MultiverseError;
+    use usar_sweep::sweep::{ConfigError, SettingError};
+
     use super::*;
 
     #[test]

@@ -9,13 +9,13 @@ use clap::Args;
 use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
-use experiments::calibrate::{Targets, parse_free};
-use experiments::multiverse::setup::{
+use usar_report::claims::Claims;
+use usar_study::calibrate::{Targets, parse_free};
+use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_DESIGN, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
     DEFAULT_TRIALS,
 };
-use experiments::multiverse::{Axes, MultiverseSetup, Sample};
-use usar_report::claims::Claims;
+use usar_study::multiverse::{Axes, MultiverseSetup, Sample};
 use usar_sweep::shard::Shard;
 use usar_sweep::sweep::default_out_dir_of;
 
@@ -222,7 +222,7 @@ pub fn default_dir(setup: &MultiverseSetup) -> Result<PathBuf> {
 }
 
 /// The error listing failed universes, if any, ending with `retry` (how to retry them).
-pub fn failed_universes(o: &experiments::multiverse::MultiverseOutcome, retry: &str) -> Result<()> {
+pub fn failed_universes(o: &usar_study::multiverse::MultiverseOutcome, retry: &str) -> Result<()> {
     let failed: Vec<String> = o
         .failed()
         .map(|r| format!("{} ({})", r.id, r.message.as_deref().unwrap_or("failed")))

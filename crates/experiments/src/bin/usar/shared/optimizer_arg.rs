@@ -10,7 +10,7 @@ pub enum OptimizerArg {
     CmaEs,
 }
 
-impl From<OptimizerArg> for experiments::calibrate::Optimizer {
+impl From<OptimizerArg> for usar_study::calibrate::Optimizer {
     fn from(a: OptimizerArg) -> Self {
         match a {
             OptimizerArg::NelderMead => Self::NelderMead,

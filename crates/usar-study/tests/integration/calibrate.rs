@@ -1,14 +1,14 @@
-//! `experiments::calibrate::calibrate` as a library call (the multiverse command runs one per
+//! `usar_study::calibrate::calibrate` as a library call (the multiverse command runs one per
 //! universe): progress off, any folder; failing trials and broken rules are evaluations with
 //! an infinite loss, not errors; loss 0 stops the search; a larger budget continues it.
 
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use experiments::calibrate::{
+use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
+use usar_study::calibrate::{
     CalibrationSetup, Checked, Evaluator, FreeField, Progress, StopReason, Targets, calibrate,
 };
-use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 use usar_sweep::sweep::MethodFactory;
 
 const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
@@ -259,7 +259,7 @@ fn a_larger_budget_continues_the_same_search() {
     let fresh = calibrate(&long, b.path(), Progress::off()).unwrap();
     assert_eq!((more.ran, more.reused), (2, 3));
     assert_eq!(fresh.ran, 5);
-    let rows = |o: &experiments::calibrate::CalibrationOutcome| -> Vec<(Vec<f64>, String)> {
+    let rows = |o: &usar_study::calibrate::CalibrationOutcome| -> Vec<(Vec<f64>, String)> {
         o.evaluations
             .iter()
             .map(|e| (e.values.clone(), format!("{:?}", e.statistics)))

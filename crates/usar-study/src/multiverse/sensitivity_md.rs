@@ -95,7 +95,7 @@ pub fn deciding_choices(r: &mut String, plan: &MultiversePlan, records: &[Univer
          have no effect at all: a share near it says nothing. Then the same over every \
          compared universe, admissible or not: what moves the claim across the readings, \
          whether or not they fit the authors' statistics. Estimators and references: \
-         `experiments::multiverse::decompose`.\n"
+         `usar_study::multiverse::decompose`.\n"
     );
     for c in &id.claims {
         let _ = writeln!(r, "### ({}) {}\n", c.id, c.sentence);

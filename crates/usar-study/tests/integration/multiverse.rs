@@ -1,4 +1,4 @@
-//! `experiments::multiverse::run_multiverse` as a library call: its stop flag (the Python
+//! `usar_study::multiverse::run_multiverse` as a library call: its stop flag (the Python
 //! package's Ctrl-C) ends the run without a partial record or the top files, and a rerun
 //! writes the files of an uninterrupted run.
 
@@ -6,8 +6,8 @@ use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use experiments::calibrate::{FreeField, Targets};
-use experiments::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
+use usar_study::calibrate::{FreeField, Targets};
+use usar_study::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
 use usar_sweep::data::hooks::Stopped;
 
 const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");

@@ -14,8 +14,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use experiments::calibrate::{FreeField, Targets};
-use experiments::multiverse::{
+use usar_study::calibrate::{FreeField, Targets};
+use usar_study::multiverse::{
     Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
 };
 

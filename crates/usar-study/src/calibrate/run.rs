@@ -40,7 +40,7 @@ use usar_sweep::lock::OutputLock;
 ///
 /// ```no_run
 /// use std::path::Path;
-/// use experiments::calibrate::{CalibrationSetup, FreeField, Progress, Targets, calibrate};
+/// use usar_study::calibrate::{CalibrationSetup, FreeField, Progress, Targets, calibrate};
 ///
 /// let text = std::fs::read_to_string("scenarios/paper.ron")?;
 /// let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron")?;

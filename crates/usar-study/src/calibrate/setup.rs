@@ -119,7 +119,7 @@ impl CalibrationSetup {
         let origin = origin.into();
         let seed = base.sim.seed;
         Self {
-            command: format!("experiments::calibrate::calibrate of {origin}"),
+            command: format!("usar_study::calibrate::calibrate of {origin}"),
             origin,
             targets,
             free,

@@ -37,8 +37,8 @@ use usar_sweep::shard::shard_dir;
 ///
 /// ```no_run
 /// use std::path::Path;
-/// use experiments::calibrate::{FreeField, Targets};
-/// use experiments::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
+/// use usar_study::calibrate::{FreeField, Targets};
+/// use usar_study::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
 ///
 /// let text = std::fs::read_to_string("scenarios/paper.ron")?;
 /// let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron")?;
