@@ -111,7 +111,7 @@ impl ReportOptions {
             Some(path) => {
                 let t = Targets::load(path)?;
                 t.check_tasks(&tasks).map_err(|mut e| {
-                    in_scenario(&mut e.message);
+                    in_scenario(&mut e.0.message);
                     e
                 })?;
                 Some(t)
@@ -123,7 +123,7 @@ impl ReportOptions {
             Some(path) => {
                 let c = Claims::load(path)?;
                 c.check_tasks(&tasks).map_err(|mut e| {
-                    in_scenario(&mut e.message);
+                    in_scenario(&mut e.0.message);
                     e
                 })?;
                 c.check_methods(methods)?;

@@ -19,7 +19,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use rne_core::grouping::METHOD_NAMES;
-use usar_sim::scenario::{SourceLocation, did_you_mean};
+use usar_sim::scenario::did_you_mean;
 
 use super::claim::{Claim, Rivals, method_key};
 use crate::targets::ron_file::{self, Source, StudyFile};
@@ -31,27 +31,11 @@ pub const MAX_CLAIMS_BYTES: u64 = 1 << 20;
 /// Longest claim id, characters.
 const MAX_ID_CHARS: usize = 32;
 
-/// Why claims could not be read or used: one line, `origin[:line:col]: [field: ]message`.
+/// Why claims could not be read or used: one line, `origin[:line:col]: [field: ]message`, the
+/// [`Located`](ron_file::Located) error it wraps (its field is `claims[1].rivals` and the like).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
-pub struct ClaimsError {
-    /// The file (as given) and, when known, the line and column.
-    pub location: SourceLocation,
-    /// The field the error is about (`claims[1].rivals`), when known.
-    pub field: Option<String>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl From<ron_file::Located> for ClaimsError {
-    fn from(e: ron_file::Located) -> Self {
-        Self {
-            location: e.location,
-            field: e.field,
-            message: e.message,
-        }
-    }
-}
+#[error(transparent)]
+pub struct ClaimsError(#[from] pub ron_file::Located);
 
 /// A checked list of claims (at least one; ids unique and usable in file names; sentences
 /// one line; no subject among its rivals; every metric a `trials.csv` column name for some
@@ -346,7 +330,7 @@ mod tests {
                  direction: Less)])"
             );
             let e = Claims::parse(&src, "c.ron").unwrap_err();
-            assert_eq!(e.field.as_deref(), Some("claims[0].id"), "{e}");
+            assert_eq!(e.0.field.as_deref(), Some("claims[0].id"), "{e}");
         }
     }
 }

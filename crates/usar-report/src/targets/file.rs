@@ -20,7 +20,6 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
-use usar_sim::scenario::SourceLocation;
 
 use super::band::Band;
 use super::ron_file::{self, Source, StudyFile};
@@ -82,27 +81,11 @@ impl Target {
     }
 }
 
-/// Why targets could not be read or used: one line, `origin[:line:col]: [field: ]message`.
+/// Why targets could not be read or used: one line, `origin[:line:col]: [field: ]message`, the
+/// [`Located`](ron_file::Located) error it wraps (its field is `targets[3].statistic` and the like).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
-pub struct TargetsError {
-    /// The file (as given) and, when known, the line and column.
-    pub location: SourceLocation,
-    /// The field the error is about (`targets[3].statistic`), when known.
-    pub field: Option<String>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl From<ron_file::Located> for TargetsError {
-    fn from(e: ron_file::Located) -> Self {
-        Self {
-            location: e.location,
-            field: e.field,
-            message: e.message,
-        }
-    }
-}
+#[error(transparent)]
+pub struct TargetsError(#[from] pub ron_file::Located);
 
 /// A checked list of targets (at least one, names unique, every band usable, every metric
 /// name a `trials.csv` column for some task names), with where it came from.

@@ -12,9 +12,11 @@ use usar_sim::scenario::{SourceLocation, path_text};
 
 use usar_sim::scenario::SourceMap;
 
-/// A positioned error before it becomes a file type's own error (`TargetsError`, `AxesError`,
-/// `ClaimsError`, which have these three fields).
-#[derive(Debug)]
+/// A positioned error of a study file: one line, `origin[:line:col]: [field: ]message`. Each
+/// kind of file wraps it in its own error type (`TargetsError`, `ClaimsError`, `AxesError`),
+/// so that a caller can tell which file was refused.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
 pub struct Located {
     /// The file (as given) and, when known, the line and column.
     pub location: SourceLocation,

@@ -28,7 +28,6 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use usar_sim::scenario::SourceLocation;
 
 use super::columns::is_fixed_column;
 use usar_report::targets::ron_file::{self, Source, StudyFile};
@@ -92,27 +91,12 @@ impl PartialEq for Axes {
     }
 }
 
-/// Why an axes file cannot be used: one line, `origin[:line:col]: [field: ]message`.
+/// Why an axes file cannot be used: one line, `origin[:line:col]: [field: ]message`, the
+/// [`Located`](ron_file::Located) error it wraps (its field is
+/// `axes[1].alternatives[0].set[1]` and the like).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
-pub struct AxesError {
-    /// The file (as given) and, when known, the line and column.
-    pub location: SourceLocation,
-    /// The field the error is about (`axes[1].alternatives[0].set[1]`), when known.
-    pub field: Option<String>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl From<ron_file::Located> for AxesError {
-    fn from(e: ron_file::Located) -> Self {
-        Self {
-            location: e.location,
-            field: e.field,
-            message: e.message,
-        }
-    }
-}
+#[error(transparent)]
+pub struct AxesError(#[from] pub ron_file::Located);
 
 impl Axes {
     /// Checks `axes` (named `origin` in errors; no line numbers), as [`Axes::parse`] does

@@ -155,7 +155,7 @@ pub fn evaluate_point(
     let targets = match setup.axes.universe_targets(&u.choices, &setup.targets) {
         Ok(t) => t,
         Err(e) => {
-            point.message = Some(format!("targets: {}", e.message));
+            point.message = Some(format!("targets: {}", e.0.message));
             return Ok(point);
         }
     };

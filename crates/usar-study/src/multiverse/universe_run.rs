@@ -100,7 +100,7 @@ impl UniverseRun<'_> {
             }
             (Ok(_), Err(e)) => {
                 record.status = Status::Invalid;
-                record.message = Some(format!("targets: {}", e.message));
+                record.message = Some(format!("targets: {}", e.0.message));
             }
             (Ok(spec), Ok(targets)) => {
                 self.calibrate_and_compare(spec, &targets, &dir, &mut record);

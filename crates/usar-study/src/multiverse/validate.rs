@@ -88,7 +88,7 @@ fn target_flags(
     };
     let mut t = targets.clone();
     t.set_flags(&alt.require, &alt.report_only)
-        .map_err(|e| alt_error(axes, i, k, field, e.message))?;
+        .map_err(|e| alt_error(axes, i, k, field, e.0.message))?;
     Ok(t.targets().iter().map(|t| t.report_only).collect())
 }
 
