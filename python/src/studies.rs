@@ -16,8 +16,8 @@ use usar_report::calibration::targets_or_paper;
 use usar_report::claims::Claims;
 use usar_report::source_date::source_date;
 use usar_study::calibrate::{
-    CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, calibrate,
-    parse_free,
+    CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, TrialPlan,
+    calibrate, parse_free,
 };
 use usar_study::multiverse::{
     Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
@@ -210,11 +210,13 @@ pub fn run_calibration(
     let base_seed = seed.unwrap_or(scenario.spec().sim.seed);
     let counter = run.done.clone();
     let setup = CalibrationSetup {
-        methods: run.names.clone(),
-        method_factory: run.factory(scenario),
-        trials,
-        base_seed,
-        duration_s,
+        trial_plan: TrialPlan {
+            methods: run.names.clone(),
+            method_factory: run.factory(scenario),
+            trials,
+            base_seed,
+            duration_s,
+        },
         digits,
         max_evals,
         max_time,
@@ -336,11 +338,13 @@ pub fn run_multiverse_py(
     let mut setup = MultiverseSetup {
         claims,
         near_loss,
-        methods: run.names.clone(),
-        method_factory: run.factory(scenario),
-        trials,
-        seed,
-        duration_s,
+        comparison: TrialPlan {
+            methods: run.names.clone(),
+            method_factory: run.factory(scenario),
+            trials,
+            base_seed: seed,
+            duration_s,
+        },
         calibration_trials,
         calibration_seed: calibration_seed.unwrap_or(seed),
         max_evals,

@@ -14,7 +14,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use usar_study::calibrate::{FreeField, Targets};
+use usar_study::calibrate::{FreeField, Targets, TrialPlan};
 use usar_study::multiverse::{
     Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
 };
@@ -67,19 +67,22 @@ fn setup(quick: bool) -> MultiverseSetup {
         .iter()
         .map(|f| FreeField::parse(f).expect("free field"))
         .collect();
-    let full = MultiverseSetup {
-        trials: 10,
+    let mut full = MultiverseSetup {
         calibration_trials: 4,
         max_evals: 20,
         ..MultiverseSetup::new(base, "scenarios/paper.ron", axes, targets, free)
     };
+    full.comparison.trials = 10;
     if !quick {
         return full;
     }
     MultiverseSetup {
-        methods: vec!["rne".into(), "dis".into()],
-        trials: 2,
-        duration_s: Some(60.0),
+        comparison: TrialPlan {
+            methods: vec!["rne".into(), "dis".into()],
+            trials: 2,
+            duration_s: Some(60.0),
+            ..full.comparison.clone()
+        },
         calibration_trials: 1,
         max_evals: 2,
         sample: Some(Sample { n: 2, seed: 1 }),
@@ -89,7 +92,7 @@ fn setup(quick: bool) -> MultiverseSetup {
 
 /// Trials the outcome's universes ran: every calibration evaluation's and the comparison's.
 fn trials_run(setup: &MultiverseSetup, o: &MultiverseOutcome) -> usize {
-    let per_evaluation = setup.methods.len() * setup.calibration_trials as usize;
+    let per_evaluation = setup.comparison.methods.len() * setup.calibration_trials as usize;
     o.records
         .iter()
         .map(|r| {
@@ -109,6 +112,7 @@ fn main() {
     let setup = setup(quick);
     let tmp = tempfile::tempdir().expect("temp dir");
     let length = setup
+        .comparison
         .duration_s
         .unwrap_or(setup.base.mission.duration_s.get());
     println!(
@@ -117,8 +121,8 @@ fn main() {
          evaluations; {} thread(s)",
         if quick { " (quick)" } else { "" },
         setup.sample.map_or(16, |s| s.n),
-        setup.methods.len(),
-        setup.trials,
+        setup.comparison.methods.len(),
+        setup.comparison.trials,
         setup.calibration_trials,
         setup.max_evals,
         setup.threads

@@ -92,7 +92,7 @@ impl<'a> Evaluator<'a> {
     /// # Errors
     /// The thread pool cannot be started.
     pub fn new(setup: &'a CalibrationSetup, checked: &Checked) -> anyhow::Result<Self> {
-        let per_evaluation = checked.methods.len() * setup.trials as usize;
+        let per_evaluation = checked.methods.len() * setup.trial_plan.trials as usize;
         let threads = checked.threads.min(per_evaluation).max(1);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -181,7 +181,11 @@ impl<'a> Evaluator<'a> {
         match self.scenario_at(values) {
             Err(m) => e.message = Some(m),
             Ok((_, scenario)) => {
-                let set = self.run(&scenario, self.setup.base_seed, self.setup.trials);
+                let set = self.run(
+                    &scenario,
+                    self.setup.trial_plan.base_seed,
+                    self.setup.trial_plan.trials,
+                );
                 e.statistics = self.setup.targets.values(&set.results);
                 e.trials_ok = set.results.len();
                 e.loss = loss(self.setup.targets.targets(), &e.statistics);
@@ -213,6 +217,7 @@ impl<'a> Evaluator<'a> {
     pub fn run(&self, scenario: &Scenario, base_seed: u64, trials: u32) -> TrialSet {
         let duration_s = self
             .setup
+            .trial_plan
             .duration_s
             .unwrap_or(scenario.mission().duration_s.get());
         let plan = match (
@@ -232,6 +237,7 @@ impl<'a> Evaluator<'a> {
         };
         let jobs: Vec<Job> = self
             .setup
+            .trial_plan
             .methods
             .iter()
             .zip(&self.methods)
@@ -250,7 +256,7 @@ impl<'a> Evaluator<'a> {
             ..SweepHooks::default()
         };
         let runner = Runner {
-            factory: &self.setup.method_factory,
+            factory: &self.setup.trial_plan.method_factory,
             hooks: &hooks,
             progress: false,
             threads: self.pool.current_num_threads(),

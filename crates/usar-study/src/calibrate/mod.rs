@@ -11,7 +11,7 @@
 //! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
 //! Files depend one way (each imports only from those before it, and from the targets'
-//! vocabulary below, [`usar_report::targets`]): loss, free, setup, evaluate, optimizer, cma_es,
+//! vocabulary below, [`usar_report::targets`]): loss, free, trial_plan, setup, evaluate, optimizer, cma_es,
 //! trace, outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs,
 //! searcher, run, summary.
 
@@ -32,6 +32,7 @@ pub mod summary;
 pub mod targets_figure;
 pub mod trace;
 pub mod tradeoff_figure;
+pub mod trial_plan;
 
 pub use evaluate::{Evaluation, Evaluator, TrialSet};
 pub use free::{FreeError, FreeField, parse_free, round_significant};
@@ -42,5 +43,6 @@ pub use progress::{EvaluationHook, Progress};
 pub use run::calibrate;
 pub use setup::{CalibrationSetup, Checked, SetupError};
 pub use summary::summary_text;
+pub use trial_plan::TrialPlan;
 // The targets it fits to (a vocabulary below the calibration, `usar_report::targets`).
 pub use usar_report::targets::{Band, MetricRef, Statistic, Target, Targets, TargetsError};

@@ -41,14 +41,18 @@ use usar_sweep::lock::OutputLock;
 /// ```no_run
 /// use std::path::Path;
 /// use usar_study::calibrate::{CalibrationSetup, FreeField, Progress, Targets, calibrate};
+/// use usar_study::calibrate::TrialPlan;
 ///
 /// let text = std::fs::read_to_string("scenarios/paper.ron")?;
 /// let base = usar_sim::scenario::parse_spec(&text, "scenarios/paper.ron")?;
 /// let targets = Targets::load(Path::new("scenarios/paper-targets.ron"))?;
 /// let free = vec![FreeField::parse("mission.pickup_s=0.8..1.6")?];
+/// let seed = base.sim.seed;
 /// let setup = CalibrationSetup {
-///     methods: vec!["rne".into(), "dis".into()],
-///     trials: 4,
+///     trial_plan: TrialPlan {
+///         methods: vec!["rne".into(), "dis".into()],
+///         ..TrialPlan::builtin(4, seed)
+///     },
 ///     max_evals: 12,
 ///     check_trials: 0,
 ///     ..CalibrationSetup::new(base, "scenarios/paper.ron", targets, free)
@@ -181,7 +185,7 @@ fn search(
         .collect();
     let stop = match setup.optimizer {
         Optimizer::NelderMead => nelder_mead(&u0, &mut searcher),
-        Optimizer::CmaEs => cma_es(&u0, &mut searcher, setup.base_seed),
+        Optimizer::CmaEs => cma_es(&u0, &mut searcher, setup.trial_plan.base_seed),
     };
     searcher.display.finish();
     if let Some(e) = searcher.error {
@@ -221,7 +225,7 @@ fn search_text(setup: &CalibrationSetup) -> String {
             "CMA-ES (fcmaes-core, active) on [0, 1]^d: population {}, initial step size \
              {INITIAL_SIGMA}, seed {}, +inf told as {INFINITE_LOSS:e}, stall limit {STALL_LIMIT}",
             population(setup.free.len()),
-            setup.base_seed
+            setup.trial_plan.base_seed
         ),
     }
 }
@@ -236,9 +240,9 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         targets: setup.targets.targets().to_vec(),
         free: setup.free.clone(),
         methods: checked.methods.clone(),
-        trials: setup.trials,
-        base_seed: setup.base_seed,
-        duration_s: setup.duration_s,
+        trials: setup.trial_plan.trials,
+        base_seed: setup.trial_plan.base_seed,
+        duration_s: setup.trial_plan.duration_s,
         digits: setup.digits,
         search: match (&setup.start, setup.start_mid) {
             (Some(start), _) => format!(

@@ -7,11 +7,12 @@ use usar_sim::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 use super::free::{FreeError, FreeField, check_distinct};
 use super::optimizer::Optimizer;
+use super::trial_plan::TrialPlan;
 use usar_report::targets::file::{Targets, TargetsError};
 use usar_sweep::data::hooks::CalibrationHooks;
 use usar_sweep::data::limits::{MAX_SWEEP_TRIALS, max_threads};
 use usar_sweep::data::setting_error::SettingError;
-use usar_sweep::method_factory::{MethodFactory, canonical_method, trust_model};
+use usar_sweep::method_factory::{canonical_method, trust_model};
 
 /// Trials per method and evaluation by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;
@@ -48,19 +49,10 @@ pub struct CalibrationSetup {
     pub targets: Targets,
     /// The fields fitted and their ranges (at least one, each once).
     pub free: Vec<FreeField>,
-    /// Method names as `method_factory` takes them (built-ins `rne`, `dis`, `eng`, `hp_dis`);
-    /// at least one, each once.
-    pub methods: Vec<String>,
-    /// Builds each trial's grouping method from its name (default: the built-ins).
-    pub method_factory: MethodFactory,
-    /// Trials per method in each evaluation (>= 1; default [`DEFAULT_TRIALS`]).
-    pub trials: u32,
-    /// Base seed: trial `k` of every method and every evaluation starts from
-    /// `trial_seed(base_seed, k)` (common random numbers). Default: the scenario's `sim.seed`.
-    pub base_seed: u64,
-    /// Simulated length of each trial, seconds (> 0); `None`: the scenario's
-    /// `mission.duration_s` (at each point, should that field be free).
-    pub duration_s: Option<f64>,
+    /// The trials of each evaluation, the same at every point (common random numbers):
+    /// default the four built-in methods, [`DEFAULT_TRIALS`] trials per method from the
+    /// scenario's `sim.seed`, each as long as the scenario's `mission.duration_s`.
+    pub trial_plan: TrialPlan,
     /// Significant digits the free values are rounded to before they are evaluated (1 to 17;
     /// default [`DEFAULT_DIGITS`]).
     pub digits: u32,
@@ -123,14 +115,7 @@ impl CalibrationSetup {
             origin,
             targets,
             free,
-            methods: rne_core::grouping::METHOD_NAMES
-                .iter()
-                .map(|m| m.to_string())
-                .collect(),
-            method_factory: MethodFactory::builtin(),
-            trials: DEFAULT_TRIALS,
-            base_seed: seed,
-            duration_s: None,
+            trial_plan: TrialPlan::builtin(DEFAULT_TRIALS, seed),
             digits: DEFAULT_DIGITS,
             max_evals: DEFAULT_MAX_EVALS,
             max_time: None,
@@ -158,7 +143,8 @@ impl CalibrationSetup {
     pub fn check(&self) -> Result<Checked, SetupError> {
         let bad = |m: String| Err(SetupError::Invalid(m));
         let refuse = |field, problem: String| Err(SettingError::new(field, problem).into());
-        if self.trials == 0 {
+        let plan = &self.trial_plan;
+        if plan.trials == 0 {
             return refuse("trials", " must be at least 1".into());
         }
         if !(1..=17).contains(&self.digits) {
@@ -170,7 +156,7 @@ impl CalibrationSetup {
         if self.threads == 0 {
             return refuse("threads", " must be at least 1".into());
         }
-        if let Some(d) = self.duration_s
+        if let Some(d) = plan.duration_s
             && !(d.is_finite() && d > 0.0)
         {
             return refuse(
@@ -181,13 +167,13 @@ impl CalibrationSetup {
         if self.free.is_empty() {
             return refuse("free", ": give at least one FIELD=LO..HI".into());
         }
-        let total = self.methods.len().saturating_mul(self.trials as usize);
+        let total = plan.methods.len().saturating_mul(plan.trials as usize);
         if total > MAX_SWEEP_TRIALS {
             return bad(format!(
                 "{} method(s) x {} trials make {total} trials per evaluation, more than the \
                  limit of {MAX_SWEEP_TRIALS}",
-                self.methods.len(),
-                self.trials
+                plan.methods.len(),
+                plan.trials
             ));
         }
         if let Some(start) = &self.start {
@@ -240,13 +226,14 @@ impl CalibrationSetup {
 
     /// The methods' display names (as written; see [`canonical_method`]).
     fn canonical_methods(&self, scenario: &Scenario) -> Result<Vec<String>, SetupError> {
-        if self.methods.is_empty() {
+        let plan = &self.trial_plan;
+        if plan.methods.is_empty() {
             return Err(SettingError::new("methods", " needs at least one method").into());
         }
         let model = trust_model(scenario).map_err(|e| SetupError::Invalid(format!("{e:#}")))?;
         let mut names: Vec<String> = Vec::new();
-        for m in &self.methods {
-            let name = canonical_method(m, &self.method_factory, &model, self.base_seed)
+        for m in &plan.methods {
+            let name = canonical_method(m, &plan.method_factory, &model, plan.base_seed)
                 .map_err(|e| SettingError::new("methods", format!(": {e:#}")))?;
             if names.contains(&name) {
                 return Err(

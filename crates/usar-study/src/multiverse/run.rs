@@ -45,12 +45,12 @@ use usar_sweep::shard::shard_dir;
 /// let axes = Axes::load(Path::new("my-axes.ron"))?;
 /// let targets = Targets::load(Path::new("scenarios/paper-targets.ron"))?;
 /// let free = vec![FreeField::parse("mission.search_time_budget_s=6..30")?];
-/// let setup = MultiverseSetup {
-///     trials: 4,
+/// let mut setup = MultiverseSetup {
 ///     calibration_trials: 2,
 ///     max_evals: 10,
 ///     ..MultiverseSetup::new(base, "scenarios/paper.ron", axes, targets, free)
 /// };
+/// setup.comparison.trials = 4;
 /// let o = run_multiverse(&setup, Path::new("results/mv"), MultiverseProgress::off())?;
 /// println!("{} of {} universes admissible", o.admissible(), o.records.len());
 /// # Ok::<(), anyhow::Error>(())

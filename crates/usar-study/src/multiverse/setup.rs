@@ -16,12 +16,11 @@ use super::universe::{
 use super::validate::check_axes;
 use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed};
 use crate::calibrate::{
-    CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets,
+    CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets, TrialPlan,
 };
 use usar_report::claims::{Claims, ClaimsError};
 use usar_sweep::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
 use usar_sweep::data::setting_error::SettingError;
-use usar_sweep::method_factory::MethodFactory;
 use usar_sweep::shard::Shard;
 use usar_sweep::sweep::{ConfigError, SweepHooks, check_sweep_size};
 
@@ -109,25 +108,16 @@ pub struct MultiverseSetup {
     /// The fields each universe's calibration fits, with their ranges (at least one, each
     /// once, none set by an axis).
     pub free: Vec<FreeField>,
-    /// Method names as `method_factory` takes them (built-ins `rne`, `dis`, `eng`,
-    /// `hp_dis`), for the calibration and the comparison; at least one, each once.
-    pub methods: Vec<String>,
-    /// Builds each trial's grouping method from its name (default: the built-ins).
-    pub method_factory: MethodFactory,
-    /// Comparison trials per method and universe (>= 1; default [`DEFAULT_TRIALS`]).
-    pub trials: u32,
-    /// Base seed of the comparison: trial `k` of every method in every universe starts from
-    /// `trial_seed(seed, k)` (common random numbers). Default: the base scenario's
-    /// `sim.seed`.
-    pub seed: u64,
-    /// Simulated length of every trial (calibration and comparison), seconds (> 0); `None`:
-    /// each universe's `mission.duration_s`.
-    pub duration_s: Option<f64>,
+    /// The comparison's trials in every universe, the same in each (common random numbers):
+    /// default the four built-in methods, [`DEFAULT_TRIALS`] trials per method from the base
+    /// scenario's `sim.seed`, each as long as the universe's `mission.duration_s`. Each
+    /// universe's calibration runs the same methods and length.
+    pub comparison: TrialPlan,
     /// Trials per method of each calibration evaluation (>= 1; default
     /// [`DEFAULT_CALIBRATION_TRIALS`]).
     pub calibration_trials: u32,
-    /// Base seed of the calibrations' trials (default: [`MultiverseSetup::seed`], so the
-    /// comparison's first trials are the calibration's).
+    /// Base seed of the calibrations' trials (default: the comparison's, so the comparison's
+    /// first trials are the calibration's).
     pub calibration_seed: u64,
     /// Most evaluations of each calibration (>= 1; default [`DEFAULT_MAX_EVALS`]).
     pub max_evals: usize,
@@ -201,14 +191,7 @@ impl MultiverseSetup {
             claims: None,
             near_loss: None,
             free,
-            methods: rne_core::grouping::METHOD_NAMES
-                .iter()
-                .map(|m| m.to_string())
-                .collect(),
-            method_factory: MethodFactory::builtin(),
-            trials: DEFAULT_TRIALS,
-            seed,
-            duration_s: None,
+            comparison: TrialPlan::builtin(DEFAULT_TRIALS, seed),
             calibration_trials: DEFAULT_CALIBRATION_TRIALS,
             calibration_seed: seed,
             max_evals: DEFAULT_MAX_EVALS,
@@ -240,11 +223,9 @@ impl MultiverseSetup {
         command: String,
     ) -> CalibrationSetup {
         CalibrationSetup {
-            methods: self.methods.clone(),
-            method_factory: self.method_factory.clone(),
-            trials: self.calibration_trials,
-            base_seed: self.calibration_seed,
-            duration_s: self.duration_s,
+            trial_plan: self
+                .comparison
+                .with_trials(self.calibration_trials, self.calibration_seed),
             digits: self.digits,
             max_evals: self.max_evals,
             max_time: None,
@@ -274,7 +255,7 @@ impl MultiverseSetup {
     /// factorial, or a shard count above the universes to run.
     pub fn check(&self) -> Result<CheckedMultiverse, MultiverseError> {
         let refuse = |field, problem: String| Err(SettingError::new(field, problem).into());
-        if self.trials == 0 {
+        if self.comparison.trials == 0 {
             return refuse("trials", " must be at least 1".into());
         }
         if self.calibration_trials == 0 {
@@ -307,7 +288,7 @@ impl MultiverseSetup {
                 format!(" must be a finite loss above 0 (0 is admissibility itself), not {l}"),
             );
         }
-        check_sweep_size(1, self.methods.len(), self.trials)?;
+        check_sweep_size(1, self.comparison.methods.len(), self.comparison.trials)?;
         let calibration = self.calibration_setup(
             self.base.clone(),
             self.targets.clone(),

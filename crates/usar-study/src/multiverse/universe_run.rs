@@ -193,11 +193,11 @@ impl UniverseRun<'_> {
         });
         let cfg = SweepConfig {
             scenario_path: dir.join(CALIBRATION_DIR).join("calibrated.ron"),
-            methods: self.setup.methods.clone(),
-            method_factory: self.setup.method_factory.clone(),
-            trials: self.setup.trials,
-            base_seed: self.setup.seed,
-            duration_s: self.setup.duration_s,
+            methods: self.setup.comparison.methods.clone(),
+            method_factory: self.setup.comparison.method_factory.clone(),
+            trials: self.setup.comparison.trials,
+            base_seed: self.setup.comparison.base_seed,
+            duration_s: self.setup.comparison.duration_s,
             threads: self.setup.threads,
             out_dir: dir.join(COMPARISON_DIR),
             progress: false,

@@ -35,16 +35,17 @@ fn setup(free: &[&str], targets: Targets, max_evals: usize) -> CalibrationSetup 
     let text = std::fs::read_to_string(PAPER).unwrap();
     let base = usar_sim::scenario::parse_spec(&text, "paper.ron").unwrap();
     let free = free.iter().map(|f| FreeField::parse(f).unwrap()).collect();
-    CalibrationSetup {
-        methods: vec!["rne".into()],
-        trials: 1,
-        duration_s: Some(40.0),
+    let mut setup = CalibrationSetup {
         max_evals,
         check_trials: 0,
         threads: 2,
         date: Some("2000-01-01T00:00:00Z".into()),
         ..CalibrationSetup::new(base, "paper.ron", targets, free)
-    }
+    };
+    setup.trial_plan.methods = vec!["rne".into()];
+    setup.trial_plan.trials = 1;
+    setup.trial_plan.duration_s = Some(40.0);
+    setup
 }
 
 /// A grouping method that panics when asked to group.
@@ -181,8 +182,8 @@ fn a_given_start_is_the_first_point_checked_against_the_ranges_and_another_calib
 fn a_panicking_trial_is_an_infinite_loss_with_its_message() {
     let dir = tempfile::tempdir().unwrap();
     let mut s = setup(&["mission.pickup_s=0.5..2"], targets(None), 2);
-    s.methods = vec!["rne".into(), "boom".into()];
-    s.method_factory = MethodFactory::new(|name, model, ctx| match name {
+    s.trial_plan.methods = vec!["rne".into(), "boom".into()];
+    s.trial_plan.method_factory = MethodFactory::new(|name, model, ctx| match name {
         "boom" => Ok(Box::new(Boom) as Box<dyn GroupingMethod>),
         other => MethodFactory::builtin().build(other, model, ctx),
     });

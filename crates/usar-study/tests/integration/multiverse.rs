@@ -21,17 +21,18 @@ fn setup() -> MultiverseSetup {
     let axes = Axes::load(&Path::new(DATA).join("multiverse-axes.ron")).unwrap();
     let targets = Targets::load(&Path::new(DATA).join("multiverse-targets.ron")).unwrap();
     let free = vec![FreeField::parse("mission.pickup_s=0.5..2").unwrap()];
-    MultiverseSetup {
-        methods: vec!["rne".into(), "dis".into()],
-        trials: 2,
-        duration_s: Some(60.0),
+    let mut setup = MultiverseSetup {
         calibration_trials: 1,
         max_evals: 3,
         threads: 2,
         working_dir: None,
         date: Some("2000-01-01T00:00:00Z".into()),
         ..MultiverseSetup::new(base, "corridor.ron", axes, targets, free)
-    }
+    };
+    setup.comparison.methods = vec!["rne".into(), "dis".into()];
+    setup.comparison.trials = 2;
+    setup.comparison.duration_s = Some(60.0);
+    setup
 }
 
 /// Stopped at the first comparison trial journaled, the run returns [`Stopped`], writes no

@@ -21,7 +21,9 @@ use usar_study::calibrate::setup::{
     DEFAULT_CHECK_TRIALS, DEFAULT_DIGITS, DEFAULT_MAX_EVALS, DEFAULT_TRIALS, default_check_seed,
 };
 
-use usar_study::calibrate::{CalibrationSetup, Progress, calibrate, parse_free, summary_text};
+use usar_study::calibrate::{
+    CalibrationSetup, Progress, TrialPlan, calibrate, parse_free, summary_text,
+};
 
 use usar_report::calibration::targets_or_paper;
 
@@ -207,10 +209,11 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
             .collect::<Vec<_>>(),
     );
     Ok(CalibrationSetup {
-        methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
-        trials: args.trials,
-        base_seed: seed,
-        duration_s: args.duration,
+        trial_plan: TrialPlan {
+            methods: args.methods.iter().map(|m| m.trim().to_string()).collect(),
+            duration_s: args.duration,
+            ..TrialPlan::builtin(args.trials, seed)
+        },
         digits: args.digits,
         max_evals: args.max_evals,
         max_time: args.max_time,

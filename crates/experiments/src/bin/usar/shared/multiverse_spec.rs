@@ -10,7 +10,7 @@ use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::{self, ScenarioSpec, path_text};
 
 use usar_report::claims::Claims;
-use usar_study::calibrate::{Targets, parse_free};
+use usar_study::calibrate::{Targets, TrialPlan, parse_free};
 use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_DESIGN, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
     DEFAULT_TRIALS,
@@ -166,10 +166,11 @@ pub fn setup_of(
     Ok(MultiverseSetup {
         claims,
         near_loss: spec.near_loss,
-        methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
-        trials: spec.trials,
-        seed,
-        duration_s: spec.duration,
+        comparison: TrialPlan {
+            methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
+            duration_s: spec.duration,
+            ..TrialPlan::builtin(spec.trials, seed)
+        },
         calibration_trials: spec.calibration_trials,
         calibration_seed: spec.calibration_seed.unwrap_or(seed),
         max_evals: spec.max_evals,
