@@ -159,7 +159,8 @@ impl World {
         let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
         let near = &mut self.pipelines.near_ids;
         near.clear();
-        self.neighbours
+        self.pipelines
+            .neighbours
             .grid(me.layer)
             .for_each_candidate(me.pos, reach_max, |j, _| near.push(j));
         near.sort_unstable();

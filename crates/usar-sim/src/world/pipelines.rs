@@ -4,6 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
 use super::resolver::Resolver;
@@ -41,4 +42,12 @@ pub(super) struct Pipelines {
     /// The per-robot outputs of the parallel phases (`parallel.rs`) and whether they run in
     /// parallel.
     pub(super) per_robot: PerRobot,
+    /// Robot centres by layer (`nav[..].pos`), derived from the navigation state: rebuilt
+    /// before every control step and after a teleport, and every robot-robot query goes
+    /// through it (between control steps the public queries scan the robots instead, see
+    /// `index_fresh`).
+    pub(super) neighbours: NeighbourIndex,
+    /// Whether [`Pipelines::neighbours`] holds the robots' current positions: it is rebuilt
+    /// before every control step and after a teleport, not after the steps in between.
+    pub(super) index_fresh: bool,
 }

@@ -57,7 +57,7 @@ impl World {
             PhysicsStepping::NearBodies => {
                 // The gate asks the neighbour index for every robot: between control steps
                 // it is rebuilt first (a linear scan per robot would cost n^2).
-                if !self.index_fresh {
+                if !self.pipelines.index_fresh {
                     self.reindex();
                 }
                 let mut near = std::mem::take(&mut self.pipelines.near_body);
@@ -80,7 +80,7 @@ impl World {
         if clock.is_control_step(self.stats.steps) {
             self.reindex();
         } else {
-            self.index_fresh = false;
+            self.pipelines.index_fresh = false;
         }
     }
 
@@ -113,7 +113,7 @@ impl World {
         if self.collision.enabled {
             self.pipelines.resolver.resolve(
                 &self.pipelines.resolver_inputs,
-                &self.neighbours,
+                &self.pipelines.neighbours,
                 period_s,
             );
             self.steer_all();

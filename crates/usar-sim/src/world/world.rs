@@ -59,10 +59,6 @@ pub struct WorldStats {
 pub struct World {
     pub(super) scene: PhysicsScene,
     pub(super) grid: ClearanceGrid,
-    /// Robot centres by layer (`nav[..].pos`), rebuilt before every control step and after a
-    /// teleport: every robot-robot query goes through it (between control steps the public
-    /// queries scan the robots instead, see `index_fresh`).
-    pub(super) neighbours: NeighbourIndex,
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
     /// Each robot's radiation factor at its current position
@@ -74,9 +70,6 @@ pub struct World {
     /// Arena width and height at physics precision, metres.
     pub(super) arena: (f32, f32),
     pub(super) dt: f64,
-    /// Whether the neighbour index holds the robots' current positions: it is rebuilt before
-    /// every control step and after a teleport, not after the steps in between.
-    pub(super) index_fresh: bool,
     /// When Rapier steps (`sim.physics`).
     pub(super) physics: PhysicsStepping,
     pub(super) collision: CollisionParams,
@@ -156,8 +149,9 @@ impl World {
                 gate_speeds: Vec::new(),
                 resolver_inputs,
                 per_robot: PerRobot::new(nav.len()),
+                neighbours,
+                index_fresh: true,
             },
-            neighbours,
             nav,
             robots,
             radiation_factor,
@@ -165,7 +159,6 @@ impl World {
             dose_rule,
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
-            index_fresh: true,
             physics: s.sim.physics,
             collision: s.collision,
             navigation: s.navigation,
@@ -402,9 +395,10 @@ impl World {
 
     /// Rebuilds the neighbour index from the robots' current positions, `O(n + cells)`.
     pub(super) fn reindex(&mut self) {
-        self.neighbours
+        self.pipelines
+            .neighbours
             .rebuild(self.nav.iter().map(|n| (n.layer, n.pos)));
-        self.index_fresh = true;
+        self.pipelines.index_fresh = true;
     }
 
     /// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of
@@ -418,8 +412,9 @@ impl World {
         radius_m: f32,
         mut f: impl FnMut(usize),
     ) {
-        if self.index_fresh {
-            self.neighbours
+        if self.pipelines.index_fresh {
+            self.pipelines
+                .neighbours
                 .grid(layer)
                 .for_each_candidate(p, radius_m, |j, _| f(j));
         } else {
