@@ -46,7 +46,7 @@ pub fn write_outputs(
 ) -> Result<Vec<PathBuf>> {
     let mut files = FileSet::new();
     make_outputs(cfg, outcome, analysis, grid_metrics, &mut files)?;
-    files.commit()
+    Ok(files.commit()?)
 }
 
 /// Makes every output file of the sweep and stages each in `files`.
@@ -70,7 +70,7 @@ fn make_outputs(
 }
 
 fn put(dir: &Path, name: &str, bytes: &[u8], files: &mut FileSet) -> Result<()> {
-    files.stage(&dir.join(name), bytes)
+    Ok(files.stage(&dir.join(name), bytes)?)
 }
 
 /// One cell's `trials.csv`, `summary.csv`, figures and `report.md` into `dir`.

@@ -24,9 +24,72 @@ use std::fs::{self, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
 use tempfile::NamedTempFile;
 use usar_sim::scenario::path_text;
+
+/// Why a file could not be written, or a folder cleaned: one line naming the path (and, for
+/// an I/O error, the error as its source, which a caller's `{:#}` or error chain appends:
+/// `cannot write out/a.csv: Permission denied (os error 13)`).
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// An I/O error while doing what `action` says, naming the path (`cannot write
+    /// out/a.csv`, `renaming out/.a.csv.tmp-1-x to out/a.csv`, `removing out/b.tmp`).
+    #[error("{action}")]
+    Io {
+        /// What was being done, with the path.
+        action: String,
+        /// The error the system gave.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The path is a folder.
+    #[error("{path}: is a folder, not a file")]
+    Folder {
+        /// The path, as given.
+        path: String,
+    },
+    /// The path is a block device, a socket or another special file, none of which is
+    /// written.
+    #[error("{path}: is a {kind}; usar writes only regular files, FIFOs and character devices")]
+    Special {
+        /// The path, as given.
+        path: String,
+        /// `block device`, `socket` or `special file`.
+        kind: &'static str,
+    },
+    /// A chain of symbolic links longer than the kernel's limit (40).
+    #[error("{path}: too many levels of symbolic links")]
+    LinkLoop {
+        /// The path, as given.
+        path: String,
+    },
+    /// The path resolves to no file name (`..`, `/`).
+    #[error("{path} has no file name")]
+    NoFileName {
+        /// The path, resolved.
+        path: String,
+    },
+}
+
+impl FileError {
+    /// The error and its source on one line, as an error chain prints them (`cannot write
+    /// out/a.csv: Permission denied (os error 13)`): for a caller that keeps the message as
+    /// text.
+    pub fn line(&self) -> String {
+        match self {
+            Self::Io { action, source } => format!("{action}: {source}"),
+            other => other.to_string(),
+        }
+    }
+
+    /// The [`FileError::Io`] of `source` while doing `action`.
+    fn io(action: String) -> impl FnOnce(std::io::Error) -> Self {
+        move |source| Self::Io { action, source }
+    }
+}
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, FileError>;
 
 /// Symbolic links followed at most when resolving a link whose target does not exist yet
 /// (as the kernel's own limit, `ELOOP`).
@@ -60,19 +123,23 @@ fn target_of(path: &Path) -> Result<Target> {
     match fs::metadata(path) {
         Ok(m) if m.is_file() => fs::canonicalize(path)
             .map(Target::Replace)
-            .with_context(|| format!("resolving {}", path_text(path))),
-        Ok(m) if m.is_dir() => bail!("{}: is a folder, not a file", path_text(path)),
+            .map_err(FileError::io(format!("resolving {}", path_text(path)))),
+        Ok(m) if m.is_dir() => Err(FileError::Folder {
+            path: path_text(path),
+        }),
         Ok(m) => match special_kind(&m) {
             None => Ok(Target::Stream),
-            Some(kind) => bail!(
-                "{}: is a {kind}; usar writes only regular files, FIFOs and character devices",
-                path_text(path)
-            ),
+            Some(kind) => Err(FileError::Special {
+                path: path_text(path),
+                kind,
+            }),
         },
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             resolve_missing(path).map(Target::Replace)
         }
-        Err(e) => Err(e).with_context(|| format!("cannot write {}", path_text(path))),
+        Err(e) => Err(FileError::io(format!("cannot write {}", path_text(path)))(
+            e,
+        )),
     }
 }
 
@@ -107,7 +174,7 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
         match fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
                 let to = fs::read_link(&p)
-                    .with_context(|| format!("reading the link {}", path_text(&p)))?;
+                    .map_err(FileError::io(format!("reading the link {}", path_text(&p))))?;
                 // A relative link is relative to the folder holding it; `join` keeps an
                 // absolute one as it is.
                 p = p.parent().map_or_else(|| to.clone(), |dir| dir.join(&to));
@@ -115,7 +182,9 @@ fn resolve_missing(path: &Path) -> Result<PathBuf> {
             _ => return Ok(p),
         }
     }
-    bail!("{}: too many levels of symbolic links", path_text(path))
+    Err(FileError::LinkLoop {
+        path: path_text(path),
+    })
 }
 
 /// Files written as a set: [`FileSet::stage`] writes each file's bytes to a temporary file
@@ -199,10 +268,10 @@ fn replace_via_temp(target: &Path, bytes: &[u8]) -> Result<()> {
 fn rename_over(tmp: NamedTempFile, target: &Path) -> Result<()> {
     let from = tmp.path().to_path_buf();
     // A failed persist hands the file back inside the error; dropping it removes it.
-    tmp.persist(target)
-        .map(drop)
-        .map_err(|e| e.error)
-        .with_context(|| format!("renaming {} to {}", path_text(&from), path_text(target)))
+    tmp.persist(target).map(drop).map_err(|e| {
+        let action = format!("renaming {} to {}", path_text(&from), path_text(target));
+        FileError::io(action)(e.error)
+    })
 }
 
 /// Writes `bytes` to a new temporary file next to `target` (creating its folders), flushed to
@@ -213,10 +282,13 @@ fn write_temp(target: &Path, bytes: &[u8]) -> Result<NamedTempFile> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
+    fs::create_dir_all(dir)
+        .map_err(FileError::io(format!("creating folder {}", path_text(dir))))?;
     let name = target
         .file_name()
-        .with_context(|| format!("{} has no file name", path_text(target)))?
+        .ok_or_else(|| FileError::NoFileName {
+            path: path_text(target),
+        })?
         .to_string_lossy();
     let prefix = format!(".{name}.tmp-{}-", std::process::id());
     let mut builder = tempfile::Builder::new();
@@ -227,25 +299,22 @@ fn write_temp(target: &Path, bytes: &[u8]) -> Result<NamedTempFile> {
         // As a file created by `File::create`, not tempfile's owner-only default.
         builder.permissions(fs::Permissions::from_mode(0o666));
     }
-    let mut tmp = builder.tempfile_in(dir).with_context(|| {
-        format!(
-            "creating a temporary file for {} in {}",
-            path_text(target),
-            path_text(dir)
-        )
-    })?;
-    tmp.write_all(bytes)
-        .and_then(|()| tmp.as_file().sync_all())
-        .with_context(|| {
-            let tmp_name = tmp.path().file_name().unwrap_or_default().to_string_lossy();
-            format!(
-                "writing {} (its temporary file {tmp_name})",
-                path_text(target)
-            )
-        })?;
+    let mut tmp = builder.tempfile_in(dir).map_err(FileError::io(format!(
+        "creating a temporary file for {} in {}",
+        path_text(target),
+        path_text(dir)
+    )))?;
+    if let Err(e) = tmp.write_all(bytes).and_then(|()| tmp.as_file().sync_all()) {
+        let tmp_name = tmp.path().file_name().unwrap_or_default().to_string_lossy();
+        let action = format!(
+            "writing {} (its temporary file {tmp_name})",
+            path_text(target)
+        );
+        return Err(FileError::io(action)(e));
+    }
     if let Ok(old) = fs::metadata(target) {
-        fs::set_permissions(tmp.path(), old.permissions())
-            .with_context(|| format!("setting the permissions of {}", path_text(tmp.path())))?;
+        let action = format!("setting the permissions of {}", path_text(tmp.path()));
+        fs::set_permissions(tmp.path(), old.permissions()).map_err(FileError::io(action))?;
     }
     Ok(tmp)
 }
@@ -255,10 +324,10 @@ fn write_directly(path: &Path, bytes: &[u8]) -> Result<()> {
     let mut f = OpenOptions::new()
         .write(true)
         .open(path)
-        .with_context(|| format!("opening {}", path_text(path)))?;
+        .map_err(FileError::io(format!("opening {}", path_text(path))))?;
     f.write_all(bytes)
         .and_then(|()| f.flush())
-        .with_context(|| format!("writing {}", path_text(path)))
+        .map_err(FileError::io(format!("writing {}", path_text(path))))
 }
 
 /// Whether `name` is the name of a temporary file of [`write_atomic`]:
@@ -302,7 +371,7 @@ pub fn remove_named(dir: &Path, names: &[&str]) -> Result<Vec<PathBuf>> {
     for name in names {
         let p = dir.join(name);
         if fs::symlink_metadata(&p).is_ok_and(|m| m.is_file() || m.is_symlink()) {
-            fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
+            fs::remove_file(&p).map_err(FileError::io(format!("removing {}", path_text(&p))))?;
             removed.push(p);
         }
     }
@@ -324,7 +393,7 @@ pub fn remove_dir_if_empty(dir: &Path) -> Result<()> {
         {
             Ok(())
         }
-        Err(e) => Err(e).with_context(|| format!("removing {}", path_text(dir))),
+        Err(e) => Err(FileError::io(format!("removing {}", path_text(dir)))(e)),
     }
 }
 
@@ -338,15 +407,15 @@ pub(crate) fn remove_files_where(dir: &Path, matches: fn(&str) -> bool) -> Resul
     let entries = match fs::read_dir(dir) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(dir))),
+        Err(e) => return Err(FileError::io(format!("listing {}", path_text(dir)))(e)),
     };
     let mut removed = Vec::new();
     for entry in entries {
-        let entry = entry.with_context(|| format!("listing {}", path_text(dir)))?;
+        let entry = entry.map_err(FileError::io(format!("listing {}", path_text(dir))))?;
         let is_file = entry.file_type().is_ok_and(|t| t.is_file());
         if is_file && entry.file_name().to_str().is_some_and(matches) {
             let p = entry.path();
-            fs::remove_file(&p).with_context(|| format!("removing {}", path_text(&p)))?;
+            fs::remove_file(&p).map_err(FileError::io(format!("removing {}", path_text(&p))))?;
             removed.push(p);
         }
     }
@@ -411,9 +480,32 @@ pub(crate) mod tests {
         let target = dir.path().join("out.svg");
         fs::create_dir(&target).unwrap();
         let e = write_atomic(&target, b"x").unwrap_err();
+        assert!(
+            matches!(&e, FileError::Folder { path } if path.ends_with("out.svg")),
+            "{e}"
+        );
         assert!(format!("{e:#}").contains("is a folder"), "{e:#}");
         assert_eq!(names(dir.path()), ["out.svg"]);
         assert!(target.is_dir());
+    }
+
+    #[test]
+    fn an_io_error_names_the_path_and_keeps_the_systems_error_as_its_source() {
+        let dir = tempfile::tempdir().unwrap();
+        // A path through a regular file: the I/O error is the source, and the chain reads as
+        // one line, the action then the system's message.
+        let file = dir.path().join("plain");
+        fs::write(&file, "x").unwrap();
+        let through = file.join("out.csv");
+        let e = write_atomic(&through, b"x").unwrap_err();
+        let FileError::Io { action, .. } = &e else {
+            panic!("not an I/O error: {e:?}")
+        };
+        assert_eq!(action, &format!("cannot write {}", path_text(&through)));
+        let system = fs::metadata(&through).unwrap_err().to_string();
+        let line = format!("cannot write {}: {system}", path_text(&through));
+        assert_eq!(e.line(), line);
+        assert_eq!(format!("{:#}", anyhow::Error::new(e)), line);
     }
 
     #[test]

@@ -14,11 +14,50 @@ use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
+
+use crate::atomic::FileError;
 
 /// Name of the lock file in the output folder.
 pub const LOCK_FILE: &str = "sweep.lock";
+
+/// Why an output folder could not be locked: one line naming the folder or the lock file.
+#[derive(Debug, thiserror::Error)]
+pub enum LockError {
+    /// Another run holds the folder: an exclusive lock was asked for and any lock is held
+    /// (`shared: false`), or a shared lock was asked for and an exclusive one is held
+    /// (`shared: true`).
+    #[error(
+        "{dir} is in use by another {}; wait for it to end, or choose another --out",
+        holder_text(*shared, *pid)
+    )]
+    InUse {
+        /// The folder, as given.
+        dir: String,
+        /// The holder's process id, as it wrote it into the lock file (`None`: unreadable).
+        pid: Option<u32>,
+        /// Whether the lock asked for was a shared one.
+        shared: bool,
+    },
+    /// The lock file is a link, a folder or another kind of file that is not regular.
+    #[error("{path} is not a regular file; remove it (it only holds the pid of a running sweep)")]
+    NotAFile {
+        /// The lock file, as given.
+        path: String,
+    },
+    /// Creating the folder, or opening, locking or writing the lock file failed.
+    #[error(transparent)]
+    File(#[from] FileError),
+}
+
+/// The holder as [`LockError::InUse`] names it.
+fn holder_text(shared: bool, pid: Option<u32>) -> String {
+    let pid = pid.map_or_else(|| "pid unknown".to_string(), |pid| format!("pid {pid}"));
+    match shared {
+        false => format!("sweep ({pid})"),
+        true => format!("run ({pid}) that writes the whole folder"),
+    }
+}
 
 /// An exclusive lock on an output folder, held until dropped.
 #[derive(Debug)]
@@ -33,50 +72,17 @@ impl OutputLock {
     /// [`LOCK_FILE`]. Never waits.
     ///
     /// # Errors
-    /// The folder is locked by another sweep (`<dir> is in use by another sweep (pid N)`), the
-    /// lock file is not a regular file (a link, a folder), or an I/O error.
-    pub fn acquire(dir: &Path) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
-        let path = dir.join(LOCK_FILE);
-        if let Ok(m) = fs::symlink_metadata(&path)
-            && !m.is_file()
-        {
-            bail!(
-                "{} is not a regular file; remove it (it only holds the pid of a running sweep)",
-                path_text(&path)
-            );
-        }
-        // Not truncated before the lock is ours: the holder's pid must stay readable.
-        let mut file = OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)
-            .with_context(|| format!("opening {}", path_text(&path)))?;
-        match file.try_lock() {
-            Ok(()) => {}
-            Err(TryLockError::WouldBlock) => {
-                let mut text = String::new();
-                let holder = match file.read_to_string(&mut text) {
-                    Ok(_) => text.trim().parse::<u32>().ok(),
-                    Err(_) => None,
-                }
-                .map_or_else(|| "pid unknown".to_string(), |pid| format!("pid {pid}"));
-                bail!(
-                    "{} is in use by another sweep ({holder}); wait for it to end, or choose \
-                     another --out",
-                    path_text(dir)
-                );
-            }
-            Err(TryLockError::Error(e)) => {
-                return Err(e).with_context(|| format!("locking {}", path_text(&path)));
-            }
-        }
+    /// The folder is locked by another sweep ([`LockError::InUse`]: `<dir> is in use by
+    /// another sweep (pid N)`), the lock file is not a regular file (a link, a folder), or an
+    /// I/O error.
+    pub fn acquire(dir: &Path) -> Result<Self, LockError> {
+        let (path, mut file) = open_lock_file(dir)?;
+        lock(file.try_lock(), &mut file, dir, &path, false)?;
+        let action = format!("writing {}", path_text(&path));
         file.set_len(0)
             .and_then(|()| writeln!(file, "{}", std::process::id()))
             .and_then(|()| file.flush())
-            .with_context(|| format!("writing {}", path_text(&path)))?;
+            .map_err(|e| FileError::Io { action, source: e })?;
         Ok(Self { path, _file: file })
     }
 
@@ -87,50 +93,72 @@ impl OutputLock {
     /// them and is excluded by them. Never waits; the file's pid is left as it is.
     ///
     /// # Errors
-    /// The folder is locked exclusively by another run (`<dir> is in use by another run
-    /// (pid N)`), the lock file is not a regular file, or an I/O error.
-    pub fn acquire_shared(dir: &Path) -> Result<Self> {
-        fs::create_dir_all(dir).with_context(|| format!("creating folder {}", path_text(dir)))?;
-        let path = dir.join(LOCK_FILE);
-        if let Ok(m) = fs::symlink_metadata(&path)
-            && !m.is_file()
-        {
-            bail!(
-                "{} is not a regular file; remove it (it only holds the pid of a running sweep)",
-                path_text(&path)
-            );
-        }
-        let mut file = OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)
-            .with_context(|| format!("opening {}", path_text(&path)))?;
-        match file.try_lock_shared() {
-            Ok(()) => Ok(Self { path, _file: file }),
-            Err(TryLockError::WouldBlock) => {
-                let mut text = String::new();
-                let holder = match file.read_to_string(&mut text) {
-                    Ok(_) => text.trim().parse::<u32>().ok(),
-                    Err(_) => None,
-                }
-                .map_or_else(|| "pid unknown".to_string(), |pid| format!("pid {pid}"));
-                bail!(
-                    "{} is in use by another run ({holder}) that writes the whole folder; wait \
-                     for it to end, or choose another --out",
-                    path_text(dir)
-                )
-            }
-            Err(TryLockError::Error(e)) => {
-                Err(e).with_context(|| format!("locking {}", path_text(&path)))
-            }
-        }
+    /// The folder is locked exclusively by another run ([`LockError::InUse`]: `<dir> is in
+    /// use by another run (pid N)`), the lock file is not a regular file, or an I/O error.
+    pub fn acquire_shared(dir: &Path) -> Result<Self, LockError> {
+        let (path, mut file) = open_lock_file(dir)?;
+        lock(file.try_lock_shared(), &mut file, dir, &path, true)?;
+        Ok(Self { path, _file: file })
     }
 
     /// Path of the lock file.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+}
+
+/// Creates `dir` if needed and opens its lock file (created if missing, not truncated: a
+/// holder's pid must stay readable until the lock is ours), refusing one that is not a
+/// regular file.
+fn open_lock_file(dir: &Path) -> Result<(PathBuf, File), LockError> {
+    let io = |action: String| move |source| FileError::Io { action, source };
+    fs::create_dir_all(dir).map_err(io(format!("creating folder {}", path_text(dir))))?;
+    let path = dir.join(LOCK_FILE);
+    if let Ok(m) = fs::symlink_metadata(&path)
+        && !m.is_file()
+    {
+        return Err(LockError::NotAFile {
+            path: path_text(&path),
+        });
+    }
+    let file = OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(&path)
+        .map_err(io(format!("opening {}", path_text(&path))))?;
+    Ok((path, file))
+}
+
+/// The outcome of a try-lock of `file` (the lock file at `path` in `dir`): `Ok`, or
+/// [`LockError::InUse`] naming the pid the holder wrote, or the I/O error.
+fn lock(
+    tried: Result<(), TryLockError>,
+    file: &mut File,
+    dir: &Path,
+    path: &Path,
+    shared: bool,
+) -> Result<(), LockError> {
+    match tried {
+        Ok(()) => Ok(()),
+        Err(TryLockError::WouldBlock) => {
+            let mut text = String::new();
+            let pid = match file.read_to_string(&mut text) {
+                Ok(_) => text.trim().parse::<u32>().ok(),
+                Err(_) => None,
+            };
+            Err(LockError::InUse {
+                dir: path_text(dir),
+                pid,
+                shared,
+            })
+        }
+        Err(TryLockError::Error(source)) => Err(FileError::Io {
+            action: format!("locking {}", path_text(path)),
+            source,
+        }
+        .into()),
     }
 }
 
@@ -148,6 +176,11 @@ mod tests {
             format!("{}\n", std::process::id())
         );
         let e = OutputLock::acquire(&out).unwrap_err();
+        let pid = Some(std::process::id());
+        assert!(
+            matches!(&e, LockError::InUse { pid: p, shared: false, .. } if *p == pid),
+            "{e:?}"
+        );
         let msg = format!("{e:#}");
         assert!(
             msg.contains("is in use by another sweep")
@@ -174,7 +207,9 @@ mod tests {
         assert!(e.contains("is in use by another sweep"), "{e}");
         drop((a, b));
         let x = OutputLock::acquire(dir.path()).unwrap();
-        let e = format!("{:#}", OutputLock::acquire_shared(dir.path()).unwrap_err());
+        let e = OutputLock::acquire_shared(dir.path()).unwrap_err();
+        assert!(matches!(e, LockError::InUse { shared: true, .. }), "{e:?}");
+        let e = format!("{e:#}");
         assert!(
             e.contains("is in use by another run")
                 && e.contains(&format!("pid {}", std::process::id())),
@@ -192,6 +227,7 @@ mod tests {
         fs::write(&victim, "keep me").unwrap();
         std::os::unix::fs::symlink(&victim, dir.path().join(LOCK_FILE)).unwrap();
         let e = OutputLock::acquire(dir.path()).unwrap_err();
+        assert!(matches!(e, LockError::NotAFile { .. }), "{e:?}");
         assert!(format!("{e:#}").contains("not a regular file"), "{e:#}");
         assert_eq!(fs::read_to_string(&victim).unwrap(), "keep me");
     }

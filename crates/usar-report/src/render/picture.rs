@@ -29,7 +29,7 @@ use usar_sweep::atomic::write_atomic;
 /// If drawing or writing the file fails.
 pub fn render_svg(scenario: &Scenario, traces: Option<&[Trace]>, out: &Path) -> Result<()> {
     let svg = render_svg_string(scenario, traces)?;
-    write_atomic(out, svg.as_bytes())
+    Ok(write_atomic(out, svg.as_bytes())?)
 }
 
 /// Same as [`render_svg`] but returns the SVG text.

@@ -339,7 +339,7 @@ pub fn write_replay(scenario: &Scenario, rec: &Recording, out: &Path) -> Result<
     let html = replay_html(scenario, rec)?;
     write_atomic(out, html.as_bytes()).map_err(|e| ReplayError::Write {
         path: out.to_path_buf(),
-        message: format!("{e:#}"),
+        message: e.line(),
     })?;
     Ok(html.len() as u64)
 }

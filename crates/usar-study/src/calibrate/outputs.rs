@@ -42,7 +42,7 @@ pub fn write_outputs(o: &CalibrationOutcome, dir: &Path) -> Result<Vec<PathBuf>>
     if let Some(Some(svg)) = figure_or_warn(TRADEOFF_FIGURE_FILE, || tradeoff_svg(o)) {
         set.stage(&dir.join(TRADEOFF_FIGURE_FILE), svg.as_bytes())?;
     }
-    set.commit()
+    Ok(set.commit()?)
 }
 
 /// `--overwrite` of a calibration's folder: removes its trace, the files [`write_outputs`]

@@ -102,7 +102,7 @@ impl DesignPoint {
         let line = record_line("design", &json, identity_sum);
         let path = point_path(root, self.index, design);
         std::fs::create_dir_all(path.parent().unwrap_or(root))?;
-        write_atomic(&path, line.as_bytes())
+        Ok(write_atomic(&path, line.as_bytes())?)
     }
 
     /// Reads design point `index` under `root` for the multiverse with `identity_sum`, `free`

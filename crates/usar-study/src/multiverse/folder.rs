@@ -155,7 +155,7 @@ fn clear_design(design: &Path) -> Result<()> {
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     remove_named(design, &names)?;
     remove_stale_temps(design)?;
-    remove_dir_if_empty(design)
+    Ok(remove_dir_if_empty(design)?)
 }
 
 /// The universes' folders under `universes` (`u` and digits, as
@@ -199,7 +199,7 @@ fn clear_universe(u: &Path) -> Result<()> {
     }
     remove_named(u, &[SCENARIO_FILE, RECORD_FILE])?;
     remove_stale_temps(u)?;
-    remove_dir_if_empty(u)
+    Ok(remove_dir_if_empty(u)?)
 }
 
 #[cfg(test)]

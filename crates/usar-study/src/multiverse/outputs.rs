@@ -68,7 +68,7 @@ pub fn write_outputs(
         md.push_str(&section);
     }
     files.stage(&dir.join(REPORT_FILE), md.as_bytes())?;
-    files.commit()
+    Ok(files.commit()?)
 }
 
 /// `targets.svg`: a panel per target, its statistic over each compared universe's trials (in

@@ -199,7 +199,10 @@ impl MultiversePlan {
     /// An I/O error.
     pub fn write(&self, dir: &Path) -> Result<()> {
         let json = serde_json::to_string_pretty(self).context("serialising the plan")?;
-        write_atomic(&Self::path_in(dir), format!("{json}\n").as_bytes())
+        Ok(write_atomic(
+            &Self::path_in(dir),
+            format!("{json}\n").as_bytes(),
+        )?)
     }
 
     /// Reads `dir/multiverse.json`; `None` when there is none.

@@ -166,7 +166,7 @@ impl UniverseRecord {
     pub fn write(&self, dir: &Path, identity_sum: &str) -> Result<()> {
         let json = serde_json::to_string(self).context("serialising a universe record")?;
         let line = record_line("universe", &json, identity_sum);
-        write_atomic(&Self::path_in(dir), line.as_bytes())
+        Ok(write_atomic(&Self::path_in(dir), line.as_bytes())?)
     }
 
     /// Reads the record of the universe folder `dir` for the multiverse with `identity_sum`.

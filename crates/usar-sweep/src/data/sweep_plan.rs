@@ -85,7 +85,10 @@ impl SweepPlan {
     /// An I/O error.
     pub fn write(&self, dir: &Path) -> Result<()> {
         let json = serde_json::to_string_pretty(self).context("serialising the sweep plan")?;
-        write_atomic(&Self::path_in(dir), format!("{json}\n").as_bytes())
+        Ok(write_atomic(
+            &Self::path_in(dir),
+            format!("{json}\n").as_bytes(),
+        )?)
     }
 
     /// Reads `dir/plan.json`.
