@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use usar_sim::scenario::{Debris, Locomotion, PointM, Scenario};
 
-use crate::errors::anyhow_value_error;
+use crate::errors::chain_value_error;
 
 fn xy(p: &PointM) -> (f64, f64) {
     (p.x, p.y)
@@ -66,12 +66,11 @@ pub fn summary<'py>(py: Python<'py>, s: &Scenario) -> PyResult<Bound<'py, PyDict
         .map(|z| (xy(&z.area.center), z.area.radius_m, z.dose_rate_factor))
         .collect();
     d.set_item("radiation_zones", zones)?;
-    let hash = usar_sweep::fingerprint::scenario_hash(s).map_err(|e| anyhow_value_error(&e))?;
+    let hash = usar_sweep::fingerprint::scenario_hash(s).map_err(|e| chain_value_error(&e))?;
     d.set_item("hash", hash)?;
     d.set_item("needs_len", usar_sim::scenario::NEEDS_LEN)?;
     // The mission's parameters as the scenario file writes them (every field, defaults too).
-    let mission =
-        serde_json::to_value(&s.spec().mission).map_err(|e| anyhow_value_error(&e.into()))?;
+    let mission = serde_json::to_value(&s.spec().mission).map_err(|e| chain_value_error(&e))?;
     d.set_item("mission", crate::json_value::to_python(py, &mission)?)?;
     Ok(d)
 }

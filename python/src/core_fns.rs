@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 use rne_core::grouping::{GroupingRequest, RobotSnapshot, method_from_name};
 use rne_core::{NeedsVector, TrustModel, Weights};
 
-use crate::errors::{anyhow_value_error, value_error};
+use crate::errors::{chain_value_error, value_error};
 use crate::scenario::Scenario;
 
 /// Trust of robot A in robot B, nats (paper Eq. 7, `TrustModel::agent_agent`).
@@ -86,7 +86,7 @@ pub fn builtin_group(
     let model = match (weights, scenario) {
         (Some(w), _) => TrustModel::with_weights(Weights::new(w).map_err(value_error)?),
         (None, Some(s)) => {
-            usar_sweep::sweep::trust_model(s.inner()).map_err(|e| anyhow_value_error(&e))?
+            usar_sweep::sweep::trust_model(s.inner()).map_err(|e| chain_value_error(&e))?
         }
         (None, None) => {
             let j = request.robots()[0].needs.len();

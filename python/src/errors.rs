@@ -2,6 +2,8 @@
 //! exceptions: a bad scenario or argument is a `ValueError` with the library's one-line
 //! message, a failed trial a `TrialError`, a grouping method's bad answer a `GroupingError`.
 
+use std::error::Error;
+
 use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use usar_study::refused_setting::RefusedSetting;
@@ -36,18 +38,23 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(one_line(&e.to_string()))
 }
 
-/// A `ValueError` from an anyhow error, its whole chain on one line.
-pub fn anyhow_value_error(e: &anyhow::Error) -> PyErr {
-    PyValueError::new_err(one_line(&format!("{e:#}")))
+/// A `ValueError` from a library error, its whole chain (the error, then each of its sources)
+/// on one line, joined by `: `.
+pub fn chain_value_error(e: &(dyn Error + 'static)) -> PyErr {
+    PyValueError::new_err(one_line(&rne_core::error_line(e)))
+}
+
+/// `e`, then each of its sources in turn.
+fn chain<'a>(e: &'a (dyn Error + 'static)) -> impl Iterator<Item = &'a (dyn Error + 'static)> {
+    std::iter::successors(Some(e), |&e| e.source())
 }
 
 /// A `ValueError` from a library error of a sweep or a study, its whole chain on one line and
 /// in the package's words: a refused setting ([`RefusedSetting`]) names its field, which is the
 /// keyword argument that sets it, in its own `Display`; every other cause goes through
 /// [`python_words`].
-pub fn sweep_value_error(e: &anyhow::Error) -> PyErr {
-    let line = e
-        .chain()
+pub fn sweep_value_error(e: &(dyn Error + 'static)) -> PyErr {
+    let line = chain(e)
         .map(|cause| match RefusedSetting::of(cause) {
             Some(refused) => refused.line(str::to_owned),
             None => python_words(&cause.to_string()),

@@ -13,7 +13,7 @@ use usar_report::render::{PathRecorder, render_svg};
 use usar_report::replay::{ReplayRecorder, SampleClock, default_hz, write_replay};
 
 use crate::detached::run_detached;
-use crate::errors::{anyhow_value_error, value_error};
+use crate::errors::{chain_value_error, value_error};
 use crate::py_method::{FirstError, MethodArg};
 use crate::run::{drive, trial_builder, trial_outcome};
 use crate::scenario::Scenario;
@@ -39,7 +39,7 @@ pub fn render(
 ) -> PyResult<usize> {
     let s = scenario.inner();
     let Some(method) = method else {
-        render_svg(s, None, &out).map_err(|e| anyhow_value_error(&e))?;
+        render_svg(s, None, &out).map_err(|e| chain_value_error(e.as_ref()))?;
         return Ok(0);
     };
     let first_error = FirstError::default();
@@ -52,7 +52,7 @@ pub fn render(
     };
     let outcome = run_detached(py, &stop, work, |_| Ok(()))?;
     let traces = trial_outcome(outcome, &first_error)?.into_traces();
-    render_svg(s, Some(&traces), &out).map_err(|e| anyhow_value_error(&e))?;
+    render_svg(s, Some(&traces), &out).map_err(|e| chain_value_error(e.as_ref()))?;
     Ok(traces.first().map_or(0, Vec::len))
 }
 

@@ -15,7 +15,7 @@ use usar_sweep::vary::{
     validate_overridden,
 };
 
-use crate::errors::{ScenarioWarning, anyhow_value_error, value_error};
+use crate::errors::{ScenarioWarning, chain_value_error, value_error};
 use crate::json_value::{from_python, to_python, values_at};
 use crate::ron_value::ron_text;
 
@@ -214,7 +214,7 @@ impl Scenario {
     /// The scenario as RON, every field written out (as `usar check --print`).
     fn to_ron(&self) -> PyResult<String> {
         let hash = usar_sweep::fingerprint::scenario_hash(&self.scenario)
-            .map_err(|e| anyhow_value_error(&e))?;
+            .map_err(|e| chain_value_error(&e))?;
         let mut head = format!("{}, scenario hash {hash}", self.origin);
         if !self.overrides.is_empty() {
             let sets: Vec<String> = self.overrides.iter().map(ToString::to_string).collect();
@@ -224,7 +224,7 @@ impl Scenario {
                 sets.join(", ")
             );
         }
-        spec_to_ron(&self.spec, &[head]).map_err(|e| anyhow_value_error(&e))
+        spec_to_ron(&self.spec, &[head]).map_err(|e| chain_value_error(&e))
     }
 
     /// What `usar check` prints, as a dict of plain values: `name`, `description`, `arena`,
@@ -289,7 +289,7 @@ impl Scenario {
     ) -> PyResult<Self> {
         let spec = spec_from_json(from_python(data)?)
             .map_err(|e| value_error(format!("{origin}: {e}")))?;
-        let text = spec_to_ron(&spec, &[origin.to_string()]).map_err(|e| anyhow_value_error(&e))?;
+        let text = spec_to_ron(&spec, &[origin.to_string()]).map_err(|e| chain_value_error(&e))?;
         let path = path.unwrap_or_else(|| PathBuf::from(origin));
         Self::from_text(text, origin.to_string(), path)?.warned(py)
     }

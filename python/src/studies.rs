@@ -108,7 +108,7 @@ impl Run {
 
 /// A one-line `ValueError` of an anyhow error, in the package's words.
 fn py_error(e: anyhow::Error) -> PyErr {
-    sweep_value_error(&e)
+    sweep_value_error(e.as_ref())
 }
 
 /// A target check as JSON.

@@ -20,7 +20,7 @@ use usar_sweep::metrics::{Metric, Quantity, Scope};
 use usar_sweep::sweep::{Failure, SweepConfig, run_in_memory};
 
 use crate::detached::run_detached;
-use crate::errors::{TrialError, anyhow_value_error, sweep_value_error, value_error};
+use crate::errors::{TrialError, chain_value_error, sweep_value_error, value_error};
 use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
 use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
@@ -105,7 +105,7 @@ pub fn run_sweep(
             None => Ok(()),
         }
     };
-    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| sweep_value_error(&e))?;
+    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| sweep_value_error(e.as_ref()))?;
     let per_cell = successful_trials(ran, &first_error, &stop, total)?;
     per_cell
         .iter()
@@ -115,7 +115,8 @@ pub fn run_sweep(
                 Some(g) => (g.cells[i].values(), g.cells[i].scenario.task_names()),
                 None => (Vec::new(), cfg.scenario.task_names()),
             };
-            let csv = trials_long_csv(results, &tasks).map_err(|e| anyhow_value_error(&e))?;
+            let csv =
+                trials_long_csv(results, &tasks).map_err(|e| chain_value_error(e.as_ref()))?;
             Ok((values, csv))
         })
         .collect()

@@ -48,9 +48,49 @@ pub fn path_text(path: &Path) -> String {
     one_line_text(&path.display().to_string()).into_owned()
 }
 
+/// `e` and each of its sources in turn, joined by `: ` (`the journal could not be written;
+/// the sweep stopped: appending to out/journal.jsonl: No space left on device (os error
+/// 28)`): what `{:#}` of an `anyhow::Error` prints, for a caller that keeps a typed error.
+pub fn error_line(e: &(dyn std::error::Error + 'static)) -> String {
+    let mut line = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        line.push_str(": ");
+        line.push_str(&c.to_string());
+        cause = c.source();
+    }
+    line
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{number_text, one_line_text, path_text};
+    use super::{error_line, number_text, one_line_text, path_text};
+
+    /// An error with a source, as a library's typed error with its cause.
+    #[derive(Debug)]
+    struct Wrapped(std::fmt::Error);
+
+    impl std::fmt::Display for Wrapped {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("writing out/a.csv")
+        }
+    }
+
+    impl std::error::Error for Wrapped {
+        fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+            Some(&self.0)
+        }
+    }
+
+    #[test]
+    fn an_error_line_gives_each_cause_after_the_error() {
+        let e = Wrapped(std::fmt::Error);
+        assert_eq!(
+            error_line(&e),
+            format!("writing out/a.csv: {}", std::fmt::Error)
+        );
+        assert_eq!(error_line(&std::fmt::Error), std::fmt::Error.to_string());
+    }
 
     #[test]
     fn text_and_paths_are_written_on_one_line() {

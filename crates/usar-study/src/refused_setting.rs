@@ -5,7 +5,7 @@
 
 use std::error::Error;
 
-use usar_sweep::sweep::{ConfigError, SettingError};
+use usar_sweep::sweep::{ConfigError, SettingError, SweepError};
 
 use crate::calibrate::SetupError;
 use crate::multiverse::MultiverseError;
@@ -13,9 +13,10 @@ use crate::multiverse::MultiverseError;
 /// A setting refused before a run started, as one cause of an error: the field that holds it
 /// and what is wrong.
 ///
-/// Found in a sweep plan's [`ConfigError`], a study's [`SettingError`], a calibration's
-/// [`SetupError::Setting`], and a multiverse's [`MultiverseError::Setting`],
-/// [`MultiverseError::Sweep`] or [`MultiverseError::Calibration`] holding one of these.
+/// Found in a sweep plan's [`ConfigError`] (alone or as [`SweepError::Config`]), a study's
+/// [`SettingError`], a calibration's [`SetupError::Setting`], and a multiverse's
+/// [`MultiverseError::Setting`], [`MultiverseError::Sweep`] or [`MultiverseError::Calibration`]
+/// holding one of these.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct RefusedSetting {
     /// The field's name in the library (snake case, `_s` for seconds: `max_evals`,
@@ -32,6 +33,9 @@ impl RefusedSetting {
     /// looking into its own causes: walk the chain to find one anywhere).
     pub fn of(cause: &(dyn Error + 'static)) -> Option<Self> {
         if let Some(e) = cause.downcast_ref::<ConfigError>() {
+            return Some(Self::config(e));
+        }
+        if let Some(SweepError::Config(e)) = cause.downcast_ref::<SweepError>() {
             return Some(Self::config(e));
         }
         if let Some(e) = cause.downcast_ref::<SettingError>() {
@@ -90,6 +94,10 @@ mod tests {
         let config = ConfigError::NoTrials;
         let causes: Vec<(Box<dyn Error>, &str)> = vec![
             (Box::new(config.clone()), "<trials> must be at least 1"),
+            (
+                Box::new(SweepError::Config(config.clone())),
+                "<trials> must be at least 1",
+            ),
             (Box::new(setting.clone()), "<max_evals> must be at least 1"),
             (
                 Box::new(SetupError::from(setting.clone())),

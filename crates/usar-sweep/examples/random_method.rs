@@ -15,7 +15,9 @@
 use std::cell::RefCell;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, ensure};
+/// What `main` returns: any error, printed by the runtime.
+type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
 use rne_core::grouping::{Assignment, GroupingMethod, GroupingRequest};
 use usar_sweep::sweep::rand::seq::SliceRandom;
 use usar_sweep::sweep::{ChaCha8Rng, MethodFactory, SweepConfig, TrialContext, run_sweep};
@@ -76,7 +78,7 @@ fn main() -> Result<()> {
     let trials: u32 = std::env::args()
         .nth(1)
         .map_or(Ok(4), |a| a.parse())
-        .context("TRIALS")?;
+        .map_err(|e| format!("TRIALS: {e}"))?;
     let path = PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../scenarios/paper.ron"
@@ -103,7 +105,9 @@ fn main() -> Result<()> {
         Ok(run_sweep(&cfg)?.cells.remove(0).results)
     };
     let (first, second) = (run("a")?, run("b")?);
-    ensure!(first == second, "two runs of the same sweep differ");
+    if first != second {
+        return Err("two runs of the same sweep differ".into());
+    }
     println!("method  trial  rescued (two runs, identical)");
     for r in &first {
         println!("{:<7} {:>5}  {:>7}", r.method, r.trial, r.rescued_total());

@@ -82,8 +82,9 @@ impl FileError {
         }
     }
 
-    /// The [`FileError::Io`] of `source` while doing `action`.
-    fn io(action: String) -> impl FnOnce(std::io::Error) -> Self {
+    /// The [`FileError::Io`] of `source` while doing `action` (what was being done, naming
+    /// the path: `creating folder out/cells`), for `map_err`.
+    pub fn io(action: String) -> impl FnOnce(std::io::Error) -> Self {
         move |source| Self::Io { action, source }
     }
 }
@@ -505,7 +506,8 @@ pub(crate) mod tests {
         let system = fs::metadata(&through).unwrap_err().to_string();
         let line = format!("cannot write {}: {system}", path_text(&through));
         assert_eq!(e.line(), line);
-        assert_eq!(format!("{:#}", anyhow::Error::new(e)), line);
+        let source = std::error::Error::source(&e).map(ToString::to_string);
+        assert_eq!(format!("{e}: {}", source.unwrap()), line);
     }
 
     #[test]

@@ -19,11 +19,30 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
 use serde_json::value::RawValue;
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::fingerprint::fnv1a64_hex;
+
+/// Why a log could not be written ([`LogWriter`]).
+#[derive(Debug, thiserror::Error)]
+pub enum LogError {
+    /// An I/O error creating, opening, truncating or appending to the log (or making its
+    /// folder), naming the path.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// An earlier line could be neither written whole nor cut back off the file: the log may
+    /// end with part of a line, so nothing more is appended.
+    #[error("{path}: an earlier line could not be written nor removed; not appending")]
+    Damaged {
+        /// The log's path, as shown.
+        path: String,
+    },
+}
+
+/// What the writing functions of this module return.
+type Result<T> = std::result::Result<T, LogError>;
 
 /// The checksum of a header line: FNV-1a 64 ([`fnv1a64_hex`]) of the header's JSON as
 /// written. Every record's checksum includes it ([`record_sum`]).
@@ -89,13 +108,13 @@ pub enum RecordLine<'a> {
 ///
 /// # Errors
 /// The first error of `each`.
-pub fn read_records<'a>(
+pub fn read_records<'a, E>(
     bytes: &'a [u8],
     header_len: usize,
     header_sum: &str,
     key: &str,
-    mut each: impl FnMut(usize, RecordLine<'a>) -> Result<()>,
-) -> Result<u64> {
+    mut each: impl FnMut(usize, RecordLine<'a>) -> std::result::Result<(), E>,
+) -> std::result::Result<u64, E> {
     let mut complete = header_len as u64;
     let mut lines = bytes[header_len..]
         .split_inclusive(|&b| b == b'\n')
@@ -155,13 +174,13 @@ impl LogWriter {
     pub fn create(path: PathBuf, key: &str, header_json: &str) -> Result<Self> {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             fs::create_dir_all(dir)
-                .with_context(|| format!("creating folder {}", path_text(dir)))?;
+                .map_err(FileError::io(format!("creating folder {}", path_text(dir))))?;
         }
         let file = OpenOptions::new()
             .write(true)
             .create_new(true)
             .open(&path)
-            .with_context(|| format!("creating {}", path_text(&path)))?;
+            .map_err(FileError::io(format!("creating {}", path_text(&path))))?;
         let mut log = Self::at(path, file, header_sum(header_json), 0);
         let line = checked_line(key, header_json, &log.header_sum);
         log.write_line(&line)?;
@@ -178,13 +197,13 @@ impl LogWriter {
         let file = OpenOptions::new()
             .write(true)
             .open(path)
-            .with_context(|| format!("opening {}", path_text(path)))?;
+            .map_err(FileError::io(format!("opening {}", path_text(path))))?;
         file.set_len(complete_bytes)
-            .with_context(|| format!("truncating {}", path_text(path)))?;
+            .map_err(FileError::io(format!("truncating {}", path_text(path))))?;
         let file = OpenOptions::new()
             .append(true)
             .open(path)
-            .with_context(|| format!("opening {}", path_text(path)))?;
+            .map_err(FileError::io(format!("opening {}", path_text(path))))?;
         Ok(Self::at(path.to_owned(), file, header_sum, complete_bytes))
     }
 
@@ -218,10 +237,9 @@ impl LogWriter {
 
     fn write_line(&mut self, s: &str) -> Result<()> {
         if self.damaged {
-            bail!(
-                "{}: an earlier line could not be written nor removed; not appending",
-                path_text(&self.path)
-            );
+            return Err(LogError::Damaged {
+                path: path_text(&self.path),
+            });
         }
         if let Err(e) = self.write_bytes(s.as_bytes()) {
             // Cut the part of the line that was written back off, so that the log ends with a
@@ -234,7 +252,7 @@ impl LogWriter {
             {
                 self.damaged = true;
             }
-            return Err(e).with_context(|| format!("appending to {}", path_text(&self.path)));
+            return Err(FileError::io(format!("appending to {}", path_text(&self.path)))(e).into());
         }
         self.complete_bytes += s.len() as u64;
         Ok(())
@@ -316,7 +334,7 @@ mod tests {
         let mut seen = Vec::new();
         let complete = read_records(&bytes, header_len, &sum, "rec", |i, r| {
             seen.push((i, r));
-            Ok(())
+            Ok::<(), ()>(())
         })
         .unwrap();
         assert_eq!(
@@ -339,7 +357,7 @@ mod tests {
         let mut kinds = Vec::new();
         read_records(edited.as_bytes(), header_len, &other, "rec", |_, r| {
             kinds.push(matches!(r, RecordLine::Unverified(_)));
-            Ok(())
+            Ok::<(), ()>(())
         })
         .unwrap();
         assert_eq!(kinds, [true; 3], "another header's sum verifies nothing");
@@ -347,7 +365,7 @@ mod tests {
         let mut got = Vec::new();
         read_records(damaged.as_bytes(), header_len, &sum, "rec", |i, r| {
             got.push((i, r));
-            Ok(())
+            Ok::<(), ()>(())
         })
         .unwrap();
         assert_eq!(got, [(2, RecordLine::Damaged)]);
@@ -373,7 +391,8 @@ mod tests {
         let mut w = LogWriter::resume(&path, header_sum("{}"), complete).unwrap();
         w.fail_after_bytes = Some(5);
         let err = w.append("rec", "2").unwrap_err();
-        assert!(format!("{err:#}").contains("no space left"), "{err:#}");
+        let line = rne_core::error_line(&err);
+        assert!(line.contains("no space left"), "{line}");
         assert_eq!(fs::metadata(&path).unwrap().len(), complete);
         w.append("rec", "3").unwrap();
         let text = fs::read_to_string(&path).unwrap();

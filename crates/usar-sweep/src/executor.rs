@@ -7,7 +7,6 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
 use rayon::prelude::*;
 use rne_core::TrustModel;
 use usar_sim::mission::{Simulation, TrialResult};
@@ -15,7 +14,8 @@ use usar_sim::scenario::Scenario;
 
 use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::data::limits::{max_threads, sweep_threads};
-use crate::journal::{Journal, Outcome, TrialRecord};
+use crate::error::SweepError;
+use crate::journal::{Journal, JournalError, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
 use crate::progress::progress_bar;
 
@@ -83,11 +83,11 @@ pub(crate) fn execute(
     plans: &[CellPlan<'_>],
     jobs: &[Job],
     journal: Option<Journal>,
-) -> Result<Vec<TrialRecord>> {
+) -> Result<Vec<TrialRecord>, SweepError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(runner.threads.max(1))
         .build()
-        .context("starting the thread pool")?;
+        .map_err(SweepError::ThreadPool)?;
     let total_us = jobs
         .iter()
         .map(|j| plans[j.cell].steps_per_trial * plans[j.cell].step_us)
@@ -104,7 +104,7 @@ pub(crate) fn execute(
     );
     let journal = Mutex::new(journal);
     let new_records: Mutex<Vec<TrialRecord>> = Mutex::new(Vec::new());
-    let journal_error: Mutex<Option<anyhow::Error>> = Mutex::new(None);
+    let journal_error: Mutex<Option<JournalError>> = Mutex::new(None);
     let abort = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
     pool.install(|| {
@@ -149,7 +149,7 @@ pub(crate) fn execute(
         .into_inner()
         .unwrap_or_else(PoisonError::into_inner)
     {
-        return Err(e.context("the journal could not be written; the sweep stopped"));
+        return Err(SweepError::JournalStopped(e));
     }
     Ok(new_records
         .into_inner()

@@ -1,7 +1,6 @@
 //! Scenario fingerprints: the hash that journals, reports and `usar check` show for a
 //! validated scenario, so a grid cell's `scenario.ron` can be matched to its cell.
 
-use anyhow::{Context, Result};
 use serde_json::Value;
 use usar_sim::scenario::Scenario;
 
@@ -32,9 +31,9 @@ const ADDED_FIELDS: [(&str, &str, &str); 4] = [
 /// out do not.
 ///
 /// # Errors
-/// A scenario serde_json cannot serialise (not expected).
-pub fn scenario_hash(scenario: &Scenario) -> Result<String> {
-    let mut value = serde_json::to_value(scenario).context("serialising the scenario")?;
+/// A scenario serde_json cannot serialise (not expected), with serde_json's error.
+pub fn scenario_hash(scenario: &Scenario) -> Result<String, serde_json::Error> {
+    let mut value = serde_json::to_value(scenario)?;
     for (section, field, old) in ADDED_FIELDS {
         if let Some(fields) = value.get_mut(section).and_then(Value::as_object_mut)
             && fields.get(field).and_then(Value::as_str) == Some(old)
@@ -42,7 +41,7 @@ pub fn scenario_hash(scenario: &Scenario) -> Result<String> {
             fields.shift_remove(field);
         }
     }
-    let json = serde_json::to_vec(&value).context("serialising the scenario")?;
+    let json = serde_json::to_vec(&value)?;
     Ok(fnv1a64_hex(&json))
 }
 

@@ -26,16 +26,17 @@ use std::fs::{self, File};
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow, bail};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::checked_log::{LogWriter, RecordLine, parse_line, read_records};
 /// The checksums of the journal's lines (from [`crate::checked_log`], kept here for callers
 /// that verify a journal by hand).
 pub use crate::checked_log::{header_sum, record_sum};
+pub use crate::journal_error::JournalError;
 
 /// File name of the journal inside the output folder.
 pub const JOURNAL_FILE: &str = "journal.jsonl";
@@ -198,45 +199,36 @@ pub struct JournalContents {
     pub complete_bytes: u64,
 }
 
-/// The end of every message about a journal that cannot be used (a merge names the shard's
-/// own command instead: `crate::shard::merge`).
-pub(crate) const START_AFRESH: &str =
-    "start the sweep afresh with --overwrite (in place of --resume), or move the journal away";
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, JournalError>;
 
 /// The error for a damaged line (`line` is 1-based).
-fn damaged(path: &Path, line: usize) -> anyhow::Error {
-    anyhow!(
-        "{}:{line}: not a valid journal line; the journal is damaged: delete that line (a trial \
-         it held runs again), or {START_AFRESH}",
-        path_text(path)
-    )
+fn damaged(path: &Path, line: usize) -> JournalError {
+    JournalError::DamagedLine {
+        path: path_text(path),
+        line,
+    }
 }
 
 /// Parses and verifies the header line (the first line, as read) of the journal at `path`;
 /// returns the header and its checksum.
 fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> {
-    let not_a_header = || {
-        anyhow!(
-            "{}:1: not a journal header; {START_AFRESH}",
-            path_text(path)
-        )
+    let not_a_header = || JournalError::NotAHeader {
+        path: path_text(path),
     };
     let line = std::str::from_utf8(line).map_err(|_| not_a_header())?;
     check_format(path, line)?;
     if !line.ends_with('\n') {
-        bail!(
-            "{}:1: the header line is cut short; {START_AFRESH}",
-            path_text(path)
-        );
+        return Err(JournalError::HeaderCut {
+            path: path_text(path),
+        });
     }
     let (json, sum) = parse_line(line, "header").ok_or_else(not_a_header)?;
     let expected = header_sum(json);
     if sum.as_deref() != Some(expected.as_str()) {
-        bail!(
-            "{}:1: the header does not verify (edited?), so no record of the journal can be \
-             trusted; {START_AFRESH}",
-            path_text(path)
-        );
+        return Err(JournalError::HeaderUnverified {
+            path: path_text(path),
+        });
     }
     let header = serde_json::from_str::<SweepHeader>(json).map_err(|_| not_a_header())?;
     Ok((header, expected))
@@ -254,9 +246,12 @@ fn parse_header_line(path: &Path, line: &[u8]) -> Result<(SweepHeader, String)> 
 /// and names `--overwrite`).
 pub fn read_journal(path: &Path) -> Result<JournalContents> {
     check_regular_file(path)?;
-    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path_text(path)))?;
+    let bytes =
+        fs::read(path).map_err(FileError::io(format!("cannot read {}", path_text(path))))?;
     let Some(first) = bytes.split_inclusive(|&b| b == b'\n').next() else {
-        bail!("{}: empty journal (no header line)", path_text(path));
+        return Err(JournalError::Empty {
+            path: path_text(path),
+        });
     };
     let (header, sum) = parse_header_line(path, first)?;
     let mut records: Vec<TrialRecord> = Vec::new();
@@ -296,11 +291,11 @@ fn check_format(path: &Path, first_line: &str) -> Result<()> {
         .ok()
         .and_then(|v| v.get("header")?.get("format")?.as_u64());
     match format {
-        Some(f) if f != u64::from(JOURNAL_FORMAT) => bail!(
-            "{}: journal format {f}, but this usar reads format {JOURNAL_FORMAT}; \
-             {START_AFRESH}",
-            path_text(path)
-        ),
+        Some(found) if found != u64::from(JOURNAL_FORMAT) => Err(JournalError::Format {
+            path: path_text(path),
+            found,
+            expected: JOURNAL_FORMAT,
+        }),
         _ => Ok(()),
     }
 }
@@ -316,11 +311,12 @@ pub fn read_header(path: &Path) -> Result<SweepHeader> {
 /// The first line of the regular file at `path`, with its newline if it has one.
 fn first_line(path: &Path) -> Result<Vec<u8>> {
     check_regular_file(path)?;
-    let file = File::open(path).with_context(|| format!("cannot read {}", path_text(path)))?;
+    let file =
+        File::open(path).map_err(FileError::io(format!("cannot read {}", path_text(path))))?;
     let mut first = Vec::new();
     BufReader::new(file)
         .read_until(b'\n', &mut first)
-        .with_context(|| format!("reading {}", path_text(path)))?;
+        .map_err(FileError::io(format!("reading {}", path_text(path))))?;
     Ok(first)
 }
 
@@ -339,7 +335,10 @@ pub fn read_header_unverified(path: &Path) -> Option<SweepHeader> {
 pub fn holds_no_line(path: &Path) -> bool {
     const HEADER_START: &[u8] = b"{\"header\":";
     // Checked before opening: opening a FIFO to read waits for a writer.
-    let Ok(file) = check_regular_file(path).and_then(|()| Ok(File::open(path)?)) else {
+    let Some(file) = check_regular_file(path)
+        .ok()
+        .and_then(|()| File::open(path).ok())
+    else {
         return false;
     };
     let mut start = Vec::new();
@@ -377,15 +376,13 @@ pub fn something_at(path: &Path) -> bool {
 fn check_regular_file(path: &Path) -> Result<()> {
     match fs::metadata(path) {
         Ok(m) if m.is_file() => Ok(()),
-        Ok(_) => bail!(
-            "{}: not a regular file (a folder, FIFO or device); {START_AFRESH}",
-            path_text(path)
-        ),
-        Err(_) if something_at(path) => bail!(
-            "{}: a symbolic link to a missing file; {START_AFRESH}",
-            path_text(path)
-        ),
-        Err(e) => Err(e).with_context(|| format!("cannot read {}", path_text(path))),
+        Ok(_) => Err(JournalError::NotAFile {
+            path: path_text(path),
+        }),
+        Err(_) if something_at(path) => Err(JournalError::DanglingLink {
+            path: path_text(path),
+        }),
+        Err(e) => Err(FileError::io(format!("cannot read {}", path_text(path)))(e).into()),
     }
 }
 
@@ -408,7 +405,10 @@ impl Journal {
     /// # Errors
     /// An existing journal, or an I/O error.
     pub fn create(dir: &Path, header: &SweepHeader) -> Result<Self> {
-        let json = serde_json::to_string(header).context("serialising the journal header")?;
+        let json = serde_json::to_string(header).map_err(|source| JournalError::Serialise {
+            what: "the journal header",
+            source,
+        })?;
         let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
         Ok(Self { log })
     }
@@ -426,12 +426,10 @@ impl Journal {
         let path = Self::path_in(dir);
         let contents = read_journal(&path)?;
         if &contents.header != header {
-            bail!(
-                "--resume: {} was written by a sweep with other parameters ({}); run with \
-                 another --out, or with --overwrite (in place of --resume) to start afresh",
-                path_text(&path),
-                header_diff(&contents.header, header)
-            );
+            return Err(JournalError::OtherParameters {
+                path: path_text(&path),
+                diff: header_diff(&contents.header, header),
+            });
         }
         let log = LogWriter::resume(&path, contents.header_sum.clone(), contents.complete_bytes)?;
         Ok((Self { log }, contents))
@@ -443,8 +441,11 @@ impl Journal {
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, record: &TrialRecord) -> Result<()> {
-        let json = serde_json::to_string(record).context("serialising a journal record")?;
-        self.log.append("trial", &json)
+        let json = serde_json::to_string(record).map_err(|source| JournalError::Serialise {
+            what: "a journal record",
+            source,
+        })?;
+        Ok(self.log.append("trial", &json)?)
     }
 }
 
@@ -978,7 +979,7 @@ pub(crate) mod tests {
         // A full disk cuts the next line after 40 bytes; another thread's record follows
         // once space is back.
         j.log.fail_after_bytes = Some(40);
-        let msg = format!("{:#}", j.append(&record(1, 1)).unwrap_err());
+        let msg = rne_core::error_line(&j.append(&record(1, 1)).unwrap_err());
         assert!(
             msg.contains("appending to") && msg.contains("no space left"),
             "{msg}"

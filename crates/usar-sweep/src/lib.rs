@@ -22,6 +22,11 @@
 //! draws nothing. A plan refused before it runs is a [`sweep::ConfigError`] naming the field
 //! of the plan (`trials must be at least 1`), and a study's refused option a
 //! [`sweep::SettingError`]; a front end names the field its own way (`usar` by its flag).
+//! Every fallible function returns a typed error (`thiserror`): a sweep or a merge an
+//! [`error::SweepError`], whose variants are the errors of the modules that found the problem
+//! ([`journal::JournalError`], [`grid::GridError`], [`shard::MergeError`],
+//! [`atomic::FileError`], ...); [`rne_core::error_line`] prints one with its causes on one
+//! line.
 //!
 //! A sweep of paper.ron in memory:
 //!
@@ -43,23 +48,25 @@
 //! // Sorted as trials.csv: method order, then trial; the same seeds for every method.
 //! let trials: Vec<(&str, u32)> = results.results().map(|r| (r.method.as_str(), r.trial)).collect();
 //! assert_eq!(trials, [("RNE", 0), ("RNE", 1), ("DIS", 0), ("DIS", 1)]);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it, never from one above (bottom first):
 //!
 //! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`lock`], [`spec_ron`], [`stderr`],
-//!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`], [`trial_json`];
+//!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
+//!    [`journal_error`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
-//! 4. run: [`executor`], [`stale_outputs`], [`sweep`], [`shard`], [`slurm`].
+//! 4. run: [`error`], [`executor`], [`stale_outputs`], [`sweep`], [`shard`], [`slurm`].
 
 // 1. base
 pub mod atomic;
 pub mod checked_log;
 pub mod fingerprint;
 pub mod journal;
+pub mod journal_error;
 pub mod lock;
 pub mod method_factory;
 pub mod metrics;
@@ -73,6 +80,7 @@ pub mod data;
 // 3. design
 pub mod grid;
 // 4. run
+pub mod error;
 pub mod executor;
 pub mod shard;
 pub mod slurm;

@@ -4,7 +4,6 @@
 
 use std::sync::Arc;
 
-use anyhow::{Context, Result};
 use rand::SeedableRng;
 use rne_core::TrustModel;
 use rne_core::grouping::{GroupingMethod, method_from_name};
@@ -152,6 +151,42 @@ impl std::fmt::Debug for MethodFactory {
     }
 }
 
+/// Why a sweep's method cannot be used, or its trust model built.
+#[derive(Debug, thiserror::Error)]
+pub enum MethodError {
+    /// The factory does not build a method of this name (or the method refused the trial's
+    /// context).
+    #[error("method {name:?}")]
+    Unknown {
+        /// The name, as given.
+        name: String,
+        /// The factory's error.
+        #[source]
+        source: rne_core::RneError,
+    },
+    /// The method's display name is empty.
+    #[error("method {name:?}: its display name is empty")]
+    EmptyName {
+        /// The name, as given.
+        name: String,
+    },
+    /// The method's display name holds a control character (a line break would break the
+    /// tables of trials.csv and report.md).
+    #[error(
+        "method {name:?}: its display name {shown:?} has a control character (a line break \
+         would break the tables of trials.csv and report.md)"
+    )]
+    ControlCharacter {
+        /// The name, as given.
+        name: String,
+        /// The display name.
+        shown: String,
+    },
+    /// The scenario's `needs_weights` that rne-core rejects.
+    #[error("scenario needs_weights")]
+    NeedsWeights(#[source] usar_sim::mission::MissionError),
+}
+
 /// The display name of the method called `name` (its `GroupingMethod::display_name`, kept as
 /// its author wrote it: `hp_sort` stays `hp_sort`; the built-ins give `RNE`, `DIS`, `ENG`,
 /// `HP_DIS`), as `TrialResult::method`, the journal and the outputs spell it. Builds the
@@ -164,20 +199,25 @@ pub fn canonical_method(
     factory: &MethodFactory,
     model: &TrustModel,
     base_seed: u64,
-) -> Result<String> {
+) -> Result<String, MethodError> {
     let m = factory
         .build(name, model, &TrialContext::for_trial(base_seed, 0))
-        .with_context(|| format!("method {name:?}"))?;
+        .map_err(|source| MethodError::Unknown {
+            name: name.to_owned(),
+            source,
+        })?;
     let shown = m.display_name();
-    anyhow::ensure!(
-        !shown.trim().is_empty(),
-        "method {name:?}: its display name is empty"
-    );
-    anyhow::ensure!(
-        !shown.chars().any(char::is_control),
-        "method {name:?}: its display name {shown:?} has a control character (a line break \
-         would break the tables of trials.csv and report.md)"
-    );
+    if shown.trim().is_empty() {
+        return Err(MethodError::EmptyName {
+            name: name.to_owned(),
+        });
+    }
+    if shown.chars().any(char::is_control) {
+        return Err(MethodError::ControlCharacter {
+            name: name.to_owned(),
+            shown: shown.to_owned(),
+        });
+    }
     Ok(shown.to_string())
 }
 
@@ -186,8 +226,8 @@ pub fn canonical_method(
 ///
 /// # Errors
 /// Weights rne-core rejects.
-pub fn trust_model(scenario: &Scenario) -> Result<TrustModel> {
-    usar_sim::mission::trust_model(scenario).context("scenario needs_weights")
+pub fn trust_model(scenario: &Scenario) -> Result<TrustModel, MethodError> {
+    usar_sim::mission::trust_model(scenario).map_err(MethodError::NeedsWeights)
 }
 
 #[cfg(test)]

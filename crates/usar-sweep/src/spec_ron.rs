@@ -5,7 +5,6 @@
 //! so [`usar_sim::scenario::parse_spec`] reads it back to an equal spec and `usar check`
 //! validates it to the same scenario (same scenario hash).
 
-use anyhow::{Context, Result};
 use ron::ser::PrettyConfig;
 use usar_sim::scenario::ScenarioSpec;
 
@@ -15,12 +14,12 @@ use usar_sim::scenario::ScenarioSpec;
 ///
 /// # Errors
 /// A serialisation error from ron (not expected for a spec).
-pub fn spec_to_ron(spec: &ScenarioSpec, comments: &[String]) -> Result<String> {
+pub fn spec_to_ron(spec: &ScenarioSpec, comments: &[String]) -> Result<String, ron::Error> {
     let config = PrettyConfig::new()
         .indentor("    ")
         .struct_names(false)
         .separate_tuple_members(false);
-    let body = ron::ser::to_string_pretty(spec, config).context("writing the scenario as RON")?;
+    let body = ron::ser::to_string_pretty(spec, config)?;
     let mut text = String::new();
     // The loader ends a line at a bare `\r` too (old Mac endings): such a comment would
     // leave its tail outside the comment.

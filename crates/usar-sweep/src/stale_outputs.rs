@@ -16,15 +16,17 @@ use std::fs;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use usar_sim::scenario::path_text;
 
-use crate::atomic::{remove_files_where, remove_named, remove_stale_temps};
+use crate::atomic::{FileError, remove_files_where, remove_named, remove_stale_temps};
 use crate::data::figure_list::FIGURES;
 use crate::data::shard_folders::shard_folders;
 use crate::grid::names::{cell_dir, field_labels};
 use crate::journal::{GridHeader, Journal, read_header_unverified};
 use crate::vary::FieldPath;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, FileError>;
 
 /// Tables and the report of one cell (or of the output folder without a grid).
 const TABLES: [&str; 4] = ["trials.csv", "trials_long.csv", "summary.csv", "report.md"];
@@ -56,7 +58,7 @@ fn cell_dirs(grid: &GridHeader) -> Vec<String> {
         .fields
         .iter()
         .map(|f| FieldPath::parse(f))
-        .collect::<Result<Vec<_>, _>>()
+        .collect::<std::result::Result<Vec<_>, _>>()
     else {
         return Vec::new();
     };
@@ -115,7 +117,7 @@ pub fn remove_previous_outputs(dir: &Path, journal: &Path) -> Result<Vec<PathBuf
         match fs::remove_dir(&cell) {
             Ok(()) => {}
             Err(e) if e.kind() == ErrorKind::DirectoryNotEmpty => {}
-            Err(e) => return Err(e).with_context(|| format!("removing {}", path_text(&cell))),
+            Err(e) => return Err(FileError::io(format!("removing {}", path_text(&cell)))(e)),
         }
     }
     Ok(removed)

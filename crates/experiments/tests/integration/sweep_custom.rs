@@ -88,7 +88,8 @@ fn a_custom_method_is_swept_like_the_built_ins() {
 #[test]
 fn an_unknown_name_is_refused_before_anything_runs() {
     let tmp = tempfile::tempdir().unwrap();
-    let err = run_sweep(&config(tmp.path().join("s"), &["nope"])).unwrap_err();
+    // The typed error's chain, as the `usar` binary prints it.
+    let err = anyhow::Error::from(run_sweep(&config(tmp.path().join("s"), &["nope"])).unwrap_err());
     assert!(
         format!("{err:#}").contains("unknown grouping method \"nope\""),
         "{err:#}"

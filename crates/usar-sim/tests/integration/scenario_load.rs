@@ -589,20 +589,8 @@ fn missing_file_is_an_io_error_that_says_its_cause_once() {
     );
     assert_eq!(msg.matches("No such file").count(), 1, "{msg}");
     // Printed with its chain (as `usar` does), the cause still appears once.
-    let chained = format!("{:#}", anyhow_like(&err));
+    let chained = rne_core::error_line(&err);
     assert_eq!(chained.matches("No such file").count(), 1, "{chained}");
-}
-
-/// The message and every `source()` below it, joined with ": " (what `anyhow`'s `{:#}` prints).
-fn anyhow_like(err: &dyn std::error::Error) -> String {
-    let mut out = err.to_string();
-    let mut cur = err.source();
-    while let Some(e) = cur {
-        out.push_str(": ");
-        out.push_str(&e.to_string());
-        cur = e.source();
-    }
-    out
 }
 
 #[test]

@@ -122,7 +122,7 @@ pub fn calibrated_ron(o: &CalibrationOutcome) -> Result<String> {
             s.target.mark(s.value)
         ));
     }
-    spec_to_ron(&o.best_spec, &c)
+    Ok(spec_to_ron(&o.best_spec, &c)?)
 }
 
 /// The text of `trace.csv`: columns `index`, each free field, each target's name, `loss`,

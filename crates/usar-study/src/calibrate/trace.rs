@@ -284,7 +284,7 @@ impl Trace {
     /// An I/O error.
     pub fn append(&mut self, e: &Evaluation) -> Result<()> {
         let json = serde_json::to_string(e).context("serialising an evaluation")?;
-        self.log.append("eval", &json)
+        Ok(self.log.append("eval", &json)?)
     }
 }
 

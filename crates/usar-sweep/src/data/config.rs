@@ -31,7 +31,7 @@ use crate::method_factory::MethodFactory;
 /// };
 /// let outcome = run_sweep(&cfg)?;
 /// assert_eq!(outcome.cells[0].results.len(), 4);
-/// # Ok::<(), anyhow::Error>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct SweepConfig {

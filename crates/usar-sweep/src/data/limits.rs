@@ -1,8 +1,6 @@
 //! The limits of a sweep: its most trials in all and its most worker threads, and the checks
 //! that refuse a sweep above them (or split into more shards than it has trials) in one line.
 
-use anyhow::{Result, bail};
-
 use crate::data::config_error::ConfigError;
 
 /// Most worker threads per available core: a sweep never runs more than
@@ -85,22 +83,6 @@ pub fn check_sweep_size(cells: usize, methods: usize, trials: u32) -> Result<(),
             total,
             limit: MAX_SWEEP_TRIALS,
         });
-    }
-    Ok(())
-}
-
-/// Refuses a split into more shards than the sweep has trials (`total`): a shard without a
-/// trial would be one more job to run, and to wait for, with nothing to do. `option` names
-/// the flag in the message (`--shard 3/50`, `--shards 50`).
-///
-/// # Errors
-/// `shards > total`, naming the most shards the sweep can use.
-pub fn check_shard_count(option: &str, shards: usize, total: usize) -> Result<()> {
-    if shards > total {
-        bail!(
-            "{option}: the sweep has {total} trial(s), so at most {total} shards have work; \
-             split it into at most {total}"
-        );
     }
     Ok(())
 }

@@ -5,7 +5,7 @@
 //! extension points, [`hooks`], and its shard, [`shard_split`], [`shard_folders`] and
 //! [`sweep_plan`]), refused before it runs with a [`config_error::ConfigError`] (a study's settings with a
 //! [`setting_error::SettingError`]); its jobs are [`jobs`]; what it produced is an [`outcome::SweepOutcome`].
-//! [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
+//! A merge of shards is refused with a [`merge_error::MergeError`]. [`limits`] bounds a sweep; [`owner`] says which kind of run an output folder belongs to;
 //! [`out_dir`], [`figure_list`], [`trial_length`] and [`software`] name and describe what it
 //! writes. The modules above (design, run) and the `experiments` crate (analyse, write) build,
 //! run, judge and write this data.
@@ -17,6 +17,7 @@ pub mod grid_cells;
 pub mod hooks;
 pub mod jobs;
 pub mod limits;
+pub mod merge_error;
 pub mod out_dir;
 pub mod outcome;
 pub mod owner;

@@ -10,9 +10,9 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::data::shard_split::Shard;
 use crate::data::sweep_plan::SweepPlan;
 
@@ -31,16 +31,15 @@ pub fn shard_dir(out_dir: &Path, shard: Shard) -> PathBuf {
 ///
 /// # Errors
 /// An I/O error listing `<out_dir>/shards/`.
-pub fn shard_folders(out_dir: &Path) -> Result<Vec<(Shard, PathBuf)>> {
+pub fn shard_folders(out_dir: &Path) -> Result<Vec<(Shard, PathBuf)>, FileError> {
     let root = out_dir.join(SHARDS_DIR);
     if !root.is_dir() {
         return Ok(Vec::new());
     }
     let mut found = Vec::new();
-    let entries =
-        std::fs::read_dir(&root).with_context(|| format!("reading {}", path_text(&root)))?;
-    for e in entries {
-        let e = e.with_context(|| format!("reading {}", path_text(&root)))?;
+    let reading = || FileError::io(format!("reading {}", path_text(&root)));
+    for e in std::fs::read_dir(&root).map_err(reading())? {
+        let e = e.map_err(reading())?;
         if let Some(s) = e.file_name().to_str().and_then(Shard::from_dir_name) {
             found.push((s, e.path()));
         }

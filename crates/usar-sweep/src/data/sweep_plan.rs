@@ -5,12 +5,31 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
-use crate::atomic::write_atomic;
+use crate::atomic::{FileError, write_atomic};
 use crate::data::shard_split::Shard;
+
+/// Why a plan could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// An I/O error, naming the path.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// The file is not the JSON of a plan.
+    #[error("{path}: not a sweep plan")]
+    NotAPlan {
+        /// The file's path, as shown.
+        path: String,
+        /// serde_json's error.
+        #[source]
+        source: serde_json::Error,
+    },
+    /// The plan could not be written as JSON (not expected).
+    #[error("serialising the sweep plan")]
+    Serialise(#[source] serde_json::Error),
+}
 
 /// File name of the plan in a shard's folder.
 pub const PLAN_FILE: &str = "plan.json";
@@ -83,8 +102,8 @@ impl SweepPlan {
     ///
     /// # Errors
     /// An I/O error.
-    pub fn write(&self, dir: &Path) -> Result<()> {
-        let json = serde_json::to_string_pretty(self).context("serialising the sweep plan")?;
+    pub fn write(&self, dir: &Path) -> Result<(), PlanError> {
+        let json = serde_json::to_string_pretty(self).map_err(PlanError::Serialise)?;
         Ok(write_atomic(
             &Self::path_in(dir),
             format!("{json}\n").as_bytes(),
@@ -95,12 +114,14 @@ impl SweepPlan {
     ///
     /// # Errors
     /// A missing or unreadable file, or one that is not a plan.
-    pub fn read(dir: &Path) -> Result<Self> {
+    pub fn read(dir: &Path) -> Result<Self, PlanError> {
         let path = Self::path_in(dir);
         let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path_text(&path)))?;
-        serde_json::from_str(&text)
-            .with_context(|| format!("{}: not a sweep plan", path_text(&path)))
+            .map_err(FileError::io(format!("cannot read {}", path_text(&path))))?;
+        serde_json::from_str(&text).map_err(|source| PlanError::NotAPlan {
+            path: path_text(&path),
+            source,
+        })
     }
 
     /// The options after `SCENARIO` that repeat this sweep: `--methods`, `--trials`, then

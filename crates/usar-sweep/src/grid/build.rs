@@ -3,23 +3,34 @@
 
 use std::collections::HashMap;
 
-use anyhow::{Result, anyhow, bail};
 use serde_json::Value;
 use usar_sim::scenario::ScenarioSpec;
 
 use crate::data::grid_cells::{Grid, GridCell};
 use crate::data::limits::MAX_SWEEP_TRIALS;
 use crate::fingerprint::scenario_hash;
+use crate::grid::error::GridError;
 use crate::grid::names;
 use crate::vary::{Override, Vary, apply_overrides, brief, rule_error, spec_json};
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, GridError>;
+
+/// The refusal of the `--vary` argument `arg` (already shortened) for `problem`.
+fn refused(arg: String, problem: impl std::fmt::Display) -> GridError {
+    GridError::Vary {
+        arg,
+        problem: problem.to_string(),
+    }
+}
 
 /// Parses the `--vary` arguments `args` (at least one).
 fn parse_varies(args: &[String]) -> Result<Vec<Vary>> {
     if args.is_empty() {
-        bail!("a grid needs at least one --vary");
+        return Err(GridError::NoVary);
     }
     args.iter()
-        .map(|a| Vary::parse(a).map_err(|e| anyhow!("--vary {}: {e}", brief(a))))
+        .map(|a| Vary::parse(a).map_err(|e| refused(brief(a), e)))
         .collect()
 }
 
@@ -60,14 +71,13 @@ pub fn build_grid(base: &ScenarioSpec, args: &[String]) -> Result<Grid> {
     check_distinct(&varies)?;
     let n_cells = cells_of(&varies);
     if n_cells > MAX_SWEEP_TRIALS {
-        bail!(
-            "the grid's {} make {} cells, more than the limit of {MAX_SWEEP_TRIALS} trials \
-             per sweep",
-            shape_text(&varies),
-            count_text(n_cells)
-        );
+        return Err(GridError::TooManyCells {
+            shape: shape_text(&varies),
+            cells: count_text(n_cells),
+            limit: MAX_SWEEP_TRIALS,
+        });
     }
-    let base_json = spec_json(base).map_err(|e| anyhow!(e))?;
+    let base_json = spec_json(base).map_err(|problem| GridError::Base { problem })?;
     for (v, arg) in varies.iter().zip(args) {
         check_values(base, &base_json, v, arg)?;
     }
@@ -76,11 +86,11 @@ pub fn build_grid(base: &ScenarioSpec, args: &[String]) -> Result<Grid> {
     for index in 0..n_cells {
         let overrides = cell_overrides(&varies, index);
         let origin = format!("cell {index}");
-        let spec = apply_overrides(base, &overrides)
-            .map_err(|(i, e)| anyhow!("--vary {}: {e}", overrides[i].brief()))?;
-        let scenario = spec
-            .validate(&origin)
-            .map_err(|e| anyhow!(rule_error("--vary", &overrides, &e)))?;
+        let spec =
+            apply_overrides(base, &overrides).map_err(|(i, e)| refused(overrides[i].brief(), e))?;
+        let scenario = spec.validate(&origin).map_err(|e| GridError::CellRule {
+            line: rule_error("--vary", &overrides, &e),
+        })?;
         let values: Vec<&str> = overrides.iter().map(|o| o.value.text.as_str()).collect();
         cells.push(GridCell {
             index,
@@ -120,14 +130,15 @@ fn check_distinct(varies: &[Vary]) -> Result<()> {
     for (i, a) in varies.iter().enumerate() {
         for b in &varies[..i] {
             if a.path == b.path {
-                bail!("--vary {} is given twice: vary each field once", a.path);
+                return Err(GridError::Twice {
+                    path: a.path.to_string(),
+                });
             }
             if a.path.overlaps(&b.path) {
-                bail!(
-                    "--vary {} overlaps --vary {}: they set some of the same values",
-                    b.path,
-                    a.path
-                );
+                return Err(GridError::Overlap {
+                    first: b.path.to_string(),
+                    second: a.path.to_string(),
+                });
             }
         }
     }
@@ -139,11 +150,10 @@ fn check_distinct(varies: &[Vary]) -> Result<()> {
 fn check_values(base: &ScenarioSpec, base_json: &Value, v: &Vary, arg: &str) -> Result<()> {
     v.path
         .set(&mut base_json.clone(), &mut |old| Ok(old.clone()))
-        .map_err(|e| anyhow!("--vary {}: {e}", brief(arg)))?;
+        .map_err(|e| refused(brief(arg), e))?;
     for k in 0..v.values.len() {
         let o = v.at(k);
-        apply_overrides(base, std::slice::from_ref(&o))
-            .map_err(|(_, e)| anyhow!("--vary {}: {e}", o.brief()))?;
+        apply_overrides(base, std::slice::from_ref(&o)).map_err(|(_, e)| refused(o.brief(), e))?;
     }
     Ok(())
 }
@@ -160,7 +170,10 @@ fn check_same_scenarios(varies: &[Vary], args: &[String], cells: &[GridCell]) ->
     let hashes: Vec<String> = cells
         .iter()
         .map(|c| scenario_hash(&c.scenario))
-        .collect::<Result<_>>()?;
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|e| GridError::Base {
+            problem: e.to_string(),
+        })?;
     let mut stride = cells.len();
     for (v, arg) in varies.iter().zip(args) {
         let m = v.values.len();
@@ -192,13 +205,12 @@ fn check_same_scenarios(varies: &[Vary], args: &[String], cells: &[GridCell]) ->
 }
 
 /// The error for values `j` and `k` of `--vary` `arg` that give the same scenario.
-fn same_scenario(arg: &str, v: &Vary, j: usize, k: usize) -> anyhow::Error {
-    anyhow!(
-        "--vary {}: values {} and {} give the same scenario",
-        brief(arg),
-        brief(&v.values[j].text),
-        brief(&v.values[k].text)
-    )
+fn same_scenario(arg: &str, v: &Vary, j: usize, k: usize) -> GridError {
+    GridError::SameScenario {
+        arg: brief(arg),
+        first: brief(&v.values[j].text),
+        second: brief(&v.values[k].text),
+    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,9 @@
 //! `usar_report::grid_outputs`.
 
 pub mod build;
+pub mod error;
 pub mod names;
 
 pub use crate::data::grid_cells::{Grid, GridCell};
 pub use build::{build_grid, cell_count};
+pub use error::GridError;

@@ -11,121 +11,29 @@
 //! to run again.
 
 use std::collections::BTreeSet;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::{one_line_text, path_text};
 
 use crate::atomic::remove_stale_temps;
+pub use crate::data::merge_error::{MergeError, UnfinishedShard};
 use crate::data::owner::{RunKind, check_owner, claim};
 use crate::data::shard_folders::{SHARDS_DIR, shard_dir, shard_folders};
 use crate::data::shard_split::{Shard, job_costs_ms, split, sweep_jobs};
-use crate::data::sweep_plan::{PLAN_FILE, SweepPlan};
+use crate::data::sweep_plan::SweepPlan;
+use crate::error::SweepError;
+use crate::journal::JournalError;
 use crate::journal::{
     Journal, Outcome, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
     other_sweeps, read_journal, something_at,
 };
+use crate::journal_error::START_AFRESH;
 use crate::lock::OutputLock;
 use crate::sweep::{JournalUse, SweepConfig, SweepOutcome, cells_from_records, header_of};
 
-/// A shard that is not done.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct UnfinishedShard {
-    /// The shard.
-    pub shard: Shard,
-    /// What is missing, e.g. `no journal (DIR/shards/1-of-4/journal.jsonl)` or `2 of its 3
-    /// trials have no record that verifies (RNE #1 of cell 0, DIS #0 of cell 0: its record on
-    /// line 2 does not verify (edited?))`.
-    pub why: String,
-}
-
-/// Why shards cannot be merged.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-pub enum MergeError {
-    /// No folder `shards/<I>-of-<N>` under the output folder.
-    #[error(
-        "{}: no shards to merge (no folder {SHARDS_DIR}/<I>-of-<N>); run the shards first with \
-         `usar sweep SCENARIO ... --shard I/N --out {}`",
-        path_text(dir),
-        path_text(dir)
-    )]
-    NoShards {
-        /// The output folder.
-        dir: PathBuf,
-    },
-    /// Shard folders of different splits (`0-of-4` next to `0-of-8`).
-    #[error(
-        "{}: shards of different splits ({}); a merge takes the shards of one split: move the \
-         other folders away",
-        path_text(dir),
-        counts.iter().map(|n| format!("N = {n}")).collect::<Vec<_>>().join(", ")
-    )]
-    MixedSplits {
-        /// The output folder.
-        dir: PathBuf,
-        /// The shard counts found, ascending.
-        counts: Vec<usize>,
-    },
-    /// Shards whose journals are of another sweep than most shards' (another seed, trial
-    /// count, scenario, ...): the rest of the split cannot be merged with them.
-    #[error("{}", other_sweep_message(.count, .odd, .commands))]
-    OtherSweep {
-        /// The shard count of the split.
-        count: usize,
-        /// The odd shards, by index, each with its journal's differences from the sweep
-        /// (`DIR/shards/0-of-3: journal has trials 8 vs 7`).
-        odd: Vec<(Shard, String)>,
-        /// The command that runs each of them afresh as a shard of the sweep, in the same
-        /// order.
-        commands: Vec<String>,
-    },
-    /// Shards with no journal or with jobs that have no record that verifies.
-    #[error("{}", incomplete_message(.count, .unfinished, .commands))]
-    Incomplete {
-        /// The shard count of the split.
-        count: usize,
-        /// The shards that are not done, by index.
-        unfinished: Vec<UnfinishedShard>,
-        /// The command that runs each of them (again), in the same order.
-        commands: Vec<String>,
-    },
-}
-
-fn incomplete_message(
-    count: &usize,
-    unfinished: &[UnfinishedShard],
-    commands: &[String],
-) -> String {
-    let mut m = format!(
-        "{} of {count} shards are not done, so nothing was merged:",
-        unfinished.len()
-    );
-    for u in unfinished {
-        let _ = write!(m, "\n  shard {}: {}", u.shard, u.why);
-    }
-    m.push_str("\nrun them (a shard's command continues its journal), then merge again:");
-    for c in commands {
-        let _ = write!(m, "\n  {c}");
-    }
-    m
-}
-
-fn other_sweep_message(count: &usize, odd: &[(Shard, String)], commands: &[String]) -> String {
-    let mut m = format!(
-        "{} of {count} shards ran another sweep than the rest, so nothing was merged:",
-        odd.len()
-    );
-    for (shard, why) in odd {
-        let _ = write!(m, "\n  shard {shard} ({why})");
-    }
-    m.push_str("\nrun them afresh as shards of the sweep, then merge again:");
-    for c in commands {
-        let _ = write!(m, "\n  {c}");
-    }
-    m
-}
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, SweepError>;
 
 /// The merged sweep.
 #[derive(Debug, Clone)]
@@ -197,11 +105,11 @@ fn read_shards(dir: &Path, count: usize) -> Result<Vec<ShardJournal>> {
 /// A shard journal that cannot be used: the journal's message, with its advice to run the
 /// sweep afresh (`--overwrite` in place of `--resume`, which `usar merge` does not have) made
 /// the shard's own command, from the shard's plan where it has one.
-fn damaged_shard(e: anyhow::Error, shard: Shard, shard_dir: &Path, dir: &Path) -> anyhow::Error {
-    let text = format!("{e:#}");
-    if !text.contains(crate::journal::START_AFRESH) {
-        return e;
+fn damaged_shard(e: JournalError, shard: Shard, shard_dir: &Path, dir: &Path) -> SweepError {
+    if !e.says_start_afresh() {
+        return e.into();
     }
+    let text = e.to_string();
     let here = std::env::current_dir().ok();
     let again = match SweepPlan::read(shard_dir) {
         Ok(plan) => format!(
@@ -213,10 +121,11 @@ fn damaged_shard(e: anyhow::Error, shard: Shard, shard_dir: &Path, dir: &Path) -
         ),
     };
     // The command holds the scenario's and the folder's paths: one line whatever they hold.
-    anyhow!(
-        "{}",
-        text.replace(crate::journal::START_AFRESH, &one_line_text(&again))
-    )
+    MergeError::DamagedShard {
+        shard,
+        message: text.replace(START_AFRESH, &one_line_text(&again)),
+    }
+    .into()
 }
 
 /// The header most shard journals have (ties: the one of the lowest shard); `None` when no
@@ -253,16 +162,16 @@ fn plan_and_header(
         .find(|s| s.contents.as_ref().map(|c| &c.header) == majority)
         .or_else(|| shards.iter().find(with_plan))
     else {
-        bail!(
-            "{}: no shard has both a journal and a {} (run the shards with `usar sweep ... \
-             --shard I/N`)",
-            path_text(&dir.join(SHARDS_DIR)),
-            PLAN_FILE
-        );
+        return Err(MergeError::NoPlan {
+            shards_dir: dir.join(SHARDS_DIR),
+        }
+        .into());
     };
     let plan = SweepPlan::read(&first.dir)?;
-    let config = super::plan_config::plan_config(&plan, dir)
-        .with_context(|| path_text(&SweepPlan::path_in(&first.dir)))?;
+    let config = super::plan_config::plan_config(&plan, dir).map_err(|e| SweepError::InPlan {
+        path: path_text(&SweepPlan::path_in(&first.dir)),
+        source: Box::new(e),
+    })?;
     let mut header = header_of(&config)?;
     // The shards must share one build, not that of the binary that merges (which runs no
     // trial): the first shard's sets it.
@@ -276,8 +185,12 @@ fn plan_and_header(
     };
     if let Some((shard, diff)) = odd_of(first) {
         // The plan does not give its own shard's header: the plan was edited.
-        return Err(plan_mismatch(&first.dir, &diff)
-            .context(format!("shard {shard} ({})", path_text(&first.dir))));
+        return Err(MergeError::PlanMismatch {
+            shard,
+            shard_dir: first.dir.clone(),
+            diff,
+        }
+        .into());
     }
     let odd: Vec<(Shard, String)> = shards
         .iter()
@@ -307,13 +220,12 @@ fn refuse_other_sweeps_journal(dir: &Path, header: &SweepHeader) -> Result<()> {
     let Some(why) = other_sweeps(&path, header) else {
         return Ok(());
     };
-    bail!(
-        "{} is the journal of another sweep than the shards' ({why}), whose files are in {}: \
-         merging would mix the two; move that journal and its files away, or run the shards \
-         with another --out",
-        path_text(&path),
-        path_text(dir)
-    )
+    Err(MergeError::OtherSweepsJournal {
+        journal: path,
+        dir: dir.to_path_buf(),
+        why,
+    }
+    .into())
 }
 
 /// What each shard lacks: no journal, or jobs with no record that verifies (a job whose only
@@ -492,13 +404,4 @@ fn failed_shards(header: &SweepHeader, count: usize, records: &[TrialRecord]) ->
         .into_iter()
         .filter_map(|i| Shard::new(i, count).ok())
         .collect()
-}
-
-/// The error for a plan that a shard's journal does not match.
-pub(crate) fn plan_mismatch(dir: &Path, diff: &str) -> anyhow::Error {
-    anyhow!(
-        "{}: the plan does not match the shard's journal ({diff}); the folder was edited or \
-         mixes two sweeps",
-        path_text(&SweepPlan::path_in(dir))
-    )
 }

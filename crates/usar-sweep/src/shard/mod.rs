@@ -14,5 +14,5 @@ pub use crate::data::shard_folders::{SHARDS_DIR, ShardRun, shard_dir, shard_fold
 pub use crate::data::shard_split::{
     MAX_SHARDS, Shard, ShardError, job_costs_ms, split, sweep_jobs,
 };
-pub use crate::data::sweep_plan::{PLAN_FILE, SweepPlan, shell_join};
+pub use crate::data::sweep_plan::{PLAN_FILE, PlanError, SweepPlan, shell_join};
 pub use merge::{MergeError, Merged, merge_shards};

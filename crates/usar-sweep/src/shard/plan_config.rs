@@ -3,11 +3,11 @@
 
 use std::path::Path;
 
-use anyhow::Result;
 use usar_sim::scenario::{self, path_text};
 
 use crate::data::config::SweepConfig;
 use crate::data::sweep_plan::SweepPlan;
+use crate::error::SweepError;
 use crate::grid::build::build_grid;
 use crate::method_factory::MethodFactory;
 use crate::sweep::check_grid_size;
@@ -19,7 +19,7 @@ use crate::sweep::check_grid_size;
 /// # Errors
 /// A scenario or `--vary` that does not load (the messages of `usar sweep`), or a sweep
 /// above [`crate::sweep::MAX_SWEEP_TRIALS`] trials (refused before the grid is built).
-pub fn plan_config(plan: &SweepPlan, out_dir: &Path) -> Result<SweepConfig> {
+pub fn plan_config(plan: &SweepPlan, out_dir: &Path) -> Result<SweepConfig, SweepError> {
     let origin = path_text(&plan.scenario_path);
     let scenario = scenario::from_str(&plan.scenario_text, &origin)?;
     let grid = if plan.vary.is_empty() {

@@ -4,9 +4,11 @@
 //! chained to it with `--dependency=afterok`. [`script`] writes the files, [`mod@submit`] submits
 //! them with `sbatch`.
 
+pub mod error;
 pub mod script;
 pub mod submit;
 
+pub use error::SlurmError;
 pub use script::{
     SLURM_DIR, ShardedWork, SlurmFiles, SlurmJob, SlurmOptions, array_script, check_options,
     merge_script, submit_script, write_scripts,

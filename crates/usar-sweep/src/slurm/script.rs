@@ -10,10 +10,14 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
+use crate::slurm::error::SlurmError;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, SlurmError>;
 
 /// What the tasks of a Slurm array run, shard by shard: a sweep ([`SweepPlan`], `usar sweep
 /// ... --shard I/N`) or a multiverse (`usar_study::multiverse::MultiversePlan`, `usar multiverse
@@ -141,10 +145,10 @@ impl SlurmFiles {
 /// files are written).
 pub fn check_options(o: &SlurmOptions) -> Result<()> {
     if o.shards == 0 || o.shards > MAX_SHARDS {
-        bail!("--shards must be from 1 to {MAX_SHARDS}");
+        return Err(SlurmError::Shards { max: MAX_SHARDS });
     }
     if o.cpus_per_task == 0 {
-        bail!("--cpus-per-task must be at least 1");
+        return Err(SlurmError::CpusPerTask);
     }
     let named = [
         ("--partition", &o.partition),
@@ -156,25 +160,21 @@ pub fn check_options(o: &SlurmOptions) -> Result<()> {
         if let Some(v) = v
             && (v.is_empty() || v.chars().any(char::is_whitespace))
         {
-            bail!("{name} {v:?}: expected one word (no spaces or line breaks)");
+            return Err(SlurmError::NotOneWord {
+                option: name,
+                value: v.clone(),
+            });
         }
     }
     if let Some(t) = &o.time
         && !is_slurm_time(t)
     {
-        bail!(
-            "--time {t:?}: expected one of Slurm's time formats: MINUTES, MINUTES:SECONDS, \
-             HOURS:MINUTES:SECONDS, DAYS-HOURS, DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS \
-             or UNLIMITED (e.g. 90, 1:30:00, 2-12)"
-        );
+        return Err(SlurmError::Time { value: t.clone() });
     }
     if let Some(m) = &o.mem
         && !is_slurm_memory(m)
     {
-        bail!(
-            "--mem {m:?}: expected a whole number with an optional unit K, M, G or T \
-             (megabytes when none; e.g. 4G, 500M)"
-        );
+        return Err(SlurmError::Memory { value: m.clone() });
     }
     Ok(())
 }
@@ -221,14 +221,16 @@ pub fn check_paths(job: &SlurmJob<'_>) -> Result<()> {
     for (name, path) in paths {
         let text = path.to_string_lossy();
         if text.contains(['\n', '\r']) {
-            bail!("{name} {text:?} holds a line break, which an sbatch script cannot hold");
+            return Err(SlurmError::LineBreak {
+                what: name,
+                path: text.into_owned(),
+            });
         }
     }
     if job.out_dir.to_string_lossy().contains('"') {
-        bail!(
-            "--out {:?} holds a double quote, which an #SBATCH line cannot hold",
-            job.out_dir.display().to_string()
-        );
+        return Err(SlurmError::OutQuote {
+            path: job.out_dir.display().to_string(),
+        });
     }
     Ok(())
 }
@@ -411,8 +413,10 @@ pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
     check_options(job.options)?;
     check_paths(job)?;
     let files = SlurmFiles::of(job.out_dir, job.plan.subcommand());
-    std::fs::create_dir_all(&files.logs)
-        .with_context(|| format!("creating folder {}", path_text(&files.logs)))?;
+    std::fs::create_dir_all(&files.logs).map_err(FileError::io(format!(
+        "creating folder {}",
+        path_text(&files.logs)
+    )))?;
     let scripts = [
         (&files.array, array_script(job)),
         (&files.merge, merge_script(job)),
@@ -428,8 +432,10 @@ pub fn write_scripts(job: &SlurmJob<'_>) -> Result<SlurmFiles> {
 #[cfg(unix)]
 fn make_executable(path: &Path) -> Result<()> {
     use std::os::unix::fs::PermissionsExt;
-    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755))
-        .with_context(|| format!("making {} executable", path_text(path)))
+    std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755)).map_err(
+        FileError::io(format!("making {} executable", path_text(path))),
+    )?;
+    Ok(())
 }
 
 #[cfg(not(unix))]

@@ -5,10 +5,13 @@
 use std::path::Path;
 use std::process::Command;
 
-use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
 use crate::slurm::SlurmFiles;
+use crate::slurm::error::SlurmError;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, SlurmError>;
 
 /// The job ids Slurm gave.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,7 +31,9 @@ pub fn parse_job_id(stdout: &str) -> Result<String> {
     let id = line.map(|l| l.split(';').next().unwrap_or(l).trim());
     match id {
         Some(id) if !id.is_empty() && id.chars().all(|c| c.is_ascii_digit()) => Ok(id.to_string()),
-        _ => bail!("sbatch --parsable printed {stdout:?}, not a job id"),
+        _ => Err(SlurmError::NoJobId {
+            stdout: stdout.to_owned(),
+        }),
     }
 }
 
@@ -39,14 +44,16 @@ fn sbatch(sbatch: &Path, extra: &[String], script: &Path) -> Result<String> {
         .args(extra)
         .arg(script)
         .output()
-        .with_context(|| format!("running {}", path_text(sbatch)))?;
+        .map_err(|source| SlurmError::Run {
+            program: path_text(sbatch),
+            source,
+        })?;
     if !out.status.success() {
-        bail!(
-            "sbatch {} failed ({}): {}",
-            path_text(script),
-            out.status,
-            one_line(&String::from_utf8_lossy(&out.stderr))
-        );
+        return Err(SlurmError::Refused {
+            script: path_text(script),
+            status: out.status.to_string(),
+            message: one_line(&String::from_utf8_lossy(&out.stderr)),
+        });
     }
     parse_job_id(&String::from_utf8_lossy(&out.stdout))
 }
@@ -80,12 +87,10 @@ pub fn submit(files: &SlurmFiles, sbatch_program: &Path) -> Result<Submitted> {
         &[format!("--dependency=afterok:{array_job}")],
         &files.merge,
     )
-    .with_context(|| {
-        format!(
-            "the array was submitted as job {array_job}, but not the merge; submit it by \
-             hand once the array is done: sbatch {}",
-            path_text(&files.merge)
-        )
+    .map_err(|e| SlurmError::MergeNotSubmitted {
+        array_job: array_job.clone(),
+        merge_script: path_text(&files.merge),
+        source: Box::new(e),
     })?;
     Ok(Submitted {
         array_job,

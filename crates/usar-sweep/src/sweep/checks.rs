@@ -1,12 +1,12 @@
 //! The checks that refuse a sweep before it runs: too many trials or shards, and parameters
 //! no sweep can run with.
 
-use anyhow::Result;
 use usar_sim::scenario::trial_steps;
 
 use crate::data::config::SweepConfig;
 use crate::data::config_error::ConfigError;
 use crate::data::limits::check_sweep_size;
+use crate::error::SweepError;
 use crate::grid::build::cell_count;
 use crate::journal::SweepHeader;
 
@@ -38,7 +38,7 @@ pub fn check_trial_count(cfg: &SweepConfig) -> Result<(), ConfigError> {
 ///
 /// # Errors
 /// A malformed `--vary` argument, or the counts and the limit when the sweep is above it.
-pub fn check_grid_size(vary: &[String], methods: usize, trials: u32) -> Result<()> {
+pub fn check_grid_size(vary: &[String], methods: usize, trials: u32) -> Result<(), SweepError> {
     Ok(check_sweep_size(cell_count(vary)?, methods, trials)?)
 }
 
@@ -113,7 +113,8 @@ mod tests {
         edit(&mut cfg);
         let header = match header_of(&cfg) {
             Ok(h) => h,
-            Err(e) => return Some(e.downcast::<ConfigError>().unwrap()),
+            Err(SweepError::Config(e)) => return Some(e),
+            Err(e) => panic!("not a ConfigError: {e}"),
         };
         check_config(&cfg, &header).err()
     }

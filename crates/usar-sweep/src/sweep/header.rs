@@ -1,10 +1,9 @@
 //! The sweep's header: its parameters and grid as the journal records them.
 
-use anyhow::Result;
-
 use crate::data::config::SweepConfig;
 use crate::data::grid_cells::Grid;
 use crate::data::software::software_build;
+use crate::error::SweepError;
 use crate::fingerprint::scenario_hash;
 use crate::journal::{CellHeader, GridHeader, JOURNAL_FORMAT, SweepHeader};
 use crate::method_factory::{canonical_method, trust_model};
@@ -15,7 +14,7 @@ use crate::sweep::checks::check_trial_count;
 /// # Errors
 /// An unknown method, a scenario that cannot be serialised, or more than
 /// [`MAX_SWEEP_TRIALS`](crate::sweep::MAX_SWEEP_TRIALS) trials in all.
-pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
+pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader, SweepError> {
     check_trial_count(cfg)?;
     let model = trust_model(&cfg.scenario)?;
     let values: Vec<Vec<String>> = match &cfg.grid {
@@ -29,13 +28,13 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
         .map(|(s, values)| {
             Ok(CellHeader {
                 values,
-                scenario_hash: scenario_hash(s)?,
+                scenario_hash: scenario_hash(s).map_err(SweepError::Serialise)?,
                 duration_s: cfg.duration_of(s),
                 tasks: s.task_names(),
                 hardest_first: s.hardest_first(),
             })
         })
-        .collect::<Result<_>>()?;
+        .collect::<Result<_, SweepError>>()?;
     Ok(SweepHeader {
         format: JOURNAL_FORMAT,
         version: env!("CARGO_PKG_VERSION").to_string(),
@@ -45,7 +44,7 @@ pub fn header_of(cfg: &SweepConfig) -> Result<SweepHeader> {
             .methods
             .iter()
             .map(|m| canonical_method(m, &cfg.method_factory, &model, cfg.base_seed))
-            .collect::<Result<_>>()?,
+            .collect::<Result<_, _>>()?,
         trials: cfg.trials,
         base_seed: cfg.base_seed,
         grid: GridHeader {

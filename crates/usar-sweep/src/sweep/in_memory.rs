@@ -3,12 +3,12 @@
 
 use std::time::Instant;
 
-use anyhow::{Result, bail};
 use usar_sim::mission::TrialResult;
 
 use crate::data::config::SweepConfig;
 use crate::data::jobs::job_list;
 use crate::data::outcome::{CellOutcome, Failure};
+use crate::error::SweepError;
 use crate::executor::{Job, Runner, execute, threads_for};
 use crate::journal::SweepHeader;
 use crate::sweep::checks::check_config;
@@ -62,13 +62,12 @@ impl SweepResults {
 /// # Errors
 /// Bad parameters ([`crate::sweep::check_config`], [`crate::sweep::header_of`]), a shard
 /// (`cfg.shard`: a shard is a part of a sweep on disk), or a thread pool that cannot start.
-pub fn run_in_memory(cfg: &SweepConfig) -> Result<SweepResults> {
+pub fn run_in_memory(cfg: &SweepConfig) -> Result<SweepResults, SweepError> {
     if let Some(s) = &cfg.shard {
-        bail!(
-            "--shard {}/{}: a sweep in memory runs whole; shards are run on disk (run_sweep)",
-            s.shard.index,
-            s.shard.count
-        );
+        return Err(SweepError::ShardInMemory {
+            index: s.shard.index,
+            count: s.shard.count,
+        });
     }
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;

@@ -31,13 +31,14 @@ pub use crate::data::config_error::{ConfigError, ConfigField};
 pub use crate::data::hooks::{JournaledHook, SweepHooks, TrialKey, TrialObserverFactory};
 pub use crate::data::jobs::{JobId, job_list};
 pub use crate::data::limits::{
-    MAX_SWEEP_TRIALS, MAX_THREADS_PER_CORE, check_shard_count, check_sweep_size, effective_threads,
-    max_threads, sweep_threads,
+    MAX_SWEEP_TRIALS, MAX_THREADS_PER_CORE, check_sweep_size, effective_threads, max_threads,
+    sweep_threads,
 };
 pub use crate::data::out_dir::{MAX_FOLDER_NAME_BYTES, default_out_dir, default_out_dir_of};
 pub use crate::data::outcome::{CellOutcome, Failure, JournalUse, SweepOutcome};
 pub use crate::data::setting_error::SettingError;
 pub use crate::data::trial_length::simulated_length_s;
+pub use crate::error::SweepError;
 pub use crate::method_factory::{
     ChaCha8Rng, METHOD_RNG_STREAM, MethodFactory, TrialContext, canonical_method, rand, trust_model,
 };

@@ -2,17 +2,21 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::data::config::SweepConfig;
 use crate::data::outcome::JournalUse;
 use crate::data::shard_folders::shard_folders;
+use crate::error::SweepError;
 use crate::journal::{
     Journal, JournalContents, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
     other_sweeps, read_header, something_at,
 };
 use crate::stale_outputs::remove_previous_outputs;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, SweepError>;
 
 /// A journal opened for a sweep, with what it already held.
 pub(crate) struct OpenJournal {
@@ -55,14 +59,15 @@ pub(crate) fn open_journal(
     let path = Journal::path_in(dir);
     if holds_no_line(&path) {
         // An empty file, or a header cut short, holds no trial: nothing to resume or lose.
-        std::fs::remove_file(&path).with_context(|| format!("removing {}", path_text(&path)))?;
+        std::fs::remove_file(&path)
+            .map_err(FileError::io(format!("removing {}", path_text(&path))))?;
     }
     if cfg.overwrite && !cfg.resume {
         // The earlier sweep's tables, figures and grid cells go with its journal.
         remove_previous_outputs(dir, &path)?;
         if something_at(&path) {
             std::fs::remove_file(&path)
-                .with_context(|| format!("removing {}", path_text(&path)))?;
+                .map_err(FileError::io(format!("removing {}", path_text(&path))))?;
         }
         return Ok(OpenJournal::new(Journal::create(dir, header)?));
     }
@@ -81,26 +86,28 @@ pub(crate) fn open_journal(
             let resumed = Journal::open_resume(dir, header)?;
             return Ok(OpenJournal::continued(resumed, JournalUse::Reused));
         }
-        Ok(found) if found.build != header.build => bail!(
-            "{} already exists ({}): its trials cannot be continued by this build; pass \
-             --overwrite to start afresh (or choose another --out, or run the build that \
-             wrote it)",
-            path_text(&path),
-            header_diff(&found, header)
-        ),
+        Ok(found) if found.build != header.build => {
+            return Err(SweepError::JournalExists {
+                path: path_text(&path),
+                why: header_diff(&found, header),
+                advice: "its trials cannot be continued by this build; pass --overwrite to \
+                         start afresh (or choose another --out, or run the build that wrote it)",
+            });
+        }
         Ok(found) => format!(
             "it was written with other parameters: {}",
             header_diff(&found, header)
         ),
         // It cannot be continued: its own message says how to start afresh.
-        Err(e) => return Err(e),
+        Err(e) => return Err(e.into()),
     };
     // --resume with these parameters would be refused too: say what works.
-    bail!(
-        "{} already exists ({why}): to continue that sweep, run it with its own parameters \
-         (and --resume); to start afresh with these, pass --overwrite, or choose another --out",
-        path_text(&path)
-    )
+    Err(SweepError::JournalExists {
+        path: path_text(&path),
+        why,
+        advice: "to continue that sweep, run it with its own parameters (and --resume); to \
+                 start afresh with these, pass --overwrite, or choose another --out",
+    })
 }
 
 /// Refuses to start a sweep in `dir` when a journal of its shards (`dir/shards/`, see
@@ -111,13 +118,11 @@ fn refuse_other_sweeps_shards(dir: &Path, header: &SweepHeader) -> Result<()> {
     for (_, shard) in shard_folders(dir)? {
         let path = Journal::path_in(&shard);
         if let Some(why) = other_sweeps(&path, header) {
-            bail!(
-                "{} is a shard's journal of another sweep ({why}), whose merge writes its files \
-                 into {}: pass --overwrite to start afresh there (the merged files go, the \
-                 shards stay), or choose another --out",
-                path_text(&path),
-                path_text(dir)
-            );
+            return Err(SweepError::OtherSweepsShard {
+                path: path_text(&path),
+                why,
+                dir: path_text(dir),
+            });
         }
     }
     Ok(())

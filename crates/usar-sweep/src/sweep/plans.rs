@@ -2,13 +2,13 @@
 //! each job (its method and seed), the same for a sweep on disk ([`crate::sweep::run_sweep`])
 //! and in memory ([`crate::sweep::run_in_memory`]).
 
-use anyhow::Result;
 use usar_sim::mission::trial_seed;
 use usar_sim::scenario::trial_steps;
 
 use crate::data::config::SweepConfig;
 use crate::data::config_error::ConfigError;
 use crate::data::jobs::JobId;
+use crate::error::SweepError;
 use crate::executor::{CellPlan, Job};
 use crate::journal::SweepHeader;
 use crate::method_factory::trust_model;
@@ -22,7 +22,7 @@ use crate::method_factory::trust_model;
 pub(crate) fn cell_plans<'a>(
     cfg: &'a SweepConfig,
     header: &SweepHeader,
-) -> Result<Vec<CellPlan<'a>>> {
+) -> Result<Vec<CellPlan<'a>>, SweepError> {
     cfg.cell_scenarios()
         .into_iter()
         .zip(&header.grid.cells)

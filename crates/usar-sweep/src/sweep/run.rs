@@ -5,13 +5,12 @@ use std::collections::HashSet;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::Result;
-
 use crate::atomic::remove_stale_temps;
 use crate::data::config::SweepConfig;
 use crate::data::jobs::{JobId, job_list};
 use crate::data::outcome::SweepOutcome;
 use crate::data::owner::{claim, record_kind};
+use crate::error::SweepError;
 use crate::executor::{Job, Runner, execute, threads_for};
 use crate::journal::TrialRecord;
 use crate::lock::OutputLock;
@@ -41,7 +40,7 @@ use crate::sweep::records::{Slots, collect, is_ok, warn_rejected};
 /// Bad parameters, an output folder that is not a folder or belongs to another kind of run
 /// ([`crate::data::owner::OwnerError`]), one locked by another sweep, a journal that cannot be started
 /// or resumed, or an I/O error writing the journal.
-pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome> {
+pub fn run_sweep(cfg: &SweepConfig) -> Result<SweepOutcome, SweepError> {
     let header = header_of(cfg)?;
     check_config(cfg, &header)?;
     let plans = cell_plans(cfg, &header)?;

@@ -71,6 +71,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "checked_log",
                     "fingerprint",
                     "journal",
+                    "journal_error",
                     "lock",
                     "method_factory",
                     "metrics",
@@ -84,7 +85,14 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 &["data"],
                 // Design, run.
                 &["grid"],
-                &["executor", "stale_outputs", "sweep", "shard", "slurm"],
+                &[
+                    "error",
+                    "executor",
+                    "stale_outputs",
+                    "sweep",
+                    "shard",
+                    "slurm",
+                ],
             ],
             peers: &[],
         },

@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use usar_sim::scenario::path_text;
 
@@ -205,11 +205,15 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(d) = args.spec.duration {
         warn_if_rounded(d, &cfg.scenario, cfg.grid.as_ref());
     }
-    usar_sweep::sweep::check_shard_count(
-        &format!("--shards {}", args.shards),
-        args.shards,
-        usar_sweep::sweep::trial_count(&cfg),
-    )?;
+    let total = usar_sweep::sweep::trial_count(&cfg);
+    if args.shards > total {
+        // A shard without a trial would be one more job to wait for, with nothing to do.
+        bail!(
+            "--shards {}: the sweep has {total} trial(s), so at most {total} shards have work; \
+             split it into at most {total}",
+            args.shards
+        );
+    }
     write_and_submit(args, &plan, &out_dir, out)
 }
 

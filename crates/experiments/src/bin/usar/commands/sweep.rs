@@ -178,7 +178,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let spec = scenario::parse_spec(&text, &origin)?;
-    build_grid(&spec, &args.vary).map(Some)
+    Ok(Some(build_grid(&spec, &args.vary)?))
 }
 
 /// The sweep's configuration from the arguments.
@@ -197,7 +197,7 @@ fn config(all: &SweepArgs) -> Result<SweepConfig> {
             .methods
             .iter()
             .map(|x| canonical_method(x.trim(), &MethodFactory::builtin(), &model, base_seed))
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         if !methods.contains(m) || *k >= args.trials {
             bail!("--fail-trial {m}:{k} names no trial of this sweep");
         }
