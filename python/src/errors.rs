@@ -33,7 +33,7 @@ pyo3::create_exception!(
      prints as warnings, given when a Scenario is loaded, made from text or edited."
 );
 
-/// A `ValueError` with `e`'s one-line message (anyhow's `{:#}`: context and cause).
+/// A `ValueError` with `e`'s message on one line.
 pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(one_line(&e.to_string()))
 }

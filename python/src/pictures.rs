@@ -39,7 +39,7 @@ pub fn render(
 ) -> PyResult<usize> {
     let s = scenario.inner();
     let Some(method) = method else {
-        render_svg(s, None, &out).map_err(|e| chain_value_error(e.as_ref()))?;
+        render_svg(s, None, &out).map_err(|e| chain_value_error(&e))?;
         return Ok(0);
     };
     let first_error = FirstError::default();
@@ -52,7 +52,7 @@ pub fn render(
     };
     let outcome = run_detached(py, &stop, work, |_| Ok(()))?;
     let traces = trial_outcome(outcome, &first_error)?.into_traces();
-    render_svg(s, Some(&traces), &out).map_err(|e| chain_value_error(e.as_ref()))?;
+    render_svg(s, Some(&traces), &out).map_err(|e| chain_value_error(&e))?;
     Ok(traces.first().map_or(0, Vec::len))
 }
 

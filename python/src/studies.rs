@@ -16,13 +16,13 @@ use usar_report::calibration::targets_or_paper;
 use usar_report::claims::Claims;
 use usar_report::source_date::source_date;
 use usar_study::calibrate::{
-    CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck, Targets, TrialPlan,
-    calibrate, parse_free,
+    CalibrationError, CalibrationOutcome, CalibrationSetup, Optimizer, Progress, TargetCheck,
+    Targets, TrialPlan, calibrate, parse_free,
 };
 use usar_study::multiverse::{
-    Axes, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample, run_multiverse,
+    Axes, MultiverseError, MultiverseOutcome, MultiverseProgress, MultiverseSetup, Sample,
+    run_multiverse,
 };
-use usar_sweep::data::hooks::Stopped;
 
 use crate::detached::run_detached;
 use crate::errors::{python_words, sweep_value_error};
@@ -73,10 +73,10 @@ impl Run {
 
     /// Runs `work` detached, calling `progress(done, total)`; then the first Python error,
     /// `KeyboardInterrupt` when stopped, or `work`'s error in the package's words.
-    fn finish<T: Send>(
+    fn finish<T: Send, E: StudyError>(
         &self,
         py: Python<'_>,
-        work: impl FnOnce() -> anyhow::Result<T> + Send,
+        work: impl FnOnce() -> Result<T, E> + Send,
         progress: Option<Py<PyAny>>,
         total: usize,
     ) -> PyResult<T> {
@@ -95,7 +95,7 @@ impl Run {
             return Err(e);
         }
         match outcome {
-            Err(e) if e.downcast_ref::<Stopped>().is_some() || self.stop.load(Ordering::SeqCst) => {
+            Err(e) if e.is_stopped() || self.stop.load(Ordering::SeqCst) => {
                 Err(PyKeyboardInterrupt::new_err(
                     "stopped; the finished work is kept: the same call continues it",
                 ))
@@ -106,9 +106,28 @@ impl Run {
     }
 }
 
-/// A one-line `ValueError` of an anyhow error, in the package's words.
-fn py_error(e: anyhow::Error) -> PyErr {
-    sweep_value_error(e.as_ref())
+/// A one-line `ValueError` of a library error, in the package's words.
+fn py_error(e: impl std::error::Error + 'static) -> PyErr {
+    sweep_value_error(&e)
+}
+
+/// A study's error: [`CalibrationError`] or [`MultiverseError`], which say whether the study
+/// was stopped by its flag.
+trait StudyError: std::error::Error + Send + 'static {
+    /// Whether the study stopped because its stop flag was set.
+    fn is_stopped(&self) -> bool;
+}
+
+impl StudyError for CalibrationError {
+    fn is_stopped(&self) -> bool {
+        CalibrationError::is_stopped(self)
+    }
+}
+
+impl StudyError for MultiverseError {
+    fn is_stopped(&self) -> bool {
+        MultiverseError::is_stopped(self)
+    }
 }
 
 /// A target check as JSON.
@@ -185,11 +204,10 @@ pub fn run_calibration(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
     let run = Run::new(methods)?;
-    let mut t = targets_or_paper(targets.as_deref()).map_err(|e| py_error(e.into()))?;
-    t.set_required(&require).map_err(|e| py_error(e.into()))?;
-    t.set_report_only(&report_only)
-        .map_err(|e| py_error(e.into()))?;
-    let free = parse_free(&free).map_err(|e| py_error(e.into()))?;
+    let mut t = targets_or_paper(targets.as_deref()).map_err(py_error)?;
+    t.set_required(&require).map_err(py_error)?;
+    t.set_report_only(&report_only).map_err(py_error)?;
+    let free = parse_free(&free).map_err(py_error)?;
     let optimizer = match optimizer {
         "nelder-mead" => Optimizer::NelderMead,
         "cma-es" => Optimizer::CmaEs,
@@ -254,7 +272,7 @@ fn multiverse_claims(
     scenario: &Scenario,
     methods: &[String],
 ) -> PyResult<Option<Claims>> {
-    let load = |p: &Path| Claims::load(p).map(Some).map_err(|e| py_error(e.into()));
+    let load = |p: &Path| Claims::load(p).map(Some).map_err(py_error);
     match claims {
         Some(c) => match c.extract::<PathBuf>() {
             Ok(p) => load(&p),
@@ -328,11 +346,10 @@ pub fn run_multiverse_py(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
     let run = Run::new(methods)?;
-    let axes = Axes::load(&axes).map_err(|e| py_error(e.into()))?;
-    let mut t = Targets::load(&targets).map_err(|e| py_error(e.into()))?;
-    t.set_report_only(&report_only)
-        .map_err(|e| py_error(e.into()))?;
-    let free = parse_free(&free).map_err(|e| py_error(e.into()))?;
+    let axes = Axes::load(&axes).map_err(py_error)?;
+    let mut t = Targets::load(&targets).map_err(py_error)?;
+    t.set_report_only(&report_only).map_err(py_error)?;
+    let free = parse_free(&free).map_err(py_error)?;
     let claims = multiverse_claims(py, claims, scenario, &run.names)?;
     let seed = seed.unwrap_or(scenario.spec().sim.seed);
     let mut setup = MultiverseSetup {
@@ -371,11 +388,7 @@ pub fn run_multiverse_py(
     setup.hooks.stop = Some(run.stop.clone());
     setup.hooks.calibration_trials = run.observer();
     setup.hooks.sweep.trial_observer = run.observer();
-    let total = setup
-        .check()
-        .map_err(|e| py_error(e.into()))?
-        .own(None)
-        .len();
+    let total = setup.check().map_err(py_error)?.own(None).len();
     let work = || {
         run_multiverse(&setup, &out, MultiverseProgress::off())
             .map(|o| multiverse_json(&o, &out).to_string())

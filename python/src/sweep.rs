@@ -115,8 +115,7 @@ pub fn run_sweep(
                 Some(g) => (g.cells[i].values(), g.cells[i].scenario.task_names()),
                 None => (Vec::new(), cfg.scenario.task_names()),
             };
-            let csv =
-                trials_long_csv(results, &tasks).map_err(|e| chain_value_error(e.as_ref()))?;
+            let csv = trials_long_csv(results, &tasks).map_err(|e| chain_value_error(&e))?;
             Ok((values, csv))
         })
         .collect()
@@ -188,7 +187,7 @@ fn sweep_trials(
     cfg: &SweepConfig,
     report: Option<ReportOptions>,
     stopped: &AtomicBool,
-) -> anyhow::Result<Ran> {
+) -> Result<Ran, Box<dyn std::error::Error + Send + Sync>> {
     let Some(report) = report else {
         let r = run_in_memory(cfg)?;
         return Ok(Some(

@@ -1,7 +1,7 @@
 //! Chart basics every SVG figure shares: the figure size, the methods' colours, a legend entry,
 //! axis ranges that cannot overflow or be empty, tick labels, and plotters' drawing errors.
 
-use anyhow::{Result, anyhow};
+use crate::error::{ReportError, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -87,11 +87,15 @@ pub fn tick_label(v: f64, decimals: usize) -> String {
 
 /// Draws a figure with `draw`, or, when it fails or panics, warns on standard error (naming
 /// `what`) and returns `None`: a figure that cannot be drawn never costs a run its data.
-pub fn figure_or_warn<T>(what: &str, draw: impl FnOnce() -> Result<T>) -> Option<T> {
+pub fn figure_or_warn<T, E: std::error::Error + 'static>(
+    what: &str,
+    draw: impl FnOnce() -> Result<T, E>,
+) -> Option<T> {
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(draw)) {
         Ok(Ok(figure)) => Some(figure),
         Ok(Err(e)) => {
-            usar_sweep::stderr::warn(format!("warning: {what} not drawn: {e:#}"));
+            let why = rne_core::error_line(&e);
+            usar_sweep::stderr::warn(format!("warning: {what} not drawn: {why}"));
             None
         }
         Err(_) => {
@@ -103,9 +107,11 @@ pub fn figure_or_warn<T>(what: &str, draw: impl FnOnce() -> Result<T>) -> Option
     }
 }
 
-/// A plotters drawing error as an [`anyhow::Error`] (`drawing a figure: ...`).
-pub fn draw_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("drawing a figure: {e:?}")
+/// A plotters drawing error as a [`ReportError::Figure`] (`drawing a figure: ...`).
+pub fn draw_err<E: std::fmt::Debug>(e: E) -> ReportError {
+    ReportError::Figure {
+        problem: format!("{e:?}"),
+    }
 }
 
 /// The `i`-th legend entry (top left of `area`, one line each): a `color` swatch and `name`.

@@ -7,7 +7,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::Result;
+use crate::error::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
 use crate::claims::{ClaimCheck, Test};

@@ -4,7 +4,7 @@
 //! (methods in sweep order, then trials), so two sweeps with the same parameters write the
 //! same bytes whatever the thread count.
 
-use anyhow::{Context, Result};
+use crate::error::{ReportError, Result};
 use serde::Serialize;
 use usar_sim::mission::TrialResult;
 
@@ -53,9 +53,11 @@ pub fn trials_csv(results: &[TrialResult], tasks: &[String]) -> Result<Vec<u8>> 
             Field::Int(r.seed),
         ];
         row.extend(metrics.iter().map(|m| Field::Metric(m.cell(r))));
-        w.serialize(&row).context("writing a trials.csv row")?;
+        w.serialize(&row)
+            .map_err(ReportError::csv("writing a trials.csv row"))?;
     }
-    w.into_inner().context("finishing trials.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("finishing trials.csv"))
 }
 
 /// `trials_long.csv`: the same numbers in long ("tidy") form, one row per trial and metric:
@@ -83,10 +85,12 @@ pub fn trials_long_csv(results: &[TrialResult], tasks: &[String]) -> Result<Vec<
                 Field::Text(m.quantity_name()),
                 Field::Metric(m.cell(r)),
             ];
-            w.serialize(row).context("writing a trials_long.csv row")?;
+            w.serialize(row)
+                .map_err(ReportError::csv("writing a trials_long.csv row"))?;
         }
     }
-    w.into_inner().context("finishing trials_long.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("finishing trials_long.csv"))
 }
 
 /// Formats a statistic for `summary.csv` and `grid.csv`: shortest round-trip form, empty when
@@ -131,5 +135,6 @@ pub fn summary_csv(cell: &CellAnalysis) -> Result<Vec<u8>> {
             ])?;
         }
     }
-    w.into_inner().context("finishing summary.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("finishing summary.csv"))
 }

@@ -6,8 +6,8 @@
 use crate::analysis::CellAnalysis;
 use crate::chart::{AXIS_LIMIT, draw_err, legend_entry, plotted};
 pub use crate::chart::{FIGURE_SIZE, method_color};
+use crate::error::Result;
 use crate::stats::Summary;
-use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

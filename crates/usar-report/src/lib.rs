@@ -15,8 +15,8 @@
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it (and from the sweep library), never from one above (bottom first):
 //!
-//! 1. base: [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`], [`targets`]
-//!    (the vocabulary of calibration targets);
+//! 1. base: [`error`], [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`],
+//!    [`targets`] (the vocabulary of calibration targets);
 //! 2. judge: [`claims`], [`calibration`] (what a report compares with);
 //! 3. analyse: [`analysis`];
 //! 4. write: [`csv_tables`], [`figures`], [`report`], [`grid_outputs`], [`console`],
@@ -24,6 +24,7 @@
 
 // 1. base
 pub mod chart;
+pub mod error;
 pub mod rounds_table;
 pub mod source_date;
 pub mod stats;

@@ -14,7 +14,7 @@
 //! Times in seconds since the trial start. Trials journaled before these figures existed have
 //! empty trip cells.
 
-use anyhow::{Context, Result};
+use crate::error::{ReportError, Result};
 use usar_sim::mission::{RoundRecord, TrialResult};
 
 /// `--rounds-csv`: the rows of every result of every cell (`(cell index, results)`), in the
@@ -74,7 +74,8 @@ pub fn rounds_csv(cells: &[(usize, &[TrialResult])]) -> Result<Vec<u8>> {
             }
         }
     }
-    w.into_inner().context("writing rounds.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("writing rounds.csv"))
 }
 
 /// One task's trip figures in one round (`None` where the round has none recorded).

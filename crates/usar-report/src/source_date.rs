@@ -3,7 +3,7 @@
 
 use std::time::{Duration, SystemTime};
 
-use anyhow::{Context, Result};
+use crate::error::{ReportError, Result};
 
 /// The date of the outputs: `SOURCE_DATE_EPOCH` (seconds since 1970, the reproducible-builds
 /// convention) when set, else `None` (the system clock).
@@ -14,7 +14,10 @@ pub fn source_date() -> Result<Option<String>> {
     let secs: u64 = text
         .trim()
         .parse()
-        .with_context(|| format!("SOURCE_DATE_EPOCH {text:?} is not a number of seconds"))?;
+        .map_err(|source| ReportError::SourceDateEpoch {
+            text: text.clone(),
+            source,
+        })?;
     let at = SystemTime::UNIX_EPOCH + Duration::from_secs(secs);
     Ok(Some(humantime::format_rfc3339_seconds(at).to_string()))
 }

@@ -7,16 +7,17 @@ use std::error::Error;
 
 use usar_sweep::sweep::{ConfigError, SettingError, SweepError};
 
-use crate::calibrate::SetupError;
+use crate::calibrate::{CalibrationError, SetupError};
 use crate::multiverse::MultiverseError;
 
 /// A setting refused before a run started, as one cause of an error: the field that holds it
 /// and what is wrong.
 ///
 /// Found in a sweep plan's [`ConfigError`] (alone or as [`SweepError::Config`]), a study's
-/// [`SettingError`], a calibration's [`SetupError::Setting`], and a multiverse's
-/// [`MultiverseError::Setting`], [`MultiverseError::Sweep`] or [`MultiverseError::Calibration`]
-/// holding one of these.
+/// [`SettingError`], a calibration's [`SetupError::Setting`] (alone or as
+/// [`CalibrationError::Setup`]), and a multiverse's [`MultiverseError::Setting`],
+/// [`MultiverseError::Sweep`], [`MultiverseError::Calibration`],
+/// [`MultiverseError::CalibrationRun`] or [`MultiverseError::SweepRun`] holding one of these.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct RefusedSetting {
     /// The field's name in the library (snake case, `_s` for seconds: `max_evals`,
@@ -35,8 +36,8 @@ impl RefusedSetting {
         if let Some(e) = cause.downcast_ref::<ConfigError>() {
             return Some(Self::config(e));
         }
-        if let Some(SweepError::Config(e)) = cause.downcast_ref::<SweepError>() {
-            return Some(Self::config(e));
+        if let Some(e) = cause.downcast_ref::<SweepError>() {
+            return Self::sweep(e);
         }
         if let Some(e) = cause.downcast_ref::<SettingError>() {
             return Some(Self::setting(e));
@@ -44,10 +45,15 @@ impl RefusedSetting {
         if let Some(e) = cause.downcast_ref::<SetupError>() {
             return Self::setup(e);
         }
+        if let Some(e) = cause.downcast_ref::<CalibrationError>() {
+            return Self::calibration(e);
+        }
         match cause.downcast_ref::<MultiverseError>()? {
             MultiverseError::Setting(s) => Some(Self::setting(s)),
             MultiverseError::Sweep(e) => Some(Self::config(e)),
             MultiverseError::Calibration(e) => Self::setup(e),
+            MultiverseError::CalibrationRun(e) => Self::calibration(e),
+            MultiverseError::SweepRun(e) => Self::sweep(e),
             _ => None,
         }
     }
@@ -69,6 +75,20 @@ impl RefusedSetting {
         Self {
             field: Some(e.field()),
             problem: e.problem().to_owned(),
+        }
+    }
+
+    fn sweep(e: &SweepError) -> Option<Self> {
+        match e {
+            SweepError::Config(c) => Some(Self::config(c)),
+            _ => None,
+        }
+    }
+
+    fn calibration(e: &CalibrationError) -> Option<Self> {
+        match e {
+            CalibrationError::Setup(s) => Self::setup(s),
+            _ => None,
         }
     }
 
@@ -112,8 +132,26 @@ mod tests {
                 "<trials> must be at least 1",
             ),
             (
-                Box::new(MultiverseError::Calibration(SetupError::from(setting))),
+                Box::new(MultiverseError::Calibration(SetupError::from(
+                    setting.clone(),
+                ))),
                 "<max_evals> must be at least 1",
+            ),
+            (
+                Box::new(CalibrationError::Setup(SetupError::from(setting.clone()))),
+                "<max_evals> must be at least 1",
+            ),
+            (
+                Box::new(MultiverseError::CalibrationRun(CalibrationError::Setup(
+                    SetupError::from(setting),
+                ))),
+                "<max_evals> must be at least 1",
+            ),
+            (
+                Box::new(MultiverseError::SweepRun(SweepError::Config(
+                    ConfigError::NoTrials,
+                ))),
+                "<trials> must be at least 1",
             ),
         ];
         for (cause, want) in &causes {

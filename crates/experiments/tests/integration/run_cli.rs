@@ -147,6 +147,36 @@ fn a_reader_that_goes_away_ends_the_command_quietly() {
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
 
+/// Regression: the sweep's summary on standard output is written by the report library,
+/// whose typed error holds the broken pipe inside it; a reader that goes away still ends the
+/// command quietly with 141.
+#[test]
+fn a_reader_that_goes_away_ends_a_sweep_quietly() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("s");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(["sweep", PAPER, "--methods", "dis", "--trials", "1"])
+        .args(["--duration", "2", "--threads", "1", "--out"])
+        .arg(&out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run usar");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(141),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+    assert!(
+        out.join("trials.csv").is_file(),
+        "the files are written first"
+    );
+}
+
 /// `--threads 0` is a one-line error on every command that simulates one trial.
 #[test]
 fn zero_threads_is_a_one_line_error() {

@@ -1,6 +1,6 @@
 //! `grid.csv`: a grid's statistics in long form, one row per cell x method x metric.
 
-use anyhow::{Context, Result};
+use crate::error::{ReportError, Result};
 
 use crate::analysis::Analysis;
 use crate::csv_tables::stat_cell;
@@ -26,7 +26,7 @@ pub fn grid_csv(header: &SweepHeader, analysis: &Analysis) -> Result<Vec<u8>> {
         "ci95_high",
     ]);
     w.write_record(&head)
-        .context("writing the grid.csv header")?;
+        .map_err(ReportError::csv("writing the grid.csv header"))?;
     for (cell, a) in header.grid.cells.iter().zip(&analysis.cells) {
         for m in &a.methods {
             for (metric, s) in a.metrics.iter().zip(&m.metrics) {
@@ -40,9 +40,11 @@ pub fn grid_csv(header: &SweepHeader, analysis: &Analysis) -> Result<Vec<u8>> {
                     stat_cell(s.ci_low()),
                     stat_cell(s.ci_high()),
                 ]);
-                w.write_record(&row).context("writing a grid.csv row")?;
+                w.write_record(&row)
+                    .map_err(ReportError::csv("writing a grid.csv row"))?;
             }
         }
     }
-    w.into_inner().context("finishing grid.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("finishing grid.csv"))
 }

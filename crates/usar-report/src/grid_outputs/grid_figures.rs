@@ -7,7 +7,7 @@
 //!   the mean on one scale shared by all methods (viridis), each cell labelled with its mean;
 //! - more fields: no figure (`grid.md` has the tables).
 
-use anyhow::Result;
+use crate::error::Result;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;

@@ -6,13 +6,18 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use crate::error::ReportError;
+
 pub(crate) type Chart<'a, 'b> =
     ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
-pub(crate) fn draw_err<E: std::fmt::Display>(e: E) -> anyhow::Error {
-    anyhow::anyhow!("drawing the SVG failed: {e}")
+/// A plotters drawing error as a [`ReportError::Picture`] (`drawing the SVG failed: ...`).
+pub(crate) fn draw_err<E: std::fmt::Display>(e: E) -> ReportError {
+    ReportError::Picture {
+        problem: e.to_string(),
+    }
 }
 
 pub(crate) fn font(size: u32) -> TextStyle<'static> {

@@ -1,7 +1,7 @@
 //! The picture's legend: an entry per robot kind, path, debris, radiation dose, task, rescuee,
 //! goal point and rest station, then a scale bar.
 
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use usar_sim::scenario::{Locomotion, Scenario};

@@ -1,7 +1,7 @@
 //! The map: everything in a scenario that does not move (walls, search areas and rescuees,
 //! drop-offs, radiation zones, debris, the rest station, goal points and their labels).
 
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use usar_sim::scenario::{Rect, Scenario};

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 use usar_sim::scenario::Scenario;
 

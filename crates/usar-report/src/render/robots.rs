@@ -1,7 +1,7 @@
 //! The robots on the map: at their start positions by kind, and the paths traced robots took
 //! with where they ended.
 
-use anyhow::Result;
+use crate::error::Result;
 use plotters::prelude::*;
 use plotters::style::text_anchor::VPos;
 use usar_sim::scenario::{Circle as Disc, Locomotion, PointM, Scenario};

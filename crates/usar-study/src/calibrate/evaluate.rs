@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use usar_sim::mission::{TrialResult, trial_seed};
 use usar_sim::scenario::{Scenario, ScenarioSpec, trial_steps};
 
+use super::error::CalibrationError;
 use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
@@ -91,13 +92,13 @@ impl<'a> Evaluator<'a> {
     ///
     /// # Errors
     /// The thread pool cannot be started.
-    pub fn new(setup: &'a CalibrationSetup, checked: &Checked) -> anyhow::Result<Self> {
+    pub fn new(setup: &'a CalibrationSetup, checked: &Checked) -> Result<Self, CalibrationError> {
         let per_evaluation = checked.methods.len() * setup.trial_plan.trials as usize;
         let threads = checked.threads.min(per_evaluation).max(1);
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .map_err(|e| anyhow::anyhow!("starting the thread pool: {e}"))?;
+            .map_err(CalibrationError::ThreadPool)?;
         Ok(Self {
             setup,
             methods: checked.methods.clone(),

@@ -3,11 +3,11 @@
 //! loss)` axis so that a loss of 0 is shown (plotters, plain SVG text, as the sweep's
 //! figures).
 
-use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use usar_report::error::Result;
 
 use super::outcome::CalibrationOutcome;
 use usar_report::chart::{FIGURE_SIZE, draw_err};

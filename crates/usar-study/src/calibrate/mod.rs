@@ -11,11 +11,12 @@
 //! `calibration.md`, `convergence.svg`, `statistics.svg` and `tradeoff.svg`.
 //!
 //! Files depend one way (each imports only from those before it, and from the targets'
-//! vocabulary below, [`usar_report::targets`]): loss, free, trial_plan, setup, evaluate, optimizer, cma_es,
-//! trace, outcome, figure, targets_figure, tradeoff_figure, progress, markdown, outputs,
-//! searcher, run, summary.
+//! vocabulary below, [`usar_report::targets`]): loss, free, trial_plan, setup, trace_error,
+//! error, evaluate, optimizer, cma_es, trace, outcome, figure, targets_figure, tradeoff_figure,
+//! progress, markdown, outputs, searcher, run, summary.
 
 pub mod cma_es;
+pub mod error;
 pub mod evaluate;
 pub mod figure;
 pub mod free;
@@ -31,9 +32,11 @@ pub mod setup;
 pub mod summary;
 pub mod targets_figure;
 pub mod trace;
+pub mod trace_error;
 pub mod tradeoff_figure;
 pub mod trial_plan;
 
+pub use error::CalibrationError;
 pub use evaluate::{Evaluation, Evaluator, TrialSet};
 pub use free::{FreeError, FreeField, parse_free, round_significant};
 pub use loss::{loss, target_loss};

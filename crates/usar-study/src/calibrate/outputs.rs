@@ -7,8 +7,6 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
-
 use super::figure::convergence_svg;
 use super::free::FreeField;
 use super::markdown::calibration_md;
@@ -19,6 +17,7 @@ use super::outcome::{
 use super::targets_figure::statistics_svg;
 use super::tradeoff_figure::tradeoff_svg;
 use usar_report::chart::figure_or_warn;
+use usar_report::error::{ReportError, Result};
 use usar_sweep::atomic::FileSet;
 use usar_sweep::spec_ron::spec_to_ron;
 
@@ -145,6 +144,9 @@ pub fn trace_csv(o: &CalibrationOutcome) -> Result<String> {
         row.push(e.message.clone().unwrap_or_default());
         w.write_record(&row)?;
     }
-    let bytes = w.into_inner().context("writing trace.csv")?;
-    String::from_utf8(bytes).context("trace.csv is not UTF-8")
+    let bytes = w
+        .into_inner()
+        .map_err(|e| ReportError::from(csv::Error::from(e.into_error())))?;
+    // The writer wrote only `String`s: the bytes are UTF-8.
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

@@ -5,10 +5,10 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow, bail};
 use usar_sim::scenario::path_text;
 
 use super::cma_es::{INFINITE_LOSS, INITIAL_SIGMA, cma_es, population};
+use super::error::CalibrationError;
 use super::evaluate::{Evaluation, Evaluator};
 use super::optimizer::{
     INITIAL_STEP, OUTSIDE_PENALTY, Optimizer, STALL_LIMIT, StopReason, nelder_mead,
@@ -25,6 +25,9 @@ use usar_sweep::data::owner::{RunKind, claim};
 use usar_sweep::fingerprint::scenario_hash;
 use usar_sweep::journal::{holds_no_line, something_at};
 use usar_sweep::lock::OutputLock;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, CalibrationError>;
 
 /// Fits the free fields of `setup.base` so that the statistics of its trials fall inside the
 /// bands of `setup.targets`, writing into `dir`: `trace.jsonl` (every evaluation, as it
@@ -59,7 +62,7 @@ use usar_sweep::lock::OutputLock;
 /// };
 /// let outcome = calibrate(&setup, Path::new("results/calibrate-pickup"), Progress::off())?;
 /// println!("pickup_s = {} (loss {})", outcome.best_values()[0], outcome.loss);
-/// # Ok::<(), anyhow::Error>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
@@ -101,10 +104,10 @@ pub fn calibrate(
         return Err(Stopped.into());
     }
     let evaluations = search.sequence;
-    let best = best_index(&evaluations).context("no evaluation ran")?;
+    let best = best_index(&evaluations).ok_or(CalibrationError::NoEvaluation)?;
     let (best_spec, best_scenario) = evaluator
         .scenario_at(&evaluations[best].values)
-        .map_err(|e| anyhow!("no evaluated point gives a valid scenario; the best one: {e}"))?;
+        .map_err(|problem| CalibrationError::NoValidPoint { problem })?;
     let check = (setup.check_trials > 0).then(|| unseen(setup, &evaluator, &best_scenario));
     if setup.hooks.stopped() {
         return Err(Stopped.into());
@@ -189,7 +192,7 @@ fn search(
     };
     searcher.display.finish();
     if let Some(e) = searcher.error {
-        return Err(e.context("the trace could not be written; the calibration stopped"));
+        return Err(CalibrationError::TraceStopped(e));
     }
     Ok(Searched {
         sequence: searcher.sequence,
@@ -236,7 +239,7 @@ fn header_of(setup: &CalibrationSetup, checked: &Checked) -> Result<TraceHeader>
         version: env!("CARGO_PKG_VERSION").to_string(),
         build: usar_sweep::data::software::software_build().to_owned(),
         scenario: checked.scenario.name().to_owned(),
-        scenario_hash: scenario_hash(&checked.scenario)?,
+        scenario_hash: scenario_hash(&checked.scenario).map_err(CalibrationError::Serialise)?,
         targets: setup.targets.targets().to_vec(),
         free: setup.free.clone(),
         methods: checked.methods.clone(),
@@ -279,19 +282,16 @@ fn open_trace(
         return Ok((Trace::create(dir, header)?, Vec::new()));
     }
     if !path.is_file() {
-        bail!(
-            "{}: not a regular file; remove it, or choose another --out",
-            path_text(&path)
-        );
+        return Err(CalibrationError::TraceNotAFile {
+            path: path_text(&path),
+        });
     }
     let contents = read_trace(&path)?;
     if &contents.header != header {
-        bail!(
-            "{} holds another calibration ({}): pass --overwrite to start afresh, or choose \
-             another --out",
-            path_text(&path),
-            header_diff(&contents.header, header)
-        );
+        return Err(CalibrationError::OtherCalibration {
+            path: path_text(&path),
+            diff: header_diff(&contents.header, header),
+        });
     }
     for line in &contents.rejected {
         usar_sweep::stderr::warn(format!(

@@ -13,6 +13,7 @@ use super::free::FreeField;
 use super::optimizer::{Objective, Scored, StopReason};
 use super::progress::Display;
 use super::trace::Trace;
+use super::trace_error::TraceError;
 
 /// The key of a set of free values: their bits.
 pub(crate) fn key(values: &[f64]) -> Vec<u64> {
@@ -41,7 +42,7 @@ pub(crate) struct Searcher<'a> {
     pub(crate) ran: usize,
     pub(crate) reused: usize,
     /// A trace that could not be written: the search stops and the calibration fails.
-    pub(crate) error: Option<anyhow::Error>,
+    pub(crate) error: Option<TraceError>,
 }
 
 impl Searcher<'_> {

@@ -5,9 +5,9 @@
 //! never in their bands at the same evaluation conflict under the free fields searched), a
 //! multiverse over its universes (plotters, plain SVG text, as the other figures).
 
-use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use usar_report::error::Result;
 
 use super::outcome::CalibrationOutcome;
 use usar_report::chart::{axis_range, draw_err, plotted, tick_label};

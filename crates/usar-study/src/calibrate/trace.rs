@@ -20,14 +20,15 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow, bail};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use usar_sim::scenario::path_text;
 
 use super::evaluate::Evaluation;
 use super::free::FreeField;
+use super::trace_error::TraceError;
 use usar_report::targets::file::Target;
+use usar_sweep::atomic::FileError;
 use usar_sweep::checked_log::{LogWriter, RecordLine, header_sum, parse_line, read_records};
 
 /// File name of the trace in the output folder.
@@ -174,8 +175,8 @@ pub struct TraceContents {
     header_sum: String,
 }
 
-/// What to say about a trace that cannot be used.
-const START_AFRESH: &str = "start afresh with --overwrite, or choose another --out";
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, TraceError>;
 
 /// Reads and verifies the trace at `path`.
 ///
@@ -183,47 +184,46 @@ const START_AFRESH: &str = "start afresh with --overwrite, or choose another --o
 /// An unreadable file, a missing header, a header that does not verify or is of another
 /// format, or a damaged line other than the last; each names `--overwrite`.
 pub fn read_trace(path: &Path) -> Result<TraceContents> {
-    let bytes = fs::read(path).with_context(|| format!("cannot read {}", path_text(path)))?;
-    let damaged = |line: usize, what: &str| {
-        anyhow!(
-            "{}:{line}: {what}; delete that line (its point runs again), or {START_AFRESH}",
-            path_text(path)
-        )
+    let bytes =
+        fs::read(path).map_err(FileError::io(format!("cannot read {}", path_text(path))))?;
+    let damaged = |line: usize| TraceError::DamagedLine {
+        path: path_text(path),
+        line,
     };
     let Some(first) = bytes
         .split_inclusive(|&b| b == b'\n')
         .next()
         .filter(|l| l.ends_with(b"\n"))
     else {
-        bail!(
-            "{}: no complete header line; {START_AFRESH}",
-            path_text(path)
-        );
+        return Err(TraceError::NoHeader {
+            path: path_text(path),
+        });
     };
-    let not_header = || anyhow!("{}:1: not a trace header; {START_AFRESH}", path_text(path));
+    let not_header = || TraceError::NotAHeader {
+        path: path_text(path),
+    };
     let text = std::str::from_utf8(first).map_err(|_| not_header())?;
     let (raw, sum) = parse_line(text, "header").ok_or_else(not_header)?;
     let hsum = header_sum(raw);
     if sum.as_deref() != Some(hsum.as_str()) {
-        bail!(
-            "{}:1: the header does not verify (edited?); {START_AFRESH}",
-            path_text(path)
-        );
+        return Err(TraceError::HeaderUnverified {
+            path: path_text(path),
+        });
     }
     let format = serde_json::from_str::<serde_json::Value>(raw)
         .ok()
         .and_then(|v| v.get("format")?.as_u64());
     if format != Some(u64::from(TRACE_FORMAT)) {
-        bail!(
-            "{}: trace format {}, but this usar reads format {TRACE_FORMAT}; {START_AFRESH}",
-            path_text(path),
-            format.map_or("unknown".into(), |f| f.to_string())
-        );
+        return Err(TraceError::Format {
+            path: path_text(path),
+            found: format.map_or("unknown".into(), |f| f.to_string()),
+            expected: TRACE_FORMAT,
+        });
     }
     let header: TraceHeader = serde_json::from_str(raw).map_err(|_| not_header())?;
     let (mut evaluations, mut rejected) = (Vec::new(), Vec::new());
     let complete_bytes = read_records(&bytes, first.len(), &hsum, "eval", |line, r| {
-        let not_a_line = || damaged(line, "not a valid trace line");
+        let not_a_line = || damaged(line);
         match r {
             RecordLine::Verified(json) => {
                 evaluations.push(serde_json::from_str(json).map_err(|_| not_a_line())?);
@@ -263,7 +263,10 @@ impl Trace {
     /// # Errors
     /// An existing trace, or an I/O error.
     pub fn create(dir: &Path, header: &TraceHeader) -> Result<Self> {
-        let json = serde_json::to_string(header).context("serialising the trace header")?;
+        let json = serde_json::to_string(header).map_err(|source| TraceError::Serialise {
+            what: "the trace header",
+            source,
+        })?;
         let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
         Ok(Self { log })
     }
@@ -283,7 +286,10 @@ impl Trace {
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, e: &Evaluation) -> Result<()> {
-        let json = serde_json::to_string(e).context("serialising an evaluation")?;
+        let json = serde_json::to_string(e).map_err(|source| TraceError::Serialise {
+            what: "an evaluation",
+            source,
+        })?;
         Ok(self.log.append("eval", &json)?)
     }
 }

@@ -7,8 +7,8 @@
 //! within the search's reach. With at most one fitted target out of band, the pair is the
 //! best's largest two distances (some 0).
 
-use anyhow::Result;
 use plotters::prelude::*;
+use usar_report::error::Result;
 
 use super::loss::target_loss;
 use super::outcome::CalibrationOutcome;

@@ -15,7 +15,7 @@
 //! index order, methods in `--methods` order, metrics in `summary.csv` order. Numbers are
 //! written in their shortest round-trip form: the file depends on the records alone.
 
-use anyhow::{Context, Result};
+use usar_report::error::{ReportError, Result};
 
 use super::columns::{LEADING, MIDDLE, TRAILING};
 use super::plan::MultiversePlan;
@@ -139,7 +139,8 @@ pub fn multiverse_csv(plan: &MultiversePlan, records: &[UniverseRecord]) -> Resu
             ))?;
         }
     }
-    w.into_inner().context("finishing multiverse.csv")
+    w.into_inner()
+        .map_err(ReportError::finish("finishing multiverse.csv"))
 }
 
 #[cfg(test)]

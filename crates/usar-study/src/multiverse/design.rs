@@ -20,20 +20,24 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use rand::RngExt;
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
+use usar_sim::scenario::path_text;
 
+use super::error::MultiverseError;
 use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::calibrate::{Evaluator, FreeField};
 use usar_report::targets::float_text;
-use usar_sweep::atomic::write_atomic;
+use usar_sweep::atomic::{FileError, write_atomic};
 use usar_sweep::checked_log::{record_line, verified_record};
 use usar_sweep::vary::apply_overrides;
+
+/// What the functions of this module return.
+type Result<T, E = MultiverseError> = std::result::Result<T, E>;
 
 /// The design's folder under the output folder.
 pub const DESIGN_DIR: &str = "design";
@@ -98,10 +102,17 @@ impl DesignPoint {
     /// # Errors
     /// An I/O error.
     pub fn write(&self, root: &Path, design: usize, identity_sum: &str) -> Result<()> {
-        let json = serde_json::to_string(self).context("serialising a design point")?;
+        let json = serde_json::to_string(self).map_err(|source| MultiverseError::Serialise {
+            what: "a design point",
+            source,
+        })?;
         let line = record_line("design", &json, identity_sum);
         let path = point_path(root, self.index, design);
-        std::fs::create_dir_all(path.parent().unwrap_or(root))?;
+        let folder = path.parent().unwrap_or(root);
+        std::fs::create_dir_all(folder).map_err(FileError::io(format!(
+            "creating folder {}",
+            path_text(folder)
+        )))?;
         Ok(write_atomic(&path, line.as_bytes())?)
     }
 

@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use anyhow::Result;
+use super::error::MultiverseError;
 
 use super::design::{DesignPoint, design_plan, evaluate_point};
 use super::plan::MultiversePlan;
@@ -28,7 +28,7 @@ pub fn run_design(
     plan: &MultiversePlan,
     dir: &Path,
     bar: bool,
-) -> Result<usize> {
+) -> Result<usize, MultiverseError> {
     let n = setup.design;
     let sum = plan.identity_sum();
     let sizes = (setup.free.len(), setup.targets.targets().len());

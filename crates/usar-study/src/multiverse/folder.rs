@@ -14,19 +14,22 @@
 use std::fs;
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
 use usar_sim::scenario::path_text;
 
 use super::design::DESIGN_DIR;
+use super::error::MultiverseError;
 use super::outputs::output_files;
 use super::plan::{MultiversePlan, identity_diff};
 use super::record::RECORD_FILE;
 use super::universe_run::{CALIBRATION_DIR, COMPARISON_DIR, SCENARIO_FILE, UNIVERSES_DIR};
-use usar_sweep::atomic::{remove_dir_if_empty, remove_named, remove_stale_temps};
+use usar_sweep::atomic::{FileError, remove_dir_if_empty, remove_named, remove_stale_temps};
 use usar_sweep::data::owner::{OWNER_FILE, RunKind, check_owner};
 use usar_sweep::lock::LOCK_FILE;
 use usar_sweep::shard::{SHARDS_DIR, Shard, shard_folders};
 use usar_sweep::stale_outputs::clear_sweep;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, MultiverseError>;
 
 /// Every plan in `dir`: the top one (`None`), then each shard folder's, by shard.
 ///
@@ -68,12 +71,10 @@ fn plan_path(dir: &Path, shard: Option<Shard>) -> String {
 pub fn refuse_others(dir: &Path, plan: &MultiversePlan) -> Result<()> {
     for (shard, other) in plans_in(dir)? {
         if other.identity != plan.identity {
-            bail!(
-                "{} holds another multiverse ({}): pass --overwrite to start afresh (its \
-                 universes go), or choose another --out",
-                plan_path(dir, shard),
-                identity_diff(&other.identity, &plan.identity)
-            );
+            return Err(MultiverseError::OtherMultiverse {
+                plan: plan_path(dir, shard),
+                diff: identity_diff(&other.identity, &plan.identity),
+            });
         }
     }
     Ok(())
@@ -86,10 +87,10 @@ fn spec_curve_files(dir: &Path) -> Result<Vec<String>> {
     let entries = match fs::read_dir(dir) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(names),
-        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(dir))),
+        Err(e) => return Err(FileError::io(format!("listing {}", path_text(dir)))(e).into()),
     };
     for entry in entries {
-        let entry = entry.with_context(|| format!("listing {}", path_text(dir)))?;
+        let entry = entry.map_err(FileError::io(format!("listing {}", path_text(dir))))?;
         if let Some(name) = entry.file_name().to_str()
             && (name.starts_with("spec_curve_") || name.starts_with("sensitivity_"))
             && name.ends_with(".svg")
@@ -139,11 +140,11 @@ fn clear_design(design: &Path) -> Result<()> {
     let entries = match std::fs::read_dir(design) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
-        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(design))),
+        Err(e) => return Err(FileError::io(format!("listing {}", path_text(design)))(e).into()),
     };
     let mut names = Vec::new();
     for e in entries {
-        let e = e.with_context(|| format!("listing {}", path_text(design)))?;
+        let e = e.map_err(FileError::io(format!("listing {}", path_text(design))))?;
         if let Some(n) = e.file_name().to_str()
             && let Some(digits) = n.strip_prefix('d').and_then(|n| n.strip_suffix(".json"))
             && !digits.is_empty()
@@ -164,11 +165,11 @@ fn universe_folders(universes: &Path) -> Result<Vec<std::path::PathBuf>> {
     let entries = match std::fs::read_dir(universes) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e).with_context(|| format!("listing {}", path_text(universes))),
+        Err(e) => return Err(FileError::io(format!("listing {}", path_text(universes)))(e).into()),
     };
     let mut out = Vec::new();
     for e in entries {
-        let e = e.with_context(|| format!("listing {}", path_text(universes)))?;
+        let e = e.map_err(FileError::io(format!("listing {}", path_text(universes))))?;
         let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
         let name = e.file_name();
         let is_id = name.to_str().is_some_and(|n| {

@@ -4,8 +4,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, bail};
-
+use super::error::MultiverseError;
 use super::folder::plans_in;
 use super::outcome::MultiverseOutcome;
 use super::outputs::write_outputs;
@@ -29,7 +28,10 @@ use usar_sweep::shard::{Shard, shard_folders};
 /// runs them, or the command without `--shard`, which runs only the missing ones); a folder
 /// locked by a running shard; an I/O error. Failed universes are not an error here (the
 /// caller reports them).
-pub fn merge_multiverse(dir: &Path, here: Option<&Path>) -> Result<MultiverseOutcome> {
+pub fn merge_multiverse(
+    dir: &Path,
+    here: Option<&Path>,
+) -> Result<MultiverseOutcome, MultiverseError> {
     let t0 = Instant::now();
     if dir.is_dir() {
         check_owner(dir, RunKind::Multiverse)?;
@@ -41,20 +43,18 @@ pub fn merge_multiverse(dir: &Path, here: Option<&Path>) -> Result<MultiverseOut
     let _lock = OutputLock::acquire(dir)?;
     let plans = plans_in(dir)?;
     let Some((_, plan)) = plans.first().cloned() else {
-        bail!(
-            "{}: no multiverse plan (multiverse.json) here or in its shard folders",
-            dir.display()
-        );
+        return Err(MultiverseError::NoPlan {
+            dir: dir.display().to_string(),
+        });
     };
     for (shard, other) in &plans[1..] {
         if other.identity != plan.identity {
             let at = shard.map_or("the top".to_string(), |s| format!("shard {s}"));
-            bail!(
-                "the plans in {} are of different multiverses: {at} has {}; run that shard again \
-                 with the others' parameters, or move its folder away",
-                dir.display(),
-                identity_diff(&other.identity, &plan.identity)
-            );
+            return Err(MultiverseError::MixedPlans {
+                dir: dir.display().to_string(),
+                at,
+                diff: identity_diff(&other.identity, &plan.identity),
+            });
         }
     }
     let sum = plan.identity_sum();
@@ -74,10 +74,9 @@ pub fn merge_multiverse(dir: &Path, here: Option<&Path>) -> Result<MultiverseOut
             .iter()
             .filter_map(|(s, _)| s.map(|s| s.count))
             .collect();
-        bail!(
-            "{}",
-            missing_message(&plan, &universes, &missing, &splits, dir, here)
-        );
+        return Err(MultiverseError::Missing {
+            message: missing_message(&plan, &universes, &missing, &splits, dir, here),
+        });
     }
     let files = write_outputs(&plan, &records, dir)?;
     Ok(MultiverseOutcome {

@@ -13,8 +13,9 @@
 //! ([`merge_multiverse`]) multiverse writes the same bytes as one uninterrupted run.
 //!
 //! Files depend one way (each imports only from those before it): columns, axes, axis_targets,
-//! validate, universe, effect, record, setup, plan, design, design_run, emulator, universe_run, tally, conclusions, csv,
-//! spec_curve, markdown, emulator_md, outputs, progress, outcome, summary, folder, run, merge.
+//! validate, universe, effect, record, error, setup, plan, design, design_run, emulator,
+//! universe_run, tally, conclusions, csv, spec_curve, markdown, emulator_md, outputs, progress,
+//! outcome, summary, folder, run, merge.
 
 pub mod axes;
 mod axis_targets;
@@ -27,6 +28,7 @@ pub mod design_run;
 pub mod effect;
 pub mod emulator;
 pub mod emulator_md;
+pub mod error;
 pub mod folder;
 pub mod markdown;
 mod merge;

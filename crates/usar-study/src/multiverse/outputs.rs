@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
+use usar_report::error::Result;
 
 use super::csv::multiverse_csv;
 use super::emulator_md::design_section;

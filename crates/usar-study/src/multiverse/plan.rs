@@ -8,19 +8,22 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
 use super::axes::Axes;
+use super::error::MultiverseError;
 use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
 use crate::calibrate::{FreeField, Optimizer, Target};
 use usar_report::claims::Claim;
-use usar_sweep::atomic::write_atomic;
+use usar_sweep::atomic::{FileError, write_atomic};
 use usar_sweep::fingerprint::{fnv1a64_hex, scenario_hash};
 use usar_sweep::shard::{Shard, shell_join};
 use usar_sweep::slurm::ShardedWork;
+
+/// What the functions of this module return.
+type Result<T, E = MultiverseError> = std::result::Result<T, E>;
 
 /// The plan's file name.
 pub const PLAN_FILE: &str = usar_sweep::data::owner::evidence::MULTIVERSE_PLAN;
@@ -147,7 +150,12 @@ impl MultiversePlan {
                 version: env!("CARGO_PKG_VERSION").to_string(),
                 build: usar_sweep::data::software::software_build().to_owned(),
                 scenario: checked.scenario.name().to_owned(),
-                scenario_hash: scenario_hash(&checked.scenario)?,
+                scenario_hash: scenario_hash(&checked.scenario).map_err(|source| {
+                    MultiverseError::Serialise {
+                        what: "the scenario",
+                        source,
+                    }
+                })?,
                 axes: setup.axes.clone(),
                 targets: setup.targets.targets().to_vec(),
                 claims: setup
@@ -198,7 +206,11 @@ impl MultiversePlan {
     /// # Errors
     /// An I/O error.
     pub fn write(&self, dir: &Path) -> Result<()> {
-        let json = serde_json::to_string_pretty(self).context("serialising the plan")?;
+        let json =
+            serde_json::to_string_pretty(self).map_err(|source| MultiverseError::Serialise {
+                what: "the plan",
+                source,
+            })?;
         Ok(write_atomic(
             &Self::path_in(dir),
             format!("{json}\n").as_bytes(),
@@ -215,13 +227,10 @@ impl MultiversePlan {
             return Ok(None);
         }
         let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path_text(&path)))?;
-        let plan = serde_json::from_str(&text).with_context(|| {
-            format!(
-                "{}: not a multiverse plan (edited, or of another version of usar); pass \
-                 --overwrite to start afresh, or choose another --out",
-                path_text(&path)
-            )
+            .map_err(FileError::io(format!("cannot read {}", path_text(&path))))?;
+        let plan = serde_json::from_str(&text).map_err(|source| MultiverseError::NotAPlan {
+            path: path_text(&path),
+            source,
         })?;
         Ok(Some(plan))
     }

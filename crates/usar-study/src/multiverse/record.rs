@@ -12,15 +12,18 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
 use super::effect::ClaimEffect;
+use super::error::MultiverseError;
 use crate::calibrate::StopReason;
 use usar_report::targets::float_text;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::checked_log::{record_line, verified_record};
+
+/// What the functions of this module return.
+type Result<T, E = MultiverseError> = std::result::Result<T, E>;
 
 /// The record's file name in a universe's folder.
 pub const RECORD_FILE: &str = "universe.json";
@@ -164,7 +167,10 @@ impl UniverseRecord {
     /// # Errors
     /// An I/O error.
     pub fn write(&self, dir: &Path, identity_sum: &str) -> Result<()> {
-        let json = serde_json::to_string(self).context("serialising a universe record")?;
+        let json = serde_json::to_string(self).map_err(|source| MultiverseError::Serialise {
+            what: "a universe record",
+            source,
+        })?;
         let line = record_line("universe", &json, identity_sum);
         Ok(write_atomic(&Self::path_in(dir), line.as_bytes())?)
     }

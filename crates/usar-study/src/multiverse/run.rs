@@ -5,10 +5,9 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, anyhow, bail};
-
 use super::design_run::{missing_message, read_design, run_design};
 use super::emulator::Emulator;
+use super::error::MultiverseError;
 use super::folder::{clear, refuse_others};
 use super::outcome::MultiverseOutcome;
 use super::outputs::write_outputs;
@@ -22,6 +21,9 @@ use usar_sweep::data::hooks::Stopped;
 use usar_sweep::data::owner::{RunKind, claim};
 use usar_sweep::lock::OutputLock;
 use usar_sweep::shard::shard_dir;
+
+/// What the functions of this module return.
+type Result<T> = std::result::Result<T, MultiverseError>;
 
 /// Runs the paper's method comparison in every universe of `setup` (or of its shard),
 /// writing into `dir`: per universe its folder `universes/<id>/` (scenario, calibration,
@@ -53,7 +55,7 @@ use usar_sweep::shard::shard_dir;
 /// setup.comparison.trials = 4;
 /// let o = run_multiverse(&setup, Path::new("results/mv"), MultiverseProgress::off())?;
 /// println!("{} of {} universes admissible", o.admissible(), o.records.len());
-/// # Ok::<(), anyhow::Error>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
@@ -71,11 +73,7 @@ pub fn run_multiverse(
     let t0 = Instant::now();
     let checked = setup.check()?;
     if setup.overwrite && setup.shard.is_some() {
-        bail!(
-            "--overwrite cannot be used with --shard: shards running at the same time would \
-             remove each other's work; remove the output folder (or choose another --out), then \
-             run the shards"
-        );
+        return Err(MultiverseError::OverwriteShard);
     }
     let plan = MultiversePlan::of(setup, &checked, dir)?;
     claim(dir, RunKind::Multiverse)?;
@@ -96,7 +94,9 @@ pub fn run_multiverse(
         0 => None,
         n => {
             run_design(setup, &checked, &plan, dir, progress.bar)?;
-            let points = read_design(&plan, dir).map_err(|m| anyhow!(missing_message(&m, n)))?;
+            let points = read_design(&plan, dir).map_err(|m| MultiverseError::Missing {
+                message: missing_message(&m, n),
+            })?;
             Some(Emulator::fit(
                 &points,
                 &setup.axes.sizes(),

@@ -4,8 +4,8 @@
 //! black tick and, for an axis, its total-order share as an outlined bar; one panel over the
 //! admissible universes, one over every compared universe.
 
-use anyhow::Result;
 use plotters::prelude::*;
+use usar_report::error::Result;
 
 use super::decompose::{Decomposition, Scope, Share, decompose_over};
 use super::plan::MultiversePlan;

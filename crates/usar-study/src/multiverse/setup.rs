@@ -8,21 +8,20 @@ use std::sync::atomic::AtomicBool;
 
 use usar_sim::scenario::{Scenario, ScenarioSpec};
 
-use super::axes::{Axes, AxesError};
+use super::axes::Axes;
+pub use super::error::MultiverseError;
 use super::record::UniverseRecord;
-use super::universe::{
-    Sample, Universe, UniverseError, check_shards, factorial_size, select, shard_of,
-};
+use super::universe::{Sample, Universe, check_shards, factorial_size, select, shard_of};
 use super::validate::check_axes;
 use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed};
 use crate::calibrate::{
-    CalibrationSetup, EvaluationHook, FreeField, Optimizer, SetupError, Targets, TrialPlan,
+    CalibrationSetup, EvaluationHook, FreeField, Optimizer, Targets, TrialPlan,
 };
-use usar_report::claims::{Claims, ClaimsError};
+use usar_report::claims::Claims;
 use usar_sweep::data::hooks::{CalibrationHooks, TrialObserverFactory, is_set};
 use usar_sweep::data::setting_error::SettingError;
 use usar_sweep::shard::Shard;
-use usar_sweep::sweep::{ConfigError, SweepHooks, check_sweep_size};
+use usar_sweep::sweep::{SweepHooks, check_sweep_size};
 
 /// Comparison trials per method and universe by default (10, as a sweep).
 pub const DEFAULT_TRIALS: u32 = 10;
@@ -343,28 +342,4 @@ impl CheckedMultiverse {
             None => (0..self.universes.len()).collect(),
         }
     }
-}
-
-/// Why a multiverse cannot start: one line.
-#[derive(Debug, thiserror::Error)]
-pub enum MultiverseError {
-    /// The base scenario, the targets, the free fields or the methods (as a calibration
-    /// checks them).
-    #[error(transparent)]
-    Calibration(#[from] SetupError),
-    /// The axes file does not fit the scenario or the free fields.
-    #[error(transparent)]
-    Axes(#[from] AxesError),
-    /// Too many universes, or a bad sample.
-    #[error(transparent)]
-    Universes(#[from] UniverseError),
-    /// A claim names a task the base scenario lacks or a method neither built in nor run.
-    #[error(transparent)]
-    Claims(#[from] ClaimsError),
-    /// An option out of range, named by its field.
-    #[error(transparent)]
-    Setting(#[from] SettingError),
-    /// The sweep of one universe is above the limit of trials.
-    #[error(transparent)]
-    Sweep(#[from] ConfigError),
 }

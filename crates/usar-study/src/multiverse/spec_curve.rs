@@ -10,10 +10,10 @@
 //! comparison did not run, the claim was not tested), are left out; the caption says how
 //! many. Plain SVG text (plotters), as the sweep's figures.
 
-use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use usar_report::error::Result;
 
 use super::plan::MultiversePlan;
 use super::record::UniverseRecord;

@@ -18,7 +18,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
+use super::error::MultiverseError;
 use usar_sim::scenario::{ScenarioSpec, path_text};
 
 use super::effect::claim_effect;
@@ -29,12 +29,16 @@ use super::setup::MultiverseSetup;
 use super::universe::Universe;
 use crate::calibrate::{CalibrationOutcome, Progress, Target, Targets, calibrate};
 use usar_report::analysis::{Analysis, CellAnalysis, ReportOptions};
+use usar_report::error::ReportError;
 use usar_report::output::write_outputs;
-use usar_sweep::atomic::{remove_stale_temps, write_atomic};
+use usar_sweep::atomic::{FileError, remove_stale_temps, write_atomic};
 use usar_sweep::data::hooks::{Stopped, SweepHooks};
 use usar_sweep::spec_ron::spec_to_ron;
 use usar_sweep::sweep::{SweepConfig, SweepOutcome, run_sweep};
 use usar_sweep::vary::{Override, apply_overrides, rule_error};
+
+/// What the functions of this module return.
+type Result<T, E = MultiverseError> = std::result::Result<T, E>;
 
 /// The folder, under the output folder, that holds the universes' folders.
 pub const UNIVERSES_DIR: &str = "universes";
@@ -77,7 +81,10 @@ impl UniverseRun<'_> {
     pub fn run(&self, u: &Universe) -> Result<UniverseRecord> {
         let id = u.id(self.plan.factorial());
         let dir = universe_dir(self.root, &id);
-        std::fs::create_dir_all(&dir)?;
+        std::fs::create_dir_all(&dir).map_err(FileError::io(format!(
+            "creating folder {}",
+            path_text(&dir)
+        )))?;
         remove_stale_temps(&dir)?;
         let mut record = UniverseRecord {
             index: u.index,
@@ -135,7 +142,8 @@ impl UniverseRun<'_> {
             ),
         ];
         let path = dir.join(SCENARIO_FILE);
-        write_atomic(&path, spec_to_ron(&spec, &comments)?.as_bytes())?;
+        let text = spec_to_ron(&spec, &comments).map_err(ReportError::from)?;
+        write_atomic(&path, text.as_bytes())?;
         Ok(match spec.validate(&path_text(&path)) {
             Ok(_) => Ok(spec),
             Err(e) => Err(rule_error("set", overrides, &e)),

@@ -302,9 +302,8 @@ fn a_stopped_calibration_writes_nothing_and_continues() {
     let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     let e = calibrate(&s, a.path(), progress).unwrap_err();
     assert!(
-        e.downcast_ref::<usar_sweep::data::hooks::Stopped>()
-            .is_some(),
-        "{e:#}"
+        matches!(e, usar_study::calibrate::CalibrationError::Stopped(_)),
+        "{e}"
     );
     assert_eq!(observed.load(Ordering::SeqCst), 2);
     let trace = std::fs::read_to_string(a.path().join("trace.jsonl")).unwrap();

@@ -8,7 +8,6 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use usar_study::calibrate::{FreeField, Targets};
 use usar_study::multiverse::{Axes, MultiverseProgress, MultiverseSetup, run_multiverse};
-use usar_sweep::data::hooks::Stopped;
 
 const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
@@ -52,7 +51,7 @@ fn a_stopped_multiverse_keeps_no_partial_record_and_continues() {
         None
     }));
     let e = run_multiverse(&s, a.path(), MultiverseProgress::off()).unwrap_err();
-    assert!(e.downcast_ref::<Stopped>().is_some(), "{e:#}");
+    assert!(e.is_stopped(), "{e}");
     assert!(observed.load(Ordering::SeqCst) >= 2);
     assert!(!a.path().join("multiverse.csv").exists());
     let records = walk(a.path(), "universe.json");

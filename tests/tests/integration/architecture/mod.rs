@@ -105,6 +105,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 // Base: numbers, tables, charts and the targets' vocabulary.
                 &[
                     "chart",
+                    "error",
                     "source_date",
                     "stats",
                     "rounds_table",

@@ -56,8 +56,12 @@ const BROKEN_PIPE_EXIT_CODE: u8 = 141;
 /// Whether `e` comes from writing to a pipe whose reader has gone.
 fn is_broken_pipe(e: &anyhow::Error) -> bool {
     e.chain().any(|c| {
-        c.downcast_ref::<std::io::Error>()
-            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+        // The terminal summary's write errors come wrapped (transparently) in a ReportError.
+        let io = match c.downcast_ref::<usar_report::error::ReportError>() {
+            Some(usar_report::error::ReportError::Io(io)) => Some(io),
+            _ => c.downcast_ref::<std::io::Error>(),
+        };
+        io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
 }
 
