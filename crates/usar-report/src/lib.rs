@@ -16,7 +16,8 @@
 //! it (and from the sweep library), never from one above (bottom first):
 //!
 //! 1. base: [`error`], [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`],
-//!    [`targets`] (the vocabulary of calibration targets);
+//!    [`scenario_summary`] (what `usar check` and `Scenario.check()` show), [`targets`] (the
+//!    vocabulary of calibration targets);
 //! 2. judge: [`claims`], [`calibration`] (what a report compares with);
 //! 3. analyse: [`analysis`];
 //! 4. write: [`csv_tables`], [`figures`], [`report`], [`grid_outputs`], [`console`],
@@ -26,6 +27,7 @@
 pub mod chart;
 pub mod error;
 pub mod rounds_table;
+pub mod scenario_summary;
 pub mod source_date;
 pub mod stats;
 pub mod table;

@@ -106,6 +106,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 &[
                     "chart",
                     "error",
+                    "scenario_summary",
                     "source_date",
                     "stats",
                     "rounds_table",

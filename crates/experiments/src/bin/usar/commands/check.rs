@@ -10,8 +10,8 @@ use anyhow::{Result, anyhow};
 
 use clap::Args;
 
-use usar_sim::scenario::{self, Debris, Locomotion, Scenario, number_text, path_text};
-use usar_sim::world::ControlClock;
+use usar_report::scenario_summary::ScenarioSummary;
+use usar_sim::scenario::{self, number_text, path_text};
 
 use usar_sweep::fingerprint::scenario_hash;
 
@@ -112,8 +112,13 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         }
         write!(out, "{}", spec_to_ron(spec, &comments)?)?;
     } else {
-        summarise(&s, args.robots || s.robots().len() <= ROBOTS_TABLE_MAX, out)?;
-        writeln!(out, "scenario hash {hash}")?;
+        let summary = ScenarioSummary::of(&s)?;
+        summarise(
+            &summary,
+            args.robots || s.robots().len() <= ROBOTS_TABLE_MAX,
+            out,
+        )?;
+        writeln!(out, "scenario hash {}", summary.hash)?;
         let sets: Vec<String> = overrides.iter().map(|o| format!(" --set {o}")).collect();
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
     }
@@ -123,8 +128,8 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
 /// Decimals of the positions and distances the summary prints: 1 in an arena whose shorter
 /// side is 10 m or more, one more per factor of ten below that (3 for a 0.5 m arena, 4 for
 /// 8 cm), so that points a tenth of the arena's scale apart never print alike.
-fn decimals(s: &Scenario) -> usize {
-    decimals_for_side(s.arena().width().min(s.arena().height()))
+fn decimals(s: &ScenarioSummary) -> usize {
+    decimals_for_side(s.arena.width_m.min(s.arena.height_m))
 }
 
 /// [`decimals`] of an arena whose shorter side is `side_m` metres (> 0).
@@ -141,18 +146,17 @@ fn metres(v: f64, decimals: usize) -> String {
     format!("{v:.decimals$}")
 }
 
+/// `lo..hi` metres with `decimals`.
+fn metres_range((lo, hi): (f64, f64), decimals: usize) -> String {
+    format!("{}..{}", metres(lo, decimals), metres(hi, decimals))
+}
+
 /// `rest station (x, y) r R m`, or for several `rest stations: (x, y) r R m, ...`.
-fn rest_stations(s: &Scenario) -> String {
+fn rest_stations(s: &ScenarioSummary) -> String {
     let d = decimals(s);
-    let one = |c: &usar_sim::scenario::Circle| {
-        format!(
-            "({}, {}) r {} m",
-            metres(c.center.x, d),
-            metres(c.center.y, d),
-            c.radius_m
-        )
-    };
-    match s.rest_stations() {
+    let one =
+        |((x, y), r): &((f64, f64), f64)| format!("({}, {}) r {r} m", metres(*x, d), metres(*y, d));
+    match s.rest_stations.as_slice() {
         [c] => format!("rest station {}", one(c)),
         list => {
             let all: Vec<String> = list.iter().map(one).collect();
@@ -161,56 +165,52 @@ fn rest_stations(s: &Scenario) -> String {
     }
 }
 
-/// Prints a summary of a valid scenario: arena and timing, the kinds with their quota per
-/// task, the tasks (hardest first marked by their difficulty), with `per_robot` every
-/// robot's start and its distance to each task's goal (else the starts summarised per kind),
-/// debris, radiation and the rest station.
+/// Prints the summary of a valid scenario ([`ScenarioSummary`]): arena and timing, the kinds
+/// with their quota per task, the tasks (hardest first marked by their difficulty), with
+/// `per_robot` every robot's start and its distance to each task's goal (else the starts
+/// summarised per kind), debris, radiation and the rest station.
 ///
 /// # Errors
 /// An I/O error writing to `out`.
-pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<()> {
-    writeln!(out, "scenario {}: {}", s.name(), s.description())?;
-    let (dt_s, duration_s) = (s.sim().dt_s.get(), s.mission().duration_s.get());
+pub fn summarise(s: &ScenarioSummary, per_robot: bool, out: &mut dyn Write) -> Result<()> {
+    writeln!(out, "scenario {}: {}", s.name, s.description)?;
     // What a trial runs: whole steps (usar run, sweep and replay report this length).
-    let run_s = usar_sweep::sweep::simulated_length_s(duration_s, dt_s);
-    let rounded = if run_s == duration_s {
+    let rounded = if s.simulated_s == s.duration_s {
         String::new()
     } else {
         format!(
             "; mission.duration_s {} s rounded up to whole steps",
-            number_text(duration_s)
+            number_text(s.duration_s)
         )
     };
-    let control = match s.sim().control_period_s {
+    let control = match s.control_period_s {
         Some(p) => {
-            let k = ControlClock::of(s.sim()).period_steps();
+            let k = s.control_period_steps;
             let steps = if k == 1 {
                 "1 step".to_string()
             } else {
                 format!("{k} steps")
             };
-            format!("; robots decide every {} s ({steps})", number_text(p.get()))
+            format!("; robots decide every {} s ({steps})", number_text(p))
         }
         None => String::new(),
     };
-    let physics = match s.sim().physics {
-        usar_sim::scenario::PhysicsStepping::EveryStep => "",
-        usar_sim::scenario::PhysicsStepping::NearContacts => "; Rapier steps near contacts only",
-        usar_sim::scenario::PhysicsStepping::NearBodies => {
-            "; Rapier steps only the robots near contacts"
-        }
+    let physics = match s.physics.as_str() {
+        "NearContacts" => "; Rapier steps near contacts only",
+        "NearBodies" => "; Rapier steps only the robots near contacts",
+        _ => "",
     };
     writeln!(
         out,
         "arena {} m x {} m (walls {} m); step {} s, trial {} s ({} steps{rounded}), seed \
          {}{control}{physics}",
-        s.arena().width_m,
-        s.arena().height_m,
-        s.arena().wall_thickness_m,
-        s.sim().dt_s,
-        number_text(run_s),
-        s.steps_per_trial(),
-        s.sim().seed
+        s.arena.width_m,
+        s.arena.height_m,
+        s.arena.wall_thickness_m,
+        s.dt_s,
+        number_text(s.simulated_s),
+        s.steps,
+        s.seed
     )?;
     kinds_table(s, out)?;
     tasks_table(s, out)?;
@@ -224,61 +224,45 @@ pub fn summarise(s: &Scenario, per_robot: bool, out: &mut dyn Write) -> Result<(
 
 /// Per kind: the count, the extent of the start positions and the range of distances from a
 /// start to each task's goal (straight line), metres: the team's layout in a few lines.
-fn starts_by_kind(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+fn starts_by_kind(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
     let d = decimals(s);
     write!(
         out,
         "\nstarts by kind ({} robots; the per-robot table: --robots)\n{:<10} {:>6} {:>20} {:>20}",
-        s.robots().len(),
+        s.robots.len(),
         "kind",
         "count",
         "x range (m)",
         "y range (m)"
     )?;
-    for t in s.tasks() {
+    for t in &s.tasks {
         write!(out, " {:>18}", format!("->{} m", t.name))?;
     }
     writeln!(out)?;
-    let range = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(x), b.max(x))
-        });
-        format!("{}..{}", metres(lo, d), metres(hi, d))
-    };
-    for (k, kind) in s.kinds().iter().enumerate() {
-        let starts: Vec<scenario::PointM> = s
-            .robots()
-            .iter()
-            .filter(|r| r.kind == k)
-            .map(|r| r.start_in_world)
-            .collect();
-        if starts.is_empty() {
-            continue;
-        }
+    for k in &s.starts_by_kind {
         write!(
             out,
             "{:<10} {:>6} {:>20} {:>20}",
-            kind.name,
-            starts.len(),
-            range(&mut starts.iter().map(|p| p.x)),
-            range(&mut starts.iter().map(|p| p.y))
+            k.kind,
+            k.count,
+            metres_range(k.x_range_m, d),
+            metres_range(k.y_range_m, d)
         )?;
-        for t in s.tasks() {
-            let dist = range(&mut starts.iter().map(|&p| nalgebra_dist(p, t.goal)));
-            write!(out, " {dist:>18}")?;
+        for &to in &k.to_goal_m {
+            write!(out, " {:>18}", metres_range(to, d))?;
         }
         writeln!(out)?;
     }
     Ok(())
 }
 
-fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+fn kinds_table(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
     write!(
         out,
         "\n{:<10} {:<9} {:<7} {:>5}",
         "kind", "role", "moves", "count"
     )?;
-    for t in s.tasks() {
+    for t in &s.tasks {
         write!(out, " {:>6}", t.name)?;
     }
     writeln!(
@@ -286,20 +270,13 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
         " {:>7} {:>6} {:>7} {:>7} {:>5} {:>5}",
         "speed", "sense", "observe", "radius", "cap", "res"
     )?;
-    for k in s.kinds() {
-        let moves = match k.locomotion {
-            Locomotion::Ground => "ground",
-            Locomotion::Aerial => "aerial",
-        };
+    for k in &s.kinds {
         write!(
             out,
             "{:<10} {:<9} {:<7} {:>5}",
-            k.name,
-            format!("{:?}", k.role),
-            moves,
-            k.count
+            k.name, k.role, k.locomotion, k.count
         )?;
-        for q in &k.quota {
+        for (_, q) in &k.quota {
             write!(out, " {q:>6}")?;
         }
         writeln!(
@@ -320,42 +297,33 @@ fn kinds_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+fn tasks_table(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
     writeln!(out)?;
-    let order = s.hardest_first();
-    for (t, task) in s.tasks().iter().enumerate() {
-        let d: Vec<f64> = s
-            .robots()
-            .iter()
-            .map(|r| nalgebra_dist(r.start_in_world, task.goal))
-            .collect();
-        let (lo, hi) = d
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(*x), b.max(*x))
-            });
-        let mean = d.iter().sum::<f64>() / d.len().max(1) as f64;
-        let rank = order.iter().position(|&x| x == t).unwrap_or(0) + 1;
-        let m = |v: f64| metres(v, decimals(s));
-        let (area, goal, drop) = (&task.search_area, &task.goal, &task.drop_off);
+    let m = |v: f64| metres(v, decimals(s));
+    for task in &s.tasks {
+        let ((ax0, ay0), (ax1, ay1)) = task.search_area_m;
+        let (gx, gy) = task.goal_m;
+        let ((dx, dy), dr) = task.drop_off;
+        let (lo, hi, mean) = task.start_to_goal_m;
         writeln!(
             out,
-            "task {} (difficulty {}, #{rank} of {} from the hardest): {} rescuees in \
+            "task {} (difficulty {}, #{} of {} from the hardest): {} rescuees in \
              [{}, {}]-[{}, {}] m, goal ({}, {}), drop-off ({}, {}) r {} m; \
              start->goal {}-{} m (mean {})",
             task.name,
             task.difficulty,
-            s.tasks().len(),
-            task.rescuees.len(),
-            m(area.min.x),
-            m(area.min.y),
-            m(area.max.x),
-            m(area.max.y),
-            m(goal.x),
-            m(goal.y),
-            m(drop.center.x),
-            m(drop.center.y),
-            drop.radius_m,
+            task.rank + 1,
+            s.tasks.len(),
+            task.rescuees,
+            m(ax0),
+            m(ay0),
+            m(ax1),
+            m(ay1),
+            m(gx),
+            m(gy),
+            m(dx),
+            m(dy),
+            dr,
             m(lo),
             m(hi),
             m(mean)
@@ -364,67 +332,57 @@ fn tasks_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn robots_table(s: &Scenario, out: &mut dyn Write) -> Result<()> {
+fn robots_table(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
     write!(out, "\n{:>3} {:<10} {:>14}", "id", "kind", "start (m)")?;
-    for t in s.tasks() {
+    for t in &s.tasks {
         write!(out, " {:>12}", format!("->{} m", t.name))?;
     }
     writeln!(out)?;
     let d = decimals(s);
-    for (id, r) in s.robots().iter().enumerate() {
-        let (x, y) = (r.start_in_world.x, r.start_in_world.y);
+    for r in &s.robots {
+        let (x, y) = r.start_m;
         write!(
             out,
             "{:>3} {:<10} {:>14}",
-            id,
-            s.kind_of(id).name,
+            r.id,
+            r.kind,
             format!("({}, {})", metres(x, d), metres(y, d))
         )?;
-        for t in s.tasks() {
-            let dist = metres(nalgebra_dist(r.start_in_world, t.goal), d);
-            write!(out, " {dist:>12}")?;
+        for (_, dist) in &r.distance_to_goal_m {
+            write!(out, " {:>12}", metres(*dist, d))?;
         }
         writeln!(out)?;
     }
     Ok(())
 }
 
-fn adversaries(s: &Scenario, out: &mut dyn Write) -> Result<()> {
-    let rects = s
-        .debris()
-        .iter()
-        .filter(|d| matches!(d, Debris::Rect { .. }))
-        .count();
-    let doses = if s.radiation_zones().is_empty() {
+fn adversaries(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
+    let doses = if s.radiation_zones.is_empty() {
         String::new()
     } else {
         let factors: Vec<String> = s
-            .radiation_zones()
+            .radiation_zones
             .iter()
-            .map(|z| z.dose_rate_factor.to_string())
+            .map(|(_, _, factor)| factor.to_string())
             .collect();
         format!(" (dose factors {})", factors.join(", "))
     };
     writeln!(
         out,
         "\ndebris: {} ({} rectangles, {} discs); radiation zones: {}{}; {}",
-        s.debris().len(),
-        rects,
-        s.debris().len() - rects,
-        s.radiation_zones().len(),
+        s.debris_rects + s.debris_circles,
+        s.debris_rects,
+        s.debris_circles,
+        s.radiation_zones.len(),
         doses,
         rest_stations(s)
     )?;
     writeln!(
         out,
         "needs weights (hp, v, sen, eng, res, cap, obs): {:?}",
-        s.needs_weights().to_array()
+        s.needs_weights
     )?;
     Ok(())
-}
-
-fn nalgebra_dist(a: scenario::PointM, b: scenario::PointM) -> f64 {
-    (a - b).norm()
 }
 
 /// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.
