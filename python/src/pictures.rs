@@ -96,7 +96,7 @@ pub fn replay(
     let rec = recorder
         .take()
         .ok_or_else(|| value_error("the trial recorded nothing"))?;
-    let bytes = write_replay(s, &rec, &out).map_err(value_error)?;
+    let bytes = write_replay(s, &rec, &out).map_err(|e| chain_value_error(&e))?;
     let result = usar_sweep::trial_json::TrialJson::of(&sim.result());
     let json = serde_json::to_string(&result).map_err(value_error)?;
     Ok((json, bytes))

@@ -1,6 +1,6 @@
 //! [`ReplayError`]: why a replay could not be recorded or written.
 
-use std::path::PathBuf;
+use usar_sweep::atomic::FileError;
 
 use thiserror::Error;
 use usar_sim::mission::MissionError;
@@ -23,13 +23,8 @@ pub enum ReplayError {
     /// Compressing or serialising the page's data failed.
     #[error("encoding the page: {0}")]
     Encode(String),
-    /// Writing the page failed.
-    #[error("{message}")]
-    Write {
-        /// The page's path.
-        path: PathBuf,
-        /// What went wrong, naming the path (the message of
-        /// [`write_atomic`](usar_sweep::atomic::write_atomic)).
-        message: String,
-    },
+    /// Writing the page failed (the error of
+    /// [`write_atomic`](usar_sweep::atomic::write_atomic), naming the path).
+    #[error(transparent)]
+    Write(#[from] FileError),
 }

@@ -285,7 +285,8 @@ fn escape_html(s: &str) -> String {
 /// [`ReplayError::Draw`] if the arena cannot be drawn, [`ReplayError::Encode`] if the data
 /// cannot be serialised or compressed.
 pub fn replay_html(scenario: &Scenario, rec: &Recording) -> Result<String, ReplayError> {
-    let (svg, map) = render_map_svg(scenario).map_err(|e| ReplayError::Draw(format!("{e:#}")))?;
+    let (svg, map) =
+        render_map_svg(scenario).map_err(|e| ReplayError::Draw(rne_core::error_line(&e)))?;
     let meta = PageMeta::new(scenario, rec, map);
     // In a script element, `</script` ends it and `<!--` starts a comment that can swallow
     // the rest of the page: with every `<` written `\u003c` (JSON reads it back as `<`; a `<`
@@ -337,10 +338,7 @@ pub fn replay_html(scenario: &Scenario, rec: &Recording) -> Result<String, Repla
 /// As [`replay_html`], and [`ReplayError::Write`] if the file cannot be written.
 pub fn write_replay(scenario: &Scenario, rec: &Recording, out: &Path) -> Result<u64, ReplayError> {
     let html = replay_html(scenario, rec)?;
-    write_atomic(out, html.as_bytes()).map_err(|e| ReplayError::Write {
-        path: out.to_path_buf(),
-        message: e.line(),
-    })?;
+    write_atomic(out, html.as_bytes())?;
     Ok(html.len() as u64)
 }
 
