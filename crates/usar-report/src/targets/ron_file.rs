@@ -3,12 +3,11 @@
 //! field ([`Located`], which each file's own error type is made from). A checked list keeps
 //! its [`Source`] to place the errors of its later checks.
 
-use std::io::Read;
 use std::path::Path;
 use std::sync::Arc;
 
 use serde::de::DeserializeOwned;
-use usar_sim::scenario::{SourceLocation, path_text};
+use usar_sim::scenario::{BoundedReadError, SourceLocation, path_text, read_bounded};
 
 use usar_sim::scenario::SourceMap;
 
@@ -42,15 +41,10 @@ pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, Str
         message,
     };
     let bare = kind.split_once(' ').map_or(kind, |(_, k)| k);
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(max_bytes + 1).read_to_end(&mut bytes))
-        .map_err(|e| fail(format!("cannot read {bare}: {e}")))?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(fail(format!(
-            "longer than the limit of {max_bytes} bytes for {kind}"
-        )));
-    }
+    let bytes = read_bounded(path, max_bytes).map_err(|e| match e {
+        BoundedReadError::Io(e) => fail(format!("cannot read {bare}: {e}")),
+        too_long @ BoundedReadError::TooLong { .. } => fail(format!("{too_long} for {kind}")),
+    })?;
     let text = String::from_utf8(bytes)
         .map_err(|_| fail(format!("not UTF-8 text; {kind} is RON text")))?;
     Ok((text, origin))

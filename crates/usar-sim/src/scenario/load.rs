@@ -1,11 +1,11 @@
 //! Loading: read a RON file, deserialize the [`ScenarioSpec`], validate it into a [`Scenario`].
 
 use std::borrow::Cow;
-use std::io::Read;
 use std::path::Path;
 
 use ron::error::{Error as RonError, SpannedError};
 
+use super::bounded_read::{BoundedReadError, read_bounded};
 use super::context::Ctx;
 use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
@@ -44,16 +44,13 @@ pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
         path: origin.clone(),
         error,
     };
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_SCENARIO_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(io_error)?;
-    if bytes.len() as u64 > MAX_SCENARIO_BYTES {
-        return Err(io_error(std::io::Error::new(
+    let bytes = read_bounded(path, MAX_SCENARIO_BYTES).map_err(|e| match e {
+        BoundedReadError::Io(error) => io_error(error),
+        too_long @ BoundedReadError::TooLong { .. } => io_error(std::io::Error::new(
             std::io::ErrorKind::FileTooLarge,
-            format!("longer than the limit of {MAX_SCENARIO_BYTES} bytes"),
-        )));
-    }
+            too_long.to_string(),
+        )),
+    })?;
     // The byte-order mark goes first, so a bad byte on line 1 gets its column without it.
     let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
     Ok(utf8(text, &origin)?.to_owned())

@@ -26,6 +26,7 @@
 //!
 //! The file format is documented in `docs/scenario-format.md`.
 
+mod bounded_read;
 mod builder;
 mod check_clear_places;
 mod check_debris;
@@ -57,6 +58,7 @@ mod suggest;
 mod validate;
 mod validated;
 
+pub use bounded_read::{BoundedReadError, read_bounded};
 pub use builder::ScenarioBuilder;
 pub use check_names::RESERVED_TASK_NAME;
 pub use check_starts::START_TOLERANCE;
