@@ -19,6 +19,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
+use serde::Serialize;
 use serde_json::value::RawValue;
 use usar_sim::scenario::path_text;
 
@@ -39,6 +40,21 @@ pub enum LogError {
         /// The log's path, as shown.
         path: String,
     },
+    /// A header or record that cannot be written as JSON (`what`: `the journal header`, `an
+    /// evaluation`; not expected).
+    #[error("serialising {what}")]
+    Serialise {
+        /// What was being written.
+        what: &'static str,
+        /// The serialiser's error.
+        #[source]
+        source: serde_json::Error,
+    },
+}
+
+/// `value` as compact JSON, or the [`LogError::Serialise`] of `what`.
+fn json_of<T: Serialize>(value: &T, what: &'static str) -> Result<String> {
+    serde_json::to_string(value).map_err(|source| LogError::Serialise { what, source })
 }
 
 /// What the writing functions of this module return.
@@ -205,6 +221,34 @@ impl LogWriter {
             .open(path)
             .map_err(FileError::io(format!("opening {}", path_text(path))))?;
         Ok(Self::at(path.to_owned(), file, header_sum, complete_bytes))
+    }
+
+    /// Starts a new log at `path` as [`LogWriter::create`] does, with `header` (`what` names
+    /// it in an error: `the journal header`) written as JSON under `key`.
+    ///
+    /// # Errors
+    /// As [`LogWriter::create`], or a header serde_json cannot write.
+    pub fn create_with<H: Serialize>(
+        path: PathBuf,
+        key: &str,
+        header: &H,
+        what: &'static str,
+    ) -> Result<Self> {
+        Self::create(path, key, &json_of(header, what)?)
+    }
+
+    /// Appends `record` written as JSON under `key` ([`LogWriter::append`]); `what` names it
+    /// in an error (`a journal record`).
+    ///
+    /// # Errors
+    /// As [`LogWriter::append`], or a record serde_json cannot write.
+    pub fn append_value<T: Serialize>(
+        &mut self,
+        key: &str,
+        record: &T,
+        what: &'static str,
+    ) -> Result<()> {
+        self.append(key, &json_of(record, what)?)
     }
 
     /// Tests: writes go to `file` from now on (a file opened read-only makes them fail).

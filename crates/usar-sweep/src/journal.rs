@@ -405,11 +405,8 @@ impl Journal {
     /// # Errors
     /// An existing journal, or an I/O error.
     pub fn create(dir: &Path, header: &SweepHeader) -> Result<Self> {
-        let json = serde_json::to_string(header).map_err(|source| JournalError::Serialise {
-            what: "the journal header",
-            source,
-        })?;
-        let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
+        let log =
+            LogWriter::create_with(Self::path_in(dir), "header", header, "the journal header")?;
         Ok(Self { log })
     }
 
@@ -441,11 +438,7 @@ impl Journal {
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, record: &TrialRecord) -> Result<()> {
-        let json = serde_json::to_string(record).map_err(|source| JournalError::Serialise {
-            what: "a journal record",
-            source,
-        })?;
-        Ok(self.log.append("trial", &json)?)
+        Ok(self.log.append_value("trial", record, "a journal record")?)
     }
 }
 

@@ -87,16 +87,6 @@ pub enum JournalError {
         /// The differences ([`header_diff`](crate::journal::header_diff)).
         diff: String,
     },
-    /// A header or record that cannot be written as JSON (`what`: `the journal header`, `a
-    /// journal record`).
-    #[error("serialising {what}")]
-    Serialise {
-        /// What was being written.
-        what: &'static str,
-        /// The serialiser's error.
-        #[source]
-        source: serde_json::Error,
-    },
     /// An I/O error reading the journal, naming the path.
     #[error(transparent)]
     File(#[from] FileError),

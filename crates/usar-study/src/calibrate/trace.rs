@@ -263,11 +263,7 @@ impl Trace {
     /// # Errors
     /// An existing trace, or an I/O error.
     pub fn create(dir: &Path, header: &TraceHeader) -> Result<Self> {
-        let json = serde_json::to_string(header).map_err(|source| TraceError::Serialise {
-            what: "the trace header",
-            source,
-        })?;
-        let log = LogWriter::create(Self::path_in(dir), "header", &json)?;
+        let log = LogWriter::create_with(Self::path_in(dir), "header", header, "the trace header")?;
         Ok(Self { log })
     }
 
@@ -286,11 +282,7 @@ impl Trace {
     /// # Errors
     /// An I/O error.
     pub fn append(&mut self, e: &Evaluation) -> Result<()> {
-        let json = serde_json::to_string(e).map_err(|source| TraceError::Serialise {
-            what: "an evaluation",
-            source,
-        })?;
-        Ok(self.log.append("eval", &json)?)
+        Ok(self.log.append_value("eval", e, "an evaluation")?)
     }
 }
 

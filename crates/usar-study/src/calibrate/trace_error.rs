@@ -51,16 +51,6 @@ pub enum TraceError {
         /// The format this build reads.
         expected: u32,
     },
-    /// A header or evaluation that cannot be written as JSON (`what`: `the trace header`, `an
-    /// evaluation`; not expected).
-    #[error("serialising {what}")]
-    Serialise {
-        /// What was being written.
-        what: &'static str,
-        /// The serialiser's error.
-        #[source]
-        source: serde_json::Error,
-    },
     /// An I/O error reading the trace, naming its path.
     #[error(transparent)]
     File(#[from] FileError),
