@@ -129,20 +129,26 @@ fn a_huge_or_tiny_duration_is_named_in_a_short_line() {
     );
 }
 
+/// Runs `usar` with `args` and closes its standard output at once, before it writes (the
+/// reader of a pipe gone); returns how it ended.
+fn with_reader_gone(args: &[&std::ffi::OsStr]) -> std::process::Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run usar");
+    drop(child.stdout.take());
+    child.wait_with_output().unwrap()
+}
+
 /// Regression: `usar run ... | head` ended with `error: Broken pipe (os error 32)` once `head`
 /// had gone. A closed pipe now ends the command quietly with 141 (128 + SIGPIPE), as a shell
 /// reports a program killed by that signal.
 #[test]
 fn a_reader_that_goes_away_ends_the_command_quietly() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(["run", PAPER, "--method", "dis", "--duration", "2"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("run usar");
-    // The reader goes before the trial's table is written.
-    drop(child.stdout.take());
-    let o = child.wait_with_output().unwrap();
+    let args = ["run", PAPER, "--method", "dis", "--duration", "2"];
+    let o = with_reader_gone(&args.map(std::ffi::OsStr::new));
     assert_eq!(o.status.code(), Some(141));
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
@@ -154,26 +160,30 @@ fn a_reader_that_goes_away_ends_the_command_quietly() {
 fn a_reader_that_goes_away_ends_a_sweep_quietly() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("s");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
-        .args(["sweep", PAPER, "--methods", "dis", "--trials", "1"])
-        .args(["--duration", "2", "--threads", "1", "--out"])
-        .arg(&out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("run usar");
-    drop(child.stdout.take());
-    let o = child.wait_with_output().unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(141),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+    let args = [
+        "sweep",
+        PAPER,
+        "--methods",
+        "dis",
+        "--trials",
+        "1",
+        "--duration",
+        "2",
+    ];
+    let mut args: Vec<&std::ffi::OsStr> = args.iter().map(std::ffi::OsStr::new).collect();
+    args.extend([
+        "--threads".as_ref(),
+        "1".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    let o = with_reader_gone(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{stderr}");
+    assert_eq!(stderr, "");
     assert!(
         out.join("trials.csv").is_file(),
-        "the files are written first"
+        "the files are written before the summary"
     );
 }
 

@@ -146,7 +146,7 @@ pub fn trace_csv(o: &CalibrationOutcome) -> Result<String> {
     }
     let bytes = w
         .into_inner()
-        .map_err(|e| ReportError::from(csv::Error::from(e.into_error())))?;
+        .map_err(ReportError::finish("writing trace.csv"))?;
     // The writer wrote only `String`s: the bytes are UTF-8.
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

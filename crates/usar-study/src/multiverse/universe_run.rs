@@ -18,11 +18,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::error::MultiverseError;
 use usar_sim::scenario::{ScenarioSpec, path_text};
 
 use super::effect::claim_effect;
 use super::emulator::Emulator;
+use super::error::MultiverseError;
 use super::plan::MultiversePlan;
 use super::record::{CalibrationResult, ComparisonResult, MetricSummary, Status, UniverseRecord};
 use super::setup::MultiverseSetup;
