@@ -22,6 +22,7 @@ mod shard_commands;
 mod shard_merge;
 mod shard_mixing;
 mod slurm_cli;
+mod study_inputs;
 mod sweep_custom;
 mod sweep_failure;
 mod sweep_grid;

@@ -24,8 +24,8 @@ use usar_sim::scenario::did_you_mean;
 use super::claim::{Claim, Rivals, method_key};
 use crate::targets::ron_file::{self, Source, StudyFile};
 
-/// Longest claims file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
-/// instead of read into memory.
+/// Longest claims file read, bytes (1 MiB): a longer file is refused instead of read into
+/// memory.
 pub const MAX_CLAIMS_BYTES: u64 = 1 << 20;
 
 /// Longest claim id, characters.

@@ -25,8 +25,8 @@ use super::band::Band;
 use super::ron_file::{self, Source, StudyFile};
 use super::statistic::Statistic;
 
-/// Longest targets file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
-/// instead of read into memory.
+/// Longest targets file read, bytes (1 MiB): a longer file is refused instead of read into
+/// memory.
 pub const MAX_TARGETS_BYTES: u64 = 1 << 20;
 
 /// One target: a statistic, the value it should have, and the band it must fall in.

@@ -29,7 +29,8 @@ pub struct Located {
 /// long. `kind` names the file for messages with its article: `a targets file`.
 ///
 /// # Errors
-/// The file cannot be read, is longer than `max_bytes` or is not UTF-8.
+/// The file cannot be read, is not a regular file (a FIFO, device or folder: refused before it
+/// is opened), is longer than `max_bytes` or is not UTF-8.
 pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, String), Located> {
     let origin = path_text(path);
     let fail = |message: String| Located {
@@ -43,6 +44,9 @@ pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, Str
     let bare = kind.split_once(' ').map_or(kind, |(_, k)| k);
     let bytes = read_bounded(path, max_bytes).map_err(|e| match e {
         BoundedReadError::Io(e) => fail(format!("cannot read {bare}: {e}")),
+        not_a_file @ BoundedReadError::NotAFile => {
+            fail(format!("cannot read {bare}: {not_a_file}"))
+        }
         too_long @ BoundedReadError::TooLong { .. } => fail(format!("{too_long} for {kind}")),
     })?;
     let text = String::from_utf8(bytes)

@@ -30,12 +30,13 @@ pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
 }
 
 /// The text of the scenario file at `path`, as [`load`] reads it: at most
-/// [`MAX_SCENARIO_BYTES`] bytes (an endless input such as `/dev/zero` is refused once it
-/// passes the limit, not read into memory), a leading UTF-8 byte-order mark skipped, and
-/// UTF-8 checked. Errors name the path as given.
+/// [`MAX_SCENARIO_BYTES`] bytes (a longer file is refused once it passes the limit, not read
+/// into memory; a FIFO, device or folder is refused before it is opened), a leading UTF-8
+/// byte-order mark skipped, and UTF-8 checked. Errors name the path as given.
 ///
 /// # Errors
-/// [`ScenarioError::Io`] if the file cannot be read or is longer than the limit,
+/// [`ScenarioError::Io`] if the file cannot be read, is not a regular file or is longer than
+/// the limit,
 /// [`ScenarioError::Syntax`] at the line and column of the first byte that is not UTF-8.
 pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
     let path = path.as_ref();
@@ -49,6 +50,10 @@ pub fn read_source(path: impl AsRef<Path>) -> Result<String, ScenarioError> {
         too_long @ BoundedReadError::TooLong { .. } => io_error(std::io::Error::new(
             std::io::ErrorKind::FileTooLarge,
             too_long.to_string(),
+        )),
+        not_a_file @ BoundedReadError::NotAFile => io_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            not_a_file.to_string(),
         )),
     })?;
     // The byte-order mark goes first, so a bad byte on line 1 gets its column without it.

@@ -449,18 +449,52 @@ fn a_wall_thicker_than_ten_kilometres_is_an_error_and_ten_run() {
     short_run(&s);
 }
 
-#[cfg(unix)]
 #[test]
-fn an_endless_scenario_file_is_refused_at_the_size_limit_not_read_whole() {
-    let e = scenario::load("/dev/zero").expect_err("endless input");
+fn a_scenario_file_past_the_size_limit_is_refused_not_read_whole() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("big.ron");
+    // Sparse: no disk space is used, and the reader stops one byte past the limit.
+    let file = std::fs::File::create(&path).expect("create");
+    file.set_len(limits::MAX_SCENARIO_BYTES + 1)
+        .expect("set_len");
+    let e = scenario::load(&path).expect_err("too long");
     assert!(matches!(e, ScenarioError::Io { .. }), "{e}");
     assert_eq!(
         e.to_string(),
         format!(
-            "/dev/zero: cannot read scenario file: longer than the limit of {} bytes",
+            "{}: cannot read scenario file: longer than the limit of {} bytes",
+            path.display(),
             limits::MAX_SCENARIO_BYTES
         )
     );
+}
+
+/// Regression (issue 70): a FIFO without a writer as the scenario waited for ever. It, and
+/// `/dev/zero`, are refused as no regular file, in a thread so that a regression fails here.
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_device_as_the_scenario_is_refused_without_waiting() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let fifo = dir.path().join("fifo.ron");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    for path in [fifo, "/dev/zero".into()] {
+        let (send, got) = std::sync::mpsc::channel();
+        let p = path.clone();
+        std::thread::spawn(move || send.send(scenario::load(&p).map(|_| ())));
+        let e = got
+            .recv_timeout(std::time::Duration::from_secs(10))
+            .unwrap_or_else(|_| panic!("{}: still waiting after 10 s", path.display()))
+            .expect_err("no regular file");
+        assert!(matches!(e, ScenarioError::Io { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: cannot read scenario file: not a regular file (a folder, FIFO or device)",
+                path.display()
+            )
+        );
+    }
 }
 
 #[test]

@@ -33,8 +33,8 @@ use super::columns::is_fixed_column;
 use usar_report::targets::ron_file::{self, Source, StudyFile};
 use usar_sweep::vary::{FieldPath, Override};
 
-/// Longest axes file read, bytes (1 MiB): a mistaken path such as `/dev/zero` is refused
-/// instead of read into memory.
+/// Longest axes file read, bytes (1 MiB): a longer file is refused instead of read into
+/// memory.
 pub const MAX_AXES_BYTES: u64 = 1 << 20;
 
 /// One alternative of an axis: its name and the overrides that make it.
