@@ -73,6 +73,7 @@ mod disc_mask;
 pub mod distance_field;
 mod error;
 mod follow;
+mod goal_taken;
 mod grid_astar;
 mod grid_moves;
 mod grid_regions;

@@ -39,6 +39,10 @@ pub(super) struct Nav {
     /// Velocity commanded at the last control step (the intent after the resolver), held
     /// until the next one, metres per second.
     pub(super) command: Vec2,
+    /// The last deflected heading the resolver's rule 5 commanded (a velocity, metres per
+    /// second), zero after a straight command, a new goal or a new path: the robot steers to
+    /// its side first ([`Nav::steering_side`]).
+    pub(super) deflection: Vec2,
 }
 
 /// The navigation fields path following updates on each control step (`follow.rs`), kept
@@ -77,6 +81,21 @@ impl Nav {
                 intent: Vec2::ZERO,
             },
             command: Vec2::ZERO,
+            deflection: Vec2::ZERO,
+        }
+    }
+
+    /// The side robot steers to first when its intent `intent` (metres per second) is not
+    /// clear (`Resolver::steer_with`'s `side`): `1.0` when its last deflection
+    /// ([`Nav::deflection`]) turned left of `intent`, `-1.0` right, `0.0` without one.
+    pub(super) fn steering_side(&self, intent: Vec2) -> f32 {
+        let cross = intent.x * self.deflection.y - intent.y * self.deflection.x;
+        if cross > 0.0 {
+            1.0
+        } else if cross < 0.0 {
+            -1.0
+        } else {
+            0.0
         }
     }
 

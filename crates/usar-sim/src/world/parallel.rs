@@ -96,6 +96,7 @@ impl World {
         let p = &mut self.pipelines;
         let n = p.resolver_inputs.len();
         let (resolver, inputs, grid) = (&p.resolver, &p.resolver_inputs[..], &self.grid);
+        let nav = &self.nav[..];
         let per = &mut p.per_robot;
         let parallel = per.parallel_for(n);
         per.steered.resize(n, None);
@@ -112,7 +113,14 @@ impl World {
                 }
                 let a = &inputs[id];
                 let infl = (a.layer == Locomotion::Ground).then_some(a.radius + STEER_STATIC_GAP_M);
-                *o = resolver.steer_with(inputs, id, grid, infl, near);
+                *o = resolver.steer_with(
+                    inputs,
+                    id,
+                    grid,
+                    infl,
+                    nav[id].steering_side(a.intent),
+                    near,
+                );
             }
         };
         let scratch = &mut per.scratch[..chunks];

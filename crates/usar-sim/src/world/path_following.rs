@@ -85,6 +85,7 @@ impl World {
         nav.goal = Some(eff);
         nav.following.wp = 0;
         nav.following.best_remaining = nav.remaining();
+        nav.deflection = Vec2::ZERO;
         let state = &mut self.robots[id];
         state.goal = Some(to_point(eff));
         state.counters.replans += 1;
@@ -120,6 +121,7 @@ impl World {
             std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
             nav.following.wp = 0;
             nav.following.best_remaining = nav.remaining();
+            nav.deflection = Vec2::ZERO;
             self.robots[id].counters.replans += 1;
             return;
         }

@@ -41,7 +41,7 @@ use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
 pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
-use super::steering::steer_turns;
+use super::steering::steer_turns_for;
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
 };
@@ -175,6 +175,22 @@ impl Resolver {
     /// Decisions of the last [`Resolver::resolve`], indexed by robot id.
     pub fn decisions(&self) -> &[Decision] {
         &self.decisions
+    }
+
+    /// Whether robot `i` (not held, deflected or blocked by rule 5) stands at the rim of a
+    /// goal `goal` taken by a robot standing still, within `tolerance_m` (its goal tolerance,
+    /// metres) of the rim point nearest the goal: see [`super::goal_taken::goal_taken`]. Call
+    /// after [`Resolver::resolve`] with the same `inputs` (it uses that step's neighbour lists).
+    pub fn goal_taken(
+        &self,
+        inputs: &[ResolverInput],
+        i: usize,
+        goal: Vec2,
+        tolerance_m: f32,
+    ) -> bool {
+        let margin = self.params.safety_margin_m.get() as f32;
+        let near = self.neighbour_lists.of(i);
+        super::goal_taken::goal_taken(inputs, i, near, margin, goal, tolerance_m)
     }
 
     fn sensed(a: &ResolverInput, b: &ResolverInput) -> bool {
@@ -552,7 +568,7 @@ impl Resolver {
         static_inflation: Option<f32>,
     ) -> Option<Vec2> {
         let mut near = std::mem::take(&mut self.near);
-        let steered = self.steer_with(inputs, i, grid, static_inflation, &mut near);
+        let steered = self.steer_with(inputs, i, grid, static_inflation, 0.0, &mut near);
         self.near = near;
         steered
     }
@@ -560,13 +576,18 @@ impl Resolver {
     /// [`Resolver::steer`] with the caller's scratch list `near` (cleared, then filled with the
     /// robots standing still near `i`; its capacity is kept between calls) instead of the
     /// resolver's own, so that it borrows the resolver immutably and robots may steer on
-    /// several threads at once. Same answer, bit for bit, as [`Resolver::steer`].
+    /// several threads at once; and with a steering side `side`: `0` tries the turns right
+    /// side first at each angle, as [`Resolver::steer`] (the same answer, bit for bit); `< 0`
+    /// every right turn first, `> 0` every left turn first (the side of the robot's last
+    /// deflection, so that it keeps sliding along an obstacle one way; see
+    /// `steering::steer_turns_for`).
     pub fn steer_with(
         &self,
         inputs: &[ResolverInput],
         i: usize,
         grid: &ClearanceGrid,
         static_inflation: Option<f32>,
+        side: f32,
         near: &mut Vec<usize>,
     ) -> Option<Vec2> {
         let a = &inputs[i];
@@ -608,7 +629,7 @@ impl Resolver {
         if clear_of_robots(a.intent) {
             return Some(a.intent);
         }
-        for &(s, c) in steer_turns() {
+        for &(s, c) in steer_turns_for(side) {
             let w = Vec2::new(
                 a.intent.x * c - a.intent.y * s,
                 a.intent.x * s + a.intent.y * c,

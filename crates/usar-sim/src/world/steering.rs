@@ -27,3 +27,51 @@ pub(super) fn steer_turns() -> &'static [(f32, f32)] {
             .collect()
     })
 }
+
+/// The candidate turns of rule 5 in the order a robot with steering side `side` tries them:
+/// [`steer_turns`]'s order (right, left, at each angle in turn) for `side == 0`; for a robot
+/// that last turned right (`side < 0`) every right turn from the smallest first, then every
+/// left turn; for one that last turned left (`side > 0`) the reverse. Keeping to the side it
+/// turned to, a robot slides along an obstacle one way instead of turning back and forth
+/// between both sides on every control step, which gained nothing and made its path depend
+/// on the step length (`docs/world-model.md`, "Steering side").
+pub(super) fn steer_turns_for(side: f32) -> &'static [(f32, f32)] {
+    static BY_SIDE: std::sync::OnceLock<[Vec<(f32, f32)>; 2]> = std::sync::OnceLock::new();
+    if side == 0.0 {
+        return steer_turns();
+    }
+    let [right_first, left_first] = BY_SIDE.get_or_init(|| {
+        let turns = steer_turns();
+        let side_of = |parity: usize| turns.iter().skip(parity).step_by(2).copied();
+        [
+            side_of(0).chain(side_of(1)).collect(),
+            side_of(1).chain(side_of(0)).collect(),
+        ]
+    });
+    if side < 0.0 { right_first } else { left_first }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_side_orders_its_own_turns_first_from_the_smallest() {
+        let angle = |(s, c): (f32, f32)| s.atan2(c).to_degrees().round() as i32;
+        let none: Vec<i32> = steer_turns_for(0.0).iter().copied().map(angle).collect();
+        assert_eq!(&none[..4], [-15, 15, -30, 30]);
+        let right: Vec<i32> = steer_turns_for(-1.0).iter().copied().map(angle).collect();
+        assert_eq!(&right[..3], [-15, -30, -45]);
+        assert_eq!(right[8], 15);
+        let left: Vec<i32> = steer_turns_for(1.0).iter().copied().map(angle).collect();
+        assert_eq!(&left[..3], [15, 30, 45]);
+        assert_eq!(left[8], -15);
+        for order in [none, right, left] {
+            assert_eq!(order.len(), 16);
+            let mut sorted = order.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), 16, "each turn once: {order:?}");
+        }
+    }
+}

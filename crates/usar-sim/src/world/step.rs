@@ -131,20 +131,20 @@ impl World {
     }
 
     /// The velocity robot `id` commands until the next control step: its intent, or with the
-    /// resolver on, zero when held or blocked and else its intent steered around robots
-    /// standing still. Records the robot's motion, list flags and resolver counters (a held
-    /// step is counted by [`World::step`], every step).
+    /// resolver on, what [`World::resolved_command`] makes of it. Records the robot's motion,
+    /// list flags and resolver counters (a held step is counted by [`World::step`], every
+    /// step).
     fn command(&mut self, id: usize) -> Vec2 {
         let input = self.pipelines.resolver_inputs[id];
         let state = &mut self.robots[id];
-        let mut motion = if state.goal.is_none() {
+        let motion = if state.goal.is_none() {
             Motion::Idle
         } else if state.goal_reached {
             Motion::Arrived
         } else {
             Motion::Moving
         };
-        let command = if self.collision.enabled {
+        let (command, motion) = if self.collision.enabled {
             let d = self.pipelines.resolver.decisions()[id];
             state.in_collision_list = d.in_list;
             state.held = d.held;
@@ -152,22 +152,47 @@ impl World {
             c.lists_joined += u64::from(d.joined);
             c.deadlocks_detected += u64::from(d.deadlock_detected);
             c.deadlocks_resolved += u64::from(d.deadlock_resolved);
-            if d.held {
-                motion = Motion::Held;
-                Vec2::ZERO
-            } else {
-                match self.pipelines.per_robot.steered[id] {
-                    Some(v) => v,
-                    None => {
-                        motion = Motion::Blocked;
-                        Vec2::ZERO
-                    }
-                }
-            }
+            self.resolved_command(id, d.held, motion)
         } else {
-            input.intent
+            (input.intent, motion)
         };
-        state.motion = motion;
+        self.robots[id].motion = motion;
         command
+    }
+
+    /// With the resolver on, robot `id`'s command and motion (`motion` as path following
+    /// left it): zero when `held`; zero and [`Motion::Arrived`] (goal reached) when deflected
+    /// or blocked at the rim of a goal a robot standing still has taken
+    /// (`world/goal_taken.rs`); zero and [`Motion::Blocked`] when no heading is clear; else
+    /// its intent steered around robots standing still (rule 5 of `world/resolver.rs`, to the
+    /// side of its last deflection first, which it remembers: [`Nav::steering_side`]).
+    fn resolved_command(&mut self, id: usize, held: bool, motion: Motion) -> (Vec2, Motion) {
+        if held {
+            return (Vec2::ZERO, Motion::Held);
+        }
+        let intent = self.pipelines.resolver_inputs[id].intent;
+        let steered = self.pipelines.per_robot.steered[id];
+        let nav = &mut self.nav[id];
+        if steered == Some(intent) {
+            nav.deflection = Vec2::ZERO;
+            return (intent, motion);
+        }
+        let taken = motion == Motion::Moving
+            && nav.goal.is_some_and(|goal| {
+                let inputs = &self.pipelines.resolver_inputs;
+                let resolver = &self.pipelines.resolver;
+                resolver.goal_taken(inputs, id, goal, nav.goal_tolerance_m)
+            });
+        if taken {
+            self.robots[id].goal_reached = true;
+            return (Vec2::ZERO, Motion::Arrived);
+        }
+        match steered {
+            Some(v) => {
+                nav.deflection = v;
+                (v, motion)
+            }
+            None => (Vec2::ZERO, Motion::Blocked),
+        }
     }
 }

@@ -237,6 +237,7 @@ impl World {
         };
         let nav = &mut self.nav[id];
         nav.following.best_remaining = f32::INFINITY;
+        nav.deflection = Vec2::ZERO;
         nav.following.progress_step = self.stats.steps;
         nav.goal_tolerance_m = tolerance_m as f32;
         let state = &mut self.robots[id];
@@ -253,7 +254,7 @@ impl World {
                 nav.goal = None;
                 nav.path.clear();
                 state.goal = None;
-                Err(WorldError::Unreachable { id, source })
+                Err(WorldError::Unreachable { id, error: source })
             }
         }
     }
