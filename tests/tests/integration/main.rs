@@ -19,5 +19,6 @@ mod parallel_trial;
 mod round_trips;
 mod scenario_api;
 mod scenario_fuzz;
+mod step_length;
 mod swarm;
 mod tasks;
