@@ -17,11 +17,12 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
 /// Fields added after scenario hashes were first published, as (section, field, the value that
 /// keeps the model as it was): left out of the hashed form while they hold that value, so a
 /// scenario that does not use them keeps its hash.
-const ADDED_FIELDS: [(&str, &str, &str); 4] = [
+const ADDED_FIELDS: [(&str, &str, &str); 5] = [
     ("mission", "idle_before_area", "Wait"),
     ("mission", "empty_on_leave", "ViaDropOff"),
     ("mission", "rest_at", "RestStation"),
     ("sim", "physics", "EveryStep"),
+    ("collision", "steering", "Memoryless"),
 ];
 
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
@@ -84,17 +85,25 @@ mod tests {
 
     #[test]
     fn a_field_added_later_keeps_the_hashes_of_scenarios_that_do_not_use_it() {
-        // The hashes before `mission.idle_before_area`, `empty_on_leave`, `rest_at` and
-        // `sim.physics` existed (`usar check FILE --hash`); paper.ron as it was then is today's
-        // without its `physics: NearContacts`.
-        let paper =
-            include_str!("../../../scenarios/paper.ron").replace(", physics: NearContacts", "");
+        // The hashes before `mission.idle_before_area`, `empty_on_leave`, `rest_at`,
+        // `sim.physics` and `collision.steering` existed (`usar check FILE --hash`); paper.ron
+        // as it was then is today's without its `physics: NearContacts` and with the steering
+        // of then written out (today's default, `KeepSide`, changes the model).
+        let hash_of = |src: &str| {
+            let s = usar_sim::scenario::from_str(src, "s").unwrap();
+            scenario_hash(&s).unwrap()
+        };
+        let old_steering = |src: &str| {
+            let to = "deadlock_after_s: 2.0, steering: Memoryless)";
+            src.replacen("deadlock_after_s: 2.0)", to, 1)
+        };
+        let paper = old_steering(
+            &include_str!("../../../scenarios/paper.ron").replace(", physics: NearContacts", ""),
+        );
+        let three_tasks = old_steering(include_str!("../../../scenarios/three-tasks.ron"));
         let before = [
             (paper.as_str(), "e019bba885d01aaf"),
-            (
-                include_str!("../../../scenarios/three-tasks.ron"),
-                "97fe69ca418d0202",
-            ),
+            (three_tasks.as_str(), "97fe69ca418d0202"),
         ];
         // Each added field (after the field it is written before): the value that keeps the
         // old model, and one that changes it.
@@ -110,13 +119,12 @@ mod tests {
             ("physics", "dt_s: 0.02", "EveryStep", "NearContacts"),
         ];
         let with = |src: &str, field: &str, before: &str, value: &str| {
-            let edited = src.replacen(before, &format!("{field}: {value}, {before}"), 1);
-            let s = usar_sim::scenario::from_str(&edited, "edited").unwrap();
-            scenario_hash(&s).unwrap()
+            hash_of(&src.replacen(before, &format!("{field}: {value}, {before}"), 1))
         };
         for (src, hash) in before {
-            let s = usar_sim::scenario::from_str(src, "s").unwrap();
-            assert_eq!(scenario_hash(&s).unwrap(), hash);
+            assert_eq!(hash_of(src), hash);
+            let default_steering = src.replacen(", steering: Memoryless", "", 1);
+            assert_ne!(hash_of(&default_steering), hash, "steering: KeepSide");
             for (field, before, old, new) in added {
                 assert_eq!(
                     with(src, field, before, old),

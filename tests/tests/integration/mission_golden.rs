@@ -16,14 +16,14 @@ use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
 const GOLDEN: &[(&str, u32, u32, u32)] = &[
-    ("rne", 0, 49, 68),
-    ("rne", 1, 45, 67),
-    ("dis", 0, 30, 80),
-    ("dis", 1, 46, 81),
-    ("eng", 0, 85, 69),
-    ("eng", 1, 56, 69),
-    ("hp_dis", 0, 77, 91),
-    ("hp_dis", 1, 68, 81),
+    ("rne", 0, 49, 70),
+    ("rne", 1, 48, 69),
+    ("dis", 0, 44, 84),
+    ("dis", 1, 45, 70),
+    ("eng", 0, 81, 66),
+    ("eng", 1, 52, 71),
+    ("hp_dis", 0, 76, 92),
+    ("hp_dis", 1, 84, 88),
 ];
 
 #[test]

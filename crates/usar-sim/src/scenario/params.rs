@@ -310,6 +310,25 @@ pub enum HoldRule {
     Yield,
 }
 
+/// How a moving robot steers around robots standing still (the resolver's rule 5, see
+/// `crate::world::resolver` and `docs/world-model.md`, "Steering"). Not from the paper.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Steering {
+    /// The default: a robot tries the turns of the side it last steered to first (every
+    /// turn of that side, smallest first, then the other side's), forgetting the side when
+    /// it drives straight or gets a new path; and a robot deflected or blocked at the rim of
+    /// a goal a robot standing still has taken (the goal inside that robot's keep-out,
+    /// `r_i + r_j + safety_margin_m`) has reached it when within its goal tolerance of the rim
+    /// point nearest the goal. Without both, a robot could slide back and forth along a
+    /// keep-out's rim on every control step, and its path depended on `sim.dt_s` (issue 70).
+    #[default]
+    KeepSide,
+    /// Before issue 70 (kept for `paper-v0.ron` and `paper-v1.ron`, which reproduce older
+    /// commits): on each control step the first clear turn, right side first at each angle,
+    /// with no memory; a goal is reached only within its tolerance.
+    Memoryless,
+}
+
 /// Priority-based collision avoidance and deadlock solving (paper, section V, Algorithm 5).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -329,6 +348,9 @@ pub struct CollisionParams {
     /// The order of a collision list: which need ranks a robot; default
     /// [`CollisionPriority::LowestEnergy`].
     pub priority: CollisionPriority,
+    /// How a moving robot steers around robots standing still; default
+    /// [`Steering::KeepSide`].
+    pub steering: Steering,
 }
 
 impl Default for CollisionParams {
@@ -340,6 +362,7 @@ impl Default for CollisionParams {
             deadlock_after_s: Positive::known(2.0),
             hold_rule: HoldRule::ListHead,
             priority: CollisionPriority::LowestEnergy,
+            steering: Steering::KeepSide,
         }
     }
 }

@@ -7,7 +7,7 @@ use parry2d::math::Vector as Vec2;
 use super::control_clock::ControlClock;
 use super::robot::Motion;
 use super::world::World;
-use crate::scenario::PhysicsStepping;
+use crate::scenario::{PhysicsStepping, Steering};
 
 /// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
 /// metres.
@@ -165,7 +165,8 @@ impl World {
     /// or blocked at the rim of a goal a robot standing still has taken
     /// (`world/goal_taken.rs`); zero and [`Motion::Blocked`] when no heading is clear; else
     /// its intent steered around robots standing still (rule 5 of `world/resolver.rs`, to the
-    /// side of its last deflection first, which it remembers: [`Nav::steering_side`]).
+    /// side of its last deflection first, which it remembers: [`Nav::steering_side`]). Under
+    /// `collision.steering: Memoryless` neither the taken goal nor the side.
     fn resolved_command(&mut self, id: usize, held: bool, motion: Motion) -> (Vec2, Motion) {
         if held {
             return (Vec2::ZERO, Motion::Held);
@@ -177,7 +178,9 @@ impl World {
             nav.deflection = Vec2::ZERO;
             return (intent, motion);
         }
-        let taken = motion == Motion::Moving
+        let keep_side = self.collision.steering == Steering::KeepSide;
+        let taken = keep_side
+            && motion == Motion::Moving
             && nav.goal.is_some_and(|goal| {
                 let inputs = &self.pipelines.resolver_inputs;
                 let resolver = &self.pipelines.resolver;
@@ -189,7 +192,9 @@ impl World {
         }
         match steered {
             Some(v) => {
-                nav.deflection = v;
+                if keep_side {
+                    nav.deflection = v;
+                }
                 (v, motion)
             }
             None => (Vec2::ZERO, Motion::Blocked),
