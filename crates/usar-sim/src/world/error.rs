@@ -34,11 +34,12 @@ pub enum WorldError {
         value: f64,
     },
     /// Path planning failed; the robot's goal was cleared (it stands still).
-    #[error("robot {id}: {source}")]
+    #[error("robot {id}: {error}")]
     Unreachable {
         /// The robot.
         id: usize,
-        /// Why planning failed.
-        source: NavError,
+        /// Why planning failed (part of the one-line message, not also a `source()`, so a
+        /// chain-printing caller such as `rne_core::error_line` does not repeat it).
+        error: NavError,
     },
 }
