@@ -28,11 +28,7 @@ pub fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)>
         match m {
             MethodArg::Name(n) => names.push(n),
             MethodArg::Python((n, adapter)) => {
-                if builtin_name(&n).is_some() {
-                    return Err(PyValueError::new_err(format!(
-                        "methods: a Python method may not be named {n:?}, a built-in's name"
-                    )));
-                }
+                python_name("methods", &n)?;
                 if python.insert(n.clone(), Arc::new(adapter)).is_some() {
                     return Err(PyValueError::new_err(format!(
                         "methods: two Python methods are named {n:?}"
@@ -43,6 +39,24 @@ pub fn methods_of(methods: Vec<MethodArg>) -> PyResult<(Vec<String>, PyMethods)>
         }
     }
     Ok((names, python))
+}
+
+/// Refuses a Python method named as a built-in (by [`rne_core::grouping::method_key`]:
+/// `rne`, `RNE`, `hp-dis`, ...), whose results would read as the built-in's; `argument`
+/// names the keyword argument (`method`, `methods`). The package's own functions of the
+/// built-ins (`usar.rne`, ...) are passed as names by the Python side and never come here.
+///
+/// # Errors
+/// `ValueError`, one line: `methods: a Python method may not be named "rne", a built-in's
+/// name: rename it, or give "rne" for the built-in`.
+pub fn python_name(argument: &str, name: &str) -> PyResult<()> {
+    match builtin_name(name) {
+        Some(_) => Err(PyValueError::new_err(format!(
+            "{argument}: a Python method may not be named {name:?}, a built-in's name: rename \
+             it, or give {name:?} for the built-in"
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// The factory: Python methods by name (`kinds`: the scenario's kind names, for their
@@ -96,7 +110,7 @@ pub fn claims_of(
     tasks: &[String],
     methods: &[String],
 ) -> PyResult<Claims> {
-    let json = crate::json_value::from_python(list)?;
+    let json = crate::json_value::from_python(list, "claims")?;
     let serde_json::Value::Array(items) = json else {
         return Err(PyValueError::new_err(
             "claims: expected a claims file's path or a list of claims (dicts)",

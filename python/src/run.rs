@@ -26,7 +26,8 @@ use crate::scenario::Scenario;
 /// [`PositionTracker`]).
 ///
 /// # Errors
-/// `ValueError` for a trial index with a seed.
+/// `ValueError` for a trial index with a seed, or a Python method named as a built-in
+/// ([`crate::methods::python_name`]).
 pub fn trial_builder<'a>(
     s: &'a ScenarioData,
     method: MethodArg,
@@ -45,6 +46,7 @@ pub fn trial_builder<'a>(
     builder = match method {
         MethodArg::Name(name) => builder.method_named(&name),
         MethodArg::Python((name, adapter)) => {
+            crate::methods::python_name("method", &name)?;
             let m = PyMethod {
                 name,
                 adapter: Arc::new(adapter),

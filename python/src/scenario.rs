@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use usar_sim::scenario::{self as sc, ScenarioSpec, path_text};
@@ -287,8 +288,15 @@ impl Scenario {
         origin: &str,
         path: Option<PathBuf>,
     ) -> PyResult<Self> {
-        let spec = spec_from_json(from_python(data)?)
-            .map_err(|e| value_error(format!("{origin}: {e}")))?;
+        // A NaN's place, after the origin as every error of the data (a TypeError as it is).
+        let json = from_python(data, "").map_err(|e| {
+            if e.is_instance_of::<PyValueError>(py) {
+                value_error(format!("{origin}: {}", e.value(py)))
+            } else {
+                e
+            }
+        })?;
+        let spec = spec_from_json(json).map_err(|e| value_error(format!("{origin}: {e}")))?;
         let text = spec_to_ron(&spec, &[origin.to_string()]).map_err(|e| chain_value_error(&e))?;
         let path = path.unwrap_or_else(|| PathBuf::from(origin));
         Self::from_text(text, origin.to_string(), path)?.warned(py)

@@ -148,3 +148,102 @@ def test_trust_and_grouping_functions_check_their_input():
         usar.trust([[6, 4, 2]], [86, 120, 30], [20, 30, 10])
     with pytest.raises(TypeError, match="GroupingRequest"):
         usar.dis({"robots": []})
+
+
+DATA = PAPER.parents[1] / "crates" / "experiments" / "tests" / "data"
+TARGETS = DATA / "multiverse-targets.ron"
+TINY = dict(trials=2, duration_s=5.0, progress=False)
+
+
+def test_an_empty_out_is_refused_naming_out_and_writes_nothing(paper, tmp_path, monkeypatch):
+    # Issue 70: usar.calibrate(out='') wrote into the working folder (pathlib reads '' as
+    # '.'), while usar.sweep and usar.multiverse refused it without naming `out`.
+    monkeypatch.chdir(tmp_path)
+    refused = r'^out: the output folder is an empty path; name a folder \("\." is the working folder\)$'
+    with pytest.raises(ValueError, match=refused):
+        usar.calibrate(paper, "mission.pickup_s=0.5..2", targets=TARGETS, out="",
+                       methods="dis", max_evals=1, check_trials=0, **TINY)
+    with pytest.raises(ValueError, match=refused):
+        usar.sweep(paper, methods=["dis"], out="", **TINY)
+    with pytest.raises(ValueError, match=refused):
+        usar.grid(paper, ["mission.pickup_s=1,2"], methods=["dis"], out="", **TINY)
+    with pytest.raises(ValueError, match=refused):
+        usar.multiverse(paper, DATA / "multiverse-axes.ron", TARGETS, "mission.pickup_s=0.5..2",
+                        "", methods=["dis"], progress=False)
+    assert list(tmp_path.iterdir()) == []
+
+
+def _named_request_method(name):
+    def f(request):
+        return usar.dis(request)
+
+    f.__name__ = name
+    return f
+
+
+@pytest.mark.parametrize("name", ["rne", "HP-dis"])
+def test_a_python_method_named_as_a_built_in_is_refused_by_run_and_sweep_alike(paper, tmp_path,
+                                                                            name):
+    # Issue 70: usar.run took a Python function named `rne` (its results then named like the
+    # built-in's), usar.sweep refused it. Both refuse it now, with the same words.
+    method = _named_request_method(name)
+    expected = (f'a Python method may not be named "{name}", a built-in\'s name: rename it, '
+                f'or give "{name}" for the built-in')
+    with pytest.raises(ValueError) as run:
+        usar.run(paper, method, duration_s=5)
+    with pytest.raises(ValueError) as sweep:
+        usar.sweep(paper, methods=[method], trials=1, duration_s=5)
+    with pytest.raises(ValueError) as render:
+        usar.render(paper, tmp_path / "x.svg", method=method, duration_s=5)
+    assert one_line(run) == f"method: {expected}"
+    assert one_line(sweep) == f"methods: {expected}"
+    assert one_line(render) == f"method: {expected}"
+
+
+def test_the_packages_own_built_in_functions_are_the_built_ins(paper):
+    # usar.rne and the others, passed as methods, are the built-ins (not Python methods that
+    # happen to bear their names, which are refused above).
+    assert usar.run(paper, usar.rne, duration_s=20) == usar.run(paper, "rne", duration_s=20)
+    got = usar.sweep(paper, methods=[usar.dis, "eng"], trials=1, duration_s=20)
+    assert list(got["method"].unique()) == ["DIS", "ENG"]
+
+
+@pytest.mark.parametrize("alpha", [float("nan"), float("inf")])
+def test_a_claims_non_finite_alpha_names_the_claim_and_field(paper, tmp_path, alpha):
+    # Issue 70: alpha=NaN gave "Out of range float values are not JSON compliant", no field.
+    claim = {"id": "a", "sentence": "RNE rescues more", "subject": "rne", "metric":
+             "rescued_total", "direction": "More", "alpha": alpha}
+    with pytest.raises(ValueError) as e:
+        usar.sweep(paper, methods=["rne", "dis"], out=tmp_path / "s", claims=[claim], **TINY)
+    shown = "NaN" if alpha != alpha else "inf"
+    assert one_line(e) == f"claims[0].alpha: expected a finite number, found {shown}"
+    # The same in a claims file: the file, the claim and the field.
+    (tmp_path / "claims.ron").write_text(
+        'Claims(claims: [(id: "a", sentence: "RNE rescues more", subject: "rne", '
+        'metric: "rescued_total", direction: More, alpha: NaN)])')
+    with pytest.raises(ValueError) as e:
+        usar.sweep(paper, methods=["rne", "dis"], out=tmp_path / "s", claims=tmp_path /
+                   "claims.ron", **TINY)
+    assert str(tmp_path / "claims.ron") in one_line(e) and "claims[0].alpha" in one_line(e)
+    # And a scenario given as data names its field.
+    data = paper.to_dict()
+    data["mission"]["duration_s"] = alpha
+    with pytest.raises(ValueError) as e:
+        usar.Scenario.from_dict(data, "mine")
+    assert one_line(e) == f"mine: mission.duration_s: expected a finite number, found {shown}"
+
+
+@pytest.mark.parametrize("out,wrong", [("", "has no file name"), ("a/..", "has no file name"),
+                                       (".", "is a folder, not a file"),
+                                       ("/", "is a folder, not a file")])
+def test_render_and_replay_name_out_when_it_names_no_file(paper, tmp_path, monkeypatch, out,
+                                                          wrong):
+    # Issue 70: render(out='') said " has no file name" (and replay ran its trial first).
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError) as e:
+        usar.render(paper, out)
+    assert one_line(e) == f"out: {out!r} {wrong}"
+    with pytest.raises(ValueError) as e:
+        usar.replay(paper, out, duration_s=5)
+    assert one_line(e) == f"out: {out!r} {wrong}"
+

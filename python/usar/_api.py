@@ -50,6 +50,19 @@ def _seconds(value: Any) -> Optional[float]:
     return float(value)
 
 
+def _folder(out: Any) -> Any:
+    """``out`` as a folder's path (None stays None). Raises ValueError for an empty path,
+    which would name the working folder (pathlib reads ``''`` as ``'.'``)."""
+    if out is None:
+        return None
+    text = os.fspath(out)
+    if not text:
+        raise ValueError(
+            "out: the output folder is an empty path; name a folder (\".\" is the working folder)"
+        )
+    return text
+
+
 def run(
     scenario: Union[Scenario, str, os.PathLike],
     method: MethodLike = "rne",
@@ -215,7 +228,7 @@ def _run_cells(
     trials = _count("trials", trials, 0, 2**32)
     threads = None if threads is None else _count("threads", threads, 0, 2**16)
     seed = None if seed is None else _count("seed", seed, 0, _U64)
-    folder = None if out is None else os.fspath(out)
+    folder = _folder(out)
     callback, close = _progress(progress, len(args) * trials)
     try:
         return _usar.run_sweep(

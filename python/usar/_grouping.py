@@ -220,9 +220,14 @@ def method_name(method: Any) -> str:
 
 
 def method_arg(method: MethodLike, scenario: Scenario) -> Union[str, Tuple[str, Callable]]:
-    """What the native side takes: a built-in's name, or (name, adapter)."""
+    """What the native side takes: a built-in's name, or (name, adapter). The package's own
+    functions of the built-ins (:func:`rne`, :func:`dis`, ...) are the built-ins by name; any
+    other Python method named as a built-in is refused by the native side (ValueError)."""
     if isinstance(method, str):
         return method
+    builtin = _BUILTIN_FUNCTIONS.get(id(method))
+    if builtin is not None and builtin[0] is method:
+        return builtin[1]
     if isinstance(method, type):
         if not issubclass(method, GroupingMethod):
             raise TypeError(f"method: {method.__name__} is not a usar.GroupingMethod subclass")
@@ -272,3 +277,7 @@ def eng(request: GroupingRequest) -> List[List[int]]:
 def hp_dis(request: GroupingRequest) -> List[List[int]]:
     """HP_DIS baseline (paper Sec. VI.C): by HP, then distance, hardest task first."""
     return _builtin("hp_dis", request, None)
+
+
+#: The functions above by id: passed as a method, each is its built-in, run natively.
+_BUILTIN_FUNCTIONS = {id(f): (f, f.__name__) for f in (rne, dis, eng, hp_dis)}

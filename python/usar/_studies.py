@@ -8,13 +8,13 @@ import os
 import shutil
 import tempfile
 from html import escape
-from pathlib import Path
+from pathlib import Path, PurePath
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
 
 import pandas as pd
 
 from . import _usar
-from ._api import _EXACT, _count, _progress, _scenario, _seconds, _U64
+from ._api import _EXACT, _count, _folder, _progress, _scenario, _seconds, _U64
 from ._grouping import MethodLike, method_arg
 from ._results import TrialResult
 from ._usar import METHOD_NAMES, Scenario
@@ -57,6 +57,18 @@ def _names(values: Any) -> List[str]:
 
 def _path(value: Any) -> Optional[str]:
     return None if value is None else os.fspath(value)
+
+
+def _out_file(out: Any) -> Any:
+    """``out`` as the path of a file to write. Raises ValueError, before anything runs, for
+    a folder (``out: '.' is a folder, not a file``) or a path that names no file (``''``,
+    ``'a/..'``: ``out: '' has no file name``)."""
+    text = os.fspath(out)
+    if os.path.isdir(text):
+        raise ValueError(f"out: {text!r} is a folder, not a file")
+    if PurePath(os.fsdecode(text)).name in ("", ".."):
+        raise ValueError(f"out: {text!r} has no file name")
+    return text
 
 
 def _command(function: str, origin: str, free: List[str], options: Dict[str, Any]) -> str:
@@ -203,7 +215,7 @@ def calibrate(
         "require": list(_names(require)) or None,
     })
     keep = out is not None
-    folder = Path(os.fspath(out)) if keep else Path(tempfile.mkdtemp(prefix="usar-calibrate-"))
+    folder = Path(_folder(out)) if keep else Path(tempfile.mkdtemp(prefix="usar-calibrate-"))
     callback, close = _progress(progress, values["max_evals"], "evaluation", "calibrate")
     try:
         text = _usar.run_calibration(
@@ -312,7 +324,7 @@ def multiverse(
     callback, close = _progress(progress, 1, "universe", "multiverse")
     try:
         text = _usar.run_multiverse_py(
-            s, os.fspath(axes), os.fspath(targets), _free(free), os.fspath(out), args,
+            s, os.fspath(axes), os.fspath(targets), _free(free), _folder(out), args,
             os.fspath(claims) if isinstance(claims, (str, os.PathLike)) else claims,
             None if near_loss is None else float(near_loss), _names(report_only),
             _count("trials", trials, 0, 2**32),
@@ -354,9 +366,10 @@ def render(
         raise ValueError("trial, seed and duration_s describe a trial: give method too")
     if trial is not None and seed is not None:
         raise ValueError("trial and seed: give trial or seed, not both")
+    path = _out_file(out)
     arg = None if method is None else method_arg(method, s)
     _usar.render(
-        s, os.fspath(out), arg, _count("trial", 0 if trial is None else trial, 0, 2**32),
+        s, path, arg, _count("trial", 0 if trial is None else trial, 0, 2**32),
         _seconds(duration_s), None if seed is None else _count("seed", seed, 0, _U64),
     )
     return Path(os.fspath(out))
@@ -385,7 +398,7 @@ def replay(
     if trial is not None and seed is not None:
         raise ValueError("trial and seed: give trial or seed, not both")
     text, _size = _usar.replay(
-        s, os.fspath(out), method_arg(method, s),
+        s, _out_file(out), method_arg(method, s),
         _count("trial", 0 if trial is None else trial, 0, 2**32), _seconds(duration_s),
         None if seed is None else _count("seed", seed, 0, _U64),
         None if hz is None else float(hz),
