@@ -376,6 +376,9 @@ pub fn something_at(path: &Path) -> bool {
 fn check_regular_file(path: &Path) -> Result<()> {
     match fs::metadata(path) {
         Ok(m) if m.is_file() => Ok(()),
+        Ok(m) if m.is_dir() => Err(JournalError::Folder {
+            path: path_text(path),
+        }),
         Ok(_) => Err(JournalError::NotAFile {
             path: path_text(path),
         }),

@@ -64,8 +64,18 @@ pub enum JournalError {
         /// The format this build reads.
         expected: u32,
     },
-    /// The path is a folder, a FIFO or a device.
-    #[error("{path}: not a regular file (a folder, FIFO or device); {START_AFRESH}")]
+    /// The path is a folder (or a link to one): no `--overwrite` removes it, so the message
+    /// says what works instead.
+    #[error(
+        "{path}: is a folder, not a journal; move it away or remove it yourself (usar removes \
+         no folder in a journal's place, even with --overwrite), then run again"
+    )]
+    Folder {
+        /// The journal's path, as shown.
+        path: String,
+    },
+    /// The path is a FIFO or a device.
+    #[error("{path}: not a regular file (a FIFO or device); {START_AFRESH}")]
     NotAFile {
         /// The journal's path, as shown.
         path: String,

@@ -167,6 +167,33 @@ fn a_journal_that_is_no_file_is_refused_and_overwrite_replaces_it() {
     }
 }
 
+/// Regression (issue 70): a folder at the journal's path was refused with the advice to pass
+/// `--overwrite`, which then failed with "Is a directory". Now the message, with and without
+/// `--overwrite` or `--resume`, says what works (remove or move it by hand), on one line, and
+/// the folder and what it holds stay.
+#[test]
+fn a_journal_that_is_a_folder_is_refused_with_advice_that_works() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    let journal = dir.join("journal.jsonl");
+    std::fs::create_dir_all(&journal).unwrap();
+    std::fs::write(journal.join("mine.txt"), "mine").unwrap();
+    for extra in [&[][..], &["--resume"], &["--overwrite"]] {
+        let e = err(&sweep(&dir, extra));
+        assert!(
+            e.contains(
+                "journal.jsonl: is a folder, not a journal; move it away or remove it yourself"
+            ) && !e.contains("Is a directory")
+                && !e.contains("with --overwrite (in place"),
+            "{extra:?}: {e}"
+        );
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert_eq!(read(&journal.join("mine.txt")), b"mine");
+    }
+    std::fs::remove_dir_all(&journal).unwrap();
+    ok(&sweep(&dir, &[]));
+}
+
 /// A sweep killed while it wrote its header left no trial: the next sweep starts afresh
 /// without a word. A journal that cannot be continued is refused by its own message, without
 /// the advice to pass --resume, which would fail.

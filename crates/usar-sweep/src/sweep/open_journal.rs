@@ -13,6 +13,7 @@ use crate::journal::{
     Journal, JournalContents, RejectedRecord, SweepHeader, TrialRecord, header_diff, holds_no_line,
     other_sweeps, read_header, something_at,
 };
+use crate::journal_error::JournalError;
 use crate::stale_outputs::remove_previous_outputs;
 
 /// What the functions of this module return.
@@ -63,6 +64,13 @@ pub(crate) fn open_journal(
             .map_err(FileError::io(format!("removing {}", path_text(&path))))?;
     }
     if cfg.overwrite && !cfg.resume {
+        // A folder in the journal's place is the user's to remove: nothing goes.
+        if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_dir()) {
+            return Err(JournalError::Folder {
+                path: path_text(&path),
+            }
+            .into());
+        }
         // The earlier sweep's tables, figures and grid cells go with its journal.
         remove_previous_outputs(dir, &path)?;
         if something_at(&path) {
