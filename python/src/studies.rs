@@ -223,7 +223,8 @@ pub fn run_calibration(
                 "max_time_s must be a finite number of seconds > 0, not {s}"
             )));
         }
-        s => s.map(Duration::from_secs_f64),
+        // Beyond what a Duration holds (about 5.8e11 years): as long as it can be.
+        s => s.map(|s| Duration::try_from_secs_f64(s).unwrap_or(Duration::MAX)),
     };
     let base_seed = seed.unwrap_or(scenario.spec().sim.seed);
     let counter = run.done.clone();

@@ -247,3 +247,15 @@ def test_render_and_replay_name_out_when_it_names_no_file(paper, tmp_path, monke
         usar.replay(paper, out, duration_s=5)
     assert one_line(e) == f"out: {out!r} {wrong}"
 
+
+@pytest.mark.parametrize("seconds", [1e300, 1.8e19])
+def test_calibrate_with_an_endless_max_time_runs_or_names_max_time(paper, tmp_path, seconds):
+    # Issue 70: max_time_s=1e300 raised PanicException (a Duration out of range, and an
+    # Instant overflowing at 1.8e19 s). It runs (no time limit) or names max_time_s.
+    try:
+        c = usar.calibrate(paper, "mission.pickup_s=0.5..2", targets=TARGETS, methods="dis",
+                           max_evals=1, check_trials=0, max_time_s=seconds, **TINY)
+    except ValueError as e:
+        assert str(e).startswith("max_time_s"), str(e)
+    else:
+        assert c.evaluations == 1
