@@ -69,6 +69,25 @@ pub enum FileError {
         /// The path, resolved.
         path: String,
     },
+    /// A file that is not read ([`crate::bounded_file::read_small`]): not a regular file, or
+    /// longer than its limit.
+    #[error("cannot read {path}: {why}")]
+    NotRead {
+        /// The path, as given.
+        path: String,
+        /// Why (`not a regular file (a folder, FIFO or device)`, `longer than the limit of
+        /// 1048576 bytes`).
+        why: String,
+    },
+    /// A name in a folder that usar reads by name which has not the form it must have
+    /// (`shards/2-of-2`), so that it would be skipped without a word.
+    #[error("{path}: {why}; rename it or move it away")]
+    Misnamed {
+        /// The path, as given.
+        path: String,
+        /// What the name must be.
+        why: String,
+    },
 }
 
 impl FileError {

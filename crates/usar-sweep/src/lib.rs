@@ -54,7 +54,7 @@
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it, never from one above (bottom first):
 //!
-//! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`lock`], [`spec_ron`], [`stderr`],
+//! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`bounded_file`], [`lock`], [`spec_ron`], [`stderr`],
 //!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
 //!    [`journal_error`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
@@ -63,6 +63,7 @@
 
 // 1. base
 pub mod atomic;
+pub mod bounded_file;
 pub mod checked_log;
 pub mod fingerprint;
 pub mod journal;

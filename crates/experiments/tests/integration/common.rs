@@ -10,6 +10,21 @@ use std::process::{Command, Output};
 /// `scenarios/paper.ron`.
 pub const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");
 
+/// `scenarios/corridor.ron`.
+pub const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
+
+/// The axes file of the tiny multiverses of the tests.
+pub const AXES: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/multiverse-axes.ron"
+);
+
+/// The targets file of the tiny multiverses of the tests.
+pub const TARGETS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/multiverse-targets.ron"
+);
+
 /// Exit status of a sweep stopped by `--stop-after` (`STOP_EXIT_CODE` in the binary's
 /// `commands/test_hooks.rs`).
 pub const STOPPED: i32 = 75;
@@ -122,4 +137,105 @@ pub fn set_journal_build(path: &Path, build: &str) {
         ));
     }
     std::fs::write(path, out).unwrap();
+}
+
+/// Every file under `dir` (relative path, bytes; a symbolic link as the path it names).
+pub fn snapshot(dir: &Path) -> std::collections::BTreeMap<std::path::PathBuf, Vec<u8>> {
+    fn walk(
+        root: &Path,
+        dir: &Path,
+        out: &mut std::collections::BTreeMap<std::path::PathBuf, Vec<u8>>,
+    ) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(root).unwrap().to_path_buf();
+            if p.is_symlink() {
+                let to = std::fs::read_link(&p).unwrap();
+                out.insert(rel, to.to_string_lossy().as_bytes().to_vec());
+            } else if p.is_dir() {
+                walk(root, &p, out);
+            } else {
+                out.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    let mut out = std::collections::BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+/// `usar ARGS`, killed (and the test failed, naming the command) unless it ends within
+/// `secs` seconds: for inputs that once made `usar` wait or read for ever.
+pub fn usar_within<I, S>(secs: u64, args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let args: Vec<_> = args.into_iter().map(|a| a.as_ref().to_owned()).collect();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_usar"))
+        .args(&args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run usar");
+    let t0 = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if t0.elapsed() > Duration::from_secs(secs) {
+            child.kill().unwrap();
+            let _ = child.wait();
+            panic!("usar {args:?} did not end within {secs} s");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// A sharded sweep of paper.ron (rne, 1 trial of 10 s, 2 shards) in `dir`, merged.
+pub fn sharded_sweep(dir: &Path) {
+    for shard in ["0/2", "1/2"] {
+        ok(&usar([
+            "sweep",
+            PAPER,
+            "--methods",
+            "rne,dis",
+            "--trials",
+            "1",
+            "--duration",
+            "10",
+            "--quiet",
+            "--shard",
+            shard,
+            "--out",
+            text(dir),
+        ]));
+    }
+    ok(&merge(dir));
+}
+
+/// A tiny multiverse of corridor.ron (the axes and targets of `tests/data/`, 1 trial of 10 s,
+/// 1 evaluation) into `out`.
+pub fn multiverse_args(out: &Path) -> Vec<&str> {
+    vec![
+        "multiverse",
+        CORRIDOR,
+        "--axes",
+        AXES,
+        "--targets",
+        TARGETS,
+        "--free",
+        "mission.pickup_s=0.5..2",
+        "--trials",
+        "1",
+        "--calibration-trials",
+        "1",
+        "--max-evals",
+        "1",
+        "--duration",
+        "10",
+        "--quiet",
+        "--out",
+        text(out),
+    ]
 }

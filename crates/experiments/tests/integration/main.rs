@@ -9,6 +9,7 @@ mod calibrate_cli;
 mod check_cli;
 mod claims_files;
 mod common;
+mod hostile_folders;
 mod json_schema;
 mod multiverse_cli;
 mod output_owners;

@@ -5,88 +5,11 @@
 
 use crate::common;
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{PAPER, merge, ok, stderr, text, usar};
-
-const CORRIDOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/corridor.ron");
-const AXES: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/multiverse-axes.ron"
-);
-const TARGETS: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/data/multiverse-targets.ron"
-);
-
-/// Every file under `dir` (relative path, bytes).
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
-        for e in std::fs::read_dir(dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(root, &p, out);
-            } else {
-                let rel = p.strip_prefix(root).unwrap().to_path_buf();
-                out.insert(rel, std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
-}
-
-/// A sharded sweep of paper.ron (rne, 1 trial of 10 s, 2 shards) in `dir`, merged.
-fn sharded_sweep(dir: &Path) {
-    for shard in ["0/2", "1/2"] {
-        ok(&usar([
-            "sweep",
-            PAPER,
-            "--methods",
-            "rne,dis",
-            "--trials",
-            "1",
-            "--duration",
-            "10",
-            "--quiet",
-            "--shard",
-            shard,
-            "--out",
-            text(dir),
-        ]));
-    }
-    ok(&merge(dir));
-}
-
-/// A tiny multiverse of corridor.ron (the axes and targets of `tests/data/`, 1 trial of 10 s,
-/// 1 evaluation) into `out`.
-fn multiverse_args(out: &Path) -> Vec<&str> {
-    vec![
-        "multiverse",
-        CORRIDOR,
-        "--axes",
-        AXES,
-        "--targets",
-        TARGETS,
-        "--free",
-        "mission.pickup_s=0.5..2",
-        "--trials",
-        "1",
-        "--calibration-trials",
-        "1",
-        "--max-evals",
-        "1",
-        "--duration",
-        "10",
-        "--quiet",
-        "--out",
-        text(out),
-    ]
-}
+use common::{PAPER, merge, multiverse_args, ok, sharded_sweep, snapshot, stderr, text, usar};
 
 /// Asserts `o` failed with a one-line error naming the folder's owner and the refused kind.
 fn refused(o: &Output, owner: &str, kind: &str) {

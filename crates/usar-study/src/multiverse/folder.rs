@@ -24,6 +24,7 @@ use super::record::RECORD_FILE;
 use super::universe_run::{CALIBRATION_DIR, COMPARISON_DIR, SCENARIO_FILE, UNIVERSES_DIR};
 use usar_sweep::atomic::{FileError, remove_dir_if_empty, remove_named, remove_stale_temps};
 use usar_sweep::data::owner::{OWNER_FILE, RunKind, check_owner};
+use usar_sweep::journal::something_at;
 use usar_sweep::lock::LOCK_FILE;
 use usar_sweep::shard::{SHARDS_DIR, Shard, shard_folders};
 use usar_sweep::stale_outputs::clear_sweep;
@@ -48,11 +49,11 @@ pub fn plans_in(dir: &Path) -> Result<Vec<(Option<Shard>, MultiversePlan)>> {
     Ok(out)
 }
 
-/// Whether `dir` holds a multiverse: a plan at its top or in a shard folder.
+/// Whether `dir` holds a multiverse: a plan at its top or in a shard folder (anything by the
+/// plan's name, even a link to `/dev/zero`, which reading the plan then refuses by name).
 pub fn is_multiverse_dir(dir: &Path) -> bool {
-    MultiversePlan::path_in(dir).is_file()
-        || shard_folders(dir)
-            .is_ok_and(|s| s.iter().any(|(_, f)| MultiversePlan::path_in(f).is_file()))
+    let plan_at = |d: &Path| something_at(&MultiversePlan::path_in(d));
+    plan_at(dir) || shard_folders(dir).is_ok_and(|s| s.iter().any(|(_, f)| plan_at(f)))
 }
 
 /// Where a plan lies, for messages.

@@ -17,7 +17,8 @@ use super::setup::{CheckedMultiverse, MultiverseSetup};
 use super::universe::{Sample, Universe, factorial_size, select};
 use crate::calibrate::{FreeField, Optimizer, Target};
 use usar_report::claims::Claim;
-use usar_sweep::atomic::{FileError, write_atomic};
+use usar_sweep::atomic::write_atomic;
+use usar_sweep::bounded_file::{MAX_MULTIVERSE_PLAN_BYTES, read_small};
 use usar_sweep::fingerprint::{fnv1a64_hex, scenario_hash};
 use usar_sweep::shard::{Shard, shell_join};
 use usar_sweep::slurm::ShardedWork;
@@ -217,18 +218,19 @@ impl MultiversePlan {
         )?)
     }
 
-    /// Reads `dir/multiverse.json`; `None` when there is none.
+    /// Reads `dir/multiverse.json` (at most [`MAX_MULTIVERSE_PLAN_BYTES`] of a regular file,
+    /// [`read_small`]); `None` when there is none.
     ///
     /// # Errors
-    /// An unreadable file, or one that is not a multiverse plan.
+    /// An unreadable file, one that is not a regular file or is longer than the limit, or one
+    /// that is not a multiverse plan.
     pub fn read(dir: &Path) -> Result<Option<Self>> {
         let path = Self::path_in(dir);
         if !usar_sweep::journal::something_at(&path) {
             return Ok(None);
         }
-        let text = std::fs::read_to_string(&path)
-            .map_err(FileError::io(format!("cannot read {}", path_text(&path))))?;
-        let plan = serde_json::from_str(&text).map_err(|source| MultiverseError::NotAPlan {
+        let bytes = read_small(&path, MAX_MULTIVERSE_PLAN_BYTES)?;
+        let plan = serde_json::from_slice(&bytes).map_err(|source| MultiverseError::NotAPlan {
             path: path_text(&path),
             source,
         })?;

@@ -32,6 +32,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
+use crate::atomic::FileError;
 use crate::data::shard_folders::{SHARDS_DIR, shard_folders};
 use crate::data::shard_split::Shard;
 use crate::data::sweep_plan::PLAN_FILE as SHARD_PLAN_FILE;
@@ -159,21 +160,44 @@ pub enum OwnerError {
         /// What is wrong.
         why: String,
     },
+    /// The manifest names a kind of run that the folder's own files contradict: edited (or
+    /// copied from another folder). Nothing is written or removed, with or without
+    /// `--overwrite`.
+    #[error(
+        "{manifest} says the folder holds a {said}, but {evidence} shows a {found}: the \
+         manifest was edited or copied, so nothing was changed; remove the manifest (usar then \
+         knows the folder by its files), or choose another output folder"
+    )]
+    Contradicted {
+        /// The manifest's path.
+        manifest: String,
+        /// The kind the manifest names.
+        said: RunKind,
+        /// The file that contradicts it.
+        evidence: String,
+        /// The kind that file shows.
+        found: RunKind,
+    },
     /// An I/O error.
-    #[error("{what} {path}: {source}")]
+    #[error("{what} {path}: {error}")]
     Io {
         /// What was being done (`creating folder`, `writing`).
         what: &'static str,
         /// The path.
         path: String,
-        /// The error.
-        source: std::io::Error,
+        /// The error (part of the one-line message, not also a `source()`, so a
+        /// chain-printing caller such as `rne_core::error_line` does not repeat it).
+        error: std::io::Error,
     },
+    /// The shard folders could not be listed, or one is misnamed
+    /// ([`crate::data::shard_folders::shard_folders`]).
+    #[error(transparent)]
+    File(#[from] FileError),
 }
 
 fn io(what: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> OwnerError {
     let path = path_text(path);
-    move |source| OwnerError::Io { what, path, source }
+    move |error| OwnerError::Io { what, path, error }
 }
 
 /// Checks that `dir` can be an output folder: not empty, and nothing but a folder (or a link
@@ -238,7 +262,7 @@ fn file_type_name(m: &fs::Metadata) -> &'static str {
 pub fn claim(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     check_out_dir(dir)?;
     fs::create_dir_all(dir).map_err(io("creating folder", dir))?;
-    if let Some(found) = read_manifest(dir)? {
+    if let Some(found) = checked_manifest(dir)? {
         return refuse_other(dir, kind, Owner::of_manifest(dir, found));
     }
     if let Some(found) = recognise(dir)? {
@@ -247,7 +271,7 @@ pub fn claim(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     match write_new_manifest(dir, kind) {
         Ok(()) => Ok(()),
         // Another run wrote one since: its kind decides.
-        Err(OwnerError::Io { source, .. }) if source.kind() == ErrorKind::AlreadyExists => {
+        Err(OwnerError::Io { error, .. }) if error.kind() == ErrorKind::AlreadyExists => {
             match owner(dir)? {
                 Some(found) => refuse_other(dir, kind, found),
                 None => Ok(()),
@@ -291,7 +315,7 @@ pub fn check_owner(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
 /// # Errors
 /// [`OwnerError::BadManifest`], or an I/O error listing the folder.
 pub fn owner(dir: &Path) -> Result<Option<Owner>, OwnerError> {
-    if let Some(kind) = read_manifest(dir)? {
+    if let Some(kind) = checked_manifest(dir)? {
         return Ok(Some(Owner::of_manifest(dir, kind)));
     }
     recognise(dir)
@@ -385,9 +409,27 @@ fn manifest_text(kind: RunKind) -> String {
 /// `None` when none of them is there.
 ///
 /// # Errors
-/// An I/O error listing the folder's shard folders.
+/// An I/O error listing the folder's shard folders, a misnamed one, or a shard's manifest
+/// that cannot be read.
 pub fn recognise(dir: &Path) -> Result<Option<Owner>, OwnerError> {
-    let found = |kinds: Vec<RunKind>, evidence: PathBuf| Ok(Some(Owner { kinds, evidence }));
+    if let Some(found) = own_files(dir) {
+        return Ok(Some(found));
+    }
+    for (_, shard) in shard_folders(dir)? {
+        if let Some(kind) = read_manifest(&shard)? {
+            return Ok(Some(Owner::of_manifest(&shard, kind)));
+        }
+        if let Some(found) = own_files(&shard) {
+            return Ok(Some(found));
+        }
+    }
+    Ok(None)
+}
+
+/// The owner the files at the top of `dir` show (not its shards' nor its manifest), the
+/// first of: a journal, a shard's plan (in a shard's folder), a trace, a multiverse plan.
+fn own_files(dir: &Path) -> Option<Owner> {
+    let found = |kinds: Vec<RunKind>, evidence: PathBuf| Some(Owner { kinds, evidence });
     let is_file = |p: &Path| fs::symlink_metadata(p).is_ok_and(|m| m.is_file());
     let in_shard = is_shard_folder(dir);
     let journal = dir.join(JOURNAL_FILE);
@@ -414,27 +456,49 @@ pub fn recognise(dir: &Path) -> Result<Option<Owner>, OwnerError> {
     if is_file(&plan) {
         return found(vec![RunKind::Multiverse], plan);
     }
-    let shards = shard_folders(dir).map_err(|e| OwnerError::Io {
-        what: "listing",
-        path: path_text(&dir.join(SHARDS_DIR)),
-        source: std::io::Error::other(format!("{e:#}")),
-    })?;
-    for (_, shard) in shards {
-        if let Some(kind) = read_manifest(&shard)? {
-            return found(vec![kind], shard.join(OWNER_FILE));
-        }
-        for (name, kind) in [
-            (JOURNAL_FILE, RunKind::ShardedSweep),
-            (SHARD_PLAN_FILE, RunKind::ShardedSweep),
-            (evidence::MULTIVERSE_PLAN, RunKind::Multiverse),
-        ] {
-            let p = shard.join(name);
-            if is_file(&p) {
-                return found(vec![kind], p);
-            }
+    None
+}
+
+/// The kind the manifest of `dir` names, cross-checked with what the folder holds: its own
+/// files ([`own_files`]), and the manifest and files of its first shard folder that holds
+/// any (all shards of a run are of its kind; one is enough to catch an edited manifest
+/// without reading every shard's on every claim). The manifest is refused when none of them
+/// shows its kind and one shows another: a folder that also holds files of its kind is the
+/// run's, and a file of another kind put into it is named by the run's own checks (a
+/// merge's "the journal of another sweep"). `None` without a manifest.
+///
+/// # Errors
+/// [`OwnerError::Contradicted`] naming the manifest and the first file that shows another
+/// kind; the errors of reading the manifests or listing the shard folders.
+fn checked_manifest(dir: &Path) -> Result<Option<RunKind>, OwnerError> {
+    let Some(kind) = read_manifest(dir)? else {
+        return Ok(None);
+    };
+    let mut shown = vec![own_files(dir)];
+    for (_, shard) in shard_folders(dir)? {
+        let manifest = read_manifest(&shard)?.map(|k| Owner::of_manifest(&shard, k));
+        let files = own_files(&shard);
+        if manifest.is_some() || files.is_some() {
+            shown.extend([manifest, files]);
+            break;
         }
     }
-    Ok(None)
+    let shown: Vec<Owner> = shown.into_iter().flatten().collect();
+    if shown
+        .iter()
+        .any(|o| o.kinds.iter().any(|k| kind.may_use(*k)))
+    {
+        return Ok(Some(kind));
+    }
+    match shown.first() {
+        Some(o) => Err(OwnerError::Contradicted {
+            manifest: path_text(&dir.join(OWNER_FILE)),
+            said: kind,
+            evidence: path_text(&o.evidence),
+            found: o.kinds[0],
+        }),
+        None => Ok(Some(kind)),
+    }
 }
 
 /// Whether `dir` is a shard's folder: `<out>/shards/<I>-of-<N>`.
@@ -530,6 +594,54 @@ mod tests {
             Some(vec![RunKind::Multiverse])
         );
         assert_eq!(kinds(&m), Some(vec![RunKind::Multiverse]));
+    }
+
+    /// Regression (issue 70): a manifest edited to name another kind let that kind's
+    /// `--overwrite` remove the folder's files. The folder's own files and its first shard's
+    /// are checked against it; a sweep's and a grid's, which share a journal, stay one.
+    #[test]
+    fn a_manifest_that_the_folders_files_contradict_is_refused() {
+        let tmp = tempfile::tempdir().unwrap();
+        let manifest = |d: &Path, kind: &str| {
+            let text = format!("{{\"tool\":\"usar\",\"kind\":\"{kind}\",\"format\":1}}\n");
+            fs::write(d.join(OWNER_FILE), text).unwrap();
+        };
+        let s = tmp.path().join("s");
+        fs::create_dir(&s).unwrap();
+        fs::write(s.join("journal.jsonl"), "garbage\n").unwrap();
+        manifest(&s, "sweep");
+        claim(&s, RunKind::Grid).unwrap();
+        manifest(&s, "calibration");
+        let e = err(claim(&s, RunKind::Calibration));
+        assert!(
+            e.contains("usar-owner.json says the folder holds a calibration, but ")
+                && e.contains("journal.jsonl shows a sweep"),
+            "{e}"
+        );
+        assert!(check_owner(&s, RunKind::Calibration).is_err());
+        let m = tmp.path().join("m");
+        let shard = m.join("shards/1-of-2");
+        fs::create_dir_all(&shard).unwrap();
+        fs::write(shard.join("journal.jsonl"), "x").unwrap();
+        manifest(&m, "multiverse");
+        let e = err(claim(&m, RunKind::Multiverse));
+        assert!(
+            e.contains("shards/1-of-2/journal.jsonl shows a sharded sweep"),
+            "{e}"
+        );
+        // A file of another kind beside files of the manifest's is not a contradiction (the
+        // run's own checks name it).
+        fs::write(m.join("trace.jsonl"), "x").unwrap();
+        manifest(&m, "sharded sweep");
+        claim(&m, RunKind::ShardedSweep).unwrap();
+        fs::remove_file(shard.join("journal.jsonl")).unwrap();
+        fs::remove_file(m.join("trace.jsonl")).unwrap();
+        manifest(&shard, "multiverse");
+        let e = err(claim(&m, RunKind::ShardedSweep));
+        assert!(
+            e.contains("shards/1-of-2/usar-owner.json shows a multiverse"),
+            "{e}"
+        );
     }
 
     #[test]

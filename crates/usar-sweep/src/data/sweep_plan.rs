@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
 use crate::atomic::{FileError, write_atomic};
+use crate::bounded_file::{MAX_SHARD_PLAN_BYTES, read_small};
 use crate::data::shard_split::Shard;
 
 /// Why a plan could not be written or read.
@@ -110,15 +111,16 @@ impl SweepPlan {
         )?)
     }
 
-    /// Reads `dir/plan.json`.
+    /// Reads `dir/plan.json` ([`read_small`]: at most [`MAX_SHARD_PLAN_BYTES`] of a regular
+    /// file).
     ///
     /// # Errors
-    /// A missing or unreadable file, or one that is not a plan.
+    /// A missing or unreadable file, one that is not a regular file or is longer than the
+    /// limit, or one that is not a plan.
     pub fn read(dir: &Path) -> Result<Self, PlanError> {
         let path = Self::path_in(dir);
-        let text = std::fs::read_to_string(&path)
-            .map_err(FileError::io(format!("cannot read {}", path_text(&path))))?;
-        serde_json::from_str(&text).map_err(|source| PlanError::NotAPlan {
+        let bytes = read_small(&path, MAX_SHARD_PLAN_BYTES)?;
+        serde_json::from_slice(&bytes).map_err(|source| PlanError::NotAPlan {
             path: path_text(&path),
             source,
         })

@@ -57,7 +57,8 @@ pub struct Merged {
     pub failed_shards: Vec<Shard>,
 }
 
-/// The shards under `dir/shards/`, of one split; a folder with another name is ignored.
+/// The shards under `dir/shards/`, of one split (a misnamed folder there is refused,
+/// [`shard_folders`]).
 fn find_split(dir: &Path) -> Result<usize> {
     let counts: BTreeSet<usize> = shard_folders(dir)?.iter().map(|(s, _)| s.count).collect();
     match counts.len() {
