@@ -16,14 +16,14 @@ use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
 const GOLDEN: &[(&str, u32, u32, u32)] = &[
-    ("rne", 0, 49, 70),
-    ("rne", 1, 48, 69),
-    ("dis", 0, 44, 84),
-    ("dis", 1, 45, 70),
-    ("eng", 0, 81, 66),
-    ("eng", 1, 52, 71),
-    ("hp_dis", 0, 76, 92),
-    ("hp_dis", 1, 84, 88),
+    ("rne", 0, 39, 71),
+    ("rne", 1, 42, 68),
+    ("dis", 0, 39, 84),
+    ("dis", 1, 45, 83),
+    ("eng", 0, 85, 68),
+    ("eng", 1, 50, 69),
+    ("hp_dis", 0, 85, 87),
+    ("hp_dis", 1, 86, 86),
 ];
 
 #[test]

@@ -30,7 +30,11 @@
 //!    the intended velocity is rotated by the smallest angle (15 degree steps up to 120 degrees,
 //!    right side first) whose straight motion keeps clear of them for the look-ahead (same test
 //!    as 1) and, for ground robots, does not drive into walls or debris. If no heading is clear
-//!    the robot stands still this step (blocked).
+//!    the robot stands still this step (blocked). Under `collision.steering: KeepSide` (the
+//!    default; not from the paper) a robot tries the side it last turned to first, unless the
+//!    other side has a clear turn more than 45 degrees smaller, and a turned heading must also
+//!    keep clear of the moving robots it senses, taken at their intended velocities
+//!    (`steering::pick_turn`; `docs/world-model.md`, "Steering side and taken goals").
 
 use parry2d::math::Vector as Vec2;
 
@@ -41,12 +45,12 @@ use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
 pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
-use super::steering::steer_turns_for;
+use super::steering::pick_turn;
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
 };
 use super::union_find::{find, union};
-use crate::scenario::{CollisionParams, HoldRule};
+use crate::scenario::{CollisionParams, HoldRule, Steering};
 
 /// Progress (decrease of the remaining path length below its best value since the stall timer
 /// last restarted) below which a list member counts as "not moved" for deadlock detection,
@@ -578,9 +582,9 @@ impl Resolver {
     /// resolver's own, so that it borrows the resolver immutably and robots may steer on
     /// several threads at once; and with a steering side `side`: `0` tries the turns right
     /// side first at each angle, as [`Resolver::steer`] (the same answer, bit for bit); `< 0`
-    /// every right turn first, `> 0` every left turn first (the side of the robot's last
-    /// deflection, so that it keeps sliding along an obstacle one way; see
-    /// `steering::steer_turns_for`).
+    /// right turns first, `> 0` left turns first, within a bound (the side of the robot's
+    /// last deflection, so that it keeps sliding along an obstacle one way; see
+    /// `steering::pick_turn`).
     pub fn steer_with(
         &self,
         inputs: &[ResolverInput],
@@ -596,17 +600,28 @@ impl Resolver {
         }
         let horizon = self.params.lookahead_s.get() as f32;
         let held = &self.held;
+        let still = |b: &ResolverInput, j: usize| held[j] || !b.active || b.intent == Vec2::ZERO;
         near.clear();
         near.extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
             let b = &inputs[j];
-            let still = held[j] || !b.active || b.intent == Vec2::ZERO;
-            j != i && still && b.layer == a.layer && Self::sensed(a, b)
+            j != i && b.layer == a.layer && Self::sensed(a, b)
         }));
         let obstacles = &*near;
-        let clear_of_robots = |w: Vec2| {
+        // Against a robot standing still (velocity 0); under `collision.steering: KeepSide` a
+        // deflected heading also against a moving robot's intent (the pair test, rule 1, saw
+        // only the intents, and a kept side may turn further than the smallest clear turn).
+        let moving_too = self.params.steering == Steering::KeepSide;
+        let clear_of_robots = |w: Vec2, deflected: bool| {
             obstacles.iter().all(|&j| {
                 let b = &inputs[j];
-                !about_to_collide(b.pos - a.pos, -w, self.clearance(a, b), horizon)
+                let v_b = if still(b, j) {
+                    Vec2::ZERO
+                } else if deflected && moving_too {
+                    b.intent
+                } else {
+                    return true;
+                };
+                !about_to_collide(b.pos - a.pos, v_b - w, self.clearance(a, b), horizon)
             })
         };
         let clear_of_statics = |w: Vec2| {
@@ -626,19 +641,20 @@ impl Resolver {
                 c >= infl || c >= here
             })
         };
-        if clear_of_robots(a.intent) {
+        if clear_of_robots(a.intent, false) {
             return Some(a.intent);
         }
-        for &(s, c) in steer_turns_for(side) {
-            let w = Vec2::new(
+        let turned = |(s, c): (f32, f32)| {
+            Vec2::new(
                 a.intent.x * c - a.intent.y * s,
                 a.intent.x * s + a.intent.y * c,
-            );
-            if clear_of_robots(w) && clear_of_statics(w) {
-                return Some(w);
-            }
-        }
-        None
+            )
+        };
+        pick_turn(side, |t| {
+            let w = turned(t);
+            clear_of_robots(w, true) && clear_of_statics(w)
+        })
+        .map(turned)
     }
 }
 

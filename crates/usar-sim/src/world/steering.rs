@@ -28,50 +28,85 @@ pub(super) fn steer_turns() -> &'static [(f32, f32)] {
     })
 }
 
-/// The candidate turns of rule 5 in the order a robot with steering side `side` tries them:
-/// [`steer_turns`]'s order (right, left, at each angle in turn) for `side == 0`; for a robot
-/// that last turned right (`side < 0`) every right turn from the smallest first, then every
-/// left turn; for one that last turned left (`side > 0`) the reverse. Keeping to the side it
-/// turned to, a robot slides along an obstacle one way instead of turning back and forth
-/// between both sides on every control step, which gained nothing and made its path depend
-/// on the step length (`docs/world-model.md`, "Steering side").
-pub(super) fn steer_turns_for(side: f32) -> &'static [(f32, f32)] {
-    static BY_SIDE: std::sync::OnceLock<[Vec<(f32, f32)>; 2]> = std::sync::OnceLock::new();
+/// How many more turn steps ([`STEER_ANGLE_STEP_RAD`]) a robot turns to the side it last
+/// steered to than the other side would need, at most, before it changes side (3 x 15 = 45
+/// degrees). Keeping to its side, a robot slides along an obstacle one way instead of turning
+/// back and forth on every control step (which gained nothing and made its path depend on the
+/// step length); bounding it keeps its turns near the smallest clear one, as the resolver's
+/// pair test (rule 1, on intents) assumes. `docs/world-model.md`, "Steering side".
+pub const STEER_SIDE_HYSTERESIS_STEPS: usize = 3;
+
+/// Rule 5's turn for a robot with steering side `side` (`0`: none, `< 0`: it last turned
+/// right, `> 0`: left), as `(sin, cos)` of the turn, given `clear`, which says whether a turn
+/// is clear (called at most once per turn, in order of size): without a side, the smallest
+/// clear turn, right side first at each angle ([`steer_turns`]'s order); with one, the
+/// smallest clear turn of that side unless the other side has a clear turn more than
+/// [`STEER_SIDE_HYSTERESIS_STEPS`] steps smaller, which is then taken. `None` when no turn is
+/// clear.
+pub(super) fn pick_turn(
+    side: f32,
+    mut clear: impl FnMut((f32, f32)) -> bool,
+) -> Option<(f32, f32)> {
+    let turns = steer_turns();
     if side == 0.0 {
-        return steer_turns();
+        return turns.iter().copied().find(|&t| clear(t));
     }
-    let [right_first, left_first] = BY_SIDE.get_or_init(|| {
-        let turns = steer_turns();
-        let side_of = |parity: usize| turns.iter().skip(parity).step_by(2).copied();
-        [
-            side_of(0).chain(side_of(1)).collect(),
-            side_of(1).chain(side_of(0)).collect(),
-        ]
-    });
-    if side < 0.0 { right_first } else { left_first }
+    let own = usize::from(side > 0.0);
+    let other_side = 1 - own;
+    let mut other: Option<usize> = None;
+    for k in 0..STEER_STEPS_PER_SIDE as usize {
+        if other.is_some_and(|o| k > o + STEER_SIDE_HYSTERESIS_STEPS) {
+            break;
+        }
+        if clear(turns[2 * k + own]) {
+            return Some(turns[2 * k + own]);
+        }
+        if other.is_none() && clear(turns[2 * k + other_side]) {
+            other = Some(k);
+        }
+    }
+    other.map(|o| turns[2 * o + other_side])
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The turn `pick_turn` takes for `side` when exactly the turns of `clear_deg` (degrees,
+    /// right negative) are clear, in degrees.
+    fn pick(side: f32, clear_deg: &[i32]) -> Option<i32> {
+        let deg = |(s, c): (f32, f32)| s.atan2(c).to_degrees().round() as i32;
+        let mut asked = Vec::new();
+        let turn = pick_turn(side, |t| {
+            asked.push(deg(t));
+            clear_deg.contains(&deg(t))
+        });
+        let mut unique = asked.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        assert_eq!(unique.len(), asked.len(), "each turn asked once: {asked:?}");
+        turn.map(deg)
+    }
+
     #[test]
-    fn a_side_orders_its_own_turns_first_from_the_smallest() {
-        let angle = |(s, c): (f32, f32)| s.atan2(c).to_degrees().round() as i32;
-        let none: Vec<i32> = steer_turns_for(0.0).iter().copied().map(angle).collect();
-        assert_eq!(&none[..4], [-15, 15, -30, 30]);
-        let right: Vec<i32> = steer_turns_for(-1.0).iter().copied().map(angle).collect();
-        assert_eq!(&right[..3], [-15, -30, -45]);
-        assert_eq!(right[8], 15);
-        let left: Vec<i32> = steer_turns_for(1.0).iter().copied().map(angle).collect();
-        assert_eq!(&left[..3], [15, 30, 45]);
-        assert_eq!(left[8], -15);
-        for order in [none, right, left] {
-            assert_eq!(order.len(), 16);
-            let mut sorted = order.clone();
-            sorted.sort_unstable();
-            sorted.dedup();
-            assert_eq!(sorted.len(), 16, "each turn once: {order:?}");
-        }
+    fn without_a_side_the_smallest_clear_turn_right_first() {
+        assert_eq!(pick(0.0, &[30, -30, 90]), Some(-30));
+        assert_eq!(pick(0.0, &[45, -60]), Some(45));
+        assert_eq!(pick(0.0, &[]), None);
+    }
+
+    #[test]
+    fn a_side_is_kept_unless_the_other_is_more_than_the_hysteresis_nearer() {
+        // Left side kept against a right turn up to 45 degrees smaller.
+        assert_eq!(pick(1.0, &[-30, 75]), Some(75));
+        assert_eq!(pick(1.0, &[-15, 60]), Some(60));
+        // More than 45 degrees smaller: the right turn.
+        assert_eq!(pick(1.0, &[-15, 75]), Some(-15));
+        // Right side kept likewise.
+        assert_eq!(pick(-1.0, &[15, -45]), Some(-45));
+        assert_eq!(pick(-1.0, &[15, -90]), Some(15));
+        // Nothing on its side: the other side's smallest.
+        assert_eq!(pick(-1.0, &[30, 120]), Some(30));
+        assert_eq!(pick(1.0, &[]), None);
     }
 }
