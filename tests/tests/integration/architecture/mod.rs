@@ -68,6 +68,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                 // Base: files, logs and names that know nothing of a sweep.
                 &[
                     "atomic",
+                    "bounded_file",
                     "checked_log",
                     "fingerprint",
                     "journal",
