@@ -41,7 +41,7 @@ pub use distribution::{
     DistributionOptions, Smoothing, group_distribution, needs_distribution,
 };
 pub use error::{Result, RneError};
-pub use message_text::{error_line, number_text, one_line_text, path_text};
+pub use message_text::{error_line, number_text, one_line_text, path_text, short_numbers};
 pub use needs::{NeedsMatrix, NeedsVector, Weights};
 pub use rne::{LogBase, RneOptions, TrustModel, relative_entropy, rne};
 

@@ -62,9 +62,68 @@ pub fn error_line(e: &(dyn std::error::Error + 'static)) -> String {
     line
 }
 
+/// Significant digits past which a number in a message is rewritten: more than an `f64`
+/// holds (17), so such a run of digits says nothing a shorter form does not.
+const MAX_MESSAGE_DIGITS: usize = 17;
+
+/// `message` with every number of more than [`MAX_MESSAGE_DIGITS`] digits written as
+/// [`number_text`] writes it: ron writes a float it found in full (`-1e63` as 64 digits), and
+/// so does `{}` of an `f64` (`1e308` as 309 digits). The one pass every file's error
+/// messages go through (the scenario's ron errors, the targets', claims' and axes' errors).
+pub fn short_numbers(message: &str) -> String {
+    let b = message.as_bytes();
+    let mut out = String::with_capacity(message.len());
+    let (mut copied, mut i) = (0, 0);
+    while i < b.len() {
+        let end = number_end(b, i);
+        if end == i {
+            i += 1;
+            continue;
+        }
+        let text = &message[i..end];
+        let digits = text.bytes().filter(u8::is_ascii_digit).count();
+        if digits > MAX_MESSAGE_DIGITS
+            && let Ok(v) = text.parse::<f64>()
+        {
+            out.push_str(&message[copied..i]);
+            out.push_str(&number_text(v));
+            copied = end;
+        }
+        i = end;
+    }
+    out.push_str(&message[copied..]);
+    out
+}
+
+/// The end of the number (`-?digits[.digits][e[+-]digits]`) starting at byte `i` of `b`, or
+/// `i` when none starts there (nor inside a word: `x12` is a name).
+fn number_end(b: &[u8], i: usize) -> usize {
+    let starts_word = i > 0 && (b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_');
+    let digits_from = |j: usize| j + b[j..].iter().take_while(|c| c.is_ascii_digit()).count();
+    let j = if b[i] == b'-' { i + 1 } else { i };
+    if starts_word || j >= b.len() || !b[j].is_ascii_digit() {
+        return i;
+    }
+    let mut end = digits_from(j);
+    if end + 1 < b.len() && b[end] == b'.' && b[end + 1].is_ascii_digit() {
+        end = digits_from(end + 1);
+    }
+    if end + 1 < b.len() && matches!(b[end], b'e' | b'E') {
+        let k = if matches!(b[end + 1], b'+' | b'-') {
+            end + 2
+        } else {
+            end + 1
+        };
+        if k < b.len() && b[k].is_ascii_digit() {
+            end = digits_from(k);
+        }
+    }
+    end
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{error_line, number_text, one_line_text, path_text};
+    use super::{error_line, number_text, one_line_text, path_text, short_numbers};
 
     /// An error with a source, as a library's typed error with its cause.
     #[derive(Debug)]
@@ -125,6 +184,34 @@ mod tests {
         ];
         for (v, text) in cases {
             assert_eq!(number_text(v), text, "{v}");
+        }
+    }
+
+    #[test]
+    fn numbers_longer_than_an_f64_holds_are_shortened() {
+        let long = format!("-1{}", "0".repeat(63));
+        let cases = [
+            (
+                format!("found the floating point number `{long}`"),
+                "found the floating point number `-1e63`".to_string(),
+            ),
+            (format!("a {long}.5e+3 b"), "a -1e66 b".to_string()),
+            // Short numbers, digits in names and other text stay as they are.
+            (
+                "x12345678901234567890 count 2.5 é 7".to_string(),
+                "x12345678901234567890 count 2.5 é 7".to_string(),
+            ),
+            (
+                "12345678901234567 of them".to_string(),
+                "12345678901234567 of them".to_string(),
+            ),
+            (
+                "123456789012345678 of them".to_string(),
+                "1.2345678901234568e17 of them".to_string(),
+            ),
+        ];
+        for (message, short) in cases {
+            assert_eq!(short_numbers(&message), short);
         }
     }
 }

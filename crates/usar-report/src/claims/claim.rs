@@ -100,10 +100,12 @@ pub enum Correction {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Claim {
-    /// Short id, unique in its file: letters, digits, `_`, `-` and `.`, at most 32 characters
-    /// (`1`, `4a`); it names the claim's files (`spec_curve_<id>.svg`).
+    /// Short id, unique in its file, also ignoring case: letters, digits, `_`, `-` and `.`, at
+    /// most 32 characters (`1`, `4a`); it names the claim's files (`spec_curve_<id>.svg`).
     pub id: String,
-    /// The claim in words, one line (the paper's sentence, for the paper's claims).
+    /// The claim in words, one line of at most
+    /// [`MAX_NAME_CHARS`](crate::targets::ron_file::MAX_NAME_CHARS) characters (the paper's
+    /// sentence, for the paper's claims).
     pub sentence: String,
     /// The method the claim is about, by name (`RNE`; case and `-`/`_` ignored).
     pub subject: String,

@@ -22,7 +22,7 @@ use rne_core::grouping::METHOD_NAMES;
 use usar_sim::scenario::did_you_mean;
 
 use super::claim::{Claim, Rivals, method_key};
-use crate::targets::ron_file::{self, Source, StudyFile};
+use crate::targets::ron_file::{self, MAX_NAME_CHARS, Source, StudyFile, check_name};
 
 /// Longest claims file read, bytes (1 MiB): a longer file is refused instead of read into
 /// memory.
@@ -96,10 +96,12 @@ impl Claims {
     /// leading byte-order mark is skipped).
     ///
     /// # Errors
-    /// RON syntax or shape (unknown field or variant, missing field), with ron's line and
-    /// column; no claims; an id that is empty, too long, repeated or has other characters than
-    /// letters, digits, `_`, `-` and `.`; an empty sentence or one with a line break; an empty
-    /// subject; `Only([])`, a rival named twice or the subject among its rivals; an unknown
+    /// RON syntax or shape (unknown field or variant, with ron's line and column; a missing
+    /// field, at the claim that lacks it); no claims; an id that is empty, too long, repeated
+    /// (also when only its case differs) or has other characters than letters, digits, `_`,
+    /// `-` and `.`; an empty sentence, one with a line break or one longer than
+    /// [`MAX_NAME_CHARS`] characters; an empty subject, or a method name longer than that;
+    /// `Only([])`, a rival named twice or the subject among its rivals; an unknown
     /// metric (the message lists the metric names); an alpha outside (0, 0.5]. Each names the
     /// line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, ClaimsError> {
@@ -198,6 +200,17 @@ impl Claims {
         if let Some(j) = self.claims[..i].iter().position(|o| &o.id == id) {
             return Err(format!("duplicate id {id:?} (claims[{j}] has it too)"));
         }
+        // Ids name files (`spec_curve_<id>.svg`), which collide where case is ignored.
+        if let Some(j) = self.claims[..i]
+            .iter()
+            .position(|o| o.id.eq_ignore_ascii_case(id))
+        {
+            return Err(format!(
+                "ids {id:?} and {:?} (claims[{j}]) differ only by case: they name files \
+                 (spec_curve_<id>.svg), which would be one file where case is ignored",
+                self.claims[j].id
+            ));
+        }
         Ok(())
     }
 
@@ -209,6 +222,7 @@ impl Claims {
             return Err("Only([]) names no rival: name one, or write Every".into());
         }
         for (k, name) in names.iter().enumerate() {
+            check_name(name, "method")?;
             if c.is_subject(name) {
                 return Err(format!(
                     "the subject {:?} is among its rivals ({name:?})",
@@ -243,17 +257,22 @@ impl StudyFile for Claims {
         for (i, c) in self.claims.iter().enumerate() {
             let at = |field: &str| format!("claims[{i}].{field}");
             self.check_id(i, c).map_err(|m| self.error(&at("id"), m))?;
-            if c.sentence.trim().is_empty() || c.sentence.chars().any(char::is_control) {
+            if c.sentence.trim().is_empty()
+                || c.sentence.chars().any(char::is_control)
+                || c.sentence.chars().count() > MAX_NAME_CHARS
+            {
                 return Err(self.error(
                     &at("sentence"),
-                    "expected the claim in words on one line (not empty, no line break or \
-                     control character)"
-                        .into(),
+                    format!(
+                        "expected the claim in words on one line (not empty, no line break or \
+                         control character, at most {MAX_NAME_CHARS} characters)"
+                    ),
                 ));
             }
             if c.subject.trim().is_empty() {
                 return Err(self.error(&at("subject"), "empty: name a method".into()));
             }
+            check_name(&c.subject, "method").map_err(|m| self.error(&at("subject"), m))?;
             Self::check_rivals(c).map_err(|m| self.error(&at("rivals"), m))?;
             c.metric.task().map_err(|e| self.error(&at("metric"), e))?;
             if !(c.alpha > 0.0 && c.alpha <= 0.5) {
@@ -320,6 +339,79 @@ mod tests {
         // A method of one's own is known once it is among the sweep's methods.
         assert!(c.check_methods(&[]).is_err());
         assert!(c.check_methods(&["X".to_string()]).is_ok());
+    }
+
+    fn err(src: &str) -> String {
+        Claims::parse(src, "c.ron").unwrap_err().to_string()
+    }
+
+    /// Regression (issue 70): `Claim` and `claim` were both accepted, and named the same
+    /// `spec_curve_claim.svg` where case is ignored.
+    #[test]
+    fn ids_that_differ_only_by_case_are_refused_naming_both() {
+        let src = "(claims: [\n  (id: \"Claim\", sentence: \"s\", subject: \"x\", metric: \
+                   \"rounds\", direction: Less),\n  (id: \"claim\", sentence: \"t\", subject: \
+                   \"x\", metric: \"rounds\", direction: Less),\n])";
+        assert_eq!(
+            err(src),
+            "c.ron:3:4: claims[1].id: ids \"claim\" and \"Claim\" (claims[0]) differ only by \
+             case: they name files (spec_curve_<id>.svg), which would be one file where case is \
+             ignored"
+        );
+    }
+
+    /// Regression (issue 70): a missing field was reported at the entry's last field
+    /// (`claims[0].correction: Unexpected missing field named id`).
+    #[test]
+    fn a_missing_field_is_named_at_the_start_of_its_claim() {
+        let src = "Claims(claims: [\n  (id: \"a\", sentence: \"s\", subject: \"x\", metric: \
+                   \"rounds\", direction: Less),\n  (\n    sentence: \"t\", subject: \"x\",\n    \
+                   metric: \"rounds\", direction: Less, correction: Holm\n  ),\n])";
+        assert_eq!(err(src), "c.ron:3:3: claims[1]: missing field `id`");
+    }
+
+    /// Regression (issue 70): an alpha of 1e308 was written in full, 309 digits.
+    #[test]
+    fn a_huge_alpha_is_written_short() {
+        let e = err(
+            "(claims: [(id: \"a\", sentence: \"s\", subject: \"x\", metric: \"rounds\", \
+                     direction: Less, alpha: 1e308)])",
+        );
+        assert!(
+            e.ends_with("claims[0].alpha: expected a one-sided level in (0, 0.5], found 1e308"),
+            "{e}"
+        );
+    }
+
+    /// Regression (issue 70): sentences and method names of any length were read.
+    #[test]
+    fn sentences_and_method_names_are_bounded() {
+        let claim = |sentence: &str, subject: &str| {
+            format!(
+                "(claims: [(id: \"a\", sentence: {sentence:?}, subject: {subject:?}, metric: \
+                 \"rounds\", direction: Less)])"
+            )
+        };
+        let long = "x".repeat(MAX_NAME_CHARS + 1);
+        let e = err(&claim(&long, "x"));
+        assert!(
+            e.starts_with(
+                "c.ron:1:21: claims[0].sentence: expected the claim in words on one \
+                           line (not empty, no line break or control character, at most 200 \
+                           characters)"
+            ),
+            "{e}"
+        );
+        let e = err(&claim("s", &long));
+        assert!(
+            e.contains(
+                "claims[0].subject: method name of 201 characters, longer than the limit \
+                        of 200"
+            ),
+            "{e}"
+        );
+        let most = "x".repeat(MAX_NAME_CHARS);
+        assert!(Claims::parse(&claim(&most, "y"), "c.ron").is_ok());
     }
 
     #[test]

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
 
 use super::band::Band;
-use super::ron_file::{self, Source, StudyFile};
+use super::ron_file::{self, Source, StudyFile, check_name};
 use super::statistic::Statistic;
 
 /// Longest targets file read, bytes (1 MiB): a longer file is refused instead of read into
@@ -33,7 +33,8 @@ pub const MAX_TARGETS_BYTES: u64 = 1 << 20;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Target {
-    /// What it is, for tables (`rounds per trial`); unique within a file, not empty.
+    /// What it is, for tables (`rounds per trial`); unique within a file, not empty, one line
+    /// of at most [`ron_file::MAX_NAME_CHARS`] characters.
     pub name: String,
     /// The statistic, computed over a set of trials pooled over methods.
     pub statistic: Statistic,
@@ -128,7 +129,8 @@ impl Targets {
     ///
     /// # Errors
     /// RON syntax or shape (unknown field or statistic, missing field), with ron's line and
-    /// column; no targets; an empty or duplicate name; an unknown metric (the message lists
+    /// column; no targets; a name that is empty, repeated, longer than
+    /// [`ron_file::MAX_NAME_CHARS`] characters or holds a line break; an unknown metric (the message lists
     /// the metric names); a value that is not finite; a `PlusMinus` half-width that is not
     /// finite and > 0; a `Between` with bounds not finite or `low >= high`; a value outside
     /// its own `Between` band. Each names the line, column and field.
@@ -285,9 +287,7 @@ impl StudyFile for Targets {
         }
         for (i, t) in self.targets.iter().enumerate() {
             let at = |field: &str| format!("targets[{i}].{field}");
-            if t.name.trim().is_empty() {
-                return Err(self.error(&at("name"), "empty name: say what the target is".into()));
-            }
+            check_name(&t.name, "target").map_err(|m| self.error(&at("name"), m))?;
             if let Some(j) = self.targets[..i].iter().position(|o| o.name == t.name) {
                 return Err(self.error(
                     &at("name"),
@@ -392,7 +392,35 @@ mod tests {
             ),
             (
                 GOOD.replace("name: \"sd\"", "name: \" \""),
-                "t.ron:7:10: targets[2].name: empty name",
+                "t.ron:7:10: targets[2].name: empty target name",
+            ),
+            // Regression (issue 70): a name of 65,536 characters was read, and its padding
+            // in the calibration's summary panicked; a line break split its table row.
+            (
+                GOOD.replace("name: \"sd\"", &format!("name: \"{}\"", "s".repeat(201))),
+                "t.ron:7:10: targets[2].name: target name of 201 characters, longer than the \
+                 limit of 200",
+            ),
+            (
+                GOOD.replace("name: \"sd\"", "name: \"s\\nd\""),
+                "t.ron:7:10: targets[2].name: target name \"s\\nd\" holds a control character",
+            ),
+            // Regression (issue 70): numbers were written in full, 309 digits for 1e308.
+            (
+                GOOD.replace("value: 4.69", "value: 1e308"),
+                "t.ron:7:74: targets[2].band: the target's value 1e308 lies outside its own \
+                 band Between(3, 7)",
+            ),
+            (
+                GOOD.replace("PlusMinus(0.6)", "PlusMinus(1e308)")
+                    .replace("6.2", "1e308"),
+                "t.ron:4:67: targets[0].band: PlusMinus(1e308): the band around 1e308 reaches \
+                 past the largest number",
+            ),
+            // Regression (issue 70): reported at the target's last field.
+            (
+                GOOD.replace("value: 6.2, ", ""),
+                "t.ron:4:9: targets[0]: missing field `value`",
             ),
             (
                 "Targets(targets: [])".to_string(),

@@ -7,15 +7,22 @@ use std::path::Path;
 use std::sync::Arc;
 
 use serde::de::DeserializeOwned;
-use usar_sim::scenario::{BoundedReadError, SourceLocation, path_text, read_bounded};
+use usar_sim::scenario::{
+    BoundedReadError, SourceLocation, path_text, read_bounded, short_numbers,
+};
 
 use usar_sim::scenario::SourceMap;
 
-/// A positioned error of a study file: one line, `origin[:line:col]: [field: ]message`. Each
-/// kind of file wraps it in its own error type (`TargetsError`, `ClaimsError`, `AxesError`),
-/// so that a caller can tell which file was refused.
+/// A positioned error of a study file: one line, `origin[:line:col]: [field: ]message`, a
+/// number of more than 17 digits in the message written short ([`short_numbers`]: `1e308`,
+/// not 309 digits). Each kind of file wraps it in its own error type (`TargetsError`,
+/// `ClaimsError`, `AxesError`), so that a caller can tell which file was refused.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{location}: {}{message}", field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default())]
+#[error(
+    "{location}: {}{}",
+    field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default(),
+    short_numbers(message)
+)]
 pub struct Located {
     /// The file (as given) and, when known, the line and column.
     pub location: SourceLocation,
@@ -23,6 +30,36 @@ pub struct Located {
     pub field: Option<String>,
     /// What is wrong.
     pub message: String,
+}
+
+/// Longest name in a study file, characters: a target's name, an axis's or an
+/// alternative's, a claim's sentence and the methods it names. Names are printed in tables,
+/// headers and errors, padded to the longest (a name of 65,536 characters could not be
+/// padded at all).
+pub const MAX_NAME_CHARS: usize = 200;
+
+/// Refuses a name that is empty (or blank), longer than [`MAX_NAME_CHARS`] characters, or
+/// holds a control character (a line break would split a table row, a CSV row or an error
+/// line); `what` names it in the message (`target`, `axis`, `alternative`).
+///
+/// # Errors
+/// The message, without the field (the caller places it).
+pub fn check_name(name: &str, what: &str) -> Result<(), String> {
+    if name.trim().is_empty() {
+        return Err(format!("empty {what} name: say what it is"));
+    }
+    let chars = name.chars().count();
+    if chars > MAX_NAME_CHARS {
+        return Err(format!(
+            "{what} name of {chars} characters, longer than the limit of {MAX_NAME_CHARS}"
+        ));
+    }
+    if name.chars().any(char::is_control) {
+        return Err(format!(
+            "{what} name {name:?} holds a control character (a line break, a tab)"
+        ));
+    }
+    Ok(())
 }
 
 /// The text of the file at `path` (and its name as errors give it), at most `max_bytes`
@@ -55,7 +92,9 @@ pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, Str
 }
 
 /// `src` (a leading byte-order mark skipped) parsed as a `T`, with its source map; a RON
-/// error is placed at ron's line and column and at the field found there.
+/// error is placed at ron's line and column and at the field found there, except a missing
+/// field, which is placed at the start of the entry that lacks it (`claims[0]: missing field
+/// `id``; ron reports it at the entry's closing bracket, which would name its last field).
 ///
 /// # Errors
 /// RON syntax or shape (an unknown field or variant, a missing field).
@@ -64,13 +103,25 @@ pub fn parse<T: DeserializeOwned>(src: &str, origin: &str) -> Result<(T, Arc<Sou
     let map = Arc::new(SourceMap::build(src));
     let value = ron::Options::default().from_str(src).map_err(|e| {
         let offset = map.offset_of(e.span.start.line, e.span.start.col);
-        Located {
+        let at = |line_col, field: Option<&str>, message| Located {
             location: SourceLocation {
                 origin: origin.to_owned(),
-                line_col: Some((e.span.start.line, e.span.start.col)),
+                line_col: Some(line_col),
             },
-            field: map.path_at(offset).map(str::to_owned),
-            message: e.code.to_string(),
+            field: field.filter(|f| !f.is_empty()).map(str::to_owned),
+            message,
+        };
+        match &e.code {
+            ron::Error::MissingStructField { field, .. } => {
+                let entry = map.path_within(offset).unwrap_or("");
+                let line_col = map.line_col_of(entry).unwrap_or((1, 1));
+                at(line_col, Some(entry), format!("missing field `{field}`"))
+            }
+            code => at(
+                (e.span.start.line, e.span.start.col),
+                map.path_at(offset),
+                code.to_string(),
+            ),
         }
     })?;
     Ok((value, map))

@@ -125,7 +125,7 @@ impl SourceMap {
     /// `offset` (key through value, end exclusive): the struct a closing bracket at `offset`
     /// belongs to. ron reports a missing field at the struct's closing bracket, which
     /// [`SourceMap::path_at`] would give to the struct's last field when no comma follows it.
-    pub(crate) fn path_within(&self, offset: usize) -> Option<&str> {
+    pub fn path_within(&self, offset: usize) -> Option<&str> {
         self.innermost(|e| e.start <= offset && offset < e.end)
     }
 

@@ -245,7 +245,7 @@ pub fn trial_steps(duration_s: f64, dt_s: f64) -> Result<u64, String> {
     Ok(steps.max(1.0) as u64)
 }
 
-pub use rne_core::{number_text, one_line_text, path_text};
+pub use rne_core::{number_text, one_line_text, path_text, short_numbers};
 
 /// A count computed in `f64` as messages write it: as [`number_text`], or `more than 1.8e308`
 /// when it overflowed to infinity (a count is never negative); a count of 1e15 or more with

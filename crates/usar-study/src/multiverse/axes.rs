@@ -30,7 +30,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::columns::is_fixed_column;
-use usar_report::targets::ron_file::{self, Source, StudyFile};
+use usar_report::targets::ron_file::{self, Source, StudyFile, check_name};
 use usar_sweep::vary::{FieldPath, Override};
 
 /// Longest axes file read, bytes (1 MiB): a longer file is refused instead of read into
@@ -41,8 +41,9 @@ pub const MAX_AXES_BYTES: u64 = 1 << 20;
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Alternative {
-    /// Its name, unique within the axis and not empty (`linear`); the value of the axis's
-    /// column in `multiverse.csv`.
+    /// Its name, unique within the axis, not empty, one line of at most
+    /// [`ron_file::MAX_NAME_CHARS`] characters (`linear`); the value of the axis's column in
+    /// `multiverse.csv`.
     pub name: String,
     /// `FIELD=VALUE` overrides applied to the base scenario, in order (`[]`: the base
     /// scenario's own values). FIELD is a path as `--vary` takes it, VALUE is RON.
@@ -63,8 +64,8 @@ pub struct Alternative {
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Axis {
-    /// Its name, unique and not empty (`hp effect`); the name of its column in
-    /// `multiverse.csv`.
+    /// Its name, unique, not empty, one line of at most [`ron_file::MAX_NAME_CHARS`]
+    /// characters (`hp effect`); the name of its column in `multiverse.csv`.
     pub name: String,
     /// What the paper says about it, quoted, and where (default empty).
     #[serde(default)]
@@ -120,7 +121,8 @@ impl Axes {
     /// RON syntax or shape (an unknown or missing field), with ron's line and column; no
     /// axis; an axis without alternatives; an empty or repeated axis name, or one that names
     /// a fixed column of `multiverse.csv`; an empty or repeated alternative name within an
-    /// axis; an override that is not `FIELD=VALUE` (a bad path or RON value); one alternative
+    /// axis; a name longer than [`ron_file::MAX_NAME_CHARS`] characters or holding a control
+    /// character; an override that is not `FIELD=VALUE` (a bad path or RON value); one alternative
     /// setting a field twice; two axes setting the same field (or overlapping ones, such as
     /// `kinds[*].count` and `kinds[0].count`). Each names the line, column and field.
     pub fn parse(src: &str, origin: &str) -> Result<Self, AxesError> {
@@ -278,20 +280,6 @@ impl Axes {
     }
 }
 
-/// Refuses an empty (or blank) name, or one with a control character (a line break would
-/// split a table row); `what` is `axis` or `alternative`.
-fn check_name(name: &str, what: &str) -> Result<(), String> {
-    if name.trim().is_empty() {
-        return Err(format!("empty {what} name: say what it is"));
-    }
-    if name.chars().any(char::is_control) {
-        return Err(format!(
-            "{what} name {name:?} holds a control character (a line break, a tab)"
-        ));
-    }
-    Ok(())
-}
-
 impl StudyFile for Axes {
     type File = Axes;
     type Error = AxesError;
@@ -411,6 +399,26 @@ Axes(
             "{}",
             err(tab)
         );
+        // Regression (issue 70): names of any length were read, and printed padded.
+        let long = "x".repeat(201);
+        let e = err(&format!(
+            "Axes(axes: [(name: \"a\", alternatives: [(name: \"{long}\")])])"
+        ));
+        assert_eq!(
+            e,
+            "a.ron:1:41: axes[0].alternatives[0].name: alternative name of 201 characters, \
+             longer than the limit of 200"
+        );
+        let e = err(&format!(
+            "Axes(axes: [(name: \"{long}\", alternatives: [(name: \"x\")])])"
+        ));
+        assert!(
+            e.contains("axes[0].name: axis name of 201 characters"),
+            "{e}"
+        );
+        let most = "x".repeat(200);
+        let fine = format!("Axes(axes: [(name: \"{most}\", alternatives: [(name: \"{most}\")])])");
+        assert!(Axes::parse(&fine, "a.ron").is_ok());
         let column = "Axes(axes: [(name: \"loss\", alternatives: [(name: \"x\")])])";
         assert!(
             err(column).contains("\"loss\" is a column of multiverse.csv already"),
