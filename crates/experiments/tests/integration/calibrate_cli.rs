@@ -249,19 +249,19 @@ fn another_calibration_in_the_folder_is_refused_and_overwrite_starts_afresh() {
     let tmp = tempfile::tempdir().unwrap();
     let quick = ["--max-evals", "1", "--check-trials", "0"];
     ok(&calibrate_in(tmp.path(), &quick));
-    let o = calibrate_in(tmp.path(), &[&quick[..], &["--trials", "1"]].concat());
+    let o = calibrate_in(tmp.path(), &[&quick[..], &["--trials", "3"]].concat());
     assert!(!o.status.success());
     let err = stderr(&o);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(
-        err.contains("out/trace.jsonl holds another calibration (trace has trials 2 vs 1)")
+        err.contains("out/trace.jsonl holds another calibration (trace has trials 2 vs 3)")
             && err.contains("--overwrite")
             && err.contains("another --out"),
         "{err}"
     );
     let fresh = ok(&calibrate_in(
         tmp.path(),
-        &[&quick[..], &["--trials", "1", "--overwrite"]].concat(),
+        &[&quick[..], &["--trials", "3", "--overwrite"]].concat(),
     ));
     assert!(
         fresh.contains("1 evaluations (1 run now, 0 from the trace)"),

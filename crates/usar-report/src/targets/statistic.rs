@@ -87,6 +87,47 @@ impl Statistic {
 }
 
 impl Statistic {
+    /// The fewest trials per method it can be computed from: 2 for a spread or a
+    /// correlation (`PooledSd`, `PooledCv`, `WithinMethodCorrelation`,
+    /// `CrossMethodCorrelation`: NaN from one trial), 1 for the others.
+    pub fn min_trials_per_method(&self) -> u32 {
+        match self {
+            Statistic::Mean(_) | Statistic::RatioOfMeans(..) | Statistic::MeanOfRatios(..) => 1,
+            Statistic::PooledSd(_)
+            | Statistic::PooledCv(_)
+            | Statistic::WithinMethodCorrelation(..)
+            | Statistic::CrossMethodCorrelation(_) => 2,
+        }
+    }
+
+    /// What it needs to have a finite value, in words, for a message about a statistic
+    /// that came out NaN or infinite (`it needs at least 2 trials per method defining
+    /// rescued_total`).
+    pub fn needs(&self) -> String {
+        match self {
+            Statistic::Mean(m) => format!("it needs a trial defining {m}"),
+            Statistic::RatioOfMeans(a, b) => {
+                format!("it needs trials defining {a} and {b}, and a mean of {b} other than 0")
+            }
+            Statistic::MeanOfRatios(a, b) => {
+                format!("it needs trials defining {a} and {b}, with {b} other than 0")
+            }
+            Statistic::PooledSd(m) => {
+                format!("it needs at least 2 trials per method defining {m}")
+            }
+            Statistic::PooledCv(m) => format!(
+                "it needs at least 2 trials per method defining {m}, and a mean other than 0"
+            ),
+            Statistic::WithinMethodCorrelation(a, b) => {
+                format!("it needs at least 2 trials per method defining both {a} and {b}")
+            }
+            Statistic::CrossMethodCorrelation(m) => format!(
+                "it needs at least 2 methods, each with at least 2 trials of the same numbers \
+                 defining {m}"
+            ),
+        }
+    }
+
     /// How many of `results` it leaves out because one of its metrics is undefined there (a
     /// cost per rescuee in a trial without rescuees): reports say so next to the value.
     pub fn left_out(&self, results: &[TrialResult]) -> usize {

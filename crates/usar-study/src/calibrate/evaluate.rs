@@ -19,6 +19,7 @@ use super::error::CalibrationError;
 use super::free::FreeField;
 use super::loss::loss;
 use super::setup::{CalibrationSetup, Checked};
+use usar_report::targets::file::Target;
 use usar_report::targets::float_text;
 use usar_sweep::data::hooks::SweepHooks;
 use usar_sweep::executor::{CellPlan, Job, Runner, run_trial};
@@ -39,7 +40,8 @@ pub struct Evaluation {
     /// failed, the scenario broke a rule, or a statistic is NaN or infinite.
     #[serde(with = "float_text")]
     pub loss: f64,
-    /// Why the loss is +inf when something failed (failed trials, a broken rule).
+    /// Why the loss is +inf: failed trials, a broken rule, or a fitted target's statistic
+    /// that is NaN or infinite (naming the target and what its statistic needs).
     pub message: Option<String>,
     /// Trials that ran to their end.
     pub trials_ok: usize,
@@ -190,6 +192,7 @@ impl<'a> Evaluator<'a> {
                 e.statistics = self.setup.targets.values(&set.results);
                 e.trials_ok = set.results.len();
                 e.loss = loss(self.setup.targets.targets(), &e.statistics);
+                e.message = undefined_statistics(self.setup.targets.targets(), &e.statistics);
                 if e.loss == 0.0 && set.failures.is_empty() && self.setup.check_trials > 0 {
                     let check = self.run(&scenario, self.setup.check_seed, self.setup.check_trials);
                     let stats = self.setup.targets.values(&check.results);
@@ -288,6 +291,28 @@ impl<'a> Evaluator<'a> {
         }
         set
     }
+}
+
+/// Why the loss of `statistics` is +inf although every trial ran: each fitted target whose
+/// statistic is NaN or infinite, with what the statistic needs (`target "sd":
+/// PooledSd(rescued_total) is NaN: it needs at least 2 trials per method defining
+/// rescued_total`), joined by `; `; `None` when every fitted statistic is finite.
+fn undefined_statistics(targets: &[Target], statistics: &[f64]) -> Option<String> {
+    let lines: Vec<String> = targets
+        .iter()
+        .zip(statistics)
+        .filter(|(t, x)| !t.report_only && !x.is_finite())
+        .map(|(t, &x)| {
+            format!(
+                "target {:?}: {} is {}: {}",
+                t.name,
+                t.statistic,
+                float_text::short(x),
+                t.statistic.needs()
+            )
+        })
+        .collect();
+    (!lines.is_empty()).then(|| lines.join("; "))
 }
 
 /// A trial set where nothing could run, for `why`.

@@ -173,7 +173,8 @@ fn search(
         positions: HashMap::new(),
         trace,
         max_evals: setup.max_evals,
-        deadline: setup.max_time.map(|d| t0 + d),
+        // A budget past what an `Instant` holds (`--max-time` of 5e11 years) is no limit.
+        deadline: setup.max_time.and_then(|d| t0.checked_add(d)),
         stop: setup.hooks.stop.clone(),
         display: Display::new(progress, setup.max_evals),
         ran: 0,

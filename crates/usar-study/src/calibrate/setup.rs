@@ -59,7 +59,8 @@ pub struct CalibrationSetup {
     /// Most evaluations in the search's sequence, reused ones included (>= 1; default
     /// [`DEFAULT_MAX_EVALS`]). Not part of the calibration's identity: a resume may raise it.
     pub max_evals: usize,
-    /// Wall-clock budget of this run: no new evaluation starts once it is spent (`None`: no
+    /// Wall-clock budget of this run: no new evaluation starts once it is spent (`None`, or
+    /// a budget so long that its end cannot be represented, such as `Duration::MAX`: no
     /// limit). Not part of the calibration's identity.
     pub max_time: Option<Duration>,
     /// Worker threads for the trials (>= 1; capped at [`max_threads`] and the trials of an
@@ -136,7 +137,8 @@ impl CalibrationSetup {
     /// the targets against its tasks, the free fields against its spec, the methods.
     ///
     /// # Errors
-    /// One line: an option out of range (naming its `usar calibrate` flag), a base scenario
+    /// One line: an option out of range (naming its `usar calibrate` flag; `trials` below 2
+    /// when a target is a spread or a correlation, [`too_few_trials`]), a base scenario
     /// that breaks a rule, a target metric naming a task the scenario lacks (naming the
     /// target), a free field that names nothing, is not a real number, or is given twice, an
     /// unknown or repeated method.
@@ -146,6 +148,9 @@ impl CalibrationSetup {
         let plan = &self.trial_plan;
         if plan.trials == 0 {
             return refuse("trials", " must be at least 1".into());
+        }
+        if let Some(problem) = too_few_trials(&self.targets, plan.trials) {
+            return refuse("trials", problem);
         }
         if !(1..=17).contains(&self.digits) {
             return refuse("digits", format!(" must be 1 to 17, found {}", self.digits));
@@ -244,6 +249,24 @@ impl CalibrationSetup {
         }
         Ok(names)
     }
+}
+
+/// Why `trials` per method are too few for `targets` (the rest of the line after the
+/// setting's name: ` must be at least 2: target "sd" (PooledSd(rescued_total)): it needs at
+/// least 2 trials per method defining rescued_total`), or `None`: a spread or a correlation
+/// within a method's trials is NaN from one trial, whether the target is fitted or reported.
+pub fn too_few_trials(targets: &Targets, trials: u32) -> Option<String> {
+    let t = targets
+        .targets()
+        .iter()
+        .find(|t| t.statistic.min_trials_per_method() > trials)?;
+    Some(format!(
+        " must be at least {}: target {:?} ({}): {}",
+        t.statistic.min_trials_per_method(),
+        t.name,
+        t.statistic,
+        t.statistic.needs()
+    ))
 }
 
 /// A setup checked by [`CalibrationSetup::check`].

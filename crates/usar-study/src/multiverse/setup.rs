@@ -13,7 +13,7 @@ pub use super::error::MultiverseError;
 use super::record::UniverseRecord;
 use super::universe::{Sample, Universe, check_shards, factorial_size, select, shard_of};
 use super::validate::check_axes;
-use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed};
+use crate::calibrate::setup::{DEFAULT_DIGITS, default_check_seed, too_few_trials};
 use crate::calibrate::{
     CalibrationSetup, EvaluationHook, FreeField, Optimizer, Targets, TrialPlan,
 };
@@ -259,6 +259,9 @@ impl MultiverseSetup {
         }
         if self.calibration_trials == 0 {
             return refuse("calibration_trials", " must be at least 1".into());
+        }
+        if let Some(problem) = too_few_trials(&self.targets, self.calibration_trials) {
+            return refuse("calibration_trials", problem);
         }
         if self.design > 0 && self.design < MIN_DESIGN {
             return refuse(

@@ -324,3 +324,77 @@ fn a_stopped_calibration_writes_nothing_and_continues() {
     }
     assert_eq!(fresh.ran, 4);
 }
+
+/// Regression (issue 70): `max_time: Duration::MAX` (what `max_time_s=1e300` and `--max-time
+/// 18446744073709551615s` become) panicked adding it to the start's `Instant`; an end that
+/// cannot be represented is no limit.
+#[test]
+fn a_budget_past_what_an_instant_holds_is_no_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = setup(&["mission.pickup_s=0.5..2"], targets(Some(300.0)), 1);
+    s.max_time = Some(std::time::Duration::MAX);
+    let o = calibrate(&s, dir.path(), Progress::off()).unwrap();
+    assert_eq!((o.evaluations.len(), o.stop), (1, StopReason::MaxEvals));
+}
+
+/// Regression (issue 70): one trial per method gave a spread of NaN, a loss of inf and no
+/// message. Such a calibration is refused before it runs, naming `trials` and the target.
+#[test]
+fn one_trial_is_refused_for_a_spread_and_an_undefined_statistic_says_why() {
+    let spread = Targets::parse(
+        "Targets(targets: [(name: \"sd\", statistic: PooledSd(\"rescued_total\"), value: 3.0, \
+         band: PlusMinus(1.0), report_only: true), (name: \"rounds\", statistic: \
+         Mean(\"rounds\"), value: 1.0, band: Between(0.0, 100.0))])",
+        "t",
+    )
+    .unwrap();
+    let mut s = setup(&["mission.pickup_s=0.5..2"], spread, 1);
+    let dir = tempfile::tempdir().unwrap();
+    let e = calibrate(&s, dir.path(), Progress::off()).unwrap_err();
+    let refused = usar_study::refused_setting::RefusedSetting::of(&e).expect("a setting");
+    assert_eq!(refused.field, Some("trials"));
+    assert_eq!(
+        refused.problem,
+        " must be at least 2: target \"sd\" (PooledSd(rescued_total)): it needs at least 2 \
+         trials per method defining rescued_total"
+    );
+    assert!(!dir.path().join("trace.jsonl").exists());
+    // With 2 trials it runs; a cost per rescuee in 1 s (no rescuee) is undefined, and the
+    // evaluation says why instead of an empty message.
+    s.trial_plan.trials = 2;
+    s.trial_plan.duration_s = Some(1.0);
+    s.targets = Targets::parse(
+        "Targets(targets: [(name: \"cost\", statistic: Mean(\"energy_per_rescuee_pct\"), \
+         value: 1.0, band: PlusMinus(0.5))])",
+        "t",
+    )
+    .unwrap();
+    let checked = s.check().unwrap();
+    let e = Evaluator::new(&s, &checked).unwrap().evaluate(&[1.2]);
+    assert_eq!(e.trials_ok, 2);
+    assert_eq!(e.loss, f64::INFINITY);
+    assert_eq!(
+        e.message.as_deref(),
+        Some(
+            "target \"cost\": Mean(energy_per_rescuee_pct) is NaN: it needs a trial defining \
+             energy_per_rescuee_pct"
+        )
+    );
+}
+
+/// Regression (issue 70): a tiny band made the loss of a point whose trials all ran +inf, as
+/// if it had failed. It is finite (saturated), with no message.
+#[test]
+fn a_tiny_band_gives_a_finite_loss() {
+    let tiny = Targets::parse(
+        "Targets(targets: [(name: \"rounds\", statistic: Mean(\"rounds\"), value: 100.0, \
+         band: PlusMinus(5e-324))])",
+        "t",
+    )
+    .unwrap();
+    let s = setup(&["mission.pickup_s=0.5..2"], tiny, 1);
+    let checked = s.check().unwrap();
+    let e = Evaluator::new(&s, &checked).unwrap().evaluate(&[1.2]);
+    assert!(e.statistics[0].is_finite(), "{:?}", e.statistics);
+    assert_eq!((e.loss, e.message), (f64::MAX, None));
+}
