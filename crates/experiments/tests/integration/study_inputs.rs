@@ -115,3 +115,141 @@ fn a_fifo_as_any_input_file_is_refused_at_once() {
         assert!(!d.join("out").exists(), "{args:?} made its output folder");
     }
 }
+
+/// `usar calibrate PAPER --targets t.ron` (t.ron holding `targets`) of one evaluation of RNE's
+/// trials of 10 s, no check, in `d`, with `extra`.
+fn calibrate(d: &Path, targets: &str, extra: &[&str]) -> Output {
+    std::fs::write(d.join("t.ron"), targets).unwrap();
+    let short = "--free mission.pickup_s=0.5..2 --methods rne --duration 10 --max-evals 1 \
+                 --check-trials 0 --quiet --out out";
+    let mut args = vec!["calibrate", PAPER, "--targets", "t.ron"];
+    args.extend(short.split_whitespace());
+    args.extend(extra);
+    usar_within_a_minute(d, &args)
+}
+
+/// Regression (issue 70): a target name of 65,536 characters made `usar calibrate` panic
+/// ("Formatting argument out of range") after it wrote its files. Names are bounded when the
+/// file is read.
+#[test]
+fn a_target_name_past_the_limit_is_refused_before_anything_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let name = "n".repeat(65_536);
+    let targets = format!(
+        "Targets(targets: [\n  (name: \"{name}\", statistic: Mean(\"rounds\"), value: 1.0, \
+         band: PlusMinus(0.5)),\n])"
+    );
+    let err = one_line_error(&calibrate(tmp.path(), &targets, &["--trials", "2"]));
+    assert_eq!(
+        err,
+        "error: t.ron:2:4: targets[0].name: target name of 65536 characters, longer than the \
+         limit of 200\n"
+    );
+    assert!(!tmp.path().join("out").exists());
+}
+
+/// Regression (issue 70): `--max-time=18446744073709551615s` panicked ("overflow when
+/// adding duration to instant"); a budget whose end cannot be represented is no limit.
+#[test]
+fn an_endless_max_time_is_no_limit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let targets = r#"Targets(targets: [
+  (name: "rounds", statistic: Mean("rounds"), value: 9.0, band: PlusMinus(0.5)),
+])"#;
+    let o = calibrate(
+        tmp.path(),
+        targets,
+        &["--trials", "2", "--max-time=18446744073709551615s"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(summary.contains("1 evaluations (1 run now"), "{summary}");
+}
+
+/// Regression (issue 70): `--trials 1` with a spread among the targets gave a loss of inf,
+/// NaN spreads and an empty message; it is refused naming the flag, the target and why.
+#[test]
+fn one_trial_for_a_spread_target_is_refused_naming_the_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let targets = r#"Targets(targets: [
+  (name: "rounds", statistic: Mean("rounds"), value: 1.0, band: PlusMinus(0.5)),
+  (name: "sd", statistic: PooledSd("rescued_total"), value: 3.0, band: PlusMinus(1.0)),
+])"#;
+    let err = one_line_error(&calibrate(d, targets, &["--trials", "1"]));
+    assert_eq!(
+        err,
+        "error: --trials must be at least 2: target \"sd\" (PooledSd(rescued_total)): it needs \
+         at least 2 trials per method defining rescued_total\n"
+    );
+    assert!(!d.join("out").exists());
+    std::fs::write(d.join("a.ron"), AXES).unwrap();
+    let o = usar_within_a_minute(
+        d,
+        &[
+            "multiverse",
+            PAPER,
+            "--axes",
+            "a.ron",
+            "--targets",
+            "t.ron",
+            "--free",
+            "mission.pickup_s=0.5..2",
+            "--calibration-trials",
+            "1",
+            "--out",
+            "mv",
+        ],
+    );
+    let err = one_line_error(&o);
+    assert!(
+        err.starts_with("error: --calibration-trials must be at least 2: target \"sd\""),
+        "{err}"
+    );
+    assert!(!d.join("mv").exists());
+}
+
+/// Regression (issue 70): claims files' errors. A missing field was reported at the claim's
+/// last field (`claims[0].correction: Unexpected missing field named id`); ids that differ
+/// only by case, which name the same file where case is ignored, were accepted; an alpha of
+/// 1e308 was written in 309 digits.
+#[test]
+fn claims_files_name_a_missing_field_ids_equal_but_for_case_and_numbers_short() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let claim = |id: &str, extra: &str| {
+        format!(
+            "  (id: \"{id}\", sentence: \"s\", subject: \"rne\", metric: \"rounds\", \
+             direction: Less{extra}),\n"
+        )
+    };
+    let no_id = "  (sentence: \"s\", subject: \"rne\", metric: \"rounds\",\n   direction: Less, \
+                 correction: Holm),\n";
+    let cases = [
+        (
+            format!("Claims(claims: [\n{no_id}])"),
+            "c.ron:2:3: claims[0]: missing field `id`",
+        ),
+        (
+            format!(
+                "Claims(claims: [\n{}{}])",
+                claim("Hard", ""),
+                claim("hard", "")
+            ),
+            "c.ron:3:4: claims[1].id: ids \"hard\" and \"Hard\" (claims[0]) differ only by \
+             case: they name files (spec_curve_<id>.svg), which would be one file where case \
+             is ignored",
+        ),
+        (
+            format!("Claims(claims: [\n{}])", claim("a", ", alpha: 1e308")),
+            "c.ron:2:79: claims[0].alpha: expected a one-sided level in (0, 0.5], found 1e308",
+        ),
+    ];
+    for (body, want) in cases {
+        std::fs::write(d.join("c.ron"), &body).unwrap();
+        let o = usar_within_a_minute(d, &["sweep", PAPER, "--claims", "c.ron", "--out", "out"]);
+        let err = one_line_error(&o);
+        assert_eq!(err, format!("error: --claims: {want}\n"), "{body}");
+        assert!(!d.join("out").exists());
+    }
+}
