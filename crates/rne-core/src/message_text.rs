@@ -66,7 +66,7 @@ pub fn error_line(e: &(dyn std::error::Error + 'static)) -> String {
 /// holds (17), so such a run of digits says nothing a shorter form does not.
 const MAX_MESSAGE_DIGITS: usize = 17;
 
-/// `message` with every number of more than [`MAX_MESSAGE_DIGITS`] digits written as
+/// `message` with every number of more than 17 digits (`MAX_MESSAGE_DIGITS`) written as
 /// [`number_text`] writes it: ron writes a float it found in full (`-1e63` as 64 digits), and
 /// so does `{}` of an `f64` (`1e308` as 309 digits). The one pass every file's error
 /// messages go through (the scenario's ron errors, the targets', claims' and axes' errors).
