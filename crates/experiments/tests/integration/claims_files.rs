@@ -39,9 +39,23 @@ fn claim_lines(report: &str) -> Vec<&str> {
 fn the_paper_claims_file_gives_the_verdicts_of_the_built_in_claims() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("paper");
+    // The built-in claims ran under the steering of then (`collision.steering: Memoryless`,
+    // the default before issue 70): paper.ron with it written out, and the paper's claims file.
+    let paper = std::fs::read_to_string(format!("{ROOT}/scenarios/paper.ron")).unwrap();
+    let before = "deadlock_after_s: 2.0)";
+    assert!(
+        paper.contains(before),
+        "paper.ron's collision section moved"
+    );
+    let then = paper.replacen(before, "deadlock_after_s: 2.0, steering: Memoryless)", 1);
+    let scenario = tmp.path().join("paper.ron");
+    std::fs::write(&scenario, then).unwrap();
+    let claims = format!("{ROOT}/scenarios/paper-claims.ron");
     ok(&usar([
         "sweep",
-        &format!("{ROOT}/scenarios/paper.ron"),
+        text(&scenario),
+        "--claims",
+        &claims,
         "--trials",
         "4",
         "--duration",

@@ -30,7 +30,8 @@ fn targets(rescued: Option<f64>) -> Targets {
     Targets::parse(&text, "test targets").unwrap()
 }
 
-/// A short calibration of `free` in paper.ron: RNE, 1 trial of 40 s per evaluation, no check.
+/// A short calibration of `free` in paper.ron: RNE, 1 trial of 60 s per evaluation (the first
+/// deliveries come after about 40 s), no check.
 fn setup(free: &[&str], targets: Targets, max_evals: usize) -> CalibrationSetup {
     let text = std::fs::read_to_string(PAPER).unwrap();
     let base = usar_sim::scenario::parse_spec(&text, "paper.ron").unwrap();
@@ -44,7 +45,7 @@ fn setup(free: &[&str], targets: Targets, max_evals: usize) -> CalibrationSetup 
     };
     setup.trial_plan.methods = vec!["rne".into()];
     setup.trial_plan.trials = 1;
-    setup.trial_plan.duration_s = Some(40.0);
+    setup.trial_plan.duration_s = Some(60.0);
     setup
 }
 
@@ -250,7 +251,7 @@ fn a_larger_budget_continues_the_same_search() {
         "mission.pickup_s=0.5..2",
         "mission.search_time_budget_s=8..30",
     ];
-    // 30 rescuees are out of reach in 40 s: the search runs its whole budget.
+    // 300 rescuees are out of reach in 60 s: the search runs its whole budget.
     let short = setup(&free, targets(Some(300.0)), 3);
     let long = setup(&free, targets(Some(300.0)), 5);
     let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
