@@ -33,6 +33,7 @@ use super::universe::Universe;
 use crate::calibrate::{Evaluator, FreeField};
 use usar_report::targets::float_text;
 use usar_sweep::atomic::{FileError, write_atomic};
+use usar_sweep::bounded_file::{MAX_MULTIVERSE_PLAN_BYTES, read_small};
 use usar_sweep::checked_log::{record_line, verified_record};
 use usar_sweep::vary::apply_overrides;
 
@@ -126,7 +127,9 @@ impl DesignPoint {
         identity_sum: &str,
         (free, targets): (usize, usize),
     ) -> Option<Self> {
-        let text = std::fs::read_to_string(point_path(root, index, design)).ok()?;
+        // Bounded, and a FIFO or device is refused, not waited on (issue 70).
+        let bytes = read_small(&point_path(root, index, design), MAX_MULTIVERSE_PLAN_BYTES);
+        let text = String::from_utf8(bytes.ok()?).ok()?;
         let json = verified_record(&text, "design", identity_sum)?;
         let point: Self = serde_json::from_str(json).ok()?;
         (point.index == index && point.values.len() == free && point.statistics.len() == targets)

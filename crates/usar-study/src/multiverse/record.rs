@@ -20,6 +20,7 @@ use super::error::MultiverseError;
 use crate::calibrate::StopReason;
 use usar_report::targets::float_text;
 use usar_sweep::atomic::write_atomic;
+use usar_sweep::bounded_file::{MAX_MULTIVERSE_PLAN_BYTES, read_small};
 use usar_sweep::checked_log::{record_line, verified_record};
 
 /// What the functions of this module return.
@@ -178,12 +179,18 @@ impl UniverseRecord {
     /// Reads the record of the universe folder `dir` for the multiverse with `identity_sum`.
     pub fn read(dir: &Path, identity_sum: &str) -> RecordRead {
         let path = Self::path_in(dir);
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
+        // Bounded, and a FIFO or device is refused, not waited on (issue 70).
+        let bytes = match std::fs::symlink_metadata(&path) {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return RecordRead::Missing,
-            Err(e) => {
-                return RecordRead::Unusable(format!("cannot read {}: {e}", path_text(&path)));
+            _ => read_small(&path, MAX_MULTIVERSE_PLAN_BYTES),
+        };
+        let text = match bytes.map(String::from_utf8) {
+            Ok(Ok(t)) => t,
+            Ok(Err(_)) => {
+                let path = path_text(&path);
+                return RecordRead::Unusable(format!("{path}: not UTF-8 text"));
             }
+            Err(e) => return RecordRead::Unusable(e.to_string()),
         };
         match parse(&text, identity_sum) {
             Some(r) => RecordRead::Done(Box::new(r)),
@@ -285,6 +292,23 @@ pub(crate) mod tests {
             UniverseRecord::read(dir.path(), "abc"),
             RecordRead::Unusable(_)
         ));
+    }
+
+    #[test]
+    fn a_record_that_is_a_fifo_is_unusable_at_once_not_waited_on() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = UniverseRecord::path_in(dir.path());
+        let made = std::process::Command::new("mkfifo").arg(&path).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+        let (tx, rx) = std::sync::mpsc::channel();
+        let root = dir.path().to_path_buf();
+        // A reader that opened the FIFO would wait for a writer for ever: the test waits 20 s.
+        std::thread::spawn(move || tx.send(UniverseRecord::read(&root, "abc")));
+        let read = rx.recv_timeout(std::time::Duration::from_secs(20));
+        assert!(
+            matches!(&read, Ok(RecordRead::Unusable(m)) if m.contains("not a regular file")),
+            "{read:?}"
+        );
     }
 
     #[test]
