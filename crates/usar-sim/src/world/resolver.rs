@@ -183,7 +183,7 @@ impl Resolver {
 
     /// Whether robot `i` (not held, deflected or blocked by rule 5) stands at the rim of a
     /// goal `goal` taken by a robot standing still, within `tolerance_m` (its goal tolerance,
-    /// metres) of the rim point nearest the goal: see [`super::goal_taken::goal_taken`]. Call
+    /// metres) of the rim point nearest the goal (`world/goal_taken.rs`). Call
     /// after [`Resolver::resolve`] with the same `inputs` (it uses that step's neighbour lists).
     pub fn goal_taken(
         &self,
