@@ -601,16 +601,16 @@ impl Resolver {
         let horizon = self.params.lookahead_s.get() as f32;
         let held = &self.held;
         let still = |b: &ResolverInput, j: usize| held[j] || !b.active || b.intent == Vec2::ZERO;
-        near.clear();
-        near.extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
-            let b = &inputs[j];
-            j != i && b.layer == a.layer && Self::sensed(a, b)
-        }));
-        let obstacles = &*near;
         // Against a robot standing still (velocity 0); under `collision.steering: KeepSide` a
         // deflected heading also against a moving robot's intent (the pair test, rule 1, saw
         // only the intents, and a kept side may turn further than the smallest clear turn).
         let moving_too = self.params.steering == Steering::KeepSide;
+        near.clear();
+        near.extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
+            let b = &inputs[j];
+            j != i && b.layer == a.layer && (moving_too || still(b, j)) && Self::sensed(a, b)
+        }));
+        let obstacles = &*near;
         let clear_of_robots = |w: Vec2, deflected: bool| {
             obstacles.iter().all(|&j| {
                 let b = &inputs[j];
