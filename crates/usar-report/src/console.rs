@@ -240,10 +240,11 @@ fn claims(out: &mut dyn Write, a: &CellAnalysis, origin: &str) -> Result<()> {
         match &chk.reason {
             None => writeln!(
                 out,
-                "  ({}) {}: {} ({})",
+                "  ({}) {}: {} ({}, {})",
                 chk.claim.id,
                 chk.claim.sentence,
                 chk.verdict.words(),
+                chk.test_run_words(),
                 max_p_text(chk)
             )?,
             Some(why) => writeln!(

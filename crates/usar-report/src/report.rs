@@ -11,12 +11,13 @@ use usar_sim::scenario::Scenario;
 
 use crate::analysis::CellAnalysis;
 use crate::calibration::ReportOptions;
-use crate::claims::{ClaimCheck, Claims, Correction};
-use crate::table::{mean_sd, num, pval};
+use crate::table::{mean_sd, num};
 use usar_sweep::data::figure_list::FIGURES;
 use usar_sweep::data::grid_cells::GridCell;
 use usar_sweep::data::outcome::SweepOutcome;
 pub use usar_sweep::data::software::{software_build, software_version};
+
+mod claims_md;
 use usar_sweep::data::trial_length::simulated_length_s;
 
 /// What [`report_md`] needs.
@@ -53,7 +54,7 @@ pub fn report_md(input: &ReportInput<'_>) -> String {
         pooled(&mut r, input.analysis, targets.origin());
     }
     if let Some(c) = &input.options.claims {
-        claims(&mut r, input.analysis, c);
+        claims_md::claims(&mut r, input.analysis, c);
     }
     if let Some(line) = input.options.how_to_ask() {
         let _ = writeln!(r, "{line}\n");
@@ -241,105 +242,6 @@ fn round_lengths(r: &mut String, a: &CellAnalysis) {
             num(s.longest_s),
             num(s.started_per_trial)
         );
-    }
-    r.push('\n');
-}
-
-/// The report's section on its claims (`claims`, a claims file): how a verdict is reached, a
-/// table of the verdicts, and one subsection per claim ([`claim_section`]).
-fn claims(r: &mut String, a: &CellAnalysis, claims: &Claims) {
-    let _ = writeln!(r, "## Claims\n");
-    let _ = writeln!(
-        r,
-        "The claims of `{}`. Each says one method (its subject) has a better mean of a metric \
-         than each of its rivals. It **holds** when the subject's mean is better than every \
-         rival's and each pairwise one-sided test (the claim's: Welch's t-test, unequal \
-         variances, or the Mann-Whitney U test) has p < alpha, after the claim's correction \
-         over its rivals if it has one (Holm); it is **not significant** when the means point \
-         the claimed way but some p >= alpha; it **does not hold** when a rival's mean is as \
-         good or better; it is **not tested** when the sweep lacks what it needs. Requiring \
-         every pairwise test to reject is an intersection-union test, so a claim needs no \
-         correction for its error rate to stay at alpha. The Welch statistic and its \
-         Welch-Satterthwaite degrees of freedom are computed here and the p-value comes from \
-         statrs's Student's t CDF (statrs has no two-sample t-test); the one-sided \
-         Mann-Whitney U test is statrs `mannwhitneyu`. Both tests are shown for every rival, \
-         oriented so that a positive t (a U above n²/2) points the claimed way; `difference` \
-         is the subject's mean minus the rival's. `p(reverse)` is Welch's p for the opposite \
-         direction.\n",
-        claims.origin()
-    );
-    let _ = writeln!(r, "| claim | test | verdict |\n|---|---|---|");
-    for c in &a.claims {
-        let _ = writeln!(
-            r,
-            "| ({}) {} | {} | **{}** |",
-            c.claim.id,
-            c.claim.sentence,
-            c.claim.test_words(),
-            c.verdict.words()
-        );
-    }
-    r.push('\n');
-    for c in &a.claims {
-        claim_section(r, a, c);
-    }
-}
-
-/// One claim's subsection: its verdict and, when it was tested, the subject's mean and one
-/// row per rival (the difference, Welch's t-test, the Mann-Whitney U test, the reverse
-/// direction's p and, with a correction, the claim's test's corrected p).
-fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
-    let _ = writeln!(
-        r,
-        "### ({}) {}: **{}**\n",
-        c.claim.id,
-        c.claim.sentence,
-        c.verdict.words()
-    );
-    if let Some(why) = &c.reason {
-        let _ = writeln!(r, "Not tested: {why}.\n");
-        return;
-    }
-    let label = c.metric.map_or_else(String::new, |m| m.label(&a.tasks));
-    let _ = writeln!(
-        r,
-        "{} {}: {} (n = {}).\n",
-        c.subject,
-        label,
-        mean_sd(&c.subject_summary),
-        c.subject_summary.n
-    );
-    let corrected = c.claim.correction != Correction::None;
-    let _ = writeln!(
-        r,
-        "| vs | other's mean ± sd (n) | difference | Welch t (dof) | p | Mann-Whitney U | p | \
-         p(reverse) |{}",
-        if corrected { " p (Holm) |" } else { "" }
-    );
-    let _ = writeln!(
-        r,
-        "|---|---|---|---|---|---|---|---|{}",
-        if corrected { "---|" } else { "" }
-    );
-    for cmp in &c.comparisons {
-        let _ = write!(
-            r,
-            "| {} | {} ({}) | {} | {} ({}) | {} | {} | {} | {} |",
-            cmp.other,
-            mean_sd(&cmp.other_summary),
-            cmp.other_summary.n,
-            num(c.subject_summary.mean - cmp.other_summary.mean),
-            num(cmp.welch.statistic),
-            num(cmp.welch.dof),
-            pval(cmp.welch.p),
-            num(cmp.mann_whitney.statistic),
-            pval(cmp.mann_whitney.p),
-            pval(cmp.welch_reverse.p),
-        );
-        if corrected {
-            let _ = write!(r, " {} |", pval(cmp.p_adjusted));
-        }
-        r.push('\n');
     }
     r.push('\n');
 }

@@ -10,10 +10,17 @@
 //!   corrected). Not statrs's exact method: in statrs 0.19.1 its exact one-sided p-value is
 //!   the complement of the right one when the first sample is not larger than the second
 //!   (e.g. `[5, 6, 7, 8]` greater than `[1, 2, 3, 4]` gives 0.986 instead of 1/70).
+//! - [`paired_t_greater`] and [`wilcoxon_greater`]: the paired t-test and the Wilcoxon
+//!   signed-rank test, one-sided, on matched pairs (trial k of two methods on the same draws;
+//!   [`mod@paired`]).
 
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use statrs::stats_tests::Alternative;
 use statrs::stats_tests::mannwhitneyu::{MannWhitneyUMethod, mannwhitneyu};
+
+pub mod paired;
+
+pub use paired::{WILCOXON_EXACT_MAX_N, paired_t_greater, wilcoxon_greater};
 
 /// Mean, spread and 95 % confidence interval of a sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,9 +117,11 @@ fn t_quantile(p: f64, dof: f64) -> f64 {
 /// Result of a one-sided two-sample test of "x is greater than y".
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TestResult {
-    /// The test statistic (Welch's t, or U of `x` for Mann-Whitney).
+    /// The test statistic (Welch's or the paired t, U of `x` for Mann-Whitney, W+ for
+    /// Wilcoxon's signed-rank test).
     pub statistic: f64,
-    /// Degrees of freedom (Welch-Satterthwaite); NaN for Mann-Whitney.
+    /// Degrees of freedom (Welch-Satterthwaite; pairs - 1 for the paired t); NaN for the
+    /// rank tests.
     pub dof: f64,
     /// One-sided p-value; NaN when the test is undefined (a sample with fewer than 2 values).
     pub p: f64,
@@ -134,22 +143,28 @@ pub fn welch_greater(x: &[f64], y: &[f64]) -> TestResult {
     }
     let (ax, ay) = (sx.sd.powi(2) / sx.n as f64, sy.sd.powi(2) / sy.n as f64);
     let se2 = ax + ay;
-    let diff = sx.mean - sy.mean;
+    // 0 / 0 = NaN when both variances are 0.
+    let dof = se2.powi(2) / (ax.powi(2) / (sx.n - 1) as f64 + ay.powi(2) / (sy.n - 1) as f64);
+    one_sided_t(sx.mean - sy.mean, se2, dof)
+}
+
+/// The one-sided t-test of H1: `diff > 0` for an estimate `diff` with squared standard error
+/// `se2` and `dof` degrees of freedom: `t = diff / sqrt(se2)`, `p = 1 - F_t(t)` (statrs's
+/// `StudentsT`). With `se2 == 0`, `t` is ±infinity (0 for `diff == 0`) and `p` is 0 if
+/// `diff > 0`, 1 otherwise.
+pub(crate) fn one_sided_t(diff: f64, se2: f64, dof: f64) -> TestResult {
     if se2 == 0.0 {
-        return TestResult {
-            statistic: if diff > 0.0 {
-                f64::INFINITY
-            } else if diff < 0.0 {
-                f64::NEG_INFINITY
-            } else {
-                0.0
-            },
-            dof: f64::NAN,
-            p: if diff > 0.0 { 0.0 } else { 1.0 },
+        let statistic = if diff > 0.0 {
+            f64::INFINITY
+        } else if diff < 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            0.0
         };
+        let p = if diff > 0.0 { 0.0 } else { 1.0 };
+        return TestResult { statistic, dof, p };
     }
     let t = diff / se2.sqrt();
-    let dof = se2.powi(2) / (ax.powi(2) / (sx.n - 1) as f64 + ay.powi(2) / (sy.n - 1) as f64);
     let p = match StudentsT::new(0.0, 1.0, dof) {
         Ok(d) => d.sf(t),
         Err(_) => f64::NAN,

@@ -50,12 +50,17 @@ fn the_paper_claims_file_gives_the_verdicts_of_the_built_in_claims() {
     let then = paper.replacen(before, "deadlock_after_s: 2.0, steering: Memoryless)", 1);
     let scenario = tmp.path().join("paper.ron");
     std::fs::write(&scenario, then).unwrap();
-    let claims = format!("{ROOT}/scenarios/paper-claims.ron");
+    // The built-in claims were judged by Welch's test, unpaired: the paper's claims file with
+    // `test: Welch` (its claims are paired since issue 71).
+    let paired = std::fs::read_to_string(format!("{ROOT}/scenarios/paper-claims.ron")).unwrap();
+    assert_eq!(paired.matches("test: PairedT,").count(), 5);
+    let claims = tmp.path().join("paper-claims-welch.ron");
+    std::fs::write(&claims, paired.replace("test: PairedT,", "test: Welch,")).unwrap();
     ok(&usar([
         "sweep",
         text(&scenario),
         "--claims",
-        &claims,
+        text(&claims),
         "--trials",
         "4",
         "--duration",
@@ -68,6 +73,51 @@ fn the_paper_claims_file_gives_the_verdicts_of_the_built_in_claims() {
     let want: Vec<&str> = BEFORE.lines().collect();
     assert_eq!(want.len(), 25);
     assert_eq!(claim_lines(&report), want);
+}
+
+/// paper.ron's claims are paired (issue 71): the terminal and report.md name the paired
+/// t-test and its pairs, and each claim's table has the pairs and the unpaired Welch p.
+#[test]
+fn the_paper_claims_are_judged_paired_and_say_so() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("paper");
+    let printed = ok(&usar([
+        "sweep",
+        common::PAPER,
+        "--trials",
+        "3",
+        "--duration",
+        "200",
+        "--out",
+        text(&out),
+    ]));
+    let lines: Vec<&str> = printed.lines().filter(|l| l.starts_with("  (")).collect();
+    assert_eq!(lines.len(), 5, "{printed}");
+    for line in &lines {
+        assert!(
+            line.contains(" (paired t-test over 3 pairs of trials, max p = ")
+                || line.contains("not tested ("),
+            "{line}"
+        );
+    }
+    assert!(lines[0].contains("paired t-test over 3 pairs"), "{printed}");
+    let report = read_text(&out.join("report.md"));
+    assert!(
+        report.contains(
+            "| (1) RNE rescues the most in total | one-sided paired t-test over 3 pairs of \
+             trials, alpha 0.05 | **"
+        ),
+        "{report}"
+    );
+    assert!(report.contains(
+        "Paired (paired t-test over 3 pairs of trials): trial k of RNE against trial k of each \
+         rival, on the same draws."
+    ));
+    assert!(report.contains(
+        "| vs | other's mean ± sd (n) | pairs | mean paired difference | paired t (dof) | p | \
+         Wilcoxon W+ | p | p(reverse) | Welch p (unpaired) |"
+    ));
+    assert!(report.contains("| DIS | "), "{report}");
 }
 
 /// A user's three-task scenario (scenarios/three-tasks.ron: tasks hard, medium, easy).

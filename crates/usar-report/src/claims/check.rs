@@ -1,10 +1,14 @@
-//! A claim checked against a sweep's results: each rival compared with the subject by both
-//! one-sided tests, the claim's own test (after its correction) deciding the [`Verdict`].
+//! A claim checked against a sweep's results: each rival compared with the subject by the
+//! one-sided tests, paired (trial k with trial k) and unpaired, the claim's own test (after
+//! its correction) deciding the [`Verdict`].
 
 use usar_sim::mission::TrialResult;
 
 use super::claim::{Claim, Correction, Direction, Rivals, Test};
-use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
+use crate::stats::{
+    Summary, TestResult, mann_whitney_greater, paired_t_greater, welch_greater, wilcoxon_greater,
+};
+use crate::targets::metric_ref::MetricRef;
 use usar_sweep::metrics::{Metric, values_of};
 
 /// Verdict on a claim.
@@ -15,11 +19,13 @@ pub enum Verdict {
     Holds,
     /// The subject's mean is better than every rival's but some (corrected) p is at least
     /// alpha, or cannot be computed (Welch's test with fewer than 2 trials of a method).
+    /// For a paired test "better" is the mean of the paired differences.
     NotSignificant,
     /// Some rival's mean is as good or better.
     DoesNotHold,
     /// The claim cannot be tested on this sweep: its subject, or a rival it names, has no
-    /// trials in it, or no rival has ([`ClaimCheck::reason`] says which).
+    /// trials in it, or no rival has, or (a paired test) a rival shares fewer than 2 trials
+    /// with the subject ([`ClaimCheck::reason`] says which).
     NotTested,
 }
 
@@ -48,6 +54,21 @@ pub struct Comparison {
     pub mann_whitney: TestResult,
     /// Welch's test of the opposite ("rival better than subject").
     pub welch_reverse: TestResult,
+    /// Pairs of trials: trials of the subject and of the rival with the same trial index and
+    /// seed (the same draws) that both have a value of the metric.
+    pub pairs: usize,
+    /// Trials of the subject or of the rival with a value but no partner (a failed trial, a
+    /// cost per rescuee with no rescuee), left out of the paired tests.
+    pub unpaired: usize,
+    /// Mean of the paired differences, subject minus rival (NaN without a pair).
+    pub paired_diff: f64,
+    /// The paired t-test of "subject better than rival" over the pairs (one-sided).
+    pub paired_t: TestResult,
+    /// The Wilcoxon signed-rank test of the same over the pairs (one-sided).
+    pub wilcoxon: TestResult,
+    /// The claim's test of the opposite ("rival better than subject"): the paired t-test for
+    /// a paired claim, Welch's for an unpaired one ([`Comparison::welch_reverse`]).
+    pub reverse: TestResult,
     /// The claim's test's p after the claim's correction over the rivals compared (the raw
     /// p without one); NaN when the test is undefined.
     pub p_adjusted: f64,
@@ -108,16 +129,10 @@ pub fn check_claim(
     let (rivals, missing) = claim.rivals_in(methods);
     let mut comparisons: Vec<Comparison> = rivals
         .iter()
-        .map(|other| compare(claim.direction, &subject_vals, other, results, metric))
+        .map(|other| compare(claim, &subject, other, results, metric))
         .filter(|c| c.other_summary.n > 0)
         .collect();
-    let ps: Vec<f64> = comparisons
-        .iter()
-        .map(|c| match claim.test {
-            Test::Welch => c.welch.p,
-            Test::MannWhitney => c.mann_whitney.p,
-        })
-        .collect();
+    let ps: Vec<f64> = comparisons.iter().map(|c| c.p_of(claim.test)).collect();
     let adjusted = match claim.correction {
         Correction::None => ps,
         Correction::Holm => holm_adjusted(&ps),
@@ -150,13 +165,20 @@ pub fn check_claim(
             "no rival of {subject} has a trial with a value of {column}"
         ))
     } else {
-        None
+        too_few_pairs(claim.test, &subject, column, &comparisons)
     };
     let verdict = if reason.is_some() {
         Verdict::NotTested
-    } else if !comparisons.iter().all(|c| match claim.direction {
-        Direction::More => subject_summary.mean > c.other_summary.mean,
-        Direction::Less => subject_summary.mean < c.other_summary.mean,
+    } else if !comparisons.iter().all(|c| {
+        let diff = if claim.test.is_paired() {
+            c.paired_diff
+        } else {
+            subject_summary.mean - c.other_summary.mean
+        };
+        match claim.direction {
+            Direction::More => diff > 0.0,
+            Direction::Less => diff < 0.0,
+        }
     }) {
         Verdict::DoesNotHold
     } else if comparisons.iter().all(|c| c.p_adjusted < claim.alpha) {
@@ -175,30 +197,108 @@ pub fn check_claim(
     }
 }
 
-/// The subject's values `subject_vals` against `other`'s, each test oriented so that
-/// "greater" means "better for the claim".
+/// Why a paired claim cannot be tested: a rival shares fewer than 2 trials with the subject.
+fn too_few_pairs(
+    test: Test,
+    subject: &str,
+    column: &MetricRef,
+    comparisons: &[Comparison],
+) -> Option<String> {
+    let c = comparisons.iter().find(|c| c.pairs < 2)?;
+    test.is_paired().then(|| {
+        format!(
+            "{subject} and {} have {} trial(s) in common with a value of {column}: the {} \
+             needs at least 2 pairs of trials",
+            c.other,
+            c.pairs,
+            test.words(),
+        )
+    })
+}
+
+/// The metric's values of `a` and `b` on the trials both have one, matched by trial index
+/// and seed (the same draws), in trial order; and how many trials of either have a value but
+/// no partner.
+pub fn paired_values(
+    results: &[TrialResult],
+    a: &str,
+    b: &str,
+    metric: Metric,
+) -> (Vec<f64>, Vec<f64>, usize) {
+    let keyed = |method: &str| -> std::collections::BTreeMap<(u32, u64), f64> {
+        results
+            .iter()
+            .filter(|r| r.method == method)
+            .filter_map(|r| Some(((r.trial, r.seed), metric.value(r)?)))
+            .collect()
+    };
+    let (ka, kb) = (keyed(a), keyed(b));
+    let (mut xa, mut xb) = (Vec::new(), Vec::new());
+    for (key, va) in &ka {
+        if let Some(vb) = kb.get(key) {
+            xa.push(*va);
+            xb.push(*vb);
+        }
+    }
+    let unpaired = ka.len() + kb.len() - 2 * xa.len();
+    (xa, xb, unpaired)
+}
+
+/// `values` oriented so that "greater" means "better for the claim".
+fn oriented(direction: Direction, values: &[f64]) -> Vec<f64> {
+    match direction {
+        Direction::More => values.to_vec(),
+        Direction::Less => values.iter().map(|x| -x).collect(),
+    }
+}
+
+/// The claim's subject against `other`, each test oriented so that "greater" means "better
+/// for the claim".
 fn compare(
-    direction: Direction,
-    subject_vals: &[f64],
+    claim: &Claim,
+    subject: &str,
     other: &str,
     results: &[TrialResult],
     metric: Metric,
 ) -> Comparison {
+    let dir = claim.direction;
+    let sv = values_of(results, subject, metric);
     let ov = values_of(results, other, metric);
-    let (better, worse) = match direction {
-        Direction::More => (subject_vals.to_vec(), ov.clone()),
-        Direction::Less => (
-            subject_vals.iter().map(|x| -x).collect(),
-            ov.iter().map(|x| -x).collect(),
-        ),
-    };
+    let (better, worse) = (oriented(dir, &sv), oriented(dir, &ov));
+    let (ps, po, unpaired) = paired_values(results, subject, other, metric);
+    let (pb, pw) = (oriented(dir, &ps), oriented(dir, &po));
+    let paired_diff = Summary::of(&ps.iter().zip(&po).map(|(a, b)| a - b).collect::<Vec<_>>()).mean;
+    let welch_reverse = welch_greater(&worse, &better);
+    let paired_t = paired_t_greater(&pb, &pw);
     Comparison {
         other: other.to_owned(),
         other_summary: Summary::of(&ov),
         welch: welch_greater(&better, &worse),
         mann_whitney: mann_whitney_greater(&better, &worse),
-        welch_reverse: welch_greater(&worse, &better),
+        welch_reverse,
+        pairs: ps.len(),
+        unpaired,
+        paired_diff,
+        paired_t,
+        wilcoxon: wilcoxon_greater(&pb, &pw),
+        reverse: if claim.test.is_paired() {
+            paired_t_greater(&pw, &pb)
+        } else {
+            welch_reverse
+        },
         p_adjusted: f64::NAN,
+    }
+}
+
+impl Comparison {
+    /// The raw one-sided p of `test` in this comparison.
+    pub fn p_of(&self, test: Test) -> f64 {
+        match test {
+            Test::PairedT => self.paired_t.p,
+            Test::Wilcoxon => self.wilcoxon.p,
+            Test::Welch => self.welch.p,
+            Test::MannWhitney => self.mann_whitney.p,
+        }
     }
 }
 
@@ -223,6 +323,27 @@ pub fn holm_adjusted(ps: &[f64]) -> Vec<f64> {
 }
 
 impl ClaimCheck {
+    /// The test that decided the claim, in words for the terminal and the reports: `paired
+    /// t-test over 10 pairs of trials` (`over 7 to 10 pairs` when rivals share different
+    /// numbers of trials with the subject), `Wilcoxon signed-rank test over ...`, `unpaired
+    /// Welch t-test` or `unpaired Mann-Whitney U test`.
+    pub fn test_run_words(&self) -> String {
+        let test = self.claim.test;
+        if !test.is_paired() {
+            return match test {
+                Test::MannWhitney => "unpaired Mann-Whitney U test".to_owned(),
+                _ => "unpaired Welch t-test".to_owned(),
+            };
+        }
+        let name = test.words();
+        let pairs = self.comparisons.iter().map(|c| c.pairs);
+        match (pairs.clone().min(), pairs.max()) {
+            (Some(lo), Some(hi)) if lo < hi => format!("{name} over {lo} to {hi} pairs of trials"),
+            (Some(n), _) => format!("{name} over {n} pairs of trials"),
+            _ => name.to_owned(),
+        }
+    }
+
     /// The largest p of the claim's test after its correction over the rivals; NaN ("n/a")
     /// if any comparison could not be tested or there is none.
     pub fn worst_p(&self) -> f64 {
@@ -244,6 +365,91 @@ impl ClaimCheck {
 mod tests {
     use super::*;
     use approx::assert_abs_diff_eq;
+
+    /// Trial `k` of `method` (seed `100 + k`) with `total` rescuees, all in the easy task.
+    fn trial(method: &str, k: u32, total: u32) -> TrialResult {
+        let mut t = crate::testing::trial(method, 6, (total, 0), (1.0, 1.0), (1.0, 1.0));
+        t.trial = k;
+        t.seed = 100 + u64::from(k);
+        t
+    }
+
+    fn claim(test: Test) -> Claim {
+        Claim {
+            id: "1".into(),
+            sentence: "RNE rescues the most".into(),
+            subject: "RNE".into(),
+            rivals: Rivals::Every,
+            metric: MetricRef("rescued_total".into()),
+            direction: Direction::More,
+            test,
+            alpha: 0.05,
+            correction: Correction::None,
+        }
+    }
+
+    /// Ten trials whose draws give levels 100 apart; RNE rescues 1 or 2 more than DIS in each.
+    fn steady_edge() -> Vec<TrialResult> {
+        (0..10u32)
+            .flat_map(|k| {
+                let level = 100 * ((k * 7) % 10);
+                [trial("RNE", k, level + 1 + k % 2), trial("DIS", k, level)]
+            })
+            .collect()
+    }
+
+    fn check(test: Test, results: &[TrialResult]) -> ClaimCheck {
+        let methods = ["RNE".to_string(), "DIS".to_string()];
+        let tasks = ["hard".to_string(), "easy".to_string()];
+        check_claim(&claim(test), results, &methods, &tasks)
+    }
+
+    #[test]
+    fn a_small_edge_in_every_paired_trial_holds_paired_and_not_unpaired() {
+        let results = steady_edge();
+        for test in [Test::PairedT, Test::Wilcoxon] {
+            let c = check(test, &results);
+            assert_eq!(c.verdict, Verdict::Holds, "{test:?}: {:?}", c.comparisons);
+            assert_eq!((c.comparisons[0].pairs, c.comparisons[0].unpaired), (10, 0));
+            assert!(c.worst_p() < 0.01, "{test:?}: p = {}", c.worst_p());
+        }
+        for test in [Test::Welch, Test::MannWhitney] {
+            let c = check(test, &results);
+            assert_eq!(c.verdict, Verdict::NotSignificant, "{test:?}");
+            assert!(c.worst_p() > 0.3, "{test:?}: p = {}", c.worst_p());
+        }
+        // The default claim is paired.
+        assert_eq!(Test::default(), Test::PairedT);
+    }
+
+    #[test]
+    fn only_common_trials_are_paired_and_fewer_than_two_pairs_are_not_tested() {
+        // RNE's trials 0 and 1 failed, DIS's trial 9: trials 2..=8 are paired, 3 are not.
+        let mut results: Vec<TrialResult> = steady_edge()
+            .into_iter()
+            .filter(|t| !(t.method == "RNE" && t.trial < 2 || t.method == "DIS" && t.trial == 9))
+            .collect();
+        let c = check(Test::PairedT, &results);
+        assert_eq!((c.comparisons[0].pairs, c.comparisons[0].unpaired), (7, 3));
+        assert_eq!(c.verdict, Verdict::Holds);
+        // A trial of the same index on other draws (another seed) is no pair.
+        results.retain(|t| t.method == "DIS" || t.trial == 2);
+        results.retain(|t| t.method == "RNE" || t.trial >= 2);
+        results
+            .iter_mut()
+            .filter(|t| t.method == "DIS" && t.trial == 3)
+            .for_each(|t| t.seed = 7);
+        let c = check(Test::PairedT, &results);
+        assert_eq!(c.comparisons[0].pairs, 1);
+        assert_eq!(c.verdict, Verdict::NotTested);
+        let why = c.reason.expect("a reason");
+        assert!(
+            why.contains("have 1 trial(s) in common with a value of rescued_total"),
+            "{why}"
+        );
+        // Unpaired, the same trials are tested.
+        assert_ne!(check(Test::Welch, &results).verdict, Verdict::NotTested);
+    }
 
     #[test]
     fn holm_matches_r_p_adjust() {

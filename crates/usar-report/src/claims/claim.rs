@@ -9,7 +9,7 @@
 //!     rivals: Every,               // or Only(["DIS", "HP_DIS"])
 //!     metric: "rescued_hard",      // any trials.csv column: per task, total, per rescuee
 //!     direction: More,             // or Less
-//!     test: Welch,                 // or MannWhitney; default Welch
+//!     test: PairedT,               // or Wilcoxon, Welch, MannWhitney; default PairedT
 //!     alpha: 0.05,                 // default 0.05
 //!     correction: None,            // or Holm; default None
 //! )
@@ -52,24 +52,44 @@ pub enum Rivals {
     Only(Vec<String>),
 }
 
-/// The one-sided two-sample test of "the subject is better than a rival".
+/// The one-sided test of "the subject is better than a rival".
+///
+/// The paired tests ([`Test::PairedT`], the default, and [`Test::Wilcoxon`]) compare trial k
+/// of the subject with trial k of the rival: a sweep runs every method on the same draws
+/// (same trial index, same seed: common random numbers), so what a trial's draw adds to both
+/// cancels. Only trials both methods have a value for are paired. The unpaired tests
+/// ([`Test::Welch`], [`Test::MannWhitney`]) compare the two samples as independent ones.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Test {
-    /// Welch's t-test (unequal variances; `crate::stats::welch_greater`), the default.
+    /// Student's paired t-test on the per-trial differences (`crate::stats::paired_t_greater`),
+    /// the default: the paired member of the t family of [`Test::Welch`].
     #[default]
+    PairedT,
+    /// The Wilcoxon signed-rank test on the per-trial differences, zero differences dropped
+    /// (`crate::stats::wilcoxon_greater`), which does not assume normality.
+    Wilcoxon,
+    /// Welch's t-test (unequal variances; `crate::stats::welch_greater`), unpaired.
     Welch,
     /// The Mann-Whitney U test (statrs `mannwhitneyu`, normal approximation with continuity
-    /// correction; `crate::stats::mann_whitney_greater`), which does not assume normality.
+    /// correction; `crate::stats::mann_whitney_greater`), unpaired, which does not assume
+    /// normality.
     MannWhitney,
 }
 
 impl Test {
-    /// `Welch` or `Mann-Whitney U`, for reports.
+    /// `paired t-test`, `Wilcoxon signed-rank test`, `Welch` or `Mann-Whitney U`, for reports.
     pub fn words(self) -> &'static str {
         match self {
+            Test::PairedT => "paired t-test",
+            Test::Wilcoxon => "Wilcoxon signed-rank test",
             Test::Welch => "Welch",
             Test::MannWhitney => "Mann-Whitney U",
         }
+    }
+
+    /// Whether the test pairs trial k of the subject with trial k of the rival.
+    pub fn is_paired(self) -> bool {
+        matches!(self, Test::PairedT | Test::Wilcoxon)
     }
 }
 
@@ -117,7 +137,7 @@ pub struct Claim {
     pub metric: MetricRef,
     /// Higher or lower is better for the subject.
     pub direction: Direction,
-    /// The pairwise test; default [`Test::Welch`].
+    /// The pairwise test; default [`Test::PairedT`].
     #[serde(default)]
     pub test: Test,
     /// The one-sided significance level, in (0, 0.5]; default [`DEFAULT_ALPHA`].
@@ -162,8 +182,8 @@ impl Claim {
         }
     }
 
-    /// How the claim is judged, in words: `one-sided Welch, alpha 0.05` (with `, Holm` when
-    /// corrected).
+    /// How the claim is judged, in words: `one-sided paired t-test, alpha 0.05` (with
+    /// `, Holm-corrected` when corrected).
     pub fn test_words(&self) -> String {
         let holm = match self.correction {
             Correction::None => "",

@@ -311,7 +311,7 @@ mod tests {
             assert_eq!(claim.rivals, Rivals::Every);
             assert_eq!(
                 (claim.test, claim.correction),
-                (Test::Welch, Correction::None)
+                (Test::PairedT, Correction::None)
             );
             assert!((claim.alpha - 0.05).abs() < 1e-15);
         }
@@ -333,7 +333,7 @@ mod tests {
         assert_eq!(claim.rivals, Rivals::Every);
         assert_eq!(
             (claim.test, claim.correction),
-            (Test::Welch, Correction::None)
+            (Test::PairedT, Correction::None)
         );
         assert!((claim.alpha - DEFAULT_ALPHA).abs() < 1e-15);
         // A method of one's own is known once it is among the sweep's methods.

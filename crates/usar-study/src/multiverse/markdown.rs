@@ -425,7 +425,7 @@ mod tests {
             "- `--free mission.hp_pct_per_step_in_radiation=0.001..0.02:log`",
             "| rounds | `Mean(rounds)` | 6 ± 1 |",
             "1/2 (50 %) admissible, 1 not admissible; 0 invalid (their choices break a rule), 1 failed",
-            "| (1) RNE rescues the most in total (one-sided Welch, alpha 0.05) | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
+            "| (1) RNE rescues the most in total (one-sided paired t-test, alpha 0.05) | 1/1 (100 %) | 0/1 (0 %) | 0/1 (0 %) | 0/1 (0 %) | [spec_curve_1.svg](spec_curve_1.svg) |",
             "## What this run can conclude\n\n- 1/2 (50 %) of the universes are admissible: only 2 of the 6 universes this run makes have a record",
             "### b\n\n| alternative | admissible universes | (1) holds |",
             "| b0 | 1 | 1/1 (100 %) | 0/1 (0 %) |",
