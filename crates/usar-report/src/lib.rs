@@ -15,7 +15,7 @@
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it (and from the sweep library), never from one above (bottom first):
 //!
-//! 1. base: [`error`], [`stats`], [`table`], [`chart`], [`source_date`], [`rounds_table`],
+//! 1. base: [`error`], [`stats`], [`paired`] (the paired tests), [`table`], [`chart`], [`source_date`], [`rounds_table`],
 //!    [`scenario_summary`] (what `usar check` and `Scenario.check()` show), [`targets`] (the
 //!    vocabulary of calibration targets);
 //! 2. judge: [`claims`], [`calibration`] (what a report compares with);
@@ -26,6 +26,7 @@
 // 1. base
 pub mod chart;
 pub mod error;
+pub mod paired;
 pub mod rounds_table;
 pub mod scenario_summary;
 pub mod source_date;

@@ -10,17 +10,12 @@
 //!   corrected). Not statrs's exact method: in statrs 0.19.1 its exact one-sided p-value is
 //!   the complement of the right one when the first sample is not larger than the second
 //!   (e.g. `[5, 6, 7, 8]` greater than `[1, 2, 3, 4]` gives 0.986 instead of 1/70).
-//! - [`paired_t_greater`] and [`wilcoxon_greater`]: the paired t-test and the Wilcoxon
-//!   signed-rank test, one-sided, on matched pairs (trial k of two methods on the same draws;
-//!   [`mod@paired`]).
+//!
+//! The paired tests (trial k of two methods on the same draws) are in [`crate::paired`].
 
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use statrs::stats_tests::Alternative;
 use statrs::stats_tests::mannwhitneyu::{MannWhitneyUMethod, mannwhitneyu};
-
-pub mod paired;
-
-pub use paired::{WILCOXON_EXACT_MAX_N, paired_t_greater, wilcoxon_greater};
 
 /// Mean, spread and 95 % confidence interval of a sample.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,9 +5,8 @@
 use usar_sim::mission::TrialResult;
 
 use super::claim::{Claim, Correction, Direction, Rivals, Test};
-use crate::stats::{
-    Summary, TestResult, mann_whitney_greater, paired_t_greater, welch_greater, wilcoxon_greater,
-};
+use crate::paired::{paired_t_greater, wilcoxon_greater};
+use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
 use crate::targets::metric_ref::MetricRef;
 use usar_sweep::metrics::{Metric, values_of};
 

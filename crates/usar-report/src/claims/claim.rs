@@ -61,12 +61,12 @@ pub enum Rivals {
 /// ([`Test::Welch`], [`Test::MannWhitney`]) compare the two samples as independent ones.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Test {
-    /// Student's paired t-test on the per-trial differences (`crate::stats::paired_t_greater`),
+    /// Student's paired t-test on the per-trial differences (`crate::paired::paired_t_greater`),
     /// the default: the paired member of the t family of [`Test::Welch`].
     #[default]
     PairedT,
     /// The Wilcoxon signed-rank test on the per-trial differences, zero differences dropped
-    /// (`crate::stats::wilcoxon_greater`), which does not assume normality.
+    /// (`crate::paired::wilcoxon_greater`), which does not assume normality.
     Wilcoxon,
     /// Welch's t-test (unequal variances; `crate::stats::welch_greater`), unpaired.
     Welch,

@@ -110,6 +110,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "scenario_summary",
                     "source_date",
                     "stats",
+                    "paired",
                     "rounds_table",
                     "table",
                     "targets",

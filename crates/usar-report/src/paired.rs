@@ -10,7 +10,7 @@
 
 use statrs::distribution::{ContinuousCDF, Normal};
 
-use super::{Summary, TestResult, one_sided_t};
+use crate::stats::{Summary, TestResult, one_sided_t};
 
 /// The largest number of non-zero differences for which [`wilcoxon_greater`] uses the exact
 /// null distribution (when the absolute differences have no ties), as R's `wilcox.test` and
