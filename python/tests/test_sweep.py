@@ -216,6 +216,23 @@ def test_claims_of_ones_own_from_python_reach_report_md(paper, tmp_path):
                    out=tmp_path / "d", claims=[dict(mine[0], direction="Most")])
 
 
+def test_claims_from_python_take_the_paired_tests(paper, tmp_path):
+    """Issue 71: `test` names the paired tests too; the report says they are paired."""
+    mine = [{"id": "w", "sentence": "RNE rescues more in total than DIS", "subject": "rne",
+             "rivals": {"Only": ["dis"]}, "metric": "rescued_total", "direction": "More",
+             "test": "Wilcoxon"},
+            {"id": "t", "sentence": "DIS rescues more in total than RNE", "subject": "dis",
+             "rivals": {"Only": ["rne"]}, "metric": "rescued_total", "direction": "More"}]
+    usar.sweep(paper, methods=["rne", "dis"], trials=3, duration_s=SHORT_S,
+               out=tmp_path / "a", claims=mine)
+    report = (tmp_path / "a" / "report.md").read_text()
+    assert "one-sided Wilcoxon signed-rank test over 3 pairs of trials, alpha 0.05" in report
+    assert "one-sided paired t-test over 3 pairs of trials, alpha 0.05" in report
+    with pytest.raises(ValueError, match=r"claims\[0\]: unknown variant `Paired`"):
+        usar.sweep(paper, methods=["rne", "dis"], trials=2, duration_s=SHORT_S,
+                   out=tmp_path / "b", claims=[dict(mine[0], test="Paired")])
+
+
 def test_a_grid_is_the_sweep_once_per_cell_with_the_cells_values(paper, usar_cli, tmp_path):
     vary = ["mission.pickup_s=0,2"]
     got = usar.grid(paper, vary, methods=["rne", "dis"], trials=2, threads=2,
