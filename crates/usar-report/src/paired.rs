@@ -17,15 +17,6 @@ use crate::stats::{Summary, TestResult, one_sided_t};
 /// scipy's `wilcoxon` do: 50.
 pub const WILCOXON_EXACT_MAX_N: usize = 50;
 
-/// An undefined test: every field NaN.
-fn undefined() -> TestResult {
-    TestResult {
-        statistic: f64::NAN,
-        dof: f64::NAN,
-        p: f64::NAN,
-    }
-}
-
 /// The differences `x[k] - y[k]` of the pairs; `x` and `y` must have one value per pair.
 fn differences(x: &[f64], y: &[f64]) -> Vec<f64> {
     debug_assert_eq!(
@@ -49,7 +40,7 @@ fn differences(x: &[f64], y: &[f64]) -> Vec<f64> {
 pub fn paired_t_greater(x: &[f64], y: &[f64]) -> TestResult {
     let s = Summary::of(&differences(x, y));
     if s.n < 2 {
-        return undefined();
+        return TestResult::UNDEFINED;
     }
     one_sided_t(s.mean, s.sd.powi(2) / s.n as f64, (s.n - 1) as f64)
 }
@@ -79,7 +70,7 @@ pub fn paired_t_greater(x: &[f64], y: &[f64]) -> TestResult {
 pub fn wilcoxon_greater(x: &[f64], y: &[f64]) -> TestResult {
     let all = differences(x, y);
     if all.is_empty() {
-        return undefined();
+        return TestResult::UNDEFINED;
     }
     let mut d: Vec<f64> = all.into_iter().filter(|v| *v != 0.0).collect();
     let n = d.len();

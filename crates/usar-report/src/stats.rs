@@ -122,6 +122,15 @@ pub struct TestResult {
     pub p: f64,
 }
 
+impl TestResult {
+    /// An undefined test (too few values): statistic, dof and p all NaN.
+    pub(crate) const UNDEFINED: TestResult = TestResult {
+        statistic: f64::NAN,
+        dof: f64::NAN,
+        p: f64::NAN,
+    };
+}
+
 /// Welch's t-test of H1: mean(x) > mean(y), one-sided.
 ///
 /// `t = (mx - my) / sqrt(vx/nx + vy/ny)`, `dof` by Welch-Satterthwaite, `p = 1 - F_t(t)` with
@@ -130,11 +139,7 @@ pub struct TestResult {
 pub fn welch_greater(x: &[f64], y: &[f64]) -> TestResult {
     let (sx, sy) = (Summary::of(x), Summary::of(y));
     if sx.n < 2 || sy.n < 2 {
-        return TestResult {
-            statistic: f64::NAN,
-            dof: f64::NAN,
-            p: f64::NAN,
-        };
+        return TestResult::UNDEFINED;
     }
     let (ax, ay) = (sx.sd.powi(2) / sx.n as f64, sy.sd.powi(2) / sy.n as f64);
     let se2 = ax + ay;
@@ -230,11 +235,7 @@ pub fn mann_whitney_greater(x: &[f64], y: &[f64]) -> TestResult {
             dof: f64::NAN,
             p,
         },
-        Err(_) => TestResult {
-            statistic: f64::NAN,
-            dof: f64::NAN,
-            p: f64::NAN,
-        },
+        Err(_) => TestResult::UNDEFINED,
     }
 }
 
