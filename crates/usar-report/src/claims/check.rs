@@ -128,7 +128,7 @@ pub fn check_claim(
     let (rivals, missing) = claim.rivals_in(methods);
     let mut comparisons: Vec<Comparison> = rivals
         .iter()
-        .map(|other| compare(claim, &subject, other, results, metric))
+        .map(|other| compare(claim, (&subject, &subject_vals), other, results, metric))
         .filter(|c| c.other_summary.n > 0)
         .collect();
     let ps: Vec<f64> = comparisons.iter().map(|c| c.p_of(claim.test)).collect();
@@ -251,19 +251,18 @@ fn oriented(direction: Direction, values: &[f64]) -> Vec<f64> {
     }
 }
 
-/// The claim's subject against `other`, each test oriented so that "greater" means "better
-/// for the claim".
+/// The claim's subject (its name and its values of the metric) against `other`, each test
+/// oriented so that "greater" means "better for the claim".
 fn compare(
     claim: &Claim,
-    subject: &str,
+    (subject, sv): (&str, &[f64]),
     other: &str,
     results: &[TrialResult],
     metric: Metric,
 ) -> Comparison {
     let dir = claim.direction;
-    let sv = values_of(results, subject, metric);
     let ov = values_of(results, other, metric);
-    let (better, worse) = (oriented(dir, &sv), oriented(dir, &ov));
+    let (better, worse) = (oriented(dir, sv), oriented(dir, &ov));
     let (ps, po, unpaired) = paired_values(results, subject, other, metric);
     let (pb, pw) = (oriented(dir, &ps), oriented(dir, &po));
     let paired_diff = Summary::of(&ps.iter().zip(&po).map(|(a, b)| a - b).collect::<Vec<_>>()).mean;
