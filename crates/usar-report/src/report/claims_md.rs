@@ -98,25 +98,17 @@ fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
         paired_rows(r, c);
         return;
     }
-    let corrected = table_head(
-        r,
-        c,
-        &[
-            "vs",
-            "other's mean ± sd (n)",
-            "difference",
-            "Welch t (dof)",
-            "p",
-            "Mann-Whitney U",
-            "p",
-            "p(reverse)",
-        ],
-    );
-    for cmp in &c.comparisons {
-        let _ = write!(
-            r,
-            "{} | {} | {} ({}) | {} | {} | {} | {} |",
-            rival_cells(cmp),
+    let columns = [
+        "difference",
+        "Welch t (dof)",
+        "p",
+        "Mann-Whitney U",
+        "p",
+        "p(reverse)",
+    ];
+    comparison_table(r, c, &columns, |cmp| {
+        format!(
+            "{} | {} ({}) | {} | {} | {} | {}",
             num(c.subject_summary.mean - cmp.other_summary.mean),
             num(cmp.welch.statistic),
             num(cmp.welch.dof),
@@ -124,10 +116,8 @@ fn claim_section(r: &mut String, a: &CellAnalysis, c: &ClaimCheck) {
             num(cmp.mann_whitney.statistic),
             pval(cmp.mann_whitney.p),
             pval(cmp.welch_reverse.p),
-        );
-        row_end(r, corrected, cmp.p_adjusted);
-    }
-    r.push('\n');
+        )
+    });
 }
 
 /// A paired claim's rows: a sentence on the pairing (and the trials left unpaired), then per
@@ -148,27 +138,19 @@ fn paired_rows(r: &mut String, c: &ClaimCheck) {
         );
     }
     r.push('\n');
-    let corrected = table_head(
-        r,
-        c,
-        &[
-            "vs",
-            "other's mean ± sd (n)",
-            "pairs",
-            "mean paired difference",
-            "paired t (dof)",
-            "p",
-            "Wilcoxon W+",
-            "p",
-            "p(reverse)",
-            "Welch p (unpaired)",
-        ],
-    );
-    for cmp in &c.comparisons {
-        let _ = write!(
-            r,
-            "{} | {} | {} | {} ({}) | {} | {} | {} | {} | {} |",
-            rival_cells(cmp),
+    let columns = [
+        "pairs",
+        "mean paired difference",
+        "paired t (dof)",
+        "p",
+        "Wilcoxon W+",
+        "p",
+        "p(reverse)",
+        "Welch p (unpaired)",
+    ];
+    comparison_table(r, c, &columns, |cmp| {
+        format!(
+            "{} | {} | {} ({}) | {} | {} | {} | {} | {}",
             cmp.pairs,
             num(cmp.paired_diff),
             num(cmp.paired_t.statistic),
@@ -178,39 +160,40 @@ fn paired_rows(r: &mut String, c: &ClaimCheck) {
             pval(cmp.wilcoxon.p),
             pval(cmp.reverse.p),
             pval(cmp.welch.p),
-        );
-        row_end(r, corrected, cmp.p_adjusted);
-    }
-    r.push('\n');
+        )
+    });
 }
 
-/// A comparison row's first cells: the rival and its mean ± sd (n).
-fn rival_cells(cmp: &Comparison) -> String {
-    format!(
-        "| {} | {} ({})",
-        cmp.other,
-        mean_sd(&cmp.other_summary),
-        cmp.other_summary.n
-    )
-}
-
-/// A comparison table's header row and rule: `columns`, and `p (Holm)` when the claim is
-/// corrected (returned).
-fn table_head(r: &mut String, c: &ClaimCheck, columns: &[&str]) -> bool {
+/// A claim's comparison table: the header `vs | other's mean ± sd (n)`, `columns` and, when
+/// the claim is corrected, `p (Holm)`; then one row per rival: its name and mean ± sd (n),
+/// `cells(rival)` (the cells of `columns`, ` | `-separated) and the corrected p.
+fn comparison_table(
+    r: &mut String,
+    c: &ClaimCheck,
+    columns: &[&str],
+    cells: impl Fn(&Comparison) -> String,
+) {
     let corrected = c.claim.correction != Correction::None;
-    let mut names = columns.to_vec();
+    let mut names = vec!["vs", "other's mean ± sd (n)"];
+    names.extend_from_slice(columns);
     if corrected {
         names.push("p (Holm)");
     }
     let _ = writeln!(r, "| {} |", names.join(" | "));
     let _ = writeln!(r, "|{}", "---|".repeat(names.len()));
-    corrected
-}
-
-/// The end of a comparison row: the corrected p when the claim is corrected, and the newline.
-fn row_end(r: &mut String, corrected: bool, p_adjusted: f64) {
-    if corrected {
-        let _ = write!(r, " {} |", pval(p_adjusted));
+    for cmp in &c.comparisons {
+        let _ = write!(
+            r,
+            "| {} | {} ({}) | {} |",
+            cmp.other,
+            mean_sd(&cmp.other_summary),
+            cmp.other_summary.n,
+            cells(cmp)
+        );
+        if corrected {
+            let _ = write!(r, " {} |", pval(cmp.p_adjusted));
+        }
+        r.push('\n');
     }
     r.push('\n');
 }
