@@ -192,24 +192,29 @@ where
     child.wait_with_output().unwrap()
 }
 
-/// A sharded sweep of paper.ron (rne, 1 trial of 10 s, 2 shards) in `dir`, merged.
+/// One shard (`"i/n"`) of a sweep of paper.ron (rne and dis, 1 trial of 10 s) into `dir`.
+pub fn sweep_shard(dir: &Path, shard: &str) -> Output {
+    usar([
+        "sweep",
+        PAPER,
+        "--methods",
+        "rne,dis",
+        "--trials",
+        "1",
+        "--duration",
+        "10",
+        "--quiet",
+        "--shard",
+        shard,
+        "--out",
+        text(dir),
+    ])
+}
+
+/// A sharded sweep of paper.ron ([`sweep_shard`], 2 shards) in `dir`, merged.
 pub fn sharded_sweep(dir: &Path) {
     for shard in ["0/2", "1/2"] {
-        ok(&usar([
-            "sweep",
-            PAPER,
-            "--methods",
-            "rne,dis",
-            "--trials",
-            "1",
-            "--duration",
-            "10",
-            "--quiet",
-            "--shard",
-            shard,
-            "--out",
-            text(dir),
-        ]));
+        ok(&sweep_shard(dir, shard));
     }
     ok(&merge(dir));
 }

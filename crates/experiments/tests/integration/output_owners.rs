@@ -9,7 +9,9 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{PAPER, merge, multiverse_args, ok, sharded_sweep, snapshot, stderr, text, usar};
+use common::{
+    PAPER, merge, multiverse_args, ok, sharded_sweep, snapshot, stderr, sweep_shard, text, usar,
+};
 
 /// Asserts `o` failed with a one-line error naming the folder's owner and the refused kind.
 fn refused(o: &Output, owner: &str, kind: &str) {
@@ -108,21 +110,7 @@ fn a_sharded_sweep_is_refused_in_a_multiverse_folder_and_merge_checks_every_shar
     args.extend(["--shard", "0/2"]);
     ok(&usar(&args));
     let before = snapshot(&m);
-    let o = usar([
-        "sweep",
-        PAPER,
-        "--methods",
-        "rne,dis",
-        "--trials",
-        "1",
-        "--duration",
-        "10",
-        "--quiet",
-        "--shard",
-        "1/2",
-        "--out",
-        text(&m),
-    ]);
+    let o = sweep_shard(&m, "1/2");
     refused(&o, "multiverse", "sharded sweep");
     assert!(snapshot(&m) == before);
 
