@@ -85,6 +85,14 @@ impl Nav {
         }
     }
 
+    /// Starts following a new path (already in `path`) from its first waypoint: the
+    /// no-progress clock measures against the new path, and the steering side is forgotten.
+    pub(super) fn restart_on_new_path(&mut self) {
+        self.following.wp = 0;
+        self.following.best_remaining = self.remaining();
+        self.deflection = Vec2::ZERO;
+    }
+
     /// The side robot steers to first when its intent `intent` (metres per second) is not
     /// clear (`Resolver::steer_with`'s `side`): `1.0` when its last deflection
     /// ([`Nav::deflection`]) turned left of `intent`, `-1.0` right, `0.0` without one.

@@ -83,9 +83,7 @@ impl World {
         let nav = &mut self.nav[id];
         std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
         nav.goal = Some(eff);
-        nav.following.wp = 0;
-        nav.following.best_remaining = nav.remaining();
-        nav.deflection = Vec2::ZERO;
+        nav.restart_on_new_path();
         let state = &mut self.robots[id];
         state.goal = Some(to_point(eff));
         state.counters.replans += 1;
@@ -119,9 +117,7 @@ impl World {
             let nav = &mut self.nav[id];
             self.pipelines.scratch.extend_from_slice(&nav.path[next..]);
             std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
-            nav.following.wp = 0;
-            nav.following.best_remaining = nav.remaining();
-            nav.deflection = Vec2::ZERO;
+            nav.restart_on_new_path();
             self.robots[id].counters.replans += 1;
             return;
         }

@@ -616,7 +616,8 @@ impl Resolver {
                 let b = &inputs[j];
                 let v_b = if still(b, j) {
                     Vec2::ZERO
-                } else if deflected && moving_too {
+                } else if deflected {
+                    // Only under KeepSide are moving robots in `near` at all.
                     b.intent
                 } else {
                     return true;
