@@ -14,11 +14,15 @@
 //! the side they last steered to, and stop at the rim of a goal a robot standing still has
 //! taken (`usar_sim::world`, docs/world-model.md).
 //!
-//! What stays (measured after the fix, 2 dt x 2 speeds): paths agree within 1.00 +- 0.01 on the
-//! corridor at the shipped speed, within 0.91-1.02 at 5 m/s, and within 0.96-1.26 on the paper
-//! arena (600 s). The largest, paper robot 5 at the shipped speed (453 m at dt 0.02, 568 m at
-//! dt 0.01), is another course of the mission: a pick-up decided a step earlier or later sends
-//! the robot on a different trip, which no step length can keep the same over 600 s.
+//! What stays (ratio dt 0.01 / dt 0.02 of each robot's path length; energy the same to two
+//! digits): corridor 0.98-1.00 at the shipped speed and 0.83-1.30 at 5 m/s; paper 0.98-1.01 and
+//! 0.98-1.14. The largest, corridor robot 3 at 5 m/s (73.4 m against 95.3 m), is the slide
+//! this test is about, not yet gone in one geometry: wedged between a parked robot and the wall,
+//! at dt 0.01 it still turns back and forth between a right turn towards the wall and a left
+//! turn of 120 degrees away from it (the two sides' turns differ by more than the 45-degree
+//! bound on keeping a side) from 5 s to 15.5 s, 36 m on the spot, where at dt 0.02 it stands
+//! blocked; it leaves when a detour finds a way. Within the bound, but a known limit
+//! (docs/world-model.md, "Steering side and taken goals").
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::Simulation;
