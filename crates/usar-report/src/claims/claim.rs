@@ -185,15 +185,18 @@ impl Claim {
     /// How the claim is judged, in words: `one-sided paired t-test, alpha 0.05` (with
     /// `, Holm-corrected` when corrected).
     pub fn test_words(&self) -> String {
+        self.test_words_naming(self.test.words())
+    }
+
+    /// [`Claim::test_words`] with `test` in place of the test's name: `one-sided {test},
+    /// alpha 0.05` (with `, Holm-corrected` when corrected), for a name that says more
+    /// (`paired t-test over 10 pairs of trials`).
+    pub fn test_words_naming(&self, test: &str) -> String {
         let holm = match self.correction {
             Correction::None => "",
             Correction::Holm => ", Holm-corrected",
         };
-        format!(
-            "one-sided {}, alpha {}{holm}",
-            self.test.words(),
-            self.alpha
-        )
+        format!("one-sided {test}, alpha {}{holm}", self.alpha)
     }
 }
 

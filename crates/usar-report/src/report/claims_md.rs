@@ -61,9 +61,7 @@ pub(super) fn claims(r: &mut String, a: &CellAnalysis, claims: &Claims) {
 /// `one-sided paired t-test over 10 pairs of trials, alpha 0.05`.
 fn ran_words(c: &ClaimCheck) -> String {
     if c.claim.test.is_paired() && c.reason.is_none() {
-        c.claim
-            .test_words()
-            .replacen(c.claim.test.words(), &c.test_run_words(), 1)
+        c.claim.test_words_naming(&c.test_run_words())
     } else {
         c.claim.test_words()
     }
