@@ -192,6 +192,13 @@ where
     child.wait_with_output().unwrap()
 }
 
+/// Makes a FIFO (named pipe) at `path` with `mkfifo`; panics when it cannot.
+#[cfg(unix)]
+pub fn make_fifo(path: &Path) {
+    let made = Command::new("mkfifo").arg(path).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo {}", path.display());
+}
+
 /// One shard (`"i/n"`) of a sweep of paper.ron (rne and dis, 1 trial of 10 s) into `dir`.
 pub fn sweep_shard(dir: &Path, shard: &str) -> Output {
     usar([

@@ -58,10 +58,7 @@ fn one_line_error(o: &Output) -> String {
 #[cfg(unix)]
 fn refused_in_every_form(path: &Path, limit: u64, run: &dyn Fn() -> Output) {
     let name = text(path);
-    let fifo = |p: &Path| {
-        let made = std::process::Command::new("mkfifo").arg(p).status();
-        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
-    };
+    let fifo = common::make_fifo;
     let zero = |p: &Path| std::os::unix::fs::symlink("/dev/zero", p).unwrap();
     let huge = |p: &Path| {
         std::fs::File::create(p)

@@ -56,8 +56,7 @@ const AXES: &str = r#"Axes(axes: [(name: "pickup", alternatives: [
 fn a_fifo_as_any_input_file_is_refused_at_once() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let made = Command::new("mkfifo").arg(d.join("fifo.ron")).status();
-    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    common::make_fifo(&d.join("fifo.ron"));
     std::fs::write(d.join("t.ron"), TARGETS).unwrap();
     std::fs::write(d.join("a.ron"), AXES).unwrap();
     let no_file = "not a regular file (a folder, FIFO or device)";

@@ -143,10 +143,7 @@ fn a_journal_that_is_no_file_is_refused_and_overwrite_replaces_it() {
     let dir = tmp.path().join("s");
     std::fs::create_dir(&dir).unwrap();
     let journal = dir.join("journal.jsonl");
-    let fifo = |p: &Path| {
-        let made = Command::new("mkfifo").arg(p).status();
-        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
-    };
+    let fifo = common::make_fifo;
     let link = |p: &Path| std::os::unix::fs::symlink(tmp.path().join("gone"), p).unwrap();
     for (make, what) in [
         (&fifo as &dyn Fn(&Path), "not a regular file"),
