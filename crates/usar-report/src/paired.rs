@@ -18,7 +18,7 @@ use crate::stats::{Summary, TestResult, one_sided_t};
 pub const WILCOXON_EXACT_MAX_N: usize = 50;
 
 /// The differences `x[k] - y[k]` of the pairs; `x` and `y` must have one value per pair.
-fn differences(x: &[f64], y: &[f64]) -> Vec<f64> {
+pub(crate) fn differences(x: &[f64], y: &[f64]) -> Vec<f64> {
     debug_assert_eq!(
         x.len(),
         y.len(),

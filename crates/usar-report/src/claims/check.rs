@@ -5,7 +5,7 @@
 use usar_sim::mission::TrialResult;
 
 use super::claim::{Claim, Correction, Direction, Rivals, Test};
-use crate::paired::{paired_t_greater, wilcoxon_greater};
+use crate::paired::{differences, paired_t_greater, wilcoxon_greater};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
 use crate::targets::metric_ref::MetricRef;
 use usar_sweep::metrics::{Metric, values_of};
@@ -265,7 +265,7 @@ fn compare(
     let (better, worse) = (oriented(dir, sv), oriented(dir, &ov));
     let (ps, po, unpaired) = paired_values(results, subject, other, metric);
     let (pb, pw) = (oriented(dir, &ps), oriented(dir, &po));
-    let paired_diff = Summary::of(&ps.iter().zip(&po).map(|(a, b)| a - b).collect::<Vec<_>>()).mean;
+    let paired_diff = Summary::of(&differences(&ps, &po)).mean;
     let welch_reverse = welch_greater(&worse, &better);
     let paired_t = paired_t_greater(&pb, &pw);
     Comparison {
