@@ -6,7 +6,7 @@
 //! `round` (from 0), `task`, `start_s`, `end_s`, `completed` (every grouped robot back before
 //! the time limit), `group_size` (robots grouped to the task at the round's start),
 //! `rescued`, `left_area_s` and `left_because` (when and why the group was sent out of its
-//! search area: `resources_used`, `capacity_full`, `nothing_left` or `search_budget`; empty if
+//! search area: `resources_used`, `capacity_full`, `nothing_left`, `search_budget` or `round_timer`; empty if
 //! it never was), `deliveries` and `empty_deliveries` (trips that ended at the drop-off, and
 //! those that brought no one), `left_for_rest` (members that left the group for their needs),
 //! `back_s` (when its last member still in the group got back to its start; empty if not all
@@ -123,11 +123,12 @@ pub struct TaskRounds {
     /// Share of `deliveries` that brought no one, in `[0, 1]` (NaN without deliveries).
     pub empty_share: f64,
     /// Why the group left its search area, counts in [`LeaveCause`] order
-    /// (`resources_used`, `capacity_full`, `nothing_left`, `search_budget`), then the rounds it
+    /// (`resources_used`, `capacity_full`, `nothing_left`, `search_budget`, `round_timer`), then the
+    /// rounds it
     /// never left (cut by the time limit).
     ///
     /// [`LeaveCause`]: usar_sim::mission::LeaveCause
-    pub left_because: [usize; 5],
+    pub left_because: [usize; 6],
     /// Members that left the group for their needs, per round.
     pub left_for_rest_per_round: f64,
     /// Mean time the group waited at the start for the round to end, seconds, over the rounds
@@ -170,7 +171,8 @@ pub fn task_rounds(results: &[TrialResult]) -> Vec<TaskRounds> {
                             Some(CapacityFull) => 1,
                             Some(NothingLeft) => 2,
                             Some(SearchBudget) => 3,
-                            None => 4,
+                            Some(RoundTimer) => 4,
+                            None => 5,
                         };
                         s.left_because[slot] += 1;
                         if let Some(b) = trip.back_s {
@@ -211,7 +213,7 @@ pub fn summary_lines(rows: &[TaskRounds]) -> Vec<String> {
         "sd in tr",
         "trips",
         "empty",
-        "left because (res/full/none/budget/never)",
+        "left because (res/full/none/budget/timer/never)",
         "rest/r",
         "wait s"
     )];
@@ -293,10 +295,10 @@ mod tests {
         assert!((hard.within_trial_sd - 8f64.sqrt()).abs() < 1e-12);
         assert_eq!(hard.deliveries, 6);
         assert!((hard.empty_share - 0.5).abs() < 1e-12);
-        assert_eq!(hard.left_because, [0, 3, 0, 0, 0]);
+        assert_eq!(hard.left_because, [0, 3, 0, 0, 0, 0]);
         assert!((hard.mean_wait_s - (10.0 + 10.0 + 5.0) / 3.0).abs() < 1e-12);
         let easy = &s[1];
-        assert_eq!(easy.left_because, [0, 0, 0, 0, 3]);
+        assert_eq!(easy.left_because, [0, 0, 0, 0, 0, 3]);
         assert!((easy.left_for_rest_per_round - 1.0).abs() < 1e-12);
         assert!((easy.mean_wait_s - 0.0).abs() < 1e-12);
     }

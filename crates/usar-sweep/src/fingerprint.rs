@@ -2,7 +2,7 @@
 //! validated scenario, so a grid cell's `scenario.ron` can be matched to its cell.
 
 use serde_json::Value;
-use usar_sim::scenario::Scenario;
+use usar_sim::scenario::{ADDED_FIELDS, Scenario};
 
 /// FNV-1a 64-bit hash of `bytes`, as 16 hex digits (stable across platforms and releases).
 pub fn fnv1a64_hex(bytes: &[u8]) -> String {
@@ -14,19 +14,8 @@ pub fn fnv1a64_hex(bytes: &[u8]) -> String {
     format!("{h:016x}")
 }
 
-/// Fields added after scenario hashes were first published, as (section, field, the value that
-/// keeps the model as it was): left out of the hashed form while they hold that value, so a
-/// scenario that does not use them keeps its hash.
-const ADDED_FIELDS: [(&str, &str, &str); 5] = [
-    ("mission", "idle_before_area", "Wait"),
-    ("mission", "empty_on_leave", "ViaDropOff"),
-    ("mission", "rest_at", "RestStation"),
-    ("sim", "physics", "EveryStep"),
-    ("collision", "steering", "Memoryless"),
-];
-
 /// The scenario hash: [`fnv1a64_hex`] of the validated scenario serialised as JSON, without
-/// the fields added later (`ADDED_FIELDS`) that hold their old value. Any change to what the
+/// the fields added later ([`ADDED_FIELDS`], kept next to the parameter blocks in `usar_sim::scenario`) that hold their old value. Any change to what the
 /// scenario means changes it; comments, layout, the `report` section (data no trial reads;
 /// not part of the validated scenario's JSON), and writing out a default value or leaving it
 /// out do not.

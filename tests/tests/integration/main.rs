@@ -4,6 +4,7 @@
 //! their reason; `just test-all` (and CI, in release) runs them.
 
 mod architecture;
+mod authors_clock;
 mod body_overlap;
 mod calibration;
 mod congestion;

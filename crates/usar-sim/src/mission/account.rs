@@ -5,24 +5,24 @@
 use super::decide::{CLAIM_PROGRESS_M, CLAIM_STALL_S};
 use super::error::MissionError;
 use super::events::{MissionEvent, MissionEventKind};
-use super::goals::{rest_station_for, send, send_home, stop};
+use super::goals::{send_home, stop};
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
+use super::rest::{arrive_at_rest, end_rest, go_rest, review_levels};
 use super::robot::Phase;
 use super::state::MissionState;
-use crate::scenario::{
-    LeaveWhenLow, LoadOnLeave, Locomotion, MissionParams, PointM, Refresh, RestAt, Scenario,
-    SearchClock,
-};
+use crate::scenario::{CostsCount, Locomotion, PointM, RestAt, Scenario, SearchClock};
 use crate::world::World;
 
 /// Accounts the step just taken for every robot, in id order: energy (per moving step and per
-/// metre moved) and HP (per step in radiation, both per-step rates scaled to the step's length,
-/// [`MissionParams::per_paper_step`]) every step; with `review` (after the step before a
-/// control step, `sim.control_period_s`, and after the last step: every step without a control
-/// period) also detections of its group, its phase, and a leave for the rest station when
-/// energy or HP fell below its threshold (at once, or back at its start:
-/// `mission.leave_when_low`).
+/// metre moved) and HP (per step in radiation, both per-step rates charged for the step's
+/// length on `mission.cost_clock`, [`MissionParams::per_step_on_cost_clock`]) every step,
+/// counted in the metrics for a task by `mission.costs_count`; with `review` (after the step
+/// before a control step, `sim.control_period_s`, and after the last step: every step without
+/// a control period) also detections of its group, its phase, and a leave for a rest when
+/// energy or HP fell below its threshold ([`review_levels`]).
+///
+/// [`MissionParams::per_step_on_cost_clock`]: crate::scenario::MissionParams::per_step_on_cost_clock
 ///
 /// # Errors
 /// [`MissionError::World`] if the world refuses a command (a bug).
@@ -34,8 +34,9 @@ pub(crate) fn account(
 ) -> Result<(), MissionError> {
     let m = &scenario.mission;
     let dt = scenario.sim.dt_s.get();
-    let energy_per_moving_step = MissionParams::per_paper_step(m.energy_pct_per_moving_step, dt);
-    let hp_per_step = MissionParams::per_paper_step(m.hp_pct_per_step_in_radiation, dt);
+    let energy_per_moving_step = m.per_step_on_cost_clock(m.energy_pct_per_moving_step, dt);
+    let hp_per_step = m.per_step_on_cost_clock(m.hp_pct_per_step_in_radiation, dt);
+    let every_cost = m.costs_count == CostsCount::Every;
     let now = world.time_s();
     for id in 0..st.robots.len() {
         let w = world.robot(id);
@@ -48,16 +49,22 @@ pub(crate) fn account(
         );
         let rad = world.radiation_factor(id);
         let r = &mut st.robots[id];
+        // The task the costs count for: the robot's group's, or under `Every` its latest's.
+        let counted = if every_cost {
+            r.task.or(r.last_task)
+        } else {
+            r.task
+        };
         if moved {
             let cost = energy_per_moving_step + m.energy_pct_per_m.get() * step_m;
             let spent = cost.min(r.energy_pct);
             r.energy_pct -= spent;
-            st.recorder.energy(id, r.task, spent);
+            st.recorder.energy(id, counted, spent);
         }
         if rad > 0.0 {
             let lost = (hp_per_step * rad).min(r.hp_pct);
             r.hp_pct -= lost;
-            st.recorder.hp(id, r.task, lost, dt);
+            st.recorder.hp(id, counted, lost, dt);
         }
         if !review {
             continue;
@@ -70,18 +77,7 @@ pub(crate) fn account(
             st.fields[t].detect(&pos, range);
         }
         advance_phase(scenario, world, st, id, pos, reached, now)?;
-        let r = &st.robots[id];
-        let (low_energy, low_hp) = r.low_levels(m);
-        let may_leave = m.leave_when_low == LeaveWhenLow::AtOnce || r.phase == Phase::AtStart;
-        if !r.is_resting() && (low_energy || low_hp) && may_leave {
-            if let Some(t) = r.task {
-                st.recorder.left_for_rest(t);
-            }
-            let kind = MissionEventKind::LeftForRest { low_energy, low_hp };
-            st.events
-                .push(MissionEvent::of_robot(now, id, r.task, kind));
-            go_rest(scenario, world, st, id)?;
-        }
+        review_levels(scenario, world, st, id, now)?;
     }
     Ok(())
 }
@@ -142,37 +138,16 @@ fn advance_phase(
                 || (scenario.mission.rest_at == RestAt::RestStation
                     && scenario.in_rest_station(&pos)) =>
         {
-            st.robots[id].phase = Phase::Recharging {
-                until_s: now + scenario.mission.recharge_s.get(),
-            };
-            stop(world, id)?;
+            let recharge_s = scenario.mission.recharge_s.get();
+            arrive_at_rest(world, &mut st.robots[id], recharge_s, now)?;
         }
         (Phase::Recharging { until_s }, _) if now + 1e-9 >= until_s => {
-            refresh(scenario, st, id);
-            let kind = MissionEventKind::Recharged;
-            st.events.push(MissionEvent::of_robot(now, id, None, kind));
-            send_home(scenario, world, &mut st.recorder, id)?;
+            end_rest(scenario, world, st, id, now)?;
         }
         // At the start, or (never in a valid state) on a task's work without a task.
         _ => {}
     }
     Ok(())
-}
-
-/// Ends robot `id`'s stay at the rest station: restores what `mission.refresh` says and sends
-/// it back towards its start.
-fn refresh(scenario: &Scenario, st: &mut MissionState, id: usize) {
-    let m = &scenario.mission;
-    let r = &mut st.robots[id];
-    let both = m.refresh == Refresh::Both;
-    if both || r.energy_pct < m.low_energy_pct.get() {
-        r.energy_pct = 100.0;
-    }
-    if both || r.hp_pct < m.low_hp_pct.get() {
-        r.hp_pct = 100.0;
-    }
-    r.phase = Phase::RestToStart;
-    st.recorder.recharged(id);
 }
 
 /// Robot `id` with a claim on a rescuee of task `t`: gives the claim up when the rescuee is out
@@ -258,49 +233,4 @@ fn deliver(st: &mut MissionState, id: usize, t: usize, now: f64) {
     let kind = MissionEventKind::Delivered { rescuees: n };
     st.events
         .push(MissionEvent::of_robot(now, id, Some(t), kind));
-}
-
-/// Robot `id` leaves its task and group for the nearest rest station
-/// ([`rest_station_for`]: by path from where it stands; energy or HP below its threshold), or
-/// for its own start under `mission.rest_at: OwnStart`. Its claim is released; its load is
-/// abandoned, put back, or first delivered (`mission.load_on_leave`). A robot delivering
-/// first stays in its group, marked [`super::MissionRobot::leaving`], until it reaches the
-/// drop-off, and comes back here then.
-fn go_rest(
-    scenario: &Scenario,
-    world: &mut World,
-    st: &mut MissionState,
-    id: usize,
-) -> Result<(), MissionError> {
-    let rule = scenario.mission.load_on_leave;
-    let r = &mut st.robots[id];
-    if let Some(t) = r.task {
-        let field = &mut st.fields[t];
-        if let Some(i) = r.claim.take() {
-            field.release(i);
-        }
-        r.picking_until_s = None;
-        if rule == LoadOnLeave::DeliverFirst && !r.leaving && !r.load.is_empty() {
-            r.leaving = true;
-            r.phase = Phase::ToDropOff;
-            let drop_off = scenario.tasks[t].drop_off.center;
-            return send(world, &mut st.recorder, id, drop_off);
-        }
-        for i in r.load.drain(..) {
-            match rule {
-                LoadOnLeave::ReturnToArea => field.put_back(i),
-                LoadOnLeave::Abandon | LoadOnLeave::DeliverFirst => {
-                    field.settle(i, RescueeStatus::Abandoned);
-                }
-            }
-        }
-    }
-    r.leaving = false;
-    r.task = None;
-    r.phase = Phase::ToRest;
-    let rest_m = match scenario.mission.rest_at {
-        RestAt::RestStation => scenario.rest_stations[rest_station_for(scenario, world, id)].center,
-        RestAt::OwnStart => scenario.robots[id].start_in_world,
-    };
-    send(world, &mut st.recorder, id, rest_m)
 }

@@ -8,6 +8,7 @@ use super::metrics::LeaveCause;
 use super::needs::hp_factor;
 use super::rescuees::RescueeStatus;
 use super::robot::{MissionRobot, Phase};
+use super::round_clock::round_time_up;
 use super::state::{LeaveFigures, MissionState};
 use crate::scenario::{
     CollisionPriority, EmptyOnLeave, IdleBeforeArea, Locomotion, PointM, Rect, Role, Scenario,
@@ -134,7 +135,8 @@ fn start_search_clocks_of_assembled_groups(world: &World, st: &mut MissionState)
 /// Whether task `t`'s group must leave its search area (see `docs/mission-model.md`): its
 /// pool of resources or its ground members' free capacity is used up, nothing more is to be
 /// had (every ground member waits and no observer is still flying in), or its search time
-/// budget (`mission.search_time_budget_s`) is spent; returns why (the first that holds, in
+/// budget (`mission.search_time_budget_s`) or its round's time (`mission.round_clock: Timer`)
+/// is spent; returns why (the first that holds, in
 /// [`LeaveCause`]'s order), or `None` to stay. Reads `st.tally.leave` (see
 /// [`gather_leave_figures`]).
 fn group_should_leave(
@@ -161,6 +163,10 @@ fn group_should_leave(
         (free_capacity == 0, LeaveCause::CapacityFull),
         (nothing_more, LeaveCause::NothingLeft),
         (out_of_time, LeaveCause::SearchBudget),
+        (
+            round_time_up(scenario, st, world.time_s()),
+            LeaveCause::RoundTimer,
+        ),
     ]
     .into_iter()
     .find_map(|(holds, cause)| holds.then_some(cause))

@@ -18,17 +18,20 @@ pub enum LeaveCause {
     NothingLeft,
     /// Its search time budget (`mission.search_time_budget_s`) is spent.
     SearchBudget,
+    /// Its round's time is up (`mission.round_clock: Timer`): the group is recalled.
+    RoundTimer,
 }
 
 impl LeaveCause {
     /// The cause's name as written in CSV files (`resources_used`, `capacity_full`,
-    /// `nothing_left`, `search_budget`).
+    /// `nothing_left`, `search_budget`, `round_timer`).
     pub fn as_str(self) -> &'static str {
         match self {
             Self::ResourcesUsed => "resources_used",
             Self::CapacityFull => "capacity_full",
             Self::NothingLeft => "nothing_left",
             Self::SearchBudget => "search_budget",
+            Self::RoundTimer => "round_timer",
         }
     }
 }

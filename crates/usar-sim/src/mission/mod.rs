@@ -2,7 +2,7 @@
 //! metrics (paper, sections IV-VI). The rules are in `docs/mission-model.md`.
 //!
 //! Data apart from the systems that update it: [`MissionState`] holds the team, the rescuees,
-//! the rounds and the [`Recorder`] of metrics; each step runs the round system (`rounds`), the
+//! the rounds and the [`Recorder`] of metrics; each step runs the round system (`round_clock`, with the rest lifecycle in `rest`), the
 //! decision system (`decide`), the world's physics step, and the accounting system
 //! (`account`), each a function over the scenario, the world and the state.
 //!
@@ -31,8 +31,9 @@ mod reachability;
 mod recorder;
 mod rescue_capacity;
 mod rescuees;
+mod rest;
 mod robot;
-mod rounds;
+mod round_clock;
 mod search_pattern;
 mod simulation;
 mod state;

@@ -77,6 +77,15 @@ pub struct MissionRobot {
     /// can rescue at the area's edge without entering it); reset when a round groups it. The
     /// search clock of `mission.search_clock: LastArrival` waits for every member's.
     pub reached_area: bool,
+    /// The task of the latest group the robot was in (kept after the group dissolves; `None`
+    /// before its first round). Costs count for it under `mission.costs_count: Every`.
+    #[serde(default)]
+    pub last_task: Option<usize>,
+    /// Whether the robot left for a rest in the open round's slack (`mission.rest_timing:
+    /// InSlack`): the round waits for its rest to end (up to the round's timer). Cleared when
+    /// the round closes.
+    #[serde(default)]
+    pub rests_in_round: bool,
 }
 
 impl MissionRobot {

@@ -15,7 +15,7 @@ use super::needs::needs_vector;
 use super::recorder::TrialInfo;
 use super::rescuees::RescueeField;
 use super::robot::MissionRobot;
-use super::rounds::{close_round, round_complete, start_round};
+use super::round_clock::{close_round, round_complete, start_round};
 use super::state::MissionState;
 use crate::scenario::Scenario;
 use crate::world::{ControlClock, World};
@@ -265,7 +265,7 @@ impl Simulation {
         // the decisions of that control step see what it found.
         let review = clock.is_control_step(world.steps()) || last;
         account(sc, world, st, review)?;
-        if review && st.round_open && round_complete(st) {
+        if review && st.round_open && round_complete(sc, st, world.time_s()) {
             close_round(world, st, true);
         }
         if last && st.round_open {

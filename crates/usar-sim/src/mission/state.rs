@@ -1,4 +1,4 @@
-//! The mission's state: plain data that the systems ([`super::rounds`], [`super::decide`],
+//! The mission's state: plain data that the systems ([`super::round_clock`], [`super::rest`], [`super::decide`],
 //! [`super::account`]) update and [`super::Simulation`] owns, apart from the physical world.
 
 use super::events::MissionEvent;
@@ -107,6 +107,8 @@ impl MissionState {
                     leaving: false,
                     picking_until_s: None,
                     reached_area: false,
+                    last_task: None,
+                    rests_in_round: false,
                 }
             })
             .collect();

@@ -26,6 +26,7 @@
 //!
 //! The file format is documented in `docs/scenario-format.md`.
 
+mod added_fields;
 mod bounded_read;
 mod builder;
 mod check_clear_places;
@@ -44,6 +45,7 @@ mod edit;
 mod error;
 mod generate;
 mod index;
+pub mod lifecycle_choices;
 pub mod limits;
 mod load;
 mod locate;
@@ -58,6 +60,7 @@ mod suggest;
 mod validate;
 mod validated;
 
+pub use added_fields::ADDED_FIELDS;
 pub use bounded_read::{BoundedReadError, read_bounded};
 pub use builder::ScenarioBuilder;
 pub use check_names::RESERVED_TASK_NAME;
@@ -66,6 +69,7 @@ pub use choices::*;
 pub use draft::{KindDraft, TaskDraft, Xy};
 pub use edit::{EditOutcome, number_at};
 pub use error::{ScenarioError, SourceLocation};
+pub use lifecycle_choices::{CostClock, CostsCount, RestTiming, RoundClock};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
 pub use locate::SourceMap;
 pub use model::*;

@@ -13,6 +13,7 @@ use super::choices::{
     LoadOnLeave, OutsideRange, PhysicsStepping, RadiationFalloff, RadiationOverlap, Refresh,
     RescuedAt, RestAt, RoundStart, SearchClock, SweepPattern,
 };
+use super::lifecycle_choices::{CostClock, CostsCount, RestTiming, RoundClock};
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
 /// The paper's "step", seconds: Unity's fixed step of 1/50 s, the unit of the paper's per-step
@@ -141,6 +142,15 @@ pub struct MissionParams {
     pub radiation_falloff: RadiationFalloff,
     /// When a new round may start; default `Available`.
     pub round_start: RoundStart,
+    /// What ends a round: every group back, or a timer; default `AllBack`.
+    pub round_clock: RoundClock,
+    /// Whether a rest is taken in its round's slack; default `OutOfRound`.
+    pub rest_timing: RestTiming,
+    /// The clock of the per-step costs: the paper's 1/50 s step or rendered frames; default
+    /// `PaperStep`.
+    pub cost_clock: CostClock,
+    /// Which costs count in the metrics; default `InGroup`.
+    pub costs_count: CostsCount,
     /// Which quotas shrink when robots are away at a round's start; default `HardestFirst`.
     pub away_quotas: AwayQuotas,
     /// What becomes of a leaving robot's load; default `Abandon`.
@@ -206,6 +216,10 @@ impl Default for MissionParams {
             radiation_overlap: RadiationOverlap::default(),
             radiation_falloff: RadiationFalloff::default(),
             round_start: RoundStart::default(),
+            round_clock: RoundClock::default(),
+            rest_timing: RestTiming::default(),
+            cost_clock: CostClock::default(),
+            costs_count: CostsCount::default(),
             away_quotas: AwayQuotas::default(),
             load_on_leave: LoadOnLeave::default(),
             search_time_budget_s: None,
@@ -237,6 +251,17 @@ impl MissionParams {
     /// `rate` at `dt_s = 0.02`).
     pub fn per_paper_step(rate: NonNegative, dt_s: f64) -> f64 {
         rate.get() * (dt_s / PAPER_STEP_S)
+    }
+
+    /// A per-step rate (`energy_pct_per_moving_step`, `hp_pct_per_step_in_radiation`) as
+    /// charged on one simulation step of `dt_s` seconds on this mission's `cost_clock`: under
+    /// `PaperStep` [`MissionParams::per_paper_step`]; under `Frames(steps_per_s)` `rate * dt_s
+    /// * steps_per_s` (the frames the step spans).
+    pub fn per_step_on_cost_clock(&self, rate: NonNegative, dt_s: f64) -> f64 {
+        match self.cost_clock {
+            CostClock::PaperStep => Self::per_paper_step(rate, dt_s),
+            CostClock::Frames { steps_per_s } => rate.get() * (dt_s * steps_per_s.get()),
+        }
     }
 }
 
