@@ -578,3 +578,57 @@ fn a_line_break_in_a_path_is_escaped_in_every_message() {
     assert_eq!(err.lines().count(), 2, "{err}");
     assert!(err.lines().all(|l| l.starts_with(&head)), "{err}");
 }
+
+#[test]
+fn check_print_shows_the_authors_clock_switches_and_their_defaults_keep_the_hash() {
+    let set = [
+        "--set",
+        "mission.round_clock=Timer(length_s: 90.0)",
+        "--set",
+        "mission.cost_clock=Frames(steps_per_s: 120.0)",
+        "--set",
+        "mission.rest_timing=InSlack",
+        "--set",
+        "mission.costs_count=Every",
+    ];
+    let o = usar([&["check", PAPER][..], &set, &["--print"]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let printed = String::from_utf8(o.stdout).unwrap();
+    for want in [
+        "round_clock: Timer(",
+        "length_s: 90.0",
+        "rest_timing: InSlack,",
+        "cost_clock: Frames(",
+        "steps_per_s: 120.0",
+        "costs_count: Every,",
+    ] {
+        assert!(printed.contains(want), "{want} in {printed}");
+    }
+    // A scenario that does not use them keeps its hash when they are written out at their
+    // defaults (`usar_sim::scenario::ADDED_FIELDS`).
+    let v1 = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper-v1.ron");
+    let hash_of = |args: &[&str]| {
+        let o = usar(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap().trim().to_string()
+    };
+    let defaults = [
+        "--set",
+        "mission.round_clock=AllBack",
+        "--set",
+        "mission.cost_clock=PaperStep",
+        "--set",
+        "mission.rest_timing=OutOfRound",
+        "--set",
+        "mission.costs_count=InGroup",
+    ];
+    let plain = hash_of(&["check", v1, "--hash"]);
+    assert_eq!(
+        hash_of(&[&["check", v1][..], &defaults, &["--hash"]].concat()),
+        plain
+    );
+    assert_ne!(
+        hash_of(&[&["check", v1][..], &set, &["--hash"]].concat()),
+        plain
+    );
+}
