@@ -82,16 +82,20 @@ mod tests {
             let s = usar_sim::scenario::from_str(src, "s").unwrap();
             scenario_hash(&s).unwrap()
         };
+        // paper-v1.ron (pinned: it uses none of the added fields and writes out the old
+        // steering) and three-tasks.ron with the old steering written out.
         let old_steering = |src: &str| {
             let to = "deadlock_after_s: 2.0, steering: Memoryless)";
             src.replacen("deadlock_after_s: 2.0)", to, 1)
         };
-        let paper = old_steering(
-            &include_str!("../../../scenarios/paper.ron").replace(", physics: NearContacts", ""),
+        let paper_v1 = include_str!("../../../scenarios/paper-v1.ron").replacen(
+            ",\n        steering: Memoryless",
+            ", steering: Memoryless",
+            1,
         );
         let three_tasks = old_steering(include_str!("../../../scenarios/three-tasks.ron"));
         let before = [
-            (paper.as_str(), "e019bba885d01aaf"),
+            (paper_v1.as_str(), "2641e2e6fd51e303"),
             (three_tasks.as_str(), "97fe69ca418d0202"),
         ];
         // Each added field (after the field it is written before): the value that keeps the
@@ -106,6 +110,20 @@ mod tests {
             ),
             ("rest_at", "pickup_s:", "RestStation", "OwnStart"),
             ("physics", "dt_s: 0.02", "EveryStep", "NearContacts"),
+            (
+                "round_clock",
+                "pickup_s:",
+                "AllBack",
+                "Timer(length_s: 100.0)",
+            ),
+            ("rest_timing", "pickup_s:", "OutOfRound", "InSlack"),
+            (
+                "cost_clock",
+                "pickup_s:",
+                "PaperStep",
+                "Frames(steps_per_s: 130.0)",
+            ),
+            ("costs_count", "pickup_s:", "InGroup", "Every"),
         ];
         let with = |src: &str, field: &str, before: &str, value: &str| {
             hash_of(&src.replacen(before, &format!("{field}: {value}, {before}"), 1))
