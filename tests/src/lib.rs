@@ -42,6 +42,27 @@ pub fn paper_with(edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
         .unwrap_or_else(|e| panic!("edited paper.ron: {e}"))
 }
 
+/// `scenarios/paper-v1.ron`, loaded and validated: the paper mission before the authors' clock
+/// (per-paper-step costs, rounds when all are back, rests out of the round), pinned. The rule
+/// tests change one rule of it at a time.
+///
+/// # Panics
+/// If the file does not load (that is a test failure).
+pub fn paper_v1() -> Scenario {
+    scenario::load(scenario_path("paper-v1.ron")).expect("scenarios/paper-v1.ron loads")
+}
+
+/// `scenarios/paper-v1.ron` with its spec changed by `edit`, validated again
+/// ([`Scenario::edit`]).
+///
+/// # Panics
+/// If the edited scenario breaks a rule (that is a test failure).
+pub fn paper_v1_with(edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
+    paper_v1()
+        .edit(edit)
+        .unwrap_or_else(|e| panic!("edited paper-v1.ron: {e}"))
+}
+
 /// A built-in grouping method by name (`rne`, `dis`, `eng`, `hp_dis`), RNE using the
 /// scenario's needs weights.
 ///

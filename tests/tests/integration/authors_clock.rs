@@ -1,8 +1,8 @@
 //! The switches of the authors' clock (issue 71; `usar_sim::scenario::lifecycle_choices`,
 //! docs/mission-model.md, "The authors' clock"): the round timer and its recall, rests in a
-//! round's slack, the cost clock and which costs count, each on variants of paper.ron.
+//! round's slack, the cost clock and which costs count, each on variants of paper-v1.ron.
 
-use integration_tests::{fixed, method, paper_with};
+use integration_tests::{fixed, method, paper_v1_with};
 use usar_sim::mission::{LeaveCause, MissionEventKind, Phase, Simulation, TrialResult};
 use usar_sim::scenario::{
     CollisionPriority, CostClock, CostsCount, HpEffect, LeaveWhenLow, RestTiming, RoundClock,
@@ -20,7 +20,7 @@ fn timer(length_s: f64) -> RoundClock {
 /// area until it is full or finds nothing more) and rounds that start with the robots
 /// available, changed further by `edit`.
 fn base(edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
-    paper_with(|s| {
+    paper_v1_with(|s| {
         s.mission.initial_energy = fixed(100.0);
         s.mission.initial_hp = fixed(100.0);
         s.mission.search_time_budget_s = None;

@@ -1,6 +1,6 @@
-//! Behaviour of the mission rules (paper, section VI.B), each on a variant of paper.ron.
+//! Behaviour of the mission rules (paper, section VI.B), each on a variant of paper-v1.ron (the model before the authors' clock).
 
-use integration_tests::{fixed, method, paper, paper_with};
+use integration_tests::{fixed, method, paper_v1, paper_v1_with};
 use usar_sim::mission::{Phase, Simulation, hp_factor};
 use usar_sim::scenario::{
     CircleSpec, DebrisSpec, Locomotion, RadiationZoneSpec, RestStationsSpec, Role, Scenario,
@@ -19,7 +19,7 @@ fn top_speed(sim: &mut Simulation, id: usize, seconds: f64) -> f64 {
 
 #[test]
 fn a_group_without_an_observer_is_30_percent_slower() {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         let observer = s
             .kinds
             .iter()
@@ -66,7 +66,7 @@ fn a_group_without_an_observer_is_30_percent_slower() {
 #[test]
 fn lower_hp_means_lower_speed() {
     let run = |hp: f64| {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.initial_hp = fixed(hp);
             s.mission.initial_energy = fixed(100.0);
         });
@@ -77,7 +77,7 @@ fn lower_hp_means_lower_speed() {
     let (low, _) = run(60.0);
     assert!((full - v_max).abs() < 0.02 * v_max, "{full}");
     assert!(
-        (low - hp_factor(paper().mission(), 60.0) * v_max).abs() < 0.02 * v_max,
+        (low - hp_factor(paper_v1().mission(), 60.0) * v_max).abs() < 0.02 * v_max,
         "{low}"
     );
     assert!(low < full);
@@ -86,7 +86,7 @@ fn lower_hp_means_lower_speed() {
 /// Every robot starts just above the 30 % energy threshold, so all leave for the rest station
 /// within seconds; a radiation zone of dose factor 2 covers the rest station.
 fn low_energy_scenario() -> Scenario {
-    paper_with(|s| {
+    paper_v1_with(|s| {
         s.mission.initial_energy = fixed(30.5);
         s.mission.initial_hp = fixed(90.0);
         let station = &s.rest_station.circles()[0];
@@ -158,7 +158,7 @@ fn a_robot_below_30_percent_energy_recharges_and_comes_back() {
 /// within seconds) and a second rest station at (24, 4), left of the start rows, mirroring the
 /// paper's (56, 4) about their middle.
 fn two_station_scenario() -> Scenario {
-    paper_with(two_stations)
+    paper_v1_with(two_stations)
 }
 
 /// The spec edit of [`two_station_scenario`].
@@ -228,7 +228,7 @@ fn with_several_rest_stations_a_robot_goes_to_the_nearest() {
 /// the nearer one.
 #[test]
 fn a_rest_station_behind_a_wall_is_farther_by_path() {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         two_stations(s);
         s.debris.push(DebrisSpec::Rect {
             center_m: [28.0, 15.0],
@@ -285,7 +285,7 @@ fn a_robot_standing_in_radiation_loses_hp_at_the_stated_rate() {
 #[test]
 fn regrouping_happens_every_round_with_the_current_state() {
     // ENG sends, per kind, the robots with the most energy *now* to the hard task.
-    let s = paper();
+    let s = paper_v1();
     let mut sim = Simulation::for_trial(&s, method("eng", &s), 3);
     let mut groupings = Vec::new();
     while !sim.is_finished() {
@@ -322,7 +322,7 @@ fn regrouping_happens_every_round_with_the_current_state() {
 
 #[test]
 fn a_trial_run_twice_gives_identical_results() {
-    let s = paper();
+    let s = paper_v1();
     for name in ["rne", "dis"] {
         let a = Simulation::for_trial(&s, method(name, &s), 1)
             .run_to_end()
@@ -341,7 +341,7 @@ fn a_trial_run_twice_gives_identical_results() {
 #[test]
 fn ground_robots_never_enter_debris_during_a_trial() {
     // Aerial robots crossing debris is covered by usar-sim's world_debris test.
-    let s = paper();
+    let s = paper_v1();
     let mut sim = Simulation::for_trial(&s, method("rne", &s), 0)
         .with_duration_s(300.0)
         .unwrap();
@@ -364,7 +364,7 @@ fn ground_robots_never_enter_debris_during_a_trial() {
 #[test]
 fn the_needs_vector_follows_the_robot_state() {
     use usar_sim::mission::entry;
-    let s = paper();
+    let s = paper_v1();
     let mut sim = Simulation::for_trial(&s, method("rne", &s), 0);
     let id = 0; // a carrier
     let kind = s.kind_of(id);

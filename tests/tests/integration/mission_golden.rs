@@ -16,14 +16,14 @@ use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
 const GOLDEN: &[(&str, u32, u32, u32)] = &[
-    ("rne", 0, 39, 71),
-    ("rne", 1, 42, 68),
-    ("dis", 0, 39, 84),
-    ("dis", 1, 45, 83),
-    ("eng", 0, 85, 68),
-    ("eng", 1, 50, 69),
-    ("hp_dis", 0, 85, 87),
-    ("hp_dis", 1, 86, 86),
+    ("rne", 0, 70, 81),
+    ("rne", 1, 64, 89),
+    ("dis", 0, 66, 86),
+    ("dis", 1, 68, 73),
+    ("eng", 0, 61, 66),
+    ("eng", 1, 60, 84),
+    ("hp_dis", 0, 52, 73),
+    ("hp_dis", 1, 69, 63),
 ];
 
 #[test]

@@ -33,6 +33,7 @@ fn check(name: &str, s: &Scenario) {
         .map(|r| (r.energy_pct, r.hp_pct, r.phase))
         .collect();
     let mut rounds_seen = 0;
+    let dt_s = s.sim().dt_s.get();
     while !sim.is_finished() {
         // The mission decides before a control step, and reviews phases after the step before
         // a control step and after the last.
@@ -61,17 +62,16 @@ fn check(name: &str, s: &Scenario) {
                 r.id
             );
             // Energy falls only on moving steps, by exactly the scenario's rates per moving
-            // step and per metre moved (or to 0).
+            // step (on its cost clock) and per metre moved (or to 0).
             if r.energy_pct < e0 - EPS {
                 assert!(
                     w.moved_this_step,
                     "{name}: robot {} lost energy standing still",
                     r.id
                 );
-                let m = &s.mission();
-                let expected = (m.energy_pct_per_moving_step.get()
-                    + m.energy_pct_per_m.get() * w.step_distance_m)
-                    .min(e0);
+                let m = s.mission();
+                let per_step = m.per_step_on_cost_clock(m.energy_pct_per_moving_step, dt_s);
+                let expected = (per_step + m.energy_pct_per_m.get() * w.step_distance_m).min(e0);
                 assert!(
                     (e0 - r.energy_pct - expected).abs() < 1e-9,
                     "{name}: energy rate"
@@ -122,7 +122,9 @@ fn check(name: &str, s: &Scenario) {
                     "{name}: robot {} lost HP outside radiation",
                     r.id
                 );
-                let expected = (s.mission().hp_pct_per_step_in_radiation.get() * factor).min(h0);
+                let m = s.mission();
+                let per_step = m.per_step_on_cost_clock(m.hp_pct_per_step_in_radiation, dt_s);
+                let expected = (per_step * factor).min(h0);
                 assert!((h0 - r.hp_pct - expected).abs() < 1e-9, "{name}: HP rate");
             }
             if r.hp_pct > h0 + EPS {

@@ -1,7 +1,7 @@
 //! The mission rules the paper leaves open (`mission.*` options, `docs/mission-model.md`): each
-//! setting's behaviour, on variants of paper.ron.
+//! setting's behaviour, on variants of paper-v1.ron (the model before the authors' clock).
 
-use integration_tests::{fixed, method, paper, paper_with};
+use integration_tests::{fixed, method, paper_v1, paper_v1_with};
 use usar_sim::mission::{
     Phase, RescueeStatus, Simulation, hp_factor, sweep_spacing_m, sweep_waypoints,
 };
@@ -12,7 +12,7 @@ use usar_sim::scenario::{
 
 #[test]
 fn energy_is_charged_per_moving_step_plus_per_metre() {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.energy_pct_per_moving_step = 0.001.try_into().unwrap();
         s.mission.energy_pct_per_m = 0.2.try_into().unwrap();
     });
@@ -45,7 +45,7 @@ fn energy_is_charged_per_moving_step_plus_per_metre() {
 /// Every robot starts just above the energy threshold, so all leave for the rest station at
 /// once; two overlapping radiation zones cover the rest station.
 fn resting_in_two_zones(overlap: RadiationOverlap, falloff: RadiationFalloff) -> Scenario {
-    paper_with(|s| {
+    paper_v1_with(|s| {
         s.mission.initial_energy = fixed(30.05);
         s.mission.initial_hp = fixed(90.0);
         s.mission.radiation_overlap = overlap;
@@ -128,7 +128,7 @@ fn group_sizes(s: &Scenario) -> Vec<usize> {
 
 #[test]
 fn all_back_rounds_group_the_whole_team_and_available_rounds_do_not() {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.round_start = RoundStart::AllBack;
     });
     let all_back = group_sizes(&s);
@@ -137,7 +137,7 @@ fn all_back_rounds_group_the_whole_team_and_available_rounds_do_not() {
         all_back.iter().all(|&n| n == s.robots().len()),
         "{all_back:?}"
     );
-    let s = paper_with(|s| s.mission.round_start = RoundStart::Available);
+    let s = paper_v1_with(|s| s.mission.round_start = RoundStart::Available);
     let available = group_sizes(&s);
     assert!(
         available.iter().any(|&n| n < s.robots().len()),
@@ -160,7 +160,7 @@ fn leave_with_load(
     rule: LoadOnLeave,
     mut check: impl FnMut(&Simulation, &[LeaveWithLoad]),
 ) -> (Simulation, Vec<LeaveWithLoad>) {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.initial_energy = fixed(36.0);
         s.mission.initial_hp = fixed(100.0);
         s.mission.load_on_leave = rule;
@@ -250,7 +250,7 @@ fn a_leaving_robot_delivers_its_load_first() {
 
 #[test]
 fn a_group_leaves_when_its_search_time_budget_is_spent() {
-    let s = paper();
+    let s = paper_v1();
     let budget = s
         .mission()
         .search_time_budget_s
@@ -314,7 +314,7 @@ fn a_group_leaves_when_its_search_time_budget_is_spent() {
 #[test]
 fn low_only_refresh_restores_only_the_level_below_its_threshold() {
     for (refresh, hp_after) in [(Refresh::LowOnly, 60.0), (Refresh::Both, 100.0)] {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.initial_energy = fixed(30.05);
             s.mission.initial_hp = fixed(60.0);
             s.mission.refresh = refresh;
@@ -339,7 +339,7 @@ fn a_robot_recharges_at_a_rest_station_or_at_its_own_start() {
     for rest_at in [RestAt::RestStation, RestAt::OwnStart] {
         // 1 % above the energy threshold: robot 0 falls below it on its way to its task, a few
         // metres from its start.
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.initial_energy = fixed(31.0);
             s.mission.rest_at = rest_at;
         });
@@ -415,7 +415,7 @@ fn a_blind_sweep_passes_every_rescuee_within_detection_range() {
     // Regression: rows 2 m apart put a ground robot (detection radius 0.45 m) midway between
     // the rows of a 1 m rescuee grid, so a group without an observer could only find rescuees
     // by chance. The default spacing is the detection width.
-    let s = paper();
+    let s = paper_v1();
     assert_eq!(s.mission().sweep_spacing_m, None);
     assert!((sweep_spacing_m(&s) - 0.9).abs() < 1e-12);
     assert_eq!(swept_fraction(&s), 1.0);
@@ -459,7 +459,7 @@ fn a_blind_sweep_finds_the_rescuees_at_the_corners_and_edges() {
 #[test]
 fn hp_slows_a_robot_no_further_than_the_floor() {
     let top = |min_factor: f64| {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.initial_hp = fixed(5.0);
             s.mission.initial_energy = fixed(100.0);
             s.mission.min_hp_factor = min_factor.try_into().unwrap();
@@ -473,7 +473,7 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
         (top, s.kind_of(0).max_speed_m_per_s)
     };
     let (floored, v_max) = top(0.2);
-    let mut floor = paper().mission().clone();
+    let mut floor = paper_v1().mission().clone();
     floor.min_hp_factor = 0.2.try_into().unwrap();
     assert!((hp_factor(&floor, 5.0) - 0.2).abs() < 1e-12);
     assert!(
@@ -491,7 +491,7 @@ fn hp_slows_a_robot_no_further_than_the_floor() {
 
 #[test]
 fn a_rescue_takes_pickup_s_standing_still() {
-    let s = paper();
+    let s = paper_v1();
     let pickup_s = s.mission().pickup_s.get();
     assert!(pickup_s > 0.0);
     let mut sim = Simulation::for_trial(&s, method("dis", &s), 0)
@@ -542,7 +542,7 @@ fn a_rescue_takes_pickup_s_standing_still() {
 /// of this valid scenario used to fail with "all weighted needs equal to zero".
 #[test]
 fn robots_with_all_zero_needs_are_grouped_by_rne() {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.min_hp_factor = 0.0.try_into().unwrap();
         s.mission.initial_hp = fixed(0.0);
         s.mission.initial_energy = fixed(0.0);

@@ -1,9 +1,9 @@
 //! The switches added for the rules the paper leaves open (`usar_sim::scenario::choices`,
-//! docs/mission-model.md): each alternative's behaviour on variants of paper.ron. The older
+//! docs/mission-model.md): each alternative's behaviour on variants of paper-v1.ron (the model before the authors' clock). The older
 //! switches (radiation overlap and falloff, round start, refresh, load on leave, quotas) are
 //! tested in `mission_rules.rs`.
 
-use integration_tests::{fixed, method, paper, paper_with};
+use integration_tests::{fixed, method, paper_v1, paper_v1_with};
 use usar_sim::mission::{MissionEventKind, Phase, Simulation, draw_initial_levels, hp_factor};
 use usar_sim::scenario::{
     ClampedNormal, CollisionPriority, HpEffect, LeaveWhenLow, OutsideRange, RescuedAt, Role,
@@ -33,7 +33,7 @@ fn hp_scales_speed_linearly_by_a_threshold_or_not_at_all() {
         (threshold, 60.0, 1.0),
         (HpEffect::NoEffect, 40.0, 1.0),
     ] {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.hp_effect = effect;
             s.mission.min_hp_factor = 0.0.try_into().unwrap();
             s.mission.initial_hp = fixed(hp);
@@ -54,7 +54,7 @@ fn hp_scales_speed_linearly_by_a_threshold_or_not_at_all() {
 /// during its first trip. Returns, per `LeftForRest` event, the leaving robot's phase just
 /// before it left.
 fn phases_when_leaving(rule: LeaveWhenLow) -> Vec<Phase> {
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.initial_energy = fixed(33.0);
         s.mission.initial_hp = fixed(90.0);
         s.mission.leave_when_low = rule;
@@ -101,7 +101,7 @@ fn a_low_robot_leaves_at_once_or_after_its_trip() {
 #[test]
 fn a_robot_below_its_threshold_at_the_start_leaves_at_once_under_both_rules() {
     for rule in [LeaveWhenLow::AtOnce, LeaveWhenLow::AfterTrip] {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.initial_energy = fixed(20.0);
             s.mission.leave_when_low = rule;
         });
@@ -119,7 +119,7 @@ fn a_robot_below_its_threshold_at_the_start_leaves_at_once_under_both_rules() {
 fn rescues_count_at_the_drop_off_or_at_the_pick_up() {
     // The counting rule changes no decision: both runs of a trial are the same trial.
     let run = |at: RescuedAt, trial: u32| {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.mission.rescued_at = at;
         });
         Simulation::for_trial(&s, method("eng", &s), trial)
@@ -161,7 +161,7 @@ fn the_collision_priority_key_is_energy_hp_or_nothing() {
         CollisionPriority::LowestHp,
         CollisionPriority::RobotId,
     ] {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.collision.priority = priority;
         });
         let mut sim = Simulation::for_trial(&s, method("dis", &s), 3);
@@ -186,7 +186,7 @@ fn the_collision_priority_key_is_energy_hp_or_nothing() {
 
 #[test]
 fn initial_draws_outside_the_range_are_clamped_or_drawn_again() {
-    let s = paper();
+    let s = paper_v1();
     let base = s.mission().initial_energy;
     let narrow = |outside_range| ClampedNormal {
         min_pct: 70.0.try_into().unwrap(),
@@ -263,9 +263,9 @@ fn first_trip(s: &Scenario) -> Vec<(Option<f64>, Option<f64>)> {
 
 #[test]
 fn the_search_clock_starts_at_the_round_start_or_when_the_group_is_assembled() {
-    let dt = paper().sim().dt_s.get();
+    let dt = paper_v1().sim().dt_s.get();
     // Round start: a budget shorter than the way out turns every group before it arrives.
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.search_clock = SearchClock::RoundStart;
         s.mission.search_time_budget_s = Some(10.0.try_into().unwrap());
     });
@@ -278,7 +278,7 @@ fn the_search_clock_starts_at_the_round_start_or_when_the_group_is_assembled() {
         assert!(assembled.is_none(), "task {t}: no group gets there in 10 s");
     }
     // Last arrival: the budget runs from the moment the whole group is in the area.
-    let s = paper_with(|s| {
+    let s = paper_v1_with(|s| {
         s.mission.search_clock = SearchClock::LastArrival;
         s.mission.search_time_budget_s = Some(8.0.try_into().unwrap());
         s.mission.pickup_s = 5.0.try_into().unwrap();
@@ -298,7 +298,7 @@ fn per_step_rates_do_not_depend_on_the_step_length() {
     // and 100 steps per second, and so, up to the first steps of the motion, is the energy
     // spent per moving step.
     let run = |dt_s: f64| {
-        let s = paper_with(|s| {
+        let s = paper_v1_with(|s| {
             s.sim.dt_s = dt_s.try_into().unwrap();
             s.mission.energy_pct_per_m = 0.0.try_into().unwrap();
             s.mission.energy_pct_per_moving_step = 0.01.try_into().unwrap();
