@@ -26,7 +26,10 @@ import numpy as np  # noqa: E402
 import usar  # noqa: E402
 import usar.gym  # noqa: E402
 
-PAPER = pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "paper.ron"
+# paper-v1.ron, the paper's mission before the authors' clock: its rounds start with every
+# robot back (`round_start: AllBack`), as GroupingEnv needs; paper.ron's rounds group the robots
+# available (`Available`), which the environment refuses.
+PAPER = pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "paper-v1.ron"
 #: Training trials start here; the comparison's are 0, 1, ... (never seen in training).
 TRAIN_TRIAL0 = 1000
 

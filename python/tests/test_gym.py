@@ -12,7 +12,9 @@ import usar  # noqa: E402
 import usar.gym  # noqa: E402
 from gymnasium.utils.env_checker import check_env  # noqa: E402
 
-PAPER = str(pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "paper.ron")
+# paper-v1.ron: its rounds start with every robot back (`round_start: AllBack`), as the
+# environment needs; paper.ron's rounds group the robots available (`Available`) and are refused.
+PAPER = str(pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "paper-v1.ron")
 DURATION = 120.0
 
 
