@@ -30,7 +30,7 @@ from ._usar import Scenario
 __all__ = ["GroupingEnv", "repair_assignment", "ENV_ID"]
 
 #: The id :func:`gymnasium.make` knows the environment by (``gymnasium.make(ENV_ID,
-#: scenario="scenarios/paper.ron")``), registered when ``usar.gym`` is imported.
+#: scenario="scenarios/paper-v1.ron")``), registered when ``usar.gym`` is imported.
 ENV_ID = "usar/Grouping-v0"
 
 
@@ -126,8 +126,10 @@ class GroupingEnv(gymnasium.Env):
     (its method named ``gym``).
 
     The scenario must start its rounds with every robot back (``mission.round_start:
-    AllBack``, as paper.ron does): each round then groups the whole team, and the
-    observation and action keep their sizes (a ValueError otherwise).
+    AllBack``, as ``scenarios/paper-v1.ron`` does): each round then groups the whole team,
+    and the observation and action keep their sizes (a ValueError otherwise).
+    ``scenarios/paper.ron`` starts its rounds with the robots available (the authors' clock,
+    docs/calibration.md), which this environment does not take yet.
 
     ``reset(seed=S)`` starts the trial whose seed is ``S`` (as ``usar.run(seed=S)``); without
     one, ``trial`` (default 0) picks it as ``usar.run(trial=...)`` does, and a reset with
@@ -153,7 +155,7 @@ class GroupingEnv(gymnasium.Env):
             raise ValueError(
                 f"scenario: mission.round_start is {info['mission']['round_start']}; "
                 "GroupingEnv needs AllBack (every robot grouped every round, a fixed-size "
-                "observation and action)"
+                "observation and action), as scenarios/paper-v1.ron has"
             )
         self.duration_s = duration_s
         self.trial = int(trial)
