@@ -90,27 +90,18 @@ fn all_but(out: &[&str]) -> Vec<String> {
 
 #[test]
 #[ignore = "long: the paper sweep, 40 trials of 600 s (about 11 s in debug); just test-all, CI in release"]
-fn a_paper_sweep_holds_sixteen_bands_all_nine_means_among_them() {
+fn a_paper_sweep_holds_all_eighteen_bands() {
     let s = paper();
-    // Out: the SD of total rescuees (8.0 against at most 7) and the HP lost per trial (1,130
-    // against at least 1,280).
-    let held = all_but(&["pooled SD of total rescuees", "HP lost per trial"]);
-    assert!(MEANS.iter().all(|m| held.iter().any(|h| h == m)));
-    assert_holds(&sweep(&s, 10, s.sim().seed), "the paper sweep", &held);
+    assert_holds(&sweep(&s, 10, s.sim().seed), "the paper sweep", &all_but(&[]));
 }
 
 #[test]
 #[ignore = "long: 120 unseen trials of 600 s (about 35 s in debug); just test-all, CI in release"]
-fn thirty_unseen_trials_hold_thirteen_bands_all_nine_means_among_them() {
-    // Out: two spreads, the HP lost per trial, and the two correlations of the sheet's shape
-    // (S5 and S6), which the fit's 10 trials per method met by chance.
-    let held = all_but(&[
-        SPREAD[0],
-        SPREAD[2],
-        "HP lost per trial",
-        "hard-easy correlation within a method",
-        "cross-method correlation of trial totals",
-    ]);
+fn thirty_unseen_trials_hold_sixteen_bands_all_nine_means_among_them() {
+    // Out: the SD of total rescuees (9.75 against at most 7) and the hard-easy correlation
+    // within a method (S5: +0.17 against at most -0.10), which the fit's 10 trials per method
+    // met.
+    let held = all_but(&[SPREAD[0], "hard-easy correlation within a method"]);
     assert!(MEANS.iter().all(|m| held.iter().any(|h| h == m)));
     assert_holds(&sweep(&paper(), 30, 7), "30 trials from seed 7", &held);
 }

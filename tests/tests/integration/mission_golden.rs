@@ -16,14 +16,14 @@ use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
 const GOLDEN: &[(&str, u32, u32, u32)] = &[
-    ("rne", 0, 70, 81),
-    ("rne", 1, 64, 89),
-    ("dis", 0, 66, 86),
-    ("dis", 1, 68, 73),
-    ("eng", 0, 61, 66),
-    ("eng", 1, 60, 84),
-    ("hp_dis", 0, 52, 73),
-    ("hp_dis", 1, 69, 63),
+    ("rne", 0, 72, 81),
+    ("rne", 1, 61, 85),
+    ("dis", 0, 56, 80),
+    ("dis", 1, 65, 64),
+    ("eng", 0, 55, 62),
+    ("eng", 1, 63, 72),
+    ("hp_dis", 0, 74, 67),
+    ("hp_dis", 1, 67, 76),
 ];
 
 #[test]
