@@ -352,7 +352,7 @@ fn check_refuses_an_endless_device_as_no_regular_file() {
 fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position() {
     let dir = tempfile::tempdir().expect("temp dir");
     let src = std::fs::read_to_string(PAPER).expect("paper.ron");
-    let broken = src.replacen("max_speed_m_per_s: 2.5", "max_speed_m_per_s: 1000.0", 1);
+    let broken = src.replacen("max_speed_m_per_s: 4.0", "max_speed_m_per_s: 1000.0", 1);
     assert_ne!(src, broken, "paper.ron's speed line moved");
     let path = dir.path().join("fast.ron");
     std::fs::write(&path, broken).expect("write");

@@ -39,15 +39,17 @@ fn claim_lines(report: &str) -> Vec<&str> {
 fn the_paper_claims_file_gives_the_verdicts_of_the_built_in_claims() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("paper");
-    // The built-in claims ran under the steering of then (`collision.steering: Memoryless`,
-    // the default before issue 70): paper.ron with it written out, and the paper's claims file.
-    let paper = std::fs::read_to_string(format!("{ROOT}/scenarios/paper.ron")).unwrap();
-    let before = "deadlock_after_s: 2.0)";
-    assert!(
-        paper.contains(before),
-        "paper.ron's collision section moved"
+    // The built-in claims ran on paper.ron of then: paper-v1.ron's model (its steering,
+    // `collision.steering: Memoryless`, the default before issue 70; its rules before the
+    // authors' clock of issue 71) stepped near contacts, and the paper's claims file.
+    let paper = std::fs::read_to_string(format!("{ROOT}/scenarios/paper-v1.ron")).unwrap();
+    let before = "sim: (dt_s: 0.02, seed: 2021)";
+    assert!(paper.contains(before), "paper-v1.ron's sim section moved");
+    let then = paper.replacen(
+        before,
+        "sim: (dt_s: 0.02, seed: 2021, physics: NearContacts)",
+        1,
     );
-    let then = paper.replacen(before, "deadlock_after_s: 2.0, steering: Memoryless)", 1);
     let scenario = tmp.path().join("paper.ron");
     std::fs::write(&scenario, then).unwrap();
     // The built-in claims were judged by Welch's test, unpaired: the paper's claims file with
