@@ -92,7 +92,11 @@ fn all_but(out: &[&str]) -> Vec<String> {
 #[ignore = "long: the paper sweep, 40 trials of 600 s (about 11 s in debug); just test-all, CI in release"]
 fn a_paper_sweep_holds_all_eighteen_bands() {
     let s = paper();
-    assert_holds(&sweep(&s, 10, s.sim().seed), "the paper sweep", &all_but(&[]));
+    assert_holds(
+        &sweep(&s, 10, s.sim().seed),
+        "the paper sweep",
+        &all_but(&[]),
+    );
 }
 
 #[test]
