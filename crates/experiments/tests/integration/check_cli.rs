@@ -357,9 +357,15 @@ fn set_repairs_a_rule_the_file_breaks_and_the_files_own_error_keeps_its_position
     let path = dir.path().join("fast.ron");
     std::fs::write(&path, broken).expect("write");
     let file = path.to_str().expect("utf-8 path");
+    // The speed's line in paper.ron, 1-based.
+    let speed_line = 1 + std::fs::read_to_string(&path)
+        .unwrap()
+        .lines()
+        .position(|l| l.contains("max_speed_m_per_s: 1000.0"))
+        .unwrap();
     let own = format!(
-        "error: {file}:28:13: kinds[0].max_speed_m_per_s: 1000 m/s is faster than the limit of \
-         100 m/s"
+        "error: {file}:{speed_line}:13: kinds[0].max_speed_m_per_s: 1000 m/s is faster than the \
+         limit of 100 m/s"
     );
     // The file alone, and with an override of another field: the file's own error, positioned.
     for set in [&[][..], &["--set", "mission.duration_s=30.0"]] {

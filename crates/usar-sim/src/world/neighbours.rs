@@ -424,12 +424,12 @@ mod tests {
     #[test]
     fn paper_cells_follow_interaction_distances_and_team_size() {
         let s = paper();
-        // Ground: sensing 3 m < 2 * 0.4 + 0.2 + 2 * 2.5 * 1 = 6 m.
+        // Ground: sensing 3 m < 2 * 0.4 + 0.2 + 2 * 4 * 1 = 9 m.
         let g = interaction_distance_m(s, Locomotion::Ground).unwrap();
         assert!((g - 3.0).abs() < 1e-12, "{g}");
-        // Aerial: 2 * 0.3 + 0.2 + 2 * (5/3) * 1 = 4.133 m < sensing 18 m.
+        // Aerial: 2 * 0.3 + 0.2 + 2 * (8/3) * 1 = 6.133 m < sensing 18 m.
         let a = interaction_distance_m(s, Locomotion::Aerial).unwrap();
-        assert!((a - (0.8 + 10.0 / 3.0)).abs() < 1e-9, "{a}");
+        assert!((a - (0.8 + 16.0 / 3.0)).abs() < 1e-9, "{a}");
         // 10 ground robots on 80 m x 60 m: sqrt(4800 / 80) = 7.75 m cells (sparse team).
         let index = NeighbourIndex::new(s);
         let cell = index.grid(Locomotion::Ground).cell_m();

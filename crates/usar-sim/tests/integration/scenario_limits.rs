@@ -109,7 +109,7 @@ fn a_robot_faster_than_its_body_per_step_is_an_error() {
 /// which the per-kind rule allows.
 #[test]
 fn robots_that_close_more_than_a_body_radius_per_step_are_an_error() {
-    let fast = paper_with("max_speed_m_per_s: 2.5,", "max_speed_m_per_s: 20.0,");
+    let fast = paper_with("max_speed_m_per_s: 4.0,", "max_speed_m_per_s: 20.0,");
     let e = rejected(&fast, "kinds[0].max_speed_m_per_s");
     assert!(
         e.to_string()
@@ -118,7 +118,7 @@ fn robots_that_close_more_than_a_body_radius_per_step_are_an_error() {
     );
     // 10 m/s closes 0.4 m per step: exactly the radius, accepted.
     scenario::from_str(
-        &paper_with("max_speed_m_per_s: 2.5,", "max_speed_m_per_s: 10.0,"),
+        &paper_with("max_speed_m_per_s: 4.0,", "max_speed_m_per_s: 10.0,"),
         "t.ron",
     )
     .expect("closing one body radius per step is allowed");
@@ -212,7 +212,7 @@ fn starts_exactly_one_body_apart_are_accepted() {
 #[test]
 fn a_huge_speed_is_reported_at_its_field_once() {
     let e = rejected(
-        &paper_with("max_speed_m_per_s: 2.5", "max_speed_m_per_s: 1e308"),
+        &paper_with("max_speed_m_per_s: 4.0", "max_speed_m_per_s: 1e308"),
         "kinds[0].max_speed_m_per_s",
     );
     let text = e.to_string();

@@ -342,7 +342,7 @@ mod tests {
 
     use super::*;
 
-    const PAPER: &str = include_str!("../../../../scenarios/paper.ron");
+    const PAPER: &str = include_str!("../../../../scenarios/paper-v1.ron");
 
     fn err(arg: &str) -> String {
         FreeField::parse(arg).unwrap_err().to_string()
