@@ -58,8 +58,11 @@ def test_a_set_that_breaks_a_file_rule_points_into_the_file(paper):
     # As `usar check --set`: the rule's place in the file, and the override it holds with.
     with pytest.raises(ValueError) as e:
         paper.set("kinds[0].count", 7)
+    # The quota's line in paper.ron, 1-based.
+    with open(PAPER, encoding="utf-8") as f:
+        line = 1 + next(i for i, text in enumerate(f) if "quota:" in text)
     assert one_line(e) == (
-        f"{PAPER}:26:13: kinds[0].quota: hard 3 + easy 3 = 6 but count is 7 "
+        f"{PAPER}:{line}:13: kinds[0].quota: hard 3 + easy 3 = 6 but count is 7 "
         "(with set kinds[0].count=7)"
     )
 
