@@ -14,6 +14,7 @@ command line: the same scenario and seed give the same results, bit for bit.
   cell of a parameter grid (``--vary``).
 - :func:`calibrate`: fit free fields to a targets file -> :class:`Calibration`;
   :func:`multiverse`: the comparison in every universe of an axes file -> :class:`Multiverse`.
+- :func:`scenario_path` (``"paper.ron"`` and the other shipped scenarios), :func:`scenario_names`.
 - :func:`render` (an SVG picture, with a trial's paths) and :func:`replay` (an HTML page
   that plays a trial).
 - :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
@@ -38,6 +39,7 @@ from ._grouping import (
 from ._results import Record, TrialResult
 from ._api import grid, read_trials_long, run, sweep, trust, wide
 from ._studies import Calibration, Multiverse, calibrate, multiverse, render, replay
+from ._data import scenario_names, scenario_path
 
 __all__ = [
     "METHOD_NAMES",
@@ -64,6 +66,8 @@ __all__ = [
     "replay",
     "rne",
     "run",
+    "scenario_names",
+    "scenario_path",
     "sweep",
     "trust",
     "wide",

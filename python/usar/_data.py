@@ -1,0 +1,53 @@
+"""The scenarios shipped with the package: :func:`scenario_path`.
+
+A wheel carries the repository's ``scenarios/`` folder as package data (``usar/scenarios/``);
+an editable install from a checkout (``maturin develop``) reads the checkout's own
+``scenarios/`` folder instead, so that an edited scenario is seen at once.
+"""
+
+from __future__ import annotations
+
+import pathlib
+from typing import List
+
+__all__ = ["scenario_path", "scenario_names"]
+
+_HERE = pathlib.Path(__file__).resolve().parent
+
+
+def _folder() -> pathlib.Path:
+    """The folder of the shipped scenarios: the package's own (a wheel), else the checkout's."""
+    shipped = _HERE / "scenarios"
+    if shipped.is_dir():
+        return shipped
+    checkout = _HERE.parent.parent / "scenarios"
+    if checkout.is_dir():
+        return checkout
+    raise FileNotFoundError(
+        f"no scenarios shipped with usar: neither {shipped} nor {checkout} is a folder "
+        "(reinstall the package from its wheel)"
+    )
+
+
+def scenario_names() -> List[str]:
+    """The file names of the shipped scenarios (``"paper.ron"``, ``"paper-v1.ron"``, ...),
+    sorted. Raises ``FileNotFoundError`` when the package ships none."""
+    return sorted(p.name for p in _folder().glob("*.ron"))
+
+
+def scenario_path(name: str = "paper.ron") -> pathlib.Path:
+    """The path of the shipped scenario ``name`` (a file name such as ``"paper.ron"``, with or
+    without ``.ron``; default the paper's mission, ``paper.ron``), for :meth:`usar.Scenario.load`
+    or any function that takes a scenario path.
+
+    Raises ``ValueError`` naming ``name`` and the shipped names when there is no such scenario.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name: expected a scenario file name (str), found {type(name).__name__}")
+    file = name if name.endswith(".ron") else f"{name}.ron"
+    path = _folder() / file
+    if pathlib.Path(file).name != file or not path.is_file():
+        raise ValueError(
+            f"name: no shipped scenario {name!r}; shipped: {', '.join(scenario_names())}"
+        )
+    return path
