@@ -8,7 +8,7 @@ use super::claim::{Claim, Correction, Direction, Rivals, Test};
 use crate::paired::{differences, paired_t_greater, wilcoxon_greater};
 use crate::stats::{Summary, TestResult, mann_whitney_greater, welch_greater};
 use crate::targets::metric_ref::MetricRef;
-use usar_sweep::metrics::{Metric, values_of};
+use usar_sweep::metrics::Metric;
 
 /// Verdict on a claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,42 +93,89 @@ pub struct ClaimCheck {
     pub reason: Option<String>,
 }
 
+/// One trial's defined value of a claim's metric, as [`check_claim_on`] reads a sweep: the
+/// trial's method (as the sweep spells it), trial index, seed and value (a `trials.csv` row's
+/// `method`, `trial`, `seed` and metric column). A trial whose value is undefined (a cost per
+/// rescuee without rescuees) has no observation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observation<'a> {
+    /// The method's name, as the sweep spells it (`RNE`, `HP_DIS`, a Python method's name).
+    pub method: &'a str,
+    /// Trial index within the sweep, 0-based.
+    pub trial: u32,
+    /// Seed of the trial's starting team: with the index, what pairs two methods' trials.
+    pub seed: u64,
+    /// The metric's value.
+    pub value: f64,
+}
+
+/// The observations of `metric` in `results`, in their order (undefined values left out).
+pub fn observations(results: &[TrialResult], metric: Metric) -> Vec<Observation<'_>> {
+    results
+        .iter()
+        .filter_map(|r| {
+            Some(Observation {
+                method: &r.method,
+                trial: r.trial,
+                seed: r.seed,
+                value: metric.value(r)?,
+            })
+        })
+        .collect()
+}
+
+/// The claim's subject as `methods` spell it (the claim's own spelling when it is not there).
+fn subject_in(claim: &Claim, methods: &[String]) -> String {
+    methods
+        .iter()
+        .find(|m| claim.is_subject(m))
+        .cloned()
+        .unwrap_or_else(|| claim.subject.clone())
+}
+
 /// Checks `claim` against `results` of a sweep with `methods` (names as the results spell
 /// them, in sweep order) and task names `tasks`. A claim whose metric names a task `tasks`
 /// lack is [`Verdict::NotTested`], saying so (a claims file is checked against the
 /// scenario's tasks before a sweep runs, [`super::Claims::check_tasks`]; a grid cell may
-/// still lack one).
+/// still lack one). The same as [`check_claim_on`] over the results' [`observations`].
 pub fn check_claim(
     claim: &Claim,
     results: &[TrialResult],
     methods: &[String],
     tasks: &[String],
 ) -> ClaimCheck {
-    let subject = methods
-        .iter()
-        .find(|m| claim.is_subject(m))
-        .cloned()
-        .unwrap_or_else(|| claim.subject.clone());
-    let metric = match claim.metric.resolve(tasks) {
-        Ok(m) => m,
-        Err(e) => {
-            return ClaimCheck {
-                claim: claim.clone(),
-                metric: None,
-                subject_summary: Summary::of(&[]),
-                subject,
-                comparisons: Vec::new(),
-                verdict: Verdict::NotTested,
-                reason: Some(e),
-            };
-        }
-    };
-    let subject_vals = values_of(results, &subject, metric);
+    match claim.metric.resolve(tasks) {
+        Ok(metric) => check_claim_on(claim, metric, &observations(results, metric), methods),
+        Err(e) => ClaimCheck {
+            claim: claim.clone(),
+            metric: None,
+            subject_summary: Summary::of(&[]),
+            subject: subject_in(claim, methods),
+            comparisons: Vec::new(),
+            verdict: Verdict::NotTested,
+            reason: Some(e),
+        },
+    }
+}
+
+/// Checks `claim`, whose metric is `metric`, against `observed`, the metric's defined values
+/// in a sweep's trials with `methods` (names as the observations spell them, in sweep order):
+/// what [`check_claim`] does with a sweep's results, for trials known only by their values
+/// (a table of trials read back, the Python package's DataFrames). The observations' order is
+/// the sweep's trial order (sums run in it, so the same order gives the same bits).
+pub fn check_claim_on(
+    claim: &Claim,
+    metric: Metric,
+    observed: &[Observation<'_>],
+    methods: &[String],
+) -> ClaimCheck {
+    let subject = subject_in(claim, methods);
+    let subject_vals = values_in(observed, &subject);
     let subject_summary = Summary::of(&subject_vals);
     let (rivals, missing) = claim.rivals_in(methods);
     let mut comparisons: Vec<Comparison> = rivals
         .iter()
-        .map(|other| compare(claim, (&subject, &subject_vals), other, results, metric))
+        .map(|other| compare(claim, (&subject, &subject_vals), other, observed))
         .filter(|c| c.other_summary.n > 0)
         .collect();
     let ps: Vec<f64> = comparisons.iter().map(|c| c.p_of(claim.test)).collect();
@@ -224,11 +271,25 @@ pub fn paired_values(
     b: &str,
     metric: Metric,
 ) -> (Vec<f64>, Vec<f64>, usize) {
+    paired_in(&observations(results, metric), a, b)
+}
+
+/// The values of `method` among `observed`, in their order.
+fn values_in(observed: &[Observation<'_>], method: &str) -> Vec<f64> {
+    observed
+        .iter()
+        .filter(|o| o.method == method)
+        .map(|o| o.value)
+        .collect()
+}
+
+/// [`paired_values`] over observations.
+fn paired_in(observed: &[Observation<'_>], a: &str, b: &str) -> (Vec<f64>, Vec<f64>, usize) {
     let keyed = |method: &str| -> std::collections::BTreeMap<(u32, u64), f64> {
-        results
+        observed
             .iter()
-            .filter(|r| r.method == method)
-            .filter_map(|r| Some(((r.trial, r.seed), metric.value(r)?)))
+            .filter(|o| o.method == method)
+            .map(|o| ((o.trial, o.seed), o.value))
             .collect()
     };
     let (ka, kb) = (keyed(a), keyed(b));
@@ -257,13 +318,12 @@ fn compare(
     claim: &Claim,
     (subject, sv): (&str, &[f64]),
     other: &str,
-    results: &[TrialResult],
-    metric: Metric,
+    observed: &[Observation<'_>],
 ) -> Comparison {
     let dir = claim.direction;
-    let ov = values_of(results, other, metric);
+    let ov = values_in(observed, other);
     let (better, worse) = (oriented(dir, sv), oriented(dir, &ov));
-    let (ps, po, unpaired) = paired_values(results, subject, other, metric);
+    let (ps, po, unpaired) = paired_in(observed, subject, other);
     let (pb, pw) = (oriented(dir, &ps), oriented(dir, &po));
     let paired_diff = Summary::of(&differences(&ps, &po)).mean;
     let welch_reverse = welch_greater(&worse, &better);
@@ -340,6 +400,29 @@ impl ClaimCheck {
             (Some(n), _) => format!("{name} over {n} pairs of trials"),
             _ => name.to_owned(),
         }
+    }
+
+    /// The standardized effect of the comparison `c` (one of [`ClaimCheck::comparisons`]),
+    /// oriented as the tests are (positive points the claimed way): for a paired test
+    /// (paired t or Wilcoxon) Cohen's `d_z`, the mean paired difference over the sd of the
+    /// differences (the paired t over `sqrt(pairs)`); for an unpaired one (Welch or
+    /// Mann-Whitney) Cohen's `d` with the unweighted root mean square of the two sample sds,
+    /// `(mean_s - mean_r) / sqrt((sd_s² + sd_r²) / 2)`. ±infinity when the spread is 0 and
+    /// the means differ; NaN with fewer than 2 pairs (2 values a side) or no spread at all.
+    ///
+    /// # Reference
+    /// J. Cohen, *Statistical Power Analysis for the Behavioral Sciences*, 2nd ed., 1988,
+    /// sections 2.2 (`d`) and 2.3.5 (`d_z`, paired samples).
+    pub fn effect_size(&self, c: &Comparison) -> f64 {
+        if self.claim.test.is_paired() {
+            return c.paired_t.statistic / (c.pairs as f64).sqrt();
+        }
+        let (s, r) = (&self.subject_summary, &c.other_summary);
+        let diff = match self.claim.direction {
+            Direction::More => s.mean - r.mean,
+            Direction::Less => r.mean - s.mean,
+        };
+        diff / ((s.sd.powi(2) + r.sd.powi(2)) / 2.0).sqrt()
     }
 
     /// The largest p of the claim's test after its correction over the rivals; NaN ("n/a")
@@ -447,6 +530,51 @@ mod tests {
         );
         // Unpaired, the same trials are tested.
         assert_ne!(check(Test::Welch, &results).verdict, Verdict::NotTested);
+    }
+
+    #[test]
+    fn observations_check_as_results_do_and_give_the_effect_size() {
+        let results = steady_edge();
+        let methods = ["RNE".to_string(), "DIS".to_string()];
+        let tasks = ["hard".to_string(), "easy".to_string()];
+        let metric = claim(Test::PairedT)
+            .metric
+            .resolve(&tasks)
+            .expect("a metric");
+        let observed = observations(&results, metric);
+        assert_eq!(observed.len(), 20);
+        for test in [
+            Test::PairedT,
+            Test::Wilcoxon,
+            Test::Welch,
+            Test::MannWhitney,
+        ] {
+            let a = check_claim(&claim(test), &results, &methods, &tasks);
+            let b = check_claim_on(&claim(test), metric, &observed, &methods);
+            assert_eq!(a.verdict, b.verdict);
+            let (x, y) = (&a.comparisons[0], &b.comparisons[0]);
+            // Debug text: the rank tests' NaN dof equal as text.
+            let tests = |c: &Comparison| format!("{:?}", (c.paired_t, c.welch, c.wilcoxon));
+            assert_eq!(tests(x), tests(y));
+            assert_eq!(x.p_adjusted.to_bits(), y.p_adjusted.to_bits());
+        }
+        // Paired: differences 1, 2, 1, 2, ... (mean 1.5, sd 0.527): d_z = 2.846.
+        let paired = check_claim_on(&claim(Test::PairedT), metric, &observed, &methods);
+        let d_z = paired.effect_size(&paired.comparisons[0]);
+        assert_abs_diff_eq!(d_z, 1.5 / (2.5f64 / 9.0).sqrt(), epsilon = 1e-12);
+        // Unpaired: the same 1.5 against a spread of about 300 between trials: d is small.
+        let welch = check_claim_on(&claim(Test::Welch), metric, &observed, &methods);
+        let d = welch.effect_size(&welch.comparisons[0]);
+        assert!(d > 0.0 && d < 0.01, "d = {d}");
+        // A lower-is-better claim turns the sign; too few pairs give NaN.
+        let mut less = claim(Test::PairedT);
+        less.direction = Direction::Less;
+        let c = check_claim_on(&less, metric, &observed, &methods);
+        assert_abs_diff_eq!(c.effect_size(&c.comparisons[0]), -d_z, epsilon = 1e-12);
+        let one: Vec<Observation<'_>> = observed.iter().filter(|o| o.trial == 0).copied().collect();
+        let c = check_claim_on(&claim(Test::PairedT), metric, &one, &methods);
+        assert_eq!(c.verdict, Verdict::NotTested);
+        assert!(c.effect_size(&c.comparisons[0]).is_nan());
     }
 
     #[test]

@@ -12,6 +12,9 @@ pub mod check;
 pub mod claim;
 pub mod file;
 
-pub use check::{ClaimCheck, Comparison, Verdict, check_claim, holm_adjusted};
+pub use check::{
+    ClaimCheck, Comparison, Observation, Verdict, check_claim, check_claim_on, holm_adjusted,
+    observations,
+};
 pub use claim::{Claim, Correction, DEFAULT_ALPHA, Direction, Rivals, Test, method_key};
 pub use file::{Claims, ClaimsError, MAX_CLAIMS_BYTES, PAPER_CLAIMS_RON, paper_claims};
