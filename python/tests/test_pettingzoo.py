@@ -94,7 +94,7 @@ def test_agents_spaces_and_observation_layout():
         np.testing.assert_allclose(o[f["distance_to_goal_m"]], gobs["distance_to_goal_m"][i], rtol=1e-6)
         assert o[f["available"]][0] == 1.0
         assert o[f["time_s"]][0] == 0.0
-        assert infos[agent]["robot_id"] == i and infos[agent]["seed"] == 7
+        assert infos[agent]["robot_id"] == i and infos[agent]["seed"] == e._info["seed"]
     e.close()
 
 
@@ -250,5 +250,40 @@ def test_arguments_checked():
 def test_default_scenario_runs():
     e = upz.parallel_env(duration_s=30.0)
     obs, _ = e.reset(seed=0)
-    assert len(obs) == 12
+    assert len(obs) == 12 and e.scenario.name == e.gym_env.scenario.name
+    e.close()
+
+
+def test_robots_away_under_available_rounds():
+    """paper.ron's rounds group the robots available: an agent away has available 0, the
+    least trust towards the others and from them, and no task. Its robots start near the
+    low-energy line (30 %) so that some rest at the start of a round."""
+    paper = usar.Scenario.load(str(usar.scenario_path("paper.ron"))).update(
+        {"mission.initial_energy.mean_pct": 32.0, "mission.initial_energy.std_dev_pct": 3.0}
+    )
+    try:
+        e = upz.parallel_env(paper, duration_s=600.0)
+    except ValueError as err:
+        pytest.skip(f"GroupingEnv does not take paper.ron yet: {err}")
+    f = e.observation_fields
+    obs, infos = e.reset(seed=0)
+    away_seen = 0
+    while e.agents:
+        away = [a for a in e.agents if not infos[a]["available"]]
+        for a in e.agents:
+            o = obs[a]
+            assert o[f["available"]][0] == float(infos[a]["available"])
+            trust = o[f["trust"]]
+            assert trust[e.robot_of[a]] == 0.0
+            for b in away:
+                if b != a:
+                    assert trust[e.robot_of[b]] == upz.TRUST_HIGH_NATS
+        for a in away:
+            assert np.all(np.delete(obs[a][f["trust"]], e.robot_of[a]) == upz.TRUST_HIGH_NATS)
+        before = away
+        obs, _, _, _, infos = e.step({a: 0 for a in e.agents})
+        for a in before:
+            assert infos[a]["task"] == -1 and not infos[a]["moved"]
+        away_seen += len(before)
+    assert away_seen > 0
     e.close()

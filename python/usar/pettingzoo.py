@@ -10,6 +10,7 @@ make each agent's observation, its reward is every agent's reward. Needs the opt
 
 from __future__ import annotations
 
+import inspect
 import math
 import os
 import warnings
@@ -55,9 +56,13 @@ _NEEDS_BOUNDS = (
 )
 
 
-def _default_scenario() -> str:
-    """The scenario of ``scenario=None``: the paper's mission. ``paper-v1.ron`` (rounds that
-    start with every robot back) until :class:`usar.gym.GroupingEnv` takes ``paper.ron``."""
+def _default_scenario() -> Optional[str]:
+    """The scenario of ``scenario=None``: the paper's mission, :class:`usar.gym.GroupingEnv`'s
+    own default (``None``, ``paper.ron``) when it has one, else ``paper-v1.ron`` (rounds that
+    start with every robot back, which an older GroupingEnv needs)."""
+    parameter = inspect.signature(GroupingEnv.__init__).parameters.get("scenario")
+    if parameter is not None and parameter.default is None:
+        return None
     return str(scenario_path("paper-v1.ron"))
 
 
@@ -69,31 +74,37 @@ class GroupingParallelEnv(ParallelEnv):
     kind (``"carrier_0"`` ... ``"carrier_5"``, ``"supplier_0"`` ... ``"supplier_3"``,
     ``"observer_0"``, ``"observer_1"`` in the paper's team); ``possible_agents`` lists them by
     robot id and :attr:`robot_of` maps a name to its robot id. Every agent acts every round
-    until the trial's time is up; then all are terminated together (``agents`` empties).
+    until the trial's time is up; then all are terminated together (``agents`` empties). A
+    robot away this round (resting, under ``mission.round_start: Available``) still acts; its
+    choice is ignored.
 
     **Action** of an agent: its task (``Discrete(n_tasks)``, task ids in the scenario's
     order, :attr:`task_names`). The agents' actions make the joint action of
     :class:`usar.gym.GroupingEnv`, which repairs a joint action that breaks a kind's quota
     (:func:`usar.gym.repair_assignment`): ``infos[agent]["task"]`` is the task the agent got
-    and ``infos[agent]["moved"]`` whether it was moved from the one it chose. An action that
-    is not an integer in ``0 .. n_tasks - 1``, a missing agent or an unknown one raises
-    ``ValueError`` naming the agent; the episode goes on.
+    (-1 when it was away) and ``infos[agent]["moved"]`` whether it was moved from the one it
+    chose. An action that is not an integer in ``0 .. n_tasks - 1``, a missing agent or an
+    unknown one raises ``ValueError`` naming the agent; the episode goes on.
 
     **Observation** of an agent: a float32 vector (``Box`` with finite bounds), the agent's
     own view of the round, in this order (:attr:`observation_fields` gives each part's slice):
 
     - ``kind``: one-hot of its kind (``n_kinds`` entries);
-    - ``energy_pct``, ``hp_pct``: its levels, 0-100;
+    - ``energy_pct``, ``hp_pct``: its levels, 0-100 (0 while away, as the Gymnasium
+      environment gives them);
     - ``needs``: its needs vector (7 entries: hp, v, sen, eng, res, cap, obs; paper Eqs.
-      19-21), each between 0 and the largest value of that entry among the kinds;
+      19-21), each between 0 and the largest value of that entry among the kinds (0 while
+      away);
     - ``distance_to_goal_m``: straight-line distance to each task's goal point, metres
       (``n_tasks`` entries, task order);
     - ``available``: 1 if the robot is grouped this round, 0 if it is away (resting);
     - ``time_s``: simulated seconds when the round starts (0 to the trial's length + 1);
     - ``trust``: its RNE trust towards each robot, by robot id (``n_robots`` entries):
       ``usar.trust(weights, own needs, other's needs)``, paper Eq. 7 with the scenario's
-      ``needs_weights``, in nats, lower = more trust; 0 towards itself; 0 to
-      :data:`TRUST_HIGH_NATS`.
+      ``needs_weights``, in nats, lower = more trust; 0 towards itself;
+      :data:`TRUST_HIGH_NATS` (above any computed value) towards a robot away this round and,
+      while the agent is away, towards every other (the round's request holds no needs of a
+      robot away).
 
     Values are clipped to the bounds; the scenario's fields bound them, so a valid scenario
     needs no clipping.
@@ -104,22 +115,24 @@ class GroupingParallelEnv(ParallelEnv):
     **Infos** per agent: ``action_mask`` (int8 0/1, ``n_tasks``, the form
     ``action_space(agent).sample(mask)`` takes: 1 for the tasks its kind's quotas leave room
     for this round, or the Gymnasium environment's own mask row when it gives one),
-    ``robot_id``, ``available``, ``round``, ``seed`` (the trial's seed) and, after a step,
-    ``task`` and ``moved``; ``dt_s`` (the round's simulated seconds) when the Gymnasium
-    environment gives it; at the end ``result`` (the :class:`usar.TrialResult`, also
-    :attr:`result`).
+    ``robot_id``, ``available``, ``round``, ``seed`` (the trial's seed, as the Gymnasium
+    environment gives it), ``trial`` and ``dt_s`` (the round's simulated seconds) when it
+    gives them and, after a step, ``task`` and ``moved``; at the end ``result`` (the
+    :class:`usar.TrialResult`, also :attr:`result`).
 
-    ``reset(seed=S)`` starts the trial whose seed is ``S`` (as ``usar.run(seed=S)``); the
-    same seed and actions give the same episode. ``options={"trial": k}`` is handed to the
-    Gymnasium environment; other option keys are ignored with a warning.
+    ``reset(seed=S)`` is the Gymnasium environment's ``reset(seed=S)`` (which trial it runs
+    is that environment's rule); the same seed and actions give the same episode.
+    ``options={"trial": k}`` is handed to the Gymnasium environment; other option keys are
+    ignored with a warning (PettingZoo's API test resets with ``options={"options": 1}``).
     ``state()`` is every agent's observation, concatenated by robot id.
 
-    ``scenario``: a :class:`usar.Scenario` or a path (default: the paper's mission,
-    ``usar.scenario_path("paper-v1.ron")`` until the Gymnasium environment takes
-    ``paper.ron``); ``duration_s``: the trial's length (default the scenario's); ``reward``:
-    ``"rescued"`` or ``"hard"``; ``render_mode``: one of :attr:`metadata` ``["render_modes"]``
-    (those of :class:`usar.gym.GroupingEnv`) or ``None``; further keyword arguments go to
-    :class:`usar.gym.GroupingEnv`. Errors: ``ValueError`` naming the argument.
+    ``scenario``: a :class:`usar.Scenario` or a path (default: the paper's mission, the
+    Gymnasium environment's default ``paper.ron`` when it has one, else
+    ``usar.scenario_path("paper-v1.ron")``); ``duration_s``: the trial's length (default the
+    scenario's); ``reward``: ``"rescued"`` or ``"hard"``; ``render_mode``: one of
+    :attr:`metadata` ``["render_modes"]`` (those of :class:`usar.gym.GroupingEnv`) or
+    ``None``; further keyword arguments (``trial``) go to :class:`usar.gym.GroupingEnv`.
+    Errors: ``ValueError`` naming the argument.
     """
 
     metadata = {
@@ -139,7 +152,10 @@ class GroupingParallelEnv(ParallelEnv):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             known = ", ".join(repr(m) for m in self.metadata["render_modes"]) or "none"
             raise ValueError(f"render_mode: expected None or one of {known}, found {render_mode!r}")
-        scenario = _api._scenario(_default_scenario() if scenario is None else scenario)
+        if scenario is None:
+            scenario = _default_scenario()
+        if scenario is not None:
+            scenario = _api._scenario(scenario)
         if render_mode is not None:
             kwargs["render_mode"] = render_mode
         #: The Gymnasium environment this one is built on.
@@ -218,11 +234,13 @@ class GroupingParallelEnv(ParallelEnv):
         """The action space of ``agent``: ``Discrete(n_tasks)``."""
         return self.action_spaces[agent]
 
-    def _available(self, info: Mapping[str, Any]) -> np.ndarray:
-        """The availability flag per robot: the Gymnasium environment's, else all grouped."""
-        for key in ("available", "availability"):
-            if key in info:
-                return np.asarray(info[key], dtype=bool).reshape(self._n)
+    def _available(self, obs: Mapping[str, Any], info: Mapping[str, Any]) -> np.ndarray:
+        """The availability flag per robot: the Gymnasium environment's (in its observation or
+        its info), else every robot grouped."""
+        for source in (obs, info):
+            for key in ("available", "availability"):
+                if key in source:
+                    return np.asarray(source[key]).astype(bool).reshape(self._n)
         return np.ones(self._n, dtype=bool)
 
     def _masks(self, obs: Mapping[str, np.ndarray], info: Mapping[str, Any]) -> np.ndarray:
@@ -233,13 +251,18 @@ class GroupingParallelEnv(ParallelEnv):
         quotas = np.asarray(obs["quotas"])
         return quotas[self._robot_kinds] > 0
 
-    def _trust(self, needs: np.ndarray) -> np.ndarray:
-        """The RNE trust matrix, (n, n): row i is robot i's trust towards each robot (Eq. 7)."""
+    def _trust(self, needs: np.ndarray, available: np.ndarray) -> np.ndarray:
+        """The RNE trust matrix, (n, n): row i is robot i's trust towards each robot (Eq. 7),
+        0 on the diagonal, :data:`TRUST_HIGH_NATS` where either robot is away (its needs are
+        not in the round's request)."""
         rows = [[float(x) for x in row] for row in np.asarray(needs, dtype=float)]
-        t = np.zeros((self._n, self._n))
+        t = np.full((self._n, self._n), TRUST_HIGH_NATS)
         for i, a in enumerate(rows):
+            t[i, i] = 0.0
+            if not available[i]:
+                continue
             for j, b in enumerate(rows):
-                if i != j:
+                if i != j and available[j]:
                     t[i, j] = _api.trust(self._weights, a, b)
         return t
 
@@ -248,9 +271,9 @@ class GroupingParallelEnv(ParallelEnv):
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Dict[str, Any]]]:
         """Each agent's observation and info from the Gymnasium environment's."""
         n = self._n
-        available = self._available(info)
+        available = self._available(obs, info)
         masks = self._masks(obs, info)
-        trust = self._trust(obs["needs"])
+        trust = self._trust(obs["needs"], available)
         kinds = np.asarray(obs["kind"], dtype=np.int64)
         full = np.concatenate(
             [
@@ -267,7 +290,7 @@ class GroupingParallelEnv(ParallelEnv):
         ).astype(np.float32)
         full = np.clip(full, self._low, self._high)
         self._full = full
-        common = {key: info[key] for key in ("round", "seed", "dt_s") if key in info}
+        common = {key: info[key] for key in ("round", "seed", "trial", "dt_s") if key in info}
         observations = {}
         infos: Dict[str, Dict[str, Any]] = {}
         for i, agent in enumerate(self.possible_agents):
