@@ -182,7 +182,9 @@ class GroupingParallelEnv(ParallelEnv):
         #: Robot id of each agent name.
         self.robot_of: Dict[str, int] = {a: i for i, a in enumerate(names)}
         weights = self.scenario.get("needs_weights")
-        self._weights = [float(w) for w in (weights.values() if isinstance(weights, dict) else weights)]
+        if isinstance(weights, dict):
+            weights = list(weights.values())
+        self._weights = [float(w) for w in weights]
 
         # Bounds of each part of the observation, in order.
         kind_fields = self.scenario.to_dict()["kinds"]
@@ -334,7 +336,9 @@ class GroupingParallelEnv(ParallelEnv):
             )
         unknown = [a for a in actions if a not in self.robot_of]
         if unknown:
-            raise ValueError(f"actions: unknown agent {unknown[0]!r} (agents: {', '.join(self.agents)})")
+            raise ValueError(
+                f"actions: unknown agent {unknown[0]!r} (agents: {', '.join(self.agents)})"
+            )
         missing = [a for a in self.agents if a not in actions]
         if missing:
             raise ValueError(f"actions: no action for agent {missing[0]!r}")
