@@ -299,3 +299,21 @@ def test_robots_away_under_available_rounds():
         away_seen += len(before)
     assert away_seen > 0
     e.close()
+
+
+def test_render_is_the_gym_envs_picture():
+    if "rgb_array" not in upz.GroupingParallelEnv.metadata["render_modes"]:
+        pytest.skip("GroupingEnv has no render modes yet")
+    if not hasattr(usar._usar, "rasterize_svg"):
+        pytest.skip("the native module predates its rasteriser (rebuild with maturin)")
+    e = make(render_mode="rgb_array", duration_s=60.0)
+    assert e.render_mode == "rgb_array"
+    e.reset(seed=0)
+    e.step({a: 0 for a in e.agents})
+    picture = e.render()
+    assert picture.dtype == np.uint8 and picture.ndim == 3 and picture.shape[2] == 3
+    np.testing.assert_array_equal(picture, e.gym_env.render())
+    e.close()
+    plain = make()
+    assert plain.render() is None
+    plain.close()
