@@ -21,6 +21,7 @@ pub mod errors;
 pub mod json_value;
 pub mod methods;
 pub mod pictures;
+pub mod raster;
 pub mod py_method;
 pub mod read_file;
 pub mod ron_value;
@@ -43,6 +44,7 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::run_calibration, m)?)?;
     m.add_function(wrap_pyfunction!(studies::run_multiverse_py, m)?)?;
     m.add_function(wrap_pyfunction!(pictures::replay, m)?)?;
+    m.add_function(wrap_pyfunction!(raster::rasterize_svg, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
     m.add("METHOD_NAMES", rne_core::grouping::METHOD_NAMES.to_vec())?;
