@@ -86,12 +86,12 @@ impl ReportOptions {
             let path = folder.join(file);
             // A copy of paper.ron elsewhere still runs: its reports leave the section out.
             if !cli && !path.exists() {
-                usar_sweep::stderr::warn(format!(
-                    "warning: {}: report.{field}: {} not found (relative to the scenario's \
-                     folder); the reports leave out its section ({flag} FILE gives it)",
+                tracing::warn!(
+                    "{}: report.{field}: {} not found (relative to the scenario's folder); the \
+                     reports leave out its section ({flag} FILE gives it)",
                     path_text(scenario_path),
                     path_text(&path)
-                ));
+                );
                 return None;
             }
             Some(path)

@@ -95,13 +95,11 @@ pub fn figure_or_warn<T, E: std::error::Error + 'static>(
         Ok(Ok(figure)) => Some(figure),
         Ok(Err(e)) => {
             let why = rne_core::error_line(&e);
-            usar_sweep::stderr::warn(format!("warning: {what} not drawn: {why}"));
+            tracing::warn!("{what} not drawn: {why}");
             None
         }
         Err(_) => {
-            usar_sweep::stderr::warn(format!(
-                "warning: {what} not drawn: the plotting library panicked"
-            ));
+            tracing::warn!("{what} not drawn: the plotting library panicked");
             None
         }
     }

@@ -16,9 +16,6 @@ use usar_sweep::data::config::SweepConfig;
 use usar_sweep::data::outcome::{JournalUse, SweepOutcome};
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 
-/// Re-exported from [`usar_sweep::stderr`], where it lives below every module that warns.
-pub use usar_sweep::stderr::warn;
-
 /// Columns of the one-cell table: rescuees in total and per task, then the energy and HP cost
 /// per rescuee of the hardest task; each with its heading.
 fn columns(a: &CellAnalysis) -> Vec<(Metric, String)> {

@@ -127,10 +127,13 @@ pub(crate) fn execute(
             let n = done.fetch_add(1, Ordering::SeqCst) + 1;
             if let Outcome::Failed(msg) = &record.outcome {
                 pb.suspend(|| {
-                    crate::stderr::warn(format!(
+                    tracing::info!(
                         "trial {} #{} (seed {}){} failed: {msg}",
-                        record.method, record.trial, record.seed, plans[record.cell].label
-                    ));
+                        record.method,
+                        record.trial,
+                        record.seed,
+                        plans[record.cell].label
+                    );
                 });
             }
             pb.set_message(format!("{n}/{} trials{over}", jobs.len()));

@@ -54,7 +54,7 @@
 //! The modules stand in layers; a module imports only from its own layer or the layers below
 //! it, never from one above (bottom first):
 //!
-//! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`bounded_file`], [`lock`], [`spec_ron`], [`stderr`],
+//! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`bounded_file`], [`lock`], [`spec_ron`], [`notice`],
 //!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
 //!    [`journal_error`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
@@ -71,9 +71,9 @@ pub mod journal_error;
 pub mod lock;
 pub mod method_factory;
 pub mod metrics;
+pub mod notice;
 pub mod progress;
 pub mod spec_ron;
-pub mod stderr;
 pub mod trial_json;
 pub mod vary;
 // 2. data

@@ -92,7 +92,7 @@ impl Display {
                     loss_text(e.loss),
                     values.join(" ")
                 );
-                self.pb.suspend(|| usar_sweep::stderr::warn(line));
+                self.pb.suspend(|| tracing::info!("{line}"));
             }
         }
         self.pb

@@ -295,11 +295,11 @@ fn open_trace(
         });
     }
     for line in &contents.rejected {
-        usar_sweep::stderr::warn(format!(
-            "warning: {}:{line}: evaluation does not verify (edited?); its point runs again \
-             if the search comes to it",
+        tracing::warn!(
+            "{}:{line}: evaluation does not verify (edited?); its point runs again if the \
+             search comes to it",
             path_text(&path)
-        ));
+        );
     }
     let trace = Trace::resume(&path, &contents)?;
     Ok((trace, contents.evaluations))

@@ -58,7 +58,7 @@ impl Display {
         self.pb.inc(1);
         if self.lines && new {
             let line = universe_line(plan, r);
-            self.pb.suspend(|| usar_sweep::stderr::warn(line));
+            self.pb.suspend(|| tracing::info!("{line}"));
         }
     }
 

@@ -169,7 +169,7 @@ fn run_universes(
                 continue;
             }
             RecordRead::Unusable(why) => {
-                usar_sweep::stderr::warn(format!("warning: {why}; universe {id} runs again"));
+                tracing::warn!("{why}; universe {id} runs again");
             }
             RecordRead::Done(_) | RecordRead::Missing => {}
         }

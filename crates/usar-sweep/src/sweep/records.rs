@@ -64,14 +64,14 @@ pub(crate) fn warn_rejected(
             (Some(_), _) => "will run again",
             (None, _) => "is not used (no such trial in this sweep)",
         };
-        crate::stderr::warn(format!(
-            "warning: {}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
+        tracing::warn!(
+            "{}:{}: record does not verify (edited?); trial {} #{} of cell {} {fate}",
             path_text(&Journal::path_in(dir)),
             r.line,
             r.method,
             r.trial,
             r.cell,
-        ));
+        );
     }
 }
 

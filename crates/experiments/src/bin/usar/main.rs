@@ -27,7 +27,9 @@ fn main() -> ExitCode {
             };
         }
     };
-    // The library reports progress; `usar` draws it. Installed once, before any run.
+    // The libraries report progress and notices; `usar` draws and prints them. Installed
+    // once, before any run.
+    shared::stderr_lines::show_notices();
     if usar_sweep::progress::set_sink(Box::new(shared::progress::TerminalBars)).is_err() {
         unreachable!("the progress sink is installed once, here");
     }

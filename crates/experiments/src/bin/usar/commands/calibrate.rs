@@ -255,7 +255,7 @@ pub fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(limit) = args.stop_after {
         progress.on_evaluated = Some(Arc::new(move |_, n| {
             if n >= limit {
-                usar_report::console::warn(format!("--stop-after {n}: stopping abruptly"));
+                crate::shared::stderr_lines::warn(format!("--stop-after {n}: stopping abruptly"));
                 std::process::exit(STOP_EXIT_CODE);
             }
         }));

@@ -85,7 +85,7 @@ pub fn run(args: &MergeArgs, out: &mut dyn Write) -> Result<()> {
     }
     let m = merge_shards(&args.dir)?;
     for (path, r) in &m.rejected {
-        usar_report::console::warn(format!(
+        crate::shared::stderr_lines::warn(format!(
             "warning: {}:{}: record does not verify (edited?); left out (trial {} #{} of cell {})",
             path_text(path),
             r.line,

@@ -132,7 +132,7 @@ fn stop_hooks(limit: usize) -> MultiverseHooks {
     let stop = move || {
         let n = count.fetch_add(1, Ordering::SeqCst) + 1;
         if n >= limit {
-            usar_report::console::warn(format!("--stop-after {n}: stopping abruptly"));
+            crate::shared::stderr_lines::warn(format!("--stop-after {n}: stopping abruptly"));
             std::process::exit(STOP_EXIT_CODE);
         }
     };

@@ -107,7 +107,7 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
         usar_report::replay::SampleClock::new(hz, dt_s, sim.progress().1).context("--hz")?;
     let robot_samples = clock.samples().saturating_mul(scenario.robots().len());
     if robot_samples > LARGE_ROBOT_SAMPLES {
-        usar_report::console::warn(format!(
+        crate::shared::stderr_lines::warn(format!(
             "warning: {} robots x {} samples: the page will need about {} MB of memory in the \
              browser; a shorter --duration or a lower --hz keeps it light",
             scenario.robots().len(),

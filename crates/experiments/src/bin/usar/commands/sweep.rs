@@ -251,7 +251,7 @@ fn warn_about(origin: &str, scenario: &Scenario, grid: Option<&Grid>) {
             let list: Vec<String> = cells.iter().map(usize::to_string).collect();
             format!("cells {}", list.join(", "))
         };
-        usar_report::console::warn(format!("warning: {origin} ({at}): {text}"));
+        crate::shared::stderr_lines::warn(format!("warning: {origin} ({at}): {text}"));
     }
 }
 

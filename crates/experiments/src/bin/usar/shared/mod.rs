@@ -8,6 +8,7 @@ pub mod optimizer_arg;
 pub mod progress;
 pub mod rounds_csv;
 pub mod scenario_warnings;
+pub mod stderr_lines;
 pub mod sweep_spec;
 pub mod test_hooks;
 pub mod trial_build;

@@ -201,7 +201,7 @@ fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Cl
         (None, Some(file)) => {
             let p = spec.scenario.parent().unwrap_or(Path::new("")).join(file);
             if !p.exists() {
-                usar_report::console::warn(format!(
+                crate::shared::stderr_lines::warn(format!(
                     "warning: {}: report.claims: {} not found (relative to the scenario's \
                      folder); no claims are checked (--claims FILE gives them)",
                     path_text(&spec.scenario),

@@ -9,6 +9,6 @@ use usar_sim::scenario::Scenario;
 /// tasks yield nothing, such robots stand still).
 pub fn warn_about(origin: &str, s: &Scenario) {
     for w in scenario_warnings(s) {
-        usar_report::console::warn(format!("warning: {origin}: {w}"));
+        crate::shared::stderr_lines::warn(format!("warning: {origin}: {w}"));
     }
 }

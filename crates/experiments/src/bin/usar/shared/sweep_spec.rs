@@ -177,7 +177,7 @@ pub fn warn_if_rounded(requested_s: f64, scenario: &Scenario, grid: Option<&Grid
     steps.dedup();
     for dt_s in steps {
         if let Some(w) = rounding_warning(requested_s, dt_s) {
-            usar_report::console::warn(w);
+            crate::shared::stderr_lines::warn(w);
         }
     }
 }

@@ -24,7 +24,7 @@ pub fn test_hooks(fail: Vec<(String, u32)>, stop_after: Option<usize>) -> SweepH
     let on_journaled = stop_after.map(|limit| {
         Arc::new(move |_: &_, n: usize| {
             if n >= limit {
-                usar_report::console::warn(format!("--stop-after {n}: stopping abruptly"));
+                crate::shared::stderr_lines::warn(format!("--stop-after {n}: stopping abruptly"));
                 std::process::exit(STOP_EXIT_CODE);
             }
         }) as _

@@ -16,7 +16,7 @@ pub fn threads_of(requested: Option<usize>) -> Result<usize> {
     Ok(match requested {
         Some(0) => bail!("--threads must be at least 1"),
         Some(n) if n > max_threads() => {
-            usar_report::console::warn(format!(
+            crate::shared::stderr_lines::warn(format!(
                 "warning: --threads {n} is more than {MAX_THREADS_PER_CORE} x the {} available \
                  cores: using {}",
                 max_threads() / MAX_THREADS_PER_CORE,
@@ -72,7 +72,7 @@ pub fn warn_if_rounded(requested: Option<f64>, sim: &Simulation) {
     if let Some(d) = requested
         && let Some(w) = rounding_warning(d, sim.scenario().sim().dt_s.get())
     {
-        usar_report::console::warn(w);
+        crate::shared::stderr_lines::warn(w);
     }
 }
 
