@@ -29,6 +29,7 @@ pub mod run;
 pub mod scenario;
 pub mod studies;
 pub mod sweep;
+pub mod verdicts;
 
 /// The native module `usar._usar`.
 #[pymodule]
@@ -47,6 +48,8 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(raster::rasterize_svg, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
+    m.add_function(wrap_pyfunction!(verdicts::claim_verdicts, m)?)?;
+    m.add_function(wrap_pyfunction!(verdicts::compare_values, m)?)?;
     m.add("METHOD_NAMES", rne_core::grouping::METHOD_NAMES.to_vec())?;
     Ok(())
 }

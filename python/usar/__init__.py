@@ -14,6 +14,8 @@ command line: the same scenario and seed give the same results, bit for bit.
   cell of a parameter grid (``--vary``).
 - :func:`calibrate`: fit free fields to a targets file -> :class:`Calibration`;
   :func:`multiverse`: the comparison in every universe of an axes file -> :class:`Multiverse`.
+- :func:`verdicts`: a sweep's claims tested on its trials -> DataFrame (``report.md``'s verdicts,
+  with or without ``out``); :func:`compare`: one method against its rivals, no claims file.
 - :func:`scenario_path` (``"paper.ron"`` and the other shipped scenarios), :func:`scenario_names`.
 - :func:`render` (an SVG picture, with a trial's paths) and :func:`replay` (an HTML page
   that plays a trial).
@@ -40,6 +42,7 @@ from ._results import Record, TrialResult
 from ._api import grid, read_trials_long, run, sweep, trust, wide
 from ._studies import Calibration, Multiverse, calibrate, multiverse, render, replay
 from ._data import scenario_names, scenario_path
+from ._verdicts import compare, verdicts
 
 __all__ = [
     "METHOD_NAMES",
@@ -56,6 +59,7 @@ __all__ = [
     "TrialError",
     "TrialResult",
     "calibrate",
+    "compare",
     "dis",
     "grid",
     "eng",
@@ -70,6 +74,7 @@ __all__ = [
     "scenario_path",
     "sweep",
     "trust",
+    "verdicts",
     "wide",
 ]
 __version__ = "0.1.0"

@@ -162,3 +162,33 @@ def builtin_group(
     weights: Optional[List[float]] = None,
 ) -> List[List[int]]:
     """A built-in method's groups for a raw request. Use ``usar.rne`` etc."""
+
+def claim_verdicts(
+    claims: Optional[Union[str, Sequence[dict]]],
+    scenario: Optional[Scenario],
+    methods: List[str],
+    tasks: List[str],
+    method: List[str],
+    trial: List[int],
+    seed: List[int],
+    columns: Dict[str, List[float]],
+    test: Optional[str] = None,
+) -> Tuple[str, List[Dict[str, Any]]]:
+    """The claims' origin and one row per claim and rival, checked on trials given as columns
+    (test: ``PairedT``, ``Wilcoxon``, ``Welch``, ``MannWhitney``). Use ``usar.verdicts``."""
+
+def compare_values(
+    subject: str,
+    rivals: List[str],
+    metric: str,
+    direction: str,
+    test: str,
+    alpha: float,
+    methods: List[str],
+    tasks: List[str],
+    method: List[str],
+    trial: List[int],
+    seed: List[int],
+    values: List[float],
+) -> List[Dict[str, Any]]:
+    """One row per rival of ``subject`` on one metric column. Use ``usar.compare``."""
