@@ -1,9 +1,11 @@
 """Learn a grouping policy with the cross-entropy method in usar.gym.GroupingEnv, then compare
-it with RNE and HP_DIS in one sweep on trials it never saw, and draw both (matplotlib).
+it with RNE and HP_DIS on the sweep's trials it never saw (usar.gym.evaluate: the policy as a
+grouping method, the paired verdicts), and draw both (matplotlib).
 
 The policy scores each robot for each task linearly, score = w_t . (energy, HP, distance to
 the task's goal) / 100, and fills the tasks hardest first, each kind's places with its
-highest-scoring robots: every answer keeps the quotas. The cross-entropy method (Rubinstein
+highest-scoring available robots: every answer keeps the quotas. It reads the environment's
+observation (usar.gym.observation), so usar.gym.policy_method runs it unchanged in a sweep. The cross-entropy method (Rubinstein
 1999) draws weight vectors from a Gaussian, keeps the best (the elite, by mean rescuees over
 training trials), refits the Gaussian to them and repeats. No other dependency than numpy.
 
@@ -26,46 +28,37 @@ import numpy as np  # noqa: E402
 import usar  # noqa: E402
 import usar.gym  # noqa: E402
 
-# paper-v1.ron, the paper's mission before the authors' clock: its rounds start with every
-# robot back (`round_start: AllBack`), as GroupingEnv needs; paper.ron's rounds group the robots
-# available (`Available`), which the environment refuses.
-PAPER = pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "paper-v1.ron"
-#: Training trials start here; the comparison's are 0, 1, ... (never seen in training).
-TRAIN_TRIAL0 = 1000
+# The paper's mission (its rounds group the robots available: `round_start: Available`).
+PAPER = usar.scenario_path("paper.ron")
 
 
-def groups_of(theta, energy, hp, dist, kinds, quotas, order):
-    """The policy's groups: robot ids per task (task order), quotas kept."""
-    n_tasks = dist.shape[1]
-    w = theta.reshape(n_tasks, 3)
-    groups = [[] for _ in range(n_tasks)]
+def action_of(theta, obs, order):
+    """The policy's action (the task of each robot, by id) for the observation ``obs``: per
+    kind, the available robots ranked by each task's score fill the tasks hardest first
+    (``order``), as many as this round's quota; robots not available keep task 0 (ignored)."""
+    energy, hp, dist = obs["energy_pct"], obs["hp_pct"], obs["distance_to_goal_m"]
+    kinds, quotas = obs["kind"], obs["quotas"]
+    w = theta.reshape(dist.shape[1], 3)
+    action = np.zeros(len(kinds), dtype=np.int64)
     for k in range(quotas.shape[0]):
-        ids = list(np.flatnonzero(kinds == k))
+        ids = list(np.flatnonzero((kinds == k) & (obs["available"] == 1)))
         for t in order:
             feats = np.stack([energy[ids], hp[ids], dist[ids, t]], axis=1) / 100.0
             score = feats @ w[t]
             ranked = [ids[i] for i in np.lexsort((ids, -score))]
             n = int(quotas[k][t])
-            groups[t] += [int(i) for i in ranked[:n]]
+            action[ranked[:n]] = t
             ids = [i for i in ids if i not in ranked[:n]]
-    return groups
-
-
-def action_of(theta, obs, env):
-    """The environment's action (the task of each robot) for the policy's groups."""
-    groups = groups_of(theta, obs["energy_pct"], obs["hp_pct"], obs["distance_to_goal_m"],
-                       obs["kind"], obs["quotas"], env.task_order)
-    action = np.zeros(len(obs["kind"]), dtype=np.int64)
-    for t, ids in enumerate(groups):
-        action[ids] = t
     return action
 
 
-def episode_return(env, theta, trial):
-    obs, _ = env.reset(options={"trial": trial})
+def episode_return(env, theta, seed):
+    """The return of one training episode: the trial drawn by ``reset(seed=seed)``, never one
+    of the sweep's trials (usar.gym.HELD_OUT_TRIALS)."""
+    obs, _ = env.reset(seed=seed)
     total = 0.0
     while True:
-        obs, reward, terminated, _, _ = env.step(action_of(theta, obs, env))
+        obs, reward, terminated, _, _ = env.step(action_of(theta, obs, env.task_order))
         total += reward
         if terminated:
             return total
@@ -81,30 +74,14 @@ def cem(env, iterations, population, elite, episodes, seed):
     curve = []
     for it in range(iterations):
         thetas = mean + std * rng.standard_normal((population, dim))
-        trials = [TRAIN_TRIAL0 + e for e in range(episodes)]
-        scores = np.array([np.mean([episode_return(env, th, k) for k in trials]) for th in thetas])
+        seeds = [seed + e for e in range(episodes)]
+        scores = np.array([np.mean([episode_return(env, th, s) for s in seeds]) for th in thetas])
         best = thetas[np.argsort(-scores)[:elite]]
         mean, std = best.mean(axis=0), best.std(axis=0) + 0.05
         curve.append((float(scores.max()), float(np.sort(scores)[-elite:].mean())))
         print(f"iteration {it}: best mean rescuees {scores.max():.1f}, elite mean "
               f"{np.sort(scores)[-elite:].mean():.1f}")
     return mean, curve
-
-
-class Learned(usar.GroupingMethod):
-    """The learned policy as a grouping method, for usar.sweep."""
-
-    name = "cem"
-
-    def __init__(self, theta, order):
-        self.theta, self.order = theta, order
-
-    def group(self, request):
-        arr = lambda f: np.array([f(r) for r in request.robots], dtype=float)  # noqa: E731
-        dist = np.array([[r.distance_to_goal_m[t.name] for t in request.tasks] for r in request.robots])
-        return groups_of(self.theta, arr(lambda r: r.energy_pct), arr(lambda r: r.hp_pct), dist,
-                         np.array([r.kind_index for r in request.robots]),
-                         np.array(request.quotas), self.order)
 
 
 def main():
@@ -125,11 +102,13 @@ def main():
     env.close()
     print("learned weights (energy, HP, distance per task):", np.round(theta, 3).tolist())
 
-    df = usar.sweep(str(PAPER), methods=["rne", "hp_dis", Learned(theta, env.task_order)],
-                    trials=a.trials, duration_s=a.duration)
+    order = env.task_order
+    df, verdicts = usar.gym.evaluate(lambda obs: action_of(theta, obs, order), PAPER,
+                                     trials=a.trials, name="cem", duration_s=a.duration)
     total = df[(df.metric == "rescued") & (df.task == "total")]
     stats = total.groupby("method", sort=False)["value"].agg(["mean", "std"])
     print(stats.round(2).to_string())
+    print(verdicts.to_string(index=False))
     print(f"took {time.perf_counter() - start:.0f} s")
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
