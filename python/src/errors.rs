@@ -26,8 +26,19 @@ pyo3::create_exception!(
 
 pyo3::create_exception!(
     _usar,
-    ScenarioWarning,
+    UsarWarning,
     PyUserWarning,
+    "A notice of the libraries: a file the scenario names that is missing (a copy of paper.ron \
+     outside the repository: its report leaves out the targets or claims), a figure that \
+     could not be drawn, a journal record or calibration trace line that does not verify and \
+     runs again. The lines `usar` prints as `warning: ...`, given when the call returns to \
+     Python."
+);
+
+pyo3::create_exception!(
+    _usar,
+    ScenarioWarning,
+    UsarWarning,
     "A valid scenario whose trials will yield less than it suggests: a task no group can \
      rescue from, or a goal some robots cannot reach from their starts. The lines `usar check` \
      prints as warnings, given when a Scenario is loaded, made from text or edited."

@@ -10,7 +10,8 @@
 //! - [`core_fns`]: RNE trust and the built-in grouping methods as functions;
 //! - [`detached`]: running work with the GIL released while watching for Ctrl-C;
 //! - [`read_file`]: reading a scenario file so that Ctrl-C works while it waits;
-//! - [`errors`]: the exception types and the conversion of library errors.
+//! - [`errors`]: the exception types and the conversion of library errors;
+//! - [`notices`]: the libraries' warnings as `usar.UsarWarning`s.
 
 use pyo3::prelude::*;
 
@@ -20,6 +21,7 @@ pub mod detached;
 pub mod errors;
 pub mod json_value;
 pub mod methods;
+pub mod notices;
 pub mod pictures;
 pub mod raster;
 pub mod py_method;
@@ -39,6 +41,8 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GroupingError", py.get_type::<errors::GroupingError>())?;
     m.add("TrialError", py.get_type::<errors::TrialError>())?;
     m.add("ScenarioWarning", py.get_type::<errors::ScenarioWarning>())?;
+    m.add("UsarWarning", py.get_type::<errors::UsarWarning>())?;
+    notices::install();
     m.add_function(wrap_pyfunction!(run::run_trial, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::run_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(pictures::render, m)?)?;

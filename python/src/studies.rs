@@ -27,6 +27,7 @@ use usar_study::multiverse::{
 use crate::detached::run_detached;
 use crate::errors::{python_words, sweep_value_error};
 use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
+use crate::notices;
 use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
 
@@ -88,7 +89,9 @@ impl Run {
                 None => Ok(()),
             }
         };
-        let outcome = run_detached(py, &self.stop, work, tick)?;
+        // The libraries' warnings (a trace line or universe record that does not verify, a
+        // figure not drawn) as `usar.UsarWarning`s, before the result or the error.
+        let outcome = notices::flushed(py, run_detached(py, &self.stop, work, tick))?;
         // A Python method's failure stopped the run (nothing of the evaluation or universe it
         // was in is kept): its own exception.
         if let Some(e) = self.first_error.lock().ok().and_then(|mut e| e.take()) {
@@ -291,7 +294,7 @@ fn multiverse_claims(
                     scenario.origin_text(),
                     p.display()
                 );
-                let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+                let category = py.get_type::<crate::errors::UsarWarning>();
                 PyErr::warn(py, &category, &std::ffi::CString::new(message)?, 1)?;
                 Ok(None)
             }

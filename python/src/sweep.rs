@@ -22,6 +22,7 @@ use usar_sweep::sweep::{Failure, SweepConfig, run_in_memory};
 use crate::detached::run_detached;
 use crate::errors::{TrialError, chain_value_error, sweep_value_error, value_error};
 use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
+use crate::notices;
 use crate::py_method::{FirstError, MethodArg};
 use crate::scenario::Scenario;
 
@@ -38,7 +39,9 @@ type Ran = Option<Vec<(Vec<TrialResult>, Vec<Failure>)>>;
 /// words, [`crate::errors::python_words`]); the first Python
 /// method's exception or `GroupingError`; `TrialError` listing failed trials (with `out`,
 /// after the files are written); `KeyboardInterrupt` on Ctrl-C (with `out`, the finished
-/// trials are in the journal: `resume=True` runs the rest).
+/// trials are in the journal: `resume=True` runs the rest). The libraries' warnings (a
+/// claims or targets file the scenario names that is missing, a record that does not verify,
+/// a figure not drawn) are `usar.UsarWarning`s, given before the result or the error.
 #[pyfunction]
 #[pyo3(signature = (scenario, methods, trials = 10, threads = None, out = None, resume = false,
     duration_s = None, seed = None, progress = None, overwrite = false, targets = None,
@@ -93,7 +96,9 @@ pub fn run_sweep(
         cfg.grid = Some(grid);
     }
     add_hooks(&mut cfg, &python, &stop, &done);
-    let report = report_options(&mut cfg, out.as_ref(), targets.as_deref(), claims)?;
+    // A file the scenario names and that is missing is a warning of `resolve`.
+    let report = report_options(&mut cfg, out.as_ref(), targets.as_deref(), claims);
+    let report = notices::flushed(py, report)?;
     let cells = cfg.grid.as_ref().map_or(1, |g| g.cells.len());
     let total = cells * cfg.methods.len() * trials as usize;
     let cfg_ref = &cfg;
@@ -105,7 +110,8 @@ pub fn run_sweep(
             None => Ok(()),
         }
     };
-    let ran = run_detached(py, &stop, work, tick)?.map_err(|e| sweep_value_error(e.as_ref()))?;
+    let ran = notices::flushed(py, run_detached(py, &stop, work, tick))?;
+    let ran = ran.map_err(|e| sweep_value_error(e.as_ref()))?;
     let per_cell = successful_trials(ran, &first_error, &stop, total)?;
     per_cell
         .iter()

@@ -1,5 +1,7 @@
 """Every documented bad input raises the documented exception, with a one-line message."""
 
+import warnings
+
 import pytest
 
 import usar
@@ -262,3 +264,32 @@ def test_calibrate_with_an_endless_max_time_runs_or_names_max_time(paper, tmp_pa
         assert str(e).startswith("max_time_s"), str(e)
     else:
         assert c.evaluations == 1
+
+
+def test_a_copy_of_paper_ron_elsewhere_warns_that_its_report_leaves_out_claims_and_targets(
+    tmp_path,
+):
+    # The Rust library's notice (a tracing event on a worker thread) as a Python warning.
+    copy = tmp_path / "paper.ron"
+    copy.write_text(PAPER.read_text())
+    out = tmp_path / "out"
+    with pytest.warns(usar.UsarWarning) as caught:
+        usar.sweep(str(copy), methods=["rne"], trials=1, duration_s=5.0, out=str(out))
+    messages = [str(w.message) for w in caught if issubclass(w.category, usar.UsarWarning)]
+    for field in ["targets", "claims"]:
+        assert any(
+            f"report.{field}: " in m and "not found (relative to the scenario's folder)" in m
+            for m in messages
+        ), messages
+    assert not any(m.startswith("warning:") for m in messages), messages
+    report = (out / "report.md").read_text()
+    assert "## Claims" not in report and "### Pooled statistics" not in report, report
+    # The warnings were given once: a second call with nothing to warn about gives none.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", usar.UsarWarning)
+        usar.sweep(PAPER, methods=["rne"], trials=1, duration_s=5.0)
+
+
+def test_usar_warning_is_a_user_warning_and_scenario_warning_is_one():
+    assert issubclass(usar.UsarWarning, UserWarning)
+    assert issubclass(usar.ScenarioWarning, usar.UsarWarning)

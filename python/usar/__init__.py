@@ -22,12 +22,21 @@ command line: the same scenario and seed give the same results, bit for bit.
 - :func:`trust`, :func:`rne`, :func:`dis`, :func:`eng`, :func:`hp_dis`: rne-core as functions.
 - :class:`GroupingMethod` or any callable ``group(request) -> list of groups``: a grouping
   method written in Python, run by :func:`run`, :func:`sweep` and the studies once per grouping round.
+- :class:`UsarWarning`: the library's notices as Python warnings (a claims or targets file the
+  scenario names that is missing, a figure not drawn); :class:`ScenarioWarning` is one.
 
 Units follow the field names: ``_s`` seconds, ``_m`` metres, ``_pct`` percent points.
 Documentation: docs/python.md in the repository.
 """
 
-from ._usar import METHOD_NAMES, GroupingError, Scenario, ScenarioWarning, TrialError
+from ._usar import (
+    METHOD_NAMES,
+    GroupingError,
+    Scenario,
+    ScenarioWarning,
+    TrialError,
+    UsarWarning,
+)
 from ._grouping import (
     GroupingMethod,
     GroupingRequest,
@@ -58,6 +67,7 @@ __all__ = [
     "Task",
     "TrialError",
     "TrialResult",
+    "UsarWarning",
     "calibrate",
     "compare",
     "dis",

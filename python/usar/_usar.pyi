@@ -12,7 +12,13 @@ class GroupingError(ValueError):
     """A grouping method's answer broke a rule (not one group per task, a robot in no group
     or two, an unknown id, a kind's quota not met); the message names the rule."""
 
-class ScenarioWarning(UserWarning):
+class UsarWarning(UserWarning):
+    """A notice of the libraries, given when a call returns to Python: a claims or targets
+    file the scenario names that is missing (a copy of paper.ron outside the repository), a
+    figure not drawn, a journal record or trace line that does not verify and runs again.
+    The lines ``usar`` prints as ``warning: ...``."""
+
+class ScenarioWarning(UsarWarning):
     """A valid scenario whose trials will yield less than it suggests (a task no group can
     rescue from, a goal some robots cannot reach): the lines ``usar check`` prints as
     warnings, given by ``Scenario.load``, ``Scenario.from_ron``, ``set`` and ``update``."""

@@ -15,7 +15,11 @@
 
 use tracing::field::{Field, Visit};
 use tracing::span::{Attributes, Id, Record};
-use tracing::{Event, Level, Metadata};
+use tracing::{Event, Metadata};
+
+/// A notice's level, as [`install`]'s function gets it: `WARN` a warning, `INFO` a progress
+/// line (`tracing`'s own type, re-exported for front ends that do not depend on `tracing`).
+pub use tracing::Level;
 
 /// A subscriber that hands each event's level and message to a function: warnings and
 /// progress lines (levels `WARN` and `INFO`, and `ERROR`), nothing finer, no spans.
