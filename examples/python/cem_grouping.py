@@ -108,7 +108,8 @@ def main():
     total = df[(df.metric == "rescued") & (df.task == "total")]
     stats = total.groupby("method", sort=False)["value"].agg(["mean", "std"])
     print(stats.round(2).to_string())
-    print(verdicts.to_string(index=False))
+    shown = ["method", "rival", "mean_method", "mean_rival", "p_value", "effect_size", "verdict"]
+    print(verdicts[shown].round(4).to_string(index=False))
     print(f"took {time.perf_counter() - start:.0f} s")
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
