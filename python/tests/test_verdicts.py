@@ -195,3 +195,17 @@ def test_bad_input_names_the_argument(swept, paper):
     renamed = frame.assign(scenario="not-shipped")
     with pytest.raises(ValueError, match=r"^scenario: the trials' scenario not-shipped"):
         usar.verdicts(renamed)
+
+
+def test_a_grid_gives_each_cells_verdicts(paper):
+    g = usar.grid(paper, ["mission.pickup_s=2,4"], methods=["rne", "dis"], trials=3,
+                  duration_s=120, progress=False)
+    v = usar.verdicts(g)
+    assert list(v.columns[:2]) == ["cell", "mission.pickup_s"]
+    assert list(v["cell"]) == [0] * 5 + [1] * 5
+    for cell in (0, 1):
+        alone = usar.verdicts(g[g["cell"] == cell].drop(columns=["cell", "mission.pickup_s"]))
+        mine = v[v["cell"] == cell].drop(columns=["cell", "mission.pickup_s"])
+        pd.testing.assert_frame_equal(mine.reset_index(drop=True), alone)
+    with pytest.raises(ValueError, match=r"^trials: a grid's table"):
+        usar.compare(g, "rne")
