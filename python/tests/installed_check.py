@@ -22,8 +22,9 @@ The checks (:data:`CHECKS`, in order):
 - ``warning``: a copy of paper.ron alone in a folder (its side files missing): the notice
   arrives as a Python warning of category ``usar.UsarWarning``.
 - ``make_no_args``: ``gymnasium.make("usar/Grouping-v0")`` with no argument (after
-  ``import usar.gym``; Gymnasium 1.x registers no package's environments on its own) resets
-  and steps, and an interpreter that leaves it open exits with status 0; so does
+  ``import usar.gym``; Gymnasium 1.x registers no package's environments on its own) runs the
+  shipped paper.ron, resets and steps, and an interpreter that leaves it open exits with
+  status 0; so does
   ``gymnasium.make("usar.gym:usar/Grouping-v0")`` without importing usar first.
 - ``unseeded_resets``: 20 unseeded resets after ``reset(seed=1)`` give at least 18 distinct
   trials (by ``info["seed"]``), none of them trials 0-9 of a sweep of the env's scenario.
@@ -71,7 +72,7 @@ def check_location() -> str:
     for side in ("paper-targets.ron", "paper-claims.ron"):
         assert (shipped / side).is_file(), f"{side} not shipped beside paper.ron in {shipped}"
     names = usar.scenario_names()
-    return f"usar at {here.parent}; {len(names)} shipped .ron files"
+    return f"usar at {here.parent}; {len(names)} shipped scenarios"
 
 
 def check_module_size() -> str:
@@ -128,7 +129,7 @@ import gymnasium
 env = gymnasium.make({env_id!r})
 obs, info = env.reset(seed=0)
 env.step(env.action_space.sample())
-print("left open")
+print("left open; scenario", env.unwrapped.scenario.origin)
 """
 
 
@@ -140,7 +141,11 @@ def check_make_no_args() -> str:
             f"gymnasium.make({env_id!r}) left open: exit {p.returncode}; stderr: {p.stderr[-1500:]}"
         )
         assert "Fatal" not in p.stderr, f"gymnasium.make({env_id!r}) left open: {p.stderr[-1500:]}"
-    return "made with no argument, reset, stepped, left open: exit 0"
+        origin = p.stdout.split("left open; scenario ", 1)[1].strip()
+        assert origin.endswith(os.path.join("usar", "scenarios", "paper.ron")), (
+            f"gymnasium.make({env_id!r}) with no argument runs {origin}, not the shipped paper.ron"
+        )
+    return f"made with no argument ({origin}), reset, stepped, left open: exit 0"
 
 
 def _seed(info) -> int:
