@@ -7,6 +7,7 @@ use std::error::Error;
 use pyo3::exceptions::{PyRuntimeError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use usar_study::refused_setting::RefusedSetting;
+use usar_sweep::settings::Setting;
 
 pyo3::create_exception!(
     _usar,
@@ -62,52 +63,27 @@ fn chain<'a>(e: &'a (dyn Error + 'static)) -> impl Iterator<Item = &'a (dyn Erro
 
 /// A `ValueError` from a library error of a sweep or a study, its whole chain on one line and
 /// in the package's words: a refused setting ([`RefusedSetting`]) names its field, which is the
-/// keyword argument that sets it, in its own `Display`; every other cause goes through
-/// [`python_words`].
+/// keyword argument that sets it; every other message names its settings through
+/// [`keyword`], installed as the libraries' namer ([`usar_sweep::settings::set_namer`]).
 pub fn sweep_value_error(e: &(dyn Error + 'static)) -> PyErr {
     let line = chain(e)
         .map(|cause| match RefusedSetting::of(cause) {
             Some(refused) => refused.line(str::to_owned),
-            None => python_words(&cause.to_string()),
+            None => cause.to_string(),
         })
         .collect::<Vec<_>>()
         .join(": ");
     PyValueError::new_err(one_line(&line))
 }
 
-/// `message` (a library error worded for the command line) in the Python package's words:
-/// each flag becomes its keyword argument (`--max-evals` `max_evals`, `--duration`
-/// `duration_s`, `--max-time` `max_time_s`), and the switches `--overwrite` and `--resume`
-/// become `overwrite=True` and `resume=True`.
-pub fn python_words(message: &str) -> String {
-    let mut out = String::with_capacity(message.len());
-    let mut rest = message;
-    while let Some(at) = rest.find("--") {
-        out.push_str(&rest[..at]);
-        let after = &rest[at + 2..];
-        // A flag starts a word (`runs/my--out` is a path) and a lowercase letter follows.
-        let starts_word = !out
-            .chars()
-            .last()
-            .is_some_and(|c| c.is_alphanumeric() || "-_/.".contains(c));
-        let len = after
-            .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
-            .unwrap_or(after.len());
-        let flag = after[..len].trim_end_matches('-');
-        if !starts_word || !flag.starts_with(|c: char| c.is_ascii_lowercase()) {
-            out.push_str("--");
-            rest = after;
-            continue;
-        }
-        out.push_str(&match flag {
-            "overwrite" | "resume" => format!("{flag}=True"),
-            "duration" | "max-time" => format!("{}_s", flag.replace('-', "_")),
-            _ => flag.replace('-', "_"),
-        });
-        rest = &after[flag.len()..];
+/// A setting as the package names it in messages: its keyword argument (`max_evals`,
+/// `duration_s`, `out`), and `overwrite=True` or `resume=True` for a switch.
+pub fn keyword(setting: Setting) -> String {
+    if setting.is_switch() {
+        format!("{}=True", setting.field())
+    } else {
+        setting.field().to_string()
     }
-    out.push_str(rest);
-    out
 }
 
 /// `text` on one line: line breaks become spaces.
@@ -121,18 +97,14 @@ pub fn one_line(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::python_words;
+    use super::keyword;
+    use usar_sweep::settings::Setting;
 
     #[test]
-    fn flags_become_keyword_arguments() {
-        assert_eq!(
-            python_words("--max-evals must be at least 1; pass --overwrite, or --out"),
-            "max_evals must be at least 1; pass overwrite=True, or out"
-        );
-        assert_eq!(python_words("--duration: 0 -- x"), "duration_s: 0 -- x");
-        assert_eq!(
-            python_words("--max-time --resume"),
-            "max_time_s resume=True"
-        );
+    fn settings_are_keyword_arguments() {
+        assert_eq!(keyword(Setting::MaxEvals), "max_evals");
+        assert_eq!(keyword(Setting::DurationS), "duration_s");
+        assert_eq!(keyword(Setting::Overwrite), "overwrite=True");
+        assert_eq!(keyword(Setting::Out), "out");
     }
 }

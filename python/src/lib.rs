@@ -43,6 +43,10 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ScenarioWarning", py.get_type::<errors::ScenarioWarning>())?;
     m.add("UsarWarning", py.get_type::<errors::UsarWarning>())?;
     notices::install();
+    // The libraries' messages name a setting by its keyword argument (`pass overwrite=True`).
+    if usar_sweep::settings::set_namer(errors::keyword).is_err() {
+        // Installed already, by an earlier load of this module: the same namer.
+    }
     m.add_function(wrap_pyfunction!(run::run_trial, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::run_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(pictures::render, m)?)?;

@@ -25,7 +25,7 @@ use usar_study::multiverse::{
 };
 
 use crate::detached::run_detached;
-use crate::errors::{python_words, sweep_value_error};
+use crate::errors::sweep_value_error;
 use crate::methods::{PyMethods, claims_of, factory, methods_of, tracker};
 use crate::notices;
 use crate::py_method::{FirstError, MethodArg};
@@ -158,7 +158,7 @@ fn calibration_json(o: &CalibrationOutcome) -> serde_json::Value {
         "summary": usar_study::calibrate::summary_text(o),
         "loss": o.loss.is_finite().then_some(o.loss),
         "admissible": o.admissible,
-        "stop": python_words(&o.stop.to_string()),
+        "stop": o.stop.to_string(),
         "best": best,
         "best_index": o.best,
         "evaluations": o.evaluations.len(),

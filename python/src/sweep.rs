@@ -36,7 +36,7 @@ type Ran = Option<Vec<(Vec<TrialResult>, Vec<Failure>)>>;
 /// # Errors
 /// `ValueError` for bad arguments (the library's checks, [`usar_sweep::sweep::ConfigError`],
 /// named by their keyword arguments) or a journal that cannot be resumed (in the package's
-/// words, [`crate::errors::python_words`]); the first Python
+/// words, [`crate::errors::keyword`]); the first Python
 /// method's exception or `GroupingError`; `TrialError` listing failed trials (with `out`,
 /// after the files are written); `KeyboardInterrupt` on Ctrl-C (with `out`, the finished
 /// trials are in the journal: `resume=True` runs the rest). The libraries' warnings (a

@@ -20,6 +20,7 @@ use std::sync::OnceLock;
 
 use usar_sim::mission::TrialResult;
 use usar_sim::scenario::{Scenario, path_text};
+use usar_sweep::settings::Setting;
 
 use crate::claims::{Claims, ClaimsError};
 use crate::targets::TargetsError;
@@ -80,7 +81,7 @@ impl ReportOptions {
         methods: &[String],
     ) -> Result<Self, ReportOptionsError> {
         let asked = scenario.report();
-        let named = |file: &Option<String>, field: &str, flag: &str, cli: bool| {
+        let named = |file: &Option<String>, field: &str, flag: Setting, cli: bool| {
             let file = file.as_ref()?;
             let folder = scenario_path.parent().unwrap_or(Path::new(""));
             let path = folder.join(file);
@@ -103,7 +104,7 @@ impl ReportOptions {
         let targets_path = named(
             &asked.targets,
             "targets",
-            "--targets",
+            Setting::Targets,
             cli_targets.is_some(),
         );
         let targets = match cli_targets.or(targets_path.as_deref()) {
@@ -117,7 +118,12 @@ impl ReportOptions {
                 Some(t)
             }
         };
-        let claims_path = named(&asked.claims, "claims", "--claims", cli_claims.is_some());
+        let claims_path = named(
+            &asked.claims,
+            "claims",
+            Setting::Claims,
+            cli_claims.is_some(),
+        );
         let claims = match cli_claims.or(claims_path.as_deref()) {
             None => None,
             Some(path) => {

@@ -11,6 +11,7 @@ use crate::grid::GridError;
 use crate::journal::JournalError;
 use crate::lock::LockError;
 use crate::method_factory::MethodError;
+use crate::settings::Setting;
 
 /// Why a sweep ([`crate::sweep::run_sweep`], [`crate::sweep::run_in_memory`]), a merge
 /// ([`crate::shard::merge_shards`]) or the preparation of either failed: one line (with its
@@ -80,14 +81,16 @@ pub enum SweepError {
         /// Why it cannot be continued (another build, other parameters).
         why: String,
         /// What works instead.
-        advice: &'static str,
+        advice: String,
     },
     /// A shard's journal under the output folder written by another sweep, whose merge would
     /// write into the same folder.
     #[error(
         "{path} is a shard's journal of another sweep ({why}), whose merge writes its files \
-         into {dir}: pass --overwrite to start afresh there (the merged files go, the shards \
-         stay), or choose another --out"
+         into {dir}: pass {} to start afresh there (the merged files go, the shards stay), \
+         or choose another {}",
+        Setting::Overwrite,
+        Setting::Out
     )]
     OtherSweepsShard {
         /// The shard's journal, as shown.

@@ -2,11 +2,27 @@
 
 use crate::atomic::FileError;
 use crate::checked_log::LogError;
+use crate::settings::Setting;
 
 /// The end of every message about a journal that cannot be used (a merge names the shard's
-/// own command instead: `crate::shard::merge`).
-pub(crate) const START_AFRESH: &str =
-    "start the sweep afresh with --overwrite (in place of --resume), or move the journal away";
+/// own command instead: `crate::shard::merge`): `start the sweep afresh with --overwrite (in
+/// place of --resume), or move the journal away`, its settings in the front end's words.
+pub(crate) const START_AFRESH: StartAfresh = StartAfresh;
+
+/// The type of [`START_AFRESH`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StartAfresh;
+
+impl std::fmt::Display for StartAfresh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "start the sweep afresh with {} (in place of {}), or move the journal away",
+            Setting::Overwrite,
+            Setting::Resume
+        )
+    }
+}
 
 /// Why a journal cannot be used: one line naming its path (and, for a line, its 1-based
 /// number as `path:line:`). Every variant about a journal that cannot be trusted ends with how
@@ -68,7 +84,8 @@ pub enum JournalError {
     /// says what works instead.
     #[error(
         "{path}: is a folder, not a journal; move it away or remove it yourself (usar removes \
-         no folder in a journal's place, even with --overwrite), then run again"
+         no folder in a journal's place, even with {}), then run again",
+        Setting::Overwrite
     )]
     Folder {
         /// The journal's path, as shown.
@@ -88,8 +105,12 @@ pub enum JournalError {
     },
     /// Resuming a journal whose header is another sweep's.
     #[error(
-        "--resume: {path} was written by a sweep with other parameters ({diff}); run with \
-         another --out, or with --overwrite (in place of --resume) to start afresh"
+        "{}: {path} was written by a sweep with other parameters ({diff}); run with \
+         another {}, or with {} (in place of {}) to start afresh",
+        Setting::Resume,
+        Setting::Out,
+        Setting::Overwrite,
+        Setting::Resume
     )]
     OtherParameters {
         /// The journal's path, as shown.
@@ -109,6 +130,6 @@ impl JournalError {
     /// Whether the message ends with how to start afresh (`--overwrite`): the journal
     /// cannot be trusted or read as one (a merge then names the shard's own command instead).
     pub fn says_start_afresh(&self) -> bool {
-        self.to_string().contains(START_AFRESH)
+        self.to_string().contains(&START_AFRESH.to_string())
     }
 }

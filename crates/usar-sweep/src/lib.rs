@@ -55,7 +55,7 @@
 //! it, never from one above (bottom first):
 //!
 //! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`bounded_file`], [`lock`], [`spec_ron`], [`notice`],
-//!    [`progress`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
+//!    [`progress`], [`settings`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
 //!    [`journal_error`], [`trial_json`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
@@ -73,6 +73,7 @@ pub mod method_factory;
 pub mod metrics;
 pub mod notice;
 pub mod progress;
+pub mod settings;
 pub mod spec_ron;
 pub mod trial_json;
 pub mod vary;

@@ -28,8 +28,9 @@ pub enum LockError {
     /// (`shared: false`), or a shared lock was asked for and an exclusive one is held
     /// (`shared: true`).
     #[error(
-        "{dir} is in use by another {}; wait for it to end, or choose another --out",
-        holder_text(*shared, *pid)
+        "{dir} is in use by another {}; wait for it to end, or choose another {}",
+        holder_text(*shared, *pid),
+        crate::settings::Setting::Out
     )]
     InUse {
         /// The folder, as given.

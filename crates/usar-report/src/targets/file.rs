@@ -20,6 +20,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use usar_sim::mission::TrialResult;
+use usar_sweep::settings::Setting;
 
 use super::band::Band;
 use super::ron_file::{self, Source, StudyFile, check_name};
@@ -158,7 +159,7 @@ impl Targets {
     /// A name no target has (the message lists the names there are), or every target left
     /// out of the loss (nothing would be fitted).
     pub fn set_report_only(&mut self, names: &[String]) -> Result<(), TargetsError> {
-        self.mark(names, "--report-only", true)?;
+        self.mark(names, Setting::ReportOnly, true)?;
         self.check_some_fitted()
     }
 
@@ -173,8 +174,8 @@ impl Targets {
         required: &[String],
         report_only: &[String],
     ) -> Result<(), TargetsError> {
-        self.mark(required, "--require", false)?;
-        self.mark(report_only, "--report-only", true)?;
+        self.mark(required, Setting::Require, false)?;
+        self.mark(report_only, Setting::ReportOnly, true)?;
         self.check_some_fitted()
     }
 
@@ -185,14 +186,14 @@ impl Targets {
     /// # Errors
     /// A name no target has (the message lists the names there are).
     pub fn set_required(&mut self, names: &[String]) -> Result<(), TargetsError> {
-        self.mark(names, "--require", false)?;
+        self.mark(names, Setting::Require, false)?;
         self.check_some_fitted()
     }
 
     fn mark(
         &mut self,
         names: &[String],
-        flag: &str,
+        flag: Setting,
         report_only: bool,
     ) -> Result<(), TargetsError> {
         let fail = |message: String| TargetsError::from(self.source.whole_error(message));
@@ -218,10 +219,10 @@ impl Targets {
         if self.targets.iter().all(|t| t.report_only) {
             return Err(self
                 .source
-                .whole_error(
-                    "every target is report-only (--report-only): at least one must be fitted"
-                        .into(),
-                )
+                .whole_error(format!(
+                    "every target is report-only ({}): at least one must be fitted",
+                    Setting::ReportOnly
+                ))
                 .into());
         }
         Ok(())

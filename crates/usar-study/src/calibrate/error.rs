@@ -5,6 +5,7 @@ use usar_sweep::atomic::FileError;
 use usar_sweep::data::hooks::Stopped;
 use usar_sweep::data::owner::OwnerError;
 use usar_sweep::lock::LockError;
+use usar_sweep::settings::Setting;
 
 use super::setup::SetupError;
 use super::trace_error::TraceError;
@@ -25,15 +26,20 @@ pub enum CalibrationError {
     #[error("the trace could not be written; the calibration stopped")]
     TraceStopped(#[source] TraceError),
     /// The trace's path is a folder, a FIFO or a device.
-    #[error("{path}: not a regular file; remove it, or choose another --out")]
+    #[error(
+        "{path}: not a regular file; remove it, or choose another {}",
+        Setting::Out
+    )]
     TraceNotAFile {
         /// The trace's path, as shown.
         path: String,
     },
     /// The output folder's trace is another calibration's.
     #[error(
-        "{path} holds another calibration ({diff}): pass --overwrite to start afresh, or choose \
-         another --out"
+        "{path} holds another calibration ({diff}): pass {} to start afresh, or choose \
+         another {}",
+        Setting::Overwrite,
+        Setting::Out
     )]
     OtherCalibration {
         /// The trace's path, as shown.

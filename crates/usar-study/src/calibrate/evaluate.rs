@@ -24,6 +24,7 @@ use usar_report::targets::float_text;
 use usar_sweep::data::hooks::SweepHooks;
 use usar_sweep::executor::{CellPlan, Job, Runner, run_trial};
 use usar_sweep::method_factory::trust_model;
+use usar_sweep::settings::Setting;
 use usar_sweep::vary::{Override, apply_overrides, rule_error, spec_from_json, spec_json};
 
 /// One evaluated point of a calibration (a line of `trace.jsonl` and a row of `trace.csv`).
@@ -145,7 +146,7 @@ impl<'a> Evaluator<'a> {
     pub fn scenario_at(&self, values: &[f64]) -> Result<(ScenarioSpec, Scenario), String> {
         let overrides = self.overrides(values);
         let mut spec = apply_overrides(&self.setup.base, &overrides)
-            .map_err(|(i, e)| format!("--free {}: {e}", overrides[i].brief()))?;
+            .map_err(|(i, e)| format!("{} {}: {e}", Setting::Free, overrides[i].brief()))?;
         let factors: Vec<(&FreeField, f64)> = self
             .setup
             .free
@@ -157,13 +158,13 @@ impl<'a> Evaluator<'a> {
             let mut json = spec_json(&spec)?;
             for (f, x) in &factors {
                 f.scale_in(&mut json, *x)
-                    .map_err(|e| format!("--free {}: {e}", f.assignment(*x)))?;
+                    .map_err(|e| format!("{} {}: {e}", Setting::Free, f.assignment(*x)))?;
             }
-            spec = spec_from_json(json).map_err(|e| format!("--free factors: {e}"))?;
+            spec = spec_from_json(json).map_err(|e| format!("{} factors: {e}", Setting::Free))?;
         }
         let scenario = spec
             .validate(&self.setup.origin)
-            .map_err(|e| rule_error("--free", &self.named(values), &e))?;
+            .map_err(|e| rule_error(&Setting::Free.to_string(), &self.named(values), &e))?;
         Ok((spec, scenario))
     }
 
@@ -237,7 +238,7 @@ impl<'a> Evaluator<'a> {
                 steps_per_trial: steps,
             },
             (Err(e), _) => return everything_failed(format!("{e:#}")),
-            (_, Err(e)) => return everything_failed(format!("--duration: {e}")),
+            (_, Err(e)) => return everything_failed(format!("{}: {e}", Setting::DurationS)),
         };
         let jobs: Vec<Job> = self
             .setup

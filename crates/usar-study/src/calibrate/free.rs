@@ -22,6 +22,7 @@ use serde_json::Value;
 use usar_sim::scenario::ScenarioSpec;
 
 use usar_report::targets::float_text::short;
+use usar_sweep::settings::Setting;
 use usar_sweep::vary::{
     FieldPath, FieldValue, Override, RonValue, apply_overrides, brief, spec_json,
 };
@@ -45,7 +46,7 @@ pub struct FreeField {
 /// A bad `--free` argument, or one that does not fit the scenario: one line,
 /// `--free ARG: message`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("--free {arg}: {message}")]
+#[error("{} {arg}: {message}", Setting::Free)]
 pub struct FreeError {
     /// The argument as given (shortened when long, [`brief`]).
     pub arg: String,
@@ -163,7 +164,10 @@ impl FreeField {
                     .ok_or_else(|| "the scaled value is not a finite number".to_string())
             }
             Value::Null => Err("is None; a factor scales a number".into()),
-            _ => Err("is not a real number; --free fits real-valued fields only".into()),
+            _ => Err(format!(
+                "is not a real number; {} fits real-valued fields only",
+                Setting::Free
+            )),
         })
     }
 
@@ -257,10 +261,14 @@ impl FreeField {
                     found.push(None);
                     Ok(Value::Null)
                 }
-                Value::Number(_) => Err("holds a whole number (a count or seed); --free fits \
-                                         real-valued fields only"
-                    .into()),
-                _ => Err("is not a number; --free fits real-valued fields only".into()),
+                Value::Number(_) => Err(format!(
+                    "holds a whole number (a count or seed); {} fits real-valued fields only",
+                    Setting::Free
+                )),
+                _ => Err(format!(
+                    "is not a number; {} fits real-valued fields only",
+                    Setting::Free
+                )),
             })
             .map_err(fail)?;
         // The field takes numbers when it takes one of the range's (values it refuses run as
@@ -312,7 +320,10 @@ pub fn check_distinct(fields: &[FreeField]) -> Result<(), FreeError> {
             let message = if a.field == b.field {
                 "the field is given twice: free each field once".to_string()
             } else if a.path().overlaps(&b.path()) {
-                format!("overlaps --free {b}: they set some of the same values")
+                format!(
+                    "overlaps {} {b}: they set some of the same values",
+                    Setting::Free
+                )
             } else {
                 continue;
             };

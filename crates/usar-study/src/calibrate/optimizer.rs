@@ -24,6 +24,7 @@ use std::fmt;
 use argmin::core::{CostFunction, Executor, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
 use argmin_math::{ArgminAdd, ArgminMul, ArgminSub};
+use usar_sweep::settings::Setting;
 
 /// The initial simplex's step along each axis, as a fraction of the range (0.15).
 pub const INITIAL_STEP: f64 = 0.15;
@@ -73,8 +74,12 @@ impl fmt::Display for StopReason {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             StopReason::TargetReached => "every statistic is in its band (loss 0)",
-            StopReason::MaxEvals => "the evaluation budget (--max-evals) is spent",
-            StopReason::MaxTime => "the time budget (--max-time) is spent",
+            StopReason::MaxEvals => {
+                return write!(f, "the evaluation budget ({}) is spent", Setting::MaxEvals);
+            }
+            StopReason::MaxTime => {
+                return write!(f, "the time budget ({}) is spent", Setting::MaxTimeS);
+            }
             StopReason::Converged => "the simplex is flat (every vertex has the same loss)",
             StopReason::Stalled => "the search stalled (no new point in a long run)",
             StopReason::Interrupted => "stopped by the caller (its stop flag)",

@@ -3,9 +3,17 @@
 
 use usar_sweep::atomic::FileError;
 use usar_sweep::checked_log::LogError;
+use usar_sweep::settings::Setting;
 
-/// What every message about a trace that cannot be used ends with.
-pub(crate) const START_AFRESH: &str = "start afresh with --overwrite, or choose another --out";
+/// What every message about a trace that cannot be used ends with: `start afresh with
+/// --overwrite, or choose another --out`, its settings in the front end's words.
+pub(crate) fn start_afresh() -> String {
+    format!(
+        "start afresh with {}, or choose another {}",
+        Setting::Overwrite,
+        Setting::Out
+    )
+}
 
 /// Why a trace cannot be read (one line naming its path, and a line's 1-based number as
 /// `path:line:`; each ends with how to start afresh) or written.
@@ -14,7 +22,8 @@ pub enum TraceError {
     /// A line before the last that is not an evaluation (or not UTF-8).
     #[error(
         "{path}:{line}: not a valid trace line; delete that line (its point runs again), or \
-         {START_AFRESH}"
+         {}",
+        start_afresh()
     )]
     DamagedLine {
         /// The trace's path, as shown.
@@ -23,26 +32,29 @@ pub enum TraceError {
         line: usize,
     },
     /// No complete first line.
-    #[error("{path}: no complete header line; {START_AFRESH}")]
+    #[error("{path}: no complete header line; {}", start_afresh())]
     NoHeader {
         /// The trace's path, as shown.
         path: String,
     },
     /// The first line is not a trace header.
-    #[error("{path}:1: not a trace header; {START_AFRESH}")]
+    #[error("{path}:1: not a trace header; {}", start_afresh())]
     NotAHeader {
         /// The trace's path, as shown.
         path: String,
     },
     /// The header's checksum is missing or wrong.
-    #[error("{path}:1: the header does not verify (edited?); {START_AFRESH}")]
+    #[error("{path}:1: the header does not verify (edited?); {}", start_afresh())]
     HeaderUnverified {
         /// The trace's path, as shown.
         path: String,
     },
     /// A header of another trace format than
     /// [`TRACE_FORMAT`](crate::calibrate::trace::TRACE_FORMAT).
-    #[error("{path}: trace format {found}, but this usar reads format {expected}; {START_AFRESH}")]
+    #[error(
+        "{path}: trace format {found}, but this usar reads format {expected}; {}",
+        start_afresh()
+    )]
     Format {
         /// The trace's path, as shown.
         path: String,

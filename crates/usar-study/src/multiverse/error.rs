@@ -8,6 +8,7 @@ use usar_sweep::data::hooks::Stopped;
 use usar_sweep::data::owner::OwnerError;
 use usar_sweep::data::setting_error::SettingError;
 use usar_sweep::lock::LockError;
+use usar_sweep::settings::Setting;
 use usar_sweep::sweep::{ConfigError, SweepError};
 
 use super::axes::AxesError;
@@ -42,15 +43,18 @@ pub enum MultiverseError {
     /// `overwrite` with a shard: shards running at the same time would remove each other's
     /// work.
     #[error(
-        "--overwrite cannot be used with --shard: shards running at the same time would remove \
-         each other's work; remove the output folder (or choose another --out), then run the \
-         shards"
+        "{} cannot be used with --shard: shards running at the same time would remove each \
+         other's work; remove the output folder (or choose another {}), then run the shards",
+        Setting::Overwrite,
+        Setting::Out
     )]
     OverwriteShard,
     /// The output folder holds the plan of another multiverse.
     #[error(
-        "{plan} holds another multiverse ({diff}): pass --overwrite to start afresh (its \
-         universes go), or choose another --out"
+        "{plan} holds another multiverse ({diff}): pass {} to start afresh (its universes \
+         go), or choose another {}",
+        Setting::Overwrite,
+        Setting::Out
     )]
     OtherMultiverse {
         /// The plan's path, as shown.
@@ -86,8 +90,10 @@ pub enum MultiverseError {
     },
     /// A plan file that is not a multiverse plan (edited, or of another version).
     #[error(
-        "{path}: not a multiverse plan (edited, or of another version of usar); pass \
-         --overwrite to start afresh, or choose another --out"
+        "{path}: not a multiverse plan (edited, or of another version of usar); pass {} to \
+         start afresh, or choose another {}",
+        Setting::Overwrite,
+        Setting::Out
     )]
     NotAPlan {
         /// The plan's path, as shown.

@@ -13,6 +13,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use usar_sweep::settings::Setting;
 use usar_sweep::shard::{Shard, split};
 
 /// Most universes one multiverse runs (10,000): each holds a calibration and a sweep, so a
@@ -55,14 +56,15 @@ pub enum UniverseError {
     /// More universes than [`MAX_UNIVERSES`] would run.
     #[error(
         "the axes make {count} universes, more than the limit of {MAX_UNIVERSES} per \
-         multiverse: draw some with --sample N"
+         multiverse: draw some with {} N",
+        Setting::Sample
     )]
     TooMany {
         /// Universes that would run.
         count: u64,
     },
     /// `--sample 0`.
-    #[error("--sample must be at least 1")]
+    #[error("{} must be at least 1", Setting::Sample)]
     EmptySample,
     /// More shards than universes (`--shard I/N`, `usar slurm --shards N`): a shard without
     /// a universe would be one more job to run and wait for.
@@ -78,8 +80,10 @@ pub enum UniverseError {
     },
     /// `--sample N` above the factorial's size.
     #[error(
-        "--sample {n}: the axes make only {total} universes (the full factorial); give at most \
-         {total}, or leave --sample out to run them all"
+        "{} {n}: the axes make only {total} universes (the full factorial); give at most \
+         {total}, or leave {} out to run them all",
+        Setting::Sample,
+        Setting::Sample
     )]
     SampleTooLarge {
         /// The sample size asked for.

@@ -14,6 +14,7 @@ use usar_sim::scenario::{ScenarioError, ScenarioSpec};
 use super::axes::{Alternative, Axes, AxesError};
 use crate::calibrate::FreeField;
 use usar_report::targets::file::Targets;
+use usar_sweep::settings::Setting;
 use usar_sweep::vary::{Override, apply_overrides, spec_json, touching};
 
 /// Checks `axes` against the base spec `base` (read from `origin`), the free fields and the
@@ -38,9 +39,10 @@ pub fn check_axes(
             return Err(axes.error(
                 &format!("axes[{i}].name"),
                 format!(
-                    "axis {:?} is named like --free {f}; both are columns of multiverse.csv: \
+                    "axis {:?} is named like {} {f}; both are columns of multiverse.csv: \
                      name the axis otherwise",
-                    axis.name
+                    axis.name,
+                    Setting::Free
                 ),
             ));
         }
@@ -169,9 +171,11 @@ fn check_free(axes: &Axes, i: usize, k: usize, free: &[FreeField]) -> Result<(),
                 k,
                 &format!("set[{j}]"),
                 format!(
-                    "{} is also --free {f}: a calibrated field cannot be a choice too (drop \
-                     it from the axis or from --free)",
-                    o.path
+                    "{} is also {} {f}: a calibrated field cannot be a choice too (drop \
+                     it from the axis or from {})",
+                    o.path,
+                    Setting::Free,
+                    Setting::Free
                 ),
             ));
         }

@@ -11,6 +11,7 @@ use crate::data::limits::MAX_SWEEP_TRIALS;
 use crate::fingerprint::scenario_hash;
 use crate::grid::error::GridError;
 use crate::grid::names;
+use crate::settings::Setting;
 use crate::vary::{Override, Vary, apply_overrides, brief, rule_error, spec_json};
 
 /// What the functions of this module return.
@@ -89,7 +90,7 @@ pub fn build_grid(base: &ScenarioSpec, args: &[String]) -> Result<Grid> {
         let spec =
             apply_overrides(base, &overrides).map_err(|(i, e)| refused(overrides[i].brief(), e))?;
         let scenario = spec.validate(&origin).map_err(|e| GridError::CellRule {
-            line: rule_error("--vary", &overrides, &e),
+            line: rule_error(&Setting::Vary.to_string(), &overrides, &e),
         })?;
         let values: Vec<&str> = overrides.iter().map(|o| o.value.text.as_str()).collect();
         cells.push(GridCell {

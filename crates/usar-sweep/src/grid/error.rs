@@ -1,14 +1,16 @@
 //! Why a grid cannot be built from its `--vary` arguments ([`crate::grid::build_grid`]).
 
+use crate::settings::Setting;
+
 /// Why a grid was refused: one line naming the `--vary` argument (shortened, as
 /// [`crate::vary::brief`] shows it) and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum GridError {
     /// No `--vary` argument.
-    #[error("a grid needs at least one --vary")]
+    #[error("a grid needs at least one {}", Setting::Vary)]
     NoVary,
     /// An argument that is malformed, names no field, or gives a value of the wrong type.
-    #[error("--vary {arg}: {problem}")]
+    #[error("{} {arg}: {problem}", Setting::Vary)]
     Vary {
         /// The argument, shortened.
         arg: String,
@@ -16,13 +18,17 @@ pub enum GridError {
         problem: String,
     },
     /// One field varied twice.
-    #[error("--vary {path} is given twice: vary each field once")]
+    #[error("{} {path} is given twice: vary each field once", Setting::Vary)]
     Twice {
         /// The field's path.
         path: String,
     },
     /// Two fields that set some of the same values (`zones[*].r` and `zones[2].r`).
-    #[error("--vary {first} overlaps --vary {second}: they set some of the same values")]
+    #[error(
+        "{} {first} overlaps {} {second}: they set some of the same values",
+        Setting::Vary,
+        Setting::Vary
+    )]
     Overlap {
         /// The earlier field's path.
         first: String,
@@ -50,7 +56,10 @@ pub enum GridError {
         line: String,
     },
     /// Two values of one `--vary` that give the same scenario in every cell.
-    #[error("--vary {arg}: values {first} and {second} give the same scenario")]
+    #[error(
+        "{} {arg}: values {first} and {second} give the same scenario",
+        Setting::Vary
+    )]
     SameScenario {
         /// The argument, shortened.
         arg: String,

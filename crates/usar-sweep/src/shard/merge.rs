@@ -124,7 +124,7 @@ fn damaged_shard(e: JournalError, shard: Shard, shard_dir: &Path, dir: &Path) ->
     // The command holds the scenario's and the folder's paths: one line whatever they hold.
     MergeError::DamagedShard {
         shard,
-        message: text.replace(START_AFRESH, &one_line_text(&again)),
+        message: text.replace(&START_AFRESH.to_string(), &one_line_text(&again)),
     }
     .into()
 }

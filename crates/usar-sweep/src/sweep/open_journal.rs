@@ -14,6 +14,7 @@ use crate::journal::{
     other_sweeps, read_header, something_at,
 };
 use crate::journal_error::JournalError;
+use crate::settings::Setting;
 use crate::stale_outputs::remove_previous_outputs;
 
 /// What the functions of this module return.
@@ -98,8 +99,12 @@ pub(crate) fn open_journal(
             return Err(SweepError::JournalExists {
                 path: path_text(&path),
                 why: header_diff(&found, header),
-                advice: "its trials cannot be continued by this build; pass --overwrite to \
-                         start afresh (or choose another --out, or run the build that wrote it)",
+                advice: format!(
+                    "its trials cannot be continued by this build; pass {} to start afresh \
+                     (or choose another {}, or run the build that wrote it)",
+                    Setting::Overwrite,
+                    Setting::Out
+                ),
             });
         }
         Ok(found) => format!(
@@ -113,8 +118,13 @@ pub(crate) fn open_journal(
     Err(SweepError::JournalExists {
         path: path_text(&path),
         why,
-        advice: "to continue that sweep, run it with its own parameters (and --resume); to \
-                 start afresh with these, pass --overwrite, or choose another --out",
+        advice: format!(
+            "to continue that sweep, run it with its own parameters (and {}); to start \
+             afresh with these, pass {}, or choose another {}",
+            Setting::Resume,
+            Setting::Overwrite,
+            Setting::Out
+        ),
     })
 }
 

@@ -77,6 +77,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "method_factory",
                     "metrics",
                     "notice",
+                    "settings",
                     "spec_ron",
                     "progress",
                     "trial_json",

@@ -30,6 +30,10 @@ fn main() -> ExitCode {
     // The libraries report progress and notices; `usar` draws and prints them. Installed
     // once, before any run.
     shared::stderr_lines::show_notices();
+    // The libraries' messages name a setting by its flag (`pass --overwrite`).
+    if usar_sweep::settings::set_namer(|s| s.flag().to_string()).is_err() {
+        unreachable!("the settings' namer is installed once, here");
+    }
     if usar_sweep::progress::set_sink(Box::new(shared::progress::TerminalBars)).is_err() {
         unreachable!("the progress sink is installed once, here");
     }
