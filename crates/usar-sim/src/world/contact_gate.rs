@@ -1,14 +1,20 @@
 //! `sim.physics: NearContacts` and `NearBodies` ([`crate::scenario::PhysicsStepping`]):
 //! whether a contact may begin or go on within the next step, for the team
-//! ([`World::near_contact`]) or robot by robot ([`World::mark_near_bodies`]); the straight move
+//! ([`World::near_contact`]) or robot by robot ([`World::mark_near_bodies`], in parallel for a
+//! large team); the straight move
 //! of every body on a step without one ([`PhysicsScene::move_free`]); and the bodies enabled
 //! in Rapier only while their robots are near a contact ([`PhysicsScene::gate_bodies`]).
 
 use parry2d::math::Vector as Vec2;
 
+use rayon::prelude::*;
+
 use super::bodies::PhysicsScene;
+use super::clearance_grid::ClearanceGrid;
 use super::nav_state::Nav;
-use super::world::World;
+use super::neighbours::NeighbourIndex;
+use super::per_robot::CHUNK_ROBOTS;
+use super::world::{World, for_each_near};
 use crate::scenario::Locomotion;
 
 /// What a body must keep beyond Rapier's contact prediction distance and what the two bodies
@@ -24,33 +30,54 @@ const BOX_SKIP_MARGIN_M: f32 = 1e-3;
 
 impl World {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
-    /// layer within the next step ([`World::robot_near_contact`] of each robot, by id). Stops at
-    /// the first robot near a contact.
+    /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id).
+    /// Stops at the first robot near a contact.
     pub(super) fn near_contact(&mut self) -> bool {
-        let gate = self.gate();
-        let near = (0..self.nav.len()).any(|i| self.robot_near_contact(i, &gate, |_| {}));
+        let gate = self.gate(false);
+        let view = self.gate_view(&gate);
+        let near = (0..self.nav.len()).any(|i| view.robot_near_contact(i, |_| {}));
         self.pipelines.gate_speeds = gate.speeds_m_per_s;
         near
     }
 
     /// `sim.physics: NearBodies`: marks in `near[id]` whether robot `id` may touch a wall,
-    /// debris or another robot within the next step ([`World::robot_near_contact`]; both
+    /// debris or another robot within the next step ([`GateView::robot_near_contact`]; both
     /// robots of a pair found near from either side are marked); returns whether any may.
-    /// `near` holds one flag per robot.
+    /// `near` holds one flag per robot. A large team's robots are tested in parallel, each
+    /// writing its own flag and its partners to its chunk's list, which are then marked in
+    /// chunk order: the same flags on any number of threads (a flag is only ever set).
     pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
-        let gate = self.gate();
-        near.fill(false);
-        let mut any = false;
-        let mut partners = Vec::new();
-        for i in 0..near.len() {
-            partners.clear();
-            let hit = self.robot_near_contact(i, &gate, |j| partners.push(j));
-            near[i] |= hit;
-            for &j in &partners {
-                near[j] = true;
-            }
-            any |= hit;
+        let parallel = self.pipelines.per_robot.parallel_for(near.len());
+        let gate = self.gate(parallel);
+        let mut lists = std::mem::take(&mut self.pipelines.per_robot.scratch);
+        let chunks = near.len().div_ceil(CHUNK_ROBOTS).max(1);
+        if lists.len() < chunks {
+            lists.resize_with(chunks, Vec::new);
         }
+        let view = self.gate_view(&gate);
+        let mark_chunk = |(c, (out, partners)): (usize, (&mut [bool], &mut Vec<usize>))| {
+            partners.clear();
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, |j| partners.push(j));
+            }
+        };
+        let lists_used = &mut lists[..chunks];
+        if parallel {
+            near.par_chunks_mut(CHUNK_ROBOTS)
+                .zip(lists_used)
+                .enumerate()
+                .for_each(mark_chunk);
+        } else {
+            near.chunks_mut(CHUNK_ROBOTS)
+                .zip(lists_used)
+                .enumerate()
+                .for_each(mark_chunk);
+        }
+        let any = near.contains(&true);
+        for &j in lists.iter().take(chunks).flatten() {
+            near[j] = true;
+        }
+        self.pipelines.per_robot.scratch = lists;
         self.pipelines.gate_speeds = gate.speeds_m_per_s;
         any
     }
@@ -60,15 +87,23 @@ impl World {
     /// A robot's speed is the larger of its command's and its body's: with `NearContacts` the
     /// bodies were driven at the commands before the gate, so the two are one; with
     /// `NearBodies` a body Rapier pushed last step may still move faster than its command.
-    fn gate(&mut self) -> Gate {
+    /// The speeds are computed in parallel when `parallel`.
+    fn gate(&mut self, parallel: bool) -> Gate {
         let bodies = &self.scene.physics.bodies;
         let mut speeds = std::mem::take(&mut self.pipelines.gate_speeds);
-        speeds.clear();
-        speeds.extend(
-            self.nav
-                .iter()
-                .map(|n| n.command.length().max(bodies[n.body].linvel().length())),
-        );
+        speeds.resize(self.nav.len(), 0.0);
+        let speed = |(s, n): (&mut f32, &Nav)| {
+            *s = n.command.length().max(bodies[n.body].linvel().length());
+        };
+        if parallel {
+            speeds
+                .par_iter_mut()
+                .zip(&self.nav)
+                .with_min_len(CHUNK_ROBOTS)
+                .for_each(speed);
+        } else {
+            speeds.iter_mut().zip(&self.nav).for_each(speed);
+        }
         Gate {
             slack_m: self
                 .scene
@@ -81,6 +116,46 @@ impl World {
         }
     }
 
+    /// The state every robot's gate reads, borrowed from the world for one step.
+    fn gate_view<'a>(&'a self, gate: &'a Gate) -> GateView<'a> {
+        GateView {
+            nav: &self.nav,
+            grid: &self.grid,
+            scene: &self.scene,
+            index: self
+                .pipelines
+                .index_fresh
+                .then_some(&self.pipelines.neighbours),
+            max_radius_m: self.max_radius_m,
+            dt: self.dt as f32,
+            gate,
+        }
+    }
+}
+
+/// What every robot's gate shares on one step (see [`GateView::robot_near_contact`]).
+struct Gate {
+    slack_m: f32,
+    fastest_m_per_s: f32,
+    /// Each robot's speed (the larger of its command's and its body's), by id, m/s.
+    speeds_m_per_s: Vec<f32>,
+}
+
+/// What one robot's gate reads, borrowed for one step (nothing in it is written while the
+/// robots are tested, so they may be tested on any thread in any order).
+struct GateView<'a> {
+    nav: &'a [Nav],
+    grid: &'a ClearanceGrid,
+    scene: &'a PhysicsScene,
+    /// The neighbour index while it holds the robots' positions, else `None` (every robot of
+    /// the layer is a candidate: [`for_each_near`]).
+    index: Option<&'a NeighbourIndex>,
+    max_radius_m: [f64; 2],
+    dt: f32,
+    gate: &'a Gate,
+}
+
+impl GateView<'_> {
     /// Whether robot `i` may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step: its gap (distance between the surfaces, negative when they
     /// overlap) is at most what the two can close in a step at their speeds ([`Gate`]), plus
@@ -88,8 +163,8 @@ impl World {
     /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
     /// then exactly; robots through the neighbour index, calling `partner(j)` for each robot
     /// `j` found near (the test of a pair is the same from both sides up to rounding).
-    fn robot_near_contact(&self, i: usize, gate: &Gate, mut partner: impl FnMut(usize)) -> bool {
-        let dt = self.dt as f32;
+    fn robot_near_contact(&self, i: usize, mut partner: impl FnMut(usize)) -> bool {
+        let (dt, gate) = (self.dt, self.gate);
         let speed = &gate.speeds_m_per_s;
         // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
         let half_diagonal =
@@ -107,7 +182,7 @@ impl World {
         let others = self.max_radius_m[usize::from(!ground)] as f32;
         let radius = a.radius + others + (va + gate.fastest_m_per_s) * dt + gate.slack_m;
         let mut near = false;
-        self.for_each_near(a.layer, a.pos, radius, |j| {
+        for_each_near(self.nav, self.index, a.layer, a.pos, radius, |j| {
             let b = &self.nav[j];
             let gap = (b.pos - a.pos).length() - a.radius - b.radius;
             if j != i && gap <= (va + speed[j]) * dt + gate.slack_m {
@@ -117,14 +192,6 @@ impl World {
         });
         near
     }
-}
-
-/// What every robot's gate shares on one step (see [`World::robot_near_contact`]).
-struct Gate {
-    slack_m: f32,
-    fastest_m_per_s: f32,
-    /// Each robot's speed (the larger of its command's and its body's), by id, m/s.
-    speeds_m_per_s: Vec<f32>,
 }
 
 impl PhysicsScene {

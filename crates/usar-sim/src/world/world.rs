@@ -402,27 +402,19 @@ impl World {
         self.pipelines.index_fresh = true;
     }
 
-    /// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of
-    /// `p` (and perhaps others): the neighbour index's candidates while it is fresh, else
-    /// every robot of the layer (between control steps the index is not rebuilt). Callers
-    /// test the distance themselves, so both give the same answers.
+    /// [`for_each_near`] over this world's robots and, while it is fresh, its neighbour index.
     pub(super) fn for_each_near(
         &self,
         layer: Locomotion,
         p: Vec2,
         radius_m: f32,
-        mut f: impl FnMut(usize),
+        f: impl FnMut(usize),
     ) {
-        if self.pipelines.index_fresh {
-            self.pipelines
-                .neighbours
-                .grid(layer)
-                .for_each_candidate(p, radius_m, |j, _| f(j));
-        } else {
-            (0..self.nav.len())
-                .filter(|&j| self.nav[j].layer == layer)
-                .for_each(f);
-        }
+        let index = self
+            .pipelines
+            .index_fresh
+            .then_some(&self.pipelines.neighbours);
+        for_each_near(&self.nav, index, layer, p, radius_m, f);
     }
 
     /// Whether the spot `p` is clear of ground robots: no ground robot other than `except` has
@@ -531,6 +523,28 @@ impl World {
             });
         }
         worst
+    }
+}
+
+/// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of `p`
+/// (and perhaps others): the candidates of `index` (the neighbour index while it holds the
+/// robots' positions), else every robot of the layer in `nav` (between control steps the
+/// index is not rebuilt). Callers test the distance themselves, so both give the same answers.
+pub(super) fn for_each_near(
+    nav: &[Nav],
+    index: Option<&NeighbourIndex>,
+    layer: Locomotion,
+    p: Vec2,
+    radius_m: f32,
+    mut f: impl FnMut(usize),
+) {
+    match index {
+        Some(index) => index
+            .grid(layer)
+            .for_each_candidate(p, radius_m, |j, _| f(j)),
+        None => (0..nav.len())
+            .filter(|&j| nav[j].layer == layer)
+            .for_each(f),
     }
 }
 
