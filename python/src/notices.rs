@@ -34,12 +34,42 @@ pub fn install() {
 /// dropped.
 pub fn flush(py: Python<'_>) -> PyResult<()> {
     let pending = std::mem::take(&mut *PENDING.lock().unwrap_or_else(PoisonError::into_inner));
+    if pending.is_empty() {
+        return Ok(());
+    }
     let category = py.get_type::<UsarWarning>();
+    let stacklevel = user_stacklevel(py);
     for message in pending {
         let text = CString::new(message.replace('\0', " "))?;
-        PyErr::warn(py, category.as_any(), &text, 1)?;
+        PyErr::warn(py, category.as_any(), &text, stacklevel)?;
     }
     Ok(())
+}
+
+/// The `stacklevel` of `warnings.warn` that names the caller's own line: 1 (the Python frame
+/// that called into the native module) plus each frame of the `usar` package above it, so a
+/// warning of `usar.sweep(...)` points at the line of the notebook or script that called it.
+/// 1 when the frames cannot be read.
+fn user_stacklevel(py: Python<'_>) -> i32 {
+    let walk = || -> PyResult<i32> {
+        let file: String = py.import("usar")?.getattr("__file__")?.extract()?;
+        let package = std::path::Path::new(&file)
+            .parent()
+            .map(|p| format!("{}{}", p.to_string_lossy(), std::path::MAIN_SEPARATOR))
+            .unwrap_or_default();
+        let mut frame = py.import("sys")?.call_method1("_getframe", (0,))?;
+        let mut level = 1;
+        loop {
+            let code_file: String = frame.getattr("f_code")?.getattr("co_filename")?.extract()?;
+            let back = frame.getattr("f_back")?;
+            if package.is_empty() || !code_file.starts_with(&package) || back.is_none() {
+                return Ok(level);
+            }
+            frame = back;
+            level += 1;
+        }
+    };
+    walk().unwrap_or(1)
 }
 
 /// `result`, after the pending warnings are given to Python: a library call's end. An error

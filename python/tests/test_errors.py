@@ -1,5 +1,6 @@
 """Every documented bad input raises the documented exception, with a one-line message."""
 
+import pathlib
 import warnings
 
 import pytest
@@ -282,6 +283,9 @@ def test_a_copy_of_paper_ron_elsewhere_warns_that_its_report_leaves_out_claims_a
             for m in messages
         ), messages
     assert not any(m.startswith("warning:") for m in messages), messages
+    # The warning points at the caller's line (this file), not at the package's own code.
+    files = {pathlib.Path(w.filename).name for w in caught if issubclass(w.category, usar.UsarWarning)}
+    assert files == {pathlib.Path(__file__).name}, files
     report = (out / "report.md").read_text()
     assert "## Claims" not in report and "### Pooled statistics" not in report, report
     # The warnings were given once: a second call with nothing to warn about gives none.
