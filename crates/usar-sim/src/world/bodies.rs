@@ -14,6 +14,7 @@ use rapier2d::prelude::{
     RigidBodyHandle,
 };
 
+use super::static_buckets::StaticBuckets;
 use crate::scenario::{DebrisPrimitive, DebrisShape, Locomotion, PointM, Scenario};
 
 /// Collision group of the four boundary walls.
@@ -177,6 +178,9 @@ pub struct PhysicsScene {
     pub statics: Vec<StaticObstacle>,
     /// The world-frame bounding box of each of `statics`, in the same order.
     pub static_boxes: Vec<Aabb>,
+    /// `statics` by the buckets of a coarse grid over the arena (the contact gate's static
+    /// test looks only at those near a robot).
+    pub(super) static_buckets: StaticBuckets,
 }
 
 impl PhysicsScene {
@@ -212,10 +216,13 @@ impl PhysicsScene {
                 physics.insert(body, collider).0
             })
             .collect();
+        let static_boxes: Vec<Aabb> = statics.iter().map(StaticObstacle::aabb).collect();
+        let (w, h) = (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32);
         Self {
             physics,
             robot_bodies,
-            static_boxes: statics.iter().map(StaticObstacle::aabb).collect(),
+            static_buckets: StaticBuckets::new(&static_boxes, w, h),
+            static_boxes,
             statics,
         }
     }

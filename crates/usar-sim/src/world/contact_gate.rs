@@ -28,6 +28,11 @@ pub const NEAR_CONTACT_MARGIN_M: f32 = 0.05;
 /// so a skipped obstacle is one the exact distance would have found out of reach too.
 const BOX_SKIP_MARGIN_M: f32 = 1e-3;
 
+/// What the gate adds to a robot's query radius, relative, before it skips a robot by its
+/// indexed position (1e-5, with [`BOX_SKIP_MARGIN_M`]): far above the rounding of a distance,
+/// so a skipped robot is one the exact test would have found out of reach too.
+const PAIR_SKIP_REL: f32 = 1e-5;
+
 impl World {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id).
@@ -181,15 +186,27 @@ impl GateView<'_> {
         }
         let others = self.max_radius_m[usize::from(!ground)] as f32;
         let radius = a.radius + others + (va + gate.fastest_m_per_s) * dt + gate.slack_m;
+        // Robot `j` at `q` (its `nav[j].pos`): those beyond the query's radius (and a margin
+        // far above rounding) are out of reach, skipped before their state is read.
+        let bound = radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M;
         let mut near = false;
-        for_each_near(self.nav, self.index, a.layer, a.pos, radius, |j| {
+        let mut test = |j: usize, q: Vec2| {
+            if j == i || (q - a.pos).length_squared() > bound * bound {
+                return;
+            }
             let b = &self.nav[j];
             let gap = (b.pos - a.pos).length() - a.radius - b.radius;
-            if j != i && gap <= (va + speed[j]) * dt + gate.slack_m {
+            if gap <= (va + speed[j]) * dt + gate.slack_m {
                 near = true;
                 partner(j);
             }
-        });
+        };
+        match self.index {
+            Some(index) => index.grid(a.layer).for_each_candidate(a.pos, radius, test),
+            None => for_each_near(self.nav, None, a.layer, a.pos, radius, |j| {
+                test(j, self.nav[j].pos)
+            }),
+        }
         near
     }
 }
@@ -230,19 +247,18 @@ impl PhysicsScene {
     /// Whether `static_distance(p, with_debris) - radius_m <= reach_m`, answered obstacle by
     /// obstacle (the same answer: `f32` subtraction keeps the order of the distances) and
     /// skipping an obstacle whose bounding box is farther than that by
-    /// `BOX_SKIP_MARGIN_M` (a box's distance bounds its obstacle's from below).
+    /// `BOX_SKIP_MARGIN_M` (a box's distance bounds its obstacle's from below), and looking
+    /// only at the obstacles of the buckets near `p` (`static_buckets.rs`).
     pub fn static_within(&self, p: Vec2, with_debris: bool, radius_m: f32, reach_m: f32) -> bool {
         let box_reach = radius_m + reach_m + BOX_SKIP_MARGIN_M;
-        self.statics
-            .iter()
-            .zip(&self.static_boxes)
-            .filter(|(o, _)| with_debris || o.is_wall)
-            .any(|(o, b)| {
-                let dx = (b.mins.x - p.x).max(p.x - b.maxs.x).max(0.0);
-                let dy = (b.mins.y - p.y).max(p.y - b.maxs.y).max(0.0);
-                dx * dx + dy * dy <= box_reach * box_reach
-                    && o.distance_to_point(p) - radius_m <= reach_m
-            })
+        self.static_buckets.any_near(p, box_reach, |k| {
+            let (o, b) = (&self.statics[k], &self.static_boxes[k]);
+            let dx = (b.mins.x - p.x).max(p.x - b.maxs.x).max(0.0);
+            let dy = (b.mins.y - p.y).max(p.y - b.maxs.y).max(0.0);
+            (with_debris || o.is_wall)
+                && dx * dx + dy * dy <= box_reach * box_reach
+                && o.distance_to_point(p) - radius_m <= reach_m
+        })
     }
 
     /// Distance from `p` to the nearest wall, or wall or debris when `with_debris`, metres (0

@@ -32,6 +32,8 @@
 //! - `contact_gate`: `sim.physics: NearContacts` and `NearBodies`, whether a contact may begin
 //!   within the next step (for the team or per robot), the straight move of every body on a
 //!   step without one, and the bodies enabled in Rapier only near a contact.
+//! - `static_buckets`: walls and debris by the buckets of a coarse grid, for the contact
+//!   gate's static test.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
@@ -98,6 +100,7 @@ mod robot;
 mod robot_planning;
 mod shared_fields;
 pub mod standing_disc;
+mod static_buckets;
 mod steering;
 mod step;
 #[cfg(test)]
