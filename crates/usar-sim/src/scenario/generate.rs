@@ -149,6 +149,28 @@ pub(crate) struct Protected {
     pub(crate) what: String,
 }
 
+/// The protected places with an index of their bounding boxes, built once for every debris
+/// field of a scenario (a field used to build its own: at 100,000 starts the 70 fields of
+/// `swarm-100000.ron` spent most of a load inserting the same boxes again).
+pub(crate) struct ProtectedPlaces<'a> {
+    /// The places, in the order the index numbers them.
+    pub(crate) list: &'a [Protected],
+    /// Bounding boxes of the places' discs (same order as `list`).
+    index: BoxIndex,
+}
+
+impl<'a> ProtectedPlaces<'a> {
+    /// `list` with an index of its discs' bounding boxes.
+    pub(crate) fn new(list: &'a [Protected]) -> Self {
+        let mut index = BoxIndex::new();
+        for p in list {
+            let r = Vector2::new(p.radius_m, p.radius_m);
+            index.push(&(p.center - r), &(p.center + r));
+        }
+        Self { list, index }
+    }
+}
+
 fn size_range(ctx: &Ctx<'_>, path: &str, (lo, hi): (f64, f64)) -> R<(f64, f64)> {
     if lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= hi {
         Ok((lo, hi))
@@ -266,7 +288,7 @@ pub(crate) fn generate_debris_field(
     arena: &Arena,
     sim_seed: u64,
     existing: &[DebrisShape],
-    protected: &[Protected],
+    protected: &ProtectedPlaces<'_>,
 ) -> R<Vec<DebrisShape>> {
     let base = format!("debris_fields[{j}]");
     let region = ctx.rect_in_arena(&format!("{base}.region"), &f.region, arena)?;
@@ -302,7 +324,7 @@ pub(crate) fn generate_debris_field(
             placed.len(),
             attempts,
             &region,
-            protected,
+            protected.list,
         ));
     }
     Ok(placed)
@@ -355,30 +377,28 @@ struct Keepout<'a> {
     all: Vec<DebrisShape>,
     /// Bounding boxes of `all` (same order).
     shapes: BoxIndex,
-    /// Bounding boxes of the protected discs (same order as `protected`).
-    places: BoxIndex,
-    /// Places no debris may come near (starts, goals, drop-offs...).
-    protected: &'a [Protected],
+    /// Places no debris may come near (starts, goals, drop-offs...), with their index.
+    places: &'a ProtectedPlaces<'a>,
     /// The least gap, metres (>= 0).
     gap: f64,
 }
 
 impl<'a> Keepout<'a> {
     /// The keep-out of `existing` shapes and `protected` places, with room for `count` more.
-    fn new(existing: &[DebrisShape], protected: &'a [Protected], gap: f64, count: usize) -> Self {
+    fn new(
+        existing: &[DebrisShape],
+        places: &'a ProtectedPlaces<'a>,
+        gap: f64,
+        count: usize,
+    ) -> Self {
         let mut k = Self {
             all: Vec::with_capacity(existing.len() + count),
             shapes: BoxIndex::new(),
-            places: BoxIndex::new(),
-            protected,
+            places,
             gap,
         };
         for d in existing {
             k.push(*d);
-        }
-        for p in protected {
-            let r = Vector2::new(p.radius_m, p.radius_m);
-            k.places.push(&(p.center - r), &(p.center + r));
         }
         k
     }
@@ -392,8 +412,8 @@ impl<'a> Keepout<'a> {
             .near(&lo, &hi, gap)
             .into_iter()
             .all(|i| shape.distance(&self.all[i]) >= gap);
-        let clear_of_places = self.places.near(&lo, &hi, gap).into_iter().all(|i| {
-            let p = &self.protected[i];
+        let clear_of_places = self.places.index.near(&lo, &hi, gap).into_iter().all(|i| {
+            let p = &self.places.list[i];
             shape.distance_to_point(&p.center) >= p.radius_m + gap
         });
         clear_of_debris && clear_of_places

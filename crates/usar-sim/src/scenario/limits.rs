@@ -20,13 +20,14 @@ use super::validated::Scenario;
 pub const MAX_SCENARIO_BYTES: u64 = 64 << 20;
 /// Most robot kinds a scenario may list (grouping merges kind by kind).
 pub const MAX_KINDS: usize = 256;
-/// Most tasks a scenario may list.
-pub const MAX_TASKS: usize = 64;
+/// Most tasks a scenario may list (`swarm-100000.ron` has 80).
+pub const MAX_TASKS: usize = 128;
 /// Most rest stations a scenario may list (each is a shared navigation goal with its own
 /// distance field).
 pub const MAX_REST_STATIONS: usize = 256;
-/// Most robots of a team, over all kinds (the `count`s add up to at most this).
-pub const MAX_ROBOTS: usize = 10_000;
+/// Most robots of a team, over all kinds (the `count`s add up to at most this):
+/// `swarm-100000.ron`'s team.
+pub const MAX_ROBOTS: usize = 100_000;
 /// Most rescuees over all tasks (one grid layout also expands to at most 1,000,000 points).
 pub const MAX_RESCUEES: usize = 1_000_000;
 /// Most waypoints of a blind group's lawn-mower sweep over one search area
@@ -63,7 +64,7 @@ pub fn min_waypoint_tolerance_m(longest_side_m: f64) -> f64 {
 /// Most rescuees a robot carries at once and most rescuing resources it brings
 /// (`carrying_capacity`, `rescuing_resources`): a group's sums over [`MAX_ROBOTS`] robots stay
 /// within a 32-bit count.
-pub const MAX_UNITS_PER_ROBOT: u32 = 100_000;
+pub const MAX_UNITS_PER_ROBOT: u32 = 10_000;
 /// Highest top speed of a kind, metres per second.
 pub const MAX_SPEED_M_PER_S: f64 = 100.0;
 /// Range `[min, max]` of every needs level at full HP/energy (`hp_needs_full`,

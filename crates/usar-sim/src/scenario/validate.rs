@@ -26,7 +26,7 @@ use super::check_starts::{check_starts, expand_starts};
 use super::check_tasks::{expand_tasks, task_geometry};
 use super::context::{Ctx, R};
 use super::error::ScenarioError;
-use super::generate::generate_debris_field;
+use super::generate::{ProtectedPlaces, generate_debris_field};
 use super::limits::{check_derived, check_lists, check_sweeps};
 use super::model::Locomotion;
 use super::shape::DebrisShape;
@@ -66,6 +66,7 @@ pub(crate) fn validate(spec: &ScenarioSpec, ctx: &Ctx<'_>) -> R<Scenario> {
     check_reachable(ctx, &rest_stations, &spec.tasks, &geometry, &debris, reach)?;
     let starts = expand_starts(ctx, spec, &kinds, &arena)?;
     let protected = protected_places(&starts, &kinds, &rest_stations, &spec.tasks, &geometry);
+    let protected = ProtectedPlaces::new(&protected);
     for (j, field) in spec.debris_fields.iter().enumerate() {
         let existing: Vec<DebrisShape> = debris.iter().map(|(d, _)| *d).collect();
         let generated =
