@@ -109,11 +109,13 @@ def main():
 
     df, verdicts = usar.gym.evaluate(policy, trials=a.trials, methods=("rne", "hp_dis"),
                                      name="ppo", duration_s=a.duration)
-    total = df[(df.metric == "rescued") & (df.task == "total")]
-    stats = total.groupby("method", sort=False)["value"].agg(["mean", "std"])
-    print(stats.round(2).to_string())
-    shown = ["method", "rival", "mean_method", "mean_rival", "p_value", "effect_size", "verdict"]
-    print(verdicts[shown].round(4).to_string(index=False))
+    rescued = df[(df.metric == "rescued") & (df.task == "total")]
+    for method, values in rescued.groupby("method", sort=False)["value"]:
+        print(f"{method}: {values.mean():.1f} ± {values.std():.1f} rescuees a trial "
+              f"({len(values)} held-out trials)")
+    for v in verdicts.itertuples():
+        print(f"{v.method} > {v.rival}: {v.mean_method:.1f} against {v.mean_rival:.1f}, "
+              f"{v.test} p = {v.p_value:.4f}, effect size {v.effect_size:.2f}, {v.verdict}")
     print(f"took {time.perf_counter() - start:.0f} s")
 
 
