@@ -1,6 +1,7 @@
 //! `scenarios/swarm-1000.ron` and `scenarios/swarm-10000.ron` end to end: 1,000 robots and
 //! four tasks, every method, and 10,000 robots and eight tasks, RNE and DIS. A short run per
-//! method (default test run), and the ignored 1,800 s bound tests of both scenarios, every
+//! method (default test run), `scenarios/swarm-100000.ron` loaded and compared with
+//! swarm-10000 (no trial: one takes minutes), and the ignored 1,800 s bound tests of both scenarios, every
 //! method (every round but the last completes; in release, both by `.ci/run` (swarm-10000's
 //! last, when time allows), and by `just swarm-bound` and `just swarm-bound-10k`;
 //! `docs/scaling.md`, "Jams" and "10,000 robots").
@@ -117,6 +118,41 @@ fn swarm_10000_groups_the_whole_team_by_the_quotas_and_keeps_bodies_apart() {
             "{name}: bodies overlap by {overlap_m} m, more than {OVERLAP_BOUND_M} m"
         );
     }
+}
+
+/// `scenarios/swarm-100000.ron` is `swarm-10000.ron` ten times over: the team in the same 6 : 4
+/// : 2 ratio, ten times the area, tasks, rescuees, debris and radiation sources, and each of its
+/// 80 tasks the difficulty and (within one robot) the quotas of the swarm-10000 task it
+/// repeats. Only loaded here: a trial of 100,000 robots takes minutes (`docs/scaling.md`,
+/// "100,000 robots").
+#[test]
+fn swarm_100000_is_swarm_10000_ten_times_over() {
+    let big = load(&scenario_path("swarm-100000.ron"));
+    let small = load(&scenario_path("swarm-10000.ron"));
+    assert_eq!(big.robots().len(), 100_000);
+    let per_kind: Vec<usize> = big.kinds().iter().map(|k| k.count).collect();
+    assert_eq!(per_kind, [50_000, 33_333, 16_667], "the paper's 6 : 4 : 2");
+    let area = |s: &Scenario| s.arena().width_m.get() * s.arena().height_m.get();
+    assert_eq!(area(&big), 10.0 * area(&small));
+    let rescuees = |s: &Scenario| s.tasks().iter().map(|t| t.rescuees.len()).sum::<usize>();
+    assert_eq!(rescuees(&big), 10 * rescuees(&small));
+    assert_eq!(big.debris().len(), 10 * small.debris().len());
+    assert_eq!(
+        big.radiation_zones().len(),
+        10 * small.radiation_zones().len()
+    );
+    let n = small.tasks().len();
+    assert_eq!(big.tasks().len(), 10 * n);
+    for (t, task) in big.tasks().iter().enumerate() {
+        assert_eq!(task.difficulty, small.tasks()[t % n].difficulty, "task {t}");
+        for (k, kind) in big.kinds().iter().enumerate() {
+            let twin = small.kinds()[k].quota[t % n];
+            assert!(kind.quota[t].abs_diff(twin) <= 1, "task {t}, kind {k}");
+        }
+    }
+    assert_eq!(big.mission(), small.mission());
+    assert_eq!(big.navigation(), small.navigation());
+    assert_eq!(big.collision(), small.collision());
 }
 
 /// Length of the round-bound trials, seconds.
