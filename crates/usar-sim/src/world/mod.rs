@@ -38,6 +38,8 @@
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
 //!   Algorithm 5).
+//! - `resolver_pairs`: rule 1's search for the pairs about to collide, robot by robot, in
+//!   parallel for a large team.
 //! - `resolver_input`: what the resolver knows about one robot this step.
 //! - `collision_course`: the resolver's "about to collide" test of two moving discs.
 //! - `union_find`: union-find over robot ids, the collision lists as its components.
@@ -96,6 +98,7 @@ pub mod plan_query;
 pub mod radiation;
 pub mod resolver;
 mod resolver_input;
+mod resolver_pairs;
 mod robot;
 mod robot_planning;
 mod shared_fields;

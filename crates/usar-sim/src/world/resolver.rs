@@ -45,6 +45,7 @@ use super::neighbour_lists::{NeighbourLists, skin_for_control_steps};
 use super::neighbours::NeighbourQuery;
 pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
+use super::resolver_pairs::pairs_by_chunk;
 use super::steering::pick_turn;
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
@@ -128,6 +129,10 @@ pub struct Resolver {
     decisions: Vec<Decision>,
     deadlocked_lists: u64,
     largest_list: usize,
+    /// Rule 1's pairs of this step, one list per chunk of robots (`resolver_pairs.rs`).
+    pairs: Vec<Vec<(usize, usize)>>,
+    /// Whether rule 1's pair search runs on the calling rayon pool ([`Resolver::set_parallel`]).
+    parallel: bool,
 }
 
 impl Resolver {
@@ -155,6 +160,8 @@ impl Resolver {
             decisions: vec![Decision::default(); n],
             deadlocked_lists: 0,
             largest_list: 0,
+            pairs: Vec::new(),
+            parallel: false,
         }
     }
 
@@ -164,6 +171,12 @@ impl Resolver {
     pub fn for_control_steps(mut self, control_steps: u64) -> Self {
         self.neighbour_lists = NeighbourLists::with_skin(skin_for_control_steps(control_steps));
         self
+    }
+
+    /// Lets (`true`) or forbids (`false`, the default) rule 1's search for the pairs about to
+    /// collide to run on the threads of the calling rayon pool: the same decisions either way.
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
     }
 
     /// Lists found deadlocked (and rotated) by the last [`Resolver::resolve`].
@@ -356,7 +369,6 @@ impl Resolver {
     /// depend on the order of the unions, so this equals the scan of all pairs.
     fn link_pairs(&mut self, inputs: &[ResolverInput]) {
         let n = inputs.len();
-        let horizon = self.params.lookahead_s.get() as f32;
         let keep_pairs = self.params.hold_rule == HoldRule::Yield;
         self.conflicts.clear();
         for i in 0..n {
@@ -364,29 +376,37 @@ impl Resolver {
             self.size[i] = 1;
             self.next[i] = i;
         }
-        for i in 0..n {
+        let mut pairs = std::mem::take(&mut self.pairs);
+        let horizon = self.params.lookahead_s.get() as f32;
+        let this = &*self;
+        pairs_by_chunk(n, self.parallel, &mut pairs, |i, push| {
             let a = &inputs[i];
             if !a.active {
-                continue;
+                return;
             }
-            for &j in self.neighbour_lists.above(i) {
+            for &j in this.neighbour_lists.above(i) {
                 let b = &inputs[j];
-                if !b.active || a.layer != b.layer || !Self::sensed(a, b) {
-                    continue;
+                if b.active
+                    && a.layer == b.layer
+                    && Self::sensed(a, b)
+                    && about_to_collide(
+                        b.pos - a.pos,
+                        b.intent - a.intent,
+                        this.clearance(a, b),
+                        horizon,
+                    )
+                {
+                    push(j);
                 }
-                if about_to_collide(
-                    b.pos - a.pos,
-                    b.intent - a.intent,
-                    self.clearance(a, b),
-                    horizon,
-                ) {
-                    union(&mut self.parent, &mut self.size, &mut self.next, i, j);
-                    if keep_pairs {
-                        self.conflicts.push(i, j);
-                    }
-                }
+            }
+        });
+        for &(i, j) in pairs.iter().flatten() {
+            union(&mut self.parent, &mut self.size, &mut self.next, i, j);
+            if keep_pairs {
+                self.conflicts.push(i, j);
             }
         }
+        self.pairs = pairs;
         if keep_pairs {
             self.conflicts.build(n);
         }

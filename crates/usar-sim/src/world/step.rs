@@ -111,6 +111,7 @@ impl World {
             self.pipelines.resolver_inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
         if self.collision.enabled {
+            self.pipelines.resolver.set_parallel(parallel);
             self.pipelines.resolver.resolve(
                 &self.pipelines.resolver_inputs,
                 &self.pipelines.neighbours,
