@@ -1,13 +1,15 @@
 //! One trial on several threads: a large team's per-robot phases (path following up to the
-//! planner, the read-back after the physics step, the resolver's steering) run on the rayon
+//! planner, the contact gate of `sim.physics: NearBodies`, the read-back after the physics
+//! step, the resolver's search for pairs about to collide and its steering) run on the rayon
 //! pool the trial runs in, and the
 //! trial's numbers are bit-identical for any number of threads (`docs/scaling.md`, "One trial
 //! on all cores"); and two trials side by side on one pool, as a sweep runs them, finish.
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::scenario::PhysicsStepping;
 use usar_sim::scenario::Positive;
-use usar_sim::world::PARALLEL_MIN_ROBOTS;
+use usar_sim::world::{PARALLEL_MIN_ROBOTS, WorldStats};
 
 /// Simulated seconds: grouping, the round start (every robot plans) and 100 control steps of
 /// the team leaving its start grids, with collision lists, holds, steering, detours and
@@ -25,6 +27,8 @@ struct Outcome {
     robots: Vec<[u64; 5]>,
     levels: Vec<[u64; 2]>,
     replans: Vec<u64>,
+    /// The world's totals: steps, Rapier's steps (the gate), deadlocks, the largest list.
+    stats: WorldStats,
     result: TrialResult,
 }
 
@@ -36,6 +40,11 @@ fn run(threads: usize, parallel: bool) -> Outcome {
         .edit(|s| s.navigation.stall_replan_s = Some(stall))
         .expect("a valid edit");
     assert!(s.robots().len() >= PARALLEL_MIN_ROBOTS);
+    assert_eq!(
+        s.sim().physics,
+        PhysicsStepping::NearBodies,
+        "the gate runs per robot"
+    );
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -78,6 +87,7 @@ fn run(threads: usize, parallel: bool) -> Outcome {
             robots,
             levels,
             replans,
+            stats: *sim.world().stats(),
             result,
         }
     })
@@ -97,6 +107,14 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
     // part of path following that stays serial ran between the parallel parts.
     let replanned = one.replans.iter().filter(|&&r| r > 0).count();
     assert!(replanned >= 10, "{replanned} robots re-planned");
+    // The gate let Rapier step on some steps only, and the resolver found pairs about to
+    // collide (lists of more than one robot).
+    let stats = one.stats;
+    assert!(
+        0 < stats.physics_steps && stats.physics_steps < stats.steps,
+        "{stats:?}"
+    );
+    assert!(stats.max_list_len > 1, "{stats:?}");
     for (threads, parallel) in [(2, true), (4, true), (4, false)] {
         let other = run(threads, parallel);
         for (id, (a, b)) in one.robots.iter().zip(&other.robots).enumerate() {
@@ -104,6 +122,10 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
         }
         assert_eq!(
             one.levels, other.levels,
+            "{threads} threads, parallel {parallel}"
+        );
+        assert_eq!(
+            one.stats, other.stats,
             "{threads} threads, parallel {parallel}"
         );
         assert_eq!(
