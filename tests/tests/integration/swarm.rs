@@ -167,7 +167,8 @@ const BOUND_S: f64 = 1800.0;
 /// from then on every round but the last has completed, whatever the rest of the trial does,
 /// and rescue counts only grow (the steps after it are not run, so a step error there would go
 /// unseen; the sweeps of `.ci/run` run whole trials). In release, swarm-1000's trials stop at 308 s
-/// to 386 s simulated and swarm-10000's at 965 s to 1,154 s (its four took 650 s of CPU, `NearBodies`).
+/// to 386 s simulated and swarm-10000's at 965 s to 1,154 s (its four took 650 s of CPU with
+/// `NearBodies`).
 fn rounds_complete_within_the_trial(file: &str, name: &str) {
     let s = load(&scenario_path(file));
     let mut sim = Simulation::builder(&s)
