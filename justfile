@@ -64,7 +64,7 @@ replay-screenshot:
 swarm-bound:
     cargo test --release -p integration-tests --test integration swarm -- --ignored --nocapture --skip swarm_10000
 
-# swarm-10000's round bound, every method (about 17 min on 2 cores; CI runs it last, when time
+# swarm-10000's round bound, every method (about 6 min on 2 cores; CI runs it last, when time
 # allows: docs/scaling.md).
 swarm-bound-10k:
     cargo test --release -p integration-tests --test integration -- --ignored --nocapture swarm_10000
