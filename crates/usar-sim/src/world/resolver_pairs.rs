@@ -47,7 +47,10 @@ mod tests {
     fn the_same_pairs_in_robot_order_either_way() {
         let n = 3 * CHUNK_ROBOTS + 7;
         let pairs_of = |i: usize, push: &mut dyn FnMut(usize)| {
-            for j in (i + 1..n).filter(|j| (i * 7 + j * 3).is_multiple_of(11)).take(3) {
+            for j in (i + 1..n)
+                .filter(|j| (i * 7 + j * 3).is_multiple_of(11))
+                .take(3)
+            {
                 push(j);
             }
         };
