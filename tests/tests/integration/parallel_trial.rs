@@ -1,9 +1,9 @@
 //! One trial on several threads: a large team's per-robot phases (path following up to the
 //! planner, the contact gate of `sim.physics: NearBodies`, the read-back after the physics
-//! step, the resolver's search for pairs about to collide and its steering) run on the rayon
-//! pool the trial runs in, and the
-//! trial's numbers are bit-identical for any number of threads (`docs/scaling.md`, "One trial
-//! on all cores"); and two trials side by side on one pool, as a sweep runs them, finish.
+//! step, the rebuild of the resolver's neighbour lists, its search for pairs about to collide
+//! and its steering) run on the rayon pool the trial runs in, and the trial's numbers are
+//! bit-identical for any number of threads (`docs/scaling.md`, "One trial on all cores"); and
+//! two trials side by side on one pool, as a sweep runs them, finish.
 
 use integration_tests::{load, method, scenario_path};
 use usar_sim::mission::{Simulation, TrialResult};
@@ -27,7 +27,8 @@ struct Outcome {
     robots: Vec<[u64; 5]>,
     levels: Vec<[u64; 2]>,
     replans: Vec<u64>,
-    /// The world's totals: steps, Rapier's steps (the gate), deadlocks, the largest list.
+    /// The world's totals: steps, Rapier's steps (the gate), deadlocks, the largest list, the
+    /// neighbour lists' rebuilds.
     stats: WorldStats,
     result: TrialResult,
 }
@@ -115,6 +116,8 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
         "{stats:?}"
     );
     assert!(stats.max_list_len > 1, "{stats:?}");
+    // The resolver rebuilt its neighbour lists (robot by robot in parallel) more than once.
+    assert!(stats.list_rebuilds > 1, "{stats:?}");
     for (threads, parallel) in [(2, true), (4, true), (4, false)] {
         let other = run(threads, parallel);
         for (id, (a, b)) in one.robots.iter().zip(&other.robots).enumerate() {

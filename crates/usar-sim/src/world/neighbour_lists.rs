@@ -29,12 +29,19 @@
 //! (15,000 steps, method DIS) rebuilt them between 2,000 and 3,000 times (counted with a
 //! temporary print in the rebuild), about every five to seven steps.
 //!
+//! A rebuild of a large team runs robot by robot on the calling rayon pool
+//! ([`NeighbourLists::set_parallel`]): each chunk of [`CHUNK_ROBOTS`] robots fills its own
+//! buffer with its robots' lists, and the buffers are united in robot order, so the lists are
+//! the same bytes as a serial rebuild on any number of threads (not in the paper).
+//!
 //! Reference: L. Verlet, "Computer 'experiments' on classical fluids. I. Thermodynamical
 //! properties of Lennard-Jones molecules", Phys. Rev. 159, 98 (1967).
 
 use parry2d::math::Vector as Vec2;
+use rayon::prelude::*;
 
 use super::neighbours::NeighbourQuery;
+use super::per_robot::CHUNK_ROBOTS;
 use super::resolver_input::{ResolverInput, layer_slot};
 use crate::scenario::Locomotion;
 
@@ -58,6 +65,9 @@ pub fn skin_for_control_steps(control_steps: u64) -> f32 {
 /// rounding of the displacements and the triangle inequality.
 const VALIDITY_SLACK: f32 = 1e-4;
 
+/// A robot's list in the flat ids: its start, the start of its ids above its own, its end.
+type Span = (usize, usize, usize);
+
 /// Per-robot neighbour lists over several steps (see the module docs).
 #[derive(Debug, Clone)]
 pub struct NeighbourLists {
@@ -72,8 +82,13 @@ pub struct NeighbourLists {
     high_m: [f32; 2],
     /// `ids[spans[i].0..spans[i].2]` is robot `i`'s list, its ids above `i` from
     /// `spans[i].1` on.
-    spans: Vec<(usize, usize, usize)>,
+    spans: Vec<Span>,
     ids: Vec<usize>,
+    /// Whether a rebuild runs on the calling rayon pool ([`NeighbourLists::set_parallel`]).
+    parallel: bool,
+    /// A parallel rebuild's buffers, one per chunk of [`CHUNK_ROBOTS`] robots: the chunk's
+    /// ids and spans (relative to its ids), kept between rebuilds.
+    chunks: Vec<(Vec<usize>, Vec<Span>)>,
 }
 
 impl NeighbourLists {
@@ -93,7 +108,15 @@ impl NeighbourLists {
             high_m: [0.0; 2],
             spans: Vec::new(),
             ids: Vec::new(),
+            parallel: false,
+            chunks: Vec::new(),
         }
+    }
+
+    /// Lets (`true`) or forbids (`false`, the default) a rebuild to run robot by robot on the
+    /// threads of the calling rayon pool: the same lists either way (module docs).
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
     }
 
     /// Makes the lists valid for the robots at `inputs[..].pos` (metres, indexed by id) on
@@ -105,7 +128,7 @@ impl NeighbourLists {
         &mut self,
         inputs: &[ResolverInput],
         query_m: [f32; 2],
-        near: &impl NeighbourQuery,
+        near: &(impl NeighbourQuery + Sync),
     ) -> bool {
         for (high, q) in self.high_m.iter_mut().zip(query_m) {
             *high = high.max(q);
@@ -142,36 +165,44 @@ impl NeighbourLists {
         })
     }
 
-    /// Rebuilds every list with the build radius `high + skin` of its layer.
-    fn rebuild(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery) {
+    /// Rebuilds every list with the build radius `high + skin` of its layer: serially into the
+    /// lists, or with [`NeighbourLists::set_parallel`] chunk by chunk on the calling rayon pool
+    /// and then united in robot order (the same bytes).
+    fn rebuild(&mut self, inputs: &[ResolverInput], near: &(impl NeighbourQuery + Sync)) {
         for l in 0..2 {
             self.build_m[l] = self.high_m[l].max(0.0) + self.skin_m;
         }
+        let build_m = self.build_m;
+        let n = inputs.len();
+        self.ids.clear();
+        self.spans.clear();
+        let chunks = n.div_ceil(CHUNK_ROBOTS);
+        if self.parallel && chunks > 1 {
+            if self.chunks.len() < chunks {
+                self.chunks.resize_with(chunks, Default::default);
+            }
+            self.chunks[..chunks]
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(c, (ids, spans))| {
+                    ids.clear();
+                    spans.clear();
+                    let robots = c * CHUNK_ROBOTS..((c + 1) * CHUNK_ROBOTS).min(n);
+                    build_lists(inputs, robots, build_m, near, ids, spans);
+                });
+            for (ids, spans) in &self.chunks[..chunks] {
+                let off = self.ids.len();
+                self.ids.extend_from_slice(ids);
+                self.spans
+                    .extend(spans.iter().map(|&(a, m, b)| (a + off, m + off, b + off)));
+            }
+        } else {
+            build_lists(inputs, 0..n, build_m, near, &mut self.ids, &mut self.spans);
+        }
         self.epoch_pos.clear();
         self.epoch_layer.clear();
-        self.spans.clear();
-        self.ids.clear();
-        for (i, a) in inputs.iter().enumerate() {
-            let start = self.ids.len();
-            near.candidates(
-                a.layer,
-                a.pos,
-                self.build_m[layer_slot(a.layer)],
-                &mut self.ids,
-            );
-            // Ids up to `i` first, then those above it.
-            let list = &mut self.ids[start..];
-            let mut mid = 0;
-            for k in 0..list.len() {
-                if list[k] <= i {
-                    list.swap(mid, k);
-                    mid += 1;
-                }
-            }
-            self.spans.push((start, start + mid, self.ids.len()));
-            self.epoch_pos.push(a.pos);
-            self.epoch_layer.push(a.layer);
-        }
+        self.epoch_pos.extend(inputs.iter().map(|a| a.pos));
+        self.epoch_layer.extend(inputs.iter().map(|a| a.layer));
     }
 
     /// Robot `i`'s list (ids, any order; possibly `i` itself): every robot of its layer within
@@ -187,6 +218,34 @@ impl NeighbourLists {
     pub fn above(&self, i: usize) -> &[usize] {
         let (_, a, b) = self.spans[i];
         &self.ids[a..b]
+    }
+}
+
+/// Appends the lists of `robots` (ids into `inputs`, ascending) to `ids` and their spans
+/// (into `ids`) to `spans`: each robot's candidates from `near` within the build radius
+/// `build_m` of its layer, its ids up to its own first, then those above it.
+fn build_lists(
+    inputs: &[ResolverInput],
+    robots: std::ops::Range<usize>,
+    build_m: [f32; 2],
+    near: &impl NeighbourQuery,
+    ids: &mut Vec<usize>,
+    spans: &mut Vec<Span>,
+) {
+    for i in robots {
+        let a = &inputs[i];
+        let start = ids.len();
+        near.candidates(a.layer, a.pos, build_m[layer_slot(a.layer)], ids);
+        // Ids up to `i` first, then those above it.
+        let list = &mut ids[start..];
+        let mut mid = 0;
+        for k in 0..list.len() {
+            if list[k] <= i {
+                list.swap(mid, k);
+                mid += 1;
+            }
+        }
+        spans.push((start, start + mid, ids.len()));
     }
 }
 
@@ -272,6 +331,32 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A rebuild chunk by chunk on two threads gives the same lists, in the same order, as a
+    /// serial one, over several chunks of both layers.
+    #[test]
+    fn a_parallel_rebuild_gives_the_same_lists() {
+        let n = 3 * CHUNK_ROBOTS + 7;
+        let inputs: Vec<_> = (0..n)
+            .map(|i| {
+                let (x, y) = ((i * 37 % 290) as f32 * 0.1, (i * 53 % 290) as f32 * 0.1);
+                robot(x, y, layer(i % 3 != 0))
+            })
+            .collect();
+        let query = [3.0, 4.0];
+        let mut serial = NeighbourLists::new();
+        assert!(serial.refresh(&inputs, query, &index(&inputs)));
+        let mut parallel = NeighbourLists::new();
+        parallel.set_parallel(true);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        assert!(pool.install(|| parallel.refresh(&inputs, query, &index(&inputs))));
+        assert_eq!(serial.spans, parallel.spans);
+        assert_eq!(serial.ids, parallel.ids);
+        assert!(serial.ids.len() > 4 * n, "{} ids", serial.ids.len());
     }
 
     #[test]

@@ -2,8 +2,9 @@
 //! and writes only its own robot's output (path following up to the planner, the read-back
 //! after the physics step with each robot's radiation factor, and the resolver's steering),
 //! computed with rayon into buffers kept between steps, then applied in robot id order. The
-//! contact gate of `sim.physics: NearBodies` (`contact_gate.rs`) and the resolver's search
-//! for pairs about to collide (`resolver_pairs.rs`) run the same way.
+//! contact gate of `sim.physics: NearBodies` (`contact_gate.rs`), the resolver's search
+//! for pairs about to collide (`resolver_pairs.rs`) and the rebuild of its neighbour lists
+//! (`neighbour_lists.rs`) run the same way.
 //!
 //! Not in the paper. Each robot's output is computed by the same code, with the same
 //! floating-point operations in the same order, on whichever thread runs it, and nothing it

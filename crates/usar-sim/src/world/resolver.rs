@@ -133,6 +133,8 @@ pub struct Resolver {
     pairs: Vec<Vec<(usize, usize)>>,
     /// Whether rule 1's pair search runs on the calling rayon pool ([`Resolver::set_parallel`]).
     parallel: bool,
+    /// Whether the last run rebuilt the neighbour lists.
+    rebuilt_lists: bool,
 }
 
 impl Resolver {
@@ -162,6 +164,7 @@ impl Resolver {
             largest_list: 0,
             pairs: Vec::new(),
             parallel: false,
+            rebuilt_lists: false,
         }
     }
 
@@ -170,13 +173,21 @@ impl Resolver {
     /// at most 1.5 m: robots move farther between two runs).
     pub fn for_control_steps(mut self, control_steps: u64) -> Self {
         self.neighbour_lists = NeighbourLists::with_skin(skin_for_control_steps(control_steps));
+        self.neighbour_lists.set_parallel(self.parallel);
         self
     }
 
     /// Lets (`true`) or forbids (`false`, the default) rule 1's search for the pairs about to
-    /// collide to run on the threads of the calling rayon pool: the same decisions either way.
+    /// collide and the rebuild of the neighbour lists to run on the threads of the calling
+    /// rayon pool: the same decisions either way.
     pub fn set_parallel(&mut self, parallel: bool) {
         self.parallel = parallel;
+        self.neighbour_lists.set_parallel(parallel);
+    }
+
+    /// Whether the last [`Resolver::resolve`] rebuilt the neighbour lists.
+    pub fn rebuilt_lists(&self) -> bool {
+        self.rebuilt_lists
     }
 
     /// Lists found deadlocked (and rotated) by the last [`Resolver::resolve`].
@@ -338,10 +349,15 @@ impl Resolver {
     /// since the last call, seconds (the world's control period: the step without
     /// `sim.control_period_s`). `O(n k)` for `k` robots within a robot's interaction
     /// distance, plus the follower rounds (rule 3).
-    pub fn resolve(&mut self, inputs: &[ResolverInput], near: &impl NeighbourQuery, dt: f64) {
+    pub fn resolve(
+        &mut self,
+        inputs: &[ResolverInput],
+        near: &(impl NeighbourQuery + Sync),
+        dt: f64,
+    ) {
         self.measure_bounds(inputs);
         let query = self.layer_reach(inputs);
-        self.neighbour_lists.refresh(inputs, query, near);
+        self.rebuilt_lists = self.neighbour_lists.refresh(inputs, query, near);
         self.track_progress(inputs, dt);
         self.link_pairs(inputs);
         if self.params.hold_rule == HoldRule::ListHead {
@@ -1033,7 +1049,7 @@ mod tests {
     fn resolve_with(
         r: &mut Resolver,
         inputs: &[ResolverInput],
-        near: &impl NeighbourQuery,
+        near: &(impl NeighbourQuery + Sync),
         full: bool,
     ) {
         r.measure_bounds(inputs);

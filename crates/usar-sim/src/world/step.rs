@@ -124,6 +124,7 @@ impl World {
         }
         if self.collision.enabled {
             self.stats.deadlocks_detected += self.pipelines.resolver.deadlocked_lists();
+            self.stats.list_rebuilds += u64::from(self.pipelines.resolver.rebuilt_lists());
             self.stats.max_list_len = self
                 .stats
                 .max_list_len

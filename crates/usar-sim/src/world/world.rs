@@ -48,6 +48,8 @@ pub struct WorldStats {
     pub deadlocks_detected: u64,
     /// Largest collision list seen (members).
     pub max_list_len: usize,
+    /// Rebuilds of the resolver's neighbour lists (`neighbour_lists.rs`).
+    pub list_rebuilds: u64,
 }
 
 /// The physical world of one USAR trial (paper, sections IV-VI): walls, debris, radiation zones
