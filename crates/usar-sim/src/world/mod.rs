@@ -40,6 +40,7 @@
 //!   Algorithm 5).
 //! - `resolver_pairs`: rule 1's search for the pairs about to collide, robot by robot, in
 //!   parallel for a large team.
+//! - `resolver_reach`: how far a robot's rules can reach this step (the neighbour lists' radius).
 //! - `resolver_input`: what the resolver knows about one robot this step.
 //! - `collision_course`: the resolver's "about to collide" test of two moving discs.
 //! - `union_find`: union-find over robot ids, the collision lists as its components.
@@ -99,6 +100,7 @@ pub mod radiation;
 pub mod resolver;
 mod resolver_input;
 mod resolver_pairs;
+mod resolver_reach;
 mod robot;
 mod robot_planning;
 mod shared_fields;

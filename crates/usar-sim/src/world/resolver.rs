@@ -46,6 +46,7 @@ use super::neighbours::NeighbourQuery;
 pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
 use super::resolver_pairs::pairs_by_chunk;
+use super::resolver_reach::{self, LayerBounds};
 use super::steering::pick_turn;
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
@@ -71,18 +72,6 @@ pub struct Decision {
     pub deadlock_detected: bool,
     /// It left a list whose order had been rotated (its deadlock cleared).
     pub deadlock_resolved: bool,
-}
-
-/// Relative and absolute slack (dimensionless, metres) added to a robot's query radius so that
-/// `f32` rounding in the exact tests never puts a pair beyond the radius it was searched in.
-const REACH_SLACK: f32 = 1e-4;
-
-/// The largest sensing range, body radius and intended speed of one layer's robots this step.
-#[derive(Debug, Clone, Copy, Default)]
-struct LayerBounds {
-    sensing: f32,
-    radius: f32,
-    speed: f32,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -231,29 +220,16 @@ impl Resolver {
     }
 
     /// The radius around robot `a` beyond which no robot of its layer can take part in one of
-    /// the rules with it this step, metres: `min(S, r_a + R + m + (|v_a| + V) h)` with `S` the
-    /// larger of its and the layer's largest sensing range, `R` and `V` the layer's largest
-    /// body radius and intended speed this step, `m` the margin and `h` the look-ahead (two
-    /// discs closer than `c` within `h` were at most `c + |v| h` apart), plus [`REACH_SLACK`].
+    /// the rules with it this step, metres ([`resolver_reach::reach`]).
     fn reach(&self, a: &ResolverInput) -> f32 {
-        let b = self.bounds[layer_slot(a.layer)];
-        let sensed = a.sensing.max(b.sensing);
-        let closing = a.radius
-            + b.radius
-            + self.params.safety_margin_m.get() as f32
-            + (a.intent.length() + b.speed) * self.params.lookahead_s.get() as f32;
-        sensed.min(closing) * (1.0 + REACH_SLACK) + REACH_SLACK
+        let margin_m = self.params.safety_margin_m.get() as f32;
+        let lookahead_s = self.params.lookahead_s.get() as f32;
+        resolver_reach::reach(&self.bounds, margin_m, lookahead_s, a)
     }
 
     /// The layers' largest sensing range, body radius and intended speed among `inputs`.
     fn measure_bounds(&mut self, inputs: &[ResolverInput]) {
-        self.bounds = [LayerBounds::default(); 2];
-        for a in inputs {
-            let b = &mut self.bounds[layer_slot(a.layer)];
-            b.sensing = b.sensing.max(a.sensing);
-            b.radius = b.radius.max(a.radius);
-            b.speed = b.speed.max(a.intent.length());
-        }
+        self.bounds = LayerBounds::measure(inputs);
     }
 
     /// The largest [`Resolver::reach`] of each layer's robots this step (ground, aerial),
