@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use super::bodies::PhysicsScene;
 use super::clearance_grid::ClearanceGrid;
 use super::nav_state::Nav;
+use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::per_robot::CHUNK_ROBOTS;
 use super::world::{World, for_each_near};
@@ -33,13 +34,24 @@ const BOX_SKIP_MARGIN_M: f32 = 1e-3;
 /// so a skipped robot is one the exact test would have found out of reach too.
 const PAIR_SKIP_REL: f32 = 1e-5;
 
+/// Skin of the gate's neighbour lists (`sim.physics: NearBodies`), metres (0.5): the lists
+/// hold every robot within the gate's largest query radius plus this of a robot, and stay
+/// valid until some robot has moved about half of it (`neighbour_lists.rs`); a larger skin
+/// means longer lists and fewer rebuilds. Any skin gives the same answers.
+pub const GATE_LIST_SKIN_M: f32 = 0.5;
+
+/// What the gate's lists add to the largest query radius, metres (1 mm): a robot's own
+/// radius and speed are at most its layer's largest and the team's fastest, and this covers
+/// the rounding of the distances the lists are built and kept on.
+const GATE_LIST_MARGIN_M: f32 = 1e-3;
+
 impl World {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id).
     /// Stops at the first robot near a contact.
     pub(super) fn near_contact(&mut self) -> bool {
         let gate = self.gate(false);
-        let view = self.gate_view(&gate);
+        let view = self.gate_view(&gate, None);
         let near = (0..self.nav.len()).any(|i| view.robot_near_contact(i, |_| {}));
         self.pipelines.gate_speeds = gate.speeds_m_per_s;
         near
@@ -50,16 +62,19 @@ impl World {
     /// robots of a pair found near from either side are marked); returns whether any may.
     /// `near` holds one flag per robot. A large team's robots are tested in parallel, each
     /// writing its own flag and its partners to its chunk's list, which are then marked in
-    /// chunk order: the same flags on any number of threads (a flag is only ever set).
+    /// chunk order: the same flags on any number of threads (a flag is only ever set). The
+    /// robots near each robot come from the gate's neighbour lists
+    /// ([`World::refresh_gate_lists`]), which hold every robot the test could find.
     pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
         let parallel = self.pipelines.per_robot.parallel_for(near.len());
         let gate = self.gate(parallel);
+        let gate_lists = self.refresh_gate_lists(&gate, parallel);
         let mut lists = std::mem::take(&mut self.pipelines.per_robot.scratch);
         let chunks = near.len().div_ceil(CHUNK_ROBOTS).max(1);
         if lists.len() < chunks {
             lists.resize_with(chunks, Vec::new);
         }
-        let view = self.gate_view(&gate);
+        let view = self.gate_view(&gate, Some(&gate_lists));
         let mark_chunk = |(c, (out, partners)): (usize, (&mut [bool], &mut Vec<usize>))| {
             partners.clear();
             for (k, o) in out.iter_mut().enumerate() {
@@ -84,7 +99,31 @@ impl World {
         }
         self.pipelines.per_robot.scratch = lists;
         self.pipelines.gate_speeds = gate.speeds_m_per_s;
+        self.pipelines.gate_lists = gate_lists;
         any
+    }
+
+    /// The gate's neighbour lists for this step, taken out of the pipelines (put back by the
+    /// caller): valid for every robot's query radius, the largest being a robot of its layer's
+    /// largest radius at the team's fastest speed (plus [`GATE_LIST_MARGIN_M`]); rebuilt from
+    /// the neighbour index (rebuilt first if stale) only when some robot has moved too far
+    /// since the last rebuild (`neighbour_lists.rs`), on the rayon pool when `parallel`.
+    fn refresh_gate_lists(&mut self, gate: &Gate, parallel: bool) -> NeighbourLists {
+        let closing_m = (gate.fastest_m_per_s + gate.fastest_m_per_s) * self.dt as f32;
+        let query_m = self.max_radius_m.map(|r| {
+            let r = r as f32;
+            let radius = r + r + closing_m + gate.slack_m;
+            radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M + GATE_LIST_MARGIN_M
+        });
+        let mut lists = std::mem::take(&mut self.pipelines.gate_lists);
+        if lists.stale(&self.nav, query_m) {
+            if !self.pipelines.index_fresh {
+                self.reindex();
+            }
+            lists.set_parallel(parallel);
+            lists.rebuild(&self.nav, &self.pipelines.neighbours);
+        }
+        lists
     }
 
     /// What every robot's gate shares on one step: each robot's speed, the fastest, and the
@@ -121,9 +160,11 @@ impl World {
         }
     }
 
-    /// The state every robot's gate reads, borrowed from the world for one step.
-    fn gate_view<'a>(&'a self, gate: &'a Gate) -> GateView<'a> {
+    /// The state every robot's gate reads, borrowed from the world for one step, with the
+    /// gate's neighbour lists when they are current.
+    fn gate_view<'a>(&'a self, gate: &'a Gate, lists: Option<&'a NeighbourLists>) -> GateView<'a> {
         GateView {
+            lists,
             nav: &self.nav,
             grid: &self.grid,
             scene: &self.scene,
@@ -149,6 +190,9 @@ struct Gate {
 /// What one robot's gate reads, borrowed for one step (nothing in it is written while the
 /// robots are tested, so they may be tested on any thread in any order).
 struct GateView<'a> {
+    /// The gate's neighbour lists, current for this step, if any: each robot's list holds
+    /// every robot its test could find (then neither `index` nor a scan is used).
+    lists: Option<&'a NeighbourLists>,
     nav: &'a [Nav],
     grid: &'a ClearanceGrid,
     scene: &'a PhysicsScene,
@@ -201,9 +245,10 @@ impl GateView<'_> {
                 partner(j);
             }
         };
-        match self.index {
-            Some(index) => index.grid(a.layer).for_each_candidate(a.pos, radius, test),
-            None => for_each_near(self.nav, None, a.layer, a.pos, radius, |j| {
+        match (self.lists, self.index) {
+            (Some(lists), _) => lists.of(i).iter().for_each(|&j| test(j, self.nav[j].pos)),
+            (None, Some(index)) => index.grid(a.layer).for_each_candidate(a.pos, radius, test),
+            (None, None) => for_each_near(self.nav, None, a.layer, a.pos, radius, |j| {
                 test(j, self.nav[j].pos)
             }),
         }

@@ -40,10 +40,38 @@
 use parry2d::math::Vector as Vec2;
 use rayon::prelude::*;
 
+use super::nav_state::Nav;
 use super::neighbours::NeighbourQuery;
 use super::per_robot::CHUNK_ROBOTS;
 use super::resolver_input::{ResolverInput, layer_slot};
 use crate::scenario::Locomotion;
+
+/// A robot as the lists see it: where it is and on which layer. The resolver lists its
+/// [`ResolverInput`]s, the contact gate (`contact_gate.rs`) the robots' [`Nav`] states.
+pub(super) trait Listed {
+    /// The robot's centre, metres.
+    fn centre(&self) -> Vec2;
+    /// The robot's collision layer.
+    fn layer(&self) -> Locomotion;
+}
+
+impl Listed for ResolverInput {
+    fn centre(&self) -> Vec2 {
+        self.pos
+    }
+    fn layer(&self) -> Locomotion {
+        self.layer
+    }
+}
+
+impl Listed for Nav {
+    fn centre(&self) -> Vec2 {
+        self.pos
+    }
+    fn layer(&self) -> Locomotion {
+        self.layer
+    }
+}
 
 /// Skin added to a layer's largest query radius when the lists are rebuilt, with the resolver
 /// run every step, metres: a larger skin means longer lists and fewer rebuilds (a robot may
@@ -91,6 +119,13 @@ pub struct NeighbourLists {
     chunks: Vec<(Vec<usize>, Vec<Span>)>,
 }
 
+impl Default for NeighbourLists {
+    /// [`NeighbourLists::new`].
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl NeighbourLists {
     /// Lists for no robot with the skin [`NEIGHBOUR_LIST_SKIN_M`]; the first
     /// [`NeighbourLists::refresh`] builds them.
@@ -126,22 +161,30 @@ impl NeighbourLists {
     /// Returns whether it rebuilt.
     pub fn refresh(
         &mut self,
-        inputs: &[ResolverInput],
+        inputs: &[impl Listed + Sync],
         query_m: [f32; 2],
         near: &(impl NeighbourQuery + Sync),
     ) -> bool {
-        for (high, q) in self.high_m.iter_mut().zip(query_m) {
-            *high = high.max(q);
-        }
-        if self.valid(inputs, query_m) {
+        if !self.stale(inputs, query_m) {
             return false;
         }
         self.rebuild(inputs, near);
         true
     }
 
+    /// Whether the lists must be rebuilt for the robots `inputs` (by id) whose query radii
+    /// this step are at most `query_m` (metres, ground and aerial): the first half of
+    /// [`NeighbourLists::refresh`], for a caller that must make its [`NeighbourQuery`] current
+    /// before [`NeighbourLists::rebuild`]. Records `query_m` in the layers' largest radii.
+    pub(super) fn stale(&mut self, inputs: &[impl Listed], query_m: [f32; 2]) -> bool {
+        for (high, q) in self.high_m.iter_mut().zip(query_m) {
+            *high = high.max(q);
+        }
+        !self.valid(inputs, query_m)
+    }
+
     /// Whether every layer passes the validity test of the module docs.
-    fn valid(&self, inputs: &[ResolverInput], query_m: [f32; 2]) -> bool {
+    fn valid(&self, inputs: &[impl Listed], query_m: [f32; 2]) -> bool {
         if inputs.len() != self.epoch_pos.len() {
             return false;
         }
@@ -150,12 +193,12 @@ impl NeighbourLists {
             .iter()
             .zip(self.epoch_pos.iter().zip(&self.epoch_layer))
         {
-            let d2 = (a.pos - p0).length_squared();
+            let d2 = (a.centre() - p0).length_squared();
             // A NaN or infinite displacement (a non-finite position): not valid.
-            if !d2.is_finite() || a.layer != layer0 {
+            if !d2.is_finite() || a.layer() != layer0 {
                 return false;
             }
-            let m = &mut moved2[layer_slot(a.layer)];
+            let m = &mut moved2[layer_slot(a.layer())];
             *m = m.max(d2);
         }
         (0..2).all(|l| {
@@ -165,10 +208,15 @@ impl NeighbourLists {
         })
     }
 
-    /// Rebuilds every list with the build radius `high + skin` of its layer: serially into the
-    /// lists, or with [`NeighbourLists::set_parallel`] chunk by chunk on the calling rayon pool
-    /// and then united in robot order (the same bytes).
-    fn rebuild(&mut self, inputs: &[ResolverInput], near: &(impl NeighbourQuery + Sync)) {
+    /// Rebuilds every list with the build radius `high + skin` of its layer from `near` (which
+    /// must index the robots at `inputs[..]`'s centres): serially into the lists, or with
+    /// [`NeighbourLists::set_parallel`] chunk by chunk on the calling rayon pool and then
+    /// united in robot order (the same bytes).
+    pub(super) fn rebuild(
+        &mut self,
+        inputs: &[impl Listed + Sync],
+        near: &(impl NeighbourQuery + Sync),
+    ) {
         for l in 0..2 {
             self.build_m[l] = self.high_m[l].max(0.0) + self.skin_m;
         }
@@ -201,8 +249,8 @@ impl NeighbourLists {
         }
         self.epoch_pos.clear();
         self.epoch_layer.clear();
-        self.epoch_pos.extend(inputs.iter().map(|a| a.pos));
-        self.epoch_layer.extend(inputs.iter().map(|a| a.layer));
+        self.epoch_pos.extend(inputs.iter().map(|a| a.centre()));
+        self.epoch_layer.extend(inputs.iter().map(|a| a.layer()));
     }
 
     /// Robot `i`'s list (ids, any order; possibly `i` itself): every robot of its layer within
@@ -225,7 +273,7 @@ impl NeighbourLists {
 /// (into `ids`) to `spans`: each robot's candidates from `near` within the build radius
 /// `build_m` of its layer, its ids up to its own first, then those above it.
 fn build_lists(
-    inputs: &[ResolverInput],
+    inputs: &[impl Listed],
     robots: std::ops::Range<usize>,
     build_m: [f32; 2],
     near: &impl NeighbourQuery,
@@ -233,9 +281,9 @@ fn build_lists(
     spans: &mut Vec<Span>,
 ) {
     for i in robots {
-        let a = &inputs[i];
+        let (layer, centre) = (inputs[i].layer(), inputs[i].centre());
         let start = ids.len();
-        near.candidates(a.layer, a.pos, build_m[layer_slot(a.layer)], ids);
+        near.candidates(layer, centre, build_m[layer_slot(layer)], ids);
         // Ids up to `i` first, then those above it.
         let list = &mut ids[start..];
         let mut mid = 0;

@@ -4,6 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
@@ -36,6 +37,8 @@ pub(super) struct Pipelines {
     pub(super) near_body: Vec<bool>,
     /// Each robot's body speed on this step, m/s (the contact gate).
     pub(super) gate_speeds: Vec<f32>,
+    /// The contact gate's neighbour lists, kept over several steps (`contact_gate.rs`).
+    pub(super) gate_lists: NeighbourLists,
     /// What the resolver reads of each robot on a control step, taken from its navigation
     /// state and robot state before the resolver runs (indexed by id).
     pub(super) resolver_inputs: Vec<ResolverInput>,

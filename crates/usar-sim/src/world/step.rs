@@ -55,11 +55,8 @@ impl World {
                 self.scene.move_free(self.dt as f32);
             }
             PhysicsStepping::NearBodies => {
-                // The gate asks the neighbour index for every robot: between control steps
-                // it is rebuilt first (a linear scan per robot would cost n^2).
-                if !self.pipelines.index_fresh {
-                    self.reindex();
-                }
+                // The gate reads its own neighbour lists, rebuilt (with the neighbour index
+                // when stale) only when robots have moved far enough.
                 let mut near = std::mem::take(&mut self.pipelines.near_body);
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
