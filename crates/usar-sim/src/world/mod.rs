@@ -97,6 +97,7 @@ mod plan_cache;
 mod plan_into;
 pub mod plan_query;
 pub mod radiation;
+mod radiation_field;
 pub mod resolver;
 mod resolver_input;
 mod resolver_pairs;

@@ -26,7 +26,6 @@ use super::control_clock::ControlClock;
 use super::follow::{Follow, Followed, Stage, follow};
 use super::nav_state::Nav;
 use super::per_robot::CHUNK_ROBOTS;
-use super::radiation::radiation_factor_at;
 use super::robot::RobotState;
 use super::steering::STEER_STATIC_GAP_M;
 use super::step::MOVED_TOLERANCE_M;
@@ -68,12 +67,12 @@ impl World {
     /// radiation factor at its new position, in parallel for a large team.
     pub(super) fn read_back_all(&mut self) {
         let bodies = &self.scene.physics.bodies;
-        let (zones, rule) = (&self.zones[..], self.dose_rule);
+        let radiation = &self.radiation;
         let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
         let dt = self.dt as f32;
         let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
             read_back(bodies, nav, state, dt);
-            *rad = radiation_factor_at(zones, &state.position, rule);
+            *rad = radiation.factor_at(&state.position);
         };
         if parallel {
             self.nav

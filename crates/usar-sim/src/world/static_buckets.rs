@@ -84,6 +84,14 @@ impl StaticBuckets {
         }
     }
 
+    /// The obstacles whose bounding boxes meet the bucket of point `p` (clamped into the
+    /// field), in ascending index, each once: every obstacle whose box holds `p` is among them.
+    pub fn at(&self, p: Vec2) -> impl Iterator<Item = usize> + '_ {
+        let c = self.coord(p.y, self.ny) * self.nx + self.coord(p.x, self.nx);
+        let (a, b) = (self.starts[c] as usize, self.starts[c + 1] as usize);
+        self.items[a..b].iter().map(|&k| k as usize)
+    }
+
     /// Whether `test(k)` holds for some obstacle `k` whose bounding box may lie within
     /// `reach_m` of `p` (every obstacle whose box meets the square of half-side `reach_m`
     /// around `p`, and perhaps others near it; some more than once). Stops at the first.

@@ -12,18 +12,21 @@ use super::error::{NavError, WorldError};
 use super::nav_state::Nav;
 
 use super::clearance_grid::ClearanceGrid;
+use super::contact_gate::GATE_LIST_SKIN_M;
 use super::control_clock::ControlClock;
+use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::plan_query::plan_inflation_m;
-use super::radiation::{self, DoseRule};
+use super::radiation::DoseRule;
+use super::radiation_field::RadiationField;
 use super::resolver::Resolver;
 use super::robot::RobotState;
 use crate::scenario::{
-    CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, RadiationZone, Scenario,
+    CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, Scenario,
 };
 use crate::scenario::{in_field, in_span};
 
@@ -64,11 +67,11 @@ pub struct World {
     pub(super) nav: Vec<Nav>,
     pub(super) robots: Vec<RobotState>,
     /// Each robot's radiation factor at its current position
-    /// ([`radiation::radiation_factor_at`]): computed where the position changes (when the
+    /// ([`super::radiation::radiation_factor_at`]): computed where the position changes (when the
     /// bodies are read back after a physics step, and on a teleport).
     pub(super) radiation_factor: Vec<f64>,
-    pub(super) zones: Vec<RadiationZone>,
-    pub(super) dose_rule: DoseRule,
+    /// The radiation zones and their dose rule.
+    pub(super) radiation: RadiationField,
     /// Arena width and height at physics precision, metres.
     pub(super) arena: (f32, f32),
     pub(super) dt: f64,
@@ -126,14 +129,19 @@ impl World {
             .zip(&robots)
             .map(|(n, r)| n.resolver_input(r))
             .collect();
-        let zones = s.radiation_zones.clone();
         let dose_rule = DoseRule {
             overlap: s.mission.radiation_overlap,
             falloff: s.mission.radiation_falloff,
         };
+        let radiation = RadiationField::new(
+            s.radiation_zones.clone(),
+            dose_rule,
+            s.arena.width_m.get() as f32,
+            s.arena.height_m.get() as f32,
+        );
         let radiation_factor = robots
             .iter()
-            .map(|r| radiation::radiation_factor_at(&zones, &r.position, dose_rule))
+            .map(|r| radiation.factor_at(&r.position))
             .collect();
         let mut neighbours = NeighbourIndex::new(s);
         neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
@@ -149,6 +157,7 @@ impl World {
                     .for_control_steps(clock.period_steps()),
                 near_body: Vec::new(),
                 gate_speeds: Vec::new(),
+                gate_lists: NeighbourLists::with_skin(GATE_LIST_SKIN_M),
                 resolver_inputs,
                 per_robot: PerRobot::new(nav.len()),
                 neighbours,
@@ -157,8 +166,7 @@ impl World {
             nav,
             robots,
             radiation_factor,
-            zones,
-            dose_rule,
+            radiation,
             arena: (s.arena.width_m.get() as f32, s.arena.height_m.get() as f32),
             dt: s.sim.dt_s.get(),
             physics: s.sim.physics,
@@ -385,8 +393,7 @@ impl World {
         nav.pos = p;
         let state = &mut self.robots[id];
         state.position = to_point(p);
-        self.radiation_factor[id] =
-            radiation::radiation_factor_at(&self.zones, &state.position, self.dose_rule);
+        self.radiation_factor[id] = self.radiation.factor_at(&state.position);
         state.velocity = Vector2::zeros();
         // At rest without a goal until the next control step decides again.
         state.held = false;
@@ -484,9 +491,9 @@ impl World {
 
     /// The radiation dose factor at `p` under the scenario's dose rule
     /// (`mission.radiation_overlap`, `mission.radiation_falloff`; see
-    /// [`radiation::radiation_factor_at`]): 0 outside all zones, dimensionless.
+    /// [`super::radiation::radiation_factor_at`]): 0 outside all zones, dimensionless.
     pub fn radiation_factor_at(&self, p: &PointM) -> f64 {
-        radiation::radiation_factor_at(&self.zones, p, self.dose_rule)
+        self.radiation.factor_at(p)
     }
 
     /// [`World::radiation_factor_at`] robot `id`'s position.
