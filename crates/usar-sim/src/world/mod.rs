@@ -31,9 +31,10 @@
 //!   period, path checks), computed once from the scenario and passed to every step.
 //! - `contact_gate`: `sim.physics: NearContacts` and `NearBodies`, whether a contact may begin
 //!   within the next step (for the team or per robot), the straight move of every body on a
-//!   step without one, and the bodies enabled in Rapier only near a contact.
-//! - `static_buckets`: walls and debris by the buckets of a coarse grid, for the contact
-//!   gate's static test.
+//!   step without one, and the bodies enabled in Rapier only near a contact; its pair test
+//!   reads neighbour lists of its own (`neighbour_lists`).
+//! - `static_buckets`: walls and debris (or radiation zones) by the buckets of a coarse grid,
+//!   for the contact gate's static test and the dose factor.
 //! - `conflicts`: the resolver's conflict graph (adjacency lists of the pairs about to
 //!   collide), for the `Yield` hold rule.
 //! - [`resolver`]: priority-based collision avoidance and deadlock solving (section V,
@@ -46,6 +47,7 @@
 //! - `union_find`: union-find over robot ids, the collision lists as its components.
 //! - `steering`: rule 5's candidate headings and static look-ahead.
 //! - [`radiation`]: radiation zones.
+//! - `radiation_field`: the zones with their dose rule, read at a robot's bucket only.
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
 //! - `nav_state`: the per-robot navigation state (path, current waypoint, intent).
