@@ -118,7 +118,12 @@ impl ClearanceGrid {
 
     /// Clearance (capped distance to the nearest obstacle) of the cell containing `p`, metres.
     pub fn clearance_at(&self, p: Vec2) -> f32 {
-        self.dist[self.cell_index(p) as usize]
+        self.clearance_of(self.cell_index(p))
+    }
+
+    /// Clearance of cell `idx` (below `nx * ny`; panics otherwise), metres.
+    pub fn clearance_of(&self, idx: u32) -> f32 {
+        self.dist[idx as usize]
     }
 
     /// Whether cell `idx` is free for `inflation` metres.

@@ -52,8 +52,11 @@ impl World {
     pub(super) fn near_contact(&mut self) -> bool {
         let gate = self.gate(false);
         let view = self.gate_view(&gate, None);
-        let near = (0..self.nav.len()).any(|i| view.robot_near_contact(i, |_| {}));
-        self.pipelines.gate_speeds = gate.speeds_m_per_s;
+        let near = (0..self.nav.len()).any(|i| {
+            let mut clearance = UNREAD;
+            view.robot_near_contact(i, &mut clearance, |_| {})
+        });
+        self.pipelines.gate_discs = gate.discs;
         near
     }
 
@@ -74,31 +77,37 @@ impl World {
         if lists.len() < chunks {
             lists.resize_with(chunks, Vec::new);
         }
+        let mut cache = std::mem::take(&mut self.pipelines.gate_clearance);
+        cache.resize(near.len(), UNREAD);
         let view = self.gate_view(&gate, Some(&gate_lists));
-        let mark_chunk = |(c, (out, partners)): (usize, (&mut [bool], &mut Vec<usize>))| {
+        type Chunk<'a> = ((&'a mut [bool], &'a mut [(Vec2, f32)]), &'a mut Vec<usize>);
+        let mark_chunk = |(c, ((out, cached), partners)): (usize, Chunk<'_>)| {
             partners.clear();
-            for (k, o) in out.iter_mut().enumerate() {
-                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, |j| partners.push(j));
+            for (k, (o, cached)) in out.iter_mut().zip(cached).enumerate() {
+                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, cached, |j| partners.push(j));
             }
         };
         let lists_used = &mut lists[..chunks];
         if parallel {
             near.par_chunks_mut(CHUNK_ROBOTS)
+                .zip(cache.par_chunks_mut(CHUNK_ROBOTS))
                 .zip(lists_used)
                 .enumerate()
                 .for_each(mark_chunk);
         } else {
             near.chunks_mut(CHUNK_ROBOTS)
+                .zip(cache.chunks_mut(CHUNK_ROBOTS))
                 .zip(lists_used)
                 .enumerate()
                 .for_each(mark_chunk);
         }
+        self.pipelines.gate_clearance = cache;
         let any = near.contains(&true);
         for &j in lists.iter().take(chunks).flatten() {
             near[j] = true;
         }
         self.pipelines.per_robot.scratch = lists;
-        self.pipelines.gate_speeds = gate.speeds_m_per_s;
+        self.pipelines.gate_discs = gate.discs;
         self.pipelines.gate_lists = gate_lists;
         any
     }
@@ -134,19 +143,23 @@ impl World {
     /// The speeds are computed in parallel when `parallel`.
     fn gate(&mut self, parallel: bool) -> Gate {
         let bodies = &self.scene.physics.bodies;
-        let mut speeds = std::mem::take(&mut self.pipelines.gate_speeds);
-        speeds.resize(self.nav.len(), 0.0);
-        let speed = |(s, n): (&mut f32, &Nav)| {
-            *s = n.command.length().max(bodies[n.body].linvel().length());
+        let mut discs = std::mem::take(&mut self.pipelines.gate_discs);
+        discs.resize(self.nav.len(), GateDisc::default());
+        let disc = |(d, n): (&mut GateDisc, &Nav)| {
+            *d = GateDisc {
+                pos: n.pos,
+                radius_m: n.radius,
+                speed_m_per_s: n.command.length().max(bodies[n.body].linvel().length()),
+            };
         };
         if parallel {
-            speeds
+            discs
                 .par_iter_mut()
                 .zip(&self.nav)
                 .with_min_len(CHUNK_ROBOTS)
-                .for_each(speed);
+                .for_each(disc);
         } else {
-            speeds.iter_mut().zip(&self.nav).for_each(speed);
+            discs.iter_mut().zip(&self.nav).for_each(disc);
         }
         Gate {
             slack_m: self
@@ -155,8 +168,8 @@ impl World {
                 .integration_parameters
                 .prediction_distance()
                 + NEAR_CONTACT_MARGIN_M,
-            fastest_m_per_s: speeds.iter().copied().fold(0.0f32, f32::max),
-            speeds_m_per_s: speeds,
+            fastest_m_per_s: discs.iter().map(|d| d.speed_m_per_s).fold(0.0f32, f32::max),
+            discs,
         }
     }
 
@@ -183,9 +196,27 @@ impl World {
 struct Gate {
     slack_m: f32,
     fastest_m_per_s: f32,
-    /// Each robot's speed (the larger of its command's and its body's), by id, m/s.
-    speeds_m_per_s: Vec<f32>,
+    /// Each robot's disc and speed this step, by id: what a robot's pair test reads of the
+    /// others, packed (16 bytes a robot) rather than read from their navigation states.
+    discs: Vec<GateDisc>,
 }
+
+/// A robot as the gate's pair test reads it: its centre and radius (its [`Nav`]'s, metres)
+/// and its speed (the larger of its command's and its body's, m/s).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct GateDisc {
+    pos: Vec2,
+    radius_m: f32,
+    speed_m_per_s: f32,
+}
+
+/// A robot's last clearance reading before its first: at no position (a NaN distance from
+/// it never bounds anything).
+const UNREAD: (Vec2, f32) = (Vec2::NAN, 0.0);
+
+/// What the gate allows for the rounding of a robot's distance from where it last read the
+/// clearance grid, metres (1 mm).
+const MOVED_MARGIN_M: f32 = 1e-3;
 
 /// What one robot's gate reads, borrowed for one step (nothing in it is written while the
 /// robots are tested, so they may be tested on any thread in any order).
@@ -212,21 +243,41 @@ impl GateView<'_> {
     /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
     /// then exactly; robots through the neighbour index, calling `partner(j)` for each robot
     /// `j` found near (the test of a pair is the same from both sides up to rounding).
-    fn robot_near_contact(&self, i: usize, mut partner: impl FnMut(usize)) -> bool {
+    ///
+    /// `clearance` is where the robot last read the (static) clearance grid and what it read
+    /// there: while the distance from there, taken off that reading, still bounds its gap to
+    /// the statics above its reach, the grid is not read again (a robot in open ground reads
+    /// it every few dozen steps instead of every step). The bound only decides whether the
+    /// exact test runs, and the exact test answers "no" whenever a bound is above the reach,
+    /// so the answers are those of reading the grid every step.
+    fn robot_near_contact(
+        &self,
+        i: usize,
+        clearance: &mut (Vec2, f32),
+        mut partner: impl FnMut(usize),
+    ) -> bool {
         let (dt, gate) = (self.dt, self.gate);
-        let speed = &gate.speeds_m_per_s;
+        let discs = &gate.discs;
         // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
         let half_diagonal =
             self.grid.cell_m() * std::f32::consts::FRAC_1_SQRT_2 + BOX_SKIP_MARGIN_M;
         let a = &self.nav[i];
-        let va = speed[i];
+        let va = discs[i].speed_m_per_s;
         let reach = va * dt + gate.slack_m;
         let ground = a.layer == Locomotion::Ground;
-        let grid_gap = self.grid.clearance_at(a.pos) - half_diagonal - a.radius;
-        if (!ground || grid_gap <= reach)
-            && self.scene.static_within(a.pos, ground, a.radius, reach)
-        {
-            return true;
+        let moved = (a.pos - clearance.0).length() + MOVED_MARGIN_M;
+        // `!(x > reach)`, not `x <= reach`: a NaN (no reading yet) reads the grid.
+        let open = ground && clearance.1 - half_diagonal - moved - a.radius > reach;
+        if !open {
+            if ground {
+                *clearance = (a.pos, self.grid.clearance_at(a.pos));
+            }
+            let grid_gap = clearance.1 - half_diagonal - a.radius;
+            if (!ground || grid_gap <= reach)
+                && self.scene.static_within(a.pos, ground, a.radius, reach)
+            {
+                return true;
+            }
         }
         let others = self.max_radius_m[usize::from(!ground)] as f32;
         let radius = a.radius + others + (va + gate.fastest_m_per_s) * dt + gate.slack_m;
@@ -238,15 +289,15 @@ impl GateView<'_> {
             if j == i || (q - a.pos).length_squared() > bound * bound {
                 return;
             }
-            let b = &self.nav[j];
-            let gap = (b.pos - a.pos).length() - a.radius - b.radius;
-            if gap <= (va + speed[j]) * dt + gate.slack_m {
+            let b = &discs[j];
+            let gap = (b.pos - a.pos).length() - a.radius - b.radius_m;
+            if gap <= (va + b.speed_m_per_s) * dt + gate.slack_m {
                 near = true;
                 partner(j);
             }
         };
         match (self.lists, self.index) {
-            (Some(lists), _) => lists.of(i).iter().for_each(|&j| test(j, self.nav[j].pos)),
+            (Some(lists), _) => lists.of(i).iter().for_each(|&j| test(j, discs[j].pos)),
             (None, Some(index)) => index.grid(a.layer).for_each_candidate(a.pos, radius, test),
             (None, None) => for_each_near(self.nav, None, a.layer, a.pos, radius, |j| {
                 test(j, self.nav[j].pos)

@@ -4,6 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::contact_gate::GateDisc;
 use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
@@ -35,8 +36,11 @@ pub(super) struct Pipelines {
     /// `sim.physics: NearBodies`: whether robot `id` is near a contact this step (the
     /// contact gate).
     pub(super) near_body: Vec<bool>,
-    /// Each robot's body speed on this step, m/s (the contact gate).
-    pub(super) gate_speeds: Vec<f32>,
+    /// Each robot's disc and speed on this step (the contact gate), by id.
+    pub(super) gate_discs: Vec<GateDisc>,
+    /// Where each robot last read the clearance grid in the contact gate and what it read
+    /// there, metres, by id.
+    pub(super) gate_clearance: Vec<(Vec2, f32)>,
     /// The contact gate's neighbour lists, kept over several steps (`contact_gate.rs`).
     pub(super) gate_lists: NeighbourLists,
     /// What the resolver reads of each robot on a control step, taken from its navigation

@@ -156,7 +156,8 @@ impl World {
                 resolver: Resolver::new(s.collision, nav.len())
                     .for_control_steps(clock.period_steps()),
                 near_body: Vec::new(),
-                gate_speeds: Vec::new(),
+                gate_discs: Vec::new(),
+                gate_clearance: Vec::new(),
                 gate_lists: NeighbourLists::with_skin(GATE_LIST_SKIN_M),
                 resolver_inputs,
                 per_robot: PerRobot::new(nav.len()),
