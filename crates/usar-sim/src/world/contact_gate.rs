@@ -125,11 +125,11 @@ impl World {
             radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M + GATE_LIST_MARGIN_M
         });
         let mut lists = std::mem::take(&mut self.pipelines.gate_lists);
+        lists.set_parallel(parallel);
         if lists.stale(&self.nav, query_m) {
             if !self.pipelines.index_fresh {
                 self.reindex();
             }
-            lists.set_parallel(parallel);
             lists.rebuild(&self.nav, &self.pipelines.neighbours);
         }
         lists

@@ -176,31 +176,47 @@ impl NeighbourLists {
     /// this step are at most `query_m` (metres, ground and aerial): the first half of
     /// [`NeighbourLists::refresh`], for a caller that must make its [`NeighbourQuery`] current
     /// before [`NeighbourLists::rebuild`]. Records `query_m` in the layers' largest radii.
-    pub(super) fn stale(&mut self, inputs: &[impl Listed], query_m: [f32; 2]) -> bool {
+    pub(super) fn stale(&mut self, inputs: &[impl Listed + Sync], query_m: [f32; 2]) -> bool {
         for (high, q) in self.high_m.iter_mut().zip(query_m) {
             *high = high.max(q);
         }
         !self.valid(inputs, query_m)
     }
 
-    /// Whether every layer passes the validity test of the module docs.
-    fn valid(&self, inputs: &[impl Listed], query_m: [f32; 2]) -> bool {
+    /// Whether every layer passes the validity test of the module docs. The largest
+    /// displacement is found chunk by chunk on the calling rayon pool when the lists may run
+    /// in parallel (a maximum is the same in any order).
+    fn valid(&self, inputs: &[impl Listed + Sync], query_m: [f32; 2]) -> bool {
         if inputs.len() != self.epoch_pos.len() {
             return false;
         }
-        let mut moved2 = [0.0f32; 2];
-        for (a, (&p0, &layer0)) in inputs
-            .iter()
-            .zip(self.epoch_pos.iter().zip(&self.epoch_layer))
-        {
-            let d2 = (a.centre() - p0).length_squared();
-            // A NaN or infinite displacement (a non-finite position): not valid.
-            if !d2.is_finite() || a.layer() != layer0 {
-                return false;
-            }
-            let m = &mut moved2[layer_slot(a.layer())];
-            *m = m.max(d2);
-        }
+        let moved = |(robots, epoch): (&[_], (&[Vec2], &[Locomotion]))| {
+            largest_moves(robots, epoch.0, epoch.1)
+        };
+        let chunks = (
+            self.epoch_pos.chunks(CHUNK_ROBOTS),
+            self.epoch_layer.chunks(CHUNK_ROBOTS),
+        );
+        let moved2 = if self.parallel && inputs.len() > CHUNK_ROBOTS {
+            inputs
+                .par_chunks(CHUNK_ROBOTS)
+                .zip(
+                    self.epoch_pos
+                        .par_chunks(CHUNK_ROBOTS)
+                        .zip(self.epoch_layer.par_chunks(CHUNK_ROBOTS)),
+                )
+                .map(moved)
+                .reduce(|| Some([0.0; 2]), merge_moves)
+        } else {
+            inputs
+                .chunks(CHUNK_ROBOTS)
+                .zip(chunks.0.zip(chunks.1))
+                .map(moved)
+                .fold(Some([0.0; 2]), merge_moves)
+        };
+        let Some(moved2) = moved2 else {
+            return false;
+        };
         (0..2).all(|l| {
             let need =
                 (query_m[l] + 2.0 * moved2[l].sqrt()) * (1.0 + VALIDITY_SLACK) + VALIDITY_SLACK;
@@ -267,6 +283,30 @@ impl NeighbourLists {
         let (_, a, b) = self.spans[i];
         &self.ids[a..b]
     }
+}
+
+/// The largest squared displacement per layer of `robots` from their `epoch_pos`, or `None`
+/// if one is not finite (a NaN or infinite position) or changed its layer.
+fn largest_moves(
+    robots: &[impl Listed],
+    epoch_pos: &[Vec2],
+    epoch_layer: &[Locomotion],
+) -> Option<[f32; 2]> {
+    let mut moved2 = [0.0f32; 2];
+    for (a, (&p0, &layer0)) in robots.iter().zip(epoch_pos.iter().zip(epoch_layer)) {
+        let d2 = (a.centre() - p0).length_squared();
+        if !d2.is_finite() || a.layer() != layer0 {
+            return None;
+        }
+        let m = &mut moved2[layer_slot(a.layer())];
+        *m = m.max(d2);
+    }
+    Some(moved2)
+}
+
+/// Two chunks' [`largest_moves`] together.
+fn merge_moves(a: Option<[f32; 2]>, b: Option<[f32; 2]>) -> Option<[f32; 2]> {
+    Some([a?[0].max(b?[0]), a?[1].max(b?[1])])
 }
 
 /// Appends the lists of `robots` (ids into `inputs`, ascending) to `ids` and their spans
