@@ -31,8 +31,10 @@ pub fn threads_of(requested: Option<usize>) -> Result<usize> {
 
 /// The help of `--threads` on the commands that simulate one trial.
 pub const TRIAL_THREADS_HELP: &str = "Threads of the trial (>= 1); default all cores. A team of \
-at least 512 robots follows its paths, reads its bodies back and steers on them; a smaller \
-team, and Rapier, run on one. The results are the same, bit for bit, on any number of threads.";
+at least 512 robots runs its per-robot stages on them (path following, the contact gate of \
+physics: NearBodies, the resolver's pair search and neighbour lists, steering, the read-back \
+of the bodies with their radiation); a smaller team, Rapier, planning and the mission's \
+decisions run on one. The results are the same, bit for bit, on any number of threads.";
 
 /// The rayon pool one trial runs in, of `--threads` threads ([`threads_of`]: all cores when
 /// not given, capped with a warning at 4 x the cores). Run the trial inside
