@@ -11,11 +11,10 @@ use rayon::prelude::*;
 
 use super::bodies::PhysicsScene;
 use super::clearance_grid::ClearanceGrid;
-use super::nav_state::Nav;
+use super::nav_state::{Nav, for_each_near};
 use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::per_robot::CHUNK_ROBOTS;
-use super::world::{World, for_each_near};
 use crate::scenario::Locomotion;
 
 /// What a body must keep beyond Rapier's contact prediction distance and what the two bodies
@@ -45,106 +44,157 @@ pub const GATE_LIST_SKIN_M: f32 = 0.5;
 /// the rounding of the distances the lists are built and kept on.
 const GATE_LIST_MARGIN_M: f32 = 1e-3;
 
-impl World {
+/// The state the contact gate reads on one step, borrowed from the world: the robots'
+/// navigation states (by id), the clearance grid, the physics scene (bodies and statics), each
+/// layer's largest body radius (ground, aerial; metres) and the step (seconds).
+pub(super) struct GateInputs<'a> {
+    pub(super) nav: &'a [Nav],
+    pub(super) grid: &'a ClearanceGrid,
+    pub(super) scene: &'a PhysicsScene,
+    pub(super) max_radius_m: [f64; 2],
+    pub(super) dt_s: f64,
+}
+
+/// The contact gate's stage (`sim.physics: NearContacts` and `NearBodies`): it owns only
+/// what it keeps between steps (its neighbour lists, each robot's last clearance reading) and
+/// its scratch, and reads the world through [`GateInputs`] (the shape of Rapier's
+/// `PhysicsPipeline::step`, which takes the sets it works on as arguments).
+#[derive(Debug, Clone)]
+pub(super) struct ContactGate {
+    /// Each robot's disc and speed on this step, by id.
+    discs: Vec<GateDisc>,
+    /// Where each robot last read the clearance grid and what it read there, metres, by id.
+    clearance: Vec<(Vec2, f32)>,
+    /// The gate's neighbour lists, kept over several steps.
+    lists: NeighbourLists,
+    /// The partners each chunk of [`CHUNK_ROBOTS`] robots found near, by chunk.
+    partners: Vec<Vec<usize>>,
+}
+
+impl Default for ContactGate {
+    fn default() -> Self {
+        Self {
+            discs: Vec::new(),
+            clearance: Vec::new(),
+            lists: NeighbourLists::with_skin(GATE_LIST_SKIN_M),
+            partners: Vec::new(),
+        }
+    }
+}
+
+impl ContactGate {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
-    /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id).
-    /// Stops at the first robot near a contact.
-    pub(super) fn near_contact(&mut self) -> bool {
-        let gate = self.gate(false);
-        let view = self.gate_view(&gate, None);
-        let near = (0..self.nav.len()).any(|i| {
+    /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id),
+    /// asking `index` (the neighbour index while it holds the robots' positions) or else
+    /// scanning the robots. Stops at the first robot near a contact.
+    pub(super) fn near_contact(&mut self, w: &GateInputs, index: Option<&NeighbourIndex>) -> bool {
+        let gate = self.gate(w, false);
+        let view = GateView::new(w, &gate, None, index);
+        let near = (0..w.nav.len()).any(|i| {
             let mut clearance = UNREAD;
             view.robot_near_contact(i, &mut clearance, |_| {})
         });
-        self.pipelines.gate_discs = gate.discs;
+        self.discs = gate.discs;
         near
     }
 
     /// `sim.physics: NearBodies`: marks in `near[id]` whether robot `id` may touch a wall,
     /// debris or another robot within the next step ([`GateView::robot_near_contact`]; both
     /// robots of a pair found near from either side are marked); returns whether any may.
-    /// `near` holds one flag per robot. A large team's robots are tested in parallel, each
-    /// writing its own flag and its partners to its chunk's list, which are then marked in
-    /// chunk order: the same flags on any number of threads (a flag is only ever set). The
-    /// robots near each robot come from the gate's neighbour lists
-    /// ([`World::refresh_gate_lists`]), which hold every robot the test could find.
-    pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
-        let parallel = self.pipelines.per_robot.parallel_for(near.len());
-        let gate = self.gate(parallel);
-        let gate_lists = self.refresh_gate_lists(&gate, parallel);
-        let mut lists = std::mem::take(&mut self.pipelines.per_robot.scratch);
+    /// `near` holds one flag per robot. With `parallel` the robots are tested on the calling
+    /// rayon pool, each writing its own flag and its partners to its chunk's list, which are
+    /// then marked in chunk order: the same flags on any number of threads (a flag is only
+    /// ever set). The robots near each robot come from the gate's neighbour lists
+    /// ([`ContactGate::refresh_lists`]; `neighbours` is rebuilt for them when they are
+    /// rebuilt and `index_fresh` is false, which it then sets).
+    pub(super) fn mark_near_bodies(
+        &mut self,
+        w: &GateInputs,
+        neighbours: &mut NeighbourIndex,
+        index_fresh: &mut bool,
+        parallel: bool,
+        near: &mut [bool],
+    ) -> bool {
+        let gate = self.gate(w, parallel);
+        self.refresh_lists(w, &gate, neighbours, index_fresh, parallel);
         let chunks = near.len().div_ceil(CHUNK_ROBOTS).max(1);
-        if lists.len() < chunks {
-            lists.resize_with(chunks, Vec::new);
+        let mut partners = std::mem::take(&mut self.partners);
+        if partners.len() < chunks {
+            partners.resize_with(chunks, Vec::new);
         }
-        let mut cache = std::mem::take(&mut self.pipelines.gate_clearance);
+        let mut cache = std::mem::take(&mut self.clearance);
         cache.resize(near.len(), UNREAD);
-        let view = self.gate_view(&gate, Some(&gate_lists));
+        let view = GateView::new(w, &gate, Some(&self.lists), None);
         type Chunk<'a> = ((&'a mut [bool], &'a mut [(Vec2, f32)]), &'a mut Vec<usize>);
-        let mark_chunk = |(c, ((out, cached), partners)): (usize, Chunk<'_>)| {
-            partners.clear();
+        let mark_chunk = |(c, ((out, cached), found)): (usize, Chunk<'_>)| {
+            found.clear();
             for (k, (o, cached)) in out.iter_mut().zip(cached).enumerate() {
-                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, cached, |j| partners.push(j));
+                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, cached, |j| found.push(j));
             }
         };
-        let lists_used = &mut lists[..chunks];
+        let used = &mut partners[..chunks];
         if parallel {
             near.par_chunks_mut(CHUNK_ROBOTS)
                 .zip(cache.par_chunks_mut(CHUNK_ROBOTS))
-                .zip(lists_used)
+                .zip(used)
                 .enumerate()
                 .for_each(mark_chunk);
         } else {
             near.chunks_mut(CHUNK_ROBOTS)
                 .zip(cache.chunks_mut(CHUNK_ROBOTS))
-                .zip(lists_used)
+                .zip(used)
                 .enumerate()
                 .for_each(mark_chunk);
         }
-        self.pipelines.gate_clearance = cache;
         let any = near.contains(&true);
-        for &j in lists.iter().take(chunks).flatten() {
+        for &j in partners.iter().take(chunks).flatten() {
             near[j] = true;
         }
-        self.pipelines.per_robot.scratch = lists;
-        self.pipelines.gate_discs = gate.discs;
-        self.pipelines.gate_lists = gate_lists;
+        self.partners = partners;
+        self.clearance = cache;
+        self.discs = gate.discs;
         any
     }
 
-    /// The gate's neighbour lists for this step, taken out of the pipelines (put back by the
-    /// caller): valid for every robot's query radius, the largest being a robot of its layer's
-    /// largest radius at the team's fastest speed (plus [`GATE_LIST_MARGIN_M`]); rebuilt from
-    /// the neighbour index (rebuilt first if stale) only when some robot has moved too far
-    /// since the last rebuild (`neighbour_lists.rs`), on the rayon pool when `parallel`.
-    fn refresh_gate_lists(&mut self, gate: &Gate, parallel: bool) -> NeighbourLists {
-        let closing_m = (gate.fastest_m_per_s + gate.fastest_m_per_s) * self.dt as f32;
-        let query_m = self.max_radius_m.map(|r| {
+    /// Makes the gate's neighbour lists valid for every robot's query radius this step, the
+    /// largest being a robot of its layer's largest radius at the team's fastest speed (plus
+    /// [`GATE_LIST_MARGIN_M`]): rebuilt from `neighbours` (rebuilt first unless
+    /// `index_fresh`) only when some robot has moved too far since the last rebuild
+    /// (`neighbour_lists.rs`), on the rayon pool when `parallel`.
+    fn refresh_lists(
+        &mut self,
+        w: &GateInputs,
+        gate: &Gate,
+        neighbours: &mut NeighbourIndex,
+        index_fresh: &mut bool,
+        parallel: bool,
+    ) {
+        let closing_m = (gate.fastest_m_per_s + gate.fastest_m_per_s) * w.dt_s as f32;
+        let query_m = w.max_radius_m.map(|r| {
             let r = r as f32;
             let radius = r + r + closing_m + gate.slack_m;
             radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M + GATE_LIST_MARGIN_M
         });
-        let mut lists = std::mem::take(&mut self.pipelines.gate_lists);
-        lists.set_parallel(parallel);
-        if lists.stale(&self.nav, query_m) {
-            if !self.pipelines.index_fresh {
-                self.reindex();
+        self.lists.set_parallel(parallel);
+        if self.lists.stale(w.nav, query_m) {
+            if !*index_fresh {
+                neighbours.rebuild(w.nav.iter().map(|n| (n.layer, n.pos)));
+                *index_fresh = true;
             }
-            lists.rebuild(&self.nav, &self.pipelines.neighbours);
+            self.lists.rebuild(w.nav, neighbours);
         }
-        lists
     }
 
-    /// What every robot's gate shares on one step: each robot's speed, the fastest, and the
-    /// slack every gap is allowed (Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]).
-    /// A robot's speed is the larger of its command's and its body's: with `NearContacts` the
-    /// bodies were driven at the commands before the gate, so the two are one; with
-    /// `NearBodies` a body Rapier pushed last step may still move faster than its command.
-    /// The speeds are computed in parallel when `parallel`.
-    fn gate(&mut self, parallel: bool) -> Gate {
-        let bodies = &self.scene.physics.bodies;
-        let mut discs = std::mem::take(&mut self.pipelines.gate_discs);
-        discs.resize(self.nav.len(), GateDisc::default());
+    /// What every robot's gate shares on one step: each robot's disc and speed, the fastest,
+    /// and the slack every gap is allowed (Rapier's prediction distance and
+    /// [`NEAR_CONTACT_MARGIN_M`]). A robot's speed is the larger of its command's and its
+    /// body's: with `NearContacts` the bodies were driven at the commands before the gate, so
+    /// the two are one; with `NearBodies` a body Rapier pushed last step may still move faster
+    /// than its command. The discs are filled in parallel when `parallel`.
+    fn gate(&mut self, w: &GateInputs, parallel: bool) -> Gate {
+        let bodies = &w.scene.physics.bodies;
+        let mut discs = std::mem::take(&mut self.discs);
+        discs.resize(w.nav.len(), GateDisc::default());
         let disc = |(d, n): (&mut GateDisc, &Nav)| {
             *d = GateDisc {
                 pos: n.pos,
@@ -155,39 +205,17 @@ impl World {
         if parallel {
             discs
                 .par_iter_mut()
-                .zip(&self.nav)
+                .zip(w.nav)
                 .with_min_len(CHUNK_ROBOTS)
                 .for_each(disc);
         } else {
-            discs.iter_mut().zip(&self.nav).for_each(disc);
+            discs.iter_mut().zip(w.nav).for_each(disc);
         }
         Gate {
-            slack_m: self
-                .scene
-                .physics
-                .integration_parameters
-                .prediction_distance()
+            slack_m: w.scene.physics.integration_parameters.prediction_distance()
                 + NEAR_CONTACT_MARGIN_M,
             fastest_m_per_s: discs.iter().map(|d| d.speed_m_per_s).fold(0.0f32, f32::max),
             discs,
-        }
-    }
-
-    /// The state every robot's gate reads, borrowed from the world for one step, with the
-    /// gate's neighbour lists when they are current.
-    fn gate_view<'a>(&'a self, gate: &'a Gate, lists: Option<&'a NeighbourLists>) -> GateView<'a> {
-        GateView {
-            lists,
-            nav: &self.nav,
-            grid: &self.grid,
-            scene: &self.scene,
-            index: self
-                .pipelines
-                .index_fresh
-                .then_some(&self.pipelines.neighbours),
-            max_radius_m: self.max_radius_m,
-            dt: self.dt as f32,
-            gate,
         }
     }
 }
@@ -233,6 +261,26 @@ struct GateView<'a> {
     max_radius_m: [f64; 2],
     dt: f32,
     gate: &'a Gate,
+}
+
+impl<'a> GateView<'a> {
+    fn new(
+        w: &GateInputs<'a>,
+        gate: &'a Gate,
+        lists: Option<&'a NeighbourLists>,
+        index: Option<&'a NeighbourIndex>,
+    ) -> Self {
+        GateView {
+            lists,
+            nav: w.nav,
+            grid: w.grid,
+            scene: w.scene,
+            index,
+            max_radius_m: w.max_radius_m,
+            dt: w.dt_s as f32,
+            gate,
+        }
+    }
 }
 
 impl GateView<'_> {
@@ -372,7 +420,7 @@ impl PhysicsScene {
 mod tests {
     use super::*;
     use crate::scenario::PhysicsStepping;
-    use crate::world::ControlClock;
+    use crate::world::{ControlClock, World};
 
     fn paper(physics: PhysicsStepping) -> crate::scenario::Scenario {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenarios/paper.ron");

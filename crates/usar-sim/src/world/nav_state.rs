@@ -4,6 +4,7 @@
 use parry2d::math::Vector as Vec2;
 use rapier2d::prelude::RigidBodyHandle;
 
+use super::neighbours::NeighbourIndex;
 use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
 use crate::scenario::{Locomotion, RobotKind};
@@ -146,5 +147,27 @@ impl Nav {
             key: state.priority_key,
             remaining: if active { self.remaining() } else { 0.0 },
         }
+    }
+}
+
+/// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of `p`
+/// (and perhaps others): the candidates of `index` (the neighbour index while it holds the
+/// robots' positions), else every robot of the layer in `nav` (between control steps the
+/// index is not rebuilt). Callers test the distance themselves, so both give the same answers.
+pub(super) fn for_each_near(
+    nav: &[Nav],
+    index: Option<&NeighbourIndex>,
+    layer: Locomotion,
+    p: Vec2,
+    radius_m: f32,
+    mut f: impl FnMut(usize),
+) {
+    match index {
+        Some(index) => index
+            .grid(layer)
+            .for_each_candidate(p, radius_m, |j, _| f(j)),
+        None => (0..nav.len())
+            .filter(|&j| nav[j].layer == layer)
+            .for_each(f),
     }
 }

@@ -4,8 +4,7 @@
 
 use parry2d::math::Vector as Vec2;
 
-use super::contact_gate::GateDisc;
-use super::neighbour_lists::NeighbourLists;
+use super::contact_gate::ContactGate;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
@@ -36,13 +35,8 @@ pub(super) struct Pipelines {
     /// `sim.physics: NearBodies`: whether robot `id` is near a contact this step (the
     /// contact gate).
     pub(super) near_body: Vec<bool>,
-    /// Each robot's disc and speed on this step (the contact gate), by id.
-    pub(super) gate_discs: Vec<GateDisc>,
-    /// Where each robot last read the clearance grid in the contact gate and what it read
-    /// there, metres, by id.
-    pub(super) gate_clearance: Vec<(Vec2, f32)>,
-    /// The contact gate's neighbour lists, kept over several steps (`contact_gate.rs`).
-    pub(super) gate_lists: NeighbourLists,
+    /// The contact gate's lists, readings and scratch (`contact_gate.rs`).
+    pub(super) gate: ContactGate,
     /// What the resolver reads of each robot on a control step, taken from its navigation
     /// state and robot state before the resolver runs (indexed by id).
     pub(super) resolver_inputs: Vec<ResolverInput>,

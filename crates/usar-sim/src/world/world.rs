@@ -9,12 +9,11 @@ use parry2d::math::Vector as Vec2;
 
 use super::bodies::{PhysicsScene, to_point, to_vec2};
 use super::error::{NavError, WorldError};
-use super::nav_state::Nav;
+use super::nav_state::{Nav, for_each_near};
 
 use super::clearance_grid::ClearanceGrid;
-use super::contact_gate::GATE_LIST_SKIN_M;
+use super::contact_gate::{ContactGate, GateInputs};
 use super::control_clock::ControlClock;
-use super::neighbour_lists::NeighbourLists;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
@@ -156,9 +155,7 @@ impl World {
                 resolver: Resolver::new(s.collision, nav.len())
                     .for_control_steps(clock.period_steps()),
                 near_body: Vec::new(),
-                gate_discs: Vec::new(),
-                gate_clearance: Vec::new(),
-                gate_lists: NeighbourLists::with_skin(GATE_LIST_SKIN_M),
+                gate: ContactGate::default(),
                 resolver_inputs,
                 per_robot: PerRobot::new(nav.len()),
                 neighbours,
@@ -412,6 +409,35 @@ impl World {
         self.pipelines.index_fresh = true;
     }
 
+    /// The contact gate's state, borrowed from this world for one step, beside the pipelines
+    /// (the gate's own state and the neighbour index).
+    fn gate_inputs(&mut self) -> (GateInputs<'_>, &mut Pipelines) {
+        let inputs = GateInputs {
+            nav: &self.nav,
+            grid: &self.grid,
+            scene: &self.scene,
+            max_radius_m: self.max_radius_m,
+            dt_s: self.dt,
+        };
+        (inputs, &mut self.pipelines)
+    }
+
+    /// [`ContactGate::near_contact`] over this world (`sim.physics: NearContacts`).
+    pub(super) fn near_contact(&mut self) -> bool {
+        let (w, p) = self.gate_inputs();
+        p.gate
+            .near_contact(&w, p.index_fresh.then_some(&p.neighbours))
+    }
+
+    /// [`ContactGate::mark_near_bodies`] over this world (`sim.physics: NearBodies`), in
+    /// parallel for a large team.
+    pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
+        let (w, p) = self.gate_inputs();
+        let parallel = p.per_robot.parallel_for(near.len());
+        p.gate
+            .mark_near_bodies(&w, &mut p.neighbours, &mut p.index_fresh, parallel, near)
+    }
+
     /// [`for_each_near`] over this world's robots and, while it is fresh, its neighbour index.
     pub(super) fn for_each_near(
         &self,
@@ -533,28 +559,6 @@ impl World {
             });
         }
         worst
-    }
-}
-
-/// Calls `f(j)` for every robot `j` of `layer` whose centre may lie within `radius_m` of `p`
-/// (and perhaps others): the candidates of `index` (the neighbour index while it holds the
-/// robots' positions), else every robot of the layer in `nav` (between control steps the
-/// index is not rebuilt). Callers test the distance themselves, so both give the same answers.
-pub(super) fn for_each_near(
-    nav: &[Nav],
-    index: Option<&NeighbourIndex>,
-    layer: Locomotion,
-    p: Vec2,
-    radius_m: f32,
-    mut f: impl FnMut(usize),
-) {
-    match index {
-        Some(index) => index
-            .grid(layer)
-            .for_each_candidate(p, radius_m, |j, _| f(j)),
-        None => (0..nav.len())
-            .filter(|&j| nav[j].layer == layer)
-            .for_each(f),
     }
 }
 
