@@ -27,6 +27,7 @@ mod modules;
 mod rules;
 mod tricks;
 mod tricks_planted;
+mod world_methods;
 
 use std::path::{Path, PathBuf};
 

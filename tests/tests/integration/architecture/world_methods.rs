@@ -1,0 +1,125 @@
+//! The World as data (issue 73): `World`'s methods live in `world/world.rs`, the mission-facing
+//! API, and each stage of a step is a function over explicit borrows in a file of its own
+//! (`ContactGate::mark_near_bodies` takes `GateInputs`, the neighbour index and its freshness),
+//! not another `impl World` block that may touch every field.
+//!
+//! The files that still hold an `impl World` are listed in [`STILL_IMPL_WORLD`]; the list may
+//! only shrink: a file not on it that gains one fails, and so does a listed file that no
+//! longer has one (take it off the list).
+
+use std::path::{Path, PathBuf};
+
+/// The one file whose `impl World` blocks are the World's API, from the workspace root.
+const WORLD_FILE: &str = "crates/usar-sim/src/world/world.rs";
+
+/// The files that still hold an `impl World` block besides [`WORLD_FILE`], from the workspace
+/// root: stages not yet written as functions over explicit borrows.
+const STILL_IMPL_WORLD: &[&str] = &[
+    "crates/usar-sim/src/world/commands.rs",
+    "crates/usar-sim/src/world/parallel.rs",
+    "crates/usar-sim/src/world/path_following.rs",
+    "crates/usar-sim/src/world/robot_planning.rs",
+    "crates/usar-sim/src/world/step.rs",
+];
+
+/// Whether Rust source `text` has an `impl World` block (inherent, generic or of a trait),
+/// outside line comments: a line starting with `impl` whose header's last word is `World`.
+fn has_impl_world(text: &str) -> bool {
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .any(|l| {
+            let Some(rest) = l.trim_start().strip_prefix("impl") else {
+                return false;
+            };
+            // `impl World {`, `impl<'a> World {`, `impl Trait for World {`.
+            let head = rest.split('{').next().unwrap_or("");
+            let words: Vec<&str> = head
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .filter(|w| !w.is_empty())
+                .collect();
+            words.last() == Some(&"World")
+        })
+}
+
+/// Every `.rs` file under `dir`, recursively, sorted.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap_or_else(|e| panic!("{}: {e}", d.display())) {
+            let path = entry.expect("a directory entry").path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The problems of the rule over the usar-sim sources under `root` (the workspace root).
+fn problems(root: &Path) -> Vec<String> {
+    let mut problems = Vec::new();
+    let mut found = Vec::new();
+    for path in rust_files(&root.join("crates/usar-sim/src")) {
+        let rel = path.strip_prefix(root).expect("under the root");
+        let rel = rel.to_string_lossy().replace('\\', "/");
+        let text = std::fs::read_to_string(&path).expect("a source file");
+        if has_impl_world(&text) && rel != WORLD_FILE {
+            found.push(rel.clone());
+            if !STILL_IMPL_WORLD.contains(&rel.as_str()) {
+                problems.push(format!(
+                    "{rel}: an `impl World` outside {WORLD_FILE}: write the stage as a function \
+                     over explicit borrows (as contact_gate.rs's ContactGate), or add a method \
+                     to the World's API in {WORLD_FILE}"
+                ));
+            }
+        }
+    }
+    for listed in STILL_IMPL_WORLD {
+        if !found.iter().any(|f| f == listed) {
+            problems.push(format!(
+                "{listed} no longer has an `impl World`: take it off STILL_IMPL_WORLD in {}",
+                file!()
+            ));
+        }
+    }
+    problems
+}
+
+#[test]
+fn world_methods_live_in_world_rs_and_the_rest_only_shrinks() {
+    let problems = problems(&super::workspace_root());
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn an_impl_world_is_recognised_in_each_form() {
+    assert!(has_impl_world("impl World {\n}"));
+    assert!(has_impl_world("  impl<'a> World {"));
+    assert!(has_impl_world("impl Default for World {"));
+    assert!(!has_impl_world("impl WorldStats {"));
+    assert!(!has_impl_world("impl ContactGate {"));
+    assert!(!has_impl_world("// impl World {"));
+    assert!(!has_impl_world("fn f(w: &World) {}"));
+}
+
+#[test]
+fn a_planted_impl_world_and_a_stale_list_entry_are_found() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let world = dir.path().join("crates/usar-sim/src/world");
+    std::fs::create_dir_all(&world).expect("the folders");
+    std::fs::write(world.join("world.rs"), "impl World {}\n").expect("world.rs");
+    std::fs::write(world.join("stage.rs"), "impl World {\n}\n").expect("stage.rs");
+    let problems = problems(dir.path());
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.starts_with("crates/usar-sim/src/world/stage.rs: an `impl World`")),
+        "{problems:?}"
+    );
+    // None of the listed files exists there: each is named as off the list.
+    assert_eq!(problems.len(), 1 + STILL_IMPL_WORLD.len(), "{problems:?}");
+}
