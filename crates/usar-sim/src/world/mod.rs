@@ -60,8 +60,9 @@
 //! - `path_following`: a robot's intended velocity from its path: `follow`, then the planner's
 //!   part (detours and re-plans), in robot order.
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
-//! - `parallel`: the step's per-robot phases (path following, read-back, steering) on a rayon
-//!   pool for a large team ([`PARALLEL_MIN_ROBOTS`]), bit-identical on any number of threads.
+//! - `parallel`: the step's per-robot phases (path following, read-back, steering), functions
+//!   over explicit borrows, on a rayon pool for a large team ([`PARALLEL_MIN_ROBOTS`]),
+//!   bit-identical on any number of threads; [`MOVED_TOLERANCE_M`].
 //! - `per_robot`: the per-robot outputs of those phases, and when they run in parallel.
 //! - `pipelines`: the world's pipelines (planner, resolver, contact gate, parallel phases)
 //!   with their memory and scratch, kept apart from the world's state.
@@ -124,6 +125,7 @@ pub use commands::drive_bodies;
 pub use contact_gate::NEAR_CONTACT_MARGIN_M;
 pub use control_clock::ControlClock;
 pub use error::{NavError, WorldError};
+pub use parallel::MOVED_TOLERANCE_M;
 pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
     STALL_PROGRESS_M, STALL_REPLAN_S,
@@ -131,5 +133,4 @@ pub use path_following_params::{
 pub use per_robot::PARALLEL_MIN_ROBOTS;
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;
-pub use step::MOVED_TOLERANCE_M;
 pub use world::{CLEARANCE_CAP_MARGIN_M, World, WorldStats};

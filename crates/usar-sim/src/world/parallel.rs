@@ -4,7 +4,8 @@
 //! computed with rayon into buffers kept between steps, then applied in robot id order. The
 //! contact gate of `sim.physics: NearBodies` (`contact_gate.rs`), the resolver's search
 //! for pairs about to collide (`resolver_pairs.rs`) and the rebuild of its neighbour lists
-//! (`neighbour_lists.rs`) run the same way.
+//! (`neighbour_lists.rs`) run the same way. Each phase here is a function over explicit
+//! borrows (`&` what it reads, `&mut` the slices or buffers it writes), called by the step.
 //!
 //! Not in the paper. Each robot's output is computed by the same code, with the same
 //! floating-point operations in the same order, on whichever thread runs it, and nothing it
@@ -22,123 +23,134 @@ use rapier2d::dynamics::RigidBodySet;
 use rayon::prelude::*;
 
 use super::bodies::to_point;
+use super::clearance_grid::ClearanceGrid;
 use super::control_clock::ControlClock;
-use super::follow::{Follow, Followed, Stage, follow};
+use super::follow::{Follow, FollowCtx, Followed, Stage, follow};
 use super::nav_state::Nav;
-use super::per_robot::CHUNK_ROBOTS;
+use super::per_robot::{CHUNK_ROBOTS, PerRobot};
+use super::radiation_field::RadiationField;
+use super::resolver::Resolver;
+use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
 use super::steering::STEER_STATIC_GAP_M;
-use super::step::MOVED_TOLERANCE_M;
-use super::world::World;
 use crate::scenario::Locomotion;
 
-impl World {
-    /// Lets (`true`, the default) or forbids (`false`) this world's per-robot phases to run on
-    /// the threads of the calling rayon pool. Results are bit-identical either way; a sweep
-    /// that runs one trial per thread forbids it so that trials do not compete for threads.
-    pub fn set_parallel(&mut self, enabled: bool) {
-        self.pipelines.per_robot.enabled = enabled;
-    }
+/// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
+/// metres.
+pub const MOVED_TOLERANCE_M: f64 = 1e-4;
 
-    /// Path following of every robot from the start of this control step ([`follow`]) into
-    /// `per_robot.followed`, in parallel: `Some` where it is done, `None` where the robot needs
-    /// the planner (the world then runs that robot's path following serially, in id order:
-    /// [`World::update_intent`]). `tick` counts the control steps before this one. Reads only
-    /// each robot's own state, the grid and the clock, and writes only the buffer.
-    pub(super) fn follow_all(&mut self, tick: u64, clock: &ControlClock) {
-        let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
-        out.resize(self.nav.len(), None);
-        let ctx = self.follow_ctx(clock.period_s(self.dt));
-        let (nav, robots) = (&self.nav[..], &self.robots[..]);
-        out.par_iter_mut()
-            .enumerate()
+/// Path following of every robot from the start of this control step ([`follow`]) into
+/// `out` (resized to one entry per robot, by id), in parallel: `Some` where it is done, `None`
+/// where the robot needs the planner (the world then runs that robot's path following
+/// serially, in id order). Reads `ctx` (grid, parameters, clock), each robot's own navigation
+/// state `nav[id]` and state `robots[id]` (`nav` and `robots` of one length, by id) and
+/// `clock`'s path checks; `tick` counts the control steps before this one. Writes only `out`.
+pub(super) fn follow_all(
+    ctx: &FollowCtx,
+    nav: &[Nav],
+    robots: &[RobotState],
+    tick: u64,
+    clock: &ControlClock,
+    out: &mut Vec<Option<Followed>>,
+) {
+    out.resize(nav.len(), None);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(CHUNK_ROBOTS)
+        .for_each(|(id, o)| {
+            let (me, state) = (&nav[id], &robots[id]);
+            let mut f = Followed::of(me, state);
+            let due = clock.path_check_due(tick, id);
+            let done = follow(ctx, me, state, due, &mut f, Stage::Start) == Follow::Done;
+            *o = done.then_some(f);
+        });
+}
+
+/// Reads every robot's body back from `bodies` after the physics step (see [`read_back`];
+/// a step of `dt_s` seconds) into its navigation state `nav[id]` and state `robots[id]`, and
+/// its dose factor under `radiation` at its new position into `radiation_factor[id]` (the
+/// three slices of one length, by id); on the calling rayon pool when `parallel`
+/// ([`PerRobot::parallel_for`] of the team). Each robot writes only its own slots.
+pub(super) fn read_back_all(
+    bodies: &RigidBodySet,
+    radiation: &RadiationField,
+    dt_s: f64,
+    parallel: bool,
+    nav: &mut [Nav],
+    robots: &mut [RobotState],
+    radiation_factor: &mut [f64],
+) {
+    let dt = dt_s as f32;
+    let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
+        read_back(bodies, nav, state, dt);
+        *rad = radiation.factor_at(&state.position);
+    };
+    if parallel {
+        nav.par_iter_mut()
+            .zip(robots)
+            .zip(radiation_factor)
             .with_min_len(CHUNK_ROBOTS)
-            .for_each(|(id, o)| {
-                let (me, state) = (&nav[id], &robots[id]);
-                let mut f = Followed::of(me, state);
-                let due = clock.path_check_due(tick, id);
-                let done = follow(&ctx, me, state, due, &mut f, Stage::Start) == Follow::Done;
-                *o = done.then_some(f);
-            });
-        self.pipelines.per_robot.followed = out;
+            .for_each(each);
+    } else {
+        nav.iter_mut()
+            .zip(robots)
+            .zip(radiation_factor)
+            .for_each(each);
     }
+}
 
-    /// Reads every robot's body back after the physics step (see [`read_back`]) and its
-    /// radiation factor at its new position, in parallel for a large team.
-    pub(super) fn read_back_all(&mut self) {
-        let bodies = &self.scene.physics.bodies;
-        let radiation = &self.radiation;
-        let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
-        let dt = self.dt as f32;
-        let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
-            read_back(bodies, nav, state, dt);
-            *rad = radiation.factor_at(&state.position);
-        };
-        if parallel {
-            self.nav
-                .par_iter_mut()
-                .zip(&mut self.robots)
-                .zip(&mut self.radiation_factor)
-                .with_min_len(CHUNK_ROBOTS)
-                .for_each(each);
-        } else {
-            self.nav
-                .iter_mut()
-                .zip(&mut self.robots)
-                .zip(&mut self.radiation_factor)
-                .for_each(each);
-        }
+/// Rule 5 for every robot `resolver` did not hold, into `per.steered` (one entry per robot,
+/// by id; ground robots keep [`STEER_STATIC_GAP_M`] beyond their radius from walls and debris
+/// of `grid`), in parallel for a large team ([`PerRobot::parallel_for`]), each task of
+/// [`CHUNK_ROBOTS`] robots with its own scratch list of `per.scratch`. Call after `resolver`
+/// ran on `inputs` (one per robot, by id); `nav` (by id) gives each robot's steering side.
+/// Writes only `per`.
+pub(super) fn steer_all(
+    resolver: &Resolver,
+    inputs: &[ResolverInput],
+    grid: &ClearanceGrid,
+    nav: &[Nav],
+    per: &mut PerRobot,
+) {
+    let n = inputs.len();
+    let parallel = per.parallel_for(n);
+    per.steered.resize(n, None);
+    let chunks = n.div_ceil(CHUNK_ROBOTS).max(1);
+    if per.scratch.len() < chunks {
+        per.scratch.resize_with(chunks, Vec::new);
     }
-
-    /// Rule 5 for every robot the resolver did not hold, into `per_robot.steered` (ground
-    /// robots keep [`STEER_STATIC_GAP_M`] beyond their radius from walls and debris), in
-    /// parallel for a large team. Call after the resolver ran on
-    /// `pipelines.resolver_inputs`.
-    pub(super) fn steer_all(&mut self) {
-        let p = &mut self.pipelines;
-        let n = p.resolver_inputs.len();
-        let (resolver, inputs, grid) = (&p.resolver, &p.resolver_inputs[..], &self.grid);
-        let nav = &self.nav[..];
-        let per = &mut p.per_robot;
-        let parallel = per.parallel_for(n);
-        per.steered.resize(n, None);
-        let chunks = n.div_ceil(CHUNK_ROBOTS).max(1);
-        if per.scratch.len() < chunks {
-            per.scratch.resize_with(chunks, Vec::new);
-        }
-        let decisions = resolver.decisions();
-        let steer_chunk = |(c, (out, near)): (usize, (&mut [Option<Vec2>], &mut Vec<usize>))| {
-            for (k, o) in out.iter_mut().enumerate() {
-                let id = c * CHUNK_ROBOTS + k;
-                if decisions[id].held {
-                    continue;
-                }
-                let a = &inputs[id];
-                let infl = (a.layer == Locomotion::Ground).then_some(a.radius + STEER_STATIC_GAP_M);
-                *o = resolver.steer_with(
-                    inputs,
-                    id,
-                    grid,
-                    infl,
-                    nav[id].steering_side(a.intent),
-                    near,
-                );
+    let decisions = resolver.decisions();
+    let steer_chunk = |(c, (out, near)): (usize, (&mut [Option<Vec2>], &mut Vec<usize>))| {
+        for (k, o) in out.iter_mut().enumerate() {
+            let id = c * CHUNK_ROBOTS + k;
+            if decisions[id].held {
+                continue;
             }
-        };
-        let scratch = &mut per.scratch[..chunks];
-        if parallel {
-            per.steered
-                .par_chunks_mut(CHUNK_ROBOTS)
-                .zip(scratch)
-                .enumerate()
-                .for_each(steer_chunk);
-        } else {
-            per.steered
-                .chunks_mut(CHUNK_ROBOTS)
-                .zip(scratch)
-                .enumerate()
-                .for_each(steer_chunk);
+            let a = &inputs[id];
+            let infl = (a.layer == Locomotion::Ground).then_some(a.radius + STEER_STATIC_GAP_M);
+            *o = resolver.steer_with(
+                inputs,
+                id,
+                grid,
+                infl,
+                nav[id].steering_side(a.intent),
+                near,
+            );
         }
+    };
+    let scratch = &mut per.scratch[..chunks];
+    if parallel {
+        per.steered
+            .par_chunks_mut(CHUNK_ROBOTS)
+            .zip(scratch)
+            .enumerate()
+            .for_each(steer_chunk);
+    } else {
+        per.steered
+            .chunks_mut(CHUNK_ROBOTS)
+            .zip(scratch)
+            .enumerate()
+            .for_each(steer_chunk);
     }
 }
 

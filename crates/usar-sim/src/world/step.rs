@@ -1,17 +1,15 @@
 //! [`World::step`]: one fixed step `dt` of path following, collision resolution and physics,
 //! in a deterministic order (robots by id; no wall-clock time, no hash-map iteration; a large
-//! team's per-robot phases on several threads give the same bits, `parallel.rs`).
+//! team's per-robot phases on several threads give the same bits, `parallel.rs`). A step
+//! displacement above `MOVED_TOLERANCE_M` (`parallel.rs`) counts as moved.
 
 use parry2d::math::Vector as Vec2;
 
 use super::control_clock::ControlClock;
+use super::parallel::{follow_all, steer_all};
 use super::robot::Motion;
 use super::world::World;
 use crate::scenario::{PhysicsStepping, Steering};
-
-/// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
-/// metres.
-pub const MOVED_TOLERANCE_M: f64 = 1e-4;
 
 impl World {
     /// Advances the world by one fixed step `dt`, on the scenario's control clock `clock` (the
@@ -93,7 +91,10 @@ impl World {
         // it, and every robot of a serial trial, follow theirs here, in id order.
         let parallel = self.pipelines.per_robot.parallel_for(n);
         if parallel {
-            self.follow_all(tick, clock);
+            let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
+            let ctx = self.follow_ctx(period_s);
+            follow_all(&ctx, &self.nav, &self.robots, tick, clock, &mut out);
+            self.pipelines.per_robot.followed = out;
         }
         for id in 0..n {
             let followed = if parallel {
@@ -114,7 +115,14 @@ impl World {
                 &self.pipelines.neighbours,
                 period_s,
             );
-            self.steer_all();
+            let p = &mut self.pipelines;
+            steer_all(
+                &p.resolver,
+                &p.resolver_inputs,
+                &self.grid,
+                &self.nav,
+                &mut p.per_robot,
+            );
         }
         for id in 0..n {
             self.nav[id].command = self.command(id);

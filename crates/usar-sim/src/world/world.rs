@@ -15,6 +15,7 @@ use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::{ContactGate, GateInputs};
 use super::control_clock::ControlClock;
 use super::neighbours::NeighbourIndex;
+use super::parallel::read_back_all;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
 use super::pipelines::Pipelines;
@@ -364,6 +365,13 @@ impl World {
         Ok(())
     }
 
+    /// Lets (`true`, the default) or forbids (`false`) this world's per-robot phases to run on
+    /// the threads of the calling rayon pool. Results are bit-identical either way; a sweep
+    /// that runs one trial per thread forbids it so that trials do not compete for threads.
+    pub fn set_parallel(&mut self, enabled: bool) {
+        self.pipelines.per_robot.enabled = enabled;
+    }
+
     /// Moves robot `id` to `position` at rest and clears its goal (e.g. to park a robot at the
     /// rest station). The caller keeps positions valid (inside the arena, free of obstacles).
     ///
@@ -436,6 +444,22 @@ impl World {
         let parallel = p.per_robot.parallel_for(near.len());
         p.gate
             .mark_near_bodies(&w, &mut p.neighbours, &mut p.index_fresh, parallel, near)
+    }
+
+    /// [`read_back_all`] over this world after the physics step: its bodies and radiation
+    /// field read, each robot's navigation state, state and radiation factor written, in
+    /// parallel for a large team.
+    pub(super) fn read_back_all(&mut self) {
+        let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
+        read_back_all(
+            &self.scene.physics.bodies,
+            &self.radiation,
+            self.dt,
+            parallel,
+            &mut self.nav,
+            &mut self.robots,
+            &mut self.radiation_factor,
+        );
     }
 
     /// [`for_each_near`] over this world's robots and, while it is fresh, its neighbour index.

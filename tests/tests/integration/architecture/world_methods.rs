@@ -16,7 +16,6 @@ const WORLD_FILE: &str = "crates/usar-sim/src/world/world.rs";
 /// root: stages not yet written as functions over explicit borrows.
 const STILL_IMPL_WORLD: &[&str] = &[
     "crates/usar-sim/src/world/commands.rs",
-    "crates/usar-sim/src/world/parallel.rs",
     "crates/usar-sim/src/world/path_following.rs",
     "crates/usar-sim/src/world/robot_planning.rs",
     "crates/usar-sim/src/world/step.rs",
