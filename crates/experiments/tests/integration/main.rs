@@ -7,6 +7,7 @@
 
 mod calibrate_cli;
 mod check_cli;
+mod check_many_tasks;
 mod claims_files;
 mod common;
 mod hostile_folders;

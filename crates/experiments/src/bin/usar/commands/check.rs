@@ -21,6 +21,9 @@ use usar_sweep::vary::{Override, apply_overrides, brief, validate_overridden};
 
 use crate::shared::scenario_warnings::warn_about;
 
+use crate::shared::check_many_tasks;
+use crate::shared::check_numbers::{decimals, metres, metres_range, short};
+
 const EXAMPLES: &str = "\
 Examples:
   # Validate the paper's scenario and print a summary (with its scenario hash)
@@ -33,6 +36,9 @@ Examples:
   # scenario file: reproduces a grid cell's scenario.ron
   usar check scenarios/paper.ron --set mission.hp_pct_per_step_in_radiation=0.003 \\
       --set 'kinds[0].starts.first_m=(30.0, 3.0)' --print > hot.ron
+
+  # A scenario of many tasks in full: every task's line and quota and distance columns
+  usar check scenarios/swarm-100000.ron --tasks
 
   # Only the scenario hash (as in sweep journals, reports and grid.md)
   usar check results/grid/c01_hp_pct_per_step_in_radiation=0.003/scenario.ron --hash
@@ -68,11 +74,23 @@ pub struct CheckArgs {
     /// more than 50 robots, which otherwise get a summary per kind.
     #[arg(long)]
     pub robots: bool,
+
+    /// Print everything per task (a line per task, a quota column and a distance column per
+    /// task, every radiation zone's dose factor and every rest station) even for more than 12
+    /// tasks, which otherwise get a summary: quota and distance ranges, the first and last
+    /// three tasks.
+    #[arg(long)]
+    pub tasks: bool,
 }
 
 /// Teams of at most this many robots get the per-robot table in `usar check`'s summary; larger
 /// ones a summary per kind (counts, start extent, distance ranges), unless `--robots`.
 pub const ROBOTS_TABLE_MAX: usize = 50;
+
+/// Scenarios of at most this many tasks get a line per task and a column per task (quotas,
+/// distances) in `usar check`'s summary; more a summary of the tasks (counts, ranges, the
+/// first and last few) whose lines stay short, unless `--tasks`.
+pub const TASKS_TABLE_MAX: usize = 12;
 
 /// Runs `usar check`. A valid scenario with tasks no group can rescue from or goals some
 /// robots cannot reach also gets one warning line each on stderr ([`warn_about`]); the exit
@@ -116,6 +134,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         summarise(
             &summary,
             args.robots || s.robots().len() <= ROBOTS_TABLE_MAX,
+            args.tasks || s.tasks().len() <= TASKS_TABLE_MAX,
             out,
         )?;
         writeln!(out, "scenario hash {}", summary.hash)?;
@@ -123,32 +142,6 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
         writeln!(out, "\n{}{}: valid", args.scenario.display(), sets.concat())?;
     }
     Ok(())
-}
-
-/// Decimals of the positions and distances the summary prints: 1 in an arena whose shorter
-/// side is 10 m or more, one more per factor of ten below that (3 for a 0.5 m arena, 4 for
-/// 8 cm), so that points a tenth of the arena's scale apart never print alike.
-fn decimals(s: &ScenarioSummary) -> usize {
-    decimals_for_side(s.arena.width_m.min(s.arena.height_m))
-}
-
-/// [`decimals`] of an arena whose shorter side is `side_m` metres (> 0).
-fn decimals_for_side(side_m: f64) -> usize {
-    if side_m >= 10.0 {
-        1
-    } else {
-        1 + (10.0 / side_m).log10().ceil().clamp(0.0, 15.0) as usize
-    }
-}
-
-/// `v` metres with the summary's [`decimals`].
-fn metres(v: f64, decimals: usize) -> String {
-    format!("{v:.decimals$}")
-}
-
-/// `lo..hi` metres with `decimals`.
-fn metres_range((lo, hi): (f64, f64), decimals: usize) -> String {
-    format!("{}..{}", metres(lo, decimals), metres(hi, decimals))
 }
 
 /// `rest station (x, y) r R m`, or for several `rest stations: (x, y) r R m, ...`.
@@ -168,12 +161,24 @@ fn rest_stations(s: &ScenarioSummary) -> String {
 /// Prints the summary of a valid scenario ([`ScenarioSummary`]): arena and timing, the kinds
 /// with their quota per task, the tasks (hardest first marked by their difficulty), with
 /// `per_robot` every robot's start and its distance to each task's goal (else the starts
-/// summarised per kind), debris, radiation and the rest station.
+/// summarised per kind), debris, radiation and the rest station. Without `per_task` the
+/// description wraps and the tasks, quotas, distances, zones and stations are summarised
+/// ([`check_many_tasks`]).
 ///
 /// # Errors
 /// An I/O error writing to `out`.
-pub fn summarise(s: &ScenarioSummary, per_robot: bool, out: &mut dyn Write) -> Result<()> {
-    writeln!(out, "scenario {}: {}", s.name, s.description)?;
+pub fn summarise(
+    s: &ScenarioSummary,
+    per_robot: bool,
+    per_task: bool,
+    out: &mut dyn Write,
+) -> Result<()> {
+    let title = format!("scenario {}: {}", s.name, s.description);
+    if per_task {
+        writeln!(out, "{title}")?;
+    } else {
+        writeln!(out, "{}", check_many_tasks::wrapped(&title))?;
+    }
     // What a trial runs: whole steps (usar run, sweep and replay report this length).
     let rounded = if s.simulated_s == s.duration_s {
         String::new()
@@ -212,14 +217,21 @@ pub fn summarise(s: &ScenarioSummary, per_robot: bool, out: &mut dyn Write) -> R
         s.steps,
         s.seed
     )?;
-    kinds_table(s, out)?;
-    tasks_table(s, out)?;
+    if per_task {
+        kinds_table(s, out)?;
+        tasks_table(s, out)?;
+    } else {
+        check_many_tasks::kinds_table(s, out)?;
+        check_many_tasks::tasks_summary(s, out)?;
+    }
     if per_robot {
         robots_table(s, out)?;
-    } else {
+    } else if per_task {
         starts_by_kind(s, out)?;
+    } else {
+        check_many_tasks::starts_by_kind(s, out)?;
     }
-    adversaries(s, out)
+    adversaries(s, per_task, out)
 }
 
 /// Per kind: the count, the extent of the start positions and the range of distances from a
@@ -356,9 +368,18 @@ fn robots_table(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn adversaries(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
+/// The debris, radiation and rest-station line and the needs weights; without `per_task`
+/// long lists of dose factors and rest stations as ranges.
+fn adversaries(s: &ScenarioSummary, per_task: bool, out: &mut dyn Write) -> Result<()> {
+    let stations = match per_task {
+        true => None,
+        false => check_many_tasks::rest_stations(s),
+    };
     let doses = if s.radiation_zones.is_empty() {
         String::new()
+    } else if !per_task {
+        let factors: Vec<f64> = s.radiation_zones.iter().map(|z| z.2).collect();
+        format!(" ({})", check_many_tasks::dose_factors(&factors))
     } else {
         let factors: Vec<String> = s
             .radiation_zones
@@ -375,7 +396,7 @@ fn adversaries(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
         s.debris_circles,
         s.radiation_zones.len(),
         doses,
-        rest_stations(s)
+        stations.unwrap_or_else(|| rest_stations(s))
     )?;
     writeln!(
         out,
@@ -383,29 +404,4 @@ fn adversaries(s: &ScenarioSummary, out: &mut dyn Write) -> Result<()> {
         s.needs_weights
     )?;
     Ok(())
-}
-
-/// `x` rounded to 4 decimals, as short as Rust writes it (`2.5`, `1.6667`), for table columns.
-fn short(x: f64) -> String {
-    ((x * 1e4).round() / 1e4).to_string()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{decimals_for_side, metres};
-
-    #[test]
-    fn small_arenas_print_positions_with_more_decimals() {
-        assert_eq!(decimals_for_side(80.0), 1);
-        assert_eq!(decimals_for_side(10.0), 1);
-        assert_eq!(decimals_for_side(9.9), 2);
-        assert_eq!(decimals_for_side(1.0), 2);
-        assert_eq!(decimals_for_side(0.5), 3);
-        assert_eq!(decimals_for_side(0.08), 4);
-        // Millimetre positions in an 8 cm arena print apart (they printed (0.0, 0.0)).
-        let d = decimals_for_side(0.08);
-        assert_eq!(metres(0.002, d), "0.0020");
-        assert_ne!(metres(0.002, d), metres(0.003, d));
-        assert_eq!(metres(32.5, decimals_for_side(80.0)), "32.5");
-    }
 }

@@ -1,7 +1,10 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
-//! sweep and of a multiverse, building a trial, the error line, the scenario warnings,
-//! the per-round yields' file, the progress bars and the hidden test hooks.
+//! sweep and of a multiverse, building a trial, the error line, the scenario warnings, the
+//! short summary of a scenario of many tasks and how `usar check` writes numbers, the
+//! per-round yields' file, the progress bars and the hidden test hooks.
 
+pub mod check_many_tasks;
+pub mod check_numbers;
 pub mod error_text;
 pub mod multiverse_spec;
 pub mod optimizer_arg;
