@@ -52,8 +52,8 @@
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
 //! - `nav_state`: the per-robot navigation state (path, current waypoint, intent).
 //! - `plan_into`: where a robot's plan is written (its path, or the world's scratch buffer).
-//! - `robot_planning`: a robot's plans ([`World`]'s planning function over the
-//!   [`path_planner`]: goals, goal checks, re-plans).
+//! - `robot_planning`: a robot's plans (one planning function over the [`path_planner`] and
+//!   explicit borrows of the world, `PlanInputs`: goals, goal checks, re-plans).
 //! - `follow`: one robot's path following up to where it needs the planner (goal test,
 //!   no-progress clock, the periodic line-of-sight check, corner passing, intended velocity),
 //!   written to a buffer: a function of the robot's own state.

@@ -1,81 +1,94 @@
-//! A robot's plans: [`World::plan`] and the inflation and grid query it plans with.
+//! A robot's plans: [`plan_robot`] over [`PlanInputs`], and the grid query it plans with.
 //!
 //! One planning function for goals, goal checks and re-plans: the [`super::path_planner`] for
 //! ground robots, a straight line for aerial ones.
 
 use parry2d::math::Vector as Vec2;
 
+use super::clearance_grid::ClearanceGrid;
 use super::error::NavError;
-use super::path_planner::GoalKind;
+use super::nav_state::Nav;
+use super::path_planner::{GoalKind, PathPlanner};
 use super::plan_into::PlanInto;
 use super::plan_query::{PlanQuery, plan_inflation_m};
-use super::world::World;
-use crate::scenario::{Locomotion, in_field};
+use crate::scenario::{Locomotion, NavigationParams, in_field};
 
-impl World {
-    /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
-    /// metres (see [`super::path_planner`]).
-    pub(super) fn plan_inflation(&self, id: usize) -> f32 {
-        plan_inflation_m(self.nav[id].radius, &self.navigation)
-    }
+/// What a robot's plan reads besides the robot, borrowed from the world: the clearance grid,
+/// the arena's width and height at physics precision (metres), the scenario's `navigation`
+/// (the planning inflation, [`plan_inflation_m`]) and the goals many robots share (each
+/// task's goal point and drop-off centre, then the rest-station centres, at physics
+/// precision; empty when `navigation.shared_goal_fields` is off).
+pub(super) struct PlanInputs<'a> {
+    pub(super) grid: &'a ClearanceGrid,
+    pub(super) arena: (f32, f32),
+    pub(super) navigation: &'a NavigationParams,
+    pub(super) shared_goals: &'a [Vec2],
+}
 
-    /// The grid query robot `id` would plan `goal` with: `Some` for a ground robot, `None`
-    /// for an aerial one (it flies straight).
-    pub(super) fn ground_query(&self, id: usize, goal: Vec2) -> Option<PlanQuery> {
-        let nav = &self.nav[id];
-        (nav.layer == Locomotion::Ground).then(|| PlanQuery {
-            from: nav.pos,
-            to: goal,
-            inflation_m: self.plan_inflation(id),
-        })
-    }
+/// The grid query the robot of navigation state `nav` would plan `goal` (world frame,
+/// metres) with under `navigation`: `Some` for a ground robot (from its position, its
+/// planning inflation), `None` for an aerial one (it flies straight).
+pub(super) fn ground_query(
+    nav: &Nav,
+    goal: Vec2,
+    navigation: &NavigationParams,
+) -> Option<PlanQuery> {
+    (nav.layer == Locomotion::Ground).then(|| PlanQuery {
+        from: nav.pos,
+        to: goal,
+        inflation_m: plan_inflation_m(nav.radius, navigation),
+    })
+}
 
-    /// Plans from robot `id`'s position to `goal` (world frame, metres) and returns the effective
-    /// goal. Ground robots plan on the clearance grid ([`super::path_planner::PathPlanner::plan`],
-    /// inflation [`World::plan_inflation`]): a goal that is one of the scenario's shared goal
-    /// points (a task's goal point or drop-off centre, the rest-station centre, compared
-    /// exactly at physics precision) by descent of its shared distance field, any other goal by
-    /// A*. Aerial robots fly straight, so their plan is the goal itself. The waypoints go where
-    /// `into` says.
-    ///
-    /// # Errors
-    /// [`NavError::GoalOutsideArena`] for a goal that is not a finite point in the arena; for
-    /// ground robots also the planner's other errors.
-    pub(super) fn plan(&mut self, id: usize, goal: Vec2, into: PlanInto) -> Result<Vec2, NavError> {
-        let infl = self.plan_inflation(id);
-        let nav = &mut self.nav[id];
-        let out = match into {
-            PlanInto::Path => {
-                nav.following.wp = 0;
-                &mut nav.path
+/// Plans from the position of the robot of navigation state `nav` to `goal` (world frame,
+/// metres) and returns the effective goal. Ground robots plan on `w.grid` with `planner`
+/// ([`PathPlanner::plan`], inflation [`plan_inflation_m`]): a goal that is one of
+/// `w.shared_goals` (compared exactly at physics precision) by descent of its shared distance
+/// field, any other goal by A*. Aerial robots fly straight, so their plan is the goal itself.
+/// The waypoints go where `into` says: `nav.path` (its current waypoint reset to the first)
+/// or `scratch`. Writes only `planner`'s caches, `nav`'s path and `scratch`.
+///
+/// # Errors
+/// [`NavError::GoalOutsideArena`] for a goal that is not a finite point in the arena; for
+/// ground robots also the planner's other errors.
+pub(super) fn plan_robot(
+    w: &PlanInputs,
+    planner: &mut PathPlanner,
+    nav: &mut Nav,
+    goal: Vec2,
+    into: PlanInto,
+    scratch: &mut Vec<Vec2>,
+) -> Result<Vec2, NavError> {
+    let infl = plan_inflation_m(nav.radius, w.navigation);
+    let out = match into {
+        PlanInto::Path => {
+            nav.following.wp = 0;
+            &mut nav.path
+        }
+        PlanInto::Scratch => scratch,
+    };
+    match nav.layer {
+        Locomotion::Aerial => {
+            let (width, height) = w.arena;
+            if !in_field(goal.x, goal.y, width, height) {
+                return Err(NavError::GoalOutsideArena);
             }
-            PlanInto::Scratch => &mut self.pipelines.scratch,
-        };
-        match nav.layer {
-            Locomotion::Aerial => {
-                let (w, h) = self.arena;
-                if !in_field(goal.x, goal.y, w, h) {
-                    return Err(NavError::GoalOutsideArena);
-                }
-                out.clear();
-                out.push(goal);
-                Ok(goal)
-            }
-            Locomotion::Ground => {
-                let kind = if self.shared_goals.contains(&goal) {
-                    GoalKind::Shared
-                } else {
-                    GoalKind::Own
-                };
-                let query = PlanQuery {
-                    from: nav.pos,
-                    to: goal,
-                    inflation_m: infl,
-                };
-                self.pipelines
-                    .planner
-                    .plan(&self.grid, self.arena, query, kind, out)
-            }
+            out.clear();
+            out.push(goal);
+            Ok(goal)
+        }
+        Locomotion::Ground => {
+            let kind = if w.shared_goals.contains(&goal) {
+                GoalKind::Shared
+            } else {
+                GoalKind::Own
+            };
+            let query = PlanQuery {
+                from: nav.pos,
+                to: goal,
+                inflation_m: infl,
+            };
+            planner.plan(w.grid, w.arena, query, kind, out)
         }
     }
 }

@@ -1,8 +1,8 @@
 //! [`World`]: the physical world of one USAR trial and the API the mission layer drives
 //! (goals, speed, sensing and priority settings, teleports, read-only state and queries).
 //!
-//! The step itself is in `step.rs`, a robot's plans in `robot_planning.rs`, path following in
-//! `path_following.rs`.
+//! The step itself is in `step.rs`, a robot's plans in `robot_planning.rs` (functions over
+//! explicit borrows, [`World::plan`] the thin call), path following in `path_following.rs`.
 
 use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
@@ -25,6 +25,7 @@ use super::radiation::DoseRule;
 use super::radiation_field::RadiationField;
 use super::resolver::Resolver;
 use super::robot::RobotState;
+use super::robot_planning::{PlanInputs, ground_query, plan_robot};
 use crate::scenario::{
     CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, Scenario,
 };
@@ -187,6 +188,36 @@ impl World {
         }
     }
 
+    /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
+    /// metres (see [`super::path_planner`]).
+    pub(super) fn plan_inflation(&self, id: usize) -> f32 {
+        plan_inflation_m(self.nav[id].radius, &self.navigation)
+    }
+
+    /// [`plan_robot`] for robot `id` over this world: from its position to `goal` (world
+    /// frame, metres), with the pipelines' planner, into its path or the pipelines' scratch
+    /// buffer as `into` says; returns the effective goal.
+    ///
+    /// # Errors
+    /// As [`plan_robot`].
+    pub(super) fn plan(&mut self, id: usize, goal: Vec2, into: PlanInto) -> Result<Vec2, NavError> {
+        let w = PlanInputs {
+            grid: &self.grid,
+            arena: self.arena,
+            navigation: &self.navigation,
+            shared_goals: &self.shared_goals,
+        };
+        let p = &mut self.pipelines;
+        plan_robot(
+            &w,
+            &mut p.planner,
+            &mut self.nav[id],
+            goal,
+            into,
+            &mut p.scratch,
+        )
+    }
+
     fn check_id(&self, id: usize) -> Result<(), WorldError> {
         if id < self.robots.len() {
             Ok(())
@@ -306,7 +337,7 @@ impl World {
         if id >= self.robots.len() {
             return false;
         }
-        match self.ground_query(id, to_vec2(&goal)) {
+        match ground_query(&self.nav[id], to_vec2(&goal), &self.navigation) {
             Some(query) => self
                 .pipelines
                 .planner

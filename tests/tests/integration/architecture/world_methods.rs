@@ -17,7 +17,6 @@ const WORLD_FILE: &str = "crates/usar-sim/src/world/world.rs";
 const STILL_IMPL_WORLD: &[&str] = &[
     "crates/usar-sim/src/world/commands.rs",
     "crates/usar-sim/src/world/path_following.rs",
-    "crates/usar-sim/src/world/robot_planning.rs",
     "crates/usar-sim/src/world/step.rs",
 ];
 
