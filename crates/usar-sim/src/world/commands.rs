@@ -1,32 +1,17 @@
-//! Commanded velocities: a read-only view of the velocity each robot's body was driven at in
-//! the last step, and the same write rule for a bare [`PhysicsScene`], so a trial's motion can
-//! be replayed on bare Rapier (the scaling bench's baseline, `crates/usar-sim/benches/scale`).
+//! Commanded velocities replayed: the write rule of the velocity each robot's body was driven
+//! at in the last step ([`World::commanded_velocities`](super::World::commanded_velocities),
+//! in `world.rs`) for a bare [`PhysicsScene`], so a trial's motion can be replayed on bare
+//! Rapier (the scaling bench's baseline, `crates/usar-sim/benches/scale`).
 //!
 //! Not in the paper; nothing here changes a result (the view borrows the world immutably).
 
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::PhysicsScene;
-use super::world::World;
-
-impl World {
-    /// The linear velocity, metres per second (world frame, physics precision `f32`), that
-    /// [`World::step`] commanded for each robot's body before Rapier stepped, in robot id order
-    /// (`len()` is the team size): the resolver's command of the last control step, held until
-    /// the next one (zero when held or blocked, the intent without the resolver). Zero before the
-    /// first step and after a [`World::teleport`]. Bodies are rotation-locked, so no angular
-    /// velocity is ever commanded.
-    ///
-    /// Read it after each step; [`drive_bodies`] applies it to a bare [`PhysicsScene`] of the
-    /// same scenario exactly as the step does, so stepping that scene after each call moves its
-    /// bodies bit for bit as the world's (without teleports). `O(1)` to create, no allocation.
-    pub fn commanded_velocities(&self) -> impl ExactSizeIterator<Item = Vec2> + '_ {
-        self.nav.iter().map(|n| n.command)
-    }
-}
 
 /// Drives the robot bodies of `scene` at `commands` (m/s, one per robot in id order, as
-/// [`World::commanded_velocities`] gives them) with [`World::step`]'s write rule: a body's
+/// [`World::commanded_velocities`](super::World::commanded_velocities) gives them) with
+/// [`World::step`](super::World::step)'s write rule: a body's
 /// velocity is written only where it differs from the command (a write queues the body for
 /// Rapier's pass over user-modified bodies). Robots beyond the shorter of the two lists are
 /// left as they are. Call [`PhysicsScene::step`] after it.
@@ -40,8 +25,8 @@ pub fn drive_bodies(scene: &mut PhysicsScene, commands: &[Vec2]) {
 mod tests {
     use super::*;
     use crate::scenario::{self, PointM, Scenario};
-    use crate::world::ControlClock;
     use crate::world::bodies::to_point;
+    use crate::world::{ControlClock, World};
 
     /// `scenarios/corridor.ron` (two pairs of ground robots that must pass each other in a
     /// 3.4 m wide corridor) with the given control period.

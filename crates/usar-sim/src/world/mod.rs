@@ -2,8 +2,8 @@
 //!
 //! One concept per file; this module only declares and re-exports:
 //! - [`bodies`]: Rapier bodies, colliders and collision groups (walls, debris, robot discs).
-//! - `commands`: the velocities the last step commanded ([`World::commanded_velocities`]) and
-//!   [`drive_bodies`], their write rule for a bare scene (replaying a trial's motion).
+//! - `commands`: [`drive_bodies`], the write rule of the velocities the last step commanded
+//!   ([`World::commanded_velocities`]) for a bare scene (replaying a trial's motion).
 //! - [`clearance_grid`]: the clearance grid (parry2d distance queries): free cells, grid
 //!   moves, nearest free cell, line of sight.
 //! - [`standing_disc`]: a robot standing in the way of a detour, as a keep-out disc.

@@ -556,6 +556,21 @@ impl World {
         &self.robots
     }
 
+    /// The linear velocity, metres per second (world frame, physics precision `f32`), that
+    /// [`World::step`] commanded for each robot's body before Rapier stepped, in robot id order
+    /// (`len()` is the team size): the resolver's command of the last control step, held until
+    /// the next one (zero when held or blocked, the intent without the resolver). Zero before the
+    /// first step and after a [`World::teleport`]. Bodies are rotation-locked, so no angular
+    /// velocity is ever commanded.
+    ///
+    /// Read it after each step; [`drive_bodies`](super::drive_bodies) (`commands.rs`) applies
+    /// it to a bare [`PhysicsScene`] of the same scenario exactly as the step does, so stepping
+    /// that scene after each call moves its bodies bit for bit as the world's (without
+    /// teleports). `O(1)` to create, no allocation.
+    pub fn commanded_velocities(&self) -> impl ExactSizeIterator<Item = Vec2> + '_ {
+        self.nav.iter().map(|n| n.command)
+    }
+
     /// Remaining waypoints of robot `id` (current one first, effective goal last); empty without
     /// a goal.
     ///
