@@ -58,7 +58,8 @@
 //!   no-progress clock, the periodic line-of-sight check, corner passing, intended velocity),
 //!   written to a buffer: a function of the robot's own state.
 //! - `path_following`: a robot's intended velocity from its path: `follow`, then the planner's
-//!   part (detours and re-plans), in robot order.
+//!   part (detours and re-plans), in robot order; a stage over explicit borrows of the world
+//!   (`PathFollowing`).
 //! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
 //! - `parallel`: the step's per-robot phases (path following, read-back, steering), functions
 //!   over explicit borrows, on a rayon pool for a large team ([`PARALLEL_MIN_ROBOTS`]),

@@ -10,44 +10,64 @@ use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
 use super::follow::{Follow, FollowCtx, Followed, Stage, follow};
+use super::nav_state::Nav;
+use super::neighbours::NeighbourIndex;
 use super::path_following_params::DETOUR_REJOIN_BEYOND_M;
+use super::path_planner::PathPlanner;
 use super::plan_into::PlanInto;
-use super::plan_query::PlanQuery;
-use super::robot::Motion;
+use super::plan_query::{PlanQuery, plan_inflation_m};
+use super::robot::{Motion, RobotState};
+use super::robot_planning::{PlanInputs, plan_robot};
 use super::standing_disc::StandingDisc;
-use super::world::World;
-use crate::scenario::{HoldRule, Locomotion};
+use crate::scenario::Locomotion;
 
-impl World {
-    /// What path following reads besides the robot ([`FollowCtx`]), on a control period of
-    /// `period_s` seconds ([`ControlClock::period_s`](super::ControlClock::period_s)).
-    pub(super) fn follow_ctx(&self, period_s: f64) -> FollowCtx<'_> {
-        FollowCtx {
-            grid: &self.grid,
-            navigation: &self.navigation,
-            crowd: self.collision.hold_rule == HoldRule::Yield,
-            steps: self.stats.steps,
-            dt: self.dt,
-            period_s,
-        }
-    }
+/// Path following's stage over explicit borrows of the world for one control step: what it
+/// reads (`&`) and what it writes (`&mut`: the planner's caches, the scratch buffers, every
+/// robot's navigation state and state, by id). A detour reads the other robots near one, so
+/// it borrows the whole team; nothing else of the world is touched.
+pub(super) struct PathFollowing<'a> {
+    /// What path following reads besides the robot: grid, `navigation`, the hold rule, the
+    /// steps taken before this control step, the step and the control period.
+    pub(super) ctx: FollowCtx<'a>,
+    /// Arena width and height at physics precision, metres.
+    pub(super) arena: (f32, f32),
+    /// The goals many robots share, at physics precision ([`PlanInputs::shared_goals`]).
+    pub(super) shared_goals: &'a [Vec2],
+    /// Largest body radius of the ground and the aerial robots, metres.
+    pub(super) max_radius_m: [f64; 2],
+    /// The neighbour index, holding the robots' positions (rebuilt before a control step).
+    pub(super) neighbours: &'a NeighbourIndex,
+    /// The path planner (its caches are written).
+    pub(super) planner: &'a mut PathPlanner,
+    /// Plans that may be discarded (re-plans, detours) are written here.
+    pub(super) scratch: &'a mut Vec<Vec2>,
+    /// Robots standing in the way of a detour.
+    pub(super) standing: &'a mut Vec<StandingDisc>,
+    /// Robot ids from the neighbour index.
+    pub(super) near_ids: &'a mut Vec<usize>,
+    /// Every robot's navigation state, by id.
+    pub(super) nav: &'a mut [Nav],
+    /// Every robot's state, by id.
+    pub(super) robots: &'a mut [RobotState],
+}
 
+impl PathFollowing<'_> {
     /// Updates robot `id`'s intended velocity from its goal and path (zero without a goal or
     /// once it is reached; marks the goal reached within its tolerance, by default
-    /// `navigation.waypoint_tolerance_m`: see [`World::set_goal_within`]); a ground robot
-    /// also checks its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`](super::PATH_CHECK_INTERVAL_STEPS)).
+    /// `navigation.waypoint_tolerance_m`: see
+    /// [`World::set_goal_within`](super::World::set_goal_within)); a ground robot also checks
+    /// its path when `check_due` ([`PATH_CHECK_INTERVAL_STEPS`](super::PATH_CHECK_INTERVAL_STEPS)).
     /// [`follow`] does all but the planner's work: a detour when the no-progress clock runs
-    /// out ([`World::detour`], then the clock restarts) and a re-plan from where the robot
-    /// stands when the periodic check finds its waypoint hidden (on failure the old path is
-    /// kept; physics keeps the robot out of obstacles). `period_s` is the control period,
-    /// seconds.
-    pub(super) fn update_intent(&mut self, id: usize, check_due: bool, period_s: f64) {
+    /// out ([`PathFollowing::detour`], then the clock restarts) and a re-plan from where the
+    /// robot stands when the periodic check finds its waypoint hidden (on failure the old path
+    /// is kept; physics keeps the robot out of obstacles). The control period is
+    /// `ctx.period_s`, seconds.
+    pub(super) fn update_intent(&mut self, id: usize, check_due: bool) {
         let mut f = Followed::of(&self.nav[id], &self.robots[id]);
         let mut from = Stage::Start;
         loop {
-            let ctx = self.follow_ctx(period_s);
             let outcome = follow(
-                &ctx,
+                &self.ctx,
                 &self.nav[id],
                 &self.robots[id],
                 check_due,
@@ -58,7 +78,7 @@ impl World {
             from = match outcome {
                 Follow::Done => return,
                 Follow::Detour => {
-                    let steps = self.stats.steps;
+                    let steps = self.ctx.steps;
                     self.detour(id);
                     let nav = &mut self.nav[id];
                     nav.following.best_remaining =
@@ -81,7 +101,7 @@ impl World {
     /// re-plan. The no-progress clock keeps running, measured against the new path.
     fn take_scratch_path(&mut self, id: usize, eff: Vec2) {
         let nav = &mut self.nav[id];
-        std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
+        std::mem::swap(&mut nav.path, self.scratch);
         nav.goal = Some(eff);
         nav.restart_on_new_path();
         let state = &mut self.robots[id];
@@ -96,9 +116,9 @@ impl World {
     /// its body radius plus the robot's planning inflation
     /// ([`super::path_planner::PathPlanner::plan_around`]). A local detour first: from where it
     /// stands to its path's point [`DETOUR_REJOIN_BEYOND_M`] beyond the farthest of those
-    /// robots ([`World::rejoin_point`]), then on along the rest of its path. Where the path
-    /// ends before such a point, or no local detour exists, it re-plans all the way to its
-    /// requested goal around them. On failure the path is kept. Robots are found through the
+    /// robots ([`PathFollowing::rejoin_point`]), then on along the rest of its path. Where the
+    /// path ends before such a point, or no local detour exists, it re-plans all the way to
+    /// its requested goal around them. On failure the path is kept. Robots are found through the
     /// neighbour index (`O(robots nearby)`). Allocates nothing once the scratch buffers have
     /// grown.
     fn detour(&mut self, id: usize) {
@@ -106,7 +126,7 @@ impl World {
             return;
         };
         self.collect_standing(id);
-        if self.pipelines.standing.is_empty() {
+        if self.standing.is_empty() {
             return;
         }
         // The local detour must end on the rejoin point itself: a goal the planner moved (to a
@@ -115,8 +135,8 @@ impl World {
             && self.plan_detour(id, rejoin) == Ok(rejoin)
         {
             let nav = &mut self.nav[id];
-            self.pipelines.scratch.extend_from_slice(&nav.path[next..]);
-            std::mem::swap(&mut nav.path, &mut self.pipelines.scratch);
+            self.scratch.extend_from_slice(&nav.path[next..]);
+            std::mem::swap(&mut nav.path, self.scratch);
             nav.restart_on_new_path();
             self.robots[id].counters.replans += 1;
             return;
@@ -126,7 +146,7 @@ impl World {
         }
     }
 
-    /// Plans robot `id` from where it stands to `to` round `self.pipelines.standing` into the scratch
+    /// Plans robot `id` from where it stands to `to` round `self.standing` into the scratch
     /// buffer ([`super::path_planner::PathPlanner::plan_around`]); returns the effective goal.
     fn plan_detour(&mut self, id: usize, to: Vec2) -> Result<Vec2, super::NavError> {
         let query = PlanQuery {
@@ -134,31 +154,30 @@ impl World {
             to,
             inflation_m: self.plan_inflation(id),
         };
-        self.pipelines.planner.plan_around(
-            &self.grid,
+        self.planner.plan_around(
+            self.ctx.grid,
             self.arena,
             query,
-            &self.pipelines.standing,
-            &mut self.pipelines.scratch,
+            self.standing,
+            self.scratch,
         )
     }
 
-    /// Fills `self.pipelines.standing` with the robots ground robot `id`'s detour goes round (see
-    /// [`World::detour`]), in id order.
+    /// Fills `self.standing` with the robots ground robot `id`'s detour goes round (see
+    /// [`PathFollowing::detour`]), in id order.
     fn collect_standing(&mut self, id: usize) {
         let infl = self.plan_inflation(id);
         let me = &self.nav[id];
         let range = me.sensing * self.robots[id].sensing_factor as f32;
-        self.pipelines.standing.clear();
-        let crowd = self.collision.hold_rule == HoldRule::Yield;
+        self.standing.clear();
+        let crowd = self.ctx.crowd;
         // Candidates from the neighbour index (robots of this layer only) within the largest
         // reach any robot of the layer can have, in id order (the order of a scan over the team).
         let slot = usize::from(me.layer == Locomotion::Aerial);
         let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
-        let near = &mut self.pipelines.near_ids;
+        let near = &mut *self.near_ids;
         near.clear();
-        self.pipelines
-            .neighbours
+        self.neighbours
             .grid(me.layer)
             .for_each_candidate(me.pos, reach_max, |j, _| near.push(j));
         near.sort_unstable();
@@ -171,7 +190,7 @@ impl World {
             // cut by low HP still feels the one it is pressed against.
             let reach = range.max(me.radius + other.radius + infl);
             if j != id && still && (other.pos - me.pos).length_squared() <= reach * reach {
-                self.pipelines.standing.push(StandingDisc {
+                self.standing.push(StandingDisc {
                     center: other.pos,
                     radius_m: other.radius + infl,
                 });
@@ -181,7 +200,7 @@ impl World {
 
     /// Where robot `id`'s local detour rejoins its path: the first point along the path (from
     /// the robot through its remaining waypoints) at least [`DETOUR_REJOIN_BEYOND_M`] beyond
-    /// the farthest rim of `self.pipelines.standing` (path length from the robot) and outside every
+    /// the farthest rim of `self.standing` (path length from the robot) and outside every
     /// standing disc, with the index of the first waypoint after it; `None` when the path
     /// ends before such a point, or when the path from that point on passes through a
     /// standing disc (a path winding back past one): the whole path is then planned again.
@@ -190,7 +209,7 @@ impl World {
         let nav = &self.nav[id];
         let mut at = p;
         for &q in &nav.path[next..] {
-            if self.pipelines.standing.iter().any(|d| d.crosses(at, q)) {
+            if self.standing.iter().any(|d| d.crosses(at, q)) {
                 return None;
             }
             at = q;
@@ -198,17 +217,16 @@ impl World {
         Some((p, next))
     }
 
-    /// The point of [`World::rejoin_point`] before its check of the rest of the path.
+    /// The point of [`PathFollowing::rejoin_point`] before its check of the rest of the path.
     fn first_point_beyond_standing(&self, id: usize) -> Option<(Vec2, usize)> {
         let nav = &self.nav[id];
         let beyond = self
-            .pipelines
             .standing
             .iter()
             .map(|d| (d.center - nav.pos).length() + d.radius_m)
             .fold(0.0f32, f32::max)
             + DETOUR_REJOIN_BEYOND_M;
-        let clear = |p: Vec2| !self.pipelines.standing.iter().any(|d| d.contains(p));
+        let clear = |p: Vec2| !self.standing.iter().any(|d| d.contains(p));
         let mut at = nav.pos;
         let mut walked = 0.0f32;
         // The farthest stretch walked before the point is taken: it must lie `beyond` away
@@ -230,13 +248,37 @@ impl World {
         }
         None
     }
+
+    /// Inflation robot `id` plans with ([`plan_inflation_m`]), metres.
+    fn plan_inflation(&self, id: usize) -> f32 {
+        plan_inflation_m(self.nav[id].radius, self.ctx.navigation)
+    }
+
+    /// [`plan_robot`] for robot `id` from where it stands to `goal` (world frame, metres),
+    /// into its path or the scratch buffer as `into` says; returns the effective goal.
+    fn plan(&mut self, id: usize, goal: Vec2, into: PlanInto) -> Result<Vec2, super::NavError> {
+        let w = PlanInputs {
+            grid: self.ctx.grid,
+            arena: self.arena,
+            navigation: self.ctx.navigation,
+            shared_goals: self.shared_goals,
+        };
+        plan_robot(
+            &w,
+            self.planner,
+            &mut self.nav[id],
+            goal,
+            into,
+            self.scratch,
+        )
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scenario::{self, PointM, Scenario};
-    use crate::world::ControlClock;
+    use crate::world::{ControlClock, World};
 
     /// `scenarios/corridor.ron` (24 m x 3.4 m, no debris) with one robot per end: robot 0 at
     /// the west end, robot 1 at the east end.
@@ -275,7 +317,7 @@ mod tests {
     /// Every leg of robot 0's path, from where it stands, keeps out of robot 1's keep-out disc
     /// (its radius plus robot 0's planning inflation, less 1 mm).
     fn clear_of_robot_1(w: &World) {
-        let keep_out = w.nav[1].radius + w.plan_inflation(0) - 1e-3;
+        let keep_out = w.nav[1].radius + plan_inflation_m(w.nav[0].radius, &w.navigation) - 1e-3;
         let mut at = w.nav[0].pos;
         for &p in &w.nav[0].path[w.nav[0].following.wp..] {
             let d = to_segment(w.nav[1].pos, at, p);
@@ -291,7 +333,7 @@ mod tests {
         let (mut w, before, goal) =
             parked_in_the_way(PointM::new(22.5, 1.7), PointM::new(3.5, 1.0));
         assert_eq!(before.len(), 1, "a straight corridor path: {before:?}");
-        w.detour(0);
+        w.path_following(w.dt_s()).detour(0);
         let nav = &w.nav[0];
         assert_eq!(nav.goal, goal, "a local detour keeps the goal");
         assert_eq!(nav.path.last(), before.last(), "and the rest of the path");
@@ -300,8 +342,9 @@ mod tests {
         // It rejoins the straight path (y = 1.7) at least 1 m beyond robot 1's disc rim,
         // measured along the path, and not much farther.
         let rejoin = nav.path[nav.path.len() - 2];
-        let rim =
-            (w.nav[1].pos - Vec2::new(2.0, 1.7)).length() + w.nav[1].radius + w.plan_inflation(0);
+        let rim = (w.nav[1].pos - Vec2::new(2.0, 1.7)).length()
+            + w.nav[1].radius
+            + plan_inflation_m(w.nav[0].radius, &w.navigation);
         let along = rejoin.x - 2.0;
         assert!(
             along >= rim + DETOUR_REJOIN_BEYOND_M - 0.3 && along <= rim + 3.0,
@@ -311,12 +354,12 @@ mod tests {
         clear_of_robot_1(&w);
     }
 
-    impl World {
-        /// [`World::rejoin_point`] after collecting the standing robots, as a detour does.
-        fn rejoin_point_for_test(&mut self, id: usize) -> Option<(Vec2, usize)> {
-            self.collect_standing(id);
-            self.rejoin_point(id)
-        }
+    /// [`PathFollowing::rejoin_point`] of robot `id` of `w` after collecting the standing
+    /// robots, as a detour does.
+    fn rejoin_point_for_test(w: &mut World, id: usize) -> Option<(Vec2, usize)> {
+        let mut stage = w.path_following(w.dt_s());
+        stage.collect_standing(id);
+        stage.rejoin_point(id)
     }
 
     #[test]
@@ -330,19 +373,20 @@ mod tests {
         ];
         w.nav[0].path.clone_from(&winding);
         w.nav[0].following.wp = 0;
-        w.collect_standing(0);
+        let mut stage = w.path_following(w.dt_s());
+        stage.collect_standing(0);
         assert!(
-            w.first_point_beyond_standing(0).is_some(),
+            stage.first_point_beyond_standing(0).is_some(),
             "a point beyond robot 1"
         );
         assert_eq!(
-            w.rejoin_point(0),
+            stage.rejoin_point(0),
             None,
             "the rest of the path passes robot 1"
         );
         // The straight path has a rejoin point.
-        w.nav[0].path = vec![Vec2::new(22.5, 1.7)];
-        assert!(w.rejoin_point(0).is_some());
+        stage.nav[0].path = vec![Vec2::new(22.5, 1.7)];
+        assert!(stage.rejoin_point(0).is_some());
     }
 
     #[test]
@@ -352,8 +396,8 @@ mod tests {
         let (mut w, _, eff) = parked_in_the_way(goal, PointM::new(3.5, 1.0));
         let s = w.nav[0].pos;
         assert!((s - Vec2::new(2.0, 1.7)).length() < 1e-6);
-        assert_eq!(w.rejoin_point_for_test(0), None);
-        w.detour(0);
+        assert_eq!(rejoin_point_for_test(&mut w, 0), None);
+        w.path_following(w.dt_s()).detour(0);
         let nav = &w.nav[0];
         assert_eq!(nav.goal, eff, "the same goal, planned afresh");
         assert!(nav.path.len() >= 2, "a path round robot 1: {:?}", nav.path);

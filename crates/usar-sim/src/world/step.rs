@@ -92,8 +92,8 @@ impl World {
         let parallel = self.pipelines.per_robot.parallel_for(n);
         if parallel {
             let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
-            let ctx = self.follow_ctx(period_s);
-            follow_all(&ctx, &self.nav, &self.robots, tick, clock, &mut out);
+            let stage = self.path_following(period_s);
+            follow_all(&stage.ctx, stage.nav, stage.robots, tick, clock, &mut out);
             self.pipelines.per_robot.followed = out;
         }
         for id in 0..n {
@@ -104,7 +104,9 @@ impl World {
             };
             match followed {
                 Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
-                None => self.update_intent(id, clock.path_check_due(tick, id), period_s),
+                None => self
+                    .path_following(period_s)
+                    .update_intent(id, clock.path_check_due(tick, id)),
             }
             self.pipelines.resolver_inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }

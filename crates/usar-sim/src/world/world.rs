@@ -14,8 +14,10 @@ use super::nav_state::{Nav, for_each_near};
 use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::{ContactGate, GateInputs};
 use super::control_clock::ControlClock;
+use super::follow::FollowCtx;
 use super::neighbours::NeighbourIndex;
 use super::parallel::read_back_all;
+use super::path_following::PathFollowing;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
 use super::pipelines::Pipelines;
@@ -27,7 +29,7 @@ use super::resolver::Resolver;
 use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, ground_query, plan_robot};
 use crate::scenario::{
-    CollisionParams, Locomotion, NavigationParams, PhysicsStepping, PointM, Scenario,
+    CollisionParams, HoldRule, Locomotion, NavigationParams, PhysicsStepping, PointM, Scenario,
 };
 use crate::scenario::{in_field, in_span};
 
@@ -188,10 +190,32 @@ impl World {
         }
     }
 
-    /// Inflation robot `id` plans with: body radius + `navigation.clearance_m` + half a cell,
-    /// metres (see [`super::path_planner`]).
-    pub(super) fn plan_inflation(&self, id: usize) -> f32 {
-        plan_inflation_m(self.nav[id].radius, &self.navigation)
+    /// Path following's stage ([`PathFollowing`]) over this world for a control step of a
+    /// period of `period_s` seconds: the grid, parameters, clock, shared goals and neighbour
+    /// index read; the planner, the pipelines' scratch buffers and every robot's navigation
+    /// state and state written.
+    pub(super) fn path_following(&mut self, period_s: f64) -> PathFollowing<'_> {
+        let p = &mut self.pipelines;
+        PathFollowing {
+            ctx: FollowCtx {
+                grid: &self.grid,
+                navigation: &self.navigation,
+                crowd: self.collision.hold_rule == HoldRule::Yield,
+                steps: self.stats.steps,
+                dt: self.dt,
+                period_s,
+            },
+            arena: self.arena,
+            shared_goals: &self.shared_goals,
+            max_radius_m: self.max_radius_m,
+            neighbours: &p.neighbours,
+            planner: &mut p.planner,
+            scratch: &mut p.scratch,
+            standing: &mut p.standing,
+            near_ids: &mut p.near_ids,
+            nav: &mut self.nav,
+            robots: &mut self.robots,
+        }
     }
 
     /// [`plan_robot`] for robot `id` over this world: from its position to `goal` (world

@@ -15,7 +15,6 @@ const WORLD_FILE: &str = "crates/usar-sim/src/world/world.rs";
 /// The files that still hold an `impl World` block besides [`WORLD_FILE`], from the workspace
 /// root: stages not yet written as functions over explicit borrows.
 const STILL_IMPL_WORLD: &[&str] = &[
-    "crates/usar-sim/src/world/path_following.rs",
     "crates/usar-sim/src/world/step.rs",
 ];
 
