@@ -50,6 +50,9 @@
 //! - `radiation_field`: the zones with their dose rule, read at a robot's bucket only.
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
+//! - `world_build`: the parts [`World::new`] builds from a scenario (clearance grid, robots at
+//!   their starts, radiation field, pipelines), each a function of it;
+//!   [`CLEARANCE_CAP_MARGIN_M`].
 //! - `nav_state`: the per-robot navigation state (path, current waypoint, intent).
 //! - `plan_into`: where a robot's plan is written (its path, or the world's scratch buffer).
 //! - `robot_planning`: a robot's plans (one planning function over the [`path_planner`] and
@@ -121,6 +124,7 @@ mod union_find;
     reason = "the World type's own file, as in rapier; private, so no world::world path"
 )]
 mod world;
+mod world_build;
 
 pub use commands::drive_bodies;
 pub use contact_gate::NEAR_CONTACT_MARGIN_M;
@@ -134,4 +138,5 @@ pub use path_following_params::{
 pub use per_robot::PARALLEL_MIN_ROBOTS;
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;
-pub use world::{CLEARANCE_CAP_MARGIN_M, World, WorldStats};
+pub use world::{World, WorldStats};
+pub use world_build::CLEARANCE_CAP_MARGIN_M;

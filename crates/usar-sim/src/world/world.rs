@@ -12,35 +12,23 @@ use super::error::{NavError, WorldError};
 use super::nav_state::{Nav, for_each_near};
 
 use super::clearance_grid::ClearanceGrid;
-use super::contact_gate::{ContactGate, GateInputs};
+use super::contact_gate::GateInputs;
 use super::control_clock::ControlClock;
 use super::follow::FollowCtx;
-use super::neighbours::NeighbourIndex;
 use super::parallel::read_back_all;
 use super::path_following::PathFollowing;
-use super::path_planner::PathPlanner;
-use super::per_robot::PerRobot;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
-use super::plan_query::plan_inflation_m;
-use super::radiation::DoseRule;
 use super::radiation_field::RadiationField;
-use super::resolver::Resolver;
 use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, ground_query, plan_robot};
+use super::world_build::{
+    clearance_grid, max_radius_m, pipelines, radiation_field, robots_at_start, shared_goals,
+};
 use crate::scenario::{
     CollisionParams, HoldRule, Locomotion, NavigationParams, PhysicsStepping, PointM, Scenario,
 };
 use crate::scenario::{in_field, in_span};
-
-/// What the clearance grid holds beyond the largest planning inflation, metres: a cell's
-/// clearance is the distance to the nearest wall or debris capped at the largest body radius +
-/// `navigation.clearance_m` + 2 cells + this. Every test of the grid compares a clearance with
-/// an inflation below the cap, so the cap changes no answer; line of sight skips the samples
-/// within a cell's clearance, so a larger cap skips more in open ground (4 m instead of 1 m:
-/// 3 % fewer instructions in a 60 s `swarm-1000.ron` run, same results) and costs a larger
-/// band of cells around each obstacle when the grid is built.
-pub const CLEARANCE_CAP_MARGIN_M: f64 = 4.0;
 
 /// World-level totals.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -101,70 +89,17 @@ impl World {
     /// every [`World::step`]: the resolver sizes its neighbour lists for its period.
     pub fn new(s: &Scenario, clock: &ControlClock) -> Self {
         let scene = PhysicsScene::new(s);
-        let max_radius = s.kinds.iter().map(|k| k.body_radius_m).fold(0.0, f64::max);
-        let cap = (max_radius
-            + s.navigation.clearance_m.get()
-            + 2.0 * s.navigation.grid_cell_m.get()
-            + CLEARANCE_CAP_MARGIN_M) as f32;
-        let mut grid = ClearanceGrid::build(
-            &s.arena,
-            &scene.statics,
-            s.navigation.grid_cell_m.get(),
-            cap,
-        );
-        for k in s
-            .kinds
-            .iter()
-            .filter(|k| k.locomotion == Locomotion::Ground)
-        {
-            grid.tabulate_moves(plan_inflation_m(k.body_radius_m as f32, &s.navigation));
-        }
-        let mut nav = Vec::with_capacity(s.robots.len());
-        let mut robots = Vec::with_capacity(s.robots.len());
-        for (id, r) in s.robots.iter().enumerate() {
-            let kind = &s.kinds[r.kind];
-            let pos = to_vec2(&r.start_in_world);
-            nav.push(Nav::new(scene.robot_bodies[id], kind, pos));
-            robots.push(RobotState::idle(id, r.kind, kind, to_point(pos)));
-        }
-        let resolver_inputs = nav
-            .iter()
-            .zip(&robots)
-            .map(|(n, r)| n.resolver_input(r))
-            .collect();
-        let dose_rule = DoseRule {
-            overlap: s.mission.radiation_overlap,
-            falloff: s.mission.radiation_falloff,
-        };
-        let radiation = RadiationField::new(
-            s.radiation_zones.clone(),
-            dose_rule,
-            s.arena.width_m.get() as f32,
-            s.arena.height_m.get() as f32,
-        );
+        let grid = clearance_grid(s, &scene);
+        let (nav, robots) = robots_at_start(s, &scene);
+        let radiation = radiation_field(s);
         let radiation_factor = robots
             .iter()
             .map(|r| radiation.factor_at(&r.position))
             .collect();
-        let mut neighbours = NeighbourIndex::new(s);
-        neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
         Self {
+            pipelines: pipelines(s, clock, &nav, &robots),
             scene,
             grid,
-            pipelines: Pipelines {
-                planner: PathPlanner::new(),
-                scratch: Vec::with_capacity(64),
-                standing: Vec::new(),
-                near_ids: Vec::new(),
-                resolver: Resolver::new(s.collision, nav.len())
-                    .for_control_steps(clock.period_steps()),
-                near_body: Vec::new(),
-                gate: ContactGate::default(),
-                resolver_inputs,
-                per_robot: PerRobot::new(nav.len()),
-                neighbours,
-                index_fresh: true,
-            },
             nav,
             robots,
             radiation_factor,
@@ -175,18 +110,8 @@ impl World {
             collision: s.collision,
             navigation: s.navigation,
             stats: WorldStats::default(),
-            max_radius_m: [Locomotion::Ground, Locomotion::Aerial].map(|layer| {
-                s.kinds
-                    .iter()
-                    .filter(|k| k.locomotion == layer)
-                    .map(|k| f64::from(k.body_radius_m as f32))
-                    .fold(0.0, f64::max)
-            }),
-            shared_goals: if s.navigation.shared_goal_fields {
-                shared_goals(s)
-            } else {
-                Vec::new()
-            },
+            max_radius_m: max_radius_m(s),
+            shared_goals: shared_goals(s),
         }
     }
 
@@ -485,15 +410,16 @@ impl World {
         (inputs, &mut self.pipelines)
     }
 
-    /// [`ContactGate::near_contact`] over this world (`sim.physics: NearContacts`).
+    /// [`ContactGate::near_contact`](super::contact_gate::ContactGate::near_contact) over
+    /// this world (`sim.physics: NearContacts`).
     pub(super) fn near_contact(&mut self) -> bool {
         let (w, p) = self.gate_inputs();
         p.gate
             .near_contact(&w, p.index_fresh.then_some(&p.neighbours))
     }
 
-    /// [`ContactGate::mark_near_bodies`] over this world (`sim.physics: NearBodies`), in
-    /// parallel for a large team.
+    /// [`ContactGate::mark_near_bodies`](super::contact_gate::ContactGate::mark_near_bodies)
+    /// over this world (`sim.physics: NearBodies`), in parallel for a large team.
     pub(super) fn mark_near_bodies(&mut self, near: &mut [bool]) -> bool {
         let (w, p) = self.gate_inputs();
         let parallel = p.per_robot.parallel_for(near.len());
@@ -654,14 +580,4 @@ impl World {
         }
         worst
     }
-}
-
-/// The goals many robots of `s` share, at physics precision: each task's goal point and
-/// drop-off centre (in task order), then every rest-station centre.
-fn shared_goals(s: &Scenario) -> Vec<Vec2> {
-    s.tasks
-        .iter()
-        .flat_map(|t| [to_vec2(&t.goal), to_vec2(&t.drop_off.center)])
-        .chain(s.rest_stations.iter().map(|c| to_vec2(&c.center)))
-        .collect()
 }
