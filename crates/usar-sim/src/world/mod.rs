@@ -63,7 +63,9 @@
 //! - `path_following`: a robot's intended velocity from its path: `follow`, then the planner's
 //!   part (detours and re-plans), in robot order; a stage over explicit borrows of the world
 //!   (`PathFollowing`).
-//! - `step`: [`World::step`], one fixed step of intents, resolver and physics.
+//! - `step`: the step's serial stages over explicit borrows ([`World::step`] runs them): each
+//!   body driven at its robot's command, and on a control step each robot's command, motion
+//!   and list flags from the resolver's decisions and steering.
 //! - `parallel`: the step's per-robot phases (path following, read-back, steering), functions
 //!   over explicit borrows, on a rayon pool for a large team ([`PARALLEL_MIN_ROBOTS`]),
 //!   bit-identical on any number of threads; [`MOVED_TOLERANCE_M`].

@@ -1,8 +1,10 @@
 //! [`World`]: the physical world of one USAR trial and the API the mission layer drives
 //! (goals, speed, sensing and priority settings, teleports, read-only state and queries).
 //!
-//! The step itself is in `step.rs`, a robot's plans in `robot_planning.rs` (functions over
-//! explicit borrows, [`World::plan`] the thin call), path following in `path_following.rs`.
+//! [`World::step`] runs the step's stages, each a function over explicit borrows in a file of
+//! its own: driving the bodies and the commands in `step.rs`, a robot's plans in
+//! `robot_planning.rs` ([`World::plan`] the thin call), path following in `path_following.rs`,
+//! the per-robot phases in `parallel.rs`, the contact gate in `contact_gate.rs`.
 
 use nalgebra::Vector2;
 use parry2d::math::Vector as Vec2;
@@ -15,13 +17,14 @@ use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::GateInputs;
 use super::control_clock::ControlClock;
 use super::follow::FollowCtx;
-use super::parallel::read_back_all;
+use super::parallel::{follow_all, read_back_all, steer_all};
 use super::path_following::PathFollowing;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::radiation_field::RadiationField;
 use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, ground_query, plan_robot};
+use super::step::{CommandInputs, command_all, drive_all};
 use super::world_build::{
     clearance_grid, max_radius_m, pipelines, radiation_field, robots_at_start, shared_goals,
 };
@@ -387,6 +390,129 @@ impl World {
         state.motion = super::robot::Motion::Idle;
         self.reindex();
         Ok(())
+    }
+
+    /// Advances the world by one fixed step `dt`, on the scenario's control clock `clock` (the
+    /// one [`World::new`] was given):
+    /// 1. on a control step ([`ControlClock::is_control_step`]; every step without
+    ///    `sim.control_period_s`), every robot (by id) updates its intended velocity from its
+    ///    goal and path; if `collision.enabled`, the resolver builds collision lists, holds all
+    ///    but each list's head, rotates deadlocked lists, and the moving robots steer around
+    ///    robots standing still (see [`crate::world::resolver`]); otherwise the intents are
+    ///    commanded as they are. Between control steps each robot keeps its command, motion
+    ///    and list flags;
+    /// 2. the commanded velocities are set on the bodies (held robots count a held step) and
+    ///    Rapier steps once (with `sim.physics: NearContacts`, only when a contact may begin
+    ///    or go on, see `world/contact_gate.rs`; otherwise every body moves straight; with
+    ///    `NearBodies`, only the bodies of the robots near a contact, the others disabled and
+    ///    moved straight by the read-back);
+    /// 3. positions, velocities, flags and counters are read back, and before a control step
+    ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
+    ///
+    /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
+    pub fn step(&mut self, clock: &ControlClock) {
+        let n = self.robots.len();
+        if clock.is_control_step(self.stats.steps) {
+            self.control(clock);
+        }
+        let physics = self.physics;
+        drive_all(
+            physics,
+            self.dt,
+            &self.nav,
+            &mut self.robots,
+            &mut self.scene,
+        );
+        match physics {
+            PhysicsStepping::NearContacts if !self.near_contact() => {
+                self.scene.move_free(self.dt as f32);
+            }
+            PhysicsStepping::NearBodies => {
+                // The gate reads its own neighbour lists, rebuilt (with the neighbour index
+                // when stale) only when robots have moved far enough.
+                let mut near = std::mem::take(&mut self.pipelines.near_body);
+                near.resize(n, false);
+                let any = self.mark_near_bodies(&mut near);
+                self.scene.gate_bodies(&self.nav, &near);
+                if any {
+                    self.scene.step();
+                    self.stats.physics_steps += 1;
+                }
+                self.pipelines.near_body = near;
+            }
+            _ => {
+                self.scene.step();
+                self.stats.physics_steps += 1;
+            }
+        }
+        self.stats.steps += 1;
+        self.read_back_all();
+        if clock.is_control_step(self.stats.steps) {
+            self.reindex();
+        } else {
+            self.pipelines.index_fresh = false;
+        }
+    }
+
+    /// The control step's software (see [`World::step`]): intents (path following, in
+    /// parallel up to the planner for a large team), the resolver over the control period,
+    /// rule 5's steering, and each robot's command, motion and list flags
+    /// ([`command_all`]).
+    fn control(&mut self, clock: &ControlClock) {
+        let n = self.robots.len();
+        // `tick` counts the control steps taken before this one (see
+        // `ControlClock::path_check_due`).
+        let tick = clock.tick(self.stats.steps);
+        let period_s = clock.period_s(self.dt);
+        // A large team follows its paths in parallel up to the planner; the robots that need
+        // it, and every robot of a serial trial, follow theirs here, in id order.
+        let parallel = self.pipelines.per_robot.parallel_for(n);
+        if parallel {
+            let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
+            let stage = self.path_following(period_s);
+            follow_all(&stage.ctx, stage.nav, stage.robots, tick, clock, &mut out);
+            self.pipelines.per_robot.followed = out;
+        }
+        for id in 0..n {
+            let followed = if parallel {
+                self.pipelines.per_robot.followed[id]
+            } else {
+                None
+            };
+            match followed {
+                Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
+                None => self
+                    .path_following(period_s)
+                    .update_intent(id, clock.path_check_due(tick, id)),
+            }
+            self.pipelines.resolver_inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
+        }
+        let p = &mut self.pipelines;
+        if self.collision.enabled {
+            p.resolver.set_parallel(parallel);
+            p.resolver
+                .resolve(&p.resolver_inputs, &p.neighbours, period_s);
+            steer_all(
+                &p.resolver,
+                &p.resolver_inputs,
+                &self.grid,
+                &self.nav,
+                &mut p.per_robot,
+            );
+        }
+        let w = CommandInputs {
+            collision: &self.collision,
+            resolver: &p.resolver,
+            inputs: &p.resolver_inputs,
+            steered: &p.per_robot.steered,
+        };
+        command_all(&w, &mut self.nav, &mut self.robots);
+        if self.collision.enabled {
+            self.stats.deadlocks_detected += p.resolver.deadlocked_lists();
+            self.stats.list_rebuilds += u64::from(p.resolver.rebuilt_lists());
+            let largest = p.resolver.largest_list();
+            self.stats.max_list_len = self.stats.max_list_len.max(largest);
+        }
     }
 
     /// Rebuilds the neighbour index from the robots' current positions, `O(n + cells)`.
