@@ -135,6 +135,7 @@ impl Nav {
     /// length. The resolver reads `remaining` of list members only, and only active robots
     /// join lists; skipping the path of a parked robot saves a cache miss per robot and
     /// control step in a large team.
+    #[inline]
     pub(super) fn resolver_input(&self, state: &RobotState) -> ResolverInput {
         let active = state.is_active();
         ResolverInput {
