@@ -122,7 +122,7 @@ impl ClearanceGrid {
     }
 
     /// Clearance of cell `idx` (below `nx * ny`; panics otherwise), metres.
-    pub fn clearance_of(&self, idx: u32) -> f32 {
+    fn clearance_of(&self, idx: u32) -> f32 {
         self.dist[idx as usize]
     }
 

@@ -3,7 +3,7 @@
 //! in `world.rs`) for a bare [`PhysicsScene`], so a trial's motion can be replayed on bare
 //! Rapier (the scaling bench's baseline, `crates/usar-sim/benches/scale`).
 //!
-//! Not in the paper; nothing here changes a result (the view borrows the world immutably).
+//! Not in the paper; nothing here changes a result (it writes only the bare scene it is given).
 
 use parry2d::math::Vector as Vec2;
 

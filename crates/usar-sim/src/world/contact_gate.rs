@@ -1,7 +1,8 @@
 //! `sim.physics: NearContacts` and `NearBodies` ([`crate::scenario::PhysicsStepping`]):
 //! whether a contact may begin or go on within the next step, for the team
-//! ([`World::near_contact`]) or robot by robot ([`World::mark_near_bodies`], in parallel for a
-//! large team); the straight move
+//! ([`ContactGate::near_contact`]) or robot by robot ([`ContactGate::mark_near_bodies`], in
+//! parallel for a large team; the World calls both through its thin methods of the same
+//! names); the straight move
 //! of every body on a step without one ([`PhysicsScene::move_free`]); and the bodies enabled
 //! in Rapier only while their robots are near a contact ([`PhysicsScene::gate_bodies`]).
 
@@ -289,8 +290,10 @@ impl GateView<'_> {
     /// overlap) is at most what the two can close in a step at their speeds ([`Gate`]), plus
     /// Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]. Statics by the clearance
     /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
-    /// then exactly; robots through the neighbour index, calling `partner(j)` for each robot
-    /// `j` found near (the test of a pair is the same from both sides up to rounding).
+    /// then exactly; robots through the gate's lists (`NearBodies`), else the neighbour index,
+    /// else a scan of the layer, calling `partner(j)` for each robot `j` found near (the test
+    /// of a pair is the same from both sides up to rounding). The lists hold robots of the
+    /// robot's own layer only (they are built from the per-layer index).
     ///
     /// `clearance` is where the robot last read the (static) clearance grid and what it read
     /// there: while the distance from there, taken off that reading, still bounds its gap to
@@ -337,6 +340,7 @@ impl GateView<'_> {
             if j == i || (q - a.pos).length_squared() > bound * bound {
                 return;
             }
+            debug_assert_eq!(self.nav[j].layer, a.layer, "a list holds its own layer");
             let b = &discs[j];
             let gap = (b.pos - a.pos).length() - a.radius - b.radius_m;
             if gap <= (va + b.speed_m_per_s) * dt + gate.slack_m {
@@ -492,9 +496,11 @@ mod tests {
         w.scene.drive_body(body, v);
     }
 
-    /// One physics step as `World::step` takes it with `NearBodies`; returns the near flags.
+    /// One physics step as `World::step` takes it with `NearBodies` between control steps
+    /// (the neighbour index stale, the gate rebuilding it with its lists when it must);
+    /// returns the near flags.
     fn gated_step(w: &mut World) -> Vec<bool> {
-        w.reindex();
+        w.pipelines.index_fresh = false;
         let mut near = vec![false; w.nav.len()];
         if w.mark_near_bodies(&mut near) {
             w.scene.gate_bodies(&w.nav, &near);
@@ -566,5 +572,53 @@ mod tests {
         assert!(enabled_again, "robot 0 reached the wall");
         let wall_gap = w.scene.static_distance(w.nav[0].pos, true) - w.nav[0].radius;
         assert!(wall_gap.abs() < 0.02, "against the wall: gap {wall_gap}");
+    }
+
+    /// The gate's lists and open-ground readings change no flag: on every step of robots
+    /// driven at each other and at the walls, with the lists kept over steps (skins of 0.5 m
+    /// and 5 cm), `mark_near_bodies` marks exactly the robots that the exact test of every
+    /// robot against every other of its layer, reading the grid afresh, marks (either side).
+    #[test]
+    fn lists_and_readings_mark_what_the_exact_test_marks() {
+        for skin in [GATE_LIST_SKIN_M, 0.05] {
+            let s = paper(PhysicsStepping::NearBodies);
+            let mut w = World::new(&s, &ControlClock::of(&s.sim));
+            w.pipelines.gate.lists = NeighbourLists::with_skin(skin);
+            let n = w.nav.len();
+            let mut marked = 0;
+            for step in 0..600 {
+                for i in 0..n {
+                    // Robot i drives at robot i + 1 (or at the wall below), faster every turn.
+                    let to = w.nav[(i + 1) % n].pos - w.nav[i].pos;
+                    let v = if (step / 150 + i) % 3 == 0 {
+                        Vec2::new(0.0, -1.5)
+                    } else {
+                        to.normalize_or_zero() * (0.5 + (i % 4) as f32 * 0.6)
+                    };
+                    drive(&mut w, i, v);
+                }
+                let reference = {
+                    let (inputs, p) = w.gate_inputs();
+                    let gate = p.gate.gate(&inputs, false);
+                    let view = GateView::new(&inputs, &gate, None, None);
+                    let mut flags = vec![false; n];
+                    for i in 0..n {
+                        let (mut found, mut unread) = (Vec::new(), UNREAD);
+                        flags[i] |= view.robot_near_contact(i, &mut unread, |j| found.push(j));
+                        for j in found {
+                            flags[j] = true;
+                        }
+                    }
+                    flags
+                };
+                let near = gated_step(&mut w);
+                assert_eq!(near, reference, "skin {skin}, step {step}");
+                marked += near.iter().filter(|&&f| f).count();
+            }
+            assert!(
+                marked > 100,
+                "skin {skin}: robots came near contacts ({marked} flags)"
+            );
+        }
     }
 }

@@ -1,4 +1,5 @@
-//! Neighbour lists kept over several steps (Verlet lists) for the resolver's pair rules.
+//! Neighbour lists kept over several steps (Verlet lists) for the resolver's pair rules and the
+//! contact gate's pair test.
 //!
 //! Every robot's list holds the robots of its layer within a *build radius* `B` of it at the
 //! positions of the last rebuild (the *epoch*), and possibly some others. The lists stay valid
@@ -154,10 +155,11 @@ impl NeighbourLists {
         self.parallel = parallel;
     }
 
-    /// Makes the lists valid for the robots at `inputs[..].pos` (metres, indexed by id) on
-    /// `inputs[..].layer`, whose query radii this step are at most `query_m` (metres, ground
-    /// and aerial; a NaN radius makes every refresh rebuild): rebuilds them from
-    /// `near` (which must index the robots at `inputs[..].pos`) unless they still are.
+    /// Makes the lists valid for the robots `inputs` (indexed by id) at their
+    /// [`Listed::centre`]s (metres) on their [`Listed::layer`]s, whose query radii this step
+    /// are at most `query_m` (metres, ground and aerial; a NaN radius makes every refresh
+    /// rebuild): rebuilds them from `near` (which must index the robots at those centres)
+    /// unless they still are.
     /// Returns whether it rebuilt.
     pub fn refresh(
         &mut self,

@@ -50,9 +50,11 @@ impl RadiationField {
     }
 
     /// The dose factor at `p` ([`radiation_factor_at`] over every zone, the same bits),
-    /// dimensionless, finite and `>= 0`.
+    /// dimensionless, finite and `>= 0`. A point with a NaN or infinite coordinate (a body
+    /// thrown out by a blow-up) is answered by the scan of every zone: a NaN distance counts
+    /// as inside every uniform zone there, which no bucket can say.
     pub fn factor_at(&self, p: &PointM) -> f64 {
-        if self.zones.is_empty() {
+        if self.zones.is_empty() || !(p.x.is_finite() && p.y.is_finite()) {
             return radiation_factor_at(&self.zones, p, self.rule);
         }
         let at = Vec2::new(p.x as f32, p.y as f32);
@@ -100,7 +102,10 @@ mod tests {
             let field = RadiationField::new(zones.clone(), rule, 200.0, 200.0);
             let mut probes: Vec<PointM> =
                 points.iter().map(|&(x, y)| PointM::new(x, y)).collect();
-            // On the rims and at the centres.
+            // On the rims and at the centres, and off every bucket.
+            for (x, y) in [(f64::NAN, 1.0), (1.0, f64::NAN), (f64::INFINITY, 0.0), (0.0, f64::NEG_INFINITY)] {
+                probes.push(PointM::new(x, y));
+            }
             for z in &zones {
                 probes.push(z.area.center);
                 probes.push(z.area.center + nalgebra::Vector2::new(z.area.radius_m, 0.0));

@@ -525,7 +525,7 @@ impl World {
 
     /// The contact gate's state, borrowed from this world for one step, beside the pipelines
     /// (the gate's own state and the neighbour index).
-    fn gate_inputs(&mut self) -> (GateInputs<'_>, &mut Pipelines) {
+    pub(super) fn gate_inputs(&mut self) -> (GateInputs<'_>, &mut Pipelines) {
         let inputs = GateInputs {
             nav: &self.nav,
             grid: &self.grid,
