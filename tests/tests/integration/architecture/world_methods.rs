@@ -3,18 +3,12 @@
 //! (`ContactGate::mark_near_bodies` takes `GateInputs`, the neighbour index and its freshness),
 //! not another `impl World` block that may touch every field.
 //!
-//! The files that still hold an `impl World` are listed in [`STILL_IMPL_WORLD`], now none; the
-//! list may only shrink: a file not on it that gains one fails, and so does a listed file that
-//! no longer has one (take it off the list).
+//! A file of usar-sim other than `world/world.rs` with an `impl World` block fails.
 
 use std::path::{Path, PathBuf};
 
 /// The one file whose `impl World` blocks are the World's API, from the workspace root.
 const WORLD_FILE: &str = "crates/usar-sim/src/world/world.rs";
-
-/// The files that still hold an `impl World` block besides [`WORLD_FILE`], from the workspace
-/// root: stages not yet written as functions over explicit borrows. Empty: every stage is one.
-const STILL_IMPL_WORLD: &[&str] = &[];
 
 /// Whether Rust source `text` has an `impl World` block (inherent, generic or of a trait),
 /// outside line comments: a line starting with `impl` whose header's last word is `World`.
@@ -53,31 +47,19 @@ fn rust_files(dir: &Path) -> Vec<PathBuf> {
     out
 }
 
-/// The problems of the rule over the usar-sim sources under `root` (the workspace root), with
-/// `still` the files allowed an `impl World` (as [`STILL_IMPL_WORLD`]).
-fn problems(root: &Path, still: &[&str]) -> Vec<String> {
+/// The problems of the rule over the usar-sim sources under `root` (the workspace root): one
+/// line per file other than [`WORLD_FILE`] with an `impl World`.
+fn problems(root: &Path) -> Vec<String> {
     let mut problems = Vec::new();
-    let mut found = Vec::new();
     for path in rust_files(&root.join("crates/usar-sim/src")) {
         let rel = path.strip_prefix(root).expect("under the root");
         let rel = rel.to_string_lossy().replace('\\', "/");
         let text = std::fs::read_to_string(&path).expect("a source file");
         if has_impl_world(&text) && rel != WORLD_FILE {
-            found.push(rel.clone());
-            if !still.contains(&rel.as_str()) {
-                problems.push(format!(
-                    "{rel}: an `impl World` outside {WORLD_FILE}: write the stage as a function \
-                     over explicit borrows (as contact_gate.rs's ContactGate), or add a method \
-                     to the World's API in {WORLD_FILE}"
-                ));
-            }
-        }
-    }
-    for listed in still {
-        if !found.iter().any(|f| f == listed) {
             problems.push(format!(
-                "{listed} no longer has an `impl World`: take it off STILL_IMPL_WORLD in {}",
-                file!()
+                "{rel}: an `impl World` outside {WORLD_FILE}: write the stage as a function over \
+                 explicit borrows (as contact_gate.rs's ContactGate), or add a method to the \
+                 World's API in {WORLD_FILE}"
             ));
         }
     }
@@ -85,8 +67,8 @@ fn problems(root: &Path, still: &[&str]) -> Vec<String> {
 }
 
 #[test]
-fn world_methods_live_in_world_rs_and_the_rest_only_shrinks() {
-    let problems = problems(&super::workspace_root(), STILL_IMPL_WORLD);
+fn world_methods_live_in_world_rs() {
+    let problems = problems(&super::workspace_root());
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
@@ -102,26 +84,16 @@ fn an_impl_world_is_recognised_in_each_form() {
 }
 
 #[test]
-fn a_planted_impl_world_and_a_stale_list_entry_are_found() {
+fn a_planted_impl_world_is_found() {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let world = dir.path().join("crates/usar-sim/src/world");
     std::fs::create_dir_all(&world).expect("the folders");
     std::fs::write(world.join("world.rs"), "impl World {}\n").expect("world.rs");
     std::fs::write(world.join("stage.rs"), "impl World {\n}\n").expect("stage.rs");
-    let gone = "crates/usar-sim/src/world/gone.rs";
-    let problems = problems(dir.path(), &[gone]);
+    let problems = problems(dir.path());
+    assert_eq!(problems.len(), 1, "{problems:?}");
     assert!(
-        problems
-            .iter()
-            .any(|p| p.starts_with("crates/usar-sim/src/world/stage.rs: an `impl World`")),
+        problems[0].starts_with("crates/usar-sim/src/world/stage.rs: an `impl World`"),
         "{problems:?}"
     );
-    // The listed file does not exist there: it is named as off the list.
-    assert!(
-        problems
-            .iter()
-            .any(|p| p.starts_with(&format!("{gone} no longer has an `impl World`"))),
-        "{problems:?}"
-    );
-    assert_eq!(problems.len(), 2, "{problems:?}");
 }
