@@ -442,18 +442,23 @@ mod tests {
         let clock = ControlClock::of(&s.sim);
         let mut w = World::new(&s, &clock);
         assert!(!w.near_contact(), "robots at rest at their starts");
-        let (a, b) = (w.nav[0].clone(), w.nav[1].clone());
+        let (a, b) = (w.parts().nav[0].clone(), w.parts().nav[1].clone());
         let gap = (b.pos - a.pos).length() - a.radius - b.radius;
         assert!(gap > 0.0);
         // Robot 0 drives at robot 1 fast enough to close the gap within a step.
-        let v = (b.pos - a.pos).normalize() * (gap / w.dt as f32 + 0.1);
+        let v = (b.pos - a.pos).normalize() * (gap / w.dt_s() as f32 + 0.1);
         drive(&mut w, 0, v);
         assert!(w.near_contact());
         // Slowly: the gap stays open this step.
         let slow = (b.pos - a.pos).normalize() * 0.01;
         drive(&mut w, 0, slow);
-        let prediction = w.scene.physics.integration_parameters.prediction_distance();
-        let reach = 0.01 * w.dt as f32 + prediction + NEAR_CONTACT_MARGIN_M;
+        let prediction = w
+            .parts()
+            .scene
+            .physics
+            .integration_parameters
+            .prediction_distance();
+        let reach = 0.01 * w.dt_s() as f32 + prediction + NEAR_CONTACT_MARGIN_M;
         assert_eq!(w.near_contact(), gap <= reach, "gap {gap}, reach {reach}");
     }
 
@@ -465,22 +470,24 @@ mod tests {
         let mut ends = Vec::new();
         for physics in [PhysicsStepping::EveryStep, PhysicsStepping::NearContacts] {
             let mut w = World::new(&paper(physics), &ControlClock::of(&paper(physics).sim));
-            let body = w.nav[0].body;
+            let body = w.parts().nav[0].body;
             for _ in 0..100 {
                 drive(&mut w, 0, Vec2::new(0.0, 0.5));
                 if physics == PhysicsStepping::NearContacts && !w.near_contact() {
-                    w.scene.move_free(w.dt as f32);
+                    let dt = w.dt_s() as f32;
+                    w.parts().scene.move_free(dt);
                 } else {
-                    w.scene.step();
+                    w.parts().scene.step();
                 }
             }
-            ends.push(w.scene.physics.bodies[body].translation());
+            ends.push(w.parts().scene.physics.bodies[body].translation());
         }
         assert!((ends[0] - ends[1]).length() < 1e-4, "{ends:?}");
         let start = World::new(
             &paper(PhysicsStepping::EveryStep),
             &ControlClock::of(&paper(PhysicsStepping::EveryStep).sim),
         )
+        .parts()
         .nav[0]
             .pos;
         assert!(
@@ -491,22 +498,22 @@ mod tests {
 
     /// Robot `id` commanded at `v` and its body driven, as a control step and `World::step` do.
     fn drive(w: &mut World, id: usize, v: Vec2) {
-        w.nav[id].command = v;
-        let body = w.nav[id].body;
-        w.scene.drive_body(body, v);
+        w.parts().nav[id].command = v;
+        let body = w.parts().nav[id].body;
+        w.parts().scene.drive_body(body, v);
     }
 
     /// One physics step as `World::step` takes it with `NearBodies` between control steps
     /// (the neighbour index stale, the gate rebuilding it with its lists when it must);
     /// returns the near flags.
     fn gated_step(w: &mut World) -> Vec<bool> {
-        w.pipelines.index_fresh = false;
-        let mut near = vec![false; w.nav.len()];
-        if w.mark_near_bodies(&mut near) {
-            w.scene.gate_bodies(&w.nav, &near);
-            w.scene.step();
-        } else {
-            w.scene.gate_bodies(&w.nav, &near);
+        w.parts().pipelines.index_fresh = false;
+        let mut near = vec![false; w.parts().nav.len()];
+        let any = w.mark_near_bodies(&mut near);
+        let p = w.parts();
+        p.scene.gate_bodies(p.nav, &near);
+        if any {
+            p.scene.step();
         }
         w.read_back_all();
         near
@@ -521,31 +528,36 @@ mod tests {
             &paper(PhysicsStepping::NearBodies),
             &ControlClock::of(&paper(PhysicsStepping::NearBodies).sim),
         );
-        let (a, b) = (w.nav[0].clone(), w.nav[1].clone());
+        let (a, b) = (w.parts().nav[0].clone(), w.parts().nav[1].clone());
         let toward = (b.pos - a.pos).normalize();
         let sideways = Vec2::new(-toward.y, toward.x) * 0.3;
-        let third = w.nav[2].pos;
+        let third = w.parts().nav[2].pos;
         for step in 0..200 {
             drive(&mut w, 0, toward * 1.0);
             drive(&mut w, 2, sideways);
-            let before = w.nav[2].pos;
+            let before = w.parts().nav[2].pos;
             let near = gated_step(&mut w);
             assert_eq!(
                 near[0], near[1],
                 "step {step}: a pair is near from both sides"
             );
             for (id, &flag) in near.iter().enumerate() {
-                let enabled = w.scene.physics.bodies[w.nav[id].body].is_enabled();
+                let p = w.parts();
+                let enabled = p.scene.physics.bodies[p.nav[id].body].is_enabled();
                 assert_eq!(enabled, flag, "step {step}, robot {id}");
             }
             if !near[2] {
-                assert_eq!(w.nav[2].pos, before + sideways * w.dt as f32, "step {step}");
+                let dt = w.dt_s() as f32;
+                assert_eq!(w.parts().nav[2].pos, before + sideways * dt, "step {step}");
             }
-            let gap = (w.nav[1].pos - w.nav[0].pos).length() - a.radius - b.radius;
+            let gap = (w.parts().nav[1].pos - w.parts().nav[0].pos).length() - a.radius - b.radius;
             assert!(gap > -0.02, "step {step}: bodies overlap by {}", -gap);
         }
-        assert!(w.nav[1].pos != b.pos, "robot 0 pushed robot 1");
-        assert!((w.nav[2].pos - third).length() > 1.0, "robot 2 drove on");
+        assert!(w.parts().nav[1].pos != b.pos, "robot 0 pushed robot 1");
+        assert!(
+            (w.parts().nav[2].pos - third).length() > 1.0,
+            "robot 2 drove on"
+        );
     }
 
     /// A body disabled while its robot drove free is enabled again where the robot is, at its
@@ -559,18 +571,21 @@ mod tests {
         let mut enabled_again = false;
         for _ in 0..1500 {
             drive(&mut w, 0, Vec2::new(0.0, -0.8));
-            let was_enabled = w.scene.physics.bodies[w.nav[0].body].is_enabled();
+            let p = w.parts();
+            let was_enabled = p.scene.physics.bodies[p.nav[0].body].is_enabled();
             let near = gated_step(&mut w);
             if near[0] && !was_enabled {
                 enabled_again = true;
             }
-            let body = &w.scene.physics.bodies[w.nav[0].body];
+            let p = w.parts();
+            let body = &p.scene.physics.bodies[p.nav[0].body];
             if body.is_enabled() {
-                assert_eq!(body.translation(), w.nav[0].pos);
+                assert_eq!(body.translation(), p.nav[0].pos);
             }
         }
         assert!(enabled_again, "robot 0 reached the wall");
-        let wall_gap = w.scene.static_distance(w.nav[0].pos, true) - w.nav[0].radius;
+        let p = w.parts();
+        let wall_gap = p.scene.static_distance(p.nav[0].pos, true) - p.nav[0].radius;
         assert!(wall_gap.abs() < 0.02, "against the wall: gap {wall_gap}");
     }
 
@@ -583,13 +598,13 @@ mod tests {
         for skin in [GATE_LIST_SKIN_M, 0.05] {
             let s = paper(PhysicsStepping::NearBodies);
             let mut w = World::new(&s, &ControlClock::of(&s.sim));
-            w.pipelines.gate.lists = NeighbourLists::with_skin(skin);
-            let n = w.nav.len();
+            w.parts().pipelines.gate.lists = NeighbourLists::with_skin(skin);
+            let n = w.parts().nav.len();
             let mut marked = 0;
             for step in 0..600 {
                 for i in 0..n {
                     // Robot i drives at robot i + 1 (or at the wall below), faster every turn.
-                    let to = w.nav[(i + 1) % n].pos - w.nav[i].pos;
+                    let to = w.parts().nav[(i + 1) % n].pos - w.parts().nav[i].pos;
                     let v = if (step / 150 + i) % 3 == 0 {
                         Vec2::new(0.0, -1.5)
                     } else {

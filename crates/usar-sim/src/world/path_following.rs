@@ -309,18 +309,20 @@ mod tests {
         w.teleport(0, PointM::new(2.0, 1.7)).expect("in the arena");
         w.teleport(1, parked).expect("in the arena");
         w.set_goal(0, Some(goal)).expect("plans");
-        let nav = &w.nav[0];
+        let nav = &w.parts().nav[0];
         let (path, goal) = (nav.path.clone(), nav.goal);
         (w, path, goal)
     }
 
     /// Every leg of robot 0's path, from where it stands, keeps out of robot 1's keep-out disc
     /// (its radius plus robot 0's planning inflation, less 1 mm).
-    fn clear_of_robot_1(w: &World) {
-        let keep_out = w.nav[1].radius + plan_inflation_m(w.nav[0].radius, &w.navigation) - 1e-3;
-        let mut at = w.nav[0].pos;
-        for &p in &w.nav[0].path[w.nav[0].following.wp..] {
-            let d = to_segment(w.nav[1].pos, at, p);
+    fn clear_of_robot_1(w: &mut World) {
+        let parts = w.parts();
+        let nav = &parts.nav;
+        let keep_out = nav[1].radius + plan_inflation_m(nav[0].radius, parts.navigation) - 1e-3;
+        let mut at = nav[0].pos;
+        for &p in &nav[0].path[nav[0].following.wp..] {
+            let d = to_segment(nav[1].pos, at, p);
             assert!(d >= keep_out, "leg {at:?}-{p:?} passes {d} m from robot 1");
             at = p;
         }
@@ -334,24 +336,25 @@ mod tests {
             parked_in_the_way(PointM::new(22.5, 1.7), PointM::new(3.5, 1.0));
         assert_eq!(before.len(), 1, "a straight corridor path: {before:?}");
         w.path_following(w.dt_s()).detour(0);
-        let nav = &w.nav[0];
+        let parts = w.parts();
+        let nav = &parts.nav[0];
         assert_eq!(nav.goal, goal, "a local detour keeps the goal");
         assert_eq!(nav.path.last(), before.last(), "and the rest of the path");
         assert!(nav.path.len() >= 2, "{:?}", nav.path);
-        assert_eq!(w.robots[0].counters.replans, 1);
+        assert_eq!(parts.robots[0].counters.replans, 1);
         // It rejoins the straight path (y = 1.7) at least 1 m beyond robot 1's disc rim,
         // measured along the path, and not much farther.
         let rejoin = nav.path[nav.path.len() - 2];
-        let rim = (w.nav[1].pos - Vec2::new(2.0, 1.7)).length()
-            + w.nav[1].radius
-            + plan_inflation_m(w.nav[0].radius, &w.navigation);
+        let rim = (parts.nav[1].pos - Vec2::new(2.0, 1.7)).length()
+            + parts.nav[1].radius
+            + plan_inflation_m(parts.nav[0].radius, parts.navigation);
         let along = rejoin.x - 2.0;
         assert!(
             along >= rim + DETOUR_REJOIN_BEYOND_M - 0.3 && along <= rim + 3.0,
             "rejoins at {rejoin:?}, {along} m along; rim {rim} m"
         );
         assert!((rejoin.y - 1.7).abs() <= 0.3, "{rejoin:?}");
-        clear_of_robot_1(&w);
+        clear_of_robot_1(&mut w);
     }
 
     /// [`PathFollowing::rejoin_point`] of robot `id` of `w` after collecting the standing
@@ -371,8 +374,8 @@ mod tests {
             Vec2::new(3.5, 1.7),
             Vec2::new(3.5, 3.0),
         ];
-        w.nav[0].path.clone_from(&winding);
-        w.nav[0].following.wp = 0;
+        w.parts().nav[0].path.clone_from(&winding);
+        w.parts().nav[0].following.wp = 0;
         let mut stage = w.path_following(w.dt_s());
         stage.collect_standing(0);
         assert!(
@@ -394,13 +397,13 @@ mod tests {
         // Robot 1 stands 1.5 m before the goal: no point of the path lies 1 m beyond its rim.
         let goal = PointM::new(5.0, 1.7);
         let (mut w, _, eff) = parked_in_the_way(goal, PointM::new(3.5, 1.0));
-        let s = w.nav[0].pos;
+        let s = w.parts().nav[0].pos;
         assert!((s - Vec2::new(2.0, 1.7)).length() < 1e-6);
         assert_eq!(rejoin_point_for_test(&mut w, 0), None);
         w.path_following(w.dt_s()).detour(0);
-        let nav = &w.nav[0];
+        let nav = &w.parts().nav[0];
         assert_eq!(nav.goal, eff, "the same goal, planned afresh");
         assert!(nav.path.len() >= 2, "a path round robot 1: {:?}", nav.path);
-        clear_of_robot_1(&w);
+        clear_of_robot_1(&mut w);
     }
 }

@@ -56,36 +56,60 @@ pub struct WorldStats {
 /// `scenario.robots`. The mission layer sets goals, speed factors and priority keys, calls
 /// [`World::step`] and reads [`World::robots`].
 pub struct World {
-    pub(super) scene: PhysicsScene,
-    pub(super) grid: ClearanceGrid,
-    pub(super) nav: Vec<Nav>,
-    pub(super) robots: Vec<RobotState>,
+    scene: PhysicsScene,
+    grid: ClearanceGrid,
+    nav: Vec<Nav>,
+    robots: Vec<RobotState>,
     /// Each robot's radiation factor at its current position
     /// ([`super::radiation::radiation_factor_at`]): computed where the position changes (when the
     /// bodies are read back after a physics step, and on a teleport).
-    pub(super) radiation_factor: Vec<f64>,
+    radiation_factor: Vec<f64>,
     /// The radiation zones and their dose rule.
-    pub(super) radiation: RadiationField,
+    radiation: RadiationField,
     /// Arena width and height at physics precision, metres.
-    pub(super) arena: (f32, f32),
-    pub(super) dt: f64,
+    arena: (f32, f32),
+    dt: f64,
     /// When Rapier steps (`sim.physics`).
-    pub(super) physics: PhysicsStepping,
-    pub(super) collision: CollisionParams,
-    pub(super) navigation: NavigationParams,
-    pub(super) stats: WorldStats,
+    physics: PhysicsStepping,
+    collision: CollisionParams,
+    navigation: NavigationParams,
+    stats: WorldStats,
     /// Largest body radius of the ground and the aerial robots, metres (0 without robots).
-    pub(super) max_radius_m: [f64; 2],
+    max_radius_m: [f64; 2],
     /// The goals many robots share, at physics precision: each task's goal point and drop-off
     /// centre, then the rest-station centre. Ground robots reach them by shared distance fields.
     /// Empty when `navigation.shared_goal_fields` is off (every goal by A*).
-    pub(super) shared_goals: Vec<Vec2>,
+    shared_goals: Vec<Vec2>,
     /// The systems that update the fields above on a step (planning, path following, the
     /// resolver, the contact gate, the parallel phases), each with its own memory and scratch.
-    pub(super) pipelines: Pipelines,
+    pipelines: Pipelines,
+}
+
+/// The state of a [`World`] laid open for the stage tests of `world/` (test builds only): the
+/// fields stay private to `world.rs`, and a test that must set a command or step Rapier by
+/// hand borrows them here, one call at a time.
+#[cfg(test)]
+pub(super) struct WorldParts<'a> {
+    pub scene: &'a mut PhysicsScene,
+    pub nav: &'a mut Vec<Nav>,
+    pub robots: &'a mut Vec<RobotState>,
+    pub pipelines: &'a mut Pipelines,
+    pub navigation: &'a NavigationParams,
 }
 
 impl World {
+    /// This world's fields for a stage test ([`WorldParts`]).
+    #[cfg(test)]
+    pub(super) fn parts(&mut self) -> WorldParts<'_> {
+        WorldParts {
+            scene: &mut self.scene,
+            nav: &mut self.nav,
+            robots: &mut self.robots,
+            pipelines: &mut self.pipelines,
+            navigation: &self.navigation,
+        }
+    }
+
     /// Builds the world of a validated scenario: physics bodies, the clearance grid (cell
     /// `navigation.grid_cell_m`) and an idle robot at each start position. `clock` is the
     /// scenario's control clock ([`ControlClock::of`]`(&s.sim)`), the one the caller passes to

@@ -3,7 +3,9 @@
 //! (`ContactGate::mark_near_bodies` takes `GateInputs`, the neighbour index and its freshness),
 //! not another `impl World` block that may touch every field.
 //!
-//! A file of usar-sim other than `world/world.rs` with an `impl World` block fails.
+//! A file of usar-sim other than `world/world.rs` with an `impl World` block fails, and so
+//! does a field of `struct World` that is not private (a stage reaches the state only through
+//! the borrows `world.rs` hands it).
 
 use std::path::{Path, PathBuf};
 
@@ -64,6 +66,46 @@ fn problems(root: &Path) -> Vec<String> {
         }
     }
     problems
+}
+
+/// The fields of `struct World` in Rust source `text` that are not private: one line each
+/// (`pub`, `pub(super)`, `pub(crate)`...), between `pub struct World {` and its closing brace.
+fn open_fields(text: &str) -> Vec<String> {
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.starts_with("pub struct World {"));
+    lines.next();
+    lines
+        .take_while(|l| !l.starts_with('}'))
+        .map(str::trim_start)
+        .filter(|l| l.starts_with("pub ") || l.starts_with("pub("))
+        .map(str::to_owned)
+        .collect()
+}
+
+#[test]
+fn world_fields_are_private() {
+    let path = super::workspace_root().join(WORLD_FILE);
+    let text = std::fs::read_to_string(&path).expect("world.rs");
+    assert!(
+        text.contains("pub struct World {"),
+        "{WORLD_FILE} defines World"
+    );
+    let open = open_fields(&text);
+    assert!(
+        open.is_empty(),
+        "{WORLD_FILE}: fields of World open to other files: {open:?}"
+    );
+}
+
+#[test]
+fn an_open_world_field_is_found() {
+    let text = "pub struct World {\n    scene: Scene,\n    pub(super) nav: Vec<Nav>,\n}\n\
+                pub struct Other {\n    pub x: f64,\n}\n";
+    assert_eq!(
+        open_fields(text),
+        vec!["pub(super) nav: Vec<Nav>,".to_owned()]
+    );
 }
 
 #[test]
