@@ -1,12 +1,13 @@
 //! The switches of the authors' clock (issue 71; `usar_sim::scenario::lifecycle_choices`,
 //! docs/mission-model.md, "The authors' clock"): the round timer and its recall, rests in a
-//! round's slack, the cost clock and which costs count, each on variants of paper-v1.ron.
+//! round's slack, the cost clock and which costs count, and where the rescuing resources come
+//! from (`mission.resource_stock`), each on variants of paper-v1.ron.
 
 use integration_tests::{fixed, method, paper_v1_with};
 use usar_sim::mission::{LeaveCause, MissionEventKind, Phase, Simulation, TrialResult};
 use usar_sim::scenario::{
-    CollisionPriority, CostClock, CostsCount, HpEffect, LeaveWhenLow, RestTiming, RoundClock,
-    RoundStart, Scenario, ScenarioSpec,
+    CollisionPriority, CostClock, CostsCount, HpEffect, LeaveWhenLow, ResourceStock, RestTiming,
+    RoundClock, RoundStart, Scenario, ScenarioSpec,
 };
 
 /// A round timer of `length_s` seconds.
@@ -25,6 +26,16 @@ fn base(edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
         s.mission.initial_hp = fixed(100.0);
         s.mission.search_time_budget_s = None;
         s.mission.round_start = RoundStart::Available;
+        edit(s);
+    })
+}
+
+/// [`base`] with every robot starting at `energy_pct` and a search budget of 14 s (robots fall
+/// below the energy threshold within a round or two and rest), changed further by `edit`.
+fn low_energy(energy_pct: f64, edit: impl FnOnce(&mut ScenarioSpec)) -> Scenario {
+    base(|s| {
+        s.mission.initial_energy = fixed(energy_pct);
+        s.mission.search_time_budget_s = Some(14.0.try_into().unwrap());
         edit(s);
     })
 }
@@ -247,11 +258,7 @@ fn every_cost_counts_for_the_latest_task_or_only_costs_in_a_group() {
     // Robots rest on their way (energy 33 %): their trips to and from the rest station count
     // only under `Every`.
     let run = |count: CostsCount| {
-        let s = base(|s| {
-            s.mission.initial_energy = fixed(33.0);
-            s.mission.search_time_budget_s = Some(14.0.try_into().unwrap());
-            s.mission.costs_count = count;
-        });
+        let s = low_energy(33.0, |s| s.mission.costs_count = count);
         run_watched(&s, 300.0, |_, _| {})
     };
     for count in [CostsCount::Every, CostsCount::InGroup] {
@@ -272,4 +279,95 @@ fn every_cost_counts_for_the_latest_task_or_only_costs_in_a_group() {
             ),
         }
     }
+}
+
+#[test]
+fn a_team_stock_per_round_bounds_both_tasks_together() {
+    // No search budget: a group stays until it is full, so 8 units bind in every round.
+    let units = 8;
+    let s = base(|s| s.mission.resource_stock = ResourceStock::TeamPerRound { units });
+    let r = run_watched(&s, 400.0, |sim, _| {
+        let picked: u32 = sim.rounds().last().map_or(0, |_| {
+            // Picked up this round: held in the loads, or delivered this round.
+            let held: usize = sim.robots().iter().map(|m| m.load.len()).sum();
+            let delivered: u32 = sim.rounds().last().unwrap().rescued.iter().sum();
+            held as u32 + delivered
+        });
+        assert!(
+            picked <= units,
+            "{picked} rescuees picked up from a stock of {units}"
+        );
+        if let Some(left) = sim.state().team_stock {
+            assert!(left <= units, "stock {left}");
+        }
+    });
+    let completed: Vec<_> = r.rounds.iter().filter(|round| round.completed).collect();
+    assert!(completed.len() >= 3, "{} rounds", completed.len());
+    for round in &completed {
+        let both: u32 = round.rescued.iter().sum();
+        assert!(both <= units, "round at {} s: {both}", round.start_s);
+        assert!(
+            round
+                .left_because
+                .contains(&Some(LeaveCause::ResourcesUsed)),
+            "round at {} s left because {:?}",
+            round.start_s,
+            round.left_because
+        );
+    }
+    // The stock is spent, split between the tasks: most rounds deliver all of it.
+    let full = completed
+        .iter()
+        .filter(|round| round.rescued.iter().sum::<u32>() == units)
+        .count();
+    assert!(
+        full * 2 >= completed.len(),
+        "{full} of {} rounds",
+        completed.len()
+    );
+    // Each group drawing on its own members (the default), a round yields far more.
+    let own = run_watched(&base(|_| {}), 400.0, |_, _| {});
+    let first: u32 = own.rounds[0].rescued.iter().sum();
+    assert!(first > 2 * units, "PerRound: {first} in the first round");
+}
+
+#[test]
+fn resources_refilled_at_rest_are_not_refilled_at_a_round_start() {
+    // Low energy: robots rest after a round or two, so refills at rests are seen.
+    let run = |stock: ResourceStock| {
+        let s = low_energy(45.0, |s| s.mission.resource_stock = stock);
+        // Refills, told apart by the phase the robot left on the step of the refill, and
+        // members that start a round short of their kind's resources.
+        let (mut at_rest, mut at_round_start, mut short_at_start) = (0, 0, 0);
+        let mut last: Vec<u32> = Vec::new();
+        run_watched(&s, 400.0, |sim, before| {
+            if last.is_empty() {
+                last = sim.robots().iter().map(|m| m.resources).collect();
+            }
+            let started = sim
+                .events()
+                .iter()
+                .any(|e| matches!(e.kind, MissionEventKind::RoundStarted { .. }));
+            for (id, m) in sim.robots().iter().enumerate() {
+                if m.resources > last[id] {
+                    match before[id] {
+                        Phase::Recharging { .. } => at_rest += 1,
+                        _ => at_round_start += 1,
+                    }
+                }
+                last[id] = m.resources;
+                let full = sim.scenario().kind_of(id).rescuing_resources;
+                short_at_start += usize::from(started && m.task.is_some() && m.resources < full);
+            }
+        });
+        (at_rest, at_round_start, short_at_start)
+    };
+    let (at_rest, at_round_start, short) = run(ResourceStock::AtRest);
+    assert!(at_rest >= 2, "AtRest: {at_rest} refills at rests");
+    assert_eq!(at_round_start, 0, "AtRest: refilled at a round start");
+    assert!(short >= 1, "AtRest: every member started its rounds full");
+    let (at_rest, at_round_start, short) = run(ResourceStock::PerRound);
+    assert_eq!(at_rest, 0, "PerRound: refilled at a rest");
+    assert!(at_round_start >= 4, "PerRound: {at_round_start} refills");
+    assert_eq!(short, 0, "PerRound: a member started a round short");
 }

@@ -153,7 +153,7 @@ fn advance_phase(
 /// Robot `id` with a claim on a rescuee of task `t`: gives the claim up when the rescuee is out
 /// of reach at the goal (inside inflated debris) or the robot stalls; within reach it rescues
 /// it (after `mission.pickup_s` standing still), using one unit of its capacity and one
-/// resource of its group's pool (from the first member in id order that holds one).
+/// resource ([`draw_resource`]).
 fn try_pick_up(
     scenario: &Scenario,
     world: &mut World,
@@ -199,16 +199,11 @@ fn try_pick_up(
             Some(_) => st.robots[id].picking_until_s = None,
         }
     }
-    let Some(donor) = st
-        .robots
-        .iter()
-        .position(|r| r.task == Some(t) && !r.is_resting() && r.resources > 0)
-    else {
+    if !draw_resource(st, t) {
         st.fields[t].release(i);
         st.robots[id].claim = None;
         return Ok(());
-    };
-    st.robots[donor].resources -= 1;
+    }
     st.fields[t].pick_up(i, id);
     let r = &mut st.robots[id];
     r.claim = None;
@@ -219,6 +214,25 @@ fn try_pick_up(
     st.events
         .push(MissionEvent::of_robot(world.time_s(), id, Some(t), kind));
     stop(world, id)
+}
+
+/// Draws one rescuing resource for a pick-up in task `t`: from the team's stock under
+/// `mission.resource_stock: TeamPerRound`, else from the first member of the group in id order
+/// that holds one (not away for its needs); false when there is none.
+fn draw_resource(st: &mut MissionState, t: usize) -> bool {
+    if let Some(stock) = &mut st.team_stock {
+        let drawn = *stock > 0;
+        *stock = stock.saturating_sub(1);
+        return drawn;
+    }
+    let donor = st
+        .robots
+        .iter()
+        .position(|r| r.task == Some(t) && !r.is_resting() && r.resources > 0);
+    if let Some(d) = donor {
+        st.robots[d].resources -= 1;
+    }
+    donor.is_some()
 }
 
 /// Robot `id` delivers its load at task `t`'s drop-off at `now` (seconds): each rescuee counts

@@ -87,6 +87,12 @@ fn tally_tasks(scenario: &Scenario, st: &mut MissionState) {
         tally.unclaimed[t] = tally.unclaimed[t].saturating_add(r.resources);
         tally.claims[t] += u32::from(r.claim.is_some());
     }
+    // A team stock (`resource_stock: TeamPerRound`) is every group's pool, less all claims.
+    if let Some(stock) = st.team_stock {
+        let all_claims = tally.claims.iter().sum();
+        tally.unclaimed.fill(stock.saturating_sub(all_claims));
+        return;
+    }
     for (pool, &claims) in tally.unclaimed.iter_mut().zip(&tally.claims) {
         *pool = pool.saturating_sub(claims);
     }
@@ -99,10 +105,13 @@ fn gather_leave_figures(scenario: &Scenario, st: &mut MissionState) {
     let leave = &mut st.tally.leave;
     leave.clear();
     leave.resize(scenario.tasks.len(), LeaveFigures::default());
+    let team_stock = st.team_stock;
     for r in &st.robots {
         let Some(t) = r.task else { continue };
         let f = &mut leave[t];
-        if !r.is_resting() {
+        if let Some(stock) = team_stock {
+            f.pool = stock;
+        } else if !r.is_resting() {
             f.pool = f.pool.saturating_add(r.resources);
         }
         if !r.is_on_task() {
@@ -288,7 +297,14 @@ fn claim_nearest(
         match world.set_goal(id, Some(target)) {
             Ok(()) => {
                 st.fields[t].claim(i, id);
-                st.tally.unclaimed[t] = st.tally.unclaimed[t].saturating_sub(1);
+                if st.team_stock.is_some() {
+                    // The team's stock: a claim in one task is promised out of every group's.
+                    for u in &mut st.tally.unclaimed {
+                        *u = u.saturating_sub(1);
+                    }
+                } else {
+                    st.tally.unclaimed[t] = st.tally.unclaimed[t].saturating_sub(1);
+                }
                 let r = &mut st.robots[id];
                 r.claim = Some(i);
                 r.target_best_m = (target - pos).norm();

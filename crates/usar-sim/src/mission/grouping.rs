@@ -6,7 +6,7 @@ use rne_core::grouping::{GroupingMethod, GroupingRequest, RobotSnapshot};
 use super::error::MissionError;
 use super::needs::needs_vector;
 use super::robot::MissionRobot;
-use crate::scenario::{AwayQuotas, Scenario};
+use crate::scenario::{AwayQuotas, ResourceStock, Scenario};
 
 /// One kind's task quotas (by task id) shrunk to `n` robots (`n <= ` their sum) by `rule`,
 /// with tasks `hardest_first`:
@@ -74,12 +74,17 @@ pub fn adapted_quotas(scenario: &Scenario, available_per_kind: &[usize]) -> Vec<
 }
 
 /// The snapshot of robot `r` standing at its start position, as grouping methods see it: its
-/// needs vector (Eqs. 19-21 with full capacity and resources, refilled each round), energy,
+/// needs vector (Eqs. 19-21 with full capacity and resources, refilled each round; under
+/// `mission.resource_stock: AtRest` the resources it holds), energy,
 /// HP, and the straight-line distance from its start position to each task's goal point (by
 /// task id).
 pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
     let start = scenario.robots[r.id].start_in_world;
     let kind = scenario.kind_of(r.id);
+    let resources = match scenario.mission.resource_stock {
+        ResourceStock::AtRest => r.resources,
+        ResourceStock::PerRound | ResourceStock::TeamPerRound { .. } => kind.rescuing_resources,
+    };
     RobotSnapshot {
         id: r.id,
         kind: scenario.robots[r.id].kind,
@@ -88,7 +93,7 @@ pub fn snapshot(scenario: &Scenario, r: &MissionRobot) -> RobotSnapshot {
             &scenario.mission,
             r.hp_pct,
             r.energy_pct,
-            kind.rescuing_resources,
+            resources,
             kind.carrying_capacity,
         ),
         energy_pct: r.energy_pct,

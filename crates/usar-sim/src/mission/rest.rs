@@ -12,7 +12,7 @@ use super::goals::{rest_station_for, send, send_home, stop};
 use super::robot::{MissionRobot, Phase};
 use super::state::MissionState;
 use crate::scenario::{
-    LeaveWhenLow, LoadOnLeave, MissionParams, Refresh, RestAt, RestTiming, Scenario,
+    LeaveWhenLow, LoadOnLeave, MissionParams, Refresh, ResourceStock, RestAt, RestTiming, Scenario,
 };
 use crate::world::World;
 
@@ -92,7 +92,8 @@ pub(crate) fn arrive_at_rest(
     stop(world, r.id)
 }
 
-/// Ends robot `id`'s rest at `now_s`: restores what `mission.refresh` says and sends it back
+/// Ends robot `id`'s rest at `now_s`: restores what `mission.refresh` says (and, under
+/// `mission.resource_stock: AtRest`, its kind's rescuing resources) and sends it back
 /// towards its start, where it waits for a round it may join ([`may_join`]).
 ///
 /// # Errors
@@ -112,6 +113,9 @@ pub(crate) fn end_rest(
     }
     if both || r.hp_pct < m.low_hp_pct.get() {
         r.hp_pct = 100.0;
+    }
+    if m.resource_stock == ResourceStock::AtRest {
+        r.resources = scenario.kind_of(id).rescuing_resources;
     }
     r.phase = Phase::RestToStart;
     st.recorder.recharged(id);

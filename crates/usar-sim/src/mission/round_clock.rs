@@ -13,7 +13,7 @@ use super::grouping::group_available;
 use super::rest::{may_join, rests_over};
 use super::robot::Phase;
 use super::state::MissionState;
-use crate::scenario::{Locomotion, RoundClock, RoundStart, Scenario, SearchClock};
+use crate::scenario::{Locomotion, ResourceStock, RoundClock, RoundStart, Scenario, SearchClock};
 use crate::world::World;
 
 /// Tolerance of the round timer's comparisons, seconds: a timer of 100 s runs out on the
@@ -22,7 +22,9 @@ const TIMER_TOLERANCE_S: f64 = 1e-9;
 
 /// Starts a round if one is due: the robots at their start positions that may join
 /// ([`may_join`]; all of them under `round_start: AllBack`, else at least one) are grouped by
-/// `method`; every member gets its task, full capacity and resources, its start on the
+/// `method`; every member gets its task, full capacity and resources (under
+/// `mission.resource_stock: AtRest` it keeps the resources it holds; under `TeamPerRound` the
+/// team's stock is reset to its units), its start on the
 /// blind-search pattern, and its goal (the task's goal point for ground robots, the search
 /// area's centre for aerial ones). Each task's rescuee map is forgotten and its search clock
 /// reset (started now under `mission.search_clock: RoundStart`).
@@ -56,6 +58,12 @@ pub(crate) fn start_round(
     // ground member entering the search area (set by the accounting system).
     let clock = (m.search_clock == SearchClock::RoundStart).then(|| world.time_s());
     st.search_started_s.fill(clock);
+    // Under `resource_stock: AtRest` a member keeps what it holds (refilled when a rest ends).
+    let refill = m.resource_stock == ResourceStock::PerRound;
+    st.team_stock = match m.resource_stock {
+        ResourceStock::TeamPerRound { units } => Some(units),
+        ResourceStock::PerRound | ResourceStock::AtRest => None,
+    };
     for (t, ids) in groups.iter().enumerate() {
         let task = &scenario.tasks[t];
         let sweep_len = st.sweeps[t].len().max(1);
@@ -66,7 +74,9 @@ pub(crate) fn start_round(
             r.last_task = Some(t);
             r.phase = Phase::ToSearchArea;
             r.capacity_free = kind.carrying_capacity;
-            r.resources = kind.rescuing_resources;
+            if refill {
+                r.resources = kind.rescuing_resources;
+            }
             r.claim = None;
             r.sweep_next = ordinal * sweep_len / ids.len();
             r.sweep_visited = 0;

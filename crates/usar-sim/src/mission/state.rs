@@ -22,6 +22,10 @@ pub struct MissionState {
     pub sweeps: Vec<Vec<PointM>>,
     /// Whether a round is under way.
     pub round_open: bool,
+    /// The team's stock of rescuing resources left this round under `mission.resource_stock:
+    /// TeamPerRound` (set at each round's start, drawn by both groups' pick-ups); `None` under
+    /// the other rules, where each group draws on its members' resources.
+    pub team_stock: Option<u32>,
     /// When the first ground member of each task's group entered its search area this round,
     /// seconds (for `mission.search_time_budget_s`).
     pub search_started_s: Vec<Option<f64>>,
@@ -126,6 +130,7 @@ impl MissionState {
                 .map(|t| sweep_waypoints(&t.search_area, spacing, scenario.mission.sweep_pattern))
                 .collect(),
             round_open: false,
+            team_stock: None,
             search_started_s: vec![None; scenario.tasks.len()],
             recorder: Recorder::new(scenario),
             events: Vec::new(),

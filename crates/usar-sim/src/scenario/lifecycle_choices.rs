@@ -1,5 +1,5 @@
-//! The round and rest lifecycle's switches (`mission.round_clock`, `mission.rest_timing`) and
-//! the cost clock's (`mission.cost_clock`, `mission.costs_count`): readings of the paper's
+//! The round and rest lifecycle's switches (`mission.round_clock`, `mission.rest_timing`,
+//! `mission.resource_stock`) and the cost clock's (`mission.cost_clock`, `mission.costs_count`): readings of the paper's
 //! rounds and costs that the authors' results sheet points to (issue 71, docs/calibration.md,
 //! "The authors' clock"). Defaults keep the model before them, so a scenario that names none
 //! runs as it always did. The systems that apply them: `mission::round_clock`,
@@ -82,4 +82,31 @@ pub enum CostsCount {
     /// Every cost, the trips to and from the rest place and the rest included, for the task
     /// of the robot's latest group; a robot that has not been in a group yet counts for none.
     Every,
+}
+
+/// Where a group's rescuing resources come from (paper, section IV: "saving one rescued object
+/// will cost one space (capacity) and one rescuing resource ... group members can share their
+/// resources in the specific task"; when a robot's resources are refilled is not said). The
+/// authors' sheet has the hard and easy yields of a trial trade off (r = -0.48) with totals
+/// under-dispersed (variance / mean 0.15): the two tasks share something bounded
+/// (docs/calibration.md, "A rule that couples the tasks").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum ResourceStock {
+    /// Every member of a round's group starts it with its kind's `rescuing_resources`, and a
+    /// group draws on its members' (default; the model before this switch).
+    #[default]
+    PerRound,
+    /// A robot's resources are refilled only when its rest ends (and held at its kind's
+    /// `rescuing_resources` at the trial's start); a group draws on what its members hold, so
+    /// a group of suppliers that rescued much in the last rounds and have not rested since
+    /// rescues less.
+    AtRest,
+    /// One stock of `units` resources for the whole team per round, drawn by both groups' pick-
+    /// ups, first come first served; the members' own resources are not used. A group leaves
+    /// its area when the stock is spent (`LeaveCause::ResourcesUsed`). Written
+    /// `TeamPerRound(units: 25)`; `units` >= 0.
+    TeamPerRound {
+        /// Resources the team holds at each round's start.
+        units: u32,
+    },
 }

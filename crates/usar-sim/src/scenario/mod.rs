@@ -69,7 +69,7 @@ pub use choices::*;
 pub use draft::{KindDraft, TaskDraft, Xy};
 pub use edit::{EditOutcome, number_at};
 pub use error::{ScenarioError, SourceLocation};
-pub use lifecycle_choices::{CostClock, CostsCount, RestTiming, RoundClock};
+pub use lifecycle_choices::{CostClock, CostsCount, ResourceStock, RestTiming, RoundClock};
 pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
 pub use locate::SourceMap;
 pub use model::*;

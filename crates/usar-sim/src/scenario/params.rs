@@ -13,7 +13,7 @@ use super::choices::{
     LoadOnLeave, OutsideRange, PhysicsStepping, RadiationFalloff, RadiationOverlap, Refresh,
     RescuedAt, RestAt, RoundStart, SearchClock, SweepPattern,
 };
-use super::lifecycle_choices::{CostClock, CostsCount, RestTiming, RoundClock};
+use super::lifecycle_choices::{CostClock, CostsCount, ResourceStock, RestTiming, RoundClock};
 use super::numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};
 
 /// The paper's "step", seconds: Unity's fixed step of 1/50 s, the unit of the paper's per-step
@@ -146,6 +146,9 @@ pub struct MissionParams {
     pub round_clock: RoundClock,
     /// Whether a rest is taken in its round's slack; default `OutOfRound`.
     pub rest_timing: RestTiming,
+    /// Where a group's rescuing resources come from: refilled each round, at rests, or one team
+    /// stock per round; default `PerRound`.
+    pub resource_stock: ResourceStock,
     /// The clock of the per-step costs: the paper's 1/50 s step or rendered frames; default
     /// `PaperStep`.
     pub cost_clock: CostClock,
@@ -218,6 +221,7 @@ impl Default for MissionParams {
             round_start: RoundStart::default(),
             round_clock: RoundClock::default(),
             rest_timing: RestTiming::default(),
+            resource_stock: ResourceStock::default(),
             cost_clock: CostClock::default(),
             costs_count: CostsCount::default(),
             away_quotas: AwayQuotas::default(),
