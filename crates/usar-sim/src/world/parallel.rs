@@ -3,8 +3,10 @@
 //! after the physics step with each robot's radiation factor, and the resolver's steering),
 //! computed with rayon into buffers kept between steps, then applied in robot id order. The
 //! contact gate of `sim.physics: NearBodies` (`contact_gate.rs`), the resolver's search
-//! for pairs about to collide (`resolver_pairs.rs`) and the rebuild of its neighbour lists
-//! (`neighbour_lists.rs`) run the same way. Each phase here is a function over explicit
+//! for pairs about to collide (`resolver_pairs.rs`), the rebuild of its neighbour lists
+//! (`neighbour_lists.rs`) and each robot's command (`step.rs`) run the same way; under
+//! `NearBodies` the robots far from any contact are read back while Rapier steps the near
+//! ones (`step.rs`, `step_near_bodies`). Each phase here is a function over explicit
 //! borrows (`&` what it reads, `&mut` the slices or buffers it writes), called by the step.
 //!
 //! Not in the paper. Each robot's output is computed by the same code, with the same
@@ -66,35 +68,67 @@ pub(super) fn follow_all(
         });
 }
 
-/// Reads every robot's body back from `bodies` after the physics step (see [`read_back`];
-/// a step of `dt_s` seconds) into its navigation state `nav[id]` and state `robots[id]`, and
-/// its dose factor under `radiation` at its new position into `radiation_factor[id]` (the
-/// three slices of one length, by id); on the calling rayon pool when `parallel`
-/// ([`PerRobot::parallel_for`] of the team). Each robot writes only its own slots.
-pub(super) fn read_back_all(
-    bodies: &RigidBodySet,
-    radiation: &RadiationField,
-    dt_s: f64,
-    parallel: bool,
-    nav: &mut [Nav],
-    robots: &mut [RobotState],
-    radiation_factor: &mut [f64],
-) {
+/// Where a read-back finds a robot after the physics step (see [`read_back_all`]).
+#[derive(Clone, Copy)]
+pub(super) enum ReadFrom<'a> {
+    /// Every robot from its body in `bodies` (disabled bodies straight at their commands).
+    Bodies(&'a RigidBodySet),
+    /// Only the robots not `near[id]` a contact (`sim.physics: NearBodies`, their bodies
+    /// disabled): straight at their commands, reading no body, so Rapier may step the near
+    /// bodies meanwhile.
+    Free(&'a [bool]),
+    /// Only the robots `near[id]` a contact, from their (enabled) bodies in `bodies`.
+    Near(&'a RigidBodySet, &'a [bool]),
+}
+
+/// What a read-back writes, borrowed from the world: each robot's navigation state `nav[id]`,
+/// state `robots[id]` and dose factor `radiation_factor[id]` under `radiation` (the three
+/// slices of one length, by id), after a physics step of `dt_s` seconds; on the calling rayon
+/// pool when `parallel` ([`PerRobot::parallel_for`] of the team).
+pub(super) struct ReadBack<'a> {
+    pub(super) radiation: &'a RadiationField,
+    pub(super) dt_s: f64,
+    pub(super) parallel: bool,
+    pub(super) nav: &'a mut [Nav],
+    pub(super) robots: &'a mut [RobotState],
+    pub(super) radiation_factor: &'a mut [f64],
+}
+
+/// Reads the robots `from` covers back after the physics step ([`read_back`]) into `to`, each
+/// with its dose factor at its new position. Each robot writes only its own slots, and a robot
+/// read back from [`ReadFrom::Free`] gets the same bits as from [`ReadFrom::Bodies`].
+pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
+    let ReadBack {
+        radiation,
+        dt_s,
+        parallel,
+        ref mut nav,
+        ref mut robots,
+        ref mut radiation_factor,
+    } = *to;
     let dt = dt_s as f32;
-    let each = |((nav, state), rad): ((&mut Nav, &mut RobotState), &mut f64)| {
+    let each = |(id, ((nav, state), rad)): (usize, ((&mut Nav, &mut RobotState), &mut f64))| {
+        let bodies = match from {
+            ReadFrom::Bodies(bodies) => Some(bodies),
+            ReadFrom::Free(near) if !near[id] => None,
+            ReadFrom::Near(bodies, near) if near[id] => Some(bodies),
+            ReadFrom::Free(_) | ReadFrom::Near(..) => return,
+        };
         read_back(bodies, nav, state, dt);
         *rad = radiation.factor_at(&state.position);
     };
     if parallel {
         nav.par_iter_mut()
-            .zip(robots)
-            .zip(radiation_factor)
+            .zip(robots.par_iter_mut())
+            .zip(radiation_factor.par_iter_mut())
+            .enumerate()
             .with_min_len(CHUNK_ROBOTS)
             .for_each(each);
     } else {
         nav.iter_mut()
-            .zip(robots)
-            .zip(radiation_factor)
+            .zip(robots.iter_mut())
+            .zip(radiation_factor.iter_mut())
+            .enumerate()
             .for_each(each);
     }
 }
@@ -156,15 +190,14 @@ pub(super) fn steer_all(
 
 /// Reads one robot's body back after the physics step: position, velocity, whether it moved
 /// (more than [`MOVED_TOLERANCE_M`]) and how far. A robot whose body is disabled
-/// (`sim.physics: NearBodies`, far from any contact) moves straight at its command for the
-/// step, `dt` seconds, as Rapier moves a body with nothing in reach. Writes only `nav` and
-/// `state`.
-fn read_back(bodies: &RigidBodySet, nav: &mut Nav, state: &mut RobotState, dt: f32) {
-    let body = &bodies[nav.body];
-    let (p, v) = if body.is_enabled() {
-        (body.translation(), body.linvel())
-    } else {
-        (nav.pos + nav.command * dt, nav.command)
+/// (`sim.physics: NearBodies`, far from any contact), or whose body is not read (`bodies`
+/// `None`: the caller knows it is disabled), moves straight at its command for the step, `dt`
+/// seconds, as Rapier moves a body with nothing in reach. Writes only `nav` and `state`.
+fn read_back(bodies: Option<&RigidBodySet>, nav: &mut Nav, state: &mut RobotState, dt: f32) {
+    let body = bodies.map(|b| &b[nav.body]).filter(|b| b.is_enabled());
+    let (p, v) = match body {
+        Some(body) => (body.translation(), body.linvel()),
+        None => (nav.pos + nav.command * dt, nav.command),
     };
     let disp = f64::from((p - nav.pos).length());
     nav.pos = p;

@@ -1,14 +1,21 @@
-//! The step's serial stages over explicit borrows ([`World::step`](super::World::step) runs
-//! them, in `world.rs`): each robot's body driven at its command (held robots counting a held
-//! step), and on a control step each robot's command, motion and list flags from the
-//! resolver's decisions and rule 5's steering. Robots by id; no wall-clock time, no hash-map
-//! iteration (a large team's per-robot phases on several threads give the same bits,
-//! `parallel.rs`, where a step displacement above `MOVED_TOLERANCE_M` counts as moved).
+//! The step's stages over explicit borrows ([`World::step`](super::World::step) runs them, in
+//! `world.rs`): each robot's body driven at its command (held robots counting a held step),
+//! `sim.physics: NearBodies`' Rapier step beside the read-back of the robots far from any
+//! contact, and on a control step each robot's command, motion and list flags from the
+//! resolver's decisions and rule 5's steering (per robot, in parallel for a large team). Robots
+//! by id; no wall-clock time, no hash-map iteration (a large team's per-robot phases on several
+//! threads give the same bits, `parallel.rs`, where a step displacement above
+//! `MOVED_TOLERANCE_M` counts as moved).
 
 use parry2d::math::Vector as Vec2;
+use rayon::prelude::*;
 
 use super::bodies::PhysicsScene;
 use super::nav_state::Nav;
+use super::parallel::{ReadBack, ReadFrom, read_back_all};
+use super::per_robot::CHUNK_ROBOTS;
+#[cfg(doc)]
+use super::per_robot::PerRobot;
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::robot::{Motion, RobotState};
@@ -37,6 +44,34 @@ pub(super) fn drive_all(
     }
 }
 
+/// The physics step and read-back of `sim.physics: NearBodies`, after the contact gate marked
+/// the robots `near[id]` a contact and enabled just their bodies in `scene`
+/// ([`PhysicsScene::gate_bodies`]): Rapier steps the near bodies (when `any` is near) while
+/// the other robots are read back straight at their commands ([`ReadFrom::Free`]: they read
+/// no body), side by side on the calling rayon pool when `to.parallel`; then the near robots
+/// are read back from their bodies. The same bits as a Rapier step followed by
+/// [`ReadFrom::Bodies`]: a robot's read-back reads only its own state and, when near, its
+/// body after the step. Returns whether Rapier stepped.
+pub(super) fn step_near_bodies(
+    scene: &mut PhysicsScene,
+    near: &[bool],
+    any: bool,
+    to: &mut ReadBack,
+) -> bool {
+    if any && to.parallel {
+        rayon::join(|| scene.step(), || read_back_all(ReadFrom::Free(near), to));
+    } else {
+        if any {
+            scene.step();
+        }
+        read_back_all(ReadFrom::Free(near), to);
+    }
+    if any {
+        read_back_all(ReadFrom::Near(&scene.physics.bodies, near), to);
+    }
+    any
+}
+
 /// What a control step's commands read, borrowed from the world: the scenario's `collision`
 /// parameters, the resolver after it ran (its decisions and the taken-goal test), its inputs
 /// (one per robot, by id) and each robot's steered velocity of this control step (rule 5,
@@ -51,10 +86,29 @@ pub(super) struct CommandInputs<'a> {
 /// Sets every robot's command until the next control step (`nav[id].command`, m/s) from its
 /// intent, or with the resolver on, what [`resolved_command`] makes of it; records its
 /// motion, list flags and resolver counters in `robots[id]` (a held step is counted by
-/// [`drive_all`], every step). `nav` and `robots` are by id, of one length.
-pub(super) fn command_all(w: &CommandInputs, nav: &mut [Nav], robots: &mut [RobotState]) {
-    for (id, (nav, state)) in nav.iter_mut().zip(robots).enumerate() {
+/// [`drive_all`], every step). `nav` and `robots` are by id, of one length. Each robot writes
+/// only its own slots, so on the calling rayon pool when `parallel` ([`PerRobot::parallel_for`]
+/// of the team) it gives the same bits.
+pub(super) fn command_all(
+    w: &CommandInputs,
+    parallel: bool,
+    nav: &mut [Nav],
+    robots: &mut [RobotState],
+) {
+    let each = |(id, (nav, state)): (usize, (&mut Nav, &mut RobotState))| {
         nav.command = command(w, id, nav, state);
+    };
+    if parallel {
+        nav.par_iter_mut()
+            .zip(robots.par_iter_mut())
+            .enumerate()
+            .with_min_len(CHUNK_ROBOTS)
+            .for_each(each);
+    } else {
+        nav.iter_mut()
+            .zip(robots.iter_mut())
+            .enumerate()
+            .for_each(each);
     }
 }
 

@@ -17,14 +17,14 @@ use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::GateInputs;
 use super::control_clock::ControlClock;
 use super::follow::FollowCtx;
-use super::parallel::{follow_all, read_back_all, steer_all};
+use super::parallel::{ReadBack, ReadFrom, follow_all, read_back_all, steer_all};
 use super::path_following::PathFollowing;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::radiation_field::RadiationField;
 use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, ground_query, plan_robot};
-use super::step::{CommandInputs, command_all, drive_all};
+use super::step::{CommandInputs, command_all, drive_all, step_near_bodies};
 use super::world_build::{
     clearance_grid, max_radius_m, pipelines, radiation_field, robots_at_start, shared_goals,
 };
@@ -458,8 +458,15 @@ impl World {
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
                 self.scene.gate_bodies(&self.nav, &near);
-                if any {
-                    self.scene.step();
+                let mut to = ReadBack {
+                    radiation: &self.radiation,
+                    dt_s: self.dt,
+                    parallel: self.pipelines.per_robot.parallel_for(n),
+                    nav: &mut self.nav,
+                    robots: &mut self.robots,
+                    radiation_factor: &mut self.radiation_factor,
+                };
+                if step_near_bodies(&mut self.scene, &near, any, &mut to) {
                     self.stats.physics_steps += 1;
                 }
                 self.pipelines.near_body = near;
@@ -470,7 +477,9 @@ impl World {
             }
         }
         self.stats.steps += 1;
-        self.read_back_all();
+        if physics != PhysicsStepping::NearBodies {
+            self.read_back_all();
+        }
         if clock.is_control_step(self.stats.steps) {
             self.reindex();
         } else {
@@ -530,7 +539,7 @@ impl World {
             inputs: &p.resolver_inputs,
             steered: &p.per_robot.steered,
         };
-        command_all(&w, &mut self.nav, &mut self.robots);
+        command_all(&w, parallel, &mut self.nav, &mut self.robots);
         if self.collision.enabled {
             self.stats.deadlocks_detected += p.resolver.deadlocked_lists();
             self.stats.list_rebuilds += u64::from(p.resolver.rebuilt_lists());
@@ -582,15 +591,15 @@ impl World {
     /// parallel for a large team.
     pub(super) fn read_back_all(&mut self) {
         let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
-        read_back_all(
-            &self.scene.physics.bodies,
-            &self.radiation,
-            self.dt,
+        let mut to = ReadBack {
+            radiation: &self.radiation,
+            dt_s: self.dt,
             parallel,
-            &mut self.nav,
-            &mut self.robots,
-            &mut self.radiation_factor,
-        );
+            nav: &mut self.nav,
+            robots: &mut self.robots,
+            radiation_factor: &mut self.radiation_factor,
+        };
+        read_back_all(ReadFrom::Bodies(&self.scene.physics.bodies), &mut to);
     }
 
     /// [`for_each_near`] over this world's robots and, while it is fresh, its neighbour index.
