@@ -44,22 +44,13 @@ pub fn draw(
     let dt = points.first().map_or(0.02, |p| p.dt_s);
     let y_max = values.iter().copied().fold(1.0, f64::max) * 2.0;
     let y_min = values.iter().copied().fold(10.0 / dt, f64::min) * 0.5;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "World steps per second against team size",
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(64)
-        .build_cartesian_2d((8.0..x_max).log_scale(), (y_min..y_max).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("robots")
-        .y_desc("world steps per CPU second (one core), per wall second (threads)")
-        .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0}"))
-        .draw()?;
+    let mut chart = log_log_chart(
+        &root,
+        "World steps per second against team size",
+        (8.0, x_max),
+        (y_min, y_max),
+        "world steps per CPU second (one core), per wall second (threads)",
+    )?;
     let blue = RGBColor(31, 119, 180);
     let orange = RGBColor(255, 127, 14);
     let purple = RGBColor(148, 103, 189);
@@ -97,47 +88,93 @@ pub fn draw(
             .iter()
             .filter_map(|p| value(p).map(|v| (p.robots as f64, v)))
             .collect();
-        let style = colour.stroke_width(2);
-        if dashed {
-            chart
-                .draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))?
-                .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(1))
-                });
-        } else {
-            chart
-                .draw_series(LineSeries::new(pts.clone(), style))?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
-        }
-        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+        curve(&mut chart, &pts, label, colour, dashed)?;
     }
     real_time_lines(&mut chart, dt, x_max)?;
+    legend(&mut chart)?;
+    root.present()?;
+    Ok(())
+}
+
+/// A log-log chart over `root` titled `caption`, `x` (robots) and `y` its (low, high) ranges,
+/// the y axis named `y_desc`, with its mesh drawn. Errors: as the drawing backend's.
+pub fn log_log_chart<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    caption: &str,
+    x: (f64, f64),
+    y: (f64, f64),
+    y_desc: &str,
+) -> Result<Chart<'a, 'b>, Box<dyn std::error::Error>> {
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(64)
+        .build_cartesian_2d((x.0..x.1).log_scale(), (y.0..y.1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("robots")
+        .y_desc(y_desc)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    Ok(chart)
+}
+
+/// Draws the legend of the curves drawn on `chart`, top right. Errors: as the drawing
+/// backend's.
+pub fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>) -> Result<(), Box<dyn std::error::Error>> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .position(SeriesLabelPosition::UpperRight)
         .draw()?;
-    root.present()?;
     Ok(())
 }
 
-/// The chart of [`draw`]: log-log, robots against steps per CPU second.
-type Chart<'a> = ChartContext<
+/// The chart of [`draw`]: log-log, robots against steps per CPU second (or, in
+/// `robot_step_figure.rs`, against nanoseconds per robot-step).
+pub type Chart<'a, 'b> = ChartContext<
     'a,
-    SVGBackend<'a>,
+    SVGBackend<'b>,
     Cartesian2d<
         plotters::coord::combinators::LogCoord<f64>,
         plotters::coord::combinators::LogCoord<f64>,
     >,
 >;
 
+/// Draws the curve through `pts` (solid, or dashed when `dashed`) with a dot at each point,
+/// and its legend entry `label`. Errors: as the drawing backend's.
+pub fn curve(
+    chart: &mut Chart<'_, '_>,
+    pts: &[(f64, f64)],
+    label: String,
+    colour: RGBColor,
+    dashed: bool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let style = colour.stroke_width(2);
+    if dashed {
+        chart
+            .draw_series(DashedLineSeries::new(pts.to_vec(), 6, 4, style))?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(1))
+            });
+    } else {
+        chart
+            .draw_series(LineSeries::new(pts.to_vec(), style))?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+    }
+    chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+    Ok(())
+}
+
 /// Draws the 10x and 25x real-time lines (steps per second at step `dt` seconds) across the
 /// chart, up to `x_max` robots. Errors: as the drawing backend's.
 fn real_time_lines(
-    chart: &mut Chart<'_>,
+    chart: &mut Chart<'_, '_>,
     dt: f64,
     x_max: f64,
 ) -> Result<(), Box<dyn std::error::Error>> {

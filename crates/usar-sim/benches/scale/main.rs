@@ -36,6 +36,11 @@
 //! `--svg FILE` (relative to the workspace root; also draw the curves, log-log, with the 10x
 //! and 25x real-time lines; `docs/img/scaling.svg` is made this way).
 //!
+//! `--robot-step` measures instead the cost per robot-step (`robot_step.rs`: nanoseconds per
+//! robot per step of the three `sim.physics` modes on 1 and `--threads` threads, beside bare
+//! Rapier; teams 1,000, 10,000 and 100,000 by default, `--warmup-steps N` untimed steps
+//! first, default 250; `--svg` draws its figure, `docs/img/robot-step.svg`).
+//!
 //! A team that cannot be built (a scaled start grid that no longer fits, a file that does not
 //! parse), an unknown `--method` or a failing step stops the bench with a one-line error,
 //! exit status 1; a bad option exits with status 2.
@@ -43,6 +48,8 @@
 mod figure;
 mod measure;
 mod options;
+mod robot_step;
+mod robot_step_figure;
 mod teams;
 mod threads;
 
@@ -87,9 +94,9 @@ fn report_threads(t: &Threaded) {
         Some(step) => format!("THE RUNS DIVERGED: robots stand apart at step {step}"),
     };
     println!(
-        "  the scenario on 1 and on {} threads: steps 1-{}, {:.3} and {:.3} wall-s, {:.1} and {:.1} sim-s per wall-s, speed-up {:.2}; {same}",
+        "  the scenario on 1 and on {} threads: {}, {:.3} and {:.3} wall-s, {:.1} and {:.1} sim-s per wall-s, speed-up {:.2}; {same}",
         t.threads,
-        t.steps,
+        measure::window(t.warmup, t.steps, t.dt_s),
         t.one_wall_s,
         t.many_wall_s,
         t.one_rate(),
@@ -114,24 +121,24 @@ fn run_team(n: usize, o: &Options) -> Result<Row, String> {
     };
     let err = |e: String| format!("team of {n}: {e}");
     if let Some(p) = period_s {
-        let m = measure(s, &o.method, o.steps, o.budget_s).map_err(err)?;
+        let m = measure(s, &o.method, 0, o.steps, o.budget_s).map_err(err)?;
         report(&format!("software every {p} s (the scenario)"), &m);
         row.control = Some(m);
         if !o.no_every_step {
             let each = s
                 .edit(|spec| spec.sim.control_period_s = None)
                 .map_err(|e| err(e.to_string()))?;
-            let m = measure(&each, &o.method, o.steps, o.budget_s).map_err(err)?;
+            let m = measure(&each, &o.method, 0, o.steps, o.budget_s).map_err(err)?;
             report("software every step", &m);
             row.every_step = Some(m);
         }
     } else {
-        let m = measure(s, &o.method, o.steps, o.budget_s).map_err(err)?;
+        let m = measure(s, &o.method, 0, o.steps, o.budget_s).map_err(err)?;
         report("software every step (the scenario)", &m);
         row.every_step = Some(m);
     }
     if o.threads > 1 {
-        let t = measure_threads(s, &o.method, o.steps, o.threads).map_err(err)?;
+        let t = measure_threads(s, &o.method, 0, o.steps, o.threads).map_err(err)?;
         report_threads(&t);
         row.threaded = Some(t);
     }
@@ -202,6 +209,13 @@ fn print_table(rows: &[Row], threads: usize) {
 
 fn main() {
     let o = options::options();
+    if o.robot_step {
+        if let Err(e) = robot_step::run(&o) {
+            eprintln!("error: {e}");
+            std::process::exit(1);
+        }
+        return;
+    }
     println!(
         "scaling bench: method {}, {} steps per measurement{}, one thread, rates per CPU second of the thread; logic and bare-Rapier replay of its commands in alternating blocks of {} steps{}",
         o.method,

@@ -25,9 +25,12 @@ pub const BLOCK_STEPS: u64 = 50;
 
 /// What one measurement covered and cost.
 pub struct Measured {
+    /// Steps run before the measured window, untimed (0: the window starts at the trial's
+    /// first step).
+    pub warmup: u64,
     /// Steps asked for (`--steps`).
     pub planned: u64,
-    /// Steps measured, the same for the logic and the replay (from the trial's first step).
+    /// Steps measured, the same for the logic and the replay (after the warm-up).
     pub steps: u64,
     /// Blocks run.
     pub blocks: u64,
@@ -65,11 +68,7 @@ impl Measured {
     /// What the measurement covered, e.g. `steps 1-1500 (0.00-30.00 s simulated), measured
     /// in full`, or where it was cut.
     pub fn coverage(&self) -> String {
-        let window = format!(
-            "steps 1-{} (0.00-{:.2} s simulated)",
-            self.steps,
-            self.steps as f64 * self.dt_s
-        );
+        let window = window(self.warmup, self.steps, self.dt_s);
         match &self.cut {
             None => format!("{window}, measured in full ({} blocks)", self.blocks),
             Some(why) => format!(
@@ -78,6 +77,25 @@ impl Measured {
             ),
         }
     }
+}
+
+/// A window of `steps` steps after `warmup` steps of `dt_s` seconds, e.g. `steps 251-350
+/// (5.00-7.00 s simulated)`.
+pub fn window(warmup: u64, steps: u64, dt_s: f64) -> String {
+    format!(
+        "steps {}-{} ({:.2}-{:.2} s simulated)",
+        warmup + 1,
+        warmup + steps,
+        warmup as f64 * dt_s,
+        (warmup + steps) as f64 * dt_s
+    )
+}
+
+/// CPU time of this process so far, all its threads, seconds
+/// (`clock_gettime(CLOCK_PROCESS_CPUTIME_ID)`).
+pub fn process_cpu_s() -> f64 {
+    let t = rustix::time::clock_gettime(rustix::time::ClockId::ProcessCPUTime);
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
 
 /// CPU time of this thread so far, seconds (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, exact
@@ -109,13 +127,53 @@ pub fn trial(s: &Scenario, method: &str) -> Result<Simulation, String> {
         .map_err(|e| e.to_string())
 }
 
-/// Measures the first `steps` steps of trial 0 of `s` under `method`, logic and bare replay
-/// in alternating blocks (see the module docs); with `budget_s`, stops at the first block end
-/// after that much wall-clock time and says so in [`Measured::cut`]. Errors (one line): the
-/// simulation does not build (an unknown method) or a step fails.
+/// The costs of one block: the logic's thread CPU and wall seconds, the replay's thread CPU
+/// seconds.
+struct BlockCost {
+    logic_cpu_s: f64,
+    logic_wall_s: f64,
+    bare_cpu_s: f64,
+}
+
+/// Runs `len` steps of `sim` (the first of them step `first`), recording its commands, then
+/// replays them on `scene` (see the module docs). Errors (one line): a step fails.
+fn run_block(
+    sim: &mut Simulation,
+    scene: &mut PhysicsScene,
+    commands: &mut Vec<Vec2>,
+    len: u64,
+    first: u64,
+) -> Result<BlockCost, String> {
+    let n = sim.world().robots().len().max(1);
+    commands.clear();
+    let (c0, w0) = (cpu_s(), Instant::now());
+    for k in 0..len {
+        sim.step().map_err(|e| format!("step {}: {e}", first + k))?;
+        commands.extend(sim.world().commanded_velocities());
+    }
+    let c1 = cpu_s();
+    let logic_wall_s = w0.elapsed().as_secs_f64();
+    for step in commands.chunks_exact(n) {
+        drive_bodies(scene, step);
+        scene.step();
+    }
+    let c2 = cpu_s();
+    Ok(BlockCost {
+        logic_cpu_s: c1 - c0,
+        logic_wall_s,
+        bare_cpu_s: c2 - c1,
+    })
+}
+
+/// Measures `steps` steps of trial 0 of `s` under `method` after `warmup` untimed ones
+/// (logic and replay alike), logic and bare replay in alternating blocks (see the module
+/// docs); with `budget_s`, stops at the first block end after that much wall-clock time (of
+/// the measured window) and says so in [`Measured::cut`]. Errors (one line): the simulation
+/// does not build (an unknown method) or a step fails.
 pub fn measure(
     s: &Scenario,
     method: &str,
+    warmup: u64,
     steps: u64,
     budget_s: Option<f64>,
 ) -> Result<Measured, String> {
@@ -123,8 +181,8 @@ pub fn measure(
     let mut scene = PhysicsScene::new(s);
     let n = s.robots().len().max(1);
     let mut commands: Vec<Vec2> = Vec::with_capacity(n * BLOCK_STEPS as usize);
-    let dt_s = s.sim().dt_s.get();
     let mut m = Measured {
+        warmup,
         planned: steps,
         steps: 0,
         blocks: 0,
@@ -133,8 +191,17 @@ pub fn measure(
         bare_cpu_s: 0.0,
         cut: None,
         diverged_at: None,
-        dt_s,
+        dt_s: s.sim().dt_s.get(),
     };
+    let mut done = 0;
+    while done < warmup {
+        let len = BLOCK_STEPS.min(warmup - done);
+        run_block(&mut sim, &mut scene, &mut commands, len, done + 1)?;
+        done += len;
+        if m.diverged_at.is_none() && !same_positions(&scene, &sim) {
+            m.diverged_at = Some(done);
+        }
+    }
     let t0 = Instant::now();
     while m.steps < steps {
         if let Some(b) = budget_s.filter(|&b| t0.elapsed().as_secs_f64() > b) {
@@ -142,26 +209,15 @@ pub fn measure(
             break;
         }
         let len = BLOCK_STEPS.min(steps - m.steps);
-        commands.clear();
-        let (c0, w0) = (cpu_s(), Instant::now());
-        for k in 0..len {
-            sim.step()
-                .map_err(|e| format!("step {}: {e}", m.steps + k + 1))?;
-            commands.extend(sim.world().commanded_velocities());
-        }
-        let c1 = cpu_s();
-        m.logic_wall_s += w0.elapsed().as_secs_f64();
-        for step in commands.chunks_exact(n) {
-            drive_bodies(&mut scene, step);
-            scene.step();
-        }
-        let c2 = cpu_s();
-        m.logic_cpu_s += c1 - c0;
-        m.bare_cpu_s += c2 - c1;
+        let cost = run_block(&mut sim, &mut scene, &mut commands, len, done + 1)?;
+        m.logic_cpu_s += cost.logic_cpu_s;
+        m.logic_wall_s += cost.logic_wall_s;
+        m.bare_cpu_s += cost.bare_cpu_s;
         m.steps += len;
         m.blocks += 1;
+        done += len;
         if m.diverged_at.is_none() && !same_positions(&scene, &sim) {
-            m.diverged_at = Some(m.steps);
+            m.diverged_at = Some(done);
         }
     }
     Ok(m)

@@ -18,12 +18,18 @@ use crate::measure::{self, BLOCK_STEPS};
 pub struct Threaded {
     /// Threads of the pool of the second run (>= 2).
     pub threads: usize,
-    /// Steps measured, the same for both runs (from the trial's first step).
+    /// Steps run by both before the measured window, untimed (0: from the trial's first step).
+    pub warmup: u64,
+    /// Steps measured, the same for both runs (after the warm-up).
     pub steps: u64,
     /// Wall-clock seconds of the steps on this thread alone.
     pub one_wall_s: f64,
     /// Wall-clock seconds of the steps on the pool of [`Threaded::threads`].
     pub many_wall_s: f64,
+    /// CPU seconds of the whole process (every thread) during the steps on one thread.
+    pub one_cpu_s: f64,
+    /// CPU seconds of the whole process (every thread) during the steps on the pool.
+    pub many_cpu_s: f64,
     /// The first block end (a step count) at which the two runs' robots stood apart, if any.
     pub diverged_at: Option<u64>,
     /// Physics step, seconds.
@@ -67,14 +73,16 @@ fn same_positions(a: &Simulation, b: &Simulation) -> bool {
     a.iter().zip(b).all(|(x, y)| x.position == y.position)
 }
 
-/// Measures the first `steps` steps of trial 0 of `s` under `method` on one thread and on a
-/// pool of `threads` threads, in alternating blocks (see the module docs). Both runs live on
+/// Measures `steps` steps of trial 0 of `s` under `method`, after `warmup` untimed ones, on
+/// one thread and on a pool of `threads` threads, in alternating blocks (see the module
+/// docs), by the wall clock and the process's CPU clock. Both runs live on
 /// the pool; the first forbids its per-robot phases to use it (`Simulation::set_parallel`), so
 /// it steps on one thread. Errors (one line): the pool cannot start, the simulation does not
 /// build or a step fails.
 pub fn measure_threads(
     s: &Scenario,
     method: &str,
+    warmup: u64,
     steps: u64,
     threads: usize,
 ) -> Result<Threaded, String> {
@@ -87,12 +95,26 @@ pub fn measure_threads(
         let mut many = trial(s, method, true)?;
         let mut m = Threaded {
             threads,
+            warmup,
             steps: 0,
             one_wall_s: 0.0,
             many_wall_s: 0.0,
+            one_cpu_s: 0.0,
+            many_cpu_s: 0.0,
             diverged_at: None,
             dt_s: s.sim().dt_s.get(),
         };
+        let mut done = 0;
+        while done < warmup {
+            let len = BLOCK_STEPS.min(warmup - done);
+            for sim in [&mut one, &mut many] {
+                steps_of(sim, len, done + 1)?;
+            }
+            done += len;
+            if m.diverged_at.is_none() && !same_positions(&one, &many) {
+                m.diverged_at = Some(done);
+            }
+        }
         let mut block = 0u64;
         while m.steps < steps {
             let len = BLOCK_STEPS.min(steps - m.steps);
@@ -100,24 +122,31 @@ pub fn measure_threads(
             // other left.
             let even = block.is_multiple_of(2);
             for is_one in [even, !even] {
-                let (sim, wall_s) = if is_one {
-                    (&mut one, &mut m.one_wall_s)
+                let (sim, wall_s, cpu) = if is_one {
+                    (&mut one, &mut m.one_wall_s, &mut m.one_cpu_s)
                 } else {
-                    (&mut many, &mut m.many_wall_s)
+                    (&mut many, &mut m.many_wall_s, &mut m.many_cpu_s)
                 };
-                let t0 = Instant::now();
-                for k in 0..len {
-                    sim.step()
-                        .map_err(|e| format!("step {}: {e}", m.steps + k + 1))?;
-                }
+                let (t0, c0) = (Instant::now(), measure::process_cpu_s());
+                steps_of(sim, len, done + 1)?;
+                *cpu += measure::process_cpu_s() - c0;
                 *wall_s += t0.elapsed().as_secs_f64();
             }
             block += 1;
             m.steps += len;
+            done += len;
             if m.diverged_at.is_none() && !same_positions(&one, &many) {
-                m.diverged_at = Some(m.steps);
+                m.diverged_at = Some(done);
             }
         }
         Ok(m)
     })
+}
+
+/// Steps `sim` `len` times, the first of them step `first`. Errors (one line): a step fails.
+fn steps_of(sim: &mut Simulation, len: u64, first: u64) -> Result<(), String> {
+    for k in 0..len {
+        sim.step().map_err(|e| format!("step {}: {e}", first + k))?;
+    }
+    Ok(())
 }
