@@ -181,6 +181,10 @@ pub struct PhysicsScene {
     /// `statics` by the buckets of a coarse grid over the arena (the contact gate's static
     /// test looks only at those near a robot).
     pub(super) static_buckets: StaticBuckets,
+    /// Whether the contact gate (`sim.physics: NearBodies`) left each robot's body enabled, by
+    /// robot id: empty until its first gating, when it is read from Rapier. Only the gate
+    /// enables or disables bodies, so it answers without looking the body up.
+    pub(super) gated_enabled: Vec<bool>,
 }
 
 impl PhysicsScene {
@@ -224,6 +228,7 @@ impl PhysicsScene {
             static_buckets: StaticBuckets::new(&static_boxes, w, h),
             static_boxes,
             statics,
+            gated_enabled: Vec::new(),
         }
     }
 

@@ -375,10 +375,17 @@ impl PhysicsScene {
     /// in Rapier (out of its solver and broad phase; the read-back moves the robot straight at
     /// its command, `parallel.rs`); the body of each robot near one is enabled, set to the
     /// robot's position if it was disabled, and driven at its command.
+    /// Whether each body is enabled is the gate's own record (`gated_enabled`), so a robot that
+    /// stays far from contacts costs no look-up in Rapier's body set.
     pub(super) fn gate_bodies(&mut self, nav: &[Nav], near: &[bool]) {
-        for (robot, &near) in nav.iter().zip(near) {
-            let body = &self.physics.bodies[robot.body];
-            match (near, body.is_enabled()) {
+        let mut enabled = std::mem::take(&mut self.gated_enabled);
+        if enabled.len() != nav.len() {
+            let bodies = &self.physics.bodies;
+            enabled.clear();
+            enabled.extend(nav.iter().map(|r| bodies[r.body].is_enabled()));
+        }
+        for ((robot, &near), was) in nav.iter().zip(near).zip(enabled.iter_mut()) {
+            match (near, *was) {
                 (true, true) => self.drive_body(robot.body, robot.command),
                 (true, false) => {
                     let body = &mut self.physics.bodies[robot.body];
@@ -389,7 +396,9 @@ impl PhysicsScene {
                 (false, true) => self.physics.bodies[robot.body].set_enabled(false),
                 (false, false) => {}
             }
+            *was = near;
         }
+        self.gated_enabled = enabled;
     }
 
     /// Whether `static_distance(p, with_debris) - radius_m <= reach_m`, answered obstacle by
