@@ -1,6 +1,6 @@
 //! rne-core as Python functions: `usar.trust` (agent-to-agent RNE trust, paper Eq. 7) and
 //! the built-in grouping methods applied to one request (`usar.rne`, `dis`, `eng`,
-//! `hp_dis`).
+//! `hp_dis`); and usar-sim's seed of a sweep's trial (`usar.gym.trial_seed`).
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -21,6 +21,16 @@ pub fn trust(weights: Vec<f64>, needs_a: Vec<f64>, needs_b: Vec<f64>) -> PyResul
     let a = NeedsVector::new(needs_a).map_err(value_error)?;
     let b = NeedsVector::new(needs_b).map_err(value_error)?;
     model.agent_agent(&a, &b).map_err(value_error)
+}
+
+/// The seed of trial `trial` of a sweep under the base seed `base_seed` (`sim.seed` or
+/// `--seed`): `usar_sim::mission::trial_seed`, the splitmix64 output for the state
+/// `base_seed + trial` (wrapping), the seed `usar.run(trial=k)` and `usar run --trial K` use.
+/// PyO3 refuses a negative or too large argument (`OverflowError`); `usar.gym.trial_seed`
+/// checks the arguments first.
+#[pyfunction]
+pub fn trial_seed(base_seed: u64, trial: u32) -> u64 {
+    usar_sim::mission::trial_seed(base_seed, trial)
 }
 
 /// Reads `key` of the raw request.

@@ -7,7 +7,7 @@
 //! - [`run`]: one trial, as `usar run --json` writes it;
 //! - [`sweep`]: a sweep in memory or into a folder, as `usar sweep` runs it;
 //! - [`py_method`]: a grouping method written in Python, called once per round;
-//! - [`core_fns`]: RNE trust and the built-in grouping methods as functions;
+//! - [`core_fns`]: RNE trust, the built-in grouping methods and a trial's seed as functions;
 //! - [`detached`]: running work with the GIL released while watching for Ctrl-C;
 //! - [`read_file`]: reading a scenario file so that Ctrl-C works while it waits;
 //! - [`errors`]: the exception types and the conversion of library errors;
@@ -56,6 +56,7 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(raster::rasterize_svg, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
+    m.add_function(wrap_pyfunction!(core_fns::trial_seed, m)?)?;
     m.add_function(wrap_pyfunction!(verdicts::claim_verdicts, m)?)?;
     m.add_function(wrap_pyfunction!(verdicts::compare_values, m)?)?;
     m.add("METHOD_NAMES", rne_core::grouping::METHOD_NAMES.to_vec())?;

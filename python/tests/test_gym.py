@@ -144,6 +144,29 @@ def test_seeding_draws_new_trials_apart_from_the_sweeps_held_out_ones():
     fresh.close()
 
 
+def test_trial_seed_is_the_librarys_and_checks_its_arguments():
+    # splitmix64's first output from the state 0.
+    assert usar.gym.trial_seed(0, 0) == 0xE220A8397B1DCDAF
+    # Another base seed, near 2**64 so that base + trial wraps: usar.run reports the same.
+    base = 2**64 - 2
+    other = usar.Scenario.load(PAPER).set("sim.seed", base)
+    for k in (0, 1, 2, 9):
+        assert usar.run(other, "rne", trial=k, duration_s=5.0).seed == usar.gym.trial_seed(base, k)
+    assert usar.gym.trial_seed(np.uint64(base), np.int32(2)) == usar.gym.trial_seed(base, 2)
+    for args, error, name in [
+        ((-1, 0), ValueError, "base_seed"),
+        ((2**64, 0), ValueError, "base_seed"),
+        ((0, -1), ValueError, "trial"),
+        ((0, 2**32), ValueError, "trial"),
+        ((1.0, 0), TypeError, "base_seed"),
+        ((True, 0), TypeError, "base_seed"),
+        ((0, "3"), TypeError, "trial"),
+        ((0, None), TypeError, "trial"),
+    ]:
+        with pytest.raises(error, match=f"^{name}"):
+            usar.gym.trial_seed(*args)
+
+
 def test_a_drawn_seed_is_redrawn_when_it_is_a_held_out_trials(monkeypatch):
     e = env(duration_s=10.0)
     e.reset(seed=4)

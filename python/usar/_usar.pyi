@@ -161,6 +161,10 @@ def replay(
 def trust(weights: List[float], needs_a: List[float], needs_b: List[float]) -> float:
     """Trust of A in B, nats (paper Eq. 7). Use ``usar.trust``."""
 
+def trial_seed(base_seed: int, trial: int) -> int:
+    """The seed of trial ``trial`` under ``base_seed`` (``usar_sim::mission::trial_seed``).
+    Use ``usar.gym.trial_seed``."""
+
 def builtin_group(
     name: str,
     raw: Dict[str, Any],

@@ -12,9 +12,7 @@ from __future__ import annotations
 
 import copy
 import os
-import queue
 import tempfile
-import threading
 import weakref
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -38,6 +36,7 @@ from ._observation import (
     observation_space,
     repair_assignment,
 )
+from ._episode import Replayer, Runner
 from ._usar import Scenario
 
 __all__ = [
@@ -63,133 +62,16 @@ ENV_ID = "usar/Grouping-v0"
 #: one of the sweep's trials 0 to ``HELD_OUT_TRIALS - 1`` (``trial_seed(sim.seed, k)``).
 HELD_OUT_TRIALS = 10_000
 
-_U64 = (1 << 64) - 1
-
 
 def trial_seed(base_seed: int, trial: int) -> int:
-    """The seed of the sweep's trial ``trial`` under ``sim.seed`` ``base_seed``: the
-    splitmix64 mix of crates/usar-sim/src/mission/initial.rs (``usar.run(trial=k)`` runs
-    the trial whose seed this is)."""
-    z = (int(base_seed) + int(trial) + 0x9E3779B97F4A7C15) & _U64
-    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & _U64
-    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & _U64
-    return z ^ (z >> 31)
-
-
-class _Stop(Exception):
-    """Raised inside the trial's thread to end an episode that is abandoned."""
-
-
-class _EnvMethod(GroupingMethod):
-    """The grouping method of an episode's trial: each round, it hands the request over and
-    answers the groups the environment's action gives (``None``: the episode is abandoned).
-    Results name it ``gym``. It holds the queues, not the environment, so that an
-    environment dropped without ``close()`` is collected and its trial ended."""
-
-    name = "gym"
-
-    def __init__(self, to_trial: "queue.Queue[Any]", from_trial: "queue.Queue[Any]") -> None:
-        self._to_trial, self._from_trial = to_trial, from_trial
-
-    def group(self, request: GroupingRequest) -> List[List[int]]:
-        self._from_trial.put(("request", request))
-        groups = self._to_trial.get()
-        if groups is None:
-            raise _Stop()
-        return groups
-
-
-class _Replayer(GroupingMethod):
-    """Answers an episode's recorded groups in turn (named ``gym``, as the episode's method);
-    past them, the action of all zeros repaired to the quotas."""
-
-    name = "gym"
-
-    def __init__(self, groups: Sequence[List[List[int]]]) -> None:
-        self._groups = list(groups)
-        self._lock = threading.Lock()
-
-    def group(self, request: GroupingRequest) -> List[List[int]]:
-        with self._lock:
-            if request.round < len(self._groups):
-                return self._groups[request.round]
-        lay = layout(request.scenario)
-        return groups_of_action(request, np.zeros(lay.n_robots, dtype=np.int64))[0]
-
-
-def _run_trial(
-    scenario: Scenario,
-    duration_s: Optional[float],
-    trial: int,
-    seed: int,
-    to_trial: "queue.Queue[Any]",
-    from_trial: "queue.Queue[Any]",
-) -> None:
-    """The episode's trial (the sweep's trial ``trial``, or the seed ``seed`` as is when
-    ``trial`` is -1), in its thread: its result, `stopped` or its error at the end."""
-    method = _EnvMethod(to_trial, from_trial)
-    try:
-        if trial >= 0:
-            result = _api.run(scenario, method=method, trial=trial, duration_s=duration_s)
-        else:
-            result = _api.run(scenario, method=method, seed=seed, duration_s=duration_s)
-        from_trial.put(("done", result))
-    except _Stop:
-        from_trial.put(("stopped", None))
-    except BaseException as e:  # noqa: BLE001 - handed to the caller of step()
-        from_trial.put(("error", e))
-
-
-class _Runner:
-    """The thread of an environment's current trial and its two queues. It holds no reference
-    to the environment: the environment's one finalizer (``weakref.finalize``, also run at
-    interpreter exit) calls :meth:`stop`, so that no trial thread is still inside the native
-    module when Python finalizes (a daemon thread that takes the GIL then is ended with
-    ``pthread_exit``, whose unwinding through the native frames aborts the process)."""
-
-    def __init__(self) -> None:
-        self.thread: Optional[threading.Thread] = None
-        self.to_trial: "queue.Queue[Any]" = queue.Queue()
-        self.from_trial: "queue.Queue[Tuple[str, Any]]" = queue.Queue()
-
-    def start(
-        self, scenario: Scenario, duration_s: Optional[float], trial: int, seed: int
-    ) -> None:
-        self.stop()
-        self.to_trial, self.from_trial = queue.Queue(), queue.Queue()
-        self.thread = threading.Thread(
-            target=_run_trial,
-            args=(scenario, duration_s, trial, seed, self.to_trial, self.from_trial),
-            name="usar.gym trial",
-            daemon=True,
-        )
-        self.thread.start()
-
-    def next(self) -> Tuple[str, Any]:
-        """The trial's next message: ``("request", GroupingRequest)`` or ``("done",
-        TrialResult)``; its error is raised."""
-        kind, value = self.from_trial.get()
-        if kind != "request":
-            self.join()
-        if kind == "error":
-            raise value
-        return kind, value
-
-    def join(self) -> None:
-        if self.thread is not None:
-            self.thread.join()
-        self.thread = None
-
-    def stop(self) -> None:
-        """Ends the trial (if running) and waits for its thread."""
-        if self.thread is not None and self.thread.is_alive():
-            self.to_trial.put(None)
-            while True:
-                kind, _ = self.from_trial.get()
-                if kind in ("stopped", "done", "error"):
-                    break
-                self.to_trial.put(None)
-        self.join()
+    """The seed of the sweep's trial ``trial`` (0 <= trial < 2**32) under ``sim.seed``
+    ``base_seed`` (0 <= base_seed < 2**64): the splitmix64 mix of
+    crates/usar-sim/src/mission/initial.rs, computed there (``usar_sim::mission::trial_seed``
+    through the native module), an int in 0..2**64-1. ``usar.run(trial=k)`` runs the trial
+    whose seed this is. TypeError for a non-integer argument, ValueError for one out of its
+    range, each naming the argument."""
+    base = _api._count("base_seed", base_seed, 0, 2**64)
+    return int(_usar.trial_seed(base, _api._count("trial", trial, 0, 2**32)))
 
 
 class GroupingEnv(gymnasium.Env):
@@ -269,7 +151,9 @@ class GroupingEnv(gymnasium.Env):
         self._layout = layout(self.scenario, self.duration_s)
         lay = self._layout
         self._base_seed = int(self.scenario.check()["seed"])
-        self._held_out = frozenset(trial_seed(self._base_seed, k) for k in range(HELD_OUT_TRIALS))
+        self._held_out = frozenset(
+            _usar.trial_seed(self._base_seed, k) for k in range(HELD_OUT_TRIALS)
+        )
         #: Task ids from the hardest to the easiest (the scenario's difficulty order).
         self.task_order = list(lay.task_order)
         #: Task names, by task id.
@@ -277,7 +161,7 @@ class GroupingEnv(gymnasium.Env):
         self._robot_kinds = list(lay.robot_kinds)
         self.observation_space = observation_space(self.scenario, self.duration_s)
         self.action_space = gymnasium.spaces.MultiDiscrete([lay.n_tasks] * lay.n_robots)
-        self._runner = _Runner()
+        self._runner = Runner()
         # One finalizer per environment: it ends the trial when the environment is collected
         # or, still open, at interpreter exit (weakref.finalize runs at exit by default).
         self._finalizer = weakref.finalize(self, self._runner.stop)
@@ -454,7 +338,7 @@ class GroupingEnv(gymnasium.Env):
                 _studies.render(self.scenario, out)
             else:
                 _studies.render(
-                    self.scenario, out, method=_Replayer(self._groups), seed=self._seed,
+                    self.scenario, out, method=Replayer(self._groups), seed=self._seed,
                     duration_s=now,
                 )
             with open(out, encoding="utf-8") as f:
@@ -484,7 +368,7 @@ class GroupingEnv(gymnasium.Env):
         now = self._request.time_s if self._request is not None else None
         duration = self.duration_s if now is None else max(now, 1e-9)
         return _studies.replay(
-            self.scenario, out, method=_Replayer(self._groups), seed=self._seed,
+            self.scenario, out, method=Replayer(self._groups), seed=self._seed,
             duration_s=duration, hz=hz,
         )
 
