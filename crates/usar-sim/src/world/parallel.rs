@@ -133,6 +133,27 @@ pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
     }
 }
 
+/// Each robot's resolver input ([`Nav::resolver_input`]) after its path following, into
+/// `out` (one per robot, by id; `nav` and `robots` of the same length), on the calling rayon
+/// pool when `parallel` ([`PerRobot::parallel_for`] of the team). Each reads only its own
+/// robot, so the order does not matter.
+pub(super) fn resolver_inputs_all(
+    nav: &[Nav],
+    robots: &[RobotState],
+    parallel: bool,
+    out: &mut [ResolverInput],
+) {
+    let each = |(id, o): (usize, &mut ResolverInput)| *o = nav[id].resolver_input(&robots[id]);
+    if parallel {
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(CHUNK_ROBOTS)
+            .for_each(each);
+    } else {
+        out.iter_mut().enumerate().for_each(each);
+    }
+}
+
 /// Rule 5 for every robot `resolver` did not hold, into `per.steered` (one entry per robot,
 /// by id; ground robots keep [`STEER_STATIC_GAP_M`] beyond their radius from walls and debris
 /// of `grid`), in parallel for a large team ([`PerRobot::parallel_for`]), each task of

@@ -17,7 +17,9 @@ use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::GateInputs;
 use super::control_clock::ControlClock;
 use super::follow::FollowCtx;
-use super::parallel::{ReadBack, ReadFrom, follow_all, read_back_all, steer_all};
+use super::parallel::{
+    ReadBack, ReadFrom, follow_all, read_back_all, resolver_inputs_all, steer_all,
+};
 use super::path_following::PathFollowing;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
@@ -518,8 +520,9 @@ impl World {
                     .path_following(period_s)
                     .update_intent(id, clock.path_check_due(tick, id)),
             }
-            self.pipelines.resolver_inputs[id] = self.nav[id].resolver_input(&self.robots[id]);
         }
+        let inputs = &mut self.pipelines.resolver_inputs;
+        resolver_inputs_all(&self.nav, &self.robots, parallel, inputs);
         let p = &mut self.pipelines;
         if self.collision.enabled {
             p.resolver.set_parallel(parallel);
