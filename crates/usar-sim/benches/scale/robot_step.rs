@@ -101,9 +101,10 @@ fn measure_team(n: usize, o: &Options) -> Result<TeamCost, String> {
     let err = |e: String| format!("team of {n}: {e}");
     let team = teams::team(n, &o.base, &o.scenarios).map_err(err)?;
     let (warmup, steps) = (o.warmup_steps, window_steps(n, o.steps_given));
+    // `teams::team` sets `EveryStep`; each mode is set below in turn.
+    let source = team.source.trim_end_matches(", physics every step");
     println!(
-        "team of {n}: {}; {}",
-        team.source,
+        "team of {n}: {source}, each physics mode in turn; {}",
         measure::window(warmup, steps, team.scenario.sim().dt_s.get())
     );
     let mut modes = Vec::new();
@@ -136,7 +137,7 @@ fn measure_team(n: usize, o: &Options) -> Result<TeamCost, String> {
 fn print_table(costs: &[TeamCost], threads: usize) {
     println!();
     println!(
-        "| robots | physics | window (steps) | 1 thread, wall | 1 thread, CPU | {threads} threads, wall | {threads} threads, CPU | speed-up (wall) | same places | peak RSS MiB |"
+        "| robots | physics | steps | 1 thread, wall | 1 thread, CPU | {threads} threads, wall | {threads} threads, CPU | speed-up (wall) | same places | peak RSS MiB |"
     );
     println!("|---:|---|---:|---:|---:|---:|---:|---:|---|---:|");
     for c in costs {
@@ -147,8 +148,9 @@ fn print_table(costs: &[TeamCost], threads: usize) {
                 continue;
             };
             println!(
-                "| {n} | {mode:?} | {} | {:.0} | {:.0} | {:.0} | {:.0} | {:.2} | {} | {:.0} |",
-                t.steps,
+                "| {n} | {mode:?} | {}-{} | {:.0} | {:.0} | {:.0} | {:.0} | {:.2} | {} | {:.0} |",
+                t.warmup + 1,
+                t.warmup + t.steps,
                 ns(t.one_wall_s, t.steps, n),
                 ns(t.one_cpu_s, t.steps, n),
                 ns(t.many_wall_s, t.steps, n),
@@ -160,8 +162,9 @@ fn print_table(costs: &[TeamCost], threads: usize) {
         }
         let b = &c.bare;
         println!(
-            "| {n} | bare Rapier (EveryStep's replay) | {} | | {:.0} | | | | {} | |",
-            b.steps,
+            "| {n} | bare Rapier (EveryStep's replay) | {}-{} | | {:.0} | | | | {} | |",
+            b.warmup + 1,
+            b.warmup + b.steps,
             ns(b.bare_cpu_s, b.steps, n),
             if b.diverged_at.is_none() {
                 "yes (replay exact)"
