@@ -39,7 +39,8 @@
 //! `--robot-step` measures instead the cost per robot-step (`robot_step.rs`: nanoseconds per
 //! robot per step of the three `sim.physics` modes on 1 and `--threads` threads, beside bare
 //! Rapier; teams 1,000, 10,000 and 100,000 by default, `--warmup-steps N` untimed steps
-//! first, default 250; `--svg` draws its figure, `docs/img/robot-step.svg`).
+//! first, default 250; `--skip MODE@N` leaves a mode out at team `N`; `--svg` draws its
+//! figure, `docs/img/robot-step.svg`).
 //!
 //! A team that cannot be built (a scaled start grid that no longer fits, a file that does not
 //! parse), an unknown `--method` or a failing step stops the bench with a one-line error,
