@@ -8,6 +8,7 @@
 //! - [`sweep`]: a sweep in memory or into a folder, as `usar sweep` runs it;
 //! - [`py_method`]: a grouping method written in Python, called once per round;
 //! - [`core_fns`]: RNE trust, the built-in grouping methods and a trial's seed as functions;
+//! - [`episode`]: `usar.gym`'s episode trial recording its paths, and its picture from them;
 //! - [`detached`]: running work with the GIL released while watching for Ctrl-C;
 //! - [`read_file`]: reading a scenario file so that Ctrl-C works while it waits;
 //! - [`errors`]: the exception types and the conversion of library errors;
@@ -18,6 +19,7 @@ use pyo3::prelude::*;
 pub mod check_data;
 pub mod core_fns;
 pub mod detached;
+pub mod episode;
 pub mod errors;
 pub mod json_value;
 pub mod methods;
@@ -54,6 +56,9 @@ fn _usar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(studies::run_multiverse_py, m)?)?;
     m.add_function(wrap_pyfunction!(pictures::replay, m)?)?;
     m.add_function(wrap_pyfunction!(raster::rasterize_svg, m)?)?;
+    m.add_class::<episode::PathLog>()?;
+    m.add_function(wrap_pyfunction!(episode::run_trial_logged, m)?)?;
+    m.add_function(wrap_pyfunction!(episode::episode_svg, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trust, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::builtin_group, m)?)?;
     m.add_function(wrap_pyfunction!(core_fns::trial_seed, m)?)?;

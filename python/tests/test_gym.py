@@ -337,6 +337,65 @@ def test_render_gives_the_arena_picture_and_replay_writes_the_episode(tmp_path):
     e.close()
 
 
+def counting(monkeypatch, names, calls):
+    """Replaces the native functions `names` with ones that append their name to `calls`."""
+    for name in names:
+        def call(*args, _real=getattr(usar._usar, name), _name=name, **kwargs):
+            calls.append(_name)
+            return _real(*args, **kwargs)
+
+        monkeypatch.setattr(usar._usar, name, call)
+
+
+def frame_of(svg_path):
+    h, w, rgb = usar._usar.rasterize_svg(svg_path.read_text(encoding="utf-8"))
+    return np.frombuffer(rgb, dtype=np.uint8).reshape(h, w, 3)
+
+
+def test_render_draws_the_running_trials_paths_once_per_round_and_runs_no_trial(
+    monkeypatch, tmp_path
+):
+    from usar._episode import Replayer
+
+    # Rounds start at 0, 125 and 237 s: the frames of the second and third.
+    e = env(duration_s=300.0, render_mode="rgb_array")
+    obs, info = e.reset(seed=4)
+    obs, _, terminated, _, step_info = e.step(most_energy_hardest(obs, e))
+    groups = [step_info["groups"]]
+    assert not terminated
+    calls = []
+    points = [(list(groups), e._request.time_s)]
+    with monkeypatch.context() as m:
+        counting(m, ["run_trial", "run_trial_logged", "render", "replay", "episode_svg"], calls)
+        first = e.render()
+        again = e.render()
+        np.testing.assert_array_equal(first, again)
+        # One picture drawn, from the running trial's paths: no trial ran.
+        assert calls == ["episode_svg"]
+        again[:] = 0  # each call gives a new array
+        np.testing.assert_array_equal(e.render(), first)
+        obs, _, terminated, _, step_info = e.step(most_energy_hardest(obs, e))
+        assert not terminated
+        after = e.render()
+        assert calls == ["episode_svg"] * 2
+    groups.append(step_info["groups"])
+    points.append((list(groups), e._request.time_s))
+    assert after.shape == first.shape and not np.array_equal(after, first)
+    # Each is the picture of the trial run to that round's start with the same groups.
+    for frame, (played, now) in zip((first, after), points):
+        usar.render(PAPER, tmp_path / "ref.svg", method=Replayer(played),
+                    seed=int(info["seed"]), duration_s=now)
+        np.testing.assert_array_equal(frame, frame_of(tmp_path / "ref.svg"))
+    # A copy draws the same picture: mid-episode (its trial replayed) and at the end (a copy
+    # of an ended episode replays it for its picture).
+    np.testing.assert_array_equal(copy.deepcopy(e).render(), after)
+    while not terminated:
+        obs, _, terminated, _, _ = e.step(most_energy_hardest(obs, e))
+    end = e.render()
+    np.testing.assert_array_equal(pickle.loads(pickle.dumps(e)).render(), end)
+    e.close()
+
+
 def test_close_and_reset_add_no_finalizer_and_no_thread():
     import weakref
 

@@ -1,21 +1,25 @@
-"""The thread machinery of a :class:`usar.gym.GroupingEnv` episode: its trial runs
+"""The thread machinery of a :class:`usar.gym.GroupingEnv` episode: its trial runs as
 ``usar.run`` in a thread of its own (:class:`Runner`), with a grouping method
 (:class:`EnvMethod`) that hands each round's request to the environment and waits for the
-groups its action makes; :class:`Replayer` answers an episode's recorded groups again (for
-its replay page). Private: use :mod:`usar.gym`.
+groups its action makes, and records every robot's path as it goes (its ``PathLog``, which
+the environment's pictures are drawn from); :class:`Replayer` answers an episode's recorded
+groups again (its replay page, the picture of a copied episode that had ended). Private: use
+:mod:`usar.gym`.
 """
 
 from __future__ import annotations
 
+import json
 import queue
 import threading
 from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _api
-from ._grouping import GroupingMethod, GroupingRequest
+from . import _usar
+from ._grouping import GroupingMethod, GroupingRequest, method_arg
 from ._observation import groups_of_action, layout
+from ._results import TrialResult
 from ._usar import Scenario
 
 
@@ -67,16 +71,18 @@ def run_trial(
     seed: int,
     to_trial: "queue.Queue[Any]",
     from_trial: "queue.Queue[Any]",
+    log: _usar.PathLog,
 ) -> None:
     """The episode's trial (the sweep's trial ``trial``, or the seed ``seed`` as is when
-    ``trial`` is -1), in its thread: its result, `stopped` or its error at the end."""
-    method = EnvMethod(to_trial, from_trial)
+    ``trial`` is -1), in its thread, run as :func:`usar.run` runs it, ``log`` recording every
+    robot's path as it goes: its result, `stopped` or its error at the end."""
+    method = method_arg(EnvMethod(to_trial, from_trial), scenario)
     try:
         if trial >= 0:
-            result = _api.run(scenario, method=method, trial=trial, duration_s=duration_s)
+            text = _usar.run_trial_logged(scenario, method, log, trial, duration_s, None)
         else:
-            result = _api.run(scenario, method=method, seed=seed, duration_s=duration_s)
-        from_trial.put(("done", result))
+            text = _usar.run_trial_logged(scenario, method, log, 0, duration_s, seed)
+        from_trial.put(("done", TrialResult(json.loads(text))))
     except Stop:
         from_trial.put(("stopped", None))
     except BaseException as e:  # noqa: BLE001 - handed to the caller of step()
@@ -84,7 +90,8 @@ def run_trial(
 
 
 class Runner:
-    """The thread of an environment's current trial and its two queues. It holds no reference
+    """The thread of an environment's current trial, its two queues and the log of its paths
+    (``log``, a new :class:`usar._usar.PathLog` per trial). It holds no reference
     to the environment: the environment's one finalizer (``weakref.finalize``, also run at
     interpreter exit) calls :meth:`stop`, so that no trial thread is still inside the native
     module when Python finalizes (a daemon thread that takes the GIL then is ended with
@@ -94,15 +101,17 @@ class Runner:
         self.thread: Optional[threading.Thread] = None
         self.to_trial: "queue.Queue[Any]" = queue.Queue()
         self.from_trial: "queue.Queue[Tuple[str, Any]]" = queue.Queue()
+        self.log = _usar.PathLog()
 
     def start(
         self, scenario: Scenario, duration_s: Optional[float], trial: int, seed: int
     ) -> None:
         self.stop()
         self.to_trial, self.from_trial = queue.Queue(), queue.Queue()
+        self.log = _usar.PathLog()
         self.thread = threading.Thread(
             target=run_trial,
-            args=(scenario, duration_s, trial, seed, self.to_trial, self.from_trial),
+            args=(scenario, duration_s, trial, seed, self.to_trial, self.from_trial, self.log),
             name="usar.gym trial",
             daemon=True,
         )

@@ -158,6 +158,29 @@ def replay(
     """Writes ``usar replay``'s page; returns the trial's JSON and the page's bytes. Use
     ``usar.replay``."""
 
+class PathLog:
+    """Every robot's path so far in one trial, filled by :func:`run_trial_logged` as the trial
+    runs (samples as ``usar render --trace``'s, every 0.5 s, plus the positions after the last
+    step) and drawn by :func:`episode_svg`. ``len(log)``: samples per robot so far (0 before
+    the trial starts). Not picklable. ``usar.gym`` makes one per trial."""
+
+    def __init__(self) -> None: ...
+    def __len__(self) -> int: ...
+
+def run_trial_logged(
+    scenario: Scenario,
+    method: MethodArg,
+    log: PathLog,
+    trial: int = 0,
+    duration_s: Optional[float] = None,
+    seed: Optional[int] = None,
+) -> str:
+    """:func:`run_trial`, ``log`` recording the paths (emptied first). Used by ``usar.gym``."""
+
+def episode_svg(scenario: Scenario, log: Optional[PathLog] = None) -> str:
+    """``usar render``'s SVG text: with ``log``, the paths in it so far; without (or with an
+    empty log), the arena with the robots at their starts. Used by ``usar.gym``'s frames."""
+
 def trust(weights: List[float], needs_a: List[float], needs_b: List[float]) -> float:
     """Trust of A in B, nats (paper Eq. 7). Use ``usar.trust``."""
 

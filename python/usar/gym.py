@@ -171,6 +171,9 @@ class GroupingEnv(gymnasium.Env):
         self._trial_index = -1
         self._groups: List[List[List[int]]] = []
         self._frame: Optional[Tuple[int, np.ndarray]] = None
+        # Whether the runner's path log is this episode's trial's (not for a copy of an
+        # episode that had ended, which ran no trial).
+        self._logged = False
 
     # -- the episode ---------------------------------------------------------------------
 
@@ -197,6 +200,7 @@ class GroupingEnv(gymnasium.Env):
         self._request = None
         self._frame = None
         self._runner.start(self.scenario, self.duration_s, trial, seed)
+        self._logged = True
         self._seed, self._trial_index, self._groups = seed, trial, []
         for g in list(groups) + [None]:
             kind, value = self._runner.next()
@@ -330,26 +334,32 @@ class GroupingEnv(gymnasium.Env):
     # -- pictures --------------------------------------------------------------------------
 
     def _svg(self) -> str:
-        """The arena picture (``usar.render``) with every robot's path so far, as SVG."""
+        """The arena picture (``usar.render``'s) with every robot's path so far, as SVG: drawn
+        from the paths the episode's trial recorded as it ran (no trial runs) or, for a copy
+        of an episode that had ended (no trial of this environment ran it), replayed."""
+        if self._seed is None or not self._groups:
+            return _usar.episode_svg(self.scenario)
+        if self._logged:
+            return _usar.episode_svg(self.scenario, self._runner.log)
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "frame.svg")
             now = self._request.time_s if self._request is not None else self._layout.end_s
-            if self._seed is None or not self._groups or now <= 0.0:
-                _studies.render(self.scenario, out)
-            else:
-                _studies.render(
-                    self.scenario, out, method=Replayer(self._groups), seed=self._seed,
-                    duration_s=now,
-                )
+            _studies.render(
+                self.scenario, out, method=Replayer(self._groups), seed=self._seed,
+                duration_s=now,
+            )
             with open(out, encoding="utf-8") as f:
                 return f.read()
 
     def render(self) -> Optional[np.ndarray]:  # type: ignore[override]
         """With ``render_mode="rgb_array"``: the arena picture of ``usar.render`` with every
         robot's path from the trial's start to the current round's start (the episode's end
-        once it is over), rasterised with resvg: an (H, W, 3) uint8 array (the picture's size,
-        about 1160 x 780 for paper.ron; its text labels are not drawn). ``None`` without a
-        render mode. Each call replays the episode so far (the frame is cached per step)."""
+        once it is over; after ``close()`` mid-episode, the round it stopped at), rasterised
+        with resvg: an (H, W, 3) uint8 array (the picture's size, about 1160 x 780 for
+        paper.ron; its text labels are not drawn), a new array each call. ``None`` without a
+        render mode. The paths come from the episode's own trial, recorded as it runs: a
+        frame costs one picture and no trial (the frame is cached until the next step; a
+        copy of an episode that had ended replays its trial once)."""
         if self.render_mode is None:
             return None
         key = len(self._groups)
