@@ -389,6 +389,10 @@ def test_render_draws_the_running_trials_paths_once_per_round_and_runs_no_trial(
     # A copy draws the same picture: mid-episode (its trial replayed) and at the end (a copy
     # of an ended episode replays it for its picture).
     np.testing.assert_array_equal(copy.deepcopy(e).render(), after)
+    # Closed mid-episode, before any frame: the paths to the round it stopped at.
+    twin = e.clone()
+    twin.close()
+    np.testing.assert_array_equal(twin.render(), after)
     while not terminated:
         obs, _, terminated, _, _ = e.step(most_energy_hardest(obs, e))
     end = e.render()
