@@ -23,6 +23,7 @@ use usar_report::table::num;
 
 use usar_sweep::trial_json::TrialJson;
 
+use super::check::TASKS_TABLE_MAX;
 use crate::shared::scenario_warnings::warn_about;
 use crate::shared::trial_build::{TRIAL_THREADS_HELP, build_trial, trial_pool, warn_if_rounded};
 
@@ -84,6 +85,12 @@ pub struct RunArgs {
     #[arg(long)]
     pub robots: bool,
 
+    /// Print a line per task and a column per task in the rounds table even for more than 12
+    /// tasks, which otherwise get the totals, the first and last three tasks and each round's
+    /// rescuees summed over its tasks.
+    #[arg(long)]
+    pub tasks: bool,
+
     #[arg(long, value_name = "N", help = TRIAL_THREADS_HELP)]
     pub threads: Option<usize>,
 }
@@ -119,7 +126,12 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     let wall = t0.elapsed().as_secs_f64();
     // A seed given as is belongs to no trial index.
     let per_robot = args.robots || result.robots.len() <= ROBOTS_TABLE_MAX;
-    print_result(&result, args.seed.is_none(), per_robot, out)?;
+    let per_task = args.tasks || result.tasks.len() <= TASKS_TABLE_MAX;
+    let lines = Lines {
+        per_robot,
+        per_task,
+    };
+    print_result(&result, args.seed.is_none(), lines, out)?;
     writeln!(
         out,
         "\n{} s simulated in {:.2} s wall-clock ({} sim-s per wall-s)",
@@ -143,18 +155,36 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
+/// Which of `usar run`'s tables get a line or column per robot and per task.
+#[derive(Debug, Clone, Copy)]
+pub struct Lines {
+    /// The per-robot table and every group's robot ids (else group sizes and a summary per
+    /// kind).
+    pub per_robot: bool,
+    /// A line per task and a column per task in the rounds table (else the totals, the first
+    /// and last [`TASKS_SHOWN`] tasks and each round's rescuees summed over its tasks).
+    pub per_task: bool,
+}
+
+/// Tasks shown at each end of the task table of a trial with many tasks.
+pub const TASKS_SHOWN: usize = 3;
+
 /// Prints a trial's metrics: rescuees and costs per task and in total, the rounds and the
-/// per-robot table (`per_robot`; else each group's size and a summary per kind). The header
-/// names the trial's index when `indexed` (`trial 3`), else only its seed (`usar run --seed`).
+/// per-robot table, as `lines` says ([`Lines`]). The header names the trial's index when
+/// `indexed` (`trial 3`), else only its seed (`usar run --seed`).
 ///
 /// # Errors
 /// An I/O error writing to `out`.
 pub fn print_result(
     r: &TrialResult,
     indexed: bool,
-    per_robot: bool,
+    lines: Lines,
     out: &mut dyn Write,
 ) -> Result<()> {
+    let Lines {
+        per_robot,
+        per_task,
+    } = lines;
     let trial = if indexed {
         format!("trial {}", r.trial)
     } else {
@@ -165,8 +195,8 @@ pub fn print_result(
         "{} {trial} with {} (seed {}), {} s",
         r.scenario, r.method, r.seed, r.duration_s
     )?;
-    print_tasks(r, out)?;
-    print_rounds(r, per_robot, out)?;
+    print_tasks(r, per_task, out)?;
+    print_rounds(r, per_robot, per_task, out)?;
     if per_robot {
         print_robots(r, out)
     } else {
@@ -174,7 +204,7 @@ pub fn print_result(
     }
 }
 
-fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+fn print_tasks(r: &TrialResult, per_task: bool, out: &mut dyn Write) -> Result<()> {
     let width = r.tasks.iter().map(String::len).max().unwrap_or(0).max(7);
     writeln!(
         out,
@@ -186,10 +216,20 @@ fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
             .value(r)
             .map_or_else(|| "n/a".to_string(), num)
     };
-    let scopes = (0..r.tasks.len())
+    let n = r.tasks.len();
+    let shown = |t: &usize| per_task || *t < TASKS_SHOWN || *t + TASKS_SHOWN >= n;
+    let scopes = (0..n)
+        .filter(shown)
         .map(|t| (r.tasks[t].as_str(), Scope::Task(t)))
         .chain(std::iter::once(("total", Scope::Total)));
     for (name, scope) in scopes {
+        if !per_task && scope == Scope::Task(n - TASKS_SHOWN) {
+            writeln!(
+                out,
+                "... {} more tasks (every task: --tasks)",
+                n - 2 * TASKS_SHOWN
+            )?;
+        }
         let rescued = Metric::new(Quantity::Rescued, scope)
             .value(r)
             .unwrap_or(0.0);
@@ -205,7 +245,12 @@ fn print_tasks(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn print_rounds(r: &TrialResult, per_robot: bool, out: &mut dyn Write) -> Result<()> {
+fn print_rounds(
+    r: &TrialResult,
+    per_robot: bool,
+    per_task: bool,
+    out: &mut dyn Write,
+) -> Result<()> {
     writeln!(
         out,
         "\nrounds: {} ({})",
@@ -215,6 +260,9 @@ fn print_rounds(r: &TrialResult, per_robot: bool, out: &mut dyn Write) -> Result
             |m| format!("mean completed round {} s", num(m))
         )
     )?;
+    if !per_task {
+        return print_rounds_summed(r, out);
+    }
     write!(
         out,
         "{:>5} {:>9} {:>9} {:>9} {:>10}",
@@ -251,6 +299,43 @@ fn print_rounds(r: &TrialResult, per_robot: bool, out: &mut dyn Write) -> Result
             })
             .collect();
         writeln!(out, "  {}", groups.join(" | "))?;
+    }
+    Ok(())
+}
+
+/// The rounds of a trial with many tasks: per round its times, the rescuees summed over its
+/// tasks and the range of its groups' sizes.
+fn print_rounds_summed(r: &TrialResult, out: &mut dyn Write) -> Result<()> {
+    writeln!(
+        out,
+        "{:>5} {:>9} {:>9} {:>9} {:>10} {:>9}  groups ({} tasks; per task: --tasks)",
+        "round",
+        "start s",
+        "end s",
+        "length s",
+        "completed",
+        "rescuees",
+        r.tasks.len()
+    )?;
+    for (i, rd) in r.rounds.iter().enumerate() {
+        let sizes = rd.groups.iter().map(Vec::len);
+        let (lo, hi) = (sizes.clone().min().unwrap_or(0), sizes.max().unwrap_or(0));
+        let range = if lo == hi {
+            lo.to_string()
+        } else {
+            format!("{lo} to {hi}")
+        };
+        writeln!(
+            out,
+            "{:>5} {:>9.2} {:>9.2} {:>9.2} {:>10} {:>9}  {} groups of {range} robots",
+            i + 1,
+            rd.start_s,
+            rd.end_s,
+            rd.end_s - rd.start_s,
+            if rd.completed { "yes" } else { "no" },
+            rd.rescued.iter().map(|&n| u64::from(n)).sum::<u64>(),
+            rd.groups.len(),
+        )?;
     }
     Ok(())
 }
