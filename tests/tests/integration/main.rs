@@ -16,6 +16,8 @@ mod mission_stalls;
 mod open_choices;
 mod paper_v0;
 mod paper_v1;
+mod paper_v2;
+mod paper_v3;
 mod parallel_trial;
 mod round_trips;
 mod scenario_api;

@@ -16,14 +16,14 @@ use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
 const GOLDEN: &[(&str, u32, u32, u32)] = &[
-    ("rne", 0, 72, 81),
-    ("rne", 1, 61, 85),
-    ("dis", 0, 56, 80),
-    ("dis", 1, 65, 64),
-    ("eng", 0, 55, 62),
-    ("eng", 1, 63, 72),
-    ("hp_dis", 0, 74, 67),
-    ("hp_dis", 1, 67, 76),
+    ("rne", 0, 69, 84),
+    ("rne", 1, 64, 88),
+    ("dis", 0, 57, 88),
+    ("dis", 1, 66, 82),
+    ("eng", 0, 64, 77),
+    ("eng", 1, 70, 80),
+    ("hp_dis", 0, 80, 74),
+    ("hp_dis", 1, 73, 80),
 ];
 
 #[test]
