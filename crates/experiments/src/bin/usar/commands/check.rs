@@ -20,6 +20,7 @@ use usar_sweep::spec_ron::spec_to_ron;
 use usar_sweep::vary::{Override, apply_overrides, brief, validate_overridden};
 
 use crate::shared::scenario_warnings::warn_about;
+use crate::shared::table_limits::{ROBOTS_TABLE_MAX, TASKS_TABLE_MAX};
 
 use crate::shared::check_many_tasks;
 use crate::shared::check_numbers::{decimals, metres, metres_range, short};
@@ -82,15 +83,6 @@ pub struct CheckArgs {
     #[arg(long)]
     pub tasks: bool,
 }
-
-/// Teams of at most this many robots get the per-robot table in `usar check`'s summary; larger
-/// ones a summary per kind (counts, start extent, distance ranges), unless `--robots`.
-pub const ROBOTS_TABLE_MAX: usize = 50;
-
-/// Scenarios of at most this many tasks get a line per task and a column per task (quotas,
-/// distances) in `usar check`'s summary; more a summary of the tasks (counts, ranges, the
-/// first and last few) whose lines stay short, unless `--tasks`.
-pub const TASKS_TABLE_MAX: usize = 12;
 
 /// Runs `usar check`. A valid scenario with tasks no group can rescue from or goals some
 /// robots cannot reach also gets one warning line each on stderr ([`warn_about`]); the exit

@@ -23,8 +23,8 @@ use usar_report::table::num;
 
 use usar_sweep::trial_json::TrialJson;
 
-use super::check::TASKS_TABLE_MAX;
 use crate::shared::scenario_warnings::warn_about;
+use crate::shared::table_limits::{ROBOTS_TABLE_MAX, TASKS_TABLE_MAX};
 use crate::shared::trial_build::{TRIAL_THREADS_HELP, build_trial, trial_pool, warn_if_rounded};
 
 const EXAMPLES: &str = "\
@@ -94,11 +94,6 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", help = TRIAL_THREADS_HELP)]
     pub threads: Option<usize>,
 }
-
-/// Teams of at most this many robots get the per-robot table and the groups' robot ids in
-/// `usar run`'s output; larger ones group sizes and a summary per kind, unless `--robots`
-/// (the same bound as `usar check`'s).
-pub const ROBOTS_TABLE_MAX: usize = 50;
 
 /// Runs `usar run`.
 ///

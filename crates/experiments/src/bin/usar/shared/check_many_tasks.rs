@@ -1,5 +1,5 @@
 //! `usar check`'s short summary of a scenario with many tasks (more than `TASKS_TABLE_MAX` of
-//! `commands/check.rs`, without `--tasks`): per kind its quota range over the tasks instead of
+//! `shared/table_limits.rs`, without `--tasks`): per kind its quota range over the tasks instead of
 //! a column per task, the tasks summarised with their first and last few rows, the starts'
 //! distance to the nearest and to any goal instead of a column per task, and radiation zones
 //! and rest stations as ranges; every line stays short.

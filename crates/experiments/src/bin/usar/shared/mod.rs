@@ -1,7 +1,8 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
 //! sweep and of a multiverse, building a trial, the error line, the scenario warnings, the
 //! short summary of a scenario of many tasks and how `usar check` writes numbers, the
-//! per-round yields' file, the progress bars and the hidden test hooks.
+//! per-round yields' file, the table limits of `check` and `run`, the progress bars and the
+//! hidden test hooks.
 
 pub mod check_many_tasks;
 pub mod check_numbers;
@@ -13,5 +14,6 @@ pub mod rounds_csv;
 pub mod scenario_warnings;
 pub mod stderr_lines;
 pub mod sweep_spec;
+pub mod table_limits;
 pub mod test_hooks;
 pub mod trial_build;
