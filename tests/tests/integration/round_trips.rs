@@ -5,7 +5,7 @@
 
 use integration_tests::{method, paper, paper_with};
 use usar_sim::mission::{LeaveCause, MissionEventKind, Simulation};
-use usar_sim::scenario::Scenario;
+use usar_sim::scenario::{ResourceStock, Scenario};
 
 /// Per round, per task: (deliveries, empty deliveries, left for rest), counted from events.
 type Counts = Vec<Vec<(u32, u32, u32)>>;
@@ -96,9 +96,23 @@ fn trip_figures_agree_with_the_events_for_every_method() {
     for name in ["rne", "dis", "eng", "hp_dis"] {
         seen.extend(check(&s, name));
     }
-    // paper.ron's groups leave by their search budget most often, and also when full.
+    // paper.ron's groups leave by their search budget, and when the team's stock of rescuing
+    // resources for the round is spent.
     assert!(seen.contains(&Some(LeaveCause::SearchBudget)));
+    assert!(seen.contains(&Some(LeaveCause::ResourcesUsed)));
+}
+
+#[test]
+fn groups_with_their_own_resources_also_leave_when_full() {
+    // Each member refilled per round (paper-v2.ron's rule): a group's 23 units outlast its
+    // capacity, so some groups leave full.
+    let s = paper_with(|s| s.mission.resource_stock = ResourceStock::PerRound);
+    let mut seen = Vec::new();
+    for name in ["rne", "dis", "eng", "hp_dis"] {
+        seen.extend(check(&s, name));
+    }
     assert!(seen.contains(&Some(LeaveCause::CapacityFull)));
+    assert!(!seen.contains(&Some(LeaveCause::ResourcesUsed)));
 }
 
 #[test]
