@@ -5,7 +5,7 @@
 //! its files are written. A second sweep, `--resume` or `--overwrite` into the same folder
 //! fails at once, naming the holder's pid, which the holder writes into the file.
 //!
-//! The lock belongs to the open file, so it ends with the [`OutputLock`] (on return, on an
+//! The lock belongs to the open file; it ends when the [`OutputLock`] is dropped (on return, on an
 //! error, on a panic) or with the process (an exit or a kill): a lock file left by a killed
 //! sweep never blocks the next one, and the pid in it is only informative. The file itself
 //! stays (removing it would let two sweeps lock two different files of the same name).
@@ -108,6 +108,17 @@ impl OutputLock {
     }
 }
 
+impl Drop for OutputLock {
+    /// Releases the lock itself (`flock(LOCK_UN)`) before the file closes: a lock belongs to
+    /// the open file, which a child process forked meanwhile by any thread of this process
+    /// shares until its exec, so closing this descriptor alone could leave the folder locked
+    /// that long.
+    fn drop(&mut self) {
+        // An error here leaves what closing the file does: the lock ends with the last copy.
+        let _ = self._file.unlock();
+    }
+}
+
 /// Creates `dir` if needed and opens its lock file (created if missing, not truncated: a
 /// holder's pid must stay readable until the lock is ours), refusing one that is not a
 /// regular file.
@@ -197,6 +208,25 @@ mod tests {
             fs::read_to_string(again.path()).unwrap(),
             format!("{}\n", std::process::id())
         );
+    }
+
+    #[test]
+    fn a_dropped_lock_is_released_while_a_copy_of_its_descriptor_is_open() {
+        // A copy of the descriptor, as a child forked before its exec holds: the lock of the
+        // open file would outlive the dropped lock until the copy closed.
+        let dir = tempfile::tempdir().unwrap();
+        for shared in [false, true] {
+            let first = if shared {
+                OutputLock::acquire_shared(dir.path())
+            } else {
+                OutputLock::acquire(dir.path())
+            }
+            .unwrap();
+            let copy = first._file.try_clone().unwrap();
+            drop(first);
+            drop(OutputLock::acquire(dir.path()).expect("released on drop"));
+            drop(copy);
+        }
     }
 
     #[test]
