@@ -168,9 +168,11 @@ impl Simulation {
     }
 
     /// Robot `id`'s needs vector now (Eqs. 19-21; see [`needs_vector`]): its current HP and
-    /// energy, and the rescuing resources and free carrying capacity it holds at this step.
-    /// (Grouping methods see the same vector with capacity and resources refilled, as at the
-    /// start of a round.)
+    /// energy, and the rescuing resources and free carrying capacity it holds at this step
+    /// (under `mission.resource_stock: TeamPerRound` its own resources, which pick-ups leave
+    /// alone: they draw on the team's stock). Grouping methods see the same vector with
+    /// capacity refilled and, unless `resource_stock` is `AtRest`, resources refilled, as at
+    /// the start of a round ([`crate::mission::snapshot`]).
     ///
     /// # Panics
     /// If `id` is not a robot id.

@@ -45,7 +45,8 @@ pub struct MissionState {
 pub(crate) struct TaskTally {
     /// Whether each task's group has an observer still in it.
     pub(crate) observer: Vec<bool>,
-    /// Each task's [`MissionState::unclaimed_pool`], kept up to date as robots claim.
+    /// Each task's [`MissionState::unclaimed_pool`], kept up to date as robots claim; under
+    /// `resource_stock: TeamPerRound`, the team's stock less every group's claims, for each.
     pub(crate) unclaimed: Vec<u32>,
     /// Scratch of the tally: each task's claims.
     pub(crate) claims: Vec<u32>,
@@ -59,7 +60,8 @@ pub(crate) struct TaskTally {
 pub(crate) struct LeaveFigures {
     /// Some member is in the search phase (on the way, searching or waiting).
     pub(crate) any_on_task: bool,
-    /// Resources held by the members not away for their needs ([`MissionState::group_pool`]).
+    /// Resources held by the members not away for their needs ([`MissionState::group_pool`]);
+    /// under `resource_stock: TeamPerRound`, the team's stock left.
     pub(crate) pool: u32,
     /// Free capacity of the ground members in the search phase, rescuees.
     pub(crate) free_capacity: u32,
@@ -146,7 +148,9 @@ impl MissionState {
     }
 
     /// Rescuing resources held by task `t`'s group (members not away; saturating at
-    /// `u32::MAX`) and how many of those members hold a claim.
+    /// `u32::MAX`) and how many of those members hold a claim. Under
+    /// `mission.resource_stock: TeamPerRound` pick-ups draw on [`MissionState::team_stock`]
+    /// instead, and the members' own resources are not used.
     pub fn group_pool(&self, t: usize) -> (u32, u32) {
         self.members(t).fold((0, 0), |(p, c), r| {
             (
@@ -156,7 +160,8 @@ impl MissionState {
         })
     }
 
-    /// Resources of task `t`'s group not yet promised to a claim.
+    /// Resources of task `t`'s group not yet promised to a claim (the members' own; see
+    /// [`MissionState::group_pool`] for `TeamPerRound`).
     pub fn unclaimed_pool(&self, t: usize) -> u32 {
         let (pool, claims) = self.group_pool(t);
         pool.saturating_sub(claims)
