@@ -393,6 +393,9 @@ def test_render_draws_the_running_trials_paths_once_per_round_and_runs_no_trial(
     twin = e.clone()
     twin.close()
     np.testing.assert_array_equal(twin.render(), after)
+    # And a copy of it (no trial of its own: it replays to that round, not to the end).
+    np.testing.assert_array_equal(copy.deepcopy(twin).render(), after)
+    np.testing.assert_array_equal(pickle.loads(pickle.dumps(twin)).render(), after)
     while not terminated:
         obs, _, terminated, _, _ = e.step(most_energy_hardest(obs, e))
     end = e.render()

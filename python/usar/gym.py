@@ -174,6 +174,9 @@ class GroupingEnv(gymnasium.Env):
         # Whether the runner's path log is this episode's trial's (not for a copy of an
         # episode that had ended, which ran no trial).
         self._logged = False
+        # The start of the round a closed episode stopped at, seconds (None: not closed
+        # mid-episode): a copy replays its trial to there for its picture, as the log ends.
+        self._stopped_s: Optional[float] = None
 
     # -- the episode ---------------------------------------------------------------------
 
@@ -201,6 +204,7 @@ class GroupingEnv(gymnasium.Env):
         self._frame = None
         self._runner.start(self.scenario, self.duration_s, trial, seed)
         self._logged = True
+        self._stopped_s = None
         self._seed, self._trial_index, self._groups = seed, trial, []
         for g in list(groups) + [None]:
             kind, value = self._runner.next()
@@ -290,6 +294,8 @@ class GroupingEnv(gymnasium.Env):
 
     def close(self) -> None:
         """Ends a trial in progress (the environment can be reset again)."""
+        if self._request is not None:
+            self._stopped_s = float(self._request.time_s)
         self._request = None
         self._finalizer()
         super().close()
@@ -305,6 +311,7 @@ class GroupingEnv(gymnasium.Env):
             "np_random": copy.deepcopy(self._np_random),
             "episode": (self._seed, self._trial_index, [copy.deepcopy(g) for g in self._groups]),
             "running": self._request is not None,
+            "stopped_s": self._stopped_s,
         }
 
     @classmethod
@@ -316,6 +323,7 @@ class GroupingEnv(gymnasium.Env):
             env._start(seed, trial, groups)
         else:
             env._seed, env._trial_index, env._groups = seed, trial, groups
+            env._stopped_s = state.get("stopped_s")
         return env
 
     def clone(self) -> "GroupingEnv":
@@ -343,7 +351,12 @@ class GroupingEnv(gymnasium.Env):
             return _usar.episode_svg(self.scenario, self._runner.log)
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "frame.svg")
-            now = self._request.time_s if self._request is not None else self._layout.end_s
+            if self._request is not None:
+                now = self._request.time_s
+            elif self._stopped_s is not None:
+                now = self._stopped_s
+            else:
+                now = self._layout.end_s
             _studies.render(
                 self.scenario, out, method=Replayer(self._groups), seed=self._seed,
                 duration_s=now,
