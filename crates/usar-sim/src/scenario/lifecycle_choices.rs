@@ -1,9 +1,11 @@
 //! The round and rest lifecycle's switches (`mission.round_clock`, `mission.rest_timing`,
-//! `mission.resource_stock`) and the cost clock's (`mission.cost_clock`, `mission.costs_count`): readings of the paper's
-//! rounds and costs that the authors' results sheet points to (issue 71, docs/calibration.md,
-//! "The authors' clock"). Defaults keep the model before them, so a scenario that names none
+//! `mission.resource_stock`) and the cost clock's (`mission.cost_clock`,
+//! `mission.costs_count`): readings of the paper's rounds and costs that the authors' results
+//! sheet points to (issue 71, docs/calibration.md, "The authors' clock" and "A rule that
+//! couples the tasks"). Defaults keep the model before them, so a scenario that names none
 //! runs as it always did. The systems that apply them: `mission::round_clock`,
-//! `mission::rest` and `mission::account`.
+//! `mission::rest` and `mission::account` (and for `resource_stock` also `mission::decide`'s
+//! pools and `mission::grouping`'s snapshot).
 
 use serde::{Deserialize, Serialize};
 
