@@ -85,12 +85,20 @@ impl Default for ContactGate {
 
 impl ContactGate {
     /// Whether some robot may touch a wall, debris (ground robots) or another robot of its
-    /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id),
-    /// asking `index` (the neighbour index while it holds the robots' positions) or else
-    /// scanning the robots. Stops at the first robot near a contact.
-    pub(super) fn near_contact(&mut self, w: &GateInputs, index: Option<&NeighbourIndex>) -> bool {
+    /// layer within the next step ([`GateView::robot_near_contact`] of each robot, by id).
+    /// The robots near each robot come from the gate's neighbour lists, as for
+    /// [`ContactGate::mark_near_bodies`] (`neighbours` is rebuilt for them when they are
+    /// rebuilt and `index_fresh` is false, which it then sets): the same answer as a scan of
+    /// every robot, in time linear in the team. Stops at the first robot near a contact.
+    pub(super) fn near_contact(
+        &mut self,
+        w: &GateInputs,
+        neighbours: &mut NeighbourIndex,
+        index_fresh: &mut bool,
+    ) -> bool {
         let gate = self.gate(w, false);
-        let view = GateView::new(w, &gate, None, index);
+        self.refresh_lists(w, &gate, neighbours, index_fresh, false);
+        let view = GateView::new(w, &gate, Some(&self.lists), None);
         let near = (0..w.nav.len()).any(|i| {
             let mut clearance = UNREAD;
             view.robot_near_contact(i, &mut clearance, |_| {})

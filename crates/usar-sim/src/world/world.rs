@@ -577,7 +577,7 @@ impl World {
     pub(super) fn near_contact(&mut self) -> bool {
         let (w, p) = self.gate_inputs();
         p.gate
-            .near_contact(&w, p.index_fresh.then_some(&p.neighbours))
+            .near_contact(&w, &mut p.neighbours, &mut p.index_fresh)
     }
 
     /// [`ContactGate::mark_near_bodies`](super::contact_gate::ContactGate::mark_near_bodies)
