@@ -44,7 +44,9 @@
 //!
 //! A team that cannot be built (a scaled start grid that no longer fits, a file that does not
 //! parse), an unknown `--method` or a failing step stops the bench with a one-line error,
-//! exit status 1; a bad option exits with status 2.
+//! exit status 1; a bad option exits with status 2. A replay whose bodies or a two-thread run
+//! whose robots did not stand where the world's did ends it with exit status 1 too, after its
+//! table and figure.
 
 mod figure;
 mod measure;
@@ -269,5 +271,26 @@ fn main() {
             std::process::exit(1);
         }
         println!("figure: {}", teams::short(path));
+    }
+    // A replay or a two-thread run that did not stand where the world did fails the bench,
+    // after the table and the figure.
+    let diverged: Vec<String> = rows
+        .iter()
+        .flat_map(|r| {
+            let replays = [&r.control, &r.every_step]
+                .into_iter()
+                .filter_map(|m| m.as_ref()?.diverged_at)
+                .map(move |step| format!("{} robots: a replay at step {step}", r.robots));
+            let runs = r
+                .threaded
+                .as_ref()
+                .and_then(|t| t.diverged_at)
+                .map(|step| format!("{} robots: the two runs at step {step}", r.robots));
+            replays.chain(runs)
+        })
+        .collect();
+    if !diverged.is_empty() {
+        eprintln!("error: not the same places: {}", diverged.join("; "));
+        std::process::exit(1);
     }
 }

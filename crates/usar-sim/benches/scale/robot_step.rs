@@ -176,7 +176,9 @@ fn print_table(costs: &[TeamCost], threads: usize) {
 }
 
 /// Runs `--robot-step` (see the module docs): prints every team's lines, the table, and with
-/// `--svg` draws the figure. Errors (one line): a team fails or the figure cannot be written.
+/// `--svg` draws the figure. Errors (one line): a team fails, the figure cannot be written, or
+/// a configuration's two runs (or the bare replay) did not stand in the same places (after
+/// the table and the figure, so the numbers are still seen).
 pub fn run(o: &Options) -> Result<(), String> {
     println!(
         "cost per robot-step: method {}, trial 0, {} warm-up steps then a window per team, on 1 and {} threads side by side in alternating blocks of {} steps; nanoseconds per robot per step",
@@ -195,5 +197,26 @@ pub fn run(o: &Options) -> Result<(), String> {
             .map_err(|e| format!("cannot draw {path}: {e}"))?;
         println!("figure: {}", teams::short(path));
     }
-    Ok(())
+    let diverged: Vec<String> = costs
+        .iter()
+        .flat_map(|c| {
+            let runs = c.modes.iter().filter_map(move |(mode, t)| {
+                let step = t.as_ref()?.diverged_at?;
+                Some(format!(
+                    "{} robots {mode:?}: the runs at step {step}",
+                    c.robots
+                ))
+            });
+            let bare = c
+                .bare
+                .diverged_at
+                .map(|step| format!("{} robots: the bare replay at step {step}", c.robots));
+            runs.chain(bare)
+        })
+        .collect();
+    if diverged.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("not the same places: {}", diverged.join("; ")))
+    }
 }
