@@ -213,8 +213,20 @@ fn print_table(rows: &[Row], threads: usize) {
 fn main() {
     let o = options::options();
     if o.robot_step {
-        if let Err(e) = robot_step::run(&o) {
+        let costs = robot_step::run(&o).unwrap_or_else(|e| {
             eprintln!("error: {e}");
+            std::process::exit(1)
+        });
+        if let Some(path) = &o.svg {
+            if let Err(e) = robot_step_figure::draw(&costs, o.threads, path) {
+                eprintln!("error: cannot draw {path}: {e}");
+                std::process::exit(1);
+            }
+            println!("figure: {}", teams::short(path));
+        }
+        let diverged = robot_step::diverged(&costs);
+        if !diverged.is_empty() {
+            eprintln!("error: not the same places: {}", diverged.join("; "));
             std::process::exit(1);
         }
         return;
