@@ -15,7 +15,7 @@
 use integration_tests::{golden_counts, paper};
 
 /// (method, trial, hard, easy).
-const GOLDEN: &[(&str, u32, u32, u32)] = &[
+pub(crate) const GOLDEN: &[(&str, u32, u32, u32)] = &[
     ("rne", 0, 69, 84),
     ("rne", 1, 64, 88),
     ("dis", 0, 57, 88),
@@ -30,7 +30,7 @@ const GOLDEN: &[(&str, u32, u32, u32)] = &[
 fn paper_rescuee_counts_are_pinned() {
     let actual = golden_counts(&paper());
     if actual != GOLDEN {
-        println!("const GOLDEN: &[(&str, u32, u32, u32)] = &[");
+        println!("pub(crate) const GOLDEN: &[(&str, u32, u32, u32)] = &[");
         for (m, t, h, e) in &actual {
             println!("    ({m:?}, {t}, {h}, {e}),");
         }
