@@ -8,19 +8,16 @@
 //! positions after the last step too: while the trial waits for a round's groups, the picture
 //! ends where the robots stand at that round's start, as a trial run to that time ends.
 
-use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use pyo3::prelude::*;
 use usar_report::render::{TRACE_SAMPLE_S, Trace, render_svg_string};
-use usar_sim::mission::{MissionError, Simulation, StepObserver};
+use usar_sim::mission::{Simulation, StepObserver};
 use usar_sim::scenario::PointM;
-use usar_sweep::trial_json::TrialJson;
 
-use crate::detached::run_detached;
 use crate::errors::chain_value_error;
-use crate::py_method::{FirstError, MethodArg};
-use crate::run::{drive, trial_builder, trial_outcome};
+use crate::py_method::MethodArg;
+use crate::run::run_observed;
 use crate::scenario::Scenario;
 
 /// The paths of one trial so far.
@@ -142,18 +139,8 @@ pub fn run_trial_logged(
     duration_s: Option<f64>,
     seed: Option<u64>,
 ) -> PyResult<String> {
-    let first_error = FirstError::default();
-    let s = scenario.inner();
-    let (builder, python) = trial_builder(s, method, trial, seed, duration_s, &first_error)?;
-    let stop = Arc::new(AtomicBool::new(false));
     let mut logger = Logger(log.paths.clone());
-    let work = || -> Result<Option<String>, MissionError> {
-        let mut sim = builder.build()?;
-        let done = drive(&mut sim, python, &mut logger, &stop)?;
-        Ok(done.map(|()| serde_json::to_string(&TrialJson::of(&sim.result())).unwrap_or_default()))
-    };
-    let outcome = run_detached(py, &stop, work, |_| Ok(()))?;
-    trial_outcome(outcome, &first_error)
+    run_observed(py, scenario, method, trial, duration_s, seed, &mut logger)
 }
 
 /// `usar render`'s SVG picture of `scenario` as text: with `log`, every robot's path in it so

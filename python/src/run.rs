@@ -135,6 +135,31 @@ pub fn run_trial(
     duration_s: Option<f64>,
     seed: Option<u64>,
 ) -> PyResult<String> {
+    run_observed(
+        py,
+        scenario,
+        method,
+        trial,
+        duration_s,
+        seed,
+        &mut |_: &Simulation| {},
+    )
+}
+
+/// [`run_trial`] with `observer` called on the trial's start and after every step (from the
+/// trial's thread: `Send`). Returns `usar run --json`'s JSON text.
+///
+/// # Errors
+/// As [`run_trial`].
+pub(crate) fn run_observed(
+    py: Python<'_>,
+    scenario: &Scenario,
+    method: MethodArg,
+    trial: u32,
+    duration_s: Option<f64>,
+    seed: Option<u64>,
+    observer: &mut (dyn StepObserver + Send),
+) -> PyResult<String> {
     let first_error = FirstError::default();
     let (builder, python) = trial_builder(
         scenario.inner(),
@@ -147,7 +172,7 @@ pub fn run_trial(
     let stop = Arc::new(AtomicBool::new(false));
     let work = || -> Result<Option<String>, MissionError> {
         let mut sim = builder.build()?;
-        let Some(()) = drive(&mut sim, python, &mut |_: &Simulation| {}, &stop)? else {
+        let Some(()) = drive(&mut sim, python, observer, &stop)? else {
             return Ok(None);
         };
         let json = serde_json::to_string(&TrialJson::of(&sim.result()));
