@@ -66,6 +66,11 @@ pub struct NeighbourGrid {
     pos: Vec<Vec2>,
     /// Scratch of the rebuild: (cell, id, position) of every point.
     scratch: Vec<(u32, usize, Vec2)>,
+    /// Cell and id of every point of the last rebuild, ascending id, and the slot of `ids`
+    /// and `pos` each was placed in: a rebuild whose points all stay in their cells only
+    /// writes their new positions to those slots (the same index as a full rebuild).
+    placed: Vec<(u32, usize)>,
+    slots: Vec<u32>,
 }
 
 impl NeighbourGrid {
@@ -90,6 +95,8 @@ impl NeighbourGrid {
             ids: Vec::new(),
             pos: Vec::new(),
             scratch: Vec::new(),
+            placed: Vec::new(),
+            slots: Vec::new(),
         }
     }
 
@@ -126,8 +133,10 @@ impl NeighbourGrid {
     }
 
     /// Replaces the indexed points by `points` (id and centre, metres). Ids need not be dense;
-    /// within a cell they are kept in ascending order. `O(n + cells)` (a counting sort), no
-    /// allocation once the buffers have grown to the team size.
+    /// within a cell they are kept in ascending order. `O(n + cells)` (a counting sort), `O(n)`
+    /// when every point has the ids and cells of the last rebuild (only the positions are
+    /// written, to the slots they held: the same index), no allocation once the buffers have
+    /// grown to the team size.
     pub fn rebuild(&mut self, points: impl IntoIterator<Item = (usize, Vec2)>) {
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.clear();
@@ -138,9 +147,27 @@ impl NeighbourGrid {
         );
         // Ascending ids (already so when built from a robot list: then O(n)).
         scratch.sort_unstable_by_key(|&(_, id, _)| id);
+        let same_cells = scratch.len() == self.placed.len()
+            && scratch
+                .iter()
+                .zip(&self.placed)
+                .all(|(&(c, id, _), &placed)| (c, id) == placed);
+        if same_cells {
+            for (&(_, _, p), &slot) in scratch.iter().zip(&self.slots) {
+                self.pos[slot as usize] = p;
+            }
+        } else {
+            self.place(&scratch);
+        }
+        self.scratch = scratch;
+    }
+
+    /// The counting sort of [`NeighbourGrid::rebuild`] over `scratch` (cell, id, position;
+    /// ascending id), recording each point's cell, id and slot.
+    fn place(&mut self, scratch: &[(u32, usize, Vec2)]) {
         let cells = self.nx * self.ny;
         self.starts.fill(0);
-        for &(c, _, _) in &scratch {
+        for &(c, _, _) in scratch {
             self.starts[c as usize] += 1;
         }
         // Inclusive prefix sums: starts[c] is the end of cell c ...
@@ -152,15 +179,19 @@ impl NeighbourGrid {
         self.starts[cells] = end;
         self.ids.resize(scratch.len(), 0);
         self.pos.resize(scratch.len(), Vec2::ZERO);
+        self.slots.resize(scratch.len(), 0);
         // ... and placing in descending id moves it down to the cell's start, leaving each
         // cell in ascending id.
-        for &(c, id, p) in scratch.iter().rev() {
+        for (k, &(c, id, p)) in scratch.iter().enumerate().rev() {
             let slot = &mut self.starts[c as usize];
             *slot -= 1;
             self.ids[*slot as usize] = id;
             self.pos[*slot as usize] = p;
+            self.slots[k] = *slot;
         }
-        self.scratch = scratch;
+        self.placed.clear();
+        self.placed
+            .extend(scratch.iter().map(|&(c, id, _)| (c, id)));
     }
 
     /// Calls `f(id, position)` for every indexed point in a cell that meets the square of
@@ -361,6 +392,40 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// A grid rebuilt over moved points (most within their cells, some across, some
+        /// dropped) holds exactly what a fresh grid of the new points holds, cell by cell.
+        #[test]
+        fn a_rebuild_over_moved_points_equals_a_fresh_grid(
+            points in prop::collection::vec(point(), 0..60),
+            moves in prop::collection::vec((-0.3f32..0.3, -0.3f32..0.3), 60),
+            keep in 0usize..60,
+        ) {
+            let mut grid = NeighbourGrid::new(40.0, 30.0, 2.5);
+            grid.rebuild(points.iter().copied().enumerate());
+            let moved: Vec<Vec2> = points
+                .iter()
+                .zip(&moves)
+                .map(|(&p, &(dx, dy))| p + Vec2::new(dx, dy))
+                .collect();
+            // Within their cells but on a border (a jitter of 1 mm crosses few).
+            let nudged: Vec<Vec2> = moved.iter().map(|&p| p + Vec2::new(1e-3, -1e-3)).collect();
+            let subset = &moved[..keep.min(moved.len())];
+            let mut fast = 0;
+            for next in [&moved[..], &moved[..], &nudged[..], subset, &moved[..]] {
+                fast += usize::from(
+                    next.len() == grid.placed.len()
+                        && next.iter().zip(&grid.placed).all(|(&p, &(c, _))| grid.cell_of(p) as u32 == c),
+                );
+                grid.rebuild(next.iter().copied().enumerate());
+                let mut fresh = NeighbourGrid::new(40.0, 30.0, 2.5);
+                fresh.rebuild(next.iter().copied().enumerate());
+                prop_assert_eq!(&grid.starts, &fresh.starts);
+                prop_assert_eq!(&grid.ids, &fresh.ids);
+                prop_assert_eq!(&grid.pos, &fresh.pos);
+            }
+            prop_assert!(fast >= 1, "the second rebuild over the same points keeps every cell");
+        }
 
         /// `within` equals a scan of all points, for random points (on cell borders and outside
         /// the field too), cells and radii (smaller and larger than a cell).
