@@ -147,6 +147,7 @@ impl ContactGate {
                 .zip(cache.par_chunks_mut(CHUNK_ROBOTS))
                 .zip(used)
                 .enumerate()
+                .with_max_len(1)
                 .for_each(mark_chunk);
         } else {
             near.chunks_mut(CHUNK_ROBOTS)
@@ -216,6 +217,7 @@ impl ContactGate {
                 .par_iter_mut()
                 .zip(w.nav)
                 .with_min_len(CHUNK_ROBOTS)
+                .with_max_len(CHUNK_ROBOTS)
                 .for_each(disc);
         } else {
             discs.iter_mut().zip(w.nav).for_each(disc);

@@ -207,6 +207,7 @@ impl NeighbourLists {
                         .par_chunks(CHUNK_ROBOTS)
                         .zip(self.epoch_layer.par_chunks(CHUNK_ROBOTS)),
                 )
+                .with_max_len(1)
                 .map(moved)
                 .reduce(|| Some([0.0; 2]), merge_moves)
         } else {
@@ -250,6 +251,7 @@ impl NeighbourLists {
             self.chunks[..chunks]
                 .par_iter_mut()
                 .enumerate()
+                .with_max_len(1)
                 .for_each(|(c, (ids, spans))| {
                     ids.clear();
                     spans.clear();

@@ -59,6 +59,7 @@ pub(super) fn follow_all(
     out.par_iter_mut()
         .enumerate()
         .with_min_len(CHUNK_ROBOTS)
+        .with_max_len(CHUNK_ROBOTS)
         .for_each(|(id, o)| {
             let (me, state) = (&nav[id], &robots[id]);
             let mut f = Followed::of(me, state);
@@ -123,6 +124,7 @@ pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
             .zip(radiation_factor.par_iter_mut())
             .enumerate()
             .with_min_len(CHUNK_ROBOTS)
+            .with_max_len(CHUNK_ROBOTS)
             .for_each(each);
     } else {
         nav.iter_mut()
@@ -148,6 +150,7 @@ pub(super) fn resolver_inputs_all(
         out.par_iter_mut()
             .enumerate()
             .with_min_len(CHUNK_ROBOTS)
+            .with_max_len(CHUNK_ROBOTS)
             .for_each(each);
     } else {
         out.iter_mut().enumerate().for_each(each);
@@ -199,6 +202,7 @@ pub(super) fn steer_all(
             .par_chunks_mut(CHUNK_ROBOTS)
             .zip(scratch)
             .enumerate()
+            .with_max_len(1)
             .for_each(steer_chunk);
     } else {
         per.steered

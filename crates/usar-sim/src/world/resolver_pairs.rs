@@ -31,7 +31,11 @@ pub(super) fn pairs_by_chunk(
     };
     let lists = &mut out[..chunks];
     if parallel {
-        lists.par_iter_mut().enumerate().for_each(fill);
+        lists
+            .par_iter_mut()
+            .enumerate()
+            .with_max_len(1)
+            .for_each(fill);
     } else {
         lists.iter_mut().enumerate().for_each(fill);
     }

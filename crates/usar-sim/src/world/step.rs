@@ -103,6 +103,7 @@ pub(super) fn command_all(
             .zip(robots.par_iter_mut())
             .enumerate()
             .with_min_len(CHUNK_ROBOTS)
+            .with_max_len(CHUNK_ROBOTS)
             .for_each(each);
     } else {
         nav.iter_mut()
