@@ -11,7 +11,8 @@ use super::rescuees::RescueeStatus;
 use super::rest::{arrive_at_rest, end_rest, go_rest, review_levels};
 use super::robot::Phase;
 use super::state::MissionState;
-use crate::scenario::{CostsCount, Locomotion, PointM, RestAt, Scenario, SearchClock};
+use super::step_costs::charge_step_costs;
+use crate::scenario::{Locomotion, PointM, RestAt, Scenario, SearchClock};
 use crate::world::World;
 
 /// Accounts the step just taken for every robot, in id order: energy (per moving step and per
@@ -32,43 +33,20 @@ pub(crate) fn account(
     st: &mut MissionState,
     review: bool,
 ) -> Result<(), MissionError> {
+    let mut costs = std::mem::take(&mut st.step_costs);
+    let metrics = st.recorder.robot_metrics_mut();
+    charge_step_costs(scenario, world, &mut st.robots, metrics, &mut costs);
+    st.recorder.add_task_costs(&costs);
+    st.step_costs = costs;
+    if !review {
+        return Ok(());
+    }
     let m = &scenario.mission;
-    let dt = scenario.sim.dt_s.get();
-    let energy_per_moving_step = m.per_step_on_cost_clock(m.energy_pct_per_moving_step, dt);
-    let hp_per_step = m.per_step_on_cost_clock(m.hp_pct_per_step_in_radiation, dt);
-    let every_cost = m.costs_count == CostsCount::Every;
     let now = world.time_s();
     for id in 0..st.robots.len() {
         let w = world.robot(id);
-        let (moved, step_m, pos, reached, radius) = (
-            w.moved_this_step,
-            w.step_distance_m,
-            w.position,
-            w.goal_reached,
-            w.radius_m,
-        );
-        let rad = world.radiation_factor(id);
-        let r = &mut st.robots[id];
-        // The task the costs count for: the robot's group's, or under `Every` its latest's.
-        let counted = if every_cost {
-            r.task.or(r.last_task)
-        } else {
-            r.task
-        };
-        if moved {
-            let cost = energy_per_moving_step + m.energy_pct_per_m.get() * step_m;
-            let spent = cost.min(r.energy_pct);
-            r.energy_pct -= spent;
-            st.recorder.energy(id, counted, spent);
-        }
-        if rad > 0.0 {
-            let lost = (hp_per_step * rad).min(r.hp_pct);
-            r.hp_pct -= lost;
-            st.recorder.hp(id, counted, lost, dt);
-        }
-        if !review {
-            continue;
-        }
+        let (pos, reached, radius) = (w.position, w.goal_reached, w.radius_m);
+        let r = &st.robots[id];
         if let Some(t) = r.task
             && r.is_on_task()
         {

@@ -37,6 +37,7 @@ mod round_clock;
 mod search_pattern;
 mod simulation;
 mod state;
+mod step_costs;
 mod warnings;
 
 pub use crate::scenario::{sweep_point_count, sweep_spacing_m};

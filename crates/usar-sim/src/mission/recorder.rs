@@ -4,6 +4,9 @@
 
 use super::metrics::{LeaveCause, RobotMetrics, RoundRecord, TrialResult};
 use super::robot::MissionRobot;
+use super::step_costs::StepCost;
+#[cfg(doc)]
+use super::step_costs::charge_step_costs;
 use crate::scenario::{RescuedAt, Scenario};
 use crate::world::World;
 
@@ -59,22 +62,27 @@ impl Recorder {
         &self.rounds
     }
 
-    /// Robot `id` spent `pct` energy, as a member of task `task`'s group if any.
-    pub fn energy(&mut self, id: usize, task: Option<usize>, pct: f64) {
-        self.robots[id].energy_spent_pct += pct;
-        if let Some(t) = task {
-            self.energy_by_task[t] += pct;
-        }
+    /// Each robot's metrics (by id), for [`charge_step_costs`] to add a step's energy spent,
+    /// HP lost and time in radiation to robot by robot; the tasks' sums of those costs are
+    /// added by [`Recorder::add_task_costs`].
+    pub(crate) fn robot_metrics_mut(&mut self) -> &mut [RobotMetrics] {
+        &mut self.robots
     }
 
-    /// Robot `id` lost `pct` HP over a step of `dt_s` in radiation, as a member of task
-    /// `task`'s group if any.
-    pub fn hp(&mut self, id: usize, task: Option<usize>, pct: f64, dt_s: f64) {
-        let m = &mut self.robots[id];
-        m.hp_lost_pct += pct;
-        m.time_in_radiation_s += dt_s;
-        if let Some(t) = task {
-            self.hp_by_task[t] += pct;
+    /// Adds a step's costs (one per robot, by id, from [`charge_step_costs`]) to the sums of
+    /// the tasks they count for, in robot order: energy spent by each robot that moved, HP
+    /// lost by each robot in radiation.
+    pub(crate) fn add_task_costs(&mut self, costs: &[StepCost]) {
+        for c in costs {
+            let Some(t) = c.counted else {
+                continue;
+            };
+            if c.moved {
+                self.energy_by_task[t] += c.spent_pct;
+            }
+            if c.in_radiation {
+                self.hp_by_task[t] += c.lost_pct;
+            }
         }
     }
 

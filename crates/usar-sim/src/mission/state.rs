@@ -7,6 +7,7 @@ use super::recorder::Recorder;
 use super::rescuees::RescueeField;
 use super::robot::{MissionRobot, Phase};
 use super::search_pattern::sweep_waypoints;
+use super::step_costs::StepCost;
 use crate::scenario::{PointM, Scenario, sweep_spacing_m};
 
 /// Everything the mission layer knows about a trial besides the world: the team, the rescuees
@@ -37,6 +38,8 @@ pub struct MissionState {
     pub events: Vec<MissionEvent>,
     /// Per-task figures of the decision system, recomputed each step in reused buffers.
     pub(crate) tally: TaskTally,
+    /// Each robot's costs of the last step, by id (a reused buffer of the accounting system).
+    pub(crate) step_costs: Vec<StepCost>,
 }
 
 /// Per-task figures the decision system computes once per step instead of once per robot
@@ -137,6 +140,7 @@ impl MissionState {
             recorder: Recorder::new(scenario),
             events: Vec::new(),
             tally: TaskTally::default(),
+            step_costs: Vec::new(),
         }
     }
 

@@ -381,6 +381,14 @@ impl World {
         self.pipelines.per_robot.enabled = enabled;
     }
 
+    /// Whether this world runs its per-robot phases on the threads of the calling rayon pool:
+    /// [`World::set_parallel`] left it enabled, the team has at least
+    /// [`PARALLEL_MIN_ROBOTS`](super::PARALLEL_MIN_ROBOTS) robots and the pool more than one
+    /// thread. The mission layer's per-robot systems follow it (same bits either way).
+    pub fn per_robot_parallel(&self) -> bool {
+        self.pipelines.per_robot.parallel_for(self.robots.len())
+    }
+
     /// Moves robot `id` to `position` at rest and clears its goal (e.g. to park a robot at the
     /// rest station). The caller keeps positions valid (inside the arena, free of obstacles).
     ///
@@ -713,6 +721,11 @@ impl World {
         // Computed where the position changes (after each physics step, in parallel for a
         // large team, and on a teleport): the same value as computing it here.
         self.radiation_factor[id]
+    }
+
+    /// Every robot's [`World::radiation_factor`], by id (`len()` is the team size).
+    pub fn radiation_factors(&self) -> &[f64] {
+        &self.radiation_factor
     }
 
     /// Exact distance from `p` to the nearest wall or debris surface, metres (0 inside);

@@ -1,0 +1,133 @@
+//! The energy and HP costs of one step for every robot (paper, section VI.B; the rules:
+//! `docs/mission-model.md`), robot by robot on the calling rayon pool for a large team: each
+//! robot charges its own levels and its own metrics and writes its cost to its own slot, and
+//! the tasks' sums are then added in robot order, so any number of threads gives the bits of
+//! one loop over the team in id order.
+
+use rayon::prelude::*;
+
+use super::metrics::RobotMetrics;
+use super::robot::MissionRobot;
+use crate::scenario::{CostsCount, Scenario};
+use crate::world::{RobotState, World};
+
+/// Robots per parallel task of [`charge_step_costs`] (256).
+const CHUNK_ROBOTS: usize = 256;
+
+/// What one robot's step cost it, and the task it counts for: energy spent and HP lost this
+/// step (percent points, `>= 0`; zero when it did not move or stood outside radiation) and
+/// whether each was charged (a charge of zero still counts its step in radiation).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct StepCost {
+    /// The task the costs count for, if any (`mission.costs_count`).
+    pub(crate) counted: Option<usize>,
+    /// Energy spent, percent points; charged only when `moved`.
+    pub(crate) spent_pct: f64,
+    /// HP lost, percent points; charged only when `in_radiation`.
+    pub(crate) lost_pct: f64,
+    /// The robot moved this step (more than the world's tolerance).
+    pub(crate) moved: bool,
+    /// The robot stood in radiation (dose factor above 0).
+    pub(crate) in_radiation: bool,
+}
+
+/// The per-step rates of `scenario.mission` on its cost clock (percent points per step of
+/// `dt_s` seconds), read once per step.
+#[derive(Debug, Clone, Copy)]
+struct Rates {
+    energy_per_moving_step: f64,
+    energy_per_m: f64,
+    hp_per_step: f64,
+    every_cost: bool,
+}
+
+/// Charges the step just taken to every robot of `world` (by id; `robots`, `metrics` and
+/// `costs` are resized or of the team's length): energy per moving step and per metre moved,
+/// HP per step in radiation times the dose factor (each at most what is left), written to
+/// `robots[id]`'s levels and `metrics[id]`'s totals, and each robot's [`StepCost`] to
+/// `costs[id]` for the tasks' sums, which the caller adds in id order. On the calling rayon
+/// pool when `world` runs its per-robot phases in parallel ([`World::per_robot_parallel`]).
+pub(crate) fn charge_step_costs(
+    scenario: &Scenario,
+    world: &World,
+    robots: &mut [MissionRobot],
+    metrics: &mut [RobotMetrics],
+    costs: &mut Vec<StepCost>,
+) {
+    let m = &scenario.mission;
+    let dt = scenario.sim.dt_s.get();
+    let rates = Rates {
+        energy_per_moving_step: m.per_step_on_cost_clock(m.energy_pct_per_moving_step, dt),
+        energy_per_m: m.energy_pct_per_m.get(),
+        hp_per_step: m.per_step_on_cost_clock(m.hp_pct_per_step_in_radiation, dt),
+        every_cost: m.costs_count == CostsCount::Every,
+    };
+    costs.resize(robots.len(), StepCost::default());
+    let (states, factors) = (world.robots(), world.radiation_factors());
+    let each = |(((r, metric), cost), (w, &rad)): Slot<'_>| {
+        *cost = charge(&rates, dt, w, rad, r, metric);
+    };
+    if world.per_robot_parallel() {
+        robots
+            .par_iter_mut()
+            .zip(metrics.par_iter_mut())
+            .zip(costs.par_iter_mut())
+            .zip(states.par_iter().zip(factors))
+            .with_min_len(CHUNK_ROBOTS)
+            .with_max_len(CHUNK_ROBOTS)
+            .for_each(each);
+    } else {
+        robots
+            .iter_mut()
+            .zip(metrics.iter_mut())
+            .zip(costs.iter_mut())
+            .zip(states.iter().zip(factors))
+            .for_each(each);
+    }
+}
+
+/// One robot's slots in [`charge_step_costs`]: its mission state, metrics and cost (written),
+/// its world state and dose factor (read).
+type Slot<'a> = (
+    (
+        (&'a mut MissionRobot, &'a mut RobotMetrics),
+        &'a mut StepCost,
+    ),
+    (&'a RobotState, &'a f64),
+);
+
+/// One robot's step cost (see [`charge_step_costs`]), `rad` its dose factor.
+fn charge(
+    rates: &Rates,
+    dt_s: f64,
+    w: &RobotState,
+    rad: f64,
+    r: &mut MissionRobot,
+    metric: &mut RobotMetrics,
+) -> StepCost {
+    // The task the costs count for: the robot's group's, or under `Every` its latest's.
+    let counted = if rates.every_cost {
+        r.task.or(r.last_task)
+    } else {
+        r.task
+    };
+    let mut cost = StepCost {
+        counted,
+        moved: w.moved_this_step,
+        in_radiation: rad > 0.0,
+        ..StepCost::default()
+    };
+    if cost.moved {
+        let c = rates.energy_per_moving_step + rates.energy_per_m * w.step_distance_m;
+        cost.spent_pct = c.min(r.energy_pct);
+        r.energy_pct -= cost.spent_pct;
+        metric.energy_spent_pct += cost.spent_pct;
+    }
+    if cost.in_radiation {
+        cost.lost_pct = (rates.hp_per_step * rad).min(r.hp_pct);
+        r.hp_pct -= cost.lost_pct;
+        metric.hp_lost_pct += cost.lost_pct;
+        metric.time_in_radiation_s += dt_s;
+    }
+    cost
+}
