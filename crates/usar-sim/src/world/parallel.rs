@@ -96,7 +96,8 @@ pub(super) struct ReadBack<'a> {
 }
 
 /// Reads the robots `from` covers back after the physics step ([`read_back`]) into `to`, each
-/// with its dose factor at its new position. Each robot writes only its own slots, and a robot
+/// with its dose factor at its new position and, when the resolver holds it, a step counted
+/// held. Each robot writes only its own slots, and a robot
 /// read back from [`ReadFrom::Free`] gets the same bits as from [`ReadFrom::Bodies`].
 pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
     let ReadBack {
@@ -116,6 +117,7 @@ pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
             ReadFrom::Free(_) | ReadFrom::Near(..) => return,
         };
         read_back(bodies, nav, state, dt);
+        count_held_step(state, dt_s);
         *rad = radiation.factor_at(&state.position);
     };
     if parallel {
@@ -210,6 +212,16 @@ pub(super) fn steer_all(
             .zip(scratch)
             .enumerate()
             .for_each(steer_chunk);
+    }
+}
+
+/// Counts a step of `dt_s` seconds held for a robot the resolver holds (`steps_held`,
+/// `time_held_s`): one per step, as each robot is read back once per step.
+fn count_held_step(state: &mut RobotState, dt_s: f64) {
+    if state.held {
+        let c = &mut state.counters;
+        c.steps_held += 1;
+        c.time_held_s = c.steps_held as f64 * dt_s;
     }
 }
 

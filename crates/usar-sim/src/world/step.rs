@@ -21,26 +21,15 @@ use super::resolver_input::ResolverInput;
 use super::robot::{Motion, RobotState};
 use crate::scenario::{CollisionParams, PhysicsStepping, Steering};
 
-/// Counts a held step for every held robot (its `steps_held` and `time_held_s`, a step being
-/// `dt_s` seconds) and, unless `physics` is `NearBodies` (the contact gate drives its bodies),
-/// drives each robot's body of `scene` at its command `nav[id].command` (m/s). `nav` and
-/// `robots` are by id, of one length. Writes only `robots`' counters and `scene`'s bodies.
-pub(super) fn drive_all(
-    physics: PhysicsStepping,
-    dt_s: f64,
-    nav: &[Nav],
-    robots: &mut [RobotState],
-    scene: &mut PhysicsScene,
-) {
-    for (state, nav) in robots.iter_mut().zip(nav) {
-        if state.held {
-            let c = &mut state.counters;
-            c.steps_held += 1;
-            c.time_held_s = c.steps_held as f64 * dt_s;
-        }
-        if physics != PhysicsStepping::NearBodies {
-            scene.drive_body(nav.body, nav.command);
-        }
+/// Unless `physics` is `NearBodies` (the contact gate drives its bodies), drives each robot's
+/// body of `scene` at its command `nav[id].command` (m/s), in id order. Writes only `scene`'s
+/// bodies. (A held robot's step is counted at its read-back, `parallel.rs`.)
+pub(super) fn drive_all(physics: PhysicsStepping, nav: &[Nav], scene: &mut PhysicsScene) {
+    if physics == PhysicsStepping::NearBodies {
+        return;
+    }
+    for nav in nav {
+        scene.drive_body(nav.body, nav.command);
     }
 }
 

@@ -450,13 +450,7 @@ impl World {
             self.control(clock);
         }
         let physics = self.physics;
-        drive_all(
-            physics,
-            self.dt,
-            &self.nav,
-            &mut self.robots,
-            &mut self.scene,
-        );
+        drive_all(physics, &self.nav, &mut self.scene);
         match physics {
             PhysicsStepping::NearContacts if !self.near_contact() => {
                 self.scene.move_free(self.dt as f32);
