@@ -623,19 +623,39 @@ impl Resolver {
             j != i && b.layer == a.layer && (moving_too || still(b, j)) && Self::sensed(a, b)
         }));
         let obstacles = &*near;
+        let clear_of = |j: usize, w: Vec2, deflected: bool| {
+            let b = &inputs[j];
+            let v_b = if still(b, j) {
+                Vec2::ZERO
+            } else if deflected {
+                // Only under KeepSide are moving robots in `near` at all.
+                b.intent
+            } else {
+                return true;
+            };
+            !about_to_collide(b.pos - a.pos, v_b - w, self.clearance(a, b), horizon)
+        };
+        // The robot that blocked the last heading tried on the same side (or the intent) is
+        // tested first (turns 15 degrees apart are mostly blocked by the same robot): the
+        // answer is that of testing them in list order, a conjunction without side effects,
+        // only found sooner.
+        let last_blocker = [const { std::cell::Cell::new(None::<usize>) }; 2];
         let clear_of_robots = |w: Vec2, deflected: bool| {
-            obstacles.iter().all(|&j| {
-                let b = &inputs[j];
-                let v_b = if still(b, j) {
-                    Vec2::ZERO
-                } else if deflected {
-                    // Only under KeepSide are moving robots in `near` at all.
-                    b.intent
-                } else {
-                    return true;
-                };
-                !about_to_collide(b.pos - a.pos, v_b - w, self.clearance(a, b), horizon)
-            })
+            let last_blocker = &last_blocker[usize::from(a.intent.perp_dot(w) > 0.0)];
+            let first = last_blocker.get();
+            if let Some(k) = first
+                && !clear_of(obstacles[k], w, deflected)
+            {
+                return false;
+            }
+            let blocker = obstacles
+                .iter()
+                .enumerate()
+                .position(|(k, &j)| Some(k) != first && !clear_of(j, w, deflected));
+            if blocker.is_some() {
+                last_blocker.set(blocker);
+            }
+            blocker.is_none()
         };
         let clear_of_statics = |w: Vec2| {
             let Some(infl) = static_inflation else {
