@@ -202,14 +202,13 @@ impl ContactGate {
     /// the two are one; with `NearBodies` a body Rapier pushed last step may still move faster
     /// than its command. The discs are filled in parallel when `parallel`.
     fn gate(&mut self, w: &GateInputs, parallel: bool) -> Gate {
-        let bodies = &w.scene.physics.bodies;
         let mut discs = std::mem::take(&mut self.discs);
         discs.resize(w.nav.len(), GateDisc::default());
         let disc = |(d, n): (&mut GateDisc, &Nav)| {
             *d = GateDisc {
                 pos: n.pos,
                 radius_m: n.radius,
-                speed_m_per_s: n.command.length().max(bodies[n.body].linvel().length()),
+                speed_m_per_s: n.command.length().max(n.body_speed_m_per_s),
             };
         };
         if parallel {
@@ -387,21 +386,25 @@ impl PhysicsScene {
     /// robot's position if it was disabled, and driven at its command.
     /// Whether each body is enabled is the gate's own record (`gated_enabled`), so a robot that
     /// stays far from contacts costs no look-up in Rapier's body set.
-    pub(super) fn gate_bodies(&mut self, nav: &[Nav], near: &[bool]) {
+    pub(super) fn gate_bodies(&mut self, nav: &mut [Nav], near: &[bool]) {
         let mut enabled = std::mem::take(&mut self.gated_enabled);
         if enabled.len() != nav.len() {
             let bodies = &self.physics.bodies;
             enabled.clear();
             enabled.extend(nav.iter().map(|r| bodies[r.body].is_enabled()));
         }
-        for ((robot, &near), was) in nav.iter().zip(near).zip(enabled.iter_mut()) {
+        for ((robot, &near), was) in nav.iter_mut().zip(near).zip(enabled.iter_mut()) {
             match (near, *was) {
-                (true, true) => self.drive_body(robot.body, robot.command),
+                (true, true) => {
+                    self.drive_body(robot.body, robot.command);
+                    robot.body_speed_m_per_s = robot.command.length();
+                }
                 (true, false) => {
                     let body = &mut self.physics.bodies[robot.body];
                     body.set_enabled(true);
                     body.set_translation(robot.pos, false);
                     body.set_linvel(robot.command, false);
+                    robot.body_speed_m_per_s = robot.command.length();
                 }
                 (false, true) => self.physics.bodies[robot.body].set_enabled(false),
                 (false, false) => {}

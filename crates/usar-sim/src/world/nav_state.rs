@@ -44,6 +44,11 @@ pub(super) struct Nav {
     /// second), zero after a straight command, a new goal or a new path: the robot steers to
     /// its side first ([`Nav::steering_side`]).
     pub(super) deflection: Vec2,
+    /// The speed of the robot's body as Rapier last left it or the world last set it (the
+    /// length of its linear velocity, metres per second; 0 at the start): written wherever
+    /// the body's velocity is read or set (read-back, driving, the contact gate, teleport), so
+    /// that the contact gate reads it here instead of looking the body up in Rapier's set.
+    pub(super) body_speed_m_per_s: f32,
 }
 
 /// The navigation fields path following updates on each control step (`follow.rs`), kept
@@ -83,6 +88,7 @@ impl Nav {
             },
             command: Vec2::ZERO,
             deflection: Vec2::ZERO,
+            body_speed_m_per_s: 0.0,
         }
     }
 

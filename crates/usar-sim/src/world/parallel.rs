@@ -233,7 +233,10 @@ fn count_held_step(state: &mut RobotState, dt_s: f64) {
 fn read_back(bodies: Option<&RigidBodySet>, nav: &mut Nav, state: &mut RobotState, dt: f32) {
     let body = bodies.map(|b| &b[nav.body]).filter(|b| b.is_enabled());
     let (p, v) = match body {
-        Some(body) => (body.translation(), body.linvel()),
+        Some(body) => {
+            nav.body_speed_m_per_s = body.linvel().length();
+            (body.translation(), body.linvel())
+        }
         None => (nav.pos + nav.command * dt, nav.command),
     };
     let disp = f64::from((p - nav.pos).length());

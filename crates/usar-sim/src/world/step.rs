@@ -24,12 +24,13 @@ use crate::scenario::{CollisionParams, PhysicsStepping, Steering};
 /// Unless `physics` is `NearBodies` (the contact gate drives its bodies), drives each robot's
 /// body of `scene` at its command `nav[id].command` (m/s), in id order. Writes only `scene`'s
 /// bodies. (A held robot's step is counted at its read-back, `parallel.rs`.)
-pub(super) fn drive_all(physics: PhysicsStepping, nav: &[Nav], scene: &mut PhysicsScene) {
+pub(super) fn drive_all(physics: PhysicsStepping, nav: &mut [Nav], scene: &mut PhysicsScene) {
     if physics == PhysicsStepping::NearBodies {
         return;
     }
     for nav in nav {
         scene.drive_body(nav.body, nav.command);
+        nav.body_speed_m_per_s = nav.command.length();
     }
 }
 

@@ -411,6 +411,7 @@ impl World {
         let body = &mut self.scene.physics.bodies[nav.body];
         body.set_translation(p, true);
         body.set_linvel(Vec2::ZERO, true);
+        nav.body_speed_m_per_s = 0.0;
         nav.command = Vec2::ZERO;
         nav.following.intent = Vec2::ZERO;
         nav.pos = p;
@@ -450,7 +451,7 @@ impl World {
             self.control(clock);
         }
         let physics = self.physics;
-        drive_all(physics, &self.nav, &mut self.scene);
+        drive_all(physics, &mut self.nav, &mut self.scene);
         match physics {
             PhysicsStepping::NearContacts if !self.near_contact() => {
                 self.scene.move_free(self.dt as f32);
@@ -461,7 +462,7 @@ impl World {
                 let mut near = std::mem::take(&mut self.pipelines.near_body);
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
-                self.scene.gate_bodies(&self.nav, &near);
+                self.scene.gate_bodies(&mut self.nav, &near);
                 let mut to = ReadBack {
                     radiation: &self.radiation,
                     dt_s: self.dt,
