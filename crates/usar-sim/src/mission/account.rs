@@ -34,8 +34,8 @@ pub(crate) fn account(
     review: bool,
 ) -> Result<(), MissionError> {
     let mut costs = std::mem::take(&mut st.step_costs);
-    let metrics = st.recorder.robot_metrics_mut();
-    charge_step_costs(scenario, world, &mut st.robots, metrics, &mut costs);
+    let totals = st.recorder.robot_costs_mut();
+    charge_step_costs(scenario, world, &mut st.robots, totals, &mut costs);
     st.recorder.add_task_costs(&costs);
     st.step_costs = costs;
     if !review {

@@ -4,9 +4,9 @@
 
 use super::metrics::{LeaveCause, RobotMetrics, RoundRecord, TrialResult};
 use super::robot::MissionRobot;
-use super::step_costs::StepCost;
 #[cfg(doc)]
 use super::step_costs::charge_step_costs;
+use super::step_costs::{RobotCosts, StepCost};
 use crate::scenario::{RescuedAt, Scenario};
 use crate::world::World;
 
@@ -21,6 +21,10 @@ use crate::world::World;
 #[derive(Debug, Clone)]
 pub struct Recorder {
     robots: Vec<RobotMetrics>,
+    /// Each robot's energy spent, HP lost and time in radiation so far, by id: kept apart
+    /// from `robots` (24 bytes a robot instead of a metrics record) since every step adds to
+    /// them.
+    costs: Vec<RobotCosts>,
     energy_by_task: Vec<f64>,
     hp_by_task: Vec<f64>,
     rescued: Vec<u32>,
@@ -45,6 +49,7 @@ impl Recorder {
                     ..RobotMetrics::default()
                 })
                 .collect(),
+            costs: vec![RobotCosts::default(); scenario.robots.len()],
             energy_by_task: vec![0.0; k],
             hp_by_task: vec![0.0; k],
             rescued: vec![0; k],
@@ -62,11 +67,12 @@ impl Recorder {
         &self.rounds
     }
 
-    /// Each robot's metrics (by id), for [`charge_step_costs`] to add a step's energy spent,
-    /// HP lost and time in radiation to robot by robot; the tasks' sums of those costs are
-    /// added by [`Recorder::add_task_costs`].
-    pub(crate) fn robot_metrics_mut(&mut self) -> &mut [RobotMetrics] {
-        &mut self.robots
+    /// Each robot's running cost totals (by id), for [`charge_step_costs`] to add a step's
+    /// energy spent, HP lost and time in radiation to robot by robot (copied into the robots'
+    /// metrics by [`Recorder::result`]); the tasks' sums of those costs are added by
+    /// [`Recorder::add_task_costs`].
+    pub(crate) fn robot_costs_mut(&mut self) -> &mut [RobotCosts] {
+        &mut self.costs
     }
 
     /// Adds a step's costs (one per robot, by id, from [`charge_step_costs`]) to the sums of
@@ -202,7 +208,14 @@ impl Recorder {
         run: TrialInfo<'_>,
     ) -> TrialResult {
         let mut metrics = self.robots.clone();
-        for (m, (r, w)) in metrics.iter_mut().zip(robots.iter().zip(world.robots())) {
+        for ((m, c), (r, w)) in metrics
+            .iter_mut()
+            .zip(&self.costs)
+            .zip(robots.iter().zip(world.robots()))
+        {
+            m.energy_spent_pct = c.energy_spent_pct;
+            m.hp_lost_pct = c.hp_lost_pct;
+            m.time_in_radiation_s = c.time_in_radiation_s;
             m.distance_m = w.distance_travelled_m;
             m.final_energy_pct = r.energy_pct;
             m.final_hp_pct = r.hp_pct;

@@ -1,12 +1,11 @@
 //! The energy and HP costs of one step for every robot (paper, section VI.B; the rules:
 //! `docs/mission-model.md`), robot by robot on the calling rayon pool for a large team: each
-//! robot charges its own levels and its own metrics and writes its cost to its own slot, and
+//! robot charges its own levels and its own cost totals and writes its cost to its own slot, and
 //! the tasks' sums are then added in robot order, so any number of threads gives the bits of
 //! one loop over the team in id order.
 
 use rayon::prelude::*;
 
-use super::metrics::RobotMetrics;
 use super::robot::MissionRobot;
 use crate::scenario::{CostsCount, Scenario};
 use crate::world::{RobotState, World};
@@ -31,6 +30,15 @@ pub(crate) struct StepCost {
     pub(crate) in_radiation: bool,
 }
 
+/// One robot's cost totals so far (the recorder's, copied into its metrics at the end):
+/// energy spent and HP lost, percent points, and time in radiation, seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct RobotCosts {
+    pub(crate) energy_spent_pct: f64,
+    pub(crate) hp_lost_pct: f64,
+    pub(crate) time_in_radiation_s: f64,
+}
+
 /// The per-step rates of `scenario.mission` on its cost clock (percent points per step of
 /// `dt_s` seconds), read once per step.
 #[derive(Debug, Clone, Copy)]
@@ -41,17 +49,17 @@ struct Rates {
     every_cost: bool,
 }
 
-/// Charges the step just taken to every robot of `world` (by id; `robots`, `metrics` and
+/// Charges the step just taken to every robot of `world` (by id; `robots`, `totals` and
 /// `costs` are resized or of the team's length): energy per moving step and per metre moved,
 /// HP per step in radiation times the dose factor (each at most what is left), written to
-/// `robots[id]`'s levels and `metrics[id]`'s totals, and each robot's [`StepCost`] to
+/// `robots[id]`'s levels and `totals[id]`, and each robot's [`StepCost`] to
 /// `costs[id]` for the tasks' sums, which the caller adds in id order. On the calling rayon
 /// pool when `world` runs its per-robot phases in parallel ([`World::per_robot_parallel`]).
 pub(crate) fn charge_step_costs(
     scenario: &Scenario,
     world: &World,
     robots: &mut [MissionRobot],
-    metrics: &mut [RobotMetrics],
+    totals: &mut [RobotCosts],
     costs: &mut Vec<StepCost>,
 ) {
     let m = &scenario.mission;
@@ -70,7 +78,7 @@ pub(crate) fn charge_step_costs(
     if world.per_robot_parallel() {
         robots
             .par_iter_mut()
-            .zip(metrics.par_iter_mut())
+            .zip(totals.par_iter_mut())
             .zip(costs.par_iter_mut())
             .zip(states.par_iter().zip(factors))
             .with_min_len(CHUNK_ROBOTS)
@@ -79,20 +87,17 @@ pub(crate) fn charge_step_costs(
     } else {
         robots
             .iter_mut()
-            .zip(metrics.iter_mut())
+            .zip(totals.iter_mut())
             .zip(costs.iter_mut())
             .zip(states.iter().zip(factors))
             .for_each(each);
     }
 }
 
-/// One robot's slots in [`charge_step_costs`]: its mission state, metrics and cost (written),
+/// One robot's slots in [`charge_step_costs`]: its mission state, cost totals and step cost (written),
 /// its world state and dose factor (read).
 type Slot<'a> = (
-    (
-        (&'a mut MissionRobot, &'a mut RobotMetrics),
-        &'a mut StepCost,
-    ),
+    ((&'a mut MissionRobot, &'a mut RobotCosts), &'a mut StepCost),
     (&'a RobotState, &'a f64),
 );
 
@@ -103,7 +108,7 @@ fn charge(
     w: &RobotState,
     rad: f64,
     r: &mut MissionRobot,
-    metric: &mut RobotMetrics,
+    metric: &mut RobotCosts,
 ) -> StepCost {
     // The task the costs count for: the robot's group's, or under `Every` its latest's.
     let counted = if rates.every_cost {
