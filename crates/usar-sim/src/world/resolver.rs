@@ -36,6 +36,8 @@
 //!    keep clear of the moving robots it senses, taken at their intended velocities
 //!    (`steering::pick_turn`; `docs/world-model.md`, "Steering side and taken goals").
 
+use std::cell::Cell;
+
 use parry2d::math::Vector as Vec2;
 
 use super::clearance_grid::ClearanceGrid;
@@ -47,10 +49,10 @@ pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
 use super::resolver_pairs::pairs_by_chunk;
 use super::resolver_reach::{self, LayerBounds};
-use super::steering::pick_turn;
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
 };
+use super::steering::{all_clear_hinted, pick_turn};
 use super::union_find::{find, union};
 use crate::scenario::{CollisionParams, HoldRule, Steering};
 
@@ -635,27 +637,13 @@ impl Resolver {
             };
             !about_to_collide(b.pos - a.pos, v_b - w, self.clearance(a, b), horizon)
         };
-        // The robot that blocked the last heading tried on the same side (or the intent) is
-        // tested first (turns 15 degrees apart are mostly blocked by the same robot): the
-        // answer is that of testing them in list order, a conjunction without side effects,
-        // only found sooner.
-        let last_blocker = [const { std::cell::Cell::new(None::<usize>) }; 2];
+        // The robot that blocked the last heading tried on the same side is tested first.
+        let last_blocker = [const { Cell::new(None) }; 2];
         let clear_of_robots = |w: Vec2, deflected: bool| {
-            let last_blocker = &last_blocker[usize::from(a.intent.perp_dot(w) > 0.0)];
-            let first = last_blocker.get();
-            if let Some(k) = first
-                && !clear_of(obstacles[k], w, deflected)
-            {
-                return false;
-            }
-            let blocker = obstacles
-                .iter()
-                .enumerate()
-                .position(|(k, &j)| Some(k) != first && !clear_of(j, w, deflected));
-            if blocker.is_some() {
-                last_blocker.set(blocker);
-            }
-            blocker.is_none()
+            let hint = &last_blocker[usize::from(a.intent.perp_dot(w) > 0.0)];
+            all_clear_hinted(obstacles.len(), hint, |k| {
+                clear_of(obstacles[k], w, deflected)
+            })
         };
         let clear_of_statics = |w: Vec2| {
             let Some(infl) = static_inflation else {

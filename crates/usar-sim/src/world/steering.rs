@@ -68,6 +68,27 @@ pub(super) fn pick_turn(
     other.map(|o| turns[2 * o + other_side])
 }
 
+/// Whether `clear(k)` holds for every `k` in `0..len`, testing first the index `hint` holds
+/// (the one that failed the last time), then the others in order; a failing index is kept in
+/// `hint`. The answer is that of testing `0..len` in order (a conjunction of calls without side
+/// effects), only found sooner when failures repeat: rule 5's headings 15 degrees apart are
+/// mostly blocked by the same robot.
+pub(super) fn all_clear_hinted(
+    len: usize,
+    hint: &std::cell::Cell<Option<usize>>,
+    clear: impl Fn(usize) -> bool,
+) -> bool {
+    let first = hint.get().filter(|&k| k < len);
+    if first.is_some_and(|k| !clear(k)) {
+        return false;
+    }
+    let blocker = (0..len).find(|&k| Some(k) != first && !clear(k));
+    if blocker.is_some() {
+        hint.set(blocker);
+    }
+    blocker.is_none()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,6 +107,23 @@ mod tests {
         unique.dedup();
         assert_eq!(unique.len(), asked.len(), "each turn asked once: {asked:?}");
         turn.map(deg)
+    }
+
+    /// The hinted conjunction answers as the plain one for every set of failing indices and
+    /// hint, and remembers a failing index.
+    #[test]
+    fn a_hinted_conjunction_answers_as_the_plain_one() {
+        for mask in 0u32..64 {
+            let clear = |k: usize| mask & (1 << k) == 0;
+            for start in [None, Some(0), Some(3), Some(5), Some(9)] {
+                let hint = std::cell::Cell::new(start);
+                let plain = (0..6).all(clear);
+                assert_eq!(all_clear_hinted(6, &hint, clear), plain, "mask {mask:b}");
+                if !plain {
+                    assert!(hint.get().is_some_and(|k| !clear(k)), "mask {mask:b}");
+                }
+            }
+        }
     }
 
     #[test]
