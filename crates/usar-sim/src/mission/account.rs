@@ -15,13 +15,15 @@ use super::step_costs::charge_step_costs;
 use crate::scenario::{Locomotion, PointM, RestAt, Scenario, SearchClock};
 use crate::world::World;
 
-/// Accounts the step just taken for every robot, in id order: energy (per moving step and per
-/// metre moved) and HP (per step in radiation, both per-step rates charged for the step's
-/// length on `mission.cost_clock`, [`MissionParams::per_step_on_cost_clock`]) every step,
-/// counted in the metrics for a task by `mission.costs_count`; with `review` (after the step
-/// before a control step, `sim.control_period_s`, and after the last step: every step without
-/// a control period) also detections of its group, its phase, and a leave for a rest when
-/// energy or HP fell below its threshold ([`review_levels`]).
+/// Accounts the step just taken: every robot's energy (per moving step and per metre moved)
+/// and HP (per step in radiation, both per-step rates charged for the step's length on
+/// `mission.cost_clock`, [`MissionParams::per_step_on_cost_clock`]) every step, counted in the
+/// metrics for a task by `mission.costs_count` ([`charge_step_costs`], robot by robot, the
+/// tasks' sums in id order); then, with `review` (after the step before a control step,
+/// `sim.control_period_s`, and after the last step: every step without a control period),
+/// robot by robot in id order, detections of its group, its phase, and a leave for a rest when
+/// energy or HP fell below its threshold ([`review_levels`]). A robot's review reads only its
+/// own costs, so charging every robot first gives the bits of charging each before its review.
 ///
 /// [`MissionParams::per_step_on_cost_clock`]: crate::scenario::MissionParams::per_step_on_cost_clock
 ///

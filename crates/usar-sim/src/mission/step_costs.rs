@@ -34,8 +34,11 @@ pub(crate) struct StepCost {
 /// energy spent and HP lost, percent points, and time in radiation, seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct RobotCosts {
+    /// Energy spent so far, percent points.
     pub(crate) energy_spent_pct: f64,
+    /// HP lost so far, percent points.
     pub(crate) hp_lost_pct: f64,
+    /// Time spent in radiation so far, seconds.
     pub(crate) time_in_radiation_s: f64,
 }
 
@@ -72,8 +75,8 @@ pub(crate) fn charge_step_costs(
     };
     costs.resize(robots.len(), StepCost::default());
     let (states, factors) = (world.robots(), world.radiation_factors());
-    let each = |(((r, metric), cost), (w, &rad)): Slot<'_>| {
-        *cost = charge(&rates, dt, w, rad, r, metric);
+    let each = |(((r, total), cost), (w, &rad)): Slot<'_>| {
+        *cost = charge(&rates, dt, w, rad, r, total);
     };
     if world.per_robot_parallel() {
         robots
@@ -108,7 +111,7 @@ fn charge(
     w: &RobotState,
     rad: f64,
     r: &mut MissionRobot,
-    metric: &mut RobotCosts,
+    total: &mut RobotCosts,
 ) -> StepCost {
     // The task the costs count for: the robot's group's, or under `Every` its latest's.
     let counted = if rates.every_cost {
@@ -126,13 +129,13 @@ fn charge(
         let c = rates.energy_per_moving_step + rates.energy_per_m * w.step_distance_m;
         cost.spent_pct = c.min(r.energy_pct);
         r.energy_pct -= cost.spent_pct;
-        metric.energy_spent_pct += cost.spent_pct;
+        total.energy_spent_pct += cost.spent_pct;
     }
     if cost.in_radiation {
         cost.lost_pct = (rates.hp_per_step * rad).min(r.hp_pct);
         r.hp_pct -= cost.lost_pct;
-        metric.hp_lost_pct += cost.lost_pct;
-        metric.time_in_radiation_s += dt_s;
+        total.hp_lost_pct += cost.lost_pct;
+        total.time_in_radiation_s += dt_s;
     }
     cost
 }

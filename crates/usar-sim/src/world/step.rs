@@ -1,5 +1,5 @@
 //! The step's stages over explicit borrows ([`World::step`](super::World::step) runs them, in
-//! `world.rs`): each robot's body driven at its command (held robots counting a held step),
+//! `world.rs`): each robot's body driven at its command,
 //! `sim.physics: NearBodies`' Rapier step beside the read-back of the robots far from any
 //! contact, and on a control step each robot's command, motion and list flags from the
 //! resolver's decisions and rule 5's steering (per robot, in parallel for a large team). Robots
@@ -22,8 +22,9 @@ use super::robot::{Motion, RobotState};
 use crate::scenario::{CollisionParams, PhysicsStepping, Steering};
 
 /// Unless `physics` is `NearBodies` (the contact gate drives its bodies), drives each robot's
-/// body of `scene` at its command `nav[id].command` (m/s), in id order. Writes only `scene`'s
-/// bodies. (A held robot's step is counted at its read-back, `parallel.rs`.)
+/// body of `scene` at its command `nav[id].command` (m/s), in id order, and records that speed
+/// in `nav[id].body_speed_m_per_s`. Writes only `scene`'s bodies and those speeds. (A held
+/// robot's step is counted at its read-back, `parallel.rs`.)
 pub(super) fn drive_all(physics: PhysicsStepping, nav: &mut [Nav], scene: &mut PhysicsScene) {
     if physics == PhysicsStepping::NearBodies {
         return;
@@ -75,8 +76,8 @@ pub(super) struct CommandInputs<'a> {
 
 /// Sets every robot's command until the next control step (`nav[id].command`, m/s) from its
 /// intent, or with the resolver on, what [`resolved_command`] makes of it; records its
-/// motion, list flags and resolver counters in `robots[id]` (a held step is counted by
-/// [`drive_all`], every step). `nav` and `robots` are by id, of one length. Each robot writes
+/// motion, list flags and resolver counters in `robots[id]` (a held step is counted at the
+/// read-back, every step). `nav` and `robots` are by id, of one length. Each robot writes
 /// only its own slots, so on the calling rayon pool when `parallel` ([`PerRobot::parallel_for`]
 /// of the team) it gives the same bits.
 pub(super) fn command_all(

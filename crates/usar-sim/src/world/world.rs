@@ -436,12 +436,13 @@ impl World {
     ///    robots standing still (see [`crate::world::resolver`]); otherwise the intents are
     ///    commanded as they are. Between control steps each robot keeps its command, motion
     ///    and list flags;
-    /// 2. the commanded velocities are set on the bodies (held robots count a held step) and
+    /// 2. the commanded velocities are set on the bodies and
     ///    Rapier steps once (with `sim.physics: NearContacts`, only when a contact may begin
     ///    or go on, see `world/contact_gate.rs`; otherwise every body moves straight; with
     ///    `NearBodies`, only the bodies of the robots near a contact, the others disabled and
     ///    moved straight by the read-back);
-    /// 3. positions, velocities, flags and counters are read back, and before a control step
+    /// 3. positions, velocities, flags and counters are read back (a held robot counting a
+    ///    held step), and before a control step
     ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
     /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
