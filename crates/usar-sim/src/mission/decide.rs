@@ -436,9 +436,13 @@ mod tests {
                 (0usize..9, 0usize..4, 0u32..12, 0u32..8, any::<bool>(), any::<bool>()),
                 1..200,
             ),
+            team_stock in prop::option::of(0u32..40),
         ) {
             let s = three_tasks();
             let mut st = MissionState::new(s, &draw_initial_levels(s, 7));
+            // With a team stock (`resource_stock: TeamPerRound`) the public figures are the
+            // stock's, as the decisions count them.
+            st.team_stock = team_stock;
             let k = s.tasks.len();
             for (r, &(phase, task, resources, capacity, claim, leaving)) in
                 st.robots.iter_mut().zip(states.iter().cycle())

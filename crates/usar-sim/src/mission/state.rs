@@ -151,22 +151,40 @@ impl MissionState {
             .filter(move |r| r.task == Some(t) && !r.is_resting())
     }
 
-    /// Rescuing resources held by task `t`'s group (members not away; saturating at
-    /// `u32::MAX`) and how many of those members hold a claim. Under
-    /// `mission.resource_stock: TeamPerRound` pick-ups draw on [`MissionState::team_stock`]
-    /// instead, and the members' own resources are not used.
+    /// The rescuing resources task `t`'s group draws on and how many of its members (those
+    /// not away for their needs) hold a claim. The resources are the members' own, summed
+    /// (saturating at `u32::MAX`); under `mission.resource_stock: TeamPerRound` (while
+    /// [`MissionState::team_stock`] is set) they are the team's stock left, which every
+    /// group draws on, for a task some robot belongs to (0 for a task nobody does), as the
+    /// decision system counts them.
     pub fn group_pool(&self, t: usize) -> (u32, u32) {
-        self.members(t).fold((0, 0), |(p, c), r| {
+        let (own, claims) = self.members(t).fold((0u32, 0u32), |(p, c), r| {
             (
                 p.saturating_add(r.resources),
                 c + u32::from(r.claim.is_some()),
             )
-        })
+        });
+        match self.team_stock {
+            Some(stock) => {
+                let has_group = self.robots.iter().any(|r| r.task == Some(t));
+                (if has_group { stock } else { 0 }, claims)
+            }
+            None => (own, claims),
+        }
     }
 
-    /// Resources of task `t`'s group not yet promised to a claim (the members' own; see
-    /// [`MissionState::group_pool`] for `TeamPerRound`).
+    /// The resources task `t`'s group may still promise to a claim: its pool less its
+    /// members' claims ([`MissionState::group_pool`]); under `TeamPerRound` the team's stock
+    /// less the claims of every group's members, the same for every task.
     pub fn unclaimed_pool(&self, t: usize) -> u32 {
+        if let Some(stock) = self.team_stock {
+            let claims = self
+                .robots
+                .iter()
+                .filter(|r| r.task.is_some() && !r.is_resting() && r.claim.is_some())
+                .count();
+            return stock.saturating_sub(u32::try_from(claims).unwrap_or(u32::MAX));
+        }
         let (pool, claims) = self.group_pool(t);
         pool.saturating_sub(claims)
     }
