@@ -393,6 +393,9 @@ def test_render_draws_the_running_trials_paths_once_per_round_and_runs_no_trial(
     twin = e.clone()
     twin.close()
     np.testing.assert_array_equal(twin.render(), after)
+    # Its replay page shows the same stretch: the trial to the round it stopped at.
+    stopped = twin.replay(tmp_path / "stopped.html").to_dict()
+    assert stopped["duration_s"] == pytest.approx(points[-1][1])
     # And a copy of it (no trial of its own: it replays to that round, not to the end).
     np.testing.assert_array_equal(copy.deepcopy(twin).render(), after)
     np.testing.assert_array_equal(pickle.loads(pickle.dumps(twin)).render(), after)

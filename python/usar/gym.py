@@ -384,11 +384,12 @@ class GroupingEnv(gymnasium.Env):
     def replay(self, out: Union[str, os.PathLike], hz: Optional[float] = None) -> Any:
         """Writes the replay page (``usar.replay``, docs/replay.md) of the current or last
         episode to ``out``: its trial with the groups the actions made, to the current round's
-        start (the trial's end once it is over). ``hz``: samples per simulated second. Returns
-        the :class:`usar.TrialResult` of what the page shows. RuntimeError before any reset."""
+        start (the trial's end once it is over; after ``close()`` mid-episode, the round it
+        stopped at, as ``render()``). ``hz``: samples per simulated second. Returns the
+        :class:`usar.TrialResult` of what the page shows. RuntimeError before any reset."""
         if self._seed is None:
             raise RuntimeError("call reset() first: there is no episode to replay")
-        now = self._request.time_s if self._request is not None else None
+        now = self._request.time_s if self._request is not None else self._stopped_s
         duration = self.duration_s if now is None else max(now, 1e-9)
         return _studies.replay(
             self.scenario, out, method=Replayer(self._groups), seed=self._seed,
