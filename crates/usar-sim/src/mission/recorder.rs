@@ -76,17 +76,11 @@ impl Recorder {
     }
 
     /// Adds a step's costs (one per robot, by id, from [`charge_step_costs`]) to the sums of
-    /// the tasks they count for, in robot order: energy spent by each robot that moved, HP
-    /// lost by each robot in radiation.
+    /// the tasks they count for, in robot order.
     pub(crate) fn add_task_costs(&mut self, costs: &[StepCost]) {
         for c in costs {
-            let Some(t) = c.counted else {
-                continue;
-            };
-            if c.moved {
+            if let Some(t) = c.counted {
                 self.energy_by_task[t] += c.spent_pct;
-            }
-            if c.in_radiation {
                 self.hp_by_task[t] += c.lost_pct;
             }
         }

@@ -8,26 +8,19 @@ use rayon::prelude::*;
 
 use super::robot::MissionRobot;
 use crate::scenario::{CostsCount, Scenario};
-use crate::world::{RobotState, World};
-
-/// Robots per parallel task of [`charge_step_costs`] (256).
-const CHUNK_ROBOTS: usize = 256;
+use crate::world::{CHUNK_ROBOTS, RobotState, World};
 
 /// What one robot's step cost it, and the task it counts for: energy spent and HP lost this
-/// step (percent points, `>= 0`; zero when it did not move or stood outside radiation) and
-/// whether each was charged (a charge of zero still counts its step in radiation).
+/// step (percent points, `>= 0`: zero when it did not move or stood outside radiation, and a
+/// task's sum, a non-negative `f64`, is unchanged by adding `+0.0`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct StepCost {
     /// The task the costs count for, if any (`mission.costs_count`).
     pub(crate) counted: Option<usize>,
-    /// Energy spent, percent points; charged only when `moved`.
+    /// Energy spent, percent points.
     pub(crate) spent_pct: f64,
-    /// HP lost, percent points; charged only when `in_radiation`.
+    /// HP lost, percent points.
     pub(crate) lost_pct: f64,
-    /// The robot moved this step (more than the world's tolerance).
-    pub(crate) moved: bool,
-    /// The robot stood in radiation (dose factor above 0).
-    pub(crate) in_radiation: bool,
 }
 
 /// One robot's cost totals so far (the recorder's, copied into its metrics at the end):
@@ -121,17 +114,15 @@ fn charge(
     };
     let mut cost = StepCost {
         counted,
-        moved: w.moved_this_step,
-        in_radiation: rad > 0.0,
         ..StepCost::default()
     };
-    if cost.moved {
+    if w.moved_this_step {
         let c = rates.energy_per_moving_step + rates.energy_per_m * w.step_distance_m;
         cost.spent_pct = c.min(r.energy_pct);
         r.energy_pct -= cost.spent_pct;
         total.energy_spent_pct += cost.spent_pct;
     }
-    if cost.in_radiation {
+    if rad > 0.0 {
         cost.lost_pct = (rates.hp_per_step * rad).min(r.hp_pct);
         r.hp_pct -= cost.lost_pct;
         total.hp_lost_pct += cost.lost_pct;

@@ -14,7 +14,7 @@ use super::follow::Followed;
 pub const PARALLEL_MIN_ROBOTS: usize = 512;
 
 /// Robots per parallel task (256): each task steers its robots with one scratch list.
-pub(super) const CHUNK_ROBOTS: usize = 256;
+pub(crate) const CHUNK_ROBOTS: usize = 256;
 
 /// The per-robot outputs of the parallel phases, kept between steps (allocated once for the
 /// team, grown only with it), and whether they may run in parallel.
