@@ -386,25 +386,22 @@ impl PhysicsScene {
     /// robot's position if it was disabled, and driven at its command.
     /// Whether each body is enabled is the gate's own record (`gated_enabled`), so a robot that
     /// stays far from contacts costs no look-up in Rapier's body set.
-    pub(super) fn gate_bodies(&mut self, nav: &mut [Nav], near: &[bool]) {
+    pub(super) fn gate_bodies(&mut self, nav: &[Nav], near: &[bool]) {
         let mut enabled = std::mem::take(&mut self.gated_enabled);
         if enabled.len() != nav.len() {
             let bodies = &self.physics.bodies;
             enabled.clear();
             enabled.extend(nav.iter().map(|r| bodies[r.body].is_enabled()));
         }
-        for ((robot, &near), was) in nav.iter_mut().zip(near).zip(enabled.iter_mut()) {
+        // A body enabled here is stepped by Rapier, and its robot's body speed read back after.
+        for ((robot, &near), was) in nav.iter().zip(near).zip(enabled.iter_mut()) {
             match (near, *was) {
-                (true, true) => {
-                    self.drive_body(robot.body, robot.command);
-                    robot.body_speed_m_per_s = robot.command.length();
-                }
+                (true, true) => self.drive_body(robot.body, robot.command),
                 (true, false) => {
                     let body = &mut self.physics.bodies[robot.body];
                     body.set_enabled(true);
                     body.set_translation(robot.pos, false);
                     body.set_linvel(robot.command, false);
-                    robot.body_speed_m_per_s = robot.command.length();
                 }
                 (false, true) => self.physics.bodies[robot.body].set_enabled(false),
                 (false, false) => {}

@@ -44,10 +44,12 @@ pub(super) struct Nav {
     /// second), zero after a straight command, a new goal or a new path: the robot steers to
     /// its side first ([`Nav::steering_side`]).
     pub(super) deflection: Vec2,
-    /// The speed of the robot's body as Rapier last left it or the world last set it (the
-    /// length of its linear velocity, metres per second; 0 at the start): written wherever
-    /// the body's velocity is read or set (read-back, driving, the contact gate, teleport), so
-    /// that the contact gate reads it here instead of looking the body up in Rapier's set.
+    /// The speed of the robot's body as Rapier last left it or the world last set it before
+    /// the contact gate reads it (the length of its linear velocity, metres per second; 0 at
+    /// the start): written by the read-back of a body, by driving every body
+    /// (`sim.physics` other than `NearBodies`) and by a teleport, so that the gate reads it
+    /// here instead of looking the body up in Rapier's set. (A body the gate enables or drives
+    /// is stepped and read back before the gate reads again.)
     pub(super) body_speed_m_per_s: f32,
 }
 

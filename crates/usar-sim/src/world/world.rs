@@ -463,7 +463,7 @@ impl World {
                 let mut near = std::mem::take(&mut self.pipelines.near_body);
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
-                self.scene.gate_bodies(&mut self.nav, &near);
+                self.scene.gate_bodies(&self.nav, &near);
                 let mut to = ReadBack {
                     radiation: &self.radiation,
                     dt_s: self.dt,
