@@ -224,11 +224,7 @@ fn main() {
             }
             println!("figure: {}", teams::short(path));
         }
-        let diverged = robot_step::diverged(&costs);
-        if !diverged.is_empty() {
-            eprintln!("error: not the same places: {}", diverged.join("; "));
-            std::process::exit(1);
-        }
+        fail_if_diverged(&robot_step::diverged(&costs));
         return;
     }
     println!(
@@ -286,8 +282,13 @@ fn main() {
     }
     // A replay or a two-thread run that did not stand where the world did fails the bench,
     // after the table and the figure.
-    let diverged: Vec<String> = rows
-        .iter()
+    fail_if_diverged(&diverged(&rows));
+}
+
+/// One line per team whose replays or two-thread run did not stand in the world's places
+/// (empty when every one did).
+fn diverged(rows: &[Row]) -> Vec<String> {
+    rows.iter()
         .flat_map(|r| {
             let replays = [&r.control, &r.every_step]
                 .into_iter()
@@ -300,7 +301,11 @@ fn main() {
                 .map(|step| format!("{} robots: the two runs at step {step}", r.robots));
             replays.chain(runs)
         })
-        .collect();
+        .collect()
+}
+
+/// Ends the bench with exit status 1 and one line naming them when `diverged` is not empty.
+fn fail_if_diverged(diverged: &[String]) {
     if !diverged.is_empty() {
         eprintln!("error: not the same places: {}", diverged.join("; "));
         std::process::exit(1);
