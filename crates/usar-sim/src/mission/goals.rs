@@ -18,7 +18,30 @@ pub(crate) fn send(
     id: usize,
     goal: PointM,
 ) -> Result<(), MissionError> {
-    match world.set_goal(id, Some(goal)) {
+    sent(rec, id, world.set_goal(id, Some(goal)))
+}
+
+/// Sends each robot of `goals` (robot id, goal) to its goal, as [`send`] one after the other
+/// in that order does, through [`World::set_goals`] (which plans a large team's shared goals
+/// side by side).
+///
+/// # Errors
+/// As [`send`], for the first robot that fails so (the robots after it have their goals).
+pub(crate) fn send_all(
+    world: &mut World,
+    rec: &mut Recorder,
+    goals: &[(usize, PointM)],
+) -> Result<(), MissionError> {
+    let results = world.set_goals(goals);
+    for (&(id, _), result) in goals.iter().zip(results) {
+        sent(rec, id, result)?;
+    }
+    Ok(())
+}
+
+/// What [`send`] makes of the world's `result` of sending robot `id`.
+fn sent(rec: &mut Recorder, id: usize, result: Result<(), WorldError>) -> Result<(), MissionError> {
+    match result {
         Ok(()) => Ok(()),
         Err(WorldError::Unreachable { .. }) => {
             rec.unreachable_goal(id);

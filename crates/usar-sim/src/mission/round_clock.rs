@@ -8,7 +8,7 @@ use rne_core::grouping::GroupingMethod;
 
 use super::error::MissionError;
 use super::events::{MissionEvent, MissionEventKind};
-use super::goals::send;
+use super::goals::send_all;
 use super::grouping::group_available;
 use super::rest::{may_join, rests_over};
 use super::robot::Phase;
@@ -64,6 +64,7 @@ pub(crate) fn start_round(
         ResourceStock::TeamPerRound { units } => Some(units),
         ResourceStock::PerRound | ResourceStock::AtRest => None,
     };
+    let mut goals = Vec::with_capacity(available.len());
     for (t, ids) in groups.iter().enumerate() {
         let task = &scenario.tasks[t];
         let sweep_len = st.sweeps[t].len().max(1);
@@ -85,9 +86,10 @@ pub(crate) fn start_round(
                 Locomotion::Ground => task.goal,
                 Locomotion::Aerial => task.search_area.center(),
             };
-            send(world, &mut st.recorder, id, target)?;
+            goals.push((id, target));
         }
     }
+    send_all(world, &mut st.recorder, &goals)?;
     st.recorder.round_started(world.time_s(), groups);
     let round = st.recorder.rounds().len() - 1;
     st.events.push(MissionEvent::of_round(

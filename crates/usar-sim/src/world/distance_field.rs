@@ -129,7 +129,16 @@ impl DistanceField {
     /// no path exists.
     pub fn descend(&mut self, grid: &ClearanceGrid, from: u32, out: &mut Vec<u32>) -> bool {
         out.clear();
-        if self.cost_from(grid, from).is_none() {
+        self.cost_from(grid, from).is_some() && self.descend_settled(grid, from, out)
+    }
+
+    /// [`DistanceField::descend`] from a cell `from` the field has already settled
+    /// ([`DistanceField::cost_from`] returned `Some` for it): the same path, reading the field
+    /// only, so descents from many cells may run side by side. `false` (and `out` empty) when
+    /// `from` is not settled.
+    pub fn descend_settled(&self, grid: &ClearanceGrid, from: u32, out: &mut Vec<u32>) -> bool {
+        out.clear();
+        if !self.settled[from as usize] {
             return false;
         }
         let inflation = f32::from_bits(self.inflation_bits);
@@ -261,6 +270,31 @@ mod tests {
         assert!(!field.descend(&g, from, &mut path));
         assert!(path.is_empty());
         assert!(field.descend(&g, g.cell_index(Vec2::new(5.0, 5.0)), &mut path));
+    }
+
+    /// A descent from a settled cell reads the same path off the field as a descent that
+    /// expands it, from every cell the field settled on its way to one far start; a cell it
+    /// has not settled yet gives no path.
+    #[test]
+    fn a_settled_descent_reads_the_descents_path() {
+        let g = small_grid();
+        let goal = g.cell_index(Vec2::new(1.0, 5.0));
+        let mut field = DistanceField::new(&g, goal, INFL);
+        let far = g.cell_index(Vec2::new(1.0, 1.0));
+        assert!(field.cost_from(&g, far).is_some());
+        let (nx, ny) = g.dims();
+        let (mut settled, mut a, mut b) = (0, vec![7], Vec::new());
+        for from in 0..nx * ny {
+            if !field.settled[from as usize] {
+                assert!(!field.descend_settled(&g, from, &mut a) && a.is_empty());
+                continue;
+            }
+            settled += 1;
+            let found = field.descend_settled(&g, from, &mut a);
+            let fresh = DistanceField::new(&g, goal, INFL).descend(&g, from, &mut b);
+            assert_eq!((found, &a), (fresh, &b), "cell {from}");
+        }
+        assert!(settled > 100, "{settled} settled cells");
     }
 
     /// A new field holds what `new_heap_bytes` says (plus the one bucket its goal went

@@ -113,6 +113,7 @@ mod resolver_pairs;
 mod resolver_reach;
 mod robot;
 mod robot_planning;
+mod shared_descents;
 mod shared_fields;
 pub mod standing_disc;
 mod static_buckets;

@@ -180,3 +180,31 @@ pub(super) fn for_each_near(
             .for_each(f),
     }
 }
+
+/// Largest penetration among the robots of `nav`, metres, `>= 0` (see
+/// [`super::World::max_penetration_m`]): over same-layer pairs `r_i + r_j - distance` (pairs
+/// found through [`for_each_near`] with `index`, within a robot's radius plus the largest
+/// radius of its layer, `max_radius_m` by layer: ground, aerial), and over robots and the
+/// statics `r - static_distance(position, ground)` (metres; walls and debris for ground
+/// robots, walls for aerial ones).
+pub(super) fn max_penetration_m(
+    nav: &[Nav],
+    index: Option<&NeighbourIndex>,
+    max_radius_m: [f64; 2],
+    static_distance: impl Fn(Vec2, bool) -> f32,
+) -> f64 {
+    let mut worst = 0.0f64;
+    for (i, a) in nav.iter().enumerate() {
+        let ground = a.layer == Locomotion::Ground;
+        let d = f64::from(static_distance(a.pos, ground));
+        worst = worst.max(f64::from(a.radius) - d);
+        let reach = a.radius + max_radius_m[usize::from(!ground)] as f32;
+        for_each_near(nav, index, a.layer, a.pos, reach, |j| {
+            if j > i {
+                let d = (nav[j].pos - a.pos).length();
+                worst = worst.max(f64::from(a.radius + nav[j].radius - d));
+            }
+        });
+    }
+    worst
+}

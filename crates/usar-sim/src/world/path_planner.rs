@@ -4,6 +4,8 @@
 //! shared distance fields ([`super::distance_field`]) for goals many robots share, each
 //! smoothed by line of sight.
 
+use std::collections::HashMap;
+
 use parry2d::math::Vector as Vec2;
 
 use super::clearance_grid::ClearanceGrid;
@@ -13,9 +15,9 @@ use super::error::NavError;
 use super::grid_astar::GridAstar;
 use super::grid_regions::GridRegions;
 use super::grid_search::{Blocked, search};
-use super::path_smoothing::smooth_galloping;
-use super::plan_cache::PlanCache;
+use super::plan_cache::{PlanCache, PlanKey, Planned};
 use super::plan_query::{Endpoints, PlanQuery};
+use super::shared_descents::{prepare_descents, smoothed};
 pub use super::shared_fields::SHARED_FIELDS_BUDGET_BYTES;
 use super::shared_fields::SharedFields;
 use super::standing_disc::StandingDisc;
@@ -53,6 +55,9 @@ pub struct PathPlanner {
     regions: GridRegions,
     /// A* searches run (own goals and detours), for [`PathPlanner::astar_searches`].
     astar_searches: u64,
+    /// Plans to shared goals made ahead ([`PathPlanner::prepare_shared`]), taken by the
+    /// first [`PathPlanner::plan`] that misses the cache on their key.
+    prepared: HashMap<PlanKey, Planned>,
 }
 
 impl PathPlanner {
@@ -99,9 +104,10 @@ impl PathPlanner {
             let cells = cached.as_ref().map_err(|e| *e)?;
             return Ok(ends.write(grid, cells, out));
         }
-        let planned = match kind {
-            GoalKind::Own => self.search_own(grid, start, goal, inflation),
-            GoalKind::Shared => self.descend(grid, start, goal, inflation),
+        let planned = match (kind, self.prepared.remove(&key)) {
+            (_, Some(prepared)) => prepared,
+            (GoalKind::Own, None) => self.search_own(grid, start, goal, inflation),
+            (GoalKind::Shared, None) => self.descend(grid, start, goal, inflation),
         };
         let written = match &planned {
             Ok(cells) => Ok(ends.write(grid, cells, out)),
@@ -176,13 +182,36 @@ impl PathPlanner {
         let found = self
             .fields
             .with_field(grid, goal, inflation, |f| f.descend(grid, start, raw));
-        if !found {
-            return Err(NavError::NoPath);
-        }
-        if self.raw.len() < 2 {
-            return Ok(vec![start, goal]);
-        }
-        Ok(smooth_galloping(grid, &self.raw, inflation))
+        smoothed(grid, &self.raw, (start, goal), inflation, found)
+    }
+
+    /// Makes ahead, side by side on the calling rayon pool when `parallel`, the plans that
+    /// [`PathPlanner::plan`] of each of `queries` with [`GoalKind::Shared`] would make (every
+    /// query's goal a shared goal), for the plans that follow to take instead of planning:
+    /// the same plans, made at once ([`super::shared_descents`]). Those not taken stay until
+    /// [`PathPlanner::clear_prepared`].
+    pub(super) fn prepare_shared(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        queries: &[PlanQuery],
+        parallel: bool,
+    ) {
+        let cache = &self.cache;
+        prepare_descents(
+            &mut self.fields,
+            grid,
+            arena,
+            queries,
+            |key| cache.get(key).is_some(),
+            parallel,
+            &mut self.prepared,
+        );
+    }
+
+    /// Drops the plans made ahead that no plan took ([`PathPlanner::prepare_shared`]).
+    pub(super) fn clear_prepared(&mut self) {
+        self.prepared.clear();
     }
 
     /// A* from cell `start` to cell `goal` ([`search`]), failing at once when the two are

@@ -5,13 +5,14 @@
 
 use parry2d::math::Vector as Vec2;
 
+use super::bodies::to_vec2;
 use super::clearance_grid::ClearanceGrid;
 use super::error::NavError;
 use super::nav_state::Nav;
 use super::path_planner::{GoalKind, PathPlanner};
 use super::plan_into::PlanInto;
 use super::plan_query::{PlanQuery, plan_inflation_m};
-use crate::scenario::{Locomotion, NavigationParams, in_field};
+use crate::scenario::{Locomotion, NavigationParams, PointM, in_field};
 
 /// What a robot's plan reads besides the robot, borrowed from the world: the clearance grid,
 /// the arena's width and height at physics precision (metres), the scenario's `navigation`
@@ -38,6 +39,24 @@ pub(super) fn ground_query(
         to: goal,
         inflation_m: plan_inflation_m(nav.radius, navigation),
     })
+}
+
+/// The grid queries of the ground robots of `goals` (robot id, goal: world frame, metres)
+/// whose goal is one of `shared_goals` (compared exactly at physics precision), in the order
+/// of `goals`, from their navigation states `nav` (by id; an unknown id is left out) under
+/// `navigation` ([`ground_query`]).
+pub(super) fn shared_queries(
+    goals: &[(usize, PointM)],
+    nav: &[Nav],
+    shared_goals: &[Vec2],
+    navigation: &NavigationParams,
+) -> Vec<PlanQuery> {
+    let shared = |&(id, goal): &(usize, PointM)| {
+        let goal = to_vec2(&goal);
+        let nav = nav.get(id).filter(|_| shared_goals.contains(&goal))?;
+        ground_query(nav, goal, navigation)
+    };
+    goals.iter().filter_map(shared).collect()
 }
 
 /// Plans from the position of the robot of navigation state `nav` to `goal` (world frame,

@@ -11,7 +11,7 @@ use parry2d::math::Vector as Vec2;
 
 use super::bodies::{PhysicsScene, to_point, to_vec2};
 use super::error::{NavError, WorldError};
-use super::nav_state::{Nav, for_each_near};
+use super::nav_state::{Nav, for_each_near, max_penetration_m};
 
 use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::GateInputs;
@@ -25,7 +25,7 @@ use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::radiation_field::RadiationField;
 use super::robot::RobotState;
-use super::robot_planning::{PlanInputs, ground_query, plan_robot};
+use super::robot_planning::{PlanInputs, ground_query, plan_robot, shared_queries};
 use super::step::{CommandInputs, command_all, drive_all, step_near_bodies};
 use super::world_build::{
     clearance_grid, max_radius_m, pipelines, radiation_field, robots_at_start, shared_goals,
@@ -217,6 +217,25 @@ impl World {
     pub fn set_goal(&mut self, id: usize, goal: Option<PointM>) -> Result<(), WorldError> {
         let tolerance_m = self.navigation.waypoint_tolerance_m.get();
         self.set_goal_with_tolerance(id, goal, tolerance_m)
+    }
+
+    /// Sets the goal of each robot of `goals` (robot id, goal: world frame, metres) as
+    /// [`World::set_goal`] does, one after the other in the order given, and returns each
+    /// call's result in that order. The same paths, state and results as those calls; for a
+    /// team large enough to step in parallel ([`World::per_robot_parallel`]) the ground
+    /// robots' plans to shared goals (a task's goal point, a drop-off, a rest station) are
+    /// made first, side by side (`shared_descents.rs`), as a round's start needs for a team
+    /// of thousands.
+    pub fn set_goals(&mut self, goals: &[(usize, PointM)]) -> Vec<Result<(), WorldError>> {
+        if self.per_robot_parallel() {
+            let queries = shared_queries(goals, &self.nav, &self.shared_goals, &self.navigation);
+            let planner = &mut self.pipelines.planner;
+            planner.prepare_shared(&self.grid, self.arena, &queries, true);
+        }
+        let results = goals.iter().map(|&(id, g)| self.set_goal(id, Some(g)));
+        let results = results.collect();
+        self.pipelines.planner.clear_prepared();
+        results
     }
 
     /// [`World::set_goal`] with the goal reached only within `tolerance_m` of it (metres)
@@ -734,21 +753,8 @@ impl World {
     /// `r_i + r_j - distance`, over ground robots and walls/debris `r - distance`, over aerial
     /// robots and walls `r - distance`. For safety checks (not used by stepping).
     pub fn max_penetration_m(&self) -> f64 {
-        let mut worst = 0.0f64;
-        for (i, a) in self.nav.iter().enumerate() {
-            let ground = a.layer == Locomotion::Ground;
-            let d = f64::from(self.scene.static_distance(a.pos, ground));
-            worst = worst.max(f64::from(a.radius) - d);
-            let slot = usize::from(!ground);
-            let reach = a.radius + self.max_radius_m[slot] as f32;
-            self.for_each_near(a.layer, a.pos, reach, |j| {
-                let b = &self.nav[j];
-                if j > i {
-                    let d = (b.pos - a.pos).length();
-                    worst = worst.max(f64::from(a.radius + b.radius - d));
-                }
-            });
-        }
-        worst
+        let index = (self.pipelines.index_fresh).then_some(&self.pipelines.neighbours);
+        let statics = |p, ground| self.scene.static_distance(p, ground);
+        max_penetration_m(&self.nav, index, self.max_radius_m, statics)
     }
 }

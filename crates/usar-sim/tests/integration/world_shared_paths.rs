@@ -90,3 +90,40 @@ proptest! {
         check_paths_from(&THREE_TASKS, fx, fy)?;
     }
 }
+
+/// `World::set_goals` gives every robot the result, goal and path that `World::set_goal`
+/// gives it one robot after the other, on a team large enough to plan its shared goals side
+/// by side (swarm-1000.ron's 1,000 robots on a two-thread pool): every shared goal, an own
+/// goal in the open, and a goal outside the arena.
+#[test]
+fn set_goals_plans_as_set_goal_one_by_one() {
+    let s = scenario("swarm-1000.ron");
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let clock = ControlClock::of(s.sim());
+        let (mut one, mut all) = (World::new(&s, &clock), World::new(&s, &clock));
+        assert!(all.per_robot_parallel());
+        let mut targets = shared_goals(&s);
+        targets.push(PointM::new(120.5, 119.5));
+        targets.push(PointM::new(-3.0, 10.0));
+        let goals: Vec<(usize, PointM)> = (0..s.robots().len())
+            .map(|id| (id, targets[id % targets.len()]))
+            .collect();
+        let by_one: Vec<String> = (goals.iter())
+            .map(|&(id, g)| format!("{:?}", one.set_goal(id, Some(g))))
+            .collect();
+        let by_all: Vec<String> = (all.set_goals(&goals).iter())
+            .map(|r| format!("{r:?}"))
+            .collect();
+        assert_eq!(by_one, by_all);
+        assert!(by_all.iter().any(|r| r != "Ok(())"), "a goal fails");
+        for id in 0..s.robots().len() {
+            assert_eq!(one.robot(id).goal, all.robot(id).goal, "robot {id}");
+            let path = |w: &World| w.waypoints(id).collect::<Vec<_>>();
+            assert_eq!(path(&one), path(&all), "robot {id}");
+        }
+    });
+}
