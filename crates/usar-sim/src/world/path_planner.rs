@@ -540,6 +540,50 @@ mod tests {
             }
         }
 
+        /// Plans made ahead ([`PathPlanner::prepare_shared`], on two threads) are the plans a
+        /// planner makes one by one, over random debris, goals, starts and two clearance
+        /// classes, under a field budget that keeps no field, two, or all (the fields then
+        /// expanded one after the other or side by side); the plans to come take every plan
+        /// made ahead, and the fields hold at most the budget after it.
+        #[test]
+        fn prepared_plans_are_the_plans(
+            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.2), 0..6),
+            goals in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0), 1..6),
+            queries in proptest::collection::vec(
+                (0.0f32..10.0, 0.0f32..10.0, 0usize..6, 0usize..2),
+                1..40,
+            ),
+            fields_kept in proptest::prop_oneof![
+                proptest::strategy::Just(0usize),
+                proptest::strategy::Just(2),
+                proptest::strategy::Just(usize::MAX),
+            ],
+        ) {
+            let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            let g = grid(&statics);
+            let budget = DistanceField::new_heap_bytes(&g).saturating_mul(fields_kept);
+            let mut ahead = PathPlanner::with_field_budget(budget);
+            let mut reference = PathPlanner::with_field_budget(usize::MAX);
+            let to = |k: usize| Vec2::new(goals[k % goals.len()].0, goals[k % goals.len()].1);
+            let asked: Vec<PlanQuery> = queries
+                .iter()
+                .map(|&(x, y, k, class)| PlanQuery {
+                    from: Vec2::new(x, y),
+                    to: to(k),
+                    inflation_m: [INFL, 0.35][class],
+                })
+                .collect();
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            pool.install(|| ahead.prepare_shared(&g, ARENA, &asked, true));
+            proptest::prop_assert!(ahead.field_bytes() <= budget, "{}", ahead.field_bytes());
+            for &(x, y, k, class) in &queries {
+                let ours = shared_plan(&mut ahead, &g, to(k), (x, y, class));
+                let theirs = shared_plan(&mut reference, &g, to(k), (x, y, class));
+                proptest::prop_assert_eq!(ours, theirs);
+            }
+            proptest::prop_assert!(ahead.prepared.is_empty(), "{} not taken", ahead.prepared.len());
+        }
+
         /// A goal check from the regions ([`PathPlanner::connects`]) answers as a plan by a
         /// shared field does: `Ok` exactly when the plan succeeds, the same error otherwise.
         #[test]

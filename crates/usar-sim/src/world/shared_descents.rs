@@ -3,13 +3,14 @@
 //! class ([`super::shared_fields`]).
 //!
 //! [`prepare_descents`] expands each field once to every start it is asked from (Dijkstra's
-//! search stays serial, one field at a time, within the fields' memory budget as one plan at
-//! a time would hold them), then runs the descents and their smoothing from those starts in
-//! parallel: a descent from a settled cell only reads the field
-//! ([`DistanceField::descend_settled`]), and its path does not depend on how far the field
-//! was expanded (module docs of [`super::distance_field`]). The plans are exactly those the
-//! planner would make one by one ([`super::path_planner::PathPlanner::plan`]), so preparing
-//! them changes no path, only when they are computed.
+//! search is serial within a field; the fields are expanded side by side when they fit the
+//! fields' memory budget together, else one at a time, [`SharedFields::with_fields`]), then
+//! runs the descents and their smoothing from those starts in parallel: a descent from a
+//! settled cell only reads the field ([`DistanceField::descend_settled`]), and its path does
+//! not depend on how far the field was expanded (module docs of [`super::distance_field`]).
+//! The plans are exactly those the planner would make one by one
+//! ([`super::path_planner::PathPlanner::plan`]), so preparing them changes no path, only
+//! when they are computed.
 
 use std::collections::HashMap;
 
@@ -49,8 +50,9 @@ pub(super) fn smoothed(
 /// Plans each of `queries` (shared goals: every query's goal is one of the planner's shared
 /// goals) whose key (inflation, start cell, goal cell, shared) is neither `known` nor already
 /// in `into`, by descent of its field from `fields` (kept or made, as
-/// [`SharedFields::with_field`] does), and puts the plans into `into` by key. The descents of
-/// one field run in parallel on the calling rayon pool when `parallel`, one by one otherwise.
+/// [`SharedFields::with_fields`] does), and puts the plans into `into` by key. The fields and
+/// the descents of each run in parallel on the calling rayon pool when `parallel` (the fields
+/// within the budget), one by one otherwise.
 /// A query whose ends do not snap ([`Endpoints::snap`] fails) is left out: planning it fails
 /// before any descent.
 pub(super) fn prepare_descents(
@@ -62,17 +64,19 @@ pub(super) fn prepare_descents(
     parallel: bool,
     into: &mut HashMap<PlanKey, Planned>,
 ) {
-    for ((goal, bits), starts) in
-        starts_by_field(grid, arena, queries, |k| known(k) || into.contains_key(k))
-    {
-        let inflation = f32::from_bits(bits);
-        let plans = fields.with_field(grid, goal, inflation, |field| {
-            let found: Vec<bool> = starts
-                .iter()
-                .map(|&s| field.cost_from(grid, s).is_some())
-                .collect();
-            descend_all(field, grid, (goal, inflation), &starts, &found, parallel)
-        });
+    let asked = starts_by_field(grid, arena, queries, |k| known(k) || into.contains_key(k));
+    let keys: Vec<(u32, f32)> = (asked.iter())
+        .map(|&((goal, bits), _)| (goal, f32::from_bits(bits)))
+        .collect();
+    let plans = fields.with_fields(grid, &keys, parallel, |k, field| {
+        let ((goal, bits), starts) = &asked[k];
+        let found: Vec<bool> = (starts.iter())
+            .map(|&s| field.cost_from(grid, s).is_some())
+            .collect();
+        let inflation = f32::from_bits(*bits);
+        descend_all(field, grid, (*goal, inflation), starts, &found, parallel)
+    });
+    for (((goal, bits), starts), plans) in asked.into_iter().zip(plans) {
         for (start, plan) in starts.into_iter().zip(plans) {
             into.insert((bits, start, goal, true), plan);
         }

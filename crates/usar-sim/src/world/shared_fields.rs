@@ -21,6 +21,8 @@
 
 use std::collections::VecDeque;
 
+use rayon::prelude::*;
+
 use super::clearance_grid::ClearanceGrid;
 use super::distance_field::DistanceField;
 
@@ -89,30 +91,74 @@ impl SharedFields {
         inflation: f32,
         use_field: impl FnOnce(&mut DistanceField) -> R,
     ) -> R {
-        let kept = self
-            .fields
-            .iter()
-            .position(|(_, f)| f.is_for(goal, inflation))
-            .and_then(|k| self.fields.remove(k));
-        let mut field = match kept {
-            Some((bytes, field)) => {
-                self.held -= bytes;
-                field
-            }
-            None => {
-                self.drop_until(
-                    self.budget
-                        .saturating_sub(DistanceField::new_heap_bytes(grid)),
-                );
-                DistanceField::new(grid, goal, inflation)
-            }
-        };
+        if !self.fields.iter().any(|(_, f)| f.is_for(goal, inflation)) {
+            // Room for the new field first.
+            let new_bytes = DistanceField::new_heap_bytes(grid);
+            self.drop_until(self.budget.saturating_sub(new_bytes));
+        }
+        let mut field = self.take(grid, goal, inflation);
         let answer = use_field(&mut field);
         let bytes = field.heap_bytes();
         self.held += bytes;
         self.fields.push_back((bytes, field));
         self.drop_until(self.budget);
         answer
+    }
+
+    /// Runs `use_field(k, field)` on the field towards each `keys[k]` (goal cell of `grid`,
+    /// inflation metres), and returns the answers by `k`: side by side on the calling rayon
+    /// pool when `parallel` and the fields fit the budget together (the kept ones and a new
+    /// one, [`DistanceField::new_heap_bytes`], for each key not kept), else one after the
+    /// other as [`SharedFields::with_field`] does. Either way the fields are then kept as if
+    /// used in the order of `keys`, within the budget.
+    pub(super) fn with_fields<R: Send>(
+        &mut self,
+        grid: &ClearanceGrid,
+        keys: &[(u32, f32)],
+        parallel: bool,
+        use_field: impl Fn(usize, &mut DistanceField) -> R + Sync,
+    ) -> Vec<R> {
+        let kept = |&(goal, inflation): &(u32, f32)| {
+            self.fields.iter().any(|(_, f)| f.is_for(goal, inflation))
+        };
+        let new_bytes =
+            keys.iter().filter(|k| !kept(k)).count() * DistanceField::new_heap_bytes(grid);
+        if !parallel || self.held.saturating_add(new_bytes) > self.budget {
+            let each = keys.iter().enumerate();
+            return each
+                .map(|(k, &(goal, inflation))| {
+                    self.with_field(grid, goal, inflation, |f| use_field(k, f))
+                })
+                .collect();
+        }
+        let mut taken: Vec<DistanceField> = (keys.iter())
+            .map(|&(goal, inflation)| self.take(grid, goal, inflation))
+            .collect();
+        let answers = (taken.par_iter_mut().enumerate())
+            .map(|(k, f)| use_field(k, f))
+            .collect();
+        for field in taken {
+            let bytes = field.heap_bytes();
+            self.held += bytes;
+            self.fields.push_back((bytes, field));
+        }
+        self.drop_until(self.budget);
+        answers
+    }
+
+    /// The field towards cell `goal` for `inflation` metres, taken out of the store (the kept
+    /// one, or a new one).
+    fn take(&mut self, grid: &ClearanceGrid, goal: u32, inflation: f32) -> DistanceField {
+        let kept = (self.fields.iter())
+            .position(|(_, f)| f.is_for(goal, inflation))
+            .and_then(|k| self.fields.remove(k));
+        match kept {
+            Some((bytes, field)) => {
+                self.held -= bytes;
+                field
+            }
+            None => DistanceField::new(grid, goal, inflation),
+        }
     }
 
     /// Drops the least recently used fields until they hold at most `limit` bytes.
