@@ -486,6 +486,24 @@ mod tests {
         (found, out)
     }
 
+    /// A scene of the shared-field proptests: debris discs (x, y, radius; metres) on the
+    /// 10 m x 10 m grid, shared goals (x, y) and queries (start x, y, goal index, clearance
+    /// class).
+    type SharedScene = (
+        Vec<(f32, f32, f32)>,
+        Vec<(f32, f32)>,
+        Vec<(f32, f32, usize, usize)>,
+    );
+
+    fn shared_scenes() -> impl proptest::strategy::Strategy<Value = SharedScene> {
+        use proptest::collection::vec;
+        (
+            vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.2), 0..6),
+            vec((0.0f32..10.0, 0.0f32..10.0), 1..6),
+            vec((0.0f32..10.0, 0.0f32..10.0, 0usize..6, 0usize..2), 1..40),
+        )
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
 
@@ -498,12 +516,7 @@ mod tests {
         /// budget of one new field would keep none), one of three and a half one to three.
         #[test]
         fn a_field_budget_changes_no_plan_and_holds(
-            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.2), 0..6),
-            goals in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0), 1..6),
-            queries in proptest::collection::vec(
-                (0.0f32..10.0, 0.0f32..10.0, 0usize..6, 0usize..2),
-                1..40,
-            ),
+            (debris, goals, queries) in shared_scenes(),
             halves in proptest::prop_oneof![
                 proptest::strategy::Just(0usize),
                 proptest::strategy::Just(4),
@@ -547,12 +560,7 @@ mod tests {
         /// made ahead, and the fields hold at most the budget after it.
         #[test]
         fn prepared_plans_are_the_plans(
-            debris in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.1f32..1.2), 0..6),
-            goals in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0), 1..6),
-            queries in proptest::collection::vec(
-                (0.0f32..10.0, 0.0f32..10.0, 0usize..6, 0usize..2),
-                1..40,
-            ),
+            (debris, goals, queries) in shared_scenes(),
             fields_kept in proptest::prop_oneof![
                 proptest::strategy::Just(0usize),
                 proptest::strategy::Just(2),
