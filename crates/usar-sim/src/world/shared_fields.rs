@@ -106,11 +106,12 @@ impl SharedFields {
     }
 
     /// Runs `use_field(k, field)` on the field towards each `keys[k]` (goal cell of `grid`,
-    /// inflation metres), and returns the answers by `k`: side by side on the calling rayon
-    /// pool when `parallel` and the fields fit the budget together (the kept ones and a new
-    /// one, [`DistanceField::new_heap_bytes`], for each key not kept), else one after the
-    /// other as [`SharedFields::with_field`] does. Either way the fields are then kept as if
-    /// used in the order of `keys`, within the budget.
+    /// inflation metres; the keys distinct), and returns the answers by `k`: side by side on
+    /// the calling rayon pool when `parallel` and the fields fit the budget together (the
+    /// kept ones and a new one, [`DistanceField::new_heap_bytes`], for each key not kept;
+    /// while they run, plus what their open sets grow by), else one after the other as
+    /// [`SharedFields::with_field`] does. Either way the fields are then kept as if used in
+    /// the order of `keys`, within the budget.
     pub(super) fn with_fields<R: Send>(
         &mut self,
         grid: &ClearanceGrid,
