@@ -517,11 +517,7 @@ mod tests {
         #[test]
         fn a_field_budget_changes_no_plan_and_holds(
             (debris, goals, queries) in shared_scenes(),
-            halves in proptest::prop_oneof![
-                proptest::strategy::Just(0usize),
-                proptest::strategy::Just(4),
-                proptest::strategy::Just(7),
-            ],
+            halves in proptest::sample::select(vec![0usize, 4, 7]),
         ) {
             let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
             let g = grid(&statics);
@@ -561,11 +557,7 @@ mod tests {
         #[test]
         fn prepared_plans_are_the_plans(
             (debris, goals, queries) in shared_scenes(),
-            fields_kept in proptest::prop_oneof![
-                proptest::strategy::Just(0usize),
-                proptest::strategy::Just(2),
-                proptest::strategy::Just(usize::MAX),
-            ],
+            fields_kept in proptest::sample::select(vec![0usize, 2, usize::MAX]),
         ) {
             let statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
             let g = grid(&statics);
