@@ -226,6 +226,11 @@ impl World {
     /// robots' plans to shared goals (a task's goal point, a drop-off, a rest station) are
     /// made first, side by side (`shared_descents.rs`), as a round's start needs for a team
     /// of thousands.
+    ///
+    /// # Errors
+    /// None of its own: each result is that robot's [`World::set_goal`] result
+    /// ([`WorldError::UnknownRobot`], [`WorldError::Unreachable`]), and a failed goal leaves
+    /// the robots after it their goals.
     pub fn set_goals(&mut self, goals: &[(usize, PointM)]) -> Vec<Result<(), WorldError>> {
         if self.per_robot_parallel() {
             let queries = shared_queries(goals, &self.nav, &self.shared_goals, &self.navigation);
