@@ -12,6 +12,8 @@
 //! - `grid_search`: one smoothed A* search between two cells (outside standing discs).
 //! - [`path_planner`]: the path planner (plan cache, A* for own goals and detours, shared
 //!   distance fields for shared goals).
+//! - `plan_around`: a detour's search round the robots standing in the way, and a detour
+//!   planned ahead on another thread.
 //! - [`neighbours`]: the neighbour index (a uniform grid per layer) behind every robot-robot
 //!   query.
 //! - `neighbour_lists`: the resolver's neighbour lists, kept over several steps (Verlet
@@ -63,6 +65,9 @@
 //! - `path_following`: a robot's intended velocity from its path: `follow`, then the planner's
 //!   part (detours and re-plans), in robot order; a stage over explicit borrows of the world
 //!   (`PathFollowing`).
+//! - `detour`: a detour's geometry (the robots it goes round, where it rejoins the path).
+//! - `detours_ahead`: the detours and re-plans of a large team's control step planned ahead,
+//!   side by side, and taken only when asked for exactly.
 //! - `step`: the step's serial stages over explicit borrows ([`World::step`] runs them): each
 //!   body driven at its robot's command, and on a control step each robot's command, motion
 //!   and list flags from the resolver's decisions and steering.
@@ -83,6 +88,8 @@ mod commands;
 mod conflicts;
 mod contact_gate;
 mod control_clock;
+mod detour;
+mod detours_ahead;
 mod disc_mask;
 pub mod distance_field;
 mod error;
@@ -102,6 +109,7 @@ pub mod path_planner;
 mod path_smoothing;
 mod per_robot;
 mod pipelines;
+mod plan_around;
 mod plan_cache;
 mod plan_into;
 pub mod plan_query;

@@ -9,17 +9,18 @@
 use parry2d::math::Vector as Vec2;
 
 use super::bodies::to_point;
+use super::control_clock::ControlClock;
+use super::detour::{Team, rejoin_point, standing_round};
+use super::detours_ahead::{AheadInputs, DetoursAhead, plan_ahead};
 use super::follow::{Follow, FollowCtx, Followed, Stage, follow};
 use super::nav_state::Nav;
 use super::neighbours::NeighbourIndex;
-use super::path_following_params::DETOUR_REJOIN_BEYOND_M;
 use super::path_planner::PathPlanner;
 use super::plan_into::PlanInto;
 use super::plan_query::{PlanQuery, plan_inflation_m};
-use super::robot::{Motion, RobotState};
+use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, plan_robot};
 use super::standing_disc::StandingDisc;
-use crate::scenario::Locomotion;
 
 /// Path following's stage over explicit borrows of the world for one control step: what it
 /// reads (`&`) and what it writes (`&mut`: the planner's caches, the scratch buffers, every
@@ -49,6 +50,9 @@ pub(super) struct PathFollowing<'a> {
     pub(super) nav: &'a mut [Nav],
     /// Every robot's state, by id.
     pub(super) robots: &'a mut [RobotState],
+    /// Detours planned ahead this control step (`detours_ahead.rs`), taken by the detours
+    /// that ask for them.
+    pub(super) ahead: &'a mut DetoursAhead,
 }
 
 impl PathFollowing<'_> {
@@ -115,7 +119,8 @@ impl PathFollowing<'_> {
     /// `collision.hold_rule: Yield` also held or blocked at the last step), each kept out to
     /// its body radius plus the robot's planning inflation
     /// ([`super::path_planner::PathPlanner::plan_around`]). A local detour first: from where it
-    /// stands to its path's point [`DETOUR_REJOIN_BEYOND_M`] beyond the farthest of those
+    /// stands to its path's point
+    /// [`DETOUR_REJOIN_BEYOND_M`](super::path_following_params::DETOUR_REJOIN_BEYOND_M) beyond the farthest of those
     /// robots ([`PathFollowing::rejoin_point`]), then on along the rest of its path. Where the
     /// path ends before such a point, or no local detour exists, it re-plans all the way to
     /// its requested goal around them. On failure the path is kept. Robots are found through the
@@ -147,13 +152,18 @@ impl PathFollowing<'_> {
     }
 
     /// Plans robot `id` from where it stands to `to` round `self.standing` into the scratch
-    /// buffer ([`super::path_planner::PathPlanner::plan_around`]); returns the effective goal.
+    /// buffer ([`super::path_planner::PathPlanner::plan_around`]), or takes that plan if it
+    /// was planned ahead round the same discs (`self.ahead`); returns the effective goal.
     fn plan_detour(&mut self, id: usize, to: Vec2) -> Result<Vec2, super::NavError> {
         let query = PlanQuery {
             from: self.nav[id].pos,
             to,
             inflation_m: self.plan_inflation(id),
         };
+        if let Some(plan) = self.ahead.take(id, self.standing, &query) {
+            let (grid, arena) = (self.ctx.grid, self.arena);
+            return self.planner.take_around(grid, arena, &plan, self.scratch);
+        }
         self.planner.plan_around(
             self.ctx.grid,
             self.arena,
@@ -163,95 +173,79 @@ impl PathFollowing<'_> {
         )
     }
 
-    /// Fills `self.standing` with the robots ground robot `id`'s detour goes round (see
-    /// [`PathFollowing::detour`]), in id order.
+    /// Fills `self.standing` with the robots ground robot `id`'s detour goes round
+    /// ([`standing_round`], seeing every robot as it stands now), in id order.
     fn collect_standing(&mut self, id: usize) {
+        let team = Team {
+            nav: self.nav,
+            robots: self.robots,
+            neighbours: self.neighbours,
+            crowd: self.ctx.crowd,
+            max_radius_m: self.max_radius_m,
+        };
+        let (nav, robots) = (&*self.nav, &*self.robots);
+        let seen = |j: usize| (nav[j].following.intent, robots[j].goal_reached);
         let infl = self.plan_inflation(id);
-        let me = &self.nav[id];
-        let range = me.sensing * self.robots[id].sensing_factor as f32;
-        self.standing.clear();
-        let crowd = self.ctx.crowd;
-        // Candidates from the neighbour index (robots of this layer only) within the largest
-        // reach any robot of the layer can have, in id order (the order of a scan over the team).
-        let slot = usize::from(me.layer == Locomotion::Aerial);
-        let reach_max = range.max(me.radius + self.max_radius_m[slot] as f32 + infl);
-        let near = &mut *self.near_ids;
-        near.clear();
-        self.neighbours
-            .grid(me.layer)
-            .for_each_candidate(me.pos, reach_max, |j, _| near.push(j));
-        near.sort_unstable();
-        for &j in near.iter() {
-            let other = &self.nav[j];
-            let r = &self.robots[j];
-            let stuck = crowd && (r.held || r.motion == Motion::Blocked);
-            let still = !r.is_active() || other.following.intent == Vec2::ZERO || stuck;
-            // Sensed, or near enough to touch its keep-out disc: a robot with its sensing
-            // cut by low HP still feels the one it is pressed against.
-            let reach = range.max(me.radius + other.radius + infl);
-            if j != id && still && (other.pos - me.pos).length_squared() <= reach * reach {
-                self.standing.push(StandingDisc {
-                    center: other.pos,
-                    radius_m: other.radius + infl,
-                });
-            }
-        }
+        standing_round(&team, id, infl, seen, self.near_ids, self.standing);
     }
 
-    /// Where robot `id`'s local detour rejoins its path: the first point along the path (from
-    /// the robot through its remaining waypoints) at least [`DETOUR_REJOIN_BEYOND_M`] beyond
-    /// the farthest rim of `self.standing` (path length from the robot) and outside every
-    /// standing disc, with the index of the first waypoint after it; `None` when the path
-    /// ends before such a point, or when the path from that point on passes through a
-    /// standing disc (a path winding back past one): the whole path is then planned again.
+    /// Where robot `id`'s local detour round `self.standing` rejoins its path
+    /// ([`rejoin_point`]).
     fn rejoin_point(&self, id: usize) -> Option<(Vec2, usize)> {
-        let (p, next) = self.first_point_beyond_standing(id)?;
-        let nav = &self.nav[id];
-        let mut at = p;
-        for &q in &nav.path[next..] {
-            if self.standing.iter().any(|d| d.crosses(at, q)) {
-                return None;
-            }
-            at = q;
-        }
-        Some((p, next))
-    }
-
-    /// The point of [`PathFollowing::rejoin_point`] before its check of the rest of the path.
-    fn first_point_beyond_standing(&self, id: usize) -> Option<(Vec2, usize)> {
-        let nav = &self.nav[id];
-        let beyond = self
-            .standing
-            .iter()
-            .map(|d| (d.center - nav.pos).length() + d.radius_m)
-            .fold(0.0f32, f32::max)
-            + DETOUR_REJOIN_BEYOND_M;
-        let clear = |p: Vec2| !self.standing.iter().any(|d| d.contains(p));
-        let mut at = nav.pos;
-        let mut walked = 0.0f32;
-        // The farthest stretch walked before the point is taken: it must lie `beyond` away
-        // and clear of the discs; each metre further is tried while a disc holds it.
-        let mut want = beyond;
-        for k in nav.following.wp..nav.path.len() {
-            let next = nav.path[k];
-            let leg = (next - at).length();
-            while walked + leg > want {
-                let p = at + (next - at) * ((want - walked) / leg);
-                if clear(p) {
-                    // The last waypoint is the goal: a point on the last leg rejoins it.
-                    return Some((p, k));
-                }
-                want += DETOUR_REJOIN_BEYOND_M;
-            }
-            walked += leg;
-            at = next;
-        }
-        None
+        rejoin_point(&self.nav[id], self.standing)
     }
 
     /// Inflation robot `id` plans with ([`plan_inflation_m`]), metres.
     fn plan_inflation(&self, id: usize) -> f32 {
         plan_inflation_m(self.nav[id].radius, self.ctx.navigation)
+    }
+
+    /// Every robot's path following of this control step, in id order: `followed[id]` (by id,
+    /// [`super::parallel::follow_all`]) applied where it is `Some`, and
+    /// [`PathFollowing::update_intent`] (checking its path when `due(id)`) where it is
+    /// `None` or missing (every robot, for an empty `followed`); then forgets what was
+    /// planned ahead ([`PathFollowing::plan_ahead`]).
+    pub(super) fn follow_team(
+        &mut self,
+        followed: &[Option<Followed>],
+        due: impl Fn(usize) -> bool,
+    ) {
+        for id in 0..self.nav.len() {
+            match followed.get(id).copied().flatten() {
+                Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
+                None => self.update_intent(id, due(id)),
+            }
+        }
+        self.ahead.clear();
+        self.planner.clear_prepared();
+    }
+
+    /// Plans ahead, side by side, the detours and re-plans of the robots `followed` (by id;
+    /// `None`: the robot needs the planner this control step, [`super::parallel::follow_all`])
+    /// leaves to the planner, for [`PathFollowing::update_intent`] to take in turn
+    /// ([`plan_ahead`]); `tick` counts the control steps before this one.
+    pub(super) fn plan_ahead(
+        &mut self,
+        followed: &[Option<Followed>],
+        tick: u64,
+        clock: &ControlClock,
+    ) {
+        let w = AheadInputs {
+            ctx: &self.ctx,
+            team: Team {
+                nav: self.nav,
+                robots: self.robots,
+                neighbours: self.neighbours,
+                crowd: self.ctx.crowd,
+                max_radius_m: self.max_radius_m,
+            },
+            arena: self.arena,
+            shared_goals: self.shared_goals,
+            followed,
+            clock,
+            tick,
+        };
+        plan_ahead(&w, self.planner, self.ahead);
     }
 
     /// [`plan_robot`] for robot `id` from where it stands to `goal` (world frame, metres),
@@ -278,6 +272,8 @@ impl PathFollowing<'_> {
 mod tests {
     use super::*;
     use crate::scenario::{self, PointM, Scenario};
+    use crate::world::detour::first_point_beyond;
+    use crate::world::path_following_params::DETOUR_REJOIN_BEYOND_M;
     use crate::world::{ControlClock, World};
 
     /// `scenarios/corridor.ron` (24 m x 3.4 m, no debris) with one robot per end: robot 0 at
@@ -379,7 +375,7 @@ mod tests {
         let mut stage = w.path_following(w.dt_s());
         stage.collect_standing(0);
         assert!(
-            stage.first_point_beyond_standing(0).is_some(),
+            first_point_beyond(&stage.nav[0], stage.standing).is_some(),
             "a point beyond robot 1"
         );
         assert_eq!(

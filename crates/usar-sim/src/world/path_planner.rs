@@ -9,12 +9,11 @@ use std::collections::HashMap;
 use parry2d::math::Vector as Vec2;
 
 use super::clearance_grid::ClearanceGrid;
-use super::disc_mask::DiscMask;
 use super::distance_field::DistanceField;
 use super::error::NavError;
-use super::grid_astar::GridAstar;
 use super::grid_regions::GridRegions;
-use super::grid_search::{Blocked, search};
+use super::grid_search::search;
+use super::plan_around::{AroundPlan, AroundScratch, plan_around_ahead, search_around};
 use super::plan_cache::{PlanCache, PlanKey, Planned};
 use super::plan_query::{Endpoints, PlanQuery};
 use super::shared_descents::{prepare_descents, smoothed};
@@ -44,11 +43,8 @@ pub struct PathPlanner {
     cache: PlanCache,
     fields: SharedFields,
     raw: Vec<u32>,
-    discs: Vec<StandingDisc>,
-    /// The cells a detour's A* may not enter (inside `discs`), marked once per detour.
-    mask: DiscMask,
-    /// A*'s per-cell state, reused between searches.
-    astar: GridAstar,
+    /// A*'s per-cell state (own goals and detours) and a detour's discs and cell mask.
+    around: AroundScratch,
     /// The grid's regions per inflation, labelled after an A* finds no path (or for
     /// [`PathPlanner::connects`]): a later search from another start in another region fails
     /// at once instead of visiting the whole region again.
@@ -137,35 +133,84 @@ impl PathPlanner {
         out: &mut Vec<Vec2>,
     ) -> Result<Vec2, NavError> {
         out.clear();
-        let inflation = query.inflation_m;
         let ends = Endpoints::snap(grid, arena, query)?;
         // Standing robots only close ways: two regions of the bare grid stay apart.
-        if self.regions.known_apart(inflation, ends.start, ends.goal) {
+        if self
+            .regions
+            .known_apart(query.inflation_m, ends.start, ends.goal)
+        {
             return Err(NavError::NoPath);
         }
-        let starts = [grid.cell_center(ends.start), query.from];
-        self.discs.clear();
-        self.discs.extend(
-            standing
-                .iter()
-                .filter(|d| !d.contains(ends.goal_point))
-                .filter_map(|d| d.leaving_out(&starts)),
-        );
-        self.mask.mark(grid, &self.discs);
-        let blocked = Blocked {
-            discs: &self.discs,
-            mask: &self.mask,
-        };
         self.astar_searches += 1;
-        let cells = search(
-            &mut self.astar,
-            grid,
-            ends.start,
-            ends.goal,
-            inflation,
-            Some(blocked),
-        )?;
-        Ok(ends.write(grid, &cells, out))
+        search_around(&mut self.around, grid, &ends, query, standing, out)
+    }
+
+    /// [`PathPlanner::plan_around`] of `plan.query` round the discs `plan` was planned
+    /// ahead round ([`PathPlanner::plan_arounds_ahead`]): the same answer, waypoints (into
+    /// `out`) and count of searches, without searching again. The regions known apart only
+    /// grow, so a query they now close fails here as `plan_around` would fail it, uncounted.
+    ///
+    /// # Errors
+    /// As [`PathPlanner::plan_around`].
+    pub(super) fn take_around(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        plan: &AroundPlan,
+        out: &mut Vec<Vec2>,
+    ) -> Result<Vec2, NavError> {
+        out.clear();
+        let ends = Endpoints::snap(grid, arena, plan.query)?;
+        if self
+            .regions
+            .known_apart(plan.query.inflation_m, ends.start, ends.goal)
+        {
+            return Err(NavError::NoPath);
+        }
+        self.astar_searches += u64::from(plan.searched);
+        out.extend_from_slice(&plan.path);
+        plan.result
+    }
+
+    /// Runs `each(i, planner)` for `i` in `0..n`, side by side on the calling rayon pool when
+    /// `parallel`, where `planner` plans detours ahead ([`AheadPlanner::plan_around`]) with
+    /// this planner's regions and a scratch of its own: this planner's for the first of
+    /// `scratch.len() + 1` tasks (`each` must plan nothing with it once the task is over),
+    /// `scratch[k - 1]` for task `k`. Results are in `i` order, whatever ran where.
+    pub(super) fn plan_arounds_ahead<T: Send>(
+        &mut self,
+        n: usize,
+        scratch: &mut [AroundScratch],
+        parallel: bool,
+        each: impl Fn(usize, &mut AheadPlanner) -> T + Sync,
+    ) -> Vec<T> {
+        use rayon::prelude::*;
+        let regions = &self.regions;
+        let mut own = [std::mem::take(&mut self.around)];
+        let all: Vec<&mut AroundScratch> = own.iter_mut().chain(scratch.iter_mut()).collect();
+        let tasks = if parallel { all.len() } else { 1 };
+        let per = n.div_ceil(tasks).max(1);
+        let run = |(k, s): (usize, &mut AroundScratch)| {
+            let mut planner = AheadPlanner {
+                regions,
+                scratch: s,
+            };
+            (k * per..n.min((k + 1) * per))
+                .map(|i| each(i, &mut planner))
+                .collect::<Vec<T>>()
+        };
+        let parts: Vec<Vec<T>> = if parallel {
+            all.into_par_iter()
+                .take(tasks)
+                .enumerate()
+                .map(run)
+                .collect()
+        } else {
+            all.into_iter().take(1).enumerate().map(run).collect()
+        };
+        let [own] = own;
+        self.around = own;
+        parts.into_iter().flatten().collect()
     }
 
     /// Descent of the shared field towards `goal` for `inflation` (made if not kept, see
@@ -229,7 +274,7 @@ impl PathPlanner {
             return Err(NavError::NoPath);
         }
         self.astar_searches += 1;
-        let found = search(&mut self.astar, grid, start, goal, inflation, None);
+        let found = search(&mut self.around.astar, grid, start, goal, inflation, None);
         if found == Err(NavError::NoPath) && grid.is_free(goal, inflation) {
             self.regions.label(grid, inflation);
         }
@@ -289,6 +334,29 @@ impl PathPlanner {
     /// bytes per cell of its smoothed plan.
     pub fn cache_bytes(&self) -> usize {
         self.cache.bytes()
+    }
+}
+
+/// A planner of detours ahead ([`PathPlanner::plan_arounds_ahead`]): the planner's regions,
+/// read, and a scratch of its own.
+pub(super) struct AheadPlanner<'a> {
+    regions: &'a GridRegions,
+    scratch: &'a mut AroundScratch,
+}
+
+impl AheadPlanner<'_> {
+    /// The detour [`PathPlanner::plan_around`] would plan for `query` round `standing`, with
+    /// the regions as they stand, planned ahead ([`plan_around_ahead`]).
+    pub(super) fn plan_around(
+        &mut self,
+        grid: &ClearanceGrid,
+        arena: (f32, f32),
+        query: PlanQuery,
+        standing: &[StandingDisc],
+    ) -> AroundPlan {
+        let regions = self.regions;
+        let known_apart = |inflation, a, b| regions.known_apart(inflation, a, b);
+        plan_around_ahead(known_apart, self.scratch, grid, arena, query, standing)
     }
 }
 
@@ -547,6 +615,69 @@ mod tests {
                     halves
                 );
             }
+        }
+
+        /// Detours planned ahead on two threads ([`PathPlanner::plan_arounds_ahead`], one
+        /// scratch beside the planner's) and taken in turn ([`PathPlanner::take_around`]) are
+        /// the detours planned one by one ([`PathPlanner::plan_around`]): the same answers,
+        /// waypoints and count of A* searches, over random debris, standing robots, starts,
+        /// goals and two clearance classes; also when, between the two, a failed plan across
+        /// a closed wall teaches the regions that the wall parts them, so that a detour
+        /// searched ahead across it fails in turn uncounted, as it does planned in turn.
+        #[test]
+        fn detours_planned_ahead_are_the_detours(
+            (debris, goals, queries) in shared_scenes(),
+            robots in proptest::collection::vec((0.0f32..10.0, 0.0f32..10.0, 0.2f32..1.2), 0..6),
+            wall in proptest::prelude::any::<bool>(),
+        ) {
+            let mut statics: Vec<_> = debris.iter().map(|&(x, y, r)| disc(x, y, r)).collect();
+            if wall {
+                statics.push(block(5.0, 5.0, 5.5, 0.25));
+            }
+            let g = grid(&statics);
+            let standing: Vec<StandingDisc> = robots
+                .iter()
+                .map(|&(x, y, r)| StandingDisc { center: Vec2::new(x, y), radius_m: r })
+                .collect();
+            let asked: Vec<PlanQuery> = queries
+                .iter()
+                .map(|&(x, y, k, class)| PlanQuery {
+                    from: Vec2::new(x, y),
+                    to: Vec2::new(goals[k % goals.len()].0, goals[k % goals.len()].1),
+                    inflation_m: [INFL, 0.35][class % 2],
+                })
+                .collect();
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("a pool");
+            let mut ahead = PathPlanner::new();
+            let mut extra = [AroundScratch::default()];
+            let planned = pool.install(|| {
+                ahead.plan_arounds_ahead(asked.len(), &mut extra, true, |i, p| {
+                    p.plan_around(&g, ARENA, asked[i], &standing)
+                })
+            });
+            proptest::prop_assert_eq!(planned.len(), asked.len());
+            let mut one_by_one = PathPlanner::new();
+            if wall {
+                for planner in [&mut ahead, &mut one_by_one] {
+                    let across = PlanQuery {
+                        from: Vec2::new(2.0, 2.0),
+                        to: Vec2::new(2.0, 8.0),
+                        inflation_m: INFL,
+                    };
+                    // No path across (debris may block the start or the goal besides).
+                    let found = planner.plan(&g, ARENA, across, GoalKind::Own, &mut Vec::new());
+                    proptest::prop_assert!(found.is_err());
+                }
+            }
+            let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+            for (q, plan) in asked.iter().zip(&planned) {
+                proptest::prop_assert_eq!(plan.query, *q);
+                let taken = ahead.take_around(&g, ARENA, plan, &mut ours);
+                let reference = one_by_one.plan_around(&g, ARENA, *q, &standing, &mut theirs);
+                proptest::prop_assert_eq!(taken, reference);
+                proptest::prop_assert_eq!(&ours, &theirs);
+            }
+            proptest::prop_assert_eq!(ahead.astar_searches(), one_by_one.astar_searches());
         }
 
         /// Plans made ahead ([`PathPlanner::prepare_shared`], on two threads) are the plans a

@@ -5,6 +5,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::contact_gate::ContactGate;
+use super::detours_ahead::DetoursAhead;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
@@ -29,6 +30,8 @@ pub(super) struct Pipelines {
     pub(super) standing: Vec<StandingDisc>,
     /// Robot ids from the neighbour index (path following).
     pub(super) near_ids: Vec<usize>,
+    /// Detours planned ahead for a control step of a large team (path following).
+    pub(super) detours_ahead: DetoursAhead,
     /// Collision avoidance and deadlock solving, with its neighbour lists
     /// ([`super::resolver`]).
     pub(super) resolver: Resolver,

@@ -167,6 +167,7 @@ impl World {
             scratch: &mut p.scratch,
             standing: &mut p.standing,
             near_ids: &mut p.near_ids,
+            ahead: &mut p.detours_ahead,
             nav: &mut self.nav,
             robots: &mut self.robots,
         }
@@ -530,25 +531,19 @@ impl World {
         // A large team follows its paths in parallel up to the planner; the robots that need
         // it, and every robot of a serial trial, follow theirs here, in id order.
         let parallel = self.pipelines.per_robot.parallel_for(n);
-        if parallel {
-            let mut out = std::mem::take(&mut self.pipelines.per_robot.followed);
-            let stage = self.path_following(period_s);
+        let out = std::mem::take(&mut self.pipelines.per_robot.followed);
+        let mut stage = self.path_following(period_s);
+        let followed = if parallel {
+            let mut out = out;
             follow_all(&stage.ctx, stage.nav, stage.robots, tick, clock, &mut out);
-            self.pipelines.per_robot.followed = out;
-        }
-        for id in 0..n {
-            let followed = if parallel {
-                self.pipelines.per_robot.followed[id]
-            } else {
-                None
-            };
-            match followed {
-                Some(f) => f.apply(&mut self.nav[id], &mut self.robots[id]),
-                None => self
-                    .path_following(period_s)
-                    .update_intent(id, clock.path_check_due(tick, id)),
-            }
-        }
+            stage.plan_ahead(&out, tick, clock);
+            stage.follow_team(&out, |id| clock.path_check_due(tick, id));
+            out
+        } else {
+            stage.follow_team(&[], |id| clock.path_check_due(tick, id));
+            out
+        };
+        self.pipelines.per_robot.followed = followed;
         let inputs = &mut self.pipelines.resolver_inputs;
         resolver_inputs_all(&self.nav, &self.robots, parallel, inputs);
         let p = &mut self.pipelines;

@@ -9,6 +9,7 @@ use super::bodies::{PhysicsScene, to_point, to_vec2};
 use super::clearance_grid::ClearanceGrid;
 use super::contact_gate::ContactGate;
 use super::control_clock::ControlClock;
+use super::detours_ahead::DetoursAhead;
 use super::nav_state::Nav;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
@@ -105,6 +106,7 @@ pub(super) fn pipelines(
         scratch: Vec::with_capacity(64),
         standing: Vec::new(),
         near_ids: Vec::new(),
+        detours_ahead: DetoursAhead::default(),
         resolver: Resolver::new(s.collision, nav.len()).for_control_steps(clock.period_steps()),
         near_body: Vec::new(),
         gate: ContactGate::default(),
