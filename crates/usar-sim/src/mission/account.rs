@@ -37,7 +37,8 @@ pub(crate) fn account(
 ) -> Result<(), MissionError> {
     let mut costs = std::mem::take(&mut st.step_costs);
     let totals = st.recorder.robot_costs_mut();
-    charge_step_costs(scenario, world, &mut st.robots, totals, &mut costs);
+    let rest = world.read_back_rest();
+    charge_step_costs(scenario, &rest, &mut st.robots, totals, &mut costs);
     st.recorder.add_task_costs(&costs);
     st.step_costs = costs;
     if !review {

@@ -17,6 +17,7 @@ use super::rescuees::RescueeField;
 use super::robot::MissionRobot;
 use super::round_clock::{close_round, round_complete, start_round};
 use super::state::MissionState;
+use super::step_costs::charge_step_costs;
 use crate::scenario::Scenario;
 use crate::world::{ControlClock, World};
 
@@ -260,7 +261,12 @@ impl Simulation {
             }
             decide(sc, world, st)?;
         }
-        world.step(clock);
+        // The robots read back beside Rapier's step are charged there, the others by `account`.
+        let (robots, costs) = (&mut st.robots, &mut st.step_costs);
+        let totals = st.recorder.robot_costs_mut();
+        world.step_beside(clock, |read| {
+            charge_step_costs(sc, &read, robots, totals, costs);
+        });
         self.steps_done += 1;
         let last = self.steps_done >= self.total_steps;
         // The review runs after the step before a control step (and after the last step), so

@@ -8,7 +8,9 @@ use rayon::prelude::*;
 
 use super::robot::MissionRobot;
 use crate::scenario::{CostsCount, Scenario};
-use crate::world::{CHUNK_ROBOTS, RobotState, World};
+#[cfg(doc)]
+use crate::world::World;
+use crate::world::{CHUNK_ROBOTS, ReadBackSoFar, RobotState};
 
 /// What one robot's step cost it, and the task it counts for: energy spent and HP lost this
 /// step (percent points, `>= 0`: zero when it did not move or stood outside radiation, and a
@@ -45,15 +47,18 @@ struct Rates {
     every_cost: bool,
 }
 
-/// Charges the step just taken to every robot of `world` (by id; `robots`, `totals` and
+/// Charges the step just taken to every robot `read` covers (by id; `robots`, `totals` and
 /// `costs` are resized or of the team's length): energy per moving step and per metre moved,
 /// HP per step in radiation times the dose factor (each at most what is left), written to
-/// `robots[id]`'s levels and `totals[id]`, and each robot's [`StepCost`] to
-/// `costs[id]` for the tasks' sums, which the caller adds in id order. On the calling rayon
-/// pool when `world` runs its per-robot phases in parallel ([`World::per_robot_parallel`]).
+/// `robots[id]`'s levels and `totals[id]`, and each robot's [`StepCost`] to `costs[id]` for
+/// the tasks' sums, which the caller adds in id order once every robot is charged. Each
+/// robot's charge reads only its own slots, so the robots a step hands over beside Rapier's
+/// step ([`World::step_beside`]) and the rest ([`World::read_back_rest`]) get the bits of one
+/// pass. On the calling rayon pool when `read` may run in parallel
+/// ([`ReadBackSoFar::parallel`]).
 pub(crate) fn charge_step_costs(
     scenario: &Scenario,
-    world: &World,
+    read: &ReadBackSoFar,
     robots: &mut [MissionRobot],
     totals: &mut [RobotCosts],
     costs: &mut Vec<StepCost>,
@@ -67,16 +72,19 @@ pub(crate) fn charge_step_costs(
         every_cost: m.costs_count == CostsCount::Every,
     };
     costs.resize(robots.len(), StepCost::default());
-    let (states, factors) = (world.robots(), world.radiation_factors());
-    let each = |(((r, total), cost), (w, &rad)): Slot<'_>| {
-        *cost = charge(&rates, dt, w, rad, r, total);
+    let (states, factors) = (read.robots(), read.radiation_factors());
+    let each = |(id, (((r, total), cost), (w, &rad))): (usize, Slot<'_>)| {
+        if read.covers(id) {
+            *cost = charge(&rates, dt, w, rad, r, total);
+        }
     };
-    if world.per_robot_parallel() {
+    if read.parallel() {
         robots
             .par_iter_mut()
             .zip(totals.par_iter_mut())
             .zip(costs.par_iter_mut())
             .zip(states.par_iter().zip(factors))
+            .enumerate()
             .with_min_len(CHUNK_ROBOTS)
             .with_max_len(CHUNK_ROBOTS)
             .for_each(each);
@@ -86,6 +94,7 @@ pub(crate) fn charge_step_costs(
             .zip(totals.iter_mut())
             .zip(costs.iter_mut())
             .zip(states.iter().zip(factors))
+            .enumerate()
             .for_each(each);
     }
 }

@@ -443,6 +443,7 @@ impl PhysicsScene {
 mod tests {
     use super::*;
     use crate::scenario::PhysicsStepping;
+    use crate::world::parallel::{ReadFrom, read_back_all};
     use crate::world::{ControlClock, World};
 
     fn paper(physics: PhysicsStepping) -> crate::scenario::Scenario {
@@ -534,7 +535,9 @@ mod tests {
         if any {
             p.scene.step();
         }
-        w.read_back_all();
+        let (mut to, scene) = w.read_back_parts();
+        let bodies = &scene.physics.bodies;
+        read_back_all(ReadFrom::Bodies(bodies), &mut to);
         near
     }
 

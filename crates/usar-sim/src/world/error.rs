@@ -43,3 +43,23 @@ pub enum WorldError {
         error: NavError,
     },
 }
+
+impl WorldError {
+    /// `Ok` for a finite factor `>= 0`, else [`WorldError::InvalidValue`] naming `what`.
+    pub(super) fn check_factor(what: &'static str, value: f64) -> Result<(), Self> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(())
+        } else {
+            Err(Self::InvalidValue { what, value })
+        }
+    }
+
+    /// `Ok` for any value but NaN, else [`WorldError::InvalidValue`] naming `what`.
+    pub(super) fn check_not_nan(what: &'static str, value: f64) -> Result<(), Self> {
+        if value.is_nan() {
+            Err(Self::InvalidValue { what, value })
+        } else {
+            Ok(())
+        }
+    }
+}

@@ -50,6 +50,8 @@
 //! - `steering`: rule 5's candidate headings and static look-ahead.
 //! - [`radiation`]: radiation zones.
 //! - `radiation_field`: the zones with their dose rule, read at a robot's bucket only.
+//! - `read_back_so_far`: [`ReadBackSoFar`], the robots a step has read back at some point of
+//!   it, for work beside Rapier's step ([`World::step_beside`]).
 //! - `robot`: the per-robot state the mission layer reads ([`RobotState`]).
 //! - `world`: [`World`], the API the mission layer drives, and [`WorldStats`].
 //! - `world_build`: the parts [`World::new`] builds from a scenario (clearance grid, robots at
@@ -115,6 +117,7 @@ mod plan_into;
 pub mod plan_query;
 pub mod radiation;
 mod radiation_field;
+mod read_back_so_far;
 pub mod resolver;
 mod resolver_input;
 mod resolver_pairs;
@@ -148,6 +151,7 @@ pub use path_following_params::{
 };
 pub(crate) use per_robot::CHUNK_ROBOTS;
 pub use per_robot::PARALLEL_MIN_ROBOTS;
+pub use read_back_so_far::ReadBackSoFar;
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;
 pub use world::{World, WorldStats};

@@ -31,6 +31,7 @@ use super::follow::{Follow, FollowCtx, Followed, Stage, follow};
 use super::nav_state::Nav;
 use super::per_robot::{CHUNK_ROBOTS, PerRobot};
 use super::radiation_field::RadiationField;
+use super::read_back_so_far::{Covered, ReadBackSoFar};
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
@@ -93,6 +94,18 @@ pub(super) struct ReadBack<'a> {
     pub(super) nav: &'a mut [Nav],
     pub(super) robots: &'a mut [RobotState],
     pub(super) radiation_factor: &'a mut [f64],
+}
+
+impl ReadBack<'_> {
+    /// The robots `covered` as this read-back has left them ([`ReadBackSoFar`]).
+    pub(super) fn so_far<'b>(&'b self, covered: Covered<'b>) -> ReadBackSoFar<'b> {
+        ReadBackSoFar {
+            robots: self.robots,
+            radiation_factors: self.radiation_factor,
+            covered,
+            parallel: self.parallel,
+        }
+    }
 }
 
 /// Reads the robots `from` covers back after the physics step ([`read_back`]) into `to`, each

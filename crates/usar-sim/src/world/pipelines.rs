@@ -9,6 +9,7 @@ use super::detours_ahead::DetoursAhead;
 use super::neighbours::NeighbourIndex;
 use super::path_planner::PathPlanner;
 use super::per_robot::PerRobot;
+use super::read_back_so_far::Rest;
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::standing_disc::StandingDisc;
@@ -51,6 +52,8 @@ pub(super) struct Pipelines {
     /// through it (between control steps the public queries scan the robots instead, see
     /// `index_fresh`).
     pub(super) neighbours: NeighbourIndex,
+    /// The robots the last step left for [`super::World::read_back_rest`].
+    pub(super) rest: Rest,
     /// Whether [`Pipelines::neighbours`] holds the robots' current positions: it is rebuilt
     /// before every control step and after a teleport, not after the steps in between.
     pub(super) index_fresh: bool,

@@ -16,6 +16,7 @@ use super::parallel::{ReadBack, ReadFrom, read_back_all};
 use super::per_robot::CHUNK_ROBOTS;
 #[cfg(doc)]
 use super::per_robot::PerRobot;
+use super::read_back_so_far::{Covered, ReadBackSoFar};
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::robot::{Motion, RobotState};
@@ -39,23 +40,29 @@ pub(super) fn drive_all(physics: PhysicsStepping, nav: &mut [Nav], scene: &mut P
 /// the robots `near[id]` a contact and enabled just their bodies in `scene`
 /// ([`PhysicsScene::gate_bodies`]): Rapier steps the near bodies (when `any` is near) while
 /// the other robots are read back straight at their commands ([`ReadFrom::Free`]: they read
-/// no body), side by side on the calling rayon pool when `to.parallel`; then the near robots
-/// are read back from their bodies. The same bits as a Rapier step followed by
-/// [`ReadFrom::Bodies`]: a robot's read-back reads only its own state and, when near, its
-/// body after the step. Returns whether Rapier stepped.
+/// no body) and `beside` runs over them ([`ReadBackSoFar`], the far robots), side by side on
+/// the calling rayon pool when `to.parallel`; then the near robots are read back from their
+/// bodies. The same bits as a Rapier step followed by [`ReadFrom::Bodies`]: a robot's
+/// read-back reads only its own state and, when near, its body after the step. Returns
+/// whether Rapier stepped.
 pub(super) fn step_near_bodies(
     scene: &mut PhysicsScene,
     near: &[bool],
     any: bool,
     to: &mut ReadBack,
+    beside: impl FnOnce(ReadBackSoFar) + Send,
 ) -> bool {
+    let far = |to: &mut ReadBack| {
+        read_back_all(ReadFrom::Free(near), to);
+        beside(to.so_far(Covered::Far(near)));
+    };
     if any && to.parallel {
-        rayon::join(|| scene.step(), || read_back_all(ReadFrom::Free(near), to));
+        rayon::join(|| scene.step(), || far(to));
     } else {
         if any {
             scene.step();
         }
-        read_back_all(ReadFrom::Free(near), to);
+        far(to);
     }
     if any {
         read_back_all(ReadFrom::Near(&scene.physics.bodies, near), to);

@@ -24,6 +24,7 @@ use super::path_following::PathFollowing;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::radiation_field::RadiationField;
+use super::read_back_so_far::{Covered, ReadBackSoFar, Rest};
 use super::robot::RobotState;
 use super::robot_planning::{PlanInputs, ground_query, plan_robot, shared_queries};
 use super::step::{CommandInputs, command_all, drive_all, step_near_bodies};
@@ -350,14 +351,6 @@ impl World {
         }
     }
 
-    fn check_factor(what: &'static str, value: f64) -> Result<(), WorldError> {
-        if value.is_finite() && value >= 0.0 {
-            Ok(())
-        } else {
-            Err(WorldError::InvalidValue { what, value })
-        }
-    }
-
     /// Sets the multiplier of robot `id`'s top speed (`kind.max_speed_m_per_s`), finite and
     /// `>= 0`, default 1 (e.g. HP level times `mission.no_observer_speed_factor`; section VI.B).
     ///
@@ -365,7 +358,7 @@ impl World {
     /// Unknown id, or a NaN, infinite or negative factor.
     pub fn set_speed_factor(&mut self, id: usize, factor: f64) -> Result<(), WorldError> {
         self.check_id(id)?;
-        Self::check_factor("speed factor", factor)?;
+        WorldError::check_factor("speed factor", factor)?;
         self.robots[id].speed_factor = factor;
         Ok(())
     }
@@ -377,7 +370,7 @@ impl World {
     /// Unknown id, or a NaN, infinite or negative factor.
     pub fn set_sensing_factor(&mut self, id: usize, factor: f64) -> Result<(), WorldError> {
         self.check_id(id)?;
-        Self::check_factor("sensing factor", factor)?;
+        WorldError::check_factor("sensing factor", factor)?;
         self.robots[id].sensing_factor = factor;
         Ok(())
     }
@@ -389,12 +382,7 @@ impl World {
     /// Unknown id or NaN.
     pub fn set_priority_key(&mut self, id: usize, key: f64) -> Result<(), WorldError> {
         self.check_id(id)?;
-        if key.is_nan() {
-            return Err(WorldError::InvalidValue {
-                what: "priority key",
-                value: key,
-            });
-        }
+        WorldError::check_not_nan("priority key", key)?;
         self.robots[id].priority_key = key;
         Ok(())
     }
@@ -472,7 +460,19 @@ impl World {
     ///
     /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
     pub fn step(&mut self, clock: &ControlClock) {
+        self.step_beside(clock, |_| {});
+        self.pipelines.rest = Rest::All;
+    }
+
+    /// [`World::step`], handing the robots read back before the step ends to `beside`
+    /// ([`ReadBackSoFar`]): under `sim.physics: NearBodies` the robots far from any contact,
+    /// beside Rapier's step when the team steps in parallel, otherwise every robot after the
+    /// read-back. [`World::read_back_rest`] then gives the others. Work that reads only each
+    /// robot's own state after the step gets the same bits over the two as over the team.
+    pub fn step_beside(&mut self, clock: &ControlClock, beside: impl FnOnce(ReadBackSoFar) + Send) {
         let n = self.robots.len();
+        // Taken by the step that reads back beside Rapier, else run after the read-back.
+        let mut beside = Some(beside);
         if clock.is_control_step(self.stats.steps) {
             self.control(clock);
         }
@@ -489,18 +489,14 @@ impl World {
                 near.resize(n, false);
                 let any = self.mark_near_bodies(&mut near);
                 self.scene.gate_bodies(&self.nav, &near);
-                let mut to = ReadBack {
-                    radiation: &self.radiation,
-                    dt_s: self.dt,
-                    parallel: self.pipelines.per_robot.parallel_for(n),
-                    nav: &mut self.nav,
-                    robots: &mut self.robots,
-                    radiation_factor: &mut self.radiation_factor,
-                };
-                if step_near_bodies(&mut self.scene, &near, any, &mut to) {
+                let (mut to, scene) = self.read_back_parts();
+                let far = beside.take();
+                let far = |v: ReadBackSoFar| far.into_iter().for_each(|b| b(v));
+                if step_near_bodies(scene, &near, any, &mut to, far) {
                     self.stats.physics_steps += 1;
                 }
                 self.pipelines.near_body = near;
+                self.pipelines.rest = Rest::Near;
             }
             _ => {
                 self.scene.step();
@@ -508,8 +504,11 @@ impl World {
             }
         }
         self.stats.steps += 1;
-        if physics != PhysicsStepping::NearBodies {
-            self.read_back_all();
+        if let Some(beside) = beside {
+            let (mut to, scene) = self.read_back_parts();
+            read_back_all(ReadFrom::Bodies(&scene.physics.bodies), &mut to);
+            beside(to.so_far(Covered::All));
+            self.pipelines.rest = Rest::None;
         }
         if clock.is_control_step(self.stats.steps) {
             self.reindex();
@@ -612,20 +611,30 @@ impl World {
             .mark_near_bodies(&w, &mut p.neighbours, &mut p.index_fresh, parallel, near)
     }
 
-    /// [`read_back_all`] over this world after the physics step: its bodies and radiation
-    /// field read, each robot's navigation state, state and radiation factor written, in
-    /// parallel for a large team.
-    pub(super) fn read_back_all(&mut self) {
-        let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
-        let mut to = ReadBack {
+    /// What a read-back writes ([`ReadBack`]: each robot's navigation state, state and dose
+    /// factor, in parallel for a large team), beside the physics scene it reads.
+    pub(super) fn read_back_parts(&mut self) -> (ReadBack<'_>, &mut PhysicsScene) {
+        let to = ReadBack {
             radiation: &self.radiation,
             dt_s: self.dt,
-            parallel,
+            parallel: self.pipelines.per_robot.parallel_for(self.nav.len()),
             nav: &mut self.nav,
             robots: &mut self.robots,
             radiation_factor: &mut self.radiation_factor,
         };
-        read_back_all(ReadFrom::Bodies(&self.scene.physics.bodies), &mut to);
+        (to, &mut self.scene)
+    }
+
+    /// The robots the last step did not hand to [`World::step_beside`]'s `beside` (every
+    /// robot after [`World::step`]), read back by the end of the step.
+    pub fn read_back_rest(&self) -> ReadBackSoFar<'_> {
+        let p = &self.pipelines;
+        ReadBackSoFar {
+            robots: &self.robots,
+            radiation_factors: &self.radiation_factor,
+            covered: Covered::rest(p.rest, &p.near_body),
+            parallel: self.per_robot_parallel(),
+        }
     }
 
     /// [`for_each_near`] over this world's robots and, while it is fresh, its neighbour index.

@@ -18,6 +18,7 @@ use super::pipelines::Pipelines;
 use super::plan_query::plan_inflation_m;
 use super::radiation::DoseRule;
 use super::radiation_field::RadiationField;
+use super::read_back_so_far::Rest;
 use super::resolver::Resolver;
 use super::robot::RobotState;
 use crate::scenario::{Locomotion, Scenario};
@@ -107,6 +108,7 @@ pub(super) fn pipelines(
         standing: Vec::new(),
         near_ids: Vec::new(),
         detours_ahead: DetoursAhead::default(),
+        rest: Rest::All,
         resolver: Resolver::new(s.collision, nav.len()).for_control_steps(clock.period_steps()),
         near_body: Vec::new(),
         gate: ContactGate::default(),

@@ -11,3 +11,4 @@ mod world_corridor;
 mod world_debris;
 mod world_determinism;
 mod world_shared_paths;
+mod world_step_beside;
