@@ -174,9 +174,10 @@ impl PathPlanner {
 
     /// Runs `each(i, planner)` for `i` in `0..n`, side by side on the calling rayon pool when
     /// `parallel`, where `planner` plans detours ahead ([`AheadPlanner::plan_around`]) with
-    /// this planner's regions and a scratch of its own: this planner's for the first of
-    /// `scratch.len() + 1` tasks (`each` must plan nothing with it once the task is over),
-    /// `scratch[k - 1]` for task `k`. Results are in `i` order, whatever ran where.
+    /// this planner's regions and a scratch of its own: this planner's for one of
+    /// `scratch.len() + 1` tasks, `scratch[k]` for each other (`each` must keep no planner
+    /// beyond its call). Each task takes the next `i` not taken yet, so a task whose plans
+    /// run long leaves the rest to the others. Results are in `i` order, whatever ran where.
     pub(super) fn plan_arounds_ahead<T: Send>(
         &mut self,
         n: usize,
@@ -185,32 +186,32 @@ impl PathPlanner {
         each: impl Fn(usize, &mut AheadPlanner) -> T + Sync,
     ) -> Vec<T> {
         use rayon::prelude::*;
+        use std::sync::atomic::{AtomicUsize, Ordering};
         let regions = &self.regions;
         let mut own = [std::mem::take(&mut self.around)];
         let all: Vec<&mut AroundScratch> = own.iter_mut().chain(scratch.iter_mut()).collect();
         let tasks = if parallel { all.len() } else { 1 };
-        let per = n.div_ceil(tasks).max(1);
-        let run = |(k, s): (usize, &mut AroundScratch)| {
+        let next = AtomicUsize::new(0);
+        let run = |s: &mut AroundScratch| {
             let mut planner = AheadPlanner {
                 regions,
                 scratch: s,
             };
-            (k * per..n.min((k + 1) * per))
-                .map(|i| each(i, &mut planner))
-                .collect::<Vec<T>>()
+            let taken = std::iter::from_fn(|| Some(next.fetch_add(1, Ordering::Relaxed)));
+            (taken.take_while(|&i| i < n))
+                .map(|i| (i, each(i, &mut planner)))
+                .collect::<Vec<(usize, T)>>()
         };
-        let parts: Vec<Vec<T>> = if parallel {
-            all.into_par_iter()
-                .take(tasks)
-                .enumerate()
-                .map(run)
-                .collect()
+        let parts: Vec<Vec<(usize, T)>> = if parallel {
+            all.into_par_iter().take(tasks).map(run).collect()
         } else {
-            all.into_iter().take(1).enumerate().map(run).collect()
+            all.into_iter().take(1).map(run).collect()
         };
+        let mut parts: Vec<(usize, T)> = parts.into_iter().flatten().collect();
+        parts.sort_unstable_by_key(|&(i, _)| i);
         let [own] = own;
         self.around = own;
-        parts.into_iter().flatten().collect()
+        parts.into_iter().map(|(_, t)| t).collect()
     }
 
     /// Descent of the shared field towards `goal` for `inflation` (made if not kept, see
