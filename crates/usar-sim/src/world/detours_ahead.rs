@@ -79,6 +79,21 @@ pub(super) struct AheadInputs<'a> {
     pub(super) tick: u64,
 }
 
+/// Most bytes the scratch of the threads that plan detours ahead beside the planner's may
+/// take together (256 MiB): each takes [`AroundScratch::BYTES_PER_CELL`] per grid cell once
+/// used, 24 MB on `swarm-10000.ron`'s grid and 240 MB on `swarm-100000.ron`'s.
+pub(super) const AHEAD_SCRATCH_BUDGET_BYTES: usize = 256 << 20;
+
+/// How many scratches beside the planner's the detours of a step on a pool of `threads`
+/// threads plan with, on a grid of `dims` cells: one per extra thread, as many as
+/// [`AHEAD_SCRATCH_BUDGET_BYTES`] holds, and at least one on a pool of two or more threads.
+fn extra_scratch(dims: (u32, u32), threads: usize) -> usize {
+    let cells = dims.0 as usize * dims.1 as usize;
+    let each = cells.saturating_mul(AroundScratch::BYTES_PER_CELL).max(1);
+    let held = (AHEAD_SCRATCH_BUDGET_BYTES / each).max(1);
+    threads.saturating_sub(1).min(held)
+}
+
 /// What one robot that needs the planner was found to need, planned ahead.
 enum Need {
     Nothing,
@@ -99,7 +114,7 @@ pub(super) fn plan_ahead(w: &AheadInputs, planner: &mut PathPlanner, ahead: &mut
     if needs.len() < 2 {
         return;
     }
-    let extra = rayon::current_num_threads().saturating_sub(1);
+    let extra = extra_scratch(w.ctx.grid.dims(), rayon::current_num_threads());
     if ahead.scratch.len() < extra {
         ahead.scratch.resize_with(extra, AroundScratch::default);
     }
@@ -212,6 +227,30 @@ mod tests {
             result: Err(NavError::NoPath),
             path: Vec::new(),
             searched: true,
+        }
+    }
+
+    /// The threads beside the planner's plan detours ahead with a scratch each while the
+    /// budget holds them, one at least: up to 11 on `swarm-10000.ron`'s grid (1,504,000
+    /// cells), one on `swarm-100000.ron`'s, none on a one-thread pool.
+    #[test]
+    fn the_scratch_of_detours_planned_ahead_keeps_to_its_budget() {
+        let small = (1600, 940);
+        let large = (16000, 940);
+        assert_eq!(extra_scratch(small, 2), 1);
+        assert_eq!(extra_scratch(small, 8), 7);
+        assert_eq!(extra_scratch(small, 16), 11);
+        assert_eq!(extra_scratch(large, 2), 1);
+        assert_eq!(extra_scratch(large, 64), 1);
+        assert_eq!(extra_scratch(large, 1), 0);
+        assert_eq!(extra_scratch((0, 0), 3), 2);
+        for (dims, threads) in [(small, 64), ((4000, 4000), 8)] {
+            let n = extra_scratch(dims, threads);
+            let bytes = n * dims.0 as usize * dims.1 as usize * AroundScratch::BYTES_PER_CELL;
+            assert!(
+                n == 1 || bytes <= AHEAD_SCRATCH_BUDGET_BYTES,
+                "{dims:?}: {n}"
+            );
         }
     }
 

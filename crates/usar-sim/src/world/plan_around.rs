@@ -28,6 +28,12 @@ pub(super) struct AroundScratch {
     mask: DiscMask,
 }
 
+impl AroundScratch {
+    /// Bytes a scratch holds per grid cell once a search has run on the grid: A*'s three
+    /// `u32` and the mask's one.
+    pub(super) const BYTES_PER_CELL: usize = 16;
+}
+
 /// A detour planned ahead ([`plan_around_ahead`]): the query, its answer (the effective goal,
 /// or why there is none), its waypoints (empty on failure) and whether an A* search ran (the
 /// planner counts it, [`super::path_planner::PathPlanner::astar_searches`]).
