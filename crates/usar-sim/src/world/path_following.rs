@@ -162,7 +162,9 @@ impl PathFollowing<'_> {
         };
         if let Some(plan) = self.ahead.take(id, self.standing, &query) {
             let (grid, arena) = (self.ctx.grid, self.arena);
-            return self.planner.take_around(grid, arena, &plan, self.scratch);
+            if let Some(taken) = self.planner.take_around(grid, arena, &plan, self.scratch) {
+                return taken;
+            }
         }
         self.planner.plan_around(
             self.ctx.grid,

@@ -147,8 +147,11 @@ impl PathPlanner {
 
     /// [`PathPlanner::plan_around`] of `plan.query` round the discs `plan` was planned
     /// ahead round ([`PathPlanner::plan_arounds_ahead`]): the same answer, waypoints (into
-    /// `out`) and count of searches, without searching again. The regions known apart only
-    /// grow, so a query they now close fails here as `plan_around` would fail it, uncounted.
+    /// `out`) and count of searches, without searching again; `None` for a plan that ran no
+    /// search ahead (its query plans at once in turn). The regions may have learnt, or
+    /// forgotten (they keep a few inflations), that the query's ends lie apart since: a query
+    /// they now know apart fails here as `plan_around` fails it, uncounted; any other was
+    /// searched ahead as `plan_around` would search it now.
     ///
     /// # Errors
     /// As [`PathPlanner::plan_around`].
@@ -158,18 +161,22 @@ impl PathPlanner {
         arena: (f32, f32),
         plan: &AroundPlan,
         out: &mut Vec<Vec2>,
-    ) -> Result<Vec2, NavError> {
-        out.clear();
-        let ends = Endpoints::snap(grid, arena, plan.query)?;
-        if self
-            .regions
-            .known_apart(plan.query.inflation_m, ends.start, ends.goal)
-        {
-            return Err(NavError::NoPath);
+    ) -> Option<Result<Vec2, NavError>> {
+        if !plan.searched {
+            return None;
         }
-        self.astar_searches += u64::from(plan.searched);
+        out.clear();
+        let ends = match Endpoints::snap(grid, arena, plan.query) {
+            Ok(ends) => ends,
+            Err(e) => return Some(Err(e)),
+        };
+        let apart = (self.regions).known_apart(plan.query.inflation_m, ends.start, ends.goal);
+        if apart {
+            return Some(Err(NavError::NoPath));
+        }
+        self.astar_searches += 1;
         out.extend_from_slice(&plan.path);
-        plan.result
+        Some(plan.result)
     }
 
     /// Runs `each(i, planner)` for `i` in `0..n`, side by side on the calling rayon pool when
@@ -497,6 +504,47 @@ mod tests {
         assert!(planner.cache_bytes() > 0);
     }
 
+    /// A detour planned ahead while the regions knew its ends apart ran no search; when the
+    /// regions have since forgotten that inflation (they keep four), planned in turn it
+    /// searches, and so does the detour taken in turn: the same answer and count of searches.
+    #[test]
+    fn a_detour_planned_ahead_without_a_search_is_planned_in_turn() {
+        let g = grid(&[block(5.0, 5.0, 5.5, 0.25)]);
+        let across = |inflation_m: f32| PlanQuery {
+            from: Vec2::new(2.0, 2.0),
+            to: Vec2::new(2.0, 8.0),
+            inflation_m,
+        };
+        let fail = |p: &mut PathPlanner, inflation: f32| {
+            let found = p.plan(&g, ARENA, across(inflation), GoalKind::Own, &mut Vec::new());
+            assert_eq!(
+                found,
+                Err(NavError::NoPath),
+                "the wall parts them at {inflation}"
+            );
+        };
+        let (mut ahead, mut in_turn) = (PathPlanner::new(), PathPlanner::new());
+        for p in [&mut ahead, &mut in_turn] {
+            for inflation in [0.20, 0.21, 0.22, 0.23] {
+                fail(p, inflation);
+            }
+        }
+        let planned = ahead.plan_arounds_ahead(1, &mut [], false, |_, p| {
+            p.plan_around(&g, ARENA, across(0.20), &[])
+        });
+        assert!(!planned[0].searched, "known apart: no search ahead");
+        // A fifth inflation: the regions forget 0.20.
+        for p in [&mut ahead, &mut in_turn] {
+            fail(p, 0.24);
+        }
+        let mut out = Vec::new();
+        assert_eq!(ahead.take_around(&g, ARENA, &planned[0], &mut out), None);
+        let taken = ahead.plan_around(&g, ARENA, across(0.20), &[], &mut out);
+        let reference = in_turn.plan_around(&g, ARENA, across(0.20), &[], &mut Vec::new());
+        assert_eq!(taken, reference);
+        assert_eq!(ahead.astar_searches(), in_turn.astar_searches());
+    }
+
     /// A robot touching the planner's robot on the straight way to the goal: the detour goes
     /// round it (its disc shrunk to leave the start out), not through it.
     #[test]
@@ -673,7 +721,10 @@ mod tests {
             let (mut ours, mut theirs) = (Vec::new(), Vec::new());
             for (q, plan) in asked.iter().zip(&planned) {
                 proptest::prop_assert_eq!(plan.query, *q);
-                let taken = ahead.take_around(&g, ARENA, plan, &mut ours);
+                let taken = match ahead.take_around(&g, ARENA, plan, &mut ours) {
+                    Some(taken) => taken,
+                    None => ahead.plan_around(&g, ARENA, *q, &standing, &mut ours),
+                };
                 let reference = one_by_one.plan_around(&g, ARENA, *q, &standing, &mut theirs);
                 proptest::prop_assert_eq!(taken, reference);
                 proptest::prop_assert_eq!(&ours, &theirs);

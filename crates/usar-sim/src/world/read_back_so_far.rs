@@ -28,9 +28,12 @@ pub(super) enum Covered<'a> {
 /// (`sim.physics: NearBodies`: the far ones were).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(super) enum Rest {
+    /// Every robot (no part was handed over; also before the first step).
     #[default]
     All,
+    /// No robot.
     None,
+    /// The robots near a contact.
     Near,
 }
 
@@ -69,7 +72,9 @@ impl ReadBackSoFar<'_> {
         self.radiation_factors
     }
 
-    /// Whether robot `id` (below the team size) has been read back in this part of the step.
+    /// Whether robot `id` (below the team size) is one of the robots this view hands over: read
+    /// back in this part of the step (before the first step, [`super::World::read_back_rest`]
+    /// hands over every robot, as it stands).
     pub fn covers(&self, id: usize) -> bool {
         match self.covered {
             Covered::All => true,

@@ -458,16 +458,19 @@ impl World {
     ///    held step), and before a control step
     ///    the neighbour index is rebuilt (the resolver and the mission's queries use it).
     ///
-    /// Never panics on a valid scenario; allocation-free except when a robot re-plans.
+    /// Never panics on a valid scenario; allocation-free except when a robot re-plans, or on a
+    /// team that steps in parallel when two or more robots need the planner (their plans are
+    /// made ahead, `detours_ahead.rs`).
     pub fn step(&mut self, clock: &ControlClock) {
         self.step_beside(clock, |_| {});
         self.pipelines.rest = Rest::All;
     }
 
     /// [`World::step`], handing the robots read back before the step ends to `beside`
-    /// ([`ReadBackSoFar`]): under `sim.physics: NearBodies` the robots far from any contact,
-    /// beside Rapier's step when the team steps in parallel, otherwise every robot after the
-    /// read-back. [`World::read_back_rest`] then gives the others. Work that reads only each
+    /// ([`ReadBackSoFar`]): under `sim.physics: NearBodies` the robots far from any contact
+    /// (beside Rapier's step when the team steps in parallel, after it otherwise); under the
+    /// other steppings every robot after the read-back. [`World::read_back_rest`] then gives
+    /// the others. Work that reads only each
     /// robot's own state after the step gets the same bits over the two as over the team.
     pub fn step_beside(&mut self, clock: &ControlClock, beside: impl FnOnce(ReadBackSoFar) + Send) {
         let n = self.robots.len();
