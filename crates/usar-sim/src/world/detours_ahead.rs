@@ -74,8 +74,9 @@ pub(super) struct AheadInputs<'a> {
     /// Each robot's path following without the planner this control step (`None`: it needs
     /// the planner), by id.
     pub(super) followed: &'a [Option<Followed>],
-    /// When each robot checks its path, and the control steps before this one.
+    /// When each robot checks its path ([`ControlClock::path_check_due`]).
     pub(super) clock: &'a ControlClock,
+    /// The control steps taken before this one.
     pub(super) tick: u64,
 }
 
@@ -96,8 +97,11 @@ fn extra_scratch(dims: (u32, u32), threads: usize) -> usize {
 
 /// What one robot that needs the planner was found to need, planned ahead.
 enum Need {
+    /// Nothing to plan ahead (no standing robot, no requested goal, an own goal).
     Nothing,
+    /// A detour round these discs, with its plans.
     Detour(Vec<StandingDisc>, Vec<AroundPlan>),
+    /// A re-plan to a shared goal, this query.
     Replan(PlanQuery),
 }
 
