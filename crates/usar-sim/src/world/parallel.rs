@@ -129,9 +129,14 @@ pub(super) fn read_back_all(from: ReadFrom, to: &mut ReadBack) {
             ReadFrom::Near(bodies, near) if near[id] => Some(bodies),
             ReadFrom::Free(_) | ReadFrom::Near(..) => return,
         };
+        let before = state.position;
         read_back(bodies, nav, state, dt);
         count_held_step(state, dt_s);
-        *rad = radiation.factor_at(&state.position);
+        // The dose factor is a function of the position alone, kept up to date since the
+        // world was built: a robot at the very same spot (bit for bit) keeps its factor.
+        if !same_bits(&before, &state.position) {
+            *rad = radiation.factor_at(&state.position);
+        }
     };
     if parallel {
         nav.par_iter_mut()
@@ -226,6 +231,12 @@ pub(super) fn steer_all(
             .enumerate()
             .for_each(steer_chunk);
     }
+}
+
+/// Whether two positions are the same bits (so `-0.0` differs from `0.0`, and a NaN equals
+/// itself).
+fn same_bits(a: &crate::scenario::PointM, b: &crate::scenario::PointM) -> bool {
+    a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()
 }
 
 /// Counts a step of `dt_s` seconds held for a robot the resolver holds (`steps_held`,

@@ -72,6 +72,27 @@ impl ReadBackSoFar<'_> {
         self.radiation_factors
     }
 
+    /// Whether this view hands over no robot at all (every robot was handed over earlier in
+    /// the step, or none is due), so a pass over the team may be skipped.
+    pub fn covers_none(&self) -> bool {
+        matches!(self.covered, Covered::None)
+    }
+
+    /// The robots this view hands over, in id order, when they are the near robots of
+    /// `sim.physics: NearBodies` (the rest of its step, usually a small part of the team):
+    /// `None` for every other view, whose robots [`ReadBackSoFar::covers`] tells one by one.
+    pub fn near_ids(&self) -> Option<impl Iterator<Item = usize> + '_> {
+        match self.covered {
+            Covered::Near(near) => Some(
+                near.iter()
+                    .enumerate()
+                    .filter(|(_, n)| **n)
+                    .map(|(id, _)| id),
+            ),
+            Covered::All | Covered::None | Covered::Far(_) => None,
+        }
+    }
+
     /// Whether robot `id` (below the team size) is one of the robots this view hands over: read
     /// back in this part of the step (before the first step, [`super::World::read_back_rest`]
     /// hands over every robot, as it stands).

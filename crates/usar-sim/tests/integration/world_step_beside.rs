@@ -75,6 +75,31 @@ fn hand_over(s: &Scenario, steps: usize) -> usize {
             }
             after_total += usize::from(after);
         }
+        // The shortcuts a pass over the rest takes: the near robots listed, or nobody left.
+        if let Some(ids) = rest.near_ids() {
+            let listed: Vec<usize> = ids.collect();
+            let covered: Vec<usize> = (0..n).filter(|&id| rest.covers(id)).collect();
+            assert_eq!(
+                listed, covered,
+                "step {step}: near_ids lists the robots left"
+            );
+        }
+        if rest.covers_none() {
+            assert!(
+                (0..n).all(|id| !rest.covers(id)),
+                "step {step}: nobody left"
+            );
+        }
+        let physics = s.sim().physics;
+        assert_eq!(
+            rest.covers_none(),
+            physics != PhysicsStepping::NearBodies,
+            "step {step}: nobody is left but after NearBodies' step ({physics:?})"
+        );
+        assert_eq!(
+            rest.near_ids().is_some(),
+            physics == PhysicsStepping::NearBodies
+        );
         assert_eq!(bits(&plain), now, "step {step}: the same bits as step()");
     }
     after_total
@@ -98,4 +123,49 @@ fn step_beside_hands_every_robot_over_once_with_its_state() {
         .edit(|spec| spec.sim.physics = PhysicsStepping::EveryStep)
         .unwrap();
     assert_eq!(pool.install(|| hand_over(&every, 20)), 0);
+}
+
+/// Every robot's dose factor is the factor at its position after every step: also for a robot
+/// standing still inside a radiation zone (whose factor the read-back keeps rather than
+/// recomputes) and for one moved there between steps.
+#[test]
+fn each_dose_factor_is_the_factor_at_the_robots_position() {
+    let s = scenario("swarm-1000.ron");
+    let zone = s.radiation_zones()[0].area.center;
+    let clock = ControlClock::of(s.sim());
+    let mut world = World::new(&s, &clock);
+    let (w, h) = (s.arena().width_m.get(), s.arena().height_m.get());
+    for id in 2..s.robots().len() {
+        let _ = world.set_goal(id, Some(PointM::new(0.5 * w, 0.5 * h)));
+    }
+    world.teleport(0, zone).expect("in the arena");
+    let check = |world: &World, step: usize| {
+        for (id, r) in world.robots().iter().enumerate() {
+            let want = world.radiation_factor_at(&r.position);
+            assert_eq!(
+                world.radiation_factor(id).to_bits(),
+                want.to_bits(),
+                "step {step}, robot {id} at {:?}",
+                r.position
+            );
+        }
+    };
+    for step in 0..60 {
+        world.step(&clock);
+        check(&world, step);
+        if step == 30 {
+            // Robot 1 moved into the zone between steps, then standing still there.
+            world
+                .teleport(1, PointM::new(zone.x + 1.0, zone.y))
+                .expect("in the arena");
+        }
+    }
+    assert!(
+        world.radiation_factor(0) > 0.0,
+        "robot 0 stands in the zone"
+    );
+    assert!(
+        world.radiation_factor(1) > 0.0,
+        "robot 1 stands in the zone"
+    );
 }
