@@ -55,7 +55,8 @@ struct Rates {
 /// robot's charge reads only its own slots, so the robots a step hands over beside Rapier's
 /// step ([`World::step_beside`]) and the rest ([`World::read_back_rest`]) get the bits of one
 /// pass. On the calling rayon pool when `read` may run in parallel
-/// ([`ReadBackSoFar::parallel`]).
+/// ([`ReadBackSoFar::parallel`]), but for the near robots of `sim.physics: NearBodies`
+/// ([`ReadBackSoFar::near_ids`]: one scan of their flags, then a loop over them alone).
 pub(crate) fn charge_step_costs(
     scenario: &Scenario,
     read: &ReadBackSoFar,
@@ -77,7 +78,7 @@ pub(crate) fn charge_step_costs(
     }
     let (states, factors) = (read.robots(), read.radiation_factors());
     if let Some(ids) = read.near_ids() {
-        // A few robots of a large team: one loop over them, not a pass over the team.
+        // A few robots of a large team: one scan of the flags, then a loop over them alone.
         for id in ids {
             let (r, total) = (&mut robots[id], &mut totals[id]);
             costs[id] = charge(&rates, dt, &states[id], factors[id], r, total);

@@ -125,20 +125,34 @@ fn step_beside_hands_every_robot_over_once_with_its_state() {
     assert_eq!(pool.install(|| hand_over(&every, 20)), 0);
 }
 
-/// Every robot's dose factor is the factor at its position after every step: also for a robot
-/// standing still inside a radiation zone (whose factor the read-back keeps rather than
-/// recomputes) and for one moved there between steps.
+/// Every robot's dose factor is the factor at its position after every step: for a robot that
+/// drives into a radiation zone (its factor recomputed as it moves), for one standing still
+/// inside a zone (whose factor the read-back keeps rather than recomputes) and for one moved
+/// there between steps.
 #[test]
 fn each_dose_factor_is_the_factor_at_the_robots_position() {
     let s = scenario("swarm-1000.ron");
-    let zone = s.radiation_zones()[0].area.center;
+    let zone = s.radiation_zones()[0].area;
+    let (c, r) = (zone.center, zone.radius_m);
     let clock = ControlClock::of(s.sim());
     let mut world = World::new(&s, &clock);
     let (w, h) = (s.arena().width_m.get(), s.arena().height_m.get());
-    for id in 2..s.robots().len() {
+    for id in 3..s.robots().len() {
         let _ = world.set_goal(id, Some(PointM::new(0.5 * w, 0.5 * h)));
     }
-    world.teleport(0, zone).expect("in the arena");
+    // Robot 0 just outside the zone's rim, sent to its centre; robot 1 standing inside it.
+    world
+        .teleport(0, PointM::new(c.x - r - 0.5, c.y))
+        .expect("in the arena");
+    world
+        .set_goal(0, Some(c))
+        .expect("the zone's centre is reachable");
+    world.teleport(1, c).expect("in the arena");
+    assert_eq!(
+        world.radiation_factor(0),
+        0.0,
+        "robot 0 starts outside the zone"
+    );
     let check = |world: &World, step: usize| {
         for (id, r) in world.robots().iter().enumerate() {
             let want = world.radiation_factor_at(&r.position);
@@ -150,22 +164,26 @@ fn each_dose_factor_is_the_factor_at_the_robots_position() {
             );
         }
     };
-    for step in 0..60 {
+    for step in 0..150 {
         world.step(&clock);
         check(&world, step);
         if step == 30 {
-            // Robot 1 moved into the zone between steps, then standing still there.
+            // Robot 2 moved into the zone between steps, then standing still there.
             world
-                .teleport(1, PointM::new(zone.x + 1.0, zone.y))
+                .teleport(2, PointM::new(c.x + 1.0, c.y))
                 .expect("in the arena");
         }
     }
     assert!(
         world.radiation_factor(0) > 0.0,
-        "robot 0 stands in the zone"
+        "robot 0 drove into the zone"
     );
     assert!(
         world.radiation_factor(1) > 0.0,
         "robot 1 stands in the zone"
+    );
+    assert!(
+        world.radiation_factor(2) > 0.0,
+        "robot 2 stands in the zone"
     );
 }
