@@ -55,8 +55,8 @@ struct Rates {
 /// robot's charge reads only its own slots, so the robots a step hands over beside Rapier's
 /// step ([`World::step_beside`]) and the rest ([`World::read_back_rest`]) get the bits of one
 /// pass. On the calling rayon pool when `read` may run in parallel
-/// ([`ReadBackSoFar::parallel`]), else in one loop over the robots it covers
-/// ([`ReadBackSoFar::covered_ids`]).
+/// ([`ReadBackSoFar::parallel`]), but for the near robots of `sim.physics: NearBodies`
+/// ([`ReadBackSoFar::near_ids`]: one scan of their flags, then a loop over them alone).
 pub(crate) fn charge_step_costs(
     scenario: &Scenario,
     read: &ReadBackSoFar,
@@ -73,13 +73,24 @@ pub(crate) fn charge_step_costs(
         every_cost: m.costs_count == CostsCount::Every,
     };
     costs.resize(robots.len(), StepCost::default());
+    if read.covers_none() {
+        return;
+    }
     let (states, factors) = (read.robots(), read.radiation_factors());
+    if let Some(ids) = read.near_ids() {
+        // A few robots of a large team: one scan of the flags, then a loop over them alone.
+        for id in ids {
+            let (r, total) = (&mut robots[id], &mut totals[id]);
+            costs[id] = charge(&rates, dt, &states[id], factors[id], r, total);
+        }
+        return;
+    }
+    let each = |(id, (((r, total), cost), (w, &rad))): (usize, Slot<'_>)| {
+        if read.covers(id) {
+            *cost = charge(&rates, dt, w, rad, r, total);
+        }
+    };
     if read.parallel() {
-        let each = |(id, (((r, total), cost), (w, &rad))): (usize, Slot<'_>)| {
-            if read.covers(id) {
-                *cost = charge(&rates, dt, w, rad, r, total);
-            }
-        };
         robots
             .par_iter_mut()
             .zip(totals.par_iter_mut())
@@ -90,11 +101,12 @@ pub(crate) fn charge_step_costs(
             .with_max_len(CHUNK_ROBOTS)
             .for_each(each);
     } else {
-        // A small team, one thread, the near robots of a large team or nobody: one loop over
-        // the robots handed over, without the parallel pass's zipped slots.
-        for id in read.covered_ids() {
-            let (r, total) = (&mut robots[id], &mut totals[id]);
-            costs[id] = charge(&rates, dt, &states[id], factors[id], r, total);
+        // The same charge robot by robot, without the closure's zipped slots (a small team
+        // pays this loop at every step).
+        for (id, r) in robots.iter_mut().enumerate() {
+            if read.covers(id) {
+                costs[id] = charge(&rates, dt, &states[id], factors[id], r, &mut totals[id]);
+            }
         }
     }
 }

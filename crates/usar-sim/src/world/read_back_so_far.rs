@@ -72,14 +72,25 @@ impl ReadBackSoFar<'_> {
         self.radiation_factors
     }
 
-    /// The robots this view hands over ([`ReadBackSoFar::covers`]), in id order: every robot,
-    /// none, or those of one side of `sim.physics: NearBodies`' gate (one scan of its flags).
-    pub fn covered_ids(&self) -> impl Iterator<Item = usize> + '_ {
-        let n = match self.covered {
-            Covered::None => 0,
-            Covered::All | Covered::Far(_) | Covered::Near(_) => self.robots.len(),
-        };
-        (0..n).filter(move |&id| self.covers(id))
+    /// Whether this view hands over no robot at all (every robot was handed over earlier in
+    /// the step, or none is due), so a pass over the team may be skipped.
+    pub fn covers_none(&self) -> bool {
+        matches!(self.covered, Covered::None)
+    }
+
+    /// The robots this view hands over, in id order, when they are the near robots of
+    /// `sim.physics: NearBodies` (the rest of its step, usually a small part of the team):
+    /// `None` for every other view, whose robots [`ReadBackSoFar::covers`] tells one by one.
+    pub fn near_ids(&self) -> Option<impl Iterator<Item = usize> + '_> {
+        match self.covered {
+            Covered::Near(near) => Some(
+                near.iter()
+                    .enumerate()
+                    .filter(|(_, n)| **n)
+                    .map(|(id, _)| id),
+            ),
+            Covered::All | Covered::None | Covered::Far(_) => None,
+        }
     }
 
     /// Whether robot `id` (below the team size) is one of the robots this view hands over: read
@@ -94,12 +105,9 @@ impl ReadBackSoFar<'_> {
         }
     }
 
-    /// Whether work over the robots may run in parallel, as the world's own per-robot stages
-    /// do: a large team on a pool of more than one thread, when this view hands over the
-    /// whole team or its far robots (`sim.physics: NearBodies`). The near robots (the rest of
-    /// such a step, usually a few) and an empty view are better served by one loop over
-    /// [`ReadBackSoFar::covered_ids`].
+    /// Whether work over the robots may run in parallel (a large team on a pool of more than
+    /// one thread), as the world's own per-robot stages do.
     pub fn parallel(&self) -> bool {
-        self.parallel && matches!(self.covered, Covered::All | Covered::Far(_))
+        self.parallel
     }
 }

@@ -75,21 +75,31 @@ fn hand_over(s: &Scenario, steps: usize) -> usize {
             }
             after_total += usize::from(after);
         }
-        // The loop a pass over the rest takes: exactly the robots it covers, in id order, and
-        // nobody after a step that handed the whole team over; never a parallel pass.
-        let listed: Vec<usize> = rest.covered_ids().collect();
-        let covered: Vec<usize> = (0..n).filter(|&id| rest.covers(id)).collect();
-        assert_eq!(
-            listed, covered,
-            "step {step}: covered_ids lists the robots left"
-        );
+        // The shortcuts a pass over the rest takes: the near robots listed, or nobody left.
+        if let Some(ids) = rest.near_ids() {
+            let listed: Vec<usize> = ids.collect();
+            let covered: Vec<usize> = (0..n).filter(|&id| rest.covers(id)).collect();
+            assert_eq!(
+                listed, covered,
+                "step {step}: near_ids lists the robots left"
+            );
+        }
+        if rest.covers_none() {
+            assert!(
+                (0..n).all(|id| !rest.covers(id)),
+                "step {step}: nobody left"
+            );
+        }
         let physics = s.sim().physics;
         assert_eq!(
-            listed.is_empty(),
-            physics != PhysicsStepping::NearBodies || covered.is_empty(),
+            rest.covers_none(),
+            physics != PhysicsStepping::NearBodies,
             "step {step}: nobody is left but after NearBodies' step ({physics:?})"
         );
-        assert!(!rest.parallel(), "step {step}: the rest is one loop");
+        assert_eq!(
+            rest.near_ids().is_some(),
+            physics == PhysicsStepping::NearBodies
+        );
         assert_eq!(bits(&plain), now, "step {step}: the same bits as step()");
     }
     after_total
