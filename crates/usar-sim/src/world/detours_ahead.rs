@@ -129,11 +129,8 @@ pub(super) fn plan_ahead(w: &AheadInputs, planner: &mut PathPlanner, ahead: &mut
     if ahead.scratch.len() < extra {
         ahead.scratch.resize_with(extra, AroundScratch::default);
     }
-    let found = planner.plan_arounds_ahead(
-        needs.len(),
-        &mut ahead.scratch[..extra],
-        true,
-        |i, around| {
+    let found =
+        planner.plan_arounds_ahead(needs.len(), &mut ahead.scratch[..extra], |i, around| {
             let id = needs[i];
             let (nav, state) = (&w.team.nav[id], &w.team.robots[id]);
             let mut f = Followed::of(nav, state);
@@ -147,8 +144,7 @@ pub(super) fn plan_ahead(w: &AheadInputs, planner: &mut PathPlanner, ahead: &mut
                     around.plan_around(w.ctx.grid, w.arena, q, s)
                 }),
             }
-        },
-    );
+        });
     let mut replans = Vec::new();
     for (id, need) in needs.into_iter().zip(found) {
         match need {

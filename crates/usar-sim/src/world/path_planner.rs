@@ -179,17 +179,17 @@ impl PathPlanner {
         Some(plan.result)
     }
 
-    /// Runs `each(i, planner)` for `i` in `0..n`, side by side on the calling rayon pool when
-    /// `parallel`, where `planner` plans detours ahead ([`AheadPlanner::plan_around`]) with
-    /// this planner's regions and a scratch of its own: this planner's for one of
-    /// `scratch.len() + 1` tasks, `scratch[k]` for each other (`each` must keep no planner
-    /// beyond its call). Each task takes the next `i` not taken yet, so a task whose plans
-    /// run long leaves the rest to the others. Results are in `i` order, whatever ran where.
+    /// Runs `each(i, planner)` for `i` in `0..n`, side by side on the calling rayon pool (the
+    /// global pool outside one), where `planner` plans detours ahead
+    /// ([`AheadPlanner::plan_around`]) with this planner's regions and a scratch of its own:
+    /// this planner's for one of `scratch.len() + 1` tasks, `scratch[k]` for each other
+    /// (`each` must keep no planner beyond its call; an empty `scratch` runs one task, all of
+    /// `i` in turn). Each task takes the next `i` not taken yet, so a task whose plans run
+    /// long leaves the rest to the others. Results are in `i` order, whatever ran where.
     pub(super) fn plan_arounds_ahead<T: Send>(
         &mut self,
         n: usize,
         scratch: &mut [AroundScratch],
-        parallel: bool,
         each: impl Fn(usize, &mut AheadPlanner) -> T + Sync,
     ) -> Vec<T> {
         use rayon::prelude::*;
@@ -197,7 +197,6 @@ impl PathPlanner {
         let regions = &self.regions;
         let mut own = [std::mem::take(&mut self.around)];
         let all: Vec<&mut AroundScratch> = own.iter_mut().chain(scratch.iter_mut()).collect();
-        let tasks = if parallel { all.len() } else { 1 };
         let next = AtomicUsize::new(0);
         let run = |s: &mut AroundScratch| {
             let mut planner = AheadPlanner {
@@ -209,11 +208,7 @@ impl PathPlanner {
                 .map(|i| (i, each(i, &mut planner)))
                 .collect::<Vec<(usize, T)>>()
         };
-        let parts: Vec<Vec<(usize, T)>> = if parallel {
-            all.into_par_iter().take(tasks).map(run).collect()
-        } else {
-            all.into_iter().take(1).map(run).collect()
-        };
+        let parts: Vec<Vec<(usize, T)>> = all.into_par_iter().map(run).collect();
         let mut parts: Vec<(usize, T)> = parts.into_iter().flatten().collect();
         parts.sort_unstable_by_key(|&(i, _)| i);
         let [own] = own;
@@ -529,7 +524,7 @@ mod tests {
                 fail(p, inflation);
             }
         }
-        let planned = ahead.plan_arounds_ahead(1, &mut [], false, |_, p| {
+        let planned = ahead.plan_arounds_ahead(1, &mut [], |_, p| {
             p.plan_around(&g, ARENA, across(0.20), &[])
         });
         assert!(!planned[0].searched, "known apart: no search ahead");
@@ -700,7 +695,7 @@ mod tests {
             let mut ahead = PathPlanner::new();
             let mut extra = [AroundScratch::default()];
             let planned = pool.install(|| {
-                ahead.plan_arounds_ahead(asked.len(), &mut extra, true, |i, p| {
+                ahead.plan_arounds_ahead(asked.len(), &mut extra, |i, p| {
                     p.plan_around(&g, ARENA, asked[i], &standing)
                 })
             });
