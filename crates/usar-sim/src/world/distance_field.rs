@@ -69,6 +69,27 @@ impl DistanceField {
         }
     }
 
+    /// Turns this field into the field [`DistanceField::new`] makes towards cell `goal` of
+    /// `grid` for planning inflation `inflation` metres (nothing expanded yet), in the memory
+    /// of its cells: every cell's cost and settled flag written afresh, the open set made
+    /// anew (so the field holds the bytes a new one holds, [`DistanceField::heap_bytes`], and
+    /// a store keeps as many). For a store that drops one field to make room for another: on
+    /// a grid of millions of cells, a new field's pages cost more to fault in than to
+    /// overwrite (`shared_fields.rs`). The same costs and descents as a new field.
+    pub fn renew(&mut self, grid: &ClearanceGrid, goal: u32, inflation: f32) {
+        let (nx, ny) = grid.dims();
+        let cells = (nx * ny) as usize;
+        self.cost.clear();
+        self.cost.resize(cells, UNREACHED);
+        self.cost[goal as usize] = 0;
+        self.settled.clear();
+        self.settled.resize(cells, false);
+        self.open = BucketQueue::new(MAX_MOVE_COST);
+        self.open.push(0, goal);
+        self.goal = goal;
+        self.inflation_bits = inflation.to_bits();
+    }
+
     /// Heap memory a field of `grid` holds when made ([`DistanceField::new`]), bytes: a cost
     /// (4 bytes) and a settled flag (1 byte) per cell, and the open set's bucket list (1,415
     /// empty buckets). 80 MiB on a grid at the 2^24-cell limit
@@ -86,6 +107,12 @@ impl DistanceField {
         self.cost.capacity() * size_of::<u32>()
             + self.settled.capacity() * size_of::<bool>()
             + self.open.heap_bytes()
+    }
+
+    /// Where the field's costs are held (tests check that a renewed field keeps its memory).
+    #[cfg(test)]
+    pub(super) fn cost_memory(&self) -> *const u32 {
+        self.cost.as_ptr()
     }
 
     /// Whether this is the field towards cell `goal` for inflation `inflation` metres.
@@ -295,6 +322,41 @@ mod tests {
             assert_eq!((found, &a), (fresh, &b), "cell {from}");
         }
         assert!(settled > 100, "{settled} settled cells");
+    }
+
+    /// A field renewed for another goal after a full expansion towards its own holds the
+    /// state of a new field towards that goal (every cost, every settled flag) and answers
+    /// every cell's cost and descent as a new field does, in the memory it held.
+    #[test]
+    fn a_renewed_field_is_a_new_field() {
+        let g = small_grid();
+        let (first, goal) = (Vec2::new(5.0, 1.0), Vec2::new(1.0, 5.0));
+        let mut field = DistanceField::new(&g, g.cell_index(first), INFL);
+        let blocked = g.cell_index(Vec2::new(4.5, 1.2));
+        assert_eq!(field.cost_from(&g, blocked), None, "expanded in full");
+        let memory = field.cost_memory();
+        let goal = g.cell_index(goal);
+        field.renew(&g, goal, INFL);
+        let mut fresh = DistanceField::new(&g, goal, INFL);
+        assert_eq!(field.cost_memory(), memory, "the same memory");
+        assert_eq!(field.heap_bytes(), fresh.heap_bytes());
+        assert!(field.is_for(goal, INFL) && !field.is_for(g.cell_index(first), INFL));
+        assert_eq!((&field.cost, &field.settled), (&fresh.cost, &fresh.settled));
+        let (nx, ny) = g.dims();
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        for from in 0..nx * ny {
+            assert_eq!(
+                field.cost_from(&g, from),
+                fresh.cost_from(&g, from),
+                "cell {from}"
+            );
+            let found = field.descend(&g, from, &mut a);
+            assert_eq!(
+                (found, &a),
+                (fresh.descend(&g, from, &mut b), &b),
+                "cell {from}"
+            );
+        }
     }
 
     /// A new field holds what `new_heap_bytes` says (plus the one bucket its goal went

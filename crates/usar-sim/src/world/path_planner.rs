@@ -315,6 +315,13 @@ impl PathPlanner {
         self.astar_searches
     }
 
+    /// Shared fields made so far in the memory of the least recently used field, dropped to
+    /// make room for them within the budget, rather than in memory of their own (the same
+    /// costs and paths: [`DistanceField::renew`]).
+    pub fn fields_renewed(&self) -> u64 {
+        self.fields.renewed()
+    }
+
     /// The shared fields kept now (one per goal cell and inflation, at most
     /// [`PathPlanner::field_budget_bytes`] of them together), least recently used first.
     pub fn fields(&self) -> impl ExactSizeIterator<Item = &DistanceField> {
@@ -814,6 +821,13 @@ mod tests {
         }
         let kept = planners.each_ref().map(|p| p.fields().len());
         assert_eq!(kept, [20, 3, 0]);
+        // Past the third, a field of the second planner that has to drop one to fit is made
+        // in the dropped one's memory (not every one: a field whose open set grew may have
+        // been dropped after its plan); the first drops none, the third drops its one field
+        // only after the plan.
+        let [all, three, none] = planners.each_ref().map(PathPlanner::fields_renewed);
+        assert_eq!((all, none), (0, 0));
+        assert!((1..=17).contains(&three), "{three}");
         for p in &planners {
             assert!(
                 p.field_bytes() <= p.field_budget_bytes(),

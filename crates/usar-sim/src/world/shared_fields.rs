@@ -45,6 +45,8 @@ pub(super) struct SharedFields {
     held: usize,
     /// Most heap bytes kept between uses.
     budget: usize,
+    /// Fields made so far in the memory of a field dropped to make room for them.
+    renewed: u64,
 }
 
 impl Default for SharedFields {
@@ -61,6 +63,7 @@ impl SharedFields {
             fields: VecDeque::new(),
             held: 0,
             budget: budget_bytes,
+            renewed: 0,
         }
     }
 
@@ -72,6 +75,12 @@ impl SharedFields {
     /// Heap bytes the kept fields hold (as counted at their last use).
     pub(super) fn held_bytes(&self) -> usize {
         self.held
+    }
+
+    /// Fields made so far in the memory of a field dropped to make room for them
+    /// ([`DistanceField::renew`]) rather than in memory of their own.
+    pub(super) fn renewed(&self) -> u64 {
+        self.renewed
     }
 
     /// The kept fields, least recently used first.
@@ -91,17 +100,23 @@ impl SharedFields {
         inflation: f32,
         use_field: impl FnOnce(&mut DistanceField) -> R,
     ) -> R {
-        if !self.fields.iter().any(|(_, f)| f.is_for(goal, inflation)) {
-            // Room for the new field first.
-            let new_bytes = DistanceField::new_heap_bytes(grid);
-            self.drop_until(self.budget.saturating_sub(new_bytes));
-        }
-        let mut field = self.take(grid, goal, inflation);
+        let mut field = match (self.fields.iter()).position(|(_, f)| f.is_for(goal, inflation)) {
+            Some(k) => self.take_kept(k),
+            None => {
+                // Room for the new field first; the last field dropped for it lends its
+                // memory.
+                let new_bytes = DistanceField::new_heap_bytes(grid);
+                let dropped = self.drop_until(self.budget.saturating_sub(new_bytes));
+                self.renewed += u64::from(dropped.is_some());
+                made_in(dropped, grid, goal, inflation)
+            }
+        };
         let answer = use_field(&mut field);
         let bytes = field.heap_bytes();
         self.held += bytes;
         self.fields.push_back((bytes, field));
-        self.drop_until(self.budget);
+        // A field dropped here is freed: the budget holds between plans.
+        let _freed = self.drop_until(self.budget);
         answer
     }
 
@@ -143,32 +158,101 @@ impl SharedFields {
             self.held += bytes;
             self.fields.push_back((bytes, field));
         }
-        self.drop_until(self.budget);
+        // A field dropped here is freed: the budget holds between plans.
+        let _freed = self.drop_until(self.budget);
         answers
     }
 
     /// The field towards cell `goal` for `inflation` metres, taken out of the store (the kept
     /// one, or a new one).
     fn take(&mut self, grid: &ClearanceGrid, goal: u32, inflation: f32) -> DistanceField {
-        let kept = (self.fields.iter())
-            .position(|(_, f)| f.is_for(goal, inflation))
-            .and_then(|k| self.fields.remove(k));
-        match kept {
-            Some((bytes, field)) => {
-                self.held -= bytes;
-                field
-            }
+        match (self.fields.iter()).position(|(_, f)| f.is_for(goal, inflation)) {
+            Some(k) => self.take_kept(k),
             None => DistanceField::new(grid, goal, inflation),
         }
     }
 
-    /// Drops the least recently used fields until they hold at most `limit` bytes.
-    fn drop_until(&mut self, limit: usize) {
+    /// The kept field at position `k` of the store (least recently used first), taken out.
+    fn take_kept(&mut self, k: usize) -> DistanceField {
+        let (bytes, field) = self.fields.remove(k).expect("k is a kept field's position");
+        self.held -= bytes;
+        field
+    }
+
+    /// Drops the least recently used fields until they hold at most `limit` bytes; returns
+    /// the last one dropped, if any.
+    fn drop_until(&mut self, limit: usize) -> Option<DistanceField> {
+        let mut last = None;
         while self.held > limit {
-            let Some((bytes, _)) = self.fields.pop_front() else {
+            let Some((bytes, field)) = self.fields.pop_front() else {
                 break;
             };
             self.held -= bytes;
+            last = Some(field);
         }
+        last
+    }
+}
+
+/// The field towards cell `goal` of `grid` for `inflation` metres, nothing expanded: made in
+/// the memory of `dropped` ([`DistanceField::renew`]) when given, else new.
+fn made_in(
+    dropped: Option<DistanceField>,
+    grid: &ClearanceGrid,
+    goal: u32,
+    inflation: f32,
+) -> DistanceField {
+    match dropped {
+        Some(mut field) => {
+            field.renew(grid, goal, inflation);
+            field
+        }
+        None => DistanceField::new(grid, goal, inflation),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use parry2d::math::Vector as Vec2;
+
+    use super::*;
+    use crate::scenario::{Arena, Positive};
+
+    const INFL: f32 = 0.3;
+
+    fn grid() -> ClearanceGrid {
+        let arena = Arena {
+            width_m: Positive::new(6.0).unwrap(),
+            height_m: Positive::new(6.0).unwrap(),
+            wall_thickness_m: Positive::new(0.5).unwrap(),
+        };
+        ClearanceGrid::build(&arena, &[], 0.25, 2.0)
+    }
+
+    /// Under a budget of one field, each new goal drops the last one's field and is made in
+    /// its memory; the costs are a new field's, and the budget holds between uses.
+    #[test]
+    fn a_new_field_is_made_in_the_memory_of_the_field_dropped_for_it() {
+        let g = grid();
+        let goals = [
+            Vec2::new(1.0, 1.0),
+            Vec2::new(5.0, 5.0),
+            Vec2::new(1.0, 5.0),
+        ];
+        let mut store = SharedFields::new(DistanceField::new_heap_bytes(&g) + 4096);
+        let from = g.cell_index(Vec2::new(3.0, 3.0));
+        let mut memory = Vec::new();
+        for goal in goals.map(|p| g.cell_index(p)) {
+            let cost = store.with_field(&g, goal, INFL, |f| f.cost_from(&g, from));
+            let fresh = DistanceField::new(&g, goal, INFL).cost_from(&g, from);
+            assert_eq!(cost, fresh);
+            assert_eq!(store.iter().len(), 1, "one field kept");
+            let kept = store.iter().next().expect("the field just used");
+            assert!(kept.is_for(goal, INFL));
+            memory.push(kept.cost_memory());
+            assert!(store.held_bytes() <= store.budget_bytes());
+        }
+        assert!(memory.windows(2).all(|m| m[0] == m[1]), "{memory:?}");
+        assert_eq!(store.renewed(), 2, "the second and third goals");
     }
 }
