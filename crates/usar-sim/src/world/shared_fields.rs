@@ -12,6 +12,11 @@
 //! on earlier queries ([`super::distance_field`]), so a field dropped and made again gives the
 //! same paths: the budget changes how often a field is computed, never a path.
 //!
+//! A field made after dropping one to make room is made in the dropped one's memory
+//! ([`DistanceField::renew`]): on a grid of millions of cells, fresh pages for every field
+//! made again cost the kernel more than writing the dropped field's cells afresh (a third of
+//! the CPU of `swarm-100000.ron`'s run went to it, `docs/measurements.md`).
+//!
 //! A field larger than the whole budget (only under a budget below the default, e.g. 32 MiB
 //! on a grid of more than 6.8 M cells; the default holds six fields of the largest grid) is
 //! still made and used for the plan that asked for it, then dropped: the next plan to that
