@@ -75,7 +75,9 @@ impl DistanceField {
     /// anew (so the field holds the bytes a new one holds, [`DistanceField::heap_bytes`], and
     /// a store keeps as many). For a store that drops one field to make room for another: on
     /// a grid of millions of cells, a new field's pages cost more to fault in than to
-    /// overwrite (`shared_fields.rs`). The same costs and descents as a new field.
+    /// overwrite (`shared_fields.rs`). The same costs and descents as a new field. `goal`
+    /// must be a cell of `grid` (below `nx * ny`, as for `new`, which panics likewise
+    /// otherwise) and free for `inflation`.
     pub fn renew(&mut self, grid: &ClearanceGrid, goal: u32, inflation: f32) {
         let (nx, ny) = grid.dims();
         let cells = (nx * ny) as usize;
