@@ -188,7 +188,7 @@ impl ContactGate {
         self.lists.set_parallel(parallel);
         if self.lists.stale(w.nav, query_m) {
             if !*index_fresh {
-                neighbours.rebuild(w.nav.iter().map(|n| (n.layer, n.pos)));
+                neighbours.rebuild(w.nav.iter().map(|n| (n.layer, n.pos)), parallel);
                 *index_fresh = true;
             }
             self.lists.rebuild(w.nav, neighbours);

@@ -363,7 +363,7 @@ mod tests {
 
     fn index(inputs: &[ResolverInput]) -> NeighbourIndex {
         let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
-        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)), false);
         ix
     }
 

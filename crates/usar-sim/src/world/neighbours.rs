@@ -145,6 +145,12 @@ impl NeighbourGrid {
                 .into_iter()
                 .map(|(id, p)| (self.cell_of(p) as u32, id, p)),
         );
+        self.index(scratch);
+    }
+
+    /// The index of [`NeighbourGrid::rebuild`] over `scratch`: (cell, id, position) of every
+    /// point, its cell from [`NeighbourGrid::cell_of`]; kept as the next rebuild's scratch.
+    fn index(&mut self, mut scratch: Vec<(u32, usize, Vec2)>) {
         // Ascending ids (already so when built from a robot list: then O(n)).
         scratch.sort_unstable_by_key(|&(_, id, _)| id);
         let same_cells = scratch.len() == self.placed.len()
@@ -314,17 +320,27 @@ impl NeighbourIndex {
     }
 
     /// Re-indexes the robots: `robots` yields each robot's layer and centre, robot id = position
-    /// in the sequence. `O(n + cells)`.
-    pub fn rebuild(&mut self, robots: impl Iterator<Item = (Locomotion, Vec2)> + Clone) {
-        let on = |layer: Locomotion| {
-            robots
-                .clone()
-                .enumerate()
-                .filter(move |(_, (l, _))| *l == layer)
-                .map(|(id, (_, p))| (id, p))
-        };
-        self.ground.rebuild(on(Locomotion::Ground));
-        self.aerial.rebuild(on(Locomotion::Aerial));
+    /// in the sequence, read once for both layers. `O(n + cells)`; with `parallel` the two
+    /// layers' grids are built side by side on the calling rayon pool (the same index; worth it
+    /// only for a large team, whose rebuild reads every robot).
+    pub fn rebuild(&mut self, robots: impl Iterator<Item = (Locomotion, Vec2)>, parallel: bool) {
+        let mut ground = std::mem::take(&mut self.ground.scratch);
+        let mut aerial = std::mem::take(&mut self.aerial.scratch);
+        ground.clear();
+        aerial.clear();
+        for (id, (layer, p)) in robots.enumerate() {
+            match layer {
+                Locomotion::Ground => ground.push((self.ground.cell_of(p) as u32, id, p)),
+                Locomotion::Aerial => aerial.push((self.aerial.cell_of(p) as u32, id, p)),
+            }
+        }
+        let (g, a) = (&mut self.ground, &mut self.aerial);
+        if parallel {
+            rayon::join(|| g.index(ground), || a.index(aerial));
+        } else {
+            g.index(ground);
+            a.index(aerial);
+        }
     }
 }
 
@@ -451,6 +467,39 @@ mod tests {
             }
         }
 
+        /// An index rebuilt over robots of both layers (again over moved robots), in turn or
+        /// with its two grids built side by side on a two-thread pool, holds for each layer
+        /// exactly the grid of that layer's robots alone, ids as in the team.
+        #[test]
+        fn an_index_holds_each_layer_grid_in_turn_or_side_by_side(
+            robots in prop::collection::vec((point(), any::<bool>()), 0..80),
+            moves in prop::collection::vec((-3.0f32..3.0, -3.0f32..3.0), 80),
+        ) {
+            let s = paper();
+            let layer = |g: bool| if g { Locomotion::Ground } else { Locomotion::Aerial };
+            let moved: Vec<(Vec2, bool)> = robots
+                .iter()
+                .zip(&moves)
+                .map(|(&(p, g), &(dx, dy))| (p + Vec2::new(dx, dy), g))
+                .collect();
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            let (mut serial, mut side_by_side) = (NeighbourIndex::new(s), NeighbourIndex::new(s));
+            for next in [&robots, &moved, &moved] {
+                let team = || next.iter().map(|&(p, g)| (layer(g), p));
+                serial.rebuild(team(), false);
+                pool.install(|| side_by_side.rebuild(team(), true));
+                for (g, cell) in [(true, serial.ground.cell_m()), (false, serial.aerial.cell_m())] {
+                    let mut alone = NeighbourGrid::new(s.arena.width_m.get() as f32, s.arena.height_m.get() as f32, cell);
+                    alone.rebuild(next.iter().enumerate().filter(|(_, r)| r.1 == g).map(|(id, r)| (id, r.0)));
+                    for built in [serial.grid(layer(g)), side_by_side.grid(layer(g))] {
+                        prop_assert_eq!(&built.starts, &alone.starts);
+                        prop_assert_eq!(&built.ids, &alone.ids);
+                        prop_assert_eq!(&built.pos, &alone.pos);
+                    }
+                }
+            }
+        }
+
         /// The index's candidates of a layer include every robot of that layer within the
         /// radius, each once, no robot of the other layer and none beyond the radius (plus
         /// slack).
@@ -462,7 +511,7 @@ mod tests {
             let s = paper();
             let layer = |g: bool| if g { Locomotion::Ground } else { Locomotion::Aerial };
             let mut index = NeighbourIndex::new(s);
-            index.rebuild(robots.iter().map(|&(p, g)| (layer(g), p)));
+            index.rebuild(robots.iter().map(|&(p, g)| (layer(g), p)), false);
             let mut out = Vec::new();
             for &(p, r, g) in &queries {
                 // Appends: what `out` held stays in front.

@@ -693,7 +693,7 @@ mod tests {
     /// The neighbour index (3 m cells over the 10 m x 10 m test field) of `inputs`.
     fn index(inputs: &[ResolverInput]) -> NeighbourIndex {
         let mut ix = NeighbourIndex::with_cells(10.0, 10.0, 3.0, 3.0);
-        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+        ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)), false);
         ix
     }
 
@@ -1064,7 +1064,7 @@ mod tests {
             let (mut fast, mut full) = (Resolver::new(params(), n), Resolver::new(params(), n));
             for _ in 0..8 {
                 let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
-                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)), false);
                 resolve_with(&mut fast, &inputs, &ix, false);
                 resolve_with(&mut full, &inputs, &ix, true);
                 proptest::prop_assert_eq!(fast.decisions(), full.decisions());
@@ -1126,7 +1126,7 @@ mod tests {
             );
             for step in 0..12 {
                 let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
-                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)), false);
                 with_index.resolve(&inputs, &ix, 0.25);
                 wide_skin.resolve(&inputs, &ix, 0.25);
                 all_pairs.resolve(&inputs, &AllRobots(n), 0.25);
@@ -1193,7 +1193,7 @@ mod tests {
                     })
                     .collect();
                 let mut ix = NeighbourIndex::with_cells(30.0, 30.0, 3.0, 4.0);
-                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)));
+                ix.rebuild(inputs.iter().map(|a| (a.layer, a.pos)), false);
                 real.resolve(&inputs, &ix, 0.5);
                 nan.resolve(&masked, &ix, 0.5);
                 assert_eq!(real.decisions(), nan.decisions(), "step {step}");

@@ -576,11 +576,13 @@ impl World {
         }
     }
 
-    /// Rebuilds the neighbour index from the robots' current positions, `O(n + cells)`.
+    /// Rebuilds the neighbour index from the robots' current positions, `O(n + cells)` (the
+    /// layers side by side for a team that steps in parallel).
     pub(super) fn reindex(&mut self) {
+        let parallel = self.pipelines.per_robot.parallel_for(self.nav.len());
         self.pipelines
             .neighbours
-            .rebuild(self.nav.iter().map(|n| (n.layer, n.pos)));
+            .rebuild(self.nav.iter().map(|n| (n.layer, n.pos)), parallel);
         self.pipelines.index_fresh = true;
     }
 

@@ -101,7 +101,7 @@ pub(super) fn pipelines(
         .map(|(n, r)| n.resolver_input(r))
         .collect();
     let mut neighbours = NeighbourIndex::new(s);
-    neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)));
+    neighbours.rebuild(nav.iter().map(|n: &Nav| (n.layer, n.pos)), false);
     Pipelines {
         planner: PathPlanner::new(),
         scratch: Vec::with_capacity(64),
