@@ -319,8 +319,10 @@ impl NeighbourIndex {
         }
     }
 
-    /// Re-indexes the robots: `robots` yields each robot's layer and centre, robot id = position
-    /// in the sequence, read once for both layers. `O(n + cells)`; with `parallel` the two
+    /// Re-indexes the robots: `robots` yields each robot's layer and centre (metres, world
+    /// frame), robot id = position in the sequence, read once for both layers (a centre off
+    /// the arena falls into the nearest border cell, [`NeighbourGrid`]; never fails). `O(n +
+    /// cells)`, no allocation once the buffers have grown to the team; with `parallel` the two
     /// layers' grids are built side by side on the calling rayon pool (the same index; worth it
     /// only for a large team, whose rebuild reads every robot).
     pub fn rebuild(&mut self, robots: impl Iterator<Item = (Locomotion, Vec2)>, parallel: bool) {
