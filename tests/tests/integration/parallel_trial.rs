@@ -36,6 +36,19 @@ struct Outcome {
 /// `swarm-1000.ron` with [`STALL_REPLAN_S`], DIS, trial 0, [`SHORT_S`] seconds, in a rayon
 /// pool of `threads` threads (per-robot phases parallel when `parallel`).
 fn run(threads: usize, parallel: bool) -> Outcome {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool");
+    pool.install(|| {
+        assert_eq!(rayon::current_num_threads(), threads);
+        trial(parallel)
+    })
+}
+
+/// The trial of [`run`] on the calling thread, in whatever rayon pool it belongs to (the
+/// global pool when it belongs to none).
+fn trial(parallel: bool) -> Outcome {
     let stall = Positive::new(STALL_REPLAN_S).expect("positive");
     let s = load(&scenario_path("swarm-1000.ron"))
         .edit(|s| s.navigation.stall_replan_s = Some(stall))
@@ -46,52 +59,45 @@ fn run(threads: usize, parallel: bool) -> Outcome {
         PhysicsStepping::NearBodies,
         "the gate runs per robot"
     );
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
+    let mut sim = Simulation::builder(&s)
+        .method(method("dis", &s))
+        .duration_s(SHORT_S)
         .build()
-        .expect("a thread pool");
-    pool.install(|| {
-        assert_eq!(rayon::current_num_threads(), threads);
-        let mut sim = Simulation::builder(&s)
-            .method(method("dis", &s))
-            .duration_s(SHORT_S)
-            .build()
-            .expect("builds");
-        sim.set_parallel(parallel);
-        let result = sim.run_to_end().expect("runs");
-        let robots = sim
-            .world()
-            .robots()
-            .iter()
-            .map(|r| {
-                [
-                    r.position.x.to_bits(),
-                    r.position.y.to_bits(),
-                    r.velocity.x.to_bits(),
-                    r.velocity.y.to_bits(),
-                    r.distance_travelled_m.to_bits(),
-                ]
-            })
-            .collect();
-        let levels = sim
-            .robots()
-            .iter()
-            .map(|r| [r.hp_pct.to_bits(), r.energy_pct.to_bits()])
-            .collect();
-        let replans = sim
-            .world()
-            .robots()
-            .iter()
-            .map(|r| r.counters.replans)
-            .collect();
-        Outcome {
-            robots,
-            levels,
-            replans,
-            stats: *sim.world().stats(),
-            result,
-        }
-    })
+        .expect("builds");
+    sim.set_parallel(parallel);
+    let result = sim.run_to_end().expect("runs");
+    let robots = sim
+        .world()
+        .robots()
+        .iter()
+        .map(|r| {
+            [
+                r.position.x.to_bits(),
+                r.position.y.to_bits(),
+                r.velocity.x.to_bits(),
+                r.velocity.y.to_bits(),
+                r.distance_travelled_m.to_bits(),
+            ]
+        })
+        .collect();
+    let levels = sim
+        .robots()
+        .iter()
+        .map(|r| [r.hp_pct.to_bits(), r.energy_pct.to_bits()])
+        .collect();
+    let replans = sim
+        .world()
+        .robots()
+        .iter()
+        .map(|r| r.counters.replans)
+        .collect();
+    Outcome {
+        robots,
+        levels,
+        replans,
+        stats: *sim.world().stats(),
+        result,
+    }
 }
 
 #[test]
@@ -118,8 +124,14 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
     assert!(stats.max_list_len > 1, "{stats:?}");
     // The resolver rebuilt its neighbour lists (robot by robot in parallel) more than once.
     assert!(stats.list_rebuilds > 1, "{stats:?}");
-    for (threads, parallel) in [(2, true), (4, true), (4, false)] {
-        let other = run(threads, parallel);
+    for (threads, parallel) in [(2, true), (4, true), (4, false), (0, true)] {
+        // `0`: stepped from this test's thread, outside every pool: each step is handed over
+        // whole to a thread of the global pool (`Simulation::step`).
+        let other = if threads == 0 {
+            outside_every_pool()
+        } else {
+            run(threads, parallel)
+        };
         for (id, (a, b)) in one.robots.iter().zip(&other.robots).enumerate() {
             assert_eq!(a, b, "robot {id}, {threads} threads, parallel {parallel}");
         }
@@ -141,6 +153,25 @@ fn a_large_team_gives_the_same_bits_on_one_two_and_four_threads() {
             "{threads} threads, parallel {parallel}"
         );
     }
+}
+
+/// The trial of [`run`] stepped from a thread outside every rayon pool, per-robot phases
+/// parallel on a global pool of at least two threads (two when this test builds it).
+fn outside_every_pool() -> Outcome {
+    // Already built by an earlier user of the global pool: then of one thread per core.
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build_global();
+    std::thread::spawn(|| {
+        assert_eq!(rayon::current_thread_index(), None, "outside every pool");
+        assert!(
+            rayon::current_num_threads() > 1,
+            "a global pool of one thread would step the trial in turn"
+        );
+        trial(true)
+    })
+    .join()
+    .expect("the trial outside every pool")
 }
 
 /// Longest wait for [`two_trials_side_by_side_on_one_pool_finish`], seconds: its two 30 s

@@ -199,6 +199,11 @@ const BOUND_S: f64 = 1800.0;
 /// unseen; the sweeps of `.ci/run` run whole trials). In release, swarm-1000's trials stop at 308 s
 /// to 386 s simulated and swarm-10000's at 965 s to 1,154 s (its four took 650 s of CPU with
 /// `NearBodies`).
+///
+/// The test harness runs these trials side by side, one per core, so each trial steps its
+/// robots in turn ([`Simulation::set_parallel`]`(false)`, as a sweep runs its trials): two
+/// trials side by side each spreading their per-robot phases over both cores take longer
+/// (`cargo bench -p usar-sim --bench stepping_thread`). The same bits either way.
 fn rounds_complete_within_the_trial(file: &str, name: &str) {
     let s = load(&scenario_path(file));
     let mut sim = Simulation::builder(&s)
@@ -206,6 +211,7 @@ fn rounds_complete_within_the_trial(file: &str, name: &str) {
         .duration_s(BOUND_S)
         .build()
         .unwrap();
+    sim.set_parallel(false);
     while !sim.is_finished() && sim.rounds().len() < 2 {
         sim.step().unwrap();
     }

@@ -19,7 +19,7 @@ use super::round_clock::{close_round, round_complete, start_round};
 use super::state::MissionState;
 use super::step_costs::charge_step_costs;
 use crate::scenario::Scenario;
-use crate::world::{ControlClock, World};
+use crate::world::{ControlClock, World, on_a_pool_thread};
 
 /// Sees every step of a trial (after the step), e.g. to draw a progress bar, sample robot
 /// paths or record a replay. Any `FnMut(&Simulation)` is one.
@@ -243,7 +243,10 @@ impl Simulation {
     /// `sim.control_period_s`) regroups if a round is due and lets every robot decide; steps
     /// the world; accounts energy and HP; and after the step before a control step, and
     /// after the last, reviews detections, pick-ups, deliveries and arrivals. Does nothing
-    /// once the trial is finished.
+    /// once the trial is finished. A team whose per-robot phases run in parallel
+    /// ([`World::per_robot_parallel`]), stepped from a thread outside every rayon pool, takes
+    /// the whole step on a thread of the global pool (the calling thread waits): the same bits,
+    /// without handing each parallel phase over on its own.
     ///
     /// # Errors
     /// [`MissionError::Grouping`] if the grouping method fails; [`MissionError::World`] if the
@@ -252,6 +255,13 @@ impl Simulation {
         if self.is_finished() {
             return Ok(());
         }
+        let parallel = self.world.per_robot_parallel();
+        on_a_pool_thread(parallel, || self.step_here())
+    }
+
+    /// [`Simulation::step`] on the calling thread (a thread of the pool its parallel phases
+    /// run on, [`on_a_pool_thread`]).
+    fn step_here(&mut self) -> Result<(), MissionError> {
         let (sc, world, st) = (&self.scenario, &mut self.world, &mut self.state);
         let clock = &self.clock;
         st.events.clear();

@@ -109,16 +109,13 @@ enum Need {
 /// goals of the robots `w.followed` leaves to the planner (see the module docs): the detours
 /// into `ahead` (replacing what it held), the re-plans into `planner`'s plans made ahead
 /// ([`PathPlanner::prepare_shared`]). Only robots whose path following, run again from its
-/// start, asks for the planner are planned for; nothing when fewer than two robots need it,
-/// or when the calling thread is not one of a rayon pool's (trials stepped from threads of
-/// their own on a shared pool, as the test harness runs them: there the pool is what all
-/// trials wait for, and the calling thread would only wait while the pool planned; measured
-/// in `docs/measurements.md`, 2026-11-30).
+/// start, asks for the planner are planned for; nothing when fewer than two robots need it.
+/// Called on a thread of a rayon pool: a step whose phases run in parallel is handed over to
+/// one whole when stepped from outside every pool ([`World::step_beside`]).
+///
+/// [`World::step_beside`]: super::World::step_beside
 pub(super) fn plan_ahead(w: &AheadInputs, planner: &mut PathPlanner, ahead: &mut DetoursAhead) {
     ahead.clear();
-    if rayon::current_thread_index().is_none() {
-        return;
-    }
     let needs: Vec<usize> = (0..w.followed.len())
         .filter(|&id| w.followed[id].is_none())
         .collect();

@@ -149,8 +149,8 @@ pub use path_following_params::{
     CORNER_PASS_M, DETOUR_REJOIN_BEYOND_M, PATH_CHECK_INTERVAL_STEPS, PATH_CHECK_MAX_M,
     STALL_PROGRESS_M, STALL_REPLAN_S,
 };
-pub(crate) use per_robot::CHUNK_ROBOTS;
 pub use per_robot::PARALLEL_MIN_ROBOTS;
+pub(crate) use per_robot::{CHUNK_ROBOTS, on_a_pool_thread};
 pub use read_back_so_far::ReadBackSoFar;
 pub use robot::{Motion, RobotCounters, RobotState};
 pub use shared_fields::SHARED_FIELDS_BUDGET_BYTES;

@@ -124,6 +124,15 @@ impl Nav {
         self.path[wp.min(self.path.len() - 1)]
     }
 
+    /// The waypoints still ahead (the current one first, the effective goal last), metres in
+    /// the world frame; empty without a goal.
+    pub(super) fn waypoints_ahead(&self) -> &[Vec2] {
+        match self.goal {
+            Some(_) => &self.path[self.following.wp.min(self.path.len())..],
+            None => &[],
+        }
+    }
+
     /// Remaining path length: to the current waypoint, then along the rest of the path.
     pub(super) fn remaining(&self) -> f32 {
         let wp = self.following.wp;

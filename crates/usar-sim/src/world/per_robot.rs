@@ -16,6 +16,23 @@ pub const PARALLEL_MIN_ROBOTS: usize = 512;
 /// Robots per parallel task (256): each task steers its robots with one scratch list.
 pub(crate) const CHUNK_ROBOTS: usize = 256;
 
+/// Runs `step` (one step of a world or a trial, whose per-robot phases run in parallel when
+/// `parallel`) where those phases start cheaply: at once on a thread of a rayon pool, or when
+/// `parallel` is false; otherwise, on a thread outside every pool, handed over once to a
+/// thread of the global pool while the calling thread waits. Outside a pool, each parallel
+/// phase would otherwise be handed over on its own (a step has about ten, each putting the
+/// calling thread to sleep and waking it); stepped this way, a trial from outside every pool
+/// runs as fast as one on a thread of the pool (`cargo bench -p usar-sim --bench
+/// stepping_thread`). The same bits either way: where a phase runs never changes what it
+/// computes.
+pub(crate) fn on_a_pool_thread<R: Send>(parallel: bool, step: impl FnOnce() -> R + Send) -> R {
+    if parallel && rayon::current_thread_index().is_none() {
+        rayon::scope(|_| step())
+    } else {
+        step()
+    }
+}
+
 /// The per-robot outputs of the parallel phases, kept between steps (allocated once for the
 /// team, grown only with it), and whether they may run in parallel.
 #[derive(Debug)]

@@ -21,6 +21,7 @@ use super::parallel::{
     ReadBack, ReadFrom, follow_all, read_back_all, resolver_inputs_all, steer_all,
 };
 use super::path_following::PathFollowing;
+use super::per_robot::on_a_pool_thread;
 use super::pipelines::Pipelines;
 use super::plan_into::PlanInto;
 use super::radiation_field::RadiationField;
@@ -472,7 +473,23 @@ impl World {
     /// other steppings every robot after the read-back. [`World::read_back_rest`] then gives
     /// the others. Work that reads only each
     /// robot's own state after the step gets the same bits over the two as over the team.
+    ///
+    /// A team whose per-robot phases run in parallel ([`World::per_robot_parallel`]), stepped
+    /// from a thread outside every rayon pool, takes the whole step on a thread of the global
+    /// pool (the calling thread waits): the same bits, without handing each parallel phase
+    /// over on its own.
     pub fn step_beside(&mut self, clock: &ControlClock, beside: impl FnOnce(ReadBackSoFar) + Send) {
+        on_a_pool_thread(self.per_robot_parallel(), || {
+            self.step_beside_here(clock, beside);
+        });
+    }
+
+    /// [`World::step_beside`] on the calling thread.
+    fn step_beside_here(
+        &mut self,
+        clock: &ControlClock,
+        beside: impl FnOnce(ReadBackSoFar) + Send,
+    ) {
         let n = self.robots.len();
         // Taken by the step that reads back beside Rapier, else run after the read-back.
         let mut beside = Some(beside);
@@ -726,13 +743,7 @@ impl World {
     /// # Panics
     /// If `id` is not a robot id.
     pub fn waypoints(&self, id: usize) -> impl Iterator<Item = PointM> + '_ {
-        let nav = &self.nav[id];
-        let rest = if nav.goal.is_some() {
-            &nav.path[nav.following.wp.min(nav.path.len())..]
-        } else {
-            &[]
-        };
-        rest.iter().map(|&v| to_point(v))
+        self.nav[id].waypoints_ahead().iter().map(|&v| to_point(v))
     }
 
     /// The radiation dose factor at `p` under the scenario's dose rule
