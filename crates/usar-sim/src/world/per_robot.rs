@@ -20,7 +20,7 @@ pub(crate) const CHUNK_ROBOTS: usize = 256;
 /// `parallel`) where those phases start cheaply: at once on a thread of a rayon pool, or when
 /// `parallel` is false; otherwise, on a thread outside every pool, handed over once to a
 /// thread of the global pool while the calling thread waits. Outside a pool, each parallel
-/// phase would otherwise be handed over on its own (a step has about ten, each putting the
+/// phase would otherwise be handed over on its own (a step has several, each putting the
 /// calling thread to sleep and waking it); stepped this way, a trial from outside every pool
 /// runs as fast as one on a thread of the pool (`cargo bench -p usar-sim --bench
 /// stepping_thread`). The same bits either way: where a phase runs never changes what it
