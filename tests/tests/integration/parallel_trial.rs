@@ -159,15 +159,18 @@ fn a_large_team_gives_the_same_bits_on_any_thread_count_in_or_outside_a_pool() {
 /// The trial of [`run`] stepped from a thread outside every rayon pool, per-robot phases
 /// parallel on a global pool of at least two threads (two when this test builds it).
 fn outside_every_pool() -> Outcome {
-    // Already built by an earlier user of the global pool: then of one thread per core.
-    let _ = rayon::ThreadPoolBuilder::new()
+    // An error when an earlier user of the global pool built it (one thread per core, or
+    // `RAYON_NUM_THREADS`): the assertion below checks that it has more than one.
+    let _built_before = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
-        .build_global();
+        .build_global()
+        .is_err();
     std::thread::spawn(|| {
         assert_eq!(rayon::current_thread_index(), None, "outside every pool");
         assert!(
             rayon::current_num_threads() > 1,
-            "a global pool of one thread would step the trial in turn"
+            "the global pool has one thread (one core?): run with RAYON_NUM_THREADS=2, so that \
+             the trial's per-robot phases run in parallel from outside every pool"
         );
         trial(true)
     })
