@@ -110,8 +110,8 @@ enum Need {
 /// into `ahead` (replacing what it held), the re-plans into `planner`'s plans made ahead
 /// ([`PathPlanner::prepare_shared`]). Only robots whose path following, run again from its
 /// start, asks for the planner are planned for; nothing when fewer than two robots need it.
-/// Called on a thread of a rayon pool: a step whose phases run in parallel is handed over to
-/// one whole when stepped from outside every pool ([`World::step_beside`]).
+/// Called on a thread of a rayon pool: a step whose phases run in parallel is handed over
+/// whole to one when stepped from outside every pool ([`World::step_beside`]).
 ///
 /// [`World::step_beside`]: super::World::step_beside
 pub(super) fn plan_ahead(w: &AheadInputs, planner: &mut PathPlanner, ahead: &mut DetoursAhead) {
