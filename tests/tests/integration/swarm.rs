@@ -197,8 +197,8 @@ const BOUND_S: f64 = 1800.0;
 /// from then on every round but the last has completed, whatever the rest of the trial does,
 /// and rescue counts only grow (the steps after it are not run, so a step error there would go
 /// unseen; the sweeps of `.ci/run` run whole trials). In release, swarm-1000's trials stop at 308 s
-/// to 386 s simulated and swarm-10000's at 965 s to 1,154 s (its four took 650 s of CPU with
-/// `NearBodies`).
+/// to 386 s simulated and swarm-10000's at 965 s to 1,154 s (how long its four take:
+/// `docs/scaling.md`, "The bound").
 ///
 /// The test harness runs these trials side by side, one per core, so each trial steps its
 /// robots in turn ([`Simulation::set_parallel`]`(false)`, as a sweep runs its trials): two
