@@ -29,6 +29,9 @@ use std::time::Instant;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario};
 
+mod common;
+use common::trial_steps::{same_positions, steps_of};
+
 /// Steps per block of the alternation.
 const BLOCK_STEPS: u64 = 50;
 
@@ -87,21 +90,6 @@ fn trial(s: &Scenario, method: &str, steps: u64, parallel: bool) -> Result<Simul
         .map_err(|e| format!("{method}: {e}"))?;
     sim.set_parallel(parallel);
     Ok(sim)
-}
-
-/// Steps `sim` `len` times. Errors (one line): a step fails.
-fn steps_of(sim: &mut Simulation, len: u64) -> Result<(), String> {
-    for _ in 0..len {
-        sim.step()
-            .map_err(|e| format!("step {}: {e}", sim.progress().0 + 1))?;
-    }
-    Ok(())
-}
-
-/// Whether two trials' robots stand in the same places, bit for bit.
-fn same_positions(a: &Simulation, b: &Simulation) -> bool {
-    let (a, b) = (a.world().robots(), b.world().robots());
-    a.iter().zip(b).all(|(x, y)| x.position == y.position)
 }
 
 /// Wall-clock seconds of two arms run in alternating blocks, and the first block end (a step

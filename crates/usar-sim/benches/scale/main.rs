@@ -48,6 +48,8 @@
 //! whose robots did not stand where the world's did ends it with exit status 1 too, after its
 //! table and figure.
 
+#[path = "../common/mod.rs"]
+mod common;
 mod figure;
 mod measure;
 mod options;

@@ -12,6 +12,7 @@ use std::time::Instant;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::Scenario;
 
+use crate::common::trial_steps::{same_positions, steps_of};
 use crate::measure::{self, BLOCK_STEPS};
 
 /// What one one-against-several-threads measurement covered and cost.
@@ -67,12 +68,6 @@ fn trial(s: &Scenario, method: &str, parallel: bool) -> Result<Simulation, Strin
     Ok(sim)
 }
 
-/// Whether the two runs' robots stand in the same places, bit for bit.
-fn same_positions(a: &Simulation, b: &Simulation) -> bool {
-    let (a, b) = (a.world().robots(), b.world().robots());
-    a.iter().zip(b).all(|(x, y)| x.position == y.position)
-}
-
 /// Measures `steps` steps of trial 0 of `s` under `method`, after `warmup` untimed ones, on
 /// one thread and on a pool of `threads` threads, in alternating blocks (see the module
 /// docs), by the wall clock and the process's CPU clock. Both runs live on
@@ -108,7 +103,7 @@ pub fn measure_threads(
         while done < warmup {
             let len = BLOCK_STEPS.min(warmup - done);
             for sim in [&mut one, &mut many] {
-                steps_of(sim, len, done + 1)?;
+                steps_of(sim, len)?;
             }
             done += len;
             if m.diverged_at.is_none() && !same_positions(&one, &many) {
@@ -128,7 +123,7 @@ pub fn measure_threads(
                     (&mut many, &mut m.many_wall_s, &mut m.many_cpu_s)
                 };
                 let (t0, c0) = (Instant::now(), measure::process_cpu_s());
-                steps_of(sim, len, done + 1)?;
+                steps_of(sim, len)?;
                 *cpu += measure::process_cpu_s() - c0;
                 *wall_s += t0.elapsed().as_secs_f64();
             }
@@ -141,12 +136,4 @@ pub fn measure_threads(
         }
         Ok(m)
     })
-}
-
-/// Steps `sim` `len` times, the first of them step `first`. Errors (one line): a step fails.
-fn steps_of(sim: &mut Simulation, len: u64, first: u64) -> Result<(), String> {
-    for k in 0..len {
-        sim.step().map_err(|e| format!("step {}: {e}", first + k))?;
-    }
-    Ok(())
 }
