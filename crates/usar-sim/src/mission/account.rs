@@ -86,10 +86,12 @@ fn advance_phase(
                 st.search_started_s[t].get_or_insert(now);
             }
             // Within reach of the area, a robot can rescue at its edge without entering it.
-            let reach =
-                scenario.kind_of(id).body_radius_m + scenario.navigation.waypoint_tolerance_m.get();
             let r = &mut st.robots[id];
-            r.reached_area |= scenario.tasks[t].search_area.distance_to(&pos) <= reach;
+            if !r.reached_area {
+                let reach = scenario.kind_of(id).body_radius_m
+                    + scenario.navigation.waypoint_tolerance_m.get();
+                r.reached_area = scenario.tasks[t].search_area.distance_to(&pos) <= reach;
+            }
             if r.phase == Phase::ToSearchArea && (reached || in_area) {
                 r.phase = Phase::Searching;
                 if r.claim.is_none() {

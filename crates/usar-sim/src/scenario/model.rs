@@ -153,11 +153,20 @@ impl Rect {
         nalgebra::center(&self.min, &self.max)
     }
 
-    /// Euclidean distance from `p` to the rectangle, metres (0 inside or on its boundary).
+    /// Euclidean distance from `p` to the rectangle, metres (0 inside or on its boundary):
+    /// `dx.hypot(dy)` of the distances beyond its sides, or the one that is non-zero when the
+    /// other is zero (inside, or beside a side rather than a corner), which is the same value
+    /// (C99 Annex F.10.4.3: `hypot(x, ±0)` is `fabs(x)`) without the library call.
     pub fn distance_to(&self, p: &PointM) -> f64 {
         let dx = (self.min.x - p.x).max(p.x - self.max.x).max(0.0);
         let dy = (self.min.y - p.y).max(p.y - self.max.y).max(0.0);
-        dx.hypot(dy)
+        if dy == 0.0 {
+            dx
+        } else if dx == 0.0 {
+            dy
+        } else {
+            dx.hypot(dy)
+        }
     }
 }
 
@@ -309,5 +318,30 @@ mod rect_tests {
         assert!((d(5.0, 1.0) - 1.0).abs() < 1e-12);
         assert!((d(1.0, -0.5) - 0.5).abs() < 1e-12);
         assert!((d(7.0, 6.0) - 5.0).abs() < 1e-12);
+    }
+
+    proptest::proptest! {
+        /// The shortcut beside a side gives the bits of `hypot`, at every point round a
+        /// rectangle (inside, beside a side, beyond a corner, and far out).
+        #[test]
+        fn distance_to_a_rectangle_has_the_bits_of_hypot(
+            x in -1e3f64..1e3,
+            y in -1e3f64..1e3,
+            w in 0.0f64..50.0,
+            h in 0.0f64..50.0,
+        ) {
+            let r = Rect {
+                min: PointM::new(-w, -h),
+                max: PointM::new(w, 2.0 * h),
+            };
+            let p = PointM::new(x, y);
+            let dx = (r.min.x - p.x).max(p.x - r.max.x).max(0.0);
+            let dy = (r.min.y - p.y).max(p.y - r.max.y).max(0.0);
+            proptest::prop_assert_eq!(r.distance_to(&p).to_bits(), dx.hypot(dy).to_bits());
+            // Beside a side: one component zero, the other the distance itself.
+            let beside = PointM::new(x.clamp(-w, w), y);
+            let dy = (r.min.y - y).max(y - r.max.y).max(0.0);
+            proptest::prop_assert_eq!(r.distance_to(&beside).to_bits(), dy.hypot(0.0).to_bits());
+        }
     }
 }
