@@ -9,12 +9,13 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 use rne_core::TrustModel;
-use usar_sim::mission::{Simulation, TrialResult};
+use usar_sim::mission::{MissionError, Simulation, TrialResult};
 use usar_sim::scenario::Scenario;
 
 use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::data::limits::{max_threads, sweep_threads};
 use crate::error::SweepError;
+use crate::idle_threads::{IdleThreads, LEND_MIN_ROBOTS};
 use crate::journal::{Journal, JournalError, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
 use crate::progress::progress_bar;
@@ -107,14 +108,25 @@ pub(crate) fn execute(
     let journal_error: Mutex<Option<JournalError>> = Mutex::new(None);
     let abort = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
+    // One trial per thread: the threads its tail leaves idle go to the large teams' trials
+    // still running.
+    let idle = (!runner.inside_trials).then(|| IdleThreads::new(jobs.len(), runner.threads));
     pool.install(|| {
         jobs.par_iter().for_each(|job| {
+            if let Some(idle) = &idle {
+                idle.take();
+            }
             let stopped = runner.hooks.stop.as_ref();
             if abort.load(Ordering::SeqCst) || stopped.is_some_and(|s| s.load(Ordering::SeqCst)) {
                 return;
             }
             let plan = &plans[job.cell];
-            let record = run_job(runner, plan, job, &|steps| pb.inc(steps * plan.step_us));
+            let _running = idle.as_ref().map(IdleThreads::running);
+            let tick = |steps| pb.inc(steps * plan.step_us);
+            let lent = idle
+                .as_ref()
+                .filter(|_| plan.scenario.robots().len() >= LEND_MIN_ROBOTS);
+            let record = run_job(runner, plan, job, &tick, lent);
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
             if let Some(Err(e)) = j.as_mut().map(|j| j.append(&record)) {
                 abort.store(true, Ordering::SeqCst);
@@ -159,15 +171,16 @@ pub(crate) fn execute(
         .unwrap_or_else(PoisonError::into_inner))
 }
 
-/// Runs one job into its journal record.
+/// Runs one job into its journal record (`idle`: see [`run_trial_lent`]).
 fn run_job(
     runner: &Runner<'_>,
     plan: &CellPlan<'_>,
     job: &Job,
     tick: &(dyn Fn(u64) + Sync),
+    idle: Option<&IdleThreads>,
 ) -> TrialRecord {
     let t0 = Instant::now();
-    let outcome = run_trial(plan, runner, job, tick);
+    let outcome = run_trial_lent(plan, runner, job, tick, idle);
     TrialRecord {
         cell: job.cell,
         method: job.method.clone(),
@@ -189,6 +202,18 @@ pub fn run_trial(
     runner: &Runner<'_>,
     job: &Job,
     tick: &(dyn Fn(u64) + Sync),
+) -> Result<TrialResult, String> {
+    run_trial_lent(plan, runner, job, tick, None)
+}
+
+/// [`run_trial`], the trial spreading its per-robot phases over the pool's threads once
+/// `idle` lends them ([`IdleThreads::lend`]) when `runner.inside_trials` is false.
+fn run_trial_lent(
+    plan: &CellPlan<'_>,
+    runner: &Runner<'_>,
+    job: &Job,
+    tick: &(dyn Fn(u64) + Sync),
+    idle: Option<&IdleThreads>,
 ) -> Result<TrialResult, String> {
     let body = || -> Result<TrialResult, String> {
         let mut hook = runner.hooks.trial_observer.as_ref().and_then(|make| {
@@ -229,8 +254,7 @@ pub fn run_trial(
                 last = done;
             }
         };
-        let result = sim
-            .run_observed(&mut observe)
+        let result = step_to_end(&mut sim, &mut observe, runner.inside_trials, idle)
             .map_err(|e| format!("at t = {:.2} s: {e}", sim.time_s()))?;
         tick(sim.progress().0 - last);
         Ok(result)
@@ -245,5 +269,80 @@ pub fn run_trial(
                 .unwrap_or_else(|| "unknown panic payload".to_string());
             Err(format!("panicked: {msg}"))
         }
+    }
+}
+
+/// Steps `sim` to its end, calling `observe` after each step (as
+/// [`Simulation::run_observed`] with a closure), and returns its result. A trial not spreading
+/// its per-robot phases already (`inside` false) spreads them from the first step at which
+/// `idle` lends it the pool's idle threads ([`IdleThreads::lend`]); the results are the same
+/// bits either way.
+fn step_to_end(
+    sim: &mut Simulation,
+    observe: &mut dyn FnMut(&Simulation),
+    inside: bool,
+    idle: Option<&IdleThreads>,
+) -> Result<TrialResult, MissionError> {
+    let mut lent = inside;
+    while !sim.is_finished() {
+        if !lent && idle.is_some_and(IdleThreads::lend) {
+            lent = true;
+            sim.set_parallel(true);
+        }
+        sim.step()?;
+        observe(sim);
+    }
+    Ok(sim.result())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SWARM_1000: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenarios/swarm-1000.ron"
+    );
+
+    /// Steps 5 steps of swarm-1000's trial 0 (DIS) to its end with [`step_to_end`] on a pool
+    /// of two threads, `idle` as given: whether the per-robot phases were spread at each
+    /// step, and the result.
+    fn five_steps(idle: &IdleThreads) -> (Vec<bool>, TrialResult) {
+        let scenario = usar_sim::scenario::load(SWARM_1000).unwrap();
+        let dt = scenario.sim().dt_s.get();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut sim = Simulation::builder(&scenario)
+                .method_named("dis")
+                .duration_s(5.0 * dt)
+                .build()
+                .unwrap();
+            sim.set_parallel(false);
+            let mut spread = Vec::new();
+            let mut observe = |s: &Simulation| spread.push(s.world().per_robot_parallel());
+            let r = step_to_end(&mut sim, &mut observe, false, Some(idle)).unwrap();
+            (spread, r)
+        })
+    }
+
+    #[test]
+    fn a_trial_takes_the_idle_threads_it_is_lent_and_gives_the_same_bits() {
+        // The last trial of a batch running alone on two threads: lent.
+        let alone = IdleThreads::new(1, 2);
+        alone.take();
+        let _running = alone.running();
+        // Two trials running on two threads: not lent.
+        let busy = IdleThreads::new(2, 2);
+        busy.take();
+        busy.take();
+        let _both = (busy.running(), busy.running());
+        let (lent, lent_result) = five_steps(&alone);
+        let (kept, kept_result) = five_steps(&busy);
+        assert_eq!(lent, [true; 5], "a lent trial spreads its phases");
+        assert_eq!(kept, [false; 5], "a trial not lent keeps to its thread");
+        assert_eq!(lent_result, kept_result, "the same results either way");
     }
 }

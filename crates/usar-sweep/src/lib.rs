@@ -16,7 +16,8 @@
 //!   `usar sweep`); [`sweep::run_in_memory`] runs it and returns the results, with nothing on
 //!   disk; [`sweep::run_sweep`] runs it into a journal in its output folder (resumable, locked).
 //! - [`sweep::MethodFactory`] adds grouping methods of your own to a sweep.
-//! - [`executor`] runs any set of trials in parallel (a sweep's, a calibration's).
+//! - [`executor`] runs any set of trials in parallel (a sweep's, a calibration's), lending the
+//!   threads a sweep's tail leaves idle to its last trials ([`idle_threads`]).
 //!
 //! Long runs report their progress to a sink the program installs ([`progress`]); the library
 //! draws nothing. A plan refused before it runs is a [`sweep::ConfigError`] naming the field
@@ -56,7 +57,7 @@
 //!
 //! 1. base: [`metrics`], [`fingerprint`], [`atomic`], [`bounded_file`], [`lock`], [`spec_ron`], [`notice`],
 //!    [`progress`], [`settings`], [`method_factory`], [`vary`], [`checked_log`], [`journal`],
-//!    [`journal_error`], [`trial_json`];
+//!    [`journal_error`], [`trial_json`], [`idle_threads`];
 //! 2. data: [`data`], the sweep's plan and outcome types, limits and output names;
 //! 3. design: [`grid`], the cells of `--vary`;
 //! 4. run: [`error`], [`executor`], [`stale_outputs`], [`sweep`], [`shard`], [`slurm`].
@@ -66,6 +67,7 @@ pub mod atomic;
 pub mod bounded_file;
 pub mod checked_log;
 pub mod fingerprint;
+pub mod idle_threads;
 pub mod journal;
 pub mod journal_error;
 pub mod lock;

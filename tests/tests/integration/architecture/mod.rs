@@ -72,6 +72,7 @@ const LAYOUTS: &[(&str, CrateLayout)] = &[
                     "bounded_file",
                     "checked_log",
                     "fingerprint",
+                    "idle_threads",
                     "journal",
                     "journal_error",
                     "lock",
