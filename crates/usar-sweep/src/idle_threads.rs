@@ -10,11 +10,12 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The smallest team whose trials a sweep lends idle threads to (robots): 10,000.
 ///
-/// Measured on a 2-core VM (2026-12-02, `docs/measurements.md`): `usar run` of
-/// `scenarios/swarm-10000.ron` (DIS, 120 s) on two threads takes 0.67 of one thread's wall
-/// time, and a sweep of three of its trials on two threads 0.90 of its time without lending;
-/// `scenarios/swarm-1000.ron` (DIS, 600 s) on two threads takes 1.21 times one thread's, and
-/// lending made its three-trial sweep 1.12 times slower. Teams between were not measured.
+/// Measured on a 2-core VM (`docs/measurements.md`, "2026-12-02, fourteenth session"): a sweep
+/// of three 60 s trials of `scenarios/swarm-10000.ron` on two threads takes 0.90 of its wall
+/// time without lending, and one of `scenarios/swarm-1000.ron`'s (600 s) 1.12 times as long
+/// with it. Two threads against one per robot-step (`cargo bench -p usar-sim --bench scale --
+/// --robot-step`, `NearBodies`): 0.88x at 1,000 robots, 1.18x at 3,000, 1.36x at 10,000. A
+/// sweep lending to teams of 3,000 was not measured, so the floor stays where lending was.
 pub const LEND_MIN_ROBOTS: usize = 10_000;
 
 /// Counts a batch's trials not yet started and running, on a pool of `threads` threads; a
