@@ -15,7 +15,7 @@ use usar_sim::scenario::Scenario;
 use crate::data::hooks::{SweepHooks, TrialKey};
 use crate::data::limits::{max_threads, sweep_threads};
 use crate::error::SweepError;
-use crate::idle_threads::{IdleThreads, LEND_MIN_ROBOTS};
+use crate::idle_threads::IdleThreads;
 use crate::journal::{Journal, JournalError, Outcome, TrialRecord};
 use crate::method_factory::{MethodFactory, TrialContext};
 use crate::progress::progress_bar;
@@ -123,10 +123,7 @@ pub(crate) fn execute(
             let plan = &plans[job.cell];
             let _running = idle.as_ref().map(IdleThreads::running);
             let tick = |steps| pb.inc(steps * plan.step_us);
-            let lent = idle
-                .as_ref()
-                .filter(|_| plan.scenario.robots().len() >= LEND_MIN_ROBOTS);
-            let record = run_job(runner, plan, job, &tick, lent);
+            let record = run_job(runner, plan, job, &tick, idle.as_ref());
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
             if let Some(Err(e)) = j.as_mut().map(|j| j.append(&record)) {
                 abort.store(true, Ordering::SeqCst);

@@ -8,16 +8,6 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The smallest team whose trials a sweep lends idle threads to (robots): 10,000.
-///
-/// Measured on a 2-core VM (`docs/measurements.md`, "2026-12-02, fourteenth session"): a sweep
-/// of three 60 s trials of `scenarios/swarm-10000.ron` on two threads takes 0.90 of its wall
-/// time without lending, and one of `scenarios/swarm-1000.ron`'s (600 s) 1.12 times as long
-/// with it. Two threads against one per robot-step (`cargo bench -p usar-sim --bench scale --
-/// --robot-step`, `NearBodies`): 0.88x at 1,000 robots, 1.18x at 3,000, 1.36x at 10,000. A
-/// sweep lending to teams of 3,000 was not measured, so the floor stays where lending was.
-pub const LEND_MIN_ROBOTS: usize = 10_000;
-
 /// Counts a batch's trials not yet started and running, on a pool of `threads` threads; a
 /// running trial asks [`IdleThreads::lend`] whether to spread its per-robot phases.
 ///
@@ -27,7 +17,9 @@ pub const LEND_MIN_ROBOTS: usize = 10_000;
 /// could take a whole trial not yet started from the pool's queue and hold the phase up for
 /// it, and with more trials running than that, two trials spreading their phases over the same
 /// threads get less done than each on its own thread (`docs/scaling.md`, "One trial on all
-/// cores").
+/// cores"). A lent trial spreads its phases only when its team is large enough to
+/// ([`usar_sim::world::PARALLEL_MIN_ROBOTS`], the same floor as a trial alone); a smaller
+/// team's trial is lent nothing and keeps to its thread.
 #[derive(Debug)]
 pub struct IdleThreads {
     unstarted: AtomicUsize,

@@ -100,8 +100,8 @@ pub struct SweepArgs {
     /// Worker threads (>= 1); default all cores. Capped, with a warning, at 4 x the available
     /// cores. Trials run in parallel, one thread each; with fewer trials than threads, a team
     /// of at least 512 robots gets the threads left over inside its trials, a smaller one no
-    /// more threads than trials; at the sweep's tail, a team of at least 10,000 gets the
-    /// threads whose trials have ended. Same results on any thread count.
+    /// more threads than trials; at the sweep's tail, a team of at least 512 gets the threads
+    /// whose trials have ended. Same results on any thread count.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 
