@@ -134,14 +134,32 @@ fn grow_rect(r: &mut RectSpec, f: f64) {
     r.max_m = times(r.max_m, f);
 }
 
+/// Columns of a `Grid` start layout of `count` robots in `columns` columns once the plan is
+/// stretched by `f` (> 1) and the team grows about `f^2` times: `f` times the columns, rounded;
+/// with `cap_rows`, enough more that the grid has at most `f` times its rows (rounded down),
+/// so its last row stays a spacing clear of another kind's grid the base placed one spacing
+/// below it (the rounded columns can leave it closer than two bodies).
+fn grown_columns(count: usize, columns: u32, f: f64, cap_rows: bool) -> u32 {
+    let rounded = (f64::from(columns) * f).round().max(1.0) as usize;
+    if !cap_rows {
+        return u32::try_from(rounded).unwrap_or(u32::MAX);
+    }
+    let rows = count.div_ceil(columns.max(1) as usize).max(1);
+    let grown_rows = ((rows as f64 * f).floor() as usize).max(1);
+    let grown_count = (count as f64 * f * f).ceil() as usize;
+    let needed = grown_count.div_ceil(grown_rows);
+    u32::try_from(needed.max(rounded)).unwrap_or(u32::MAX)
+}
+
 /// Stretches the scenario's plan by `f` (> 1) in both directions, so a team `f^2` times as
 /// large has the base's room per robot: the arena, every position and every area (search
 /// areas, drop-offs, rest stations, radiation zones, listed debris, debris-field regions) are
 /// `f` times as long and debris fields hold `f^2` times as many shapes; a `Grid` start layout
-/// starts at `f` times its first position with `f` times as many columns, its spacing kept.
+/// starts at `f` times its first position with about `f` times as many columns
+/// ([`grown_columns`], rows capped when `cap_rows`), its spacing kept.
 /// Robot bodies, speeds, ranges, the rescuees' spacing and the generated shapes keep their
 /// sizes, so search areas hold about `f^2` times as many rescuees.
-fn grow(spec: &mut ScenarioSpec, f: f64) {
+fn grow(spec: &mut ScenarioSpec, f: f64, cap_rows: bool) {
     spec.arena.width_m = longer(spec.arena.width_m, f);
     spec.arena.height_m = longer(spec.arena.height_m, f);
     for kind in &mut spec.kinds {
@@ -150,7 +168,7 @@ fn grow(spec: &mut ScenarioSpec, f: f64) {
                 first_m, columns, ..
             } => {
                 *first_m = times(*first_m, f);
-                *columns = (f64::from(*columns) * f).round().max(1.0) as u32;
+                *columns = grown_columns(kind.count, *columns, f, cap_rows);
             }
             StartsSpec::Row { first_m, .. } => *first_m = times(*first_m, f),
             StartsSpec::List(list) => list.iter_mut().for_each(|p| *p = times(*p, f)),
@@ -226,16 +244,26 @@ pub fn team(n: usize, base: &str, given: &[String]) -> Result<Team, String> {
         }
         return validated(spec, &file, short(&file));
     }
-    let mut spec = read_spec(base)?;
+    let spec = read_spec(base)?;
+    // Columns rounded first (the layouts of every team measured so far); where that leaves two
+    // kinds' grids too close (a team of 2,000), rows capped.
+    scaled(spec.clone(), n, base, false)
+        .or_else(|first| scaled(spec, n, base, true).map_err(|_| first))
+}
+
+/// `spec` (the base, from the file `base`) with its kinds scaled to `n` robots and, beyond the
+/// base's team, its plan stretched ([`grow`], `cap_rows` as there), validated.
+fn scaled(mut spec: ScenarioSpec, n: usize, base: &str, cap_rows: bool) -> Result<Team, String> {
     let had = robots(&spec);
     let mut source = format!("{}, kinds scaled to {n}", short(base));
     if n > had && had > 0 {
         let f = (n as f64 / had as f64).sqrt();
-        grow(&mut spec, f);
+        grow(&mut spec, f, cap_rows);
         source = format!(
-            "{source}, plan stretched x{f:.3} (arena {:.0} m x {:.0} m)",
+            "{source}, plan stretched x{f:.3} (arena {:.0} m x {:.0} m){}",
             spec.arena.width_m.get(),
-            spec.arena.height_m.get()
+            spec.arena.height_m.get(),
+            if cap_rows { ", start rows capped" } else { "" }
         );
     }
     if had != n {
