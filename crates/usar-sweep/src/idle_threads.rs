@@ -17,9 +17,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// could take a whole trial not yet started from the pool's queue and hold the phase up for
 /// it, and with more trials running than that, two trials spreading their phases over the same
 /// threads get less done than each on its own thread (`docs/scaling.md`, "One trial on all
-/// cores"). A lent trial spreads its phases only when its team is large enough to
-/// ([`usar_sim::world::PARALLEL_MIN_ROBOTS`], the same floor as a trial alone); a smaller
-/// team's trial is lent nothing and keeps to its thread.
+/// cores"). A lent trial spreads its phases only when its team has at least
+/// [`usar_sim::world::PARALLEL_MIN_ROBOTS`] robots, the floor of a trial run alone; a smaller
+/// team keeps to its thread.
 #[derive(Debug)]
 pub struct IdleThreads {
     unstarted: AtomicUsize,
