@@ -123,7 +123,10 @@ pub(crate) fn execute(
             let plan = &plans[job.cell];
             let _running = idle.as_ref().map(IdleThreads::running);
             let tick = |steps| pb.inc(steps * plan.step_us);
-            let record = run_job(runner, plan, job, &tick, idle.as_ref());
+            // A team too small to spread its phases would only ask at every step.
+            let lent = (idle.as_ref())
+                .filter(|_| plan.scenario.robots().len() >= usar_sim::world::PARALLEL_MIN_ROBOTS);
+            let record = run_job(runner, plan, job, &tick, lent);
             let mut j = journal.lock().unwrap_or_else(PoisonError::into_inner);
             if let Some(Err(e)) = j.as_mut().map(|j| j.append(&record)) {
                 abort.store(true, Ordering::SeqCst);

@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// could take a whole trial not yet started from the pool's queue and hold the phase up for
 /// it, and with more trials running than that, two trials spreading their phases over the same
 /// threads get less done than each on its own thread (`docs/scaling.md`, "One trial on all
-/// cores"). A lent trial spreads its phases only when its team has at least
+/// cores"). A sweep asks it only for a team of at least
 /// [`usar_sim::world::PARALLEL_MIN_ROBOTS`] robots, the floor of a trial run alone; a smaller
 /// team keeps to its thread.
 #[derive(Debug)]
