@@ -372,11 +372,8 @@ impl AheadPlanner<'_> {
 
 #[cfg(test)]
 mod tests {
-
     use super::*;
     use crate::world::test_grids::*;
-
-    use crate::world::bodies::StaticObstacle;
 
     const ARENA: (f32, f32) = (10.0, 10.0);
 
@@ -395,19 +392,6 @@ mod tests {
             "the effective goal is the last waypoint"
         );
         Ok(std::iter::once(from).chain(out).collect())
-    }
-
-    /// Every point of every leg (sampled each centimetre) keeps at least `min` metres from
-    /// `statics`.
-    fn legs_clear(statics: &[StaticObstacle], path: &[Vec2], min: f32) {
-        for leg in path.windows(2) {
-            let n = ((leg[1] - leg[0]).length() / 0.01).ceil() as u32;
-            for k in 0..=n {
-                let p = leg[0] + (leg[1] - leg[0]) * (k as f32 / n.max(1) as f32);
-                let d = exact(statics, p);
-                assert!(d >= min, "{p:?} on leg {leg:?} is {d} m from debris");
-            }
-        }
     }
 
     #[test]

@@ -76,24 +76,8 @@ pub(super) fn smooth_galloping(grid: &ClearanceGrid, raw: &[u32], inflation: f32
 
 #[cfg(test)]
 mod tests {
-
     use super::*;
     use crate::world::test_grids::*;
-
-    use crate::world::bodies::StaticObstacle;
-
-    /// Every point of every leg (sampled each centimetre) keeps at least `min` metres from
-    /// `statics`.
-    fn legs_clear(statics: &[StaticObstacle], path: &[Vec2], min: f32) {
-        for leg in path.windows(2) {
-            let n = ((leg[1] - leg[0]).length() / 0.01).ceil() as u32;
-            for k in 0..=n {
-                let p = leg[0] + (leg[1] - leg[0]) * (k as f32 / n.max(1) as f32);
-                let d = exact(statics, p);
-                assert!(d >= min, "{p:?} on leg {leg:?} is {d} m from debris");
-            }
-        }
-    }
 
     #[test]
     fn both_smoothings_keep_corners_that_inflated_obstacles_hide() {

@@ -47,3 +47,16 @@ pub(super) fn exact(statics: &[StaticObstacle], p: Vec2) -> f32 {
         .map(|o| o.distance_to_point(p))
         .fold(f32::INFINITY, f32::min)
 }
+
+/// Asserts that every point of every leg of `path` (sampled each centimetre) keeps at least
+/// `min` metres from `statics` (the exact distance, [`exact`]).
+pub(super) fn legs_clear(statics: &[StaticObstacle], path: &[Vec2], min: f32) {
+    for leg in path.windows(2) {
+        let n = ((leg[1] - leg[0]).length() / 0.01).ceil() as u32;
+        for k in 0..=n {
+            let p = leg[0] + (leg[1] - leg[0]) * (k as f32 / n.max(1) as f32);
+            let d = exact(statics, p);
+            assert!(d >= min, "{p:?} on leg {leg:?} is {d} m from debris");
+        }
+    }
+}
