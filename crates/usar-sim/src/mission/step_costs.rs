@@ -14,7 +14,8 @@ use crate::world::{CHUNK_ROBOTS, ReadBackSoFar, RobotState};
 
 /// What one robot's step cost it, and the task it counts for: energy spent and HP lost this
 /// step (percent points, `>= 0`: zero when it did not move or stood outside radiation, and a
-/// task's sum, a non-negative `f64`, is unchanged by adding `+0.0`).
+/// task's sum, a non-negative `f64`, is unchanged by adding `+0.0`). A robot that neither moved
+/// nor stood in radiation gets [`StepCost::default`]: no task, no cost.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct StepCost {
     /// The task the costs count for, if any (`mission.costs_count`).
@@ -127,6 +128,14 @@ fn charge(
     r: &mut MissionRobot,
     total: &mut RobotCosts,
 ) -> StepCost {
+    // A robot that stood outside radiation costs nothing: its zero cost counts for no task,
+    // which leaves every task's sum the same bits (adding `+0.0` to a non-negative sum), and
+    // its mission record is not read (in a jam thousands stand, and the record's first read
+    // is the charge's cache miss).
+    let irradiated = rad > 0.0; // false for a NaN factor too, as below
+    if !w.moved_this_step && !irradiated {
+        return StepCost::default();
+    }
     // The task the costs count for: the robot's group's, or under `Every` its latest's.
     let counted = if rates.every_cost {
         r.task.or(r.last_task)
@@ -143,7 +152,7 @@ fn charge(
         r.energy_pct -= cost.spent_pct;
         total.energy_spent_pct += cost.spent_pct;
     }
-    if rad > 0.0 {
+    if irradiated {
         cost.lost_pct = (rates.hp_per_step * rad).min(r.hp_pct);
         r.hp_pct -= cost.lost_pct;
         total.hp_lost_pct += cost.lost_pct;
