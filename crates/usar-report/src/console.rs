@@ -11,7 +11,7 @@ use crate::error::Result;
 
 use crate::analysis::{Analysis, CellAnalysis};
 use crate::claims::{ClaimCheck, Test};
-use crate::table::{mean_sd, pval, sig3};
+use crate::table::{column_width, mean_sd, pval, sig3};
 use usar_sweep::data::config::SweepConfig;
 use usar_sweep::data::outcome::{JournalUse, SweepOutcome};
 use usar_sweep::metrics::{Metric, Quantity, Scope};
@@ -272,7 +272,7 @@ fn grid_table(out: &mut dyn Write, o: &SweepOutcome, analysis: &Analysis, m: Met
         .enumerate()
         .map(|(i, c)| format!("c{i:0digits$} {}", c.values.join(", ")))
         .collect();
-    let w = labels.iter().map(String::len).max().unwrap_or(4).max(4);
+    let w = column_width(labels.iter().map(String::len).max().unwrap_or(4).max(4));
     let tasks = analysis.cells.first().map_or(&[][..], |a| &a.tasks[..]);
     writeln!(out, "\n{} ({}), mean ± sd:", m.label(tasks), m.name(tasks))?;
     write!(out, "{:<w$}", "cell")?;

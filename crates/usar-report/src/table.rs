@@ -4,6 +4,18 @@ use std::fmt::Write as _;
 
 use crate::stats::Summary;
 
+/// The widest padding a table column gets: `u16::MAX` characters. Rust's formatter panics
+/// ("Formatting argument out of range") on a width above it, and a name or label may be
+/// longer (a scenario's task or kind name, a `--vary` value).
+pub const MAX_COLUMN_WIDTH: usize = u16::MAX as usize;
+
+/// A column's padding width for cells up to `widest` characters wide, capped at
+/// [`MAX_COLUMN_WIDTH`] (a longer cell is printed whole, unpadded, and its column no longer
+/// lines up). Use it for every `{:w$}` width that comes from input.
+pub fn column_width(widest: usize) -> usize {
+    widest.min(MAX_COLUMN_WIDTH)
+}
+
 /// Formats `x` with 6 significant digits below `1e6` (`0.00372546`, `0.000504443`,
 /// `12.3457`); from `1e6` to `1e9` as a whole number (up to 9 digits); `0` for zero, `inf`
 /// for infinity; scientific notation below `1e-6` or from `1e9` up.
@@ -68,14 +80,16 @@ pub fn matrix(
                 .collect()
         })
         .collect();
-    let label_w = row_labels.iter().map(String::len).max().unwrap_or(0);
-    let col_w = cells
-        .iter()
-        .flatten()
-        .map(String::len)
-        .chain(col_labels.iter().map(|l| l.len() + 1))
-        .max()
-        .unwrap_or(1);
+    let label_w = column_width(row_labels.iter().map(String::len).max().unwrap_or(0));
+    let col_w = column_width(
+        cells
+            .iter()
+            .flatten()
+            .map(String::len)
+            .chain(col_labels.iter().map(|l| l.len() + 1))
+            .max()
+            .unwrap_or(1),
+    );
     let mut s = format!("  {:label_w$}", "");
     for l in col_labels {
         let _ = write!(s, "  {:>w$}", format!("{l} "), w = col_w);
@@ -151,6 +165,27 @@ pub fn mean_sd(s: &Summary) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_matrix_prints_labels_longer_than_the_widest_padding_whole() {
+        let long: String = "r".repeat(MAX_COLUMN_WIDTH + 1);
+        let labels = [long.clone(), "b".to_string()];
+        let text = matrix(
+            &labels,
+            &labels,
+            &[vec![0.0, 1.0], vec![2.0, 3.0]],
+            |_, _| false,
+        );
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 3, "a header and two rows");
+        assert!(
+            lines[1].starts_with(&format!("  {long}  ")),
+            "the row label whole"
+        );
+        assert!(lines[2].starts_with("  b "), "the short label padded");
+        assert_eq!(column_width(7), 7);
+        assert_eq!(column_width(usize::MAX), MAX_COLUMN_WIDTH);
+    }
 
     #[test]
     fn p_values_read_as_three_decimals_or_below_a_thousandth() {

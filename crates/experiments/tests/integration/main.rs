@@ -12,6 +12,7 @@ mod claims_files;
 mod common;
 mod hostile_folders;
 mod json_schema;
+mod long_names;
 mod multiverse_cli;
 mod output_owners;
 mod output_paths;

@@ -19,7 +19,7 @@ use usar_sweep::atomic::write_atomic;
 
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 
-use usar_report::table::num;
+use usar_report::table::{column_width, num};
 
 use usar_sweep::trial_json::TrialJson;
 
@@ -200,7 +200,7 @@ pub fn print_result(
 }
 
 fn print_tasks(r: &TrialResult, per_task: bool, out: &mut dyn Write) -> Result<()> {
-    let width = r.tasks.iter().map(String::len).max().unwrap_or(0).max(7);
+    let width = column_width(r.tasks.iter().map(String::len).max().unwrap_or(0).max(7));
     writeln!(
         out,
         "\n{:<width$} {:>9} {:>13} {:>13} {:>15} {:>15}",

@@ -9,7 +9,7 @@ use rne_core::{
     RneOptions, Smoothing, TrustModel, Weights,
 };
 
-use usar_report::table::{matrix, row_minima, sig6};
+use usar_report::table::{column_width, matrix, row_minima, sig6};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -87,7 +87,7 @@ fn unit(base: LogBase) -> String {
 }
 
 fn distribution_lines(labels: &[String], dists: &[Distribution]) -> String {
-    let w = labels.iter().map(String::len).max().unwrap_or(0);
+    let w = column_width(labels.iter().map(String::len).max().unwrap_or(0));
     labels
         .iter()
         .zip(dists)

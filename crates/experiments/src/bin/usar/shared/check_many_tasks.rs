@@ -10,6 +10,7 @@ use std::io::Write;
 use anyhow::Result;
 
 use usar_report::scenario_summary::{ScenarioSummary, TaskSummary};
+use usar_report::table::column_width;
 
 use super::check_numbers::{decimals, metres, metres_range, short};
 
@@ -70,7 +71,7 @@ fn table_lines(rows: &[Vec<String>], left: usize) -> Vec<String> {
         .map(|c| {
             rows.iter()
                 .filter_map(|r| r.get(c))
-                .map(|cell| cell.chars().count())
+                .map(|cell| column_width(cell.chars().count()))
                 .max()
                 .unwrap_or(0)
         })
