@@ -596,6 +596,18 @@ mod tests {
         // (the scenario files written before, such as docs/calibration/*/calibrated.ron, load).
         let s = from_str(&tiny_ron_with("report: (claims: true)"), "t.ron").expect("true");
         assert_eq!(s.report().claims.as_deref(), Some("paper-claims.ron"));
+        // Anything else is refused naming what the field takes, not serde's enum.
+        for bad in ["5", "[\"a\"]", "(x: 1)"] {
+            let err = from_str(&tiny_ron_with(&format!("report: (claims: {bad})")), "t.ron")
+                .expect_err(bad);
+            assert_eq!(err.field(), Some("report.claims"), "{err}");
+            let text = err.to_string();
+            assert!(text.contains("a claims file's path"), "{bad}: {text}");
+            assert!(
+                !text.contains("untagged") && !text.contains("PathOrBool"),
+                "{text}"
+            );
+        }
     }
 
     /// The RON of [`tiny`] with `extra` as its last field.

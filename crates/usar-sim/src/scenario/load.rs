@@ -11,7 +11,7 @@ use super::error::{ScenarioError, SourceLocation};
 use super::limits::MAX_SCENARIO_BYTES;
 use super::locate::{SourceMap, join};
 use super::model::{path_text, short_numbers};
-use super::plain_words::plain_words;
+use super::plain_words::{plain_words, shorten};
 use super::spec::ScenarioSpec;
 use super::suggest::did_you_mean;
 use super::validate::validate;
@@ -195,7 +195,7 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
     }
     let here = map.path_at(offset);
     let field = match &e.code {
-        RonError::NoSuchStructField { found, .. } => Some(child_path(here, found)),
+        RonError::NoSuchStructField { found, .. } => Some(child_path(here, &shorten(found))),
         RonError::DuplicateStructField { field, .. } => Some(child_path(here, field)),
         RonError::MissingStructField { field, .. } => {
             Some(join(map.path_within(offset).unwrap_or(""), field))
@@ -208,6 +208,14 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
         Some((start, number)) => (
             map.line_col(start),
             format!("expected an integer, found `{number}`"),
+        ),
+        None if let Some((start, number)) = radix_number(&e.code, src, offset) => (
+            map.line_col(start),
+            format!(
+                "expected a decimal number, found `{}` (hexadecimal, octal and binary \
+                 numbers are read for integer fields only)",
+                shorten(number)
+            ),
         ),
         None => (
             (pos.line, pos.col),
@@ -310,16 +318,8 @@ fn integer_with_fraction<'a>(
     src: &'a str,
     offset: usize,
 ) -> Option<(usize, &'a str)> {
-    let stopped_early = matches!(
-        code,
-        RonError::ExpectedComma
-            | RonError::ExpectedOptionEnd
-            | RonError::ExpectedStructLikeEnd
-            | RonError::ExpectedArrayEnd
-            | RonError::ExpectedMapEnd
-    );
     let bytes = src.as_bytes();
-    if !stopped_early || bytes.get(offset) != Some(&b'.') {
+    if !stopped_early(code) || bytes.get(offset) != Some(&b'.') {
         return None;
     }
     let digit_like = |b: &u8| b.is_ascii_digit() || *b == b'_';
@@ -338,6 +338,60 @@ fn integer_with_fraction<'a>(
         .take_while(|b| digit_like(b) || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-'))
         .count();
     src.get(start..offset + tail).map(|number| (start, number))
+}
+
+/// Where a number field's value is written with a radix prefix (`0x1E`, `-0o17`, `0b101`),
+/// which ron reads for integers only: in a float field it reads the `0` and stops at the
+/// prefix's letter, so either the field's range check refuses the `0` at the number ("found
+/// 0", a [`RangeError`](super::numbers::RangeError)) or ron expects a comma at the letter.
+/// The number's byte offset in `src` and its text; `None` for any other error.
+fn radix_number<'a>(code: &RonError, src: &'a str, offset: usize) -> Option<(usize, &'a str)> {
+    let bytes = src.as_bytes();
+    let prefixed = |i: usize| {
+        bytes.get(i) == Some(&b'0')
+            && matches!(
+                bytes.get(i + 1),
+                Some(b'x' | b'X' | b'o' | b'O' | b'b' | b'B')
+            )
+    };
+    let signed = |i: usize| matches!(bytes.get(i), Some(b'+' | b'-'));
+    let range_error = matches!(code, RonError::Message(m) if m.starts_with("expected ") && m.contains(", found "));
+    let zero = if range_error && prefixed(offset) {
+        offset
+    } else if range_error && signed(offset) && prefixed(offset + 1) {
+        offset + 1
+    } else if stopped_early(code) && offset > 0 && prefixed(offset - 1) {
+        offset - 1
+    } else {
+        return None;
+    };
+    let start = if zero > 0 && signed(zero - 1) {
+        zero - 1
+    } else {
+        zero
+    };
+    let before = start.checked_sub(1).map(|i| bytes[i]);
+    if before.is_some_and(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'.') {
+        return None;
+    }
+    let len = 2 + bytes[zero + 2..]
+        .iter()
+        .take_while(|b| b.is_ascii_alphanumeric() || matches!(b, b'_' | b'.'))
+        .count();
+    src.get(start..zero + len).map(|number| (start, number))
+}
+
+/// Whether ron stopped reading a value early and asked for what follows one (a comma, a
+/// closing bracket): the error a number's unread rest gives.
+fn stopped_early(code: &RonError) -> bool {
+    matches!(
+        code,
+        RonError::ExpectedComma
+            | RonError::ExpectedOptionEnd
+            | RonError::ExpectedStructLikeEnd
+            | RonError::ExpectedArrayEnd
+            | RonError::ExpectedMapEnd
+    )
 }
 
 /// The path of field `name` given the innermost path at the error: the path itself if it

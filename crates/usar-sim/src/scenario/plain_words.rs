@@ -21,15 +21,47 @@ const PLAIN: &[(&str, &str)] = &[
     ("a map", "a map `{...}`"),
 ];
 
+/// The most characters of the file's text a message repeats (an unknown name, a wrong
+/// value); a longer text is cut there, see [`shorten`].
+pub(crate) const SHOWN_TEXT_MAX_CHARS: usize = 60;
+
 /// Rewrites the jargon in `code`'s message in place: the found and expected parts of a
-/// wrong-type error and the few bare "Expected ..." errors that name a RON kind of value
-/// (`Expected unit`, `Expected option`, `Expected identifier`). Other errors are left as they
-/// are (their words, `Expected comma`, `Expected closing `)``, are plain already).
+/// wrong-type error, the few bare "Expected ..." errors that name a RON kind of value
+/// (`Expected unit`, `Expected option`, `Expected identifier`), ron's advice for its own
+/// users (raw identifiers, its recursion limit), and any text of the file it repeats cut to
+/// [`SHOWN_TEXT_MAX_CHARS`]. Other errors are left as they are (their words, `Expected
+/// comma`, `Expected closing `)``, are plain already).
 pub(crate) fn plain_words(code: &mut RonError) {
     match code {
         RonError::InvalidValueForType { expected, found } => {
             *expected = plain(expected);
-            *found = plain(found);
+            // A number is written short later (`short_numbers`); any other text is cut here.
+            let number = found.contains(" number ") || found.contains(" integer ");
+            *found = if number {
+                plain(found)
+            } else {
+                shorten(&plain(found))
+            };
+        }
+        RonError::NoSuchEnumVariant { found, .. } | RonError::NoSuchStructField { found, .. }
+            if found.chars().nth(SHOWN_TEXT_MAX_CHARS).is_some() =>
+        {
+            // ron's wording, with the name cut (ron would quote a cut name as an invalid
+            // identifier): said with a placeholder name, which is then replaced.
+            let long = std::mem::replace(found, PLACEHOLDER.to_owned());
+            let said =
+                code.to_string()
+                    .replacen(&format!("`{PLACEHOLDER}`"), &quoted_short(&long), 1);
+            *code = RonError::Message(said);
+        }
+        RonError::InvalidIdentifier(text) | RonError::SuggestRawIdentifier(text) => {
+            *code = RonError::Message(format!(
+                "expected a name (letters, digits and `_`), found {}",
+                quoted_short(text)
+            ));
+        }
+        RonError::ExceededRecursionLimit => {
+            *code = RonError::Message(format!("brackets nested more than {RECURSION_LIMIT} deep"));
         }
         RonError::ExpectedUnit => *code = RonError::Message("expected `()`".into()),
         RonError::ExpectedOption => {
@@ -39,6 +71,32 @@ pub(crate) fn plain_words(code: &mut RonError) {
             *code = RonError::Message("expected a name (letters, digits and `_`)".into());
         }
         _ => {}
+    }
+}
+
+/// ron's default recursion limit (`ron::Options::default()`, which scenarios are read with):
+/// how deep brackets may nest.
+const RECURSION_LIMIT: usize = 128;
+
+/// `text` whole when at most [`SHOWN_TEXT_MAX_CHARS`] characters long, else its first
+/// [`SHOWN_TEXT_MAX_CHARS`] characters, `…` and its length (`CCC… (1000000 characters)`).
+pub(crate) fn shorten(text: &str) -> String {
+    match text.char_indices().nth(SHOWN_TEXT_MAX_CHARS) {
+        None => text.to_owned(),
+        Some((cut, _)) => format!("{}… ({} characters)", &text[..cut], text.chars().count()),
+    }
+}
+
+/// A name no scenario field or variant has, standing for a cut one in ron's message.
+const PLACEHOLDER: &str = "__name_cut_here__";
+
+/// `text` in backticks when at most [`SHOWN_TEXT_MAX_CHARS`] characters long, else its first
+/// [`SHOWN_TEXT_MAX_CHARS`] characters with `…` in backticks and its length after them
+/// (`` `CCC…` (1000000 characters) ``).
+fn quoted_short(text: &str) -> String {
+    match text.char_indices().nth(SHOWN_TEXT_MAX_CHARS) {
+        None => format!("`{text}`"),
+        Some((cut, _)) => format!("`{}…` ({} characters)", &text[..cut], text.chars().count()),
     }
 }
 
@@ -92,6 +150,51 @@ mod tests {
             "expected `Some(...)` or `None`"
         );
         assert_eq!(said(RonError::ExpectedUnit), "expected `()`");
+    }
+
+    #[test]
+    fn ron_advice_for_programmers_becomes_what_to_write() {
+        let m = said(RonError::SuggestRawIdentifier("5".into()));
+        assert_eq!(m, "expected a name (letters, digits and `_`), found `5`");
+        let m = said(RonError::ExceededRecursionLimit);
+        assert_eq!(m, "brackets nested more than 128 deep");
+        assert!(!m.contains("serde_stacker"), "{m}");
+    }
+
+    #[test]
+    fn long_texts_of_the_file_are_cut_in_messages() {
+        let long = "C".repeat(1_000_000);
+        let m = said(RonError::NoSuchEnumVariant {
+            expected: &["Carrier", "Supplier"],
+            found: long.clone(),
+            outer: Some("Role".into()),
+        });
+        assert!(m.len() < 200, "{} bytes", m.len());
+        assert_eq!(
+            m,
+            format!(
+                "Unexpected variant named `{}…` (1000000 characters) in enum `Role`, \
+                 expected either `Carrier` or `Supplier` instead",
+                &long[..60]
+            )
+        );
+        let m = said(RonError::InvalidValueForType {
+            expected: "a finite number".into(),
+            found: format!("the string \"{long}\""),
+        });
+        assert!(m.len() < 200, "{} bytes", m.len());
+        let m = said(RonError::InvalidIdentifier(long.clone()));
+        assert!(m.len() < 200, "{} bytes", m.len());
+        assert_eq!(shorten("carrier"), "carrier");
+        assert_eq!(
+            shorten(&"é".repeat(60)),
+            "é".repeat(60),
+            "60 characters, not bytes"
+        );
+        assert_eq!(
+            shorten(&"é".repeat(61)),
+            format!("{}… (61 characters)", "é".repeat(60))
+        );
     }
 
     #[test]

@@ -110,20 +110,33 @@ pub struct ReportSpec {
 }
 
 /// [`de_path_or_none`], and the former boolean: `false` is none, `true` the file that now
-/// holds the paper's claims it meant, `paper-claims.ron` (next to `paper.ron`).
+/// holds the paper's claims it meant, `paper-claims.ron` (next to `paper.ron`). Anything else
+/// is refused naming what the field takes (a visitor, not an untagged enum, whose error would
+/// name only the enum).
 fn de_claims_path<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum PathOrBool {
-        Bool(bool),
-        #[serde(deserialize_with = "de_path_or_none")]
-        Path(Option<String>),
+    struct ClaimsPath;
+    impl<'de> serde::de::Visitor<'de> for ClaimsPath {
+        type Value = Option<String>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a claims file's path such as \"paper-claims.ron\", or None")
+        }
+        fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Self::Value, E> {
+            Ok(v.then(|| "paper-claims.ron".to_owned()))
+        }
+        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
+            Ok(Some(v.to_owned()))
+        }
+        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
+            String::deserialize(d).map(Some)
+        }
     }
-    match PathOrBool::deserialize(d)? {
-        PathOrBool::Bool(false) => Ok(None),
-        PathOrBool::Bool(true) => Ok(Some("paper-claims.ron".to_owned())),
-        PathOrBool::Path(p) => Ok(p),
-    }
+    d.deserialize_any(ClaimsPath)
 }
 
 fn ser_path_or_none<S: serde::Serializer>(v: &Option<String>, s: S) -> Result<S::Ok, S::Error> {

@@ -869,6 +869,47 @@ fn a_fraction_in_an_integer_field_is_named_at_the_number() {
 }
 
 #[test]
+fn a_radix_number_in_a_float_field_is_named_as_written() {
+    // ron reads `0x1E` in a float field as `0` and stops at the `x`: the range check of a
+    // field > 0 refused "0", and a field that takes 0 asked for a comma.
+    let paper = std::fs::read_to_string(scenarios_dir().join("paper.ron")).unwrap();
+    for (from, to, field, number) in [
+        ("width_m: 80.0,", "width_m: 0x1E,", "arena.width_m", "0x1E"),
+        (
+            "height_m: 60.0,",
+            "height_m: -0o17,",
+            "arena.height_m",
+            "-0o17",
+        ),
+        ("hp: 1.0,", "hp: 0b101,", "needs_weights.hp", "0b101"),
+        (
+            "wall_thickness_m: 1.0",
+            "wall_thickness_m: 0xFF",
+            "arena.wall_thickness_m",
+            "0xFF",
+        ),
+    ] {
+        assert_eq!(paper.matches(from).count(), 1, "{from}");
+        let src = paper.replacen(from, to, 1);
+        let err = scenario::from_str(&src, "paper.ron").expect_err(to);
+        let line = line_of(&src, to);
+        let col = src.lines().nth(line - 1).unwrap().find(number).unwrap() + 1;
+        assert_eq!(err.field(), Some(field), "{err}");
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "paper.ron:{line}:{col}: {field}: expected a decimal number, found `{number}` \
+                 (hexadecimal, octal and binary numbers are read for integer fields only)"
+            )
+        );
+    }
+    // In an integer field ron reads them.
+    let src = paper.replacen("count: 6,", "count: 0x6,", 1);
+    let s = scenario::from_str(&src, "paper.ron").expect("0x6 in an integer field");
+    assert_eq!(s.kinds()[0].count, 6);
+}
+
+#[test]
 fn old_mac_line_endings_are_counted_as_lines() {
     // A rule error and a syntax error, each at the same line and column whatever the line
     // ending: `\n`, `\r\n` or a bare `\r` (which ron does not count as a line break).
