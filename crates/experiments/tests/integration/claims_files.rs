@@ -358,3 +358,53 @@ fn bad_claims_files_get_one_line_naming_the_file_line_column_and_field() {
         );
     }
 }
+
+#[test]
+fn a_bad_claims_file_the_scenario_names_is_blamed_on_the_scenarios_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let paper = std::fs::read_to_string(format!("{ROOT}/scenarios/paper.ron")).unwrap();
+    let from = "claims: \"paper-claims.ron\"";
+    assert_eq!(paper.matches(from).count(), 1);
+    // A folder where a claims file should be, named by the scenario and not by `--claims`.
+    std::fs::create_dir(tmp.path().join("claims-folder")).unwrap();
+    let targets = "paper-targets.ron";
+    std::fs::copy(
+        format!("{ROOT}/scenarios/{targets}"),
+        tmp.path().join(targets),
+    )
+    .unwrap();
+    let scenario = tmp.path().join("mine.ron");
+    let src = paper.replacen(from, "claims: \"claims-folder\"", 1);
+    std::fs::write(&scenario, &src).unwrap();
+    let line = src
+        .lines()
+        .position(|l| l.contains("claims-folder"))
+        .unwrap()
+        + 1;
+    let col = src
+        .lines()
+        .nth(line - 1)
+        .unwrap()
+        .find("claims: \"claims-folder\"")
+        .unwrap()
+        + 1;
+    let out = tmp.path().join("out");
+    let o = usar([
+        "sweep",
+        text(&scenario),
+        "--trials",
+        "1",
+        "--duration",
+        "1",
+        "--quiet",
+        "--out",
+        text(&out),
+    ]);
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let want = format!("error: {}:{line}:{col}: report.claims: ", text(&scenario));
+    assert!(err.starts_with(&want), "want {want:?}\n got {err:?}");
+    assert!(!err.contains("--claims"), "{err}");
+    assert!(!out.join("journal.jsonl").exists());
+}

@@ -183,8 +183,8 @@ fn walls_kilometres_thick_do_not_shrink_the_arena_in_the_picture() {
     );
 }
 
-/// A full device: the error names the file once, on one line (it said "writing /dev/full:
-/// writing /dev/full: ..."), for `render` and `replay` alike.
+/// A full device: the error names its flag and the file once, on one line (it said "writing
+/// /dev/full: writing /dev/full: ..."), for `render` and `replay` alike.
 #[cfg(target_os = "linux")]
 #[test]
 fn a_full_device_is_named_once() {
@@ -198,7 +198,7 @@ fn a_full_device_is_named_once() {
         assert!(!o.status.success(), "{cmd}");
         assert_eq!(err.matches("/dev/full").count(), 1, "{cmd}: {err}");
         assert!(
-            err.starts_with("error: writing /dev/full: "),
+            err.starts_with("error: --out: writing /dev/full: "),
             "{cmd}: {err}"
         );
         assert_eq!(err.lines().count(), 1, "{cmd}: {err}");

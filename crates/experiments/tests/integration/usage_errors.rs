@@ -109,3 +109,45 @@ fn a_path_with_a_line_break_is_escaped_in_a_one_line_error() {
         "{err}"
     );
 }
+
+#[test]
+fn an_output_that_cannot_be_written_names_its_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let paper = common::PAPER;
+    // A regular file where a folder should be, and a folder where a file should be.
+    let file = tmp.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let at = |name: &str| file.join(name).to_str().unwrap().to_owned();
+    let (svg, html, under) = (at("map.svg"), at("page.html"), at("sub"));
+    let folder = tmp.path().to_str().unwrap();
+    let sweep = |more: &[&'static str]| {
+        let mut args = vec!["sweep", paper, "--trials", "1", "--duration", "1", "-q"];
+        args.extend_from_slice(more);
+        args
+    };
+    let mut to_sub = sweep(&["--out"]);
+    to_sub.push(&under);
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["run", paper, "--duration", "1", "--json", folder],
+            "error: --json: ",
+        ),
+        (vec!["render", paper, "--out", &svg], "error: --out: "),
+        (
+            vec!["replay", paper, "--duration", "1", "--out", &html],
+            "error: --out: ",
+        ),
+        (to_sub, "error: --out: "),
+        (sweep(&["--methods", "rne,,dis"]), "error: --methods: "),
+    ];
+    for (args, start) in cases {
+        let o = usar(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.starts_with(start),
+            "{args:?}: want {start:?}, got {err}"
+        );
+    }
+}

@@ -9,7 +9,8 @@ use clap::Args;
 use usar_sim::mission::Simulation;
 use usar_sim::scenario::{self, Scenario, path_text};
 
-use usar_report::render::{PathRecorder, Trace, render_svg};
+use usar_report::render::{PathRecorder, Trace, render_svg_string};
+use usar_sweep::atomic::write_atomic;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -107,7 +108,8 @@ pub fn run(args: &RenderArgs, out: &mut dyn Write) -> Result<()> {
     } else {
         None
     };
-    render_svg(&scenario, traces.as_deref(), &args.out)?;
+    let svg = render_svg_string(&scenario, traces.as_deref())?;
+    write_atomic(&args.out, svg.as_bytes()).context("--out")?;
     match &traces {
         Some(t) => writeln!(
             out,

@@ -10,7 +10,8 @@ use clap::Args;
 use usar_sim::mission::{Simulation, trial_seed};
 use usar_sim::scenario;
 
-use usar_report::replay::{record_trial, write_replay};
+use usar_report::replay::{record_trial, replay_html};
+use usar_sweep::atomic::write_atomic;
 
 const EXAMPLES: &str = "\
 Examples:
@@ -119,7 +120,9 @@ pub fn run(args: &ReplayArgs, out: &mut dyn Write) -> Result<()> {
     let t = pool
         .install(|| record_trial(sim, hz, None))
         .context("recording the trial")?;
-    let bytes = write_replay(&scenario, &t.recording, &args.out)?;
+    let html = replay_html(&scenario, &t.recording)?;
+    write_atomic(&args.out, html.as_bytes()).context("--out")?;
+    let bytes = html.len() as u64;
     let rec = &t.recording;
     writeln!(
         out,

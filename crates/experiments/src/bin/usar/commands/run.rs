@@ -137,7 +137,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&TrialJson::of(&result))
             .context("serialising the result")?;
-        write_atomic(path, json.as_bytes())?;
+        write_atomic(path, json.as_bytes()).context("--json")?;
         writeln!(out, "wrote {}", path.display())?;
     }
     if let Some(path) = &args.rounds_csv {

@@ -29,6 +29,7 @@ use usar_report::output::write_outputs;
 
 use usar_report::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
 
+use usar_sweep::error::SweepError;
 use usar_sweep::shard::{Shard, ShardRun, shell_join};
 
 use usar_sweep::sweep::{
@@ -182,6 +183,21 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
     Ok(Some(build_grid(&spec, &args.vary)?))
 }
 
+/// `e` of [`run_sweep`] with the flag it is about named: `--methods` for a method it cannot
+/// build; `--out` for an output folder it could not take (its lock or its owner file), or,
+/// when the folder is the default one (`out_given` false), how to set another.
+fn name_the_flag(e: SweepError, out_given: bool) -> anyhow::Error {
+    let flag = match (&e, out_given) {
+        (SweepError::Method(_), _) => "--methods",
+        (SweepError::Lock(_) | SweepError::Owner(_), true) => "--out",
+        (SweepError::Lock(_) | SweepError::Owner(_), false) => {
+            "the default output folder (--out DIR sets another)"
+        }
+        _ => return e.into(),
+    };
+    anyhow::Error::new(e).context(flag)
+}
+
 /// The sweep's configuration from the arguments.
 fn config(all: &SweepArgs) -> Result<SweepConfig> {
     let args = &all.spec;
@@ -279,7 +295,7 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<()> {
     if let Some(r) = &replays {
         cfg.hooks.trial_observer = Some(r.observer_factory(cfg.hooks.trial_observer.take()));
     }
-    let o = run_sweep(&cfg)?;
+    let o = run_sweep(&cfg).map_err(|e| name_the_flag(e, args.spec.out.is_some()))?;
     if let Some(s) = &cfg.shard {
         print_shard(out, &cfg, s.shard, &o)?;
         return failed_trials(&cfg, &o);

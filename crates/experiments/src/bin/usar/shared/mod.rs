@@ -1,5 +1,6 @@
 //! What the `usar` commands share, so that no command imports another: the arguments of a
-//! sweep and of a multiverse, building a trial, the error line, the scenario warnings, the
+//! sweep and of a multiverse, building a trial, the error line, where a scenario sets a field,
+//! the scenario warnings, the
 //! short summary of a scenario of many tasks and how `usar check` writes numbers, the
 //! per-round yields' file, the table limits of `check` and `run`, the progress bars and the
 //! hidden test hooks.
@@ -11,6 +12,7 @@ pub mod multiverse_spec;
 pub mod optimizer_arg;
 pub mod progress;
 pub mod rounds_csv;
+pub mod scenario_field;
 pub mod scenario_warnings;
 pub mod stderr_lines;
 pub mod sweep_spec;

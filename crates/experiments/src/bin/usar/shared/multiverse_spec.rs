@@ -22,6 +22,7 @@ use usar_sweep::sweep::default_out_dir_of;
 use usar_report::source_date::source_date;
 
 use super::optimizer_arg::OptimizerArg;
+use super::scenario_field::scenario_field;
 
 /// The arguments of `usar multiverse` that decide what it runs.
 #[derive(Debug, Clone, Args)]
@@ -212,7 +213,12 @@ fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Cl
             p
         }
     };
-    Ok(Some(Claims::load(&path).context("--claims")?))
+    let setting = if spec.claims.is_some() {
+        "--claims".to_owned()
+    } else {
+        scenario_field(&spec.scenario, "report.claims")
+    };
+    Ok(Some(Claims::load(&path).context(setting)?))
 }
 
 /// The default output folder: `results/multiverse-<scenario name>/` (the name made safe as

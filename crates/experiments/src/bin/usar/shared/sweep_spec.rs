@@ -16,6 +16,7 @@ use usar_sweep::grid::Grid;
 use usar_sweep::metrics::{Metric, Quantity, Scope};
 use usar_sweep::shard::SweepPlan;
 
+use super::scenario_field::scenario_field;
 use crate::shared::trial_build::rounding_warning;
 pub use crate::shared::trial_build::threads_of;
 
@@ -124,11 +125,17 @@ impl ReportArgs {
             methods,
         )
         .map_err(|e| {
-            let flag = match e {
-                ReportOptionsError::Targets(_) => "--targets",
-                ReportOptionsError::Claims(_) => "--claims",
+            // The flag when given, else the scenario's field that named the file.
+            let (flag, field) = match e {
+                ReportOptionsError::Targets(_) => (self.targets.is_some(), "targets"),
+                ReportOptionsError::Claims(_) => (self.claims.is_some(), "claims"),
             };
-            anyhow::Error::new(e).context(flag)
+            let setting = if flag {
+                format!("--{field}")
+            } else {
+                scenario_field(scenario_path, &format!("report.{field}"))
+            };
+            anyhow::Error::new(e).context(setting)
         })
     }
 }
