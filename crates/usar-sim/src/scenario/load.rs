@@ -120,6 +120,14 @@ fn normalised_source(src: &str) -> Cow<'_, str> {
     Cow::Owned(String::from_utf8(lf).unwrap_or_else(|_| src.to_owned()))
 }
 
+/// Line and column (1-based) where the scenario text `src` writes the field `path` (such as
+/// `report.claims`), or its nearest ancestor that it writes ([`SourceMap::line_col_of`]),
+/// counted as [`from_str`] counts them in its errors (a byte-order mark skipped, bare `\r`
+/// line endings read as `\n`); `None` only for a text without a value.
+pub fn field_line_col(src: &str, path: &str) -> Option<(usize, usize)> {
+    SourceMap::build(&normalised_source(src)).line_col_of(path)
+}
+
 /// Parses and validates a scenario from RON text (a leading byte-order mark is skipped).
 /// `origin` names the source in errors (a file path, or e.g. `"<inline>"`).
 ///
@@ -195,7 +203,7 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
     }
     let here = map.path_at(offset);
     let field = match &e.code {
-        RonError::NoSuchStructField { found, .. } => Some(child_path(here, &shorten(found))),
+        RonError::NoSuchStructField { found, .. } => Some(cut_last(child_path(here, found), found)),
         RonError::DuplicateStructField { field, .. } => Some(child_path(here, field)),
         RonError::MissingStructField { field, .. } => {
             Some(join(map.path_within(offset).unwrap_or(""), field))
@@ -207,7 +215,7 @@ fn syntax_error(mut e: SpannedError, src: &str, origin: &str, map: &SourceMap) -
     let (line_col, message) = match integer_with_fraction(&e.code, src, offset) {
         Some((start, number)) => (
             map.line_col(start),
-            format!("expected an integer, found `{number}`"),
+            format!("expected an integer, found `{}`", shorten(number)),
         ),
         None if let Some((start, number)) = radix_number(&e.code, src, offset) => (
             map.line_col(start),
@@ -355,7 +363,10 @@ fn radix_number<'a>(code: &RonError, src: &'a str, offset: usize) -> Option<(usi
             )
     };
     let signed = |i: usize| matches!(bytes.get(i), Some(b'+' | b'-'));
-    let range_error = matches!(code, RonError::Message(m) if m.starts_with("expected ") && m.contains(", found "));
+    // A field's range check ("expected a finite number > 0, found 0"), not another message
+    // of the same form ("expected a name ..., found `0x1`" for an enum's value).
+    let range_error = matches!(code, RonError::Message(m)
+        if m.split_once(", found ").is_some_and(|(want, _)| want.starts_with("expected ") && want.contains("number")));
     let zero = if range_error && prefixed(offset) {
         offset
     } else if range_error && signed(offset) && prefixed(offset + 1) {
@@ -392,6 +403,15 @@ fn stopped_early(code: &RonError) -> bool {
             | RonError::ExpectedArrayEnd
             | RonError::ExpectedMapEnd
     )
+}
+
+/// `path`, which ends with the field name `name`, with that name cut as messages cut it
+/// ([`shorten`]): an unknown field of a million characters is not repeated whole.
+fn cut_last(path: String, name: &str) -> String {
+    match path.strip_suffix(name) {
+        Some(parent) if shorten(name) != name => format!("{parent}{}", shorten(name)),
+        _ => path,
+    }
 }
 
 /// The path of field `name` given the innermost path at the error: the path itself if it

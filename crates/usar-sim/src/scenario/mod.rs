@@ -70,7 +70,7 @@ pub use draft::{KindDraft, TaskDraft, Xy};
 pub use edit::{EditOutcome, number_at};
 pub use error::{ScenarioError, SourceLocation};
 pub use lifecycle_choices::{CostClock, CostsCount, ResourceStock, RestTiming, RoundClock};
-pub use load::{from_str, load, parse_spec, read_source, validate_in_source};
+pub use load::{field_line_col, from_str, load, parse_spec, read_source, validate_in_source};
 pub use locate::SourceMap;
 pub use model::*;
 pub use numbers::{Factor, Finite, Fraction, NonNegative, Percent, Positive, RangeError};

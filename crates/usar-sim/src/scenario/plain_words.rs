@@ -36,7 +36,7 @@ pub(crate) fn plain_words(code: &mut RonError) {
         RonError::InvalidValueForType { expected, found } => {
             *expected = plain(expected);
             // A number is written short later (`short_numbers`); any other text is cut here.
-            let number = found.contains(" number ") || found.contains(" integer ");
+            let number = NUMBER_FOUND.iter().any(|n| found.starts_with(n));
             *found = if number {
                 plain(found)
             } else {
@@ -49,15 +49,28 @@ pub(crate) fn plain_words(code: &mut RonError) {
             // ron's wording, with the name cut (ron would quote a cut name as an invalid
             // identifier): said with a placeholder name, which is then replaced.
             let long = std::mem::replace(found, PLACEHOLDER.to_owned());
-            let said =
-                code.to_string()
-                    .replacen(&format!("`{PLACEHOLDER}`"), &quoted_short(&long), 1);
+            let said = code.to_string();
+            let quoted = format!("`{PLACEHOLDER}`");
+            let said = if said.contains(&quoted) {
+                said.replacen(&quoted, &quoted_short(&long), 1)
+            } else {
+                said.replace(PLACEHOLDER, &shorten(&long))
+            };
             *code = RonError::Message(said);
         }
         RonError::InvalidIdentifier(text) | RonError::SuggestRawIdentifier(text) => {
             *code = RonError::Message(format!(
                 "expected a name (letters, digits and `_`), found {}",
                 quoted_short(text)
+            ));
+        }
+        RonError::NoSuchExtension(name) => {
+            *code = RonError::Message(format!("no RON extension named {}", quoted_short(name)));
+        }
+        RonError::ExpectedDifferentStructName { expected, found } => {
+            *code = RonError::Message(format!(
+                "Expected struct `{expected}` but found {}",
+                quoted_short(found)
             ));
         }
         RonError::ExceededRecursionLimit => {
@@ -86,6 +99,16 @@ pub(crate) fn shorten(text: &str) -> String {
         Some((cut, _)) => format!("{}… ({} characters)", &text[..cut], text.chars().count()),
     }
 }
+
+/// How ron and serde begin the "found" part of a wrong-type error about a number: such a
+/// number is written short later (`short_numbers`), not cut here.
+const NUMBER_FOUND: &[&str] = &[
+    "the unsigned integer",
+    "the signed integer",
+    "the floating point number",
+    "integer ",
+    "floating point ",
+];
 
 /// A name no scenario field or variant has, standing for a cut one in ron's message.
 const PLACEHOLDER: &str = "__name_cut_here__";
@@ -183,6 +206,28 @@ mod tests {
             found: format!("the string \"{long}\""),
         });
         assert!(m.len() < 200, "{} bytes", m.len());
+        // A string that says "number" is still cut; a number is not (short_numbers writes it).
+        let m = said(RonError::InvalidValueForType {
+            expected: "a finite number".into(),
+            found: format!("the string \"a number {long}\""),
+        });
+        assert!(m.len() < 200, "{} bytes", m.len());
+        let m = said(RonError::InvalidValueForType {
+            expected: "a list".into(),
+            found: format!("the floating point number `1{}`", "0".repeat(80)),
+        });
+        assert!(m.contains(&"0".repeat(80)), "{m}");
+        for code in [
+            RonError::NoSuchExtension(long.clone()),
+            RonError::ExpectedDifferentStructName {
+                expected: "Arena",
+                found: long.clone(),
+            },
+        ] {
+            let m = said(code);
+            assert!(m.len() < 200, "{} bytes: {m:.200}", m.len());
+            assert!(m.contains("(1000000 characters)"), "{m:.200}");
+        }
         let m = said(RonError::InvalidIdentifier(long.clone()));
         assert!(m.len() < 200, "{} bytes", m.len());
         assert_eq!(shorten("carrier"), "carrier");

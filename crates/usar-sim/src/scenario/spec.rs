@@ -274,7 +274,8 @@ impl<'de> Deserialize<'de> for TaskQuotas {
                 while let Some((task, n)) = map.next_entry::<String, usize>()? {
                     if out.contains_key(&task) {
                         return Err(serde::de::Error::custom(format!(
-                            "task {task:?} is given twice"
+                            "task {} is given twice",
+                            super::plain_words::shorten(&format!("{task:?}"))
                         )));
                     }
                     out.insert(task, n);

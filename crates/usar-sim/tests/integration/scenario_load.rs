@@ -869,6 +869,34 @@ fn a_fraction_in_an_integer_field_is_named_at_the_number() {
 }
 
 #[test]
+fn a_million_character_name_is_cut_in_the_error_line() {
+    let paper = std::fs::read_to_string(scenarios_dir().join("paper.ron")).unwrap();
+    let long = "c".repeat(1_000_000);
+    let cut = format!("{}… (1000000 characters)", &long[..60]);
+    for (from, to, field) in [
+        // An unknown field: its path and the message.
+        (
+            "count: 6,",
+            format!("count: 6, {long}: 1,"),
+            format!("kinds[0].{cut}"),
+        ),
+        // A fraction in an integer field, a million digits long.
+        (
+            "count: 6,",
+            format!("count: 6.{},", "0".repeat(1_000_000)),
+            "kinds[0].count".to_owned(),
+        ),
+    ] {
+        assert_eq!(paper.matches(from).count(), 1, "{from}");
+        let src = paper.replacen(from, &to, 1);
+        let err = scenario::from_str(&src, "paper.ron").expect_err("a long name");
+        let text = err.to_string();
+        assert!(text.len() < 1_000, "{} bytes: {text:.1000}", text.len());
+        assert_eq!(err.field(), Some(field.as_str()), "{text}");
+    }
+}
+
+#[test]
 fn a_radix_number_in_a_float_field_is_named_as_written() {
     // ron reads `0x1E` in a float field as `0` and stops at the `x`: the range check of a
     // field > 0 refused "0", and a field that takes 0 asked for a comma.
@@ -903,6 +931,11 @@ fn a_radix_number_in_a_float_field_is_named_as_written() {
             )
         );
     }
+    // An enum's value written like one is not called a number.
+    let src = paper.replacen("role: Carrier", "role: 0x1", 1);
+    let err = scenario::from_str(&src, "paper.ron").expect_err("0x1 for a role");
+    assert!(!err.to_string().contains("decimal number"), "{err}");
+    assert_eq!(err.field(), Some("kinds[0].role"), "{err}");
     // In an integer field ron reads them.
     let src = paper.replacen("count: 6,", "count: 0x6,", 1);
     let s = scenario::from_str(&src, "paper.ron").expect("0x6 in an integer field");

@@ -30,6 +30,7 @@ use usar_report::output::write_outputs;
 use usar_report::replay::{DEFAULT_HZ, SweepReplays, parse_replay_list};
 
 use usar_sweep::error::SweepError;
+use usar_sweep::method_factory::MethodError;
 use usar_sweep::shard::{Shard, ShardRun, shell_join};
 
 use usar_sweep::sweep::{
@@ -188,6 +189,7 @@ fn grid_of(args: &SweepSpecArgs) -> Result<Option<Grid>> {
 /// when the folder is the default one (`out_given` false), how to set another.
 fn name_the_flag(e: SweepError, out_given: bool) -> anyhow::Error {
     let flag = match (&e, out_given) {
+        (SweepError::Method(MethodError::NeedsWeights(_)), _) => return e.into(),
         (SweepError::Method(_), _) => "--methods",
         (SweepError::Lock(_) | SweepError::Owner(_), true) => "--out",
         (SweepError::Lock(_) | SweepError::Owner(_), false) => {

@@ -4,15 +4,15 @@
 
 use std::path::Path;
 
-use usar_sim::scenario::{SourceMap, path_text, read_source};
+use usar_sim::scenario::{field_line_col, path_text, read_source};
 
 /// `path:line:col: field` for the scenario file at `scenario_path` and a field path such as
-/// `report.claims` (where the field is written, as `usar check` reports it), or
-/// `path: field` when the file cannot be read again or does not set the field.
+/// `report.claims`: where the file writes the field (or its nearest ancestor it writes), as
+/// `usar check` places its errors; `path: field` when the file cannot be read again.
 pub fn scenario_field(scenario_path: &Path, field: &str) -> String {
     let at = read_source(scenario_path)
         .ok()
-        .and_then(|src| SourceMap::build(&src).line_col_of(field));
+        .and_then(|src| field_line_col(&src, field));
     match at {
         Some((line, col)) => format!("{}:{line}:{col}: {field}", path_text(scenario_path)),
         None => format!("{}: {field}", path_text(scenario_path)),
