@@ -111,32 +111,12 @@ pub struct ReportSpec {
 
 /// [`de_path_or_none`], and the former boolean: `false` is none, `true` the file that now
 /// holds the paper's claims it meant, `paper-claims.ron` (next to `paper.ron`). Anything else
-/// is refused naming what the field takes (a visitor, not an untagged enum, whose error would
-/// name only the enum).
+/// is refused naming what the field takes.
 fn de_claims_path<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
-    struct ClaimsPath;
-    impl<'de> serde::de::Visitor<'de> for ClaimsPath {
-        type Value = Option<String>;
-        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-            f.write_str("a claims file's path such as \"paper-claims.ron\", or None")
-        }
-        fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Self::Value, E> {
-            Ok(v.then(|| "paper-claims.ron".to_owned()))
-        }
-        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
-            Ok(Some(v.to_owned()))
-        }
-        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
-            Ok(None)
-        }
-        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
-            Ok(None)
-        }
-        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
-            String::deserialize(d).map(Some)
-        }
-    }
-    d.deserialize_any(ClaimsPath)
+    d.deserialize_any(PathOrNone {
+        what: "a claims file's path such as \"paper-claims.ron\", or None",
+        true_means: Some("paper-claims.ron"),
+    })
 }
 
 fn ser_path_or_none<S: serde::Serializer>(v: &Option<String>, s: S) -> Result<S::Ok, S::Error> {
@@ -148,26 +128,45 @@ fn ser_path_or_none<S: serde::Serializer>(v: &Option<String>, s: S) -> Result<S:
 
 /// A string, `Some("...")`, `None` (or a JSON `null`).
 fn de_path_or_none<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
-    struct PathOrNone;
-    impl<'de> serde::de::Visitor<'de> for PathOrNone {
-        type Value = Option<String>;
-        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-            f.write_str("a path such as \"paper-targets.ron\", or None")
-        }
-        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
-            Ok(Some(v.to_owned()))
-        }
-        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
-            Ok(None)
-        }
-        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
-            Ok(None)
-        }
-        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
-            String::deserialize(d).map(Some)
+    d.deserialize_any(PathOrNone {
+        what: "a path such as \"paper-targets.ron\", or None",
+        true_means: None,
+    })
+}
+
+/// Reads a file path that may be absent (a string, `Some("...")`, `None`, `()` or a JSON
+/// `null`); with `true_means`, a former boolean too (`false` is none, `true` that path). Its
+/// errors say `what` the field takes (an untagged enum's would name only the enum).
+struct PathOrNone {
+    /// What the field takes, for errors.
+    what: &'static str,
+    /// The path a former `true` stands for, if the field was once a boolean.
+    true_means: Option<&'static str>,
+}
+
+impl<'de> serde::de::Visitor<'de> for PathOrNone {
+    type Value = Option<String>;
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.what)
+    }
+    fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<Self::Value, E> {
+        match self.true_means {
+            Some(path) => Ok(v.then(|| path.to_owned())),
+            None => Err(E::invalid_type(serde::de::Unexpected::Bool(v), &self)),
         }
     }
-    d.deserialize_any(PathOrNone)
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
+        Ok(Some(v.to_owned()))
+    }
+    fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+    fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+        Ok(None)
+    }
+    fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
+        String::deserialize(d).map(Some)
+    }
 }
 
 /// The `rest_station` field: one circle `(center_m: (x, y), radius_m: r)` (the paper's single
