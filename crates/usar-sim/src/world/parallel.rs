@@ -35,7 +35,7 @@ use super::read_back_so_far::{Covered, ReadBackSoFar};
 use super::resolver::Resolver;
 use super::resolver_input::ResolverInput;
 use super::robot::RobotState;
-use super::steering::STEER_STATIC_GAP_M;
+use super::steering::{NearRobot, STEER_STATIC_GAP_M};
 use crate::scenario::Locomotion;
 
 /// A step displacement above this counts as "moved" (energy accounting, `moved_this_step`),
@@ -198,7 +198,7 @@ pub(super) fn steer_all(
         per.scratch.resize_with(chunks, Vec::new);
     }
     let decisions = resolver.decisions();
-    let steer_chunk = |(c, (out, near)): (usize, (&mut [Option<Vec2>], &mut Vec<usize>))| {
+    let steer_chunk = |(c, (out, near)): (usize, (&mut [Option<Vec2>], &mut Vec<NearRobot>))| {
         for (k, o) in out.iter_mut().enumerate() {
             let id = c * CHUNK_ROBOTS + k;
             if decisions[id].held {

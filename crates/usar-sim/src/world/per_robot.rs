@@ -6,6 +6,7 @@
 use parry2d::math::Vector as Vec2;
 
 use super::follow::Followed;
+use super::steering::NearRobot;
 
 /// Smallest team whose per-robot phases run on several threads (robots, 512). Smaller teams
 /// stay serial: a phase costs tens of nanoseconds per robot, so below a few hundred robots
@@ -43,7 +44,7 @@ pub(super) struct PerRobot {
     /// unused for held robots.
     pub(super) steered: Vec<Option<Vec2>>,
     /// One scratch list of nearby robots per task of [`CHUNK_ROBOTS`] robots.
-    pub(super) scratch: Vec<Vec<usize>>,
+    pub(super) scratch: Vec<Vec<NearRobot>>,
     /// Each robot's path following of this control step when it needed no planner, `None`
     /// when it does (filled only when path following runs in parallel).
     pub(super) followed: Vec<Option<Followed>>,

@@ -49,10 +49,10 @@ pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
 use super::resolver_pairs::pairs_by_chunk;
 use super::resolver_reach::{self, LayerBounds};
+use super::steering::{NearRobot, all_clear_hinted, pick_turn};
 pub use super::steering::{
     STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
 };
-use super::steering::{all_clear_hinted, pick_turn};
 use super::union_find::{find, union};
 use crate::scenario::{CollisionParams, HoldRule, Steering};
 
@@ -104,7 +104,7 @@ pub struct Resolver {
     roots: Vec<usize>,
     next_slot: Vec<usize>,
     /// Scratch of rule 5: the robots standing still near the steering robot.
-    near: Vec<usize>,
+    near: Vec<NearRobot>,
     /// Each robot's neighbour candidates for rules 1, 3 and 5, kept over several steps and
     /// refreshed by [`Resolver::resolve`].
     neighbour_lists: NeighbourLists,
@@ -599,14 +599,14 @@ impl Resolver {
     /// right turns first, `> 0` left turns first, within a bound (the side of the robot's
     /// last deflection, so that it keeps sliding along an obstacle one way; see
     /// `steering::pick_turn`).
-    pub fn steer_with(
+    pub(super) fn steer_with(
         &self,
         inputs: &[ResolverInput],
         i: usize,
         grid: &ClearanceGrid,
         static_inflation: Option<f32>,
         side: f32,
-        near: &mut Vec<usize>,
+        near: &mut Vec<NearRobot>,
     ) -> Option<Vec2> {
         let a = &inputs[i];
         if a.intent == Vec2::ZERO {
@@ -620,29 +620,30 @@ impl Resolver {
         // only the intents, and a kept side may turn further than the smallest clear turn).
         let moving_too = self.params.steering == Steering::KeepSide;
         near.clear();
-        near.extend(self.neighbour_lists.of(i).iter().copied().filter(|&j| {
-            let b = &inputs[j];
-            j != i && b.layer == a.layer && (moving_too || still(b, j)) && Self::sensed(a, b)
-        }));
+        near.extend(
+            self.neighbour_lists
+                .of(i)
+                .iter()
+                .copied()
+                .filter(|&j| {
+                    let b = &inputs[j];
+                    j != i
+                        && b.layer == a.layer
+                        && (moving_too || still(b, j))
+                        && Self::sensed(a, b)
+                })
+                .map(|j| {
+                    let b = &inputs[j];
+                    NearRobot::new(b.pos - a.pos, still(b, j), b.intent, self.clearance(a, b))
+                }),
+        );
         let obstacles = &*near;
-        let clear_of = |j: usize, w: Vec2, deflected: bool| {
-            let b = &inputs[j];
-            let v_b = if still(b, j) {
-                Vec2::ZERO
-            } else if deflected {
-                // Only under KeepSide are moving robots in `near` at all.
-                b.intent
-            } else {
-                return true;
-            };
-            !about_to_collide(b.pos - a.pos, v_b - w, self.clearance(a, b), horizon)
-        };
         // The robot that blocked the last heading tried on the same side is tested first.
         let last_blocker = [const { Cell::new(None) }; 2];
         let clear_of_robots = |w: Vec2, deflected: bool| {
             let hint = &last_blocker[usize::from(a.intent.perp_dot(w) > 0.0)];
             all_clear_hinted(obstacles.len(), hint, |k| {
-                clear_of(obstacles[k], w, deflected)
+                obstacles[k].clear_of(w, deflected, horizon)
             })
         };
         let clear_of_statics = |w: Vec2| {

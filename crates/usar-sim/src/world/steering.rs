@@ -4,6 +4,10 @@
 //! far a deflected heading is checked against walls and debris (the turn itself is
 //! `Resolver::steer`).
 
+use parry2d::math::Vector as Vec2;
+
+use super::collision_course::about_to_collide;
+
 /// Step between candidate steering headings, radians (15 degrees).
 pub const STEER_ANGLE_STEP_RAD: f32 = std::f32::consts::PI / 12.0;
 /// Number of candidate deflections per side (8 x 15 = 120 degrees).
@@ -26,6 +30,50 @@ pub(super) fn steer_turns() -> &'static [(f32, f32)] {
             })
             .collect()
     })
+}
+
+/// A robot near the steering one as rule 5 tests headings against it (`Resolver::steer_with`),
+/// taken once per steering robot instead of once per heading tried: the same values and the
+/// same operations on them, so the same answer, bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct NearRobot {
+    /// Its position relative to the steering robot's (world frame), metres.
+    offset_m: Vec2,
+    /// Whether it stands still (held, inactive or without intent): its velocity counts as 0.
+    still: bool,
+    /// Its intended velocity (world frame), metres per second; read only when it moves.
+    intent: Vec2,
+    /// The distance the two bodies must keep: both radii plus the safety margin, metres.
+    clearance_m: f32,
+}
+
+impl NearRobot {
+    /// A robot at `offset_m` from the steering one (metres, world frame), standing `still` or
+    /// moving at `intent` (metres per second), to be kept `clearance_m` metres away.
+    pub(super) fn new(offset_m: Vec2, still: bool, intent: Vec2, clearance_m: f32) -> Self {
+        Self {
+            offset_m,
+            still,
+            intent,
+            clearance_m,
+        }
+    }
+
+    /// Whether heading `w` (metres per second) of the steering robot is clear of this one
+    /// within `horizon_s` seconds ([`about_to_collide`]): against its velocity 0 if it stands
+    /// still, against its intent if it moves and `w` is `deflected` (under
+    /// `collision.steering: KeepSide` a deflected heading may turn further than rule 1's pair
+    /// test saw), and always clear if it moves and `w` is the steering robot's own intent.
+    pub(super) fn clear_of(&self, w: Vec2, deflected: bool, horizon_s: f32) -> bool {
+        let v = if self.still {
+            Vec2::ZERO
+        } else if deflected {
+            self.intent
+        } else {
+            return true;
+        };
+        !about_to_collide(self.offset_m, v - w, self.clearance_m, horizon_s)
+    }
 }
 
 /// How many more turn steps ([`STEER_ANGLE_STEP_RAD`]) a robot turns to the side it last
