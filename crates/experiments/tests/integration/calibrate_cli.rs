@@ -302,12 +302,12 @@ fn bad_input_gives_one_line_errors() {
         (
             "bad.ron",
             &good[..],
-            "error: bad.ron:4:26: targets[0].statistic: unknown metric \"roundz\" (metrics: ",
+            "error: --targets: bad.ron:4:26: targets[0].statistic: unknown metric \"roundz\" (metrics: ",
         ),
         (
             "syntax.ron",
             &good[..],
-            "error: syntax.ron:4:64: targets[0]: Expected comma",
+            "error: --targets: syntax.ron:4:64: targets[0]: Expected comma",
         ),
         (
             "task.ron",

@@ -141,7 +141,7 @@ fn a_target_name_past_the_limit_is_refused_before_anything_runs() {
     let err = one_line_error(&calibrate(tmp.path(), &targets, &["--trials", "2"]));
     assert_eq!(
         err,
-        "error: t.ron:2:4: targets[0].name: target name of 65536 characters, longer than the \
+        "error: --targets: t.ron:2:4: targets[0].name: target name of 65536 characters, longer than the \
          limit of 200\n"
     );
     assert!(!tmp.path().join("out").exists());
@@ -250,5 +250,55 @@ fn claims_files_name_a_missing_field_ids_equal_but_for_case_and_numbers_short() 
         let err = one_line_error(&o);
         assert_eq!(err, format!("error: --claims: {want}\n"), "{body}");
         assert!(!d.join("out").exists());
+    }
+}
+
+/// A study file given by a flag that cannot be parsed is blamed on that flag, then the file,
+/// line and field (`--claims` already was; `--targets` and `--axes` named only the file).
+#[test]
+fn a_bad_targets_or_axes_file_names_its_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    std::fs::write(d.join("t.ron"), TARGETS).unwrap();
+    std::fs::write(d.join("a.ron"), AXES).unwrap();
+    std::fs::write(d.join("bad.ron"), "(bogus: 1)").unwrap();
+    let out = d.join("out");
+    let out = text(&out);
+    let free = "mission.pickup_s=0.5..2";
+    let multiverse = |axes: &'static str, targets: &'static str| {
+        let mut args = vec!["multiverse", PAPER, "--axes", axes, "--targets", targets];
+        args.extend(["--free", free, "--out", out]);
+        args
+    };
+    let cases: [(Vec<&str>, &str); 3] = [
+        (
+            vec![
+                "calibrate",
+                PAPER,
+                "--targets",
+                "bad.ron",
+                "--free",
+                free,
+                "--out",
+                out,
+            ],
+            "error: --targets: bad.ron:1:2: bogus: ",
+        ),
+        (
+            multiverse("a.ron", "bad.ron"),
+            "error: --targets: bad.ron:1:2: bogus: ",
+        ),
+        (
+            multiverse("bad.ron", "t.ron"),
+            "error: --axes: bad.ron:1:2: bogus: ",
+        ),
+    ];
+    for (args, start) in cases {
+        let err = one_line_error(&usar_within_a_minute(d, &args));
+        assert!(
+            err.starts_with(start),
+            "{args:?}: want {start:?}, got {err}"
+        );
+        assert!(!d.join("out").exists(), "{args:?} made its output folder");
     }
 }

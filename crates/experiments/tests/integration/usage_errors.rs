@@ -139,6 +139,10 @@ fn an_output_that_cannot_be_written_names_its_flag() {
         ),
         (to_sub, "error: --out: "),
         (sweep(&["--methods", "rne,,dis"]), "error: --methods: "),
+        (
+            vec!["run", paper, "--duration", "1", "--rounds-csv", folder],
+            "error: --rounds-csv: ",
+        ),
     ];
     for (args, start) in cases {
         let o = usar(&args);
@@ -149,5 +153,10 @@ fn an_output_that_cannot_be_written_names_its_flag() {
             err.starts_with(start),
             "{args:?}: want {start:?}, got {err}"
         );
+        // A file flag's path is named once, by the error itself, not again by the flag's
+        // context.
+        if ["--json", "--rounds-csv"].iter().any(|f| args.contains(f)) {
+            assert_eq!(err.matches(folder).count(), 1, "{args:?}: {err}");
+        }
     }
 }

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use std::time::Duration;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 
 use clap::Args;
 
@@ -198,7 +198,7 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
-    let mut targets = targets_or_paper(args.targets.as_deref())?;
+    let mut targets = targets_or_paper(args.targets.as_deref()).context("--targets")?;
     targets.set_required(&args.require)?;
     targets.set_report_only(&args.report_only)?;
     let free = parse_free(&args.free)?;

@@ -158,8 +158,8 @@ pub fn setup_of(
     let origin = path_text(&spec.scenario);
     let text = scenario::read_source(&spec.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
-    let axes = Axes::load(&spec.axes)?;
-    let mut targets = Targets::load(&spec.targets)?;
+    let axes = Axes::load(&spec.axes).context("--axes")?;
+    let mut targets = Targets::load(&spec.targets).context("--targets")?;
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);

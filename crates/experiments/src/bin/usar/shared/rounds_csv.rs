@@ -17,8 +17,8 @@ pub fn write_rounds_csv(
     out: &mut dyn Write,
 ) -> Result<()> {
     use usar_report::rounds_table::{rounds_csv, summary_lines, task_rounds};
-    write_atomic(path, &rounds_csv(cells)?)
-        .with_context(|| format!("--rounds-csv {}", path.display()))?;
+    // The error names the path; the context names the flag.
+    write_atomic(path, &rounds_csv(cells)?).context("--rounds-csv")?;
     let all: Vec<_> = cells.iter().flat_map(|(_, r)| r.iter().cloned()).collect();
     writeln!(
         out,
