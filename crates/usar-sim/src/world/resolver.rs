@@ -103,7 +103,7 @@ pub struct Resolver {
     /// in `lists`.
     roots: Vec<usize>,
     next_slot: Vec<usize>,
-    /// Scratch of rule 5: the robots standing still near the steering robot.
+    /// Scratch of rule 5: the robots near the steering robot it tests headings against.
     near: Vec<NearRobot>,
     /// Each robot's neighbour candidates for rules 1, 3 and 5, kept over several steps and
     /// refreshed by [`Resolver::resolve`].
@@ -592,7 +592,9 @@ impl Resolver {
     }
 
     /// [`Resolver::steer`] with the caller's scratch list `near` (cleared, then filled with the
-    /// robots standing still near `i`; its capacity is kept between calls) instead of the
+    /// robots near `i` it tests headings against: those standing still, and under
+    /// `collision.steering: KeepSide` the moving ones too; its capacity is kept between
+    /// calls) instead of the
     /// resolver's own, so that it borrows the resolver immutably and robots may steer on
     /// several threads at once; and with a steering side `side`: `0` tries the turns right
     /// side first at each angle, as [`Resolver::steer`] (the same answer, bit for bit); `< 0`

@@ -2,7 +2,7 @@
 //!
 //! The turns a moving robot's intent is deflected by, in the order they are tried, and how
 //! far a deflected heading is checked against walls and debris (the turn itself is
-//! `Resolver::steer`).
+//! `Resolver::steer`), and the nearby robots a heading is tested against ([`NearRobot`]).
 
 use parry2d::math::Vector as Vec2;
 

@@ -198,7 +198,11 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let origin = path_text(&args.scenario);
     let text = scenario::read_source(&args.scenario)?;
     let base = scenario::parse_spec(&text, &origin)?;
-    let mut targets = targets_or_paper(args.targets.as_deref()).context("--targets")?;
+    // The built-in targets are not the user's flag: only a given file is blamed on it.
+    let mut targets = match &args.targets {
+        Some(path) => targets_or_paper(Some(path)).context("--targets")?,
+        None => targets_or_paper(None)?,
+    };
     targets.set_required(&args.require)?;
     targets.set_report_only(&args.report_only)?;
     let free = parse_free(&args.free)?;
