@@ -49,10 +49,11 @@ pub use super::resolver_input::ResolverInput;
 use super::resolver_input::layer_slot;
 use super::resolver_pairs::pairs_by_chunk;
 use super::resolver_reach::{self, LayerBounds};
-use super::steering::{NearRobot, all_clear_hinted, pick_turn};
 pub use super::steering::{
-    STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M, STEER_STEPS_PER_SIDE,
+    NearRobot, STEER_ANGLE_STEP_RAD, STEER_STATIC_GAP_M, STEER_STATIC_LOOKAHEAD_M,
+    STEER_STEPS_PER_SIDE,
 };
+use super::steering::{all_clear_hinted, pick_turn};
 use super::union_find::{find, union};
 use crate::scenario::{CollisionParams, HoldRule, Steering};
 
@@ -593,15 +594,15 @@ impl Resolver {
 
     /// [`Resolver::steer`] with the caller's scratch list `near` (cleared, then filled with the
     /// robots near `i` it tests headings against: those standing still, and under
-    /// `collision.steering: KeepSide` the moving ones too; its capacity is kept between
-    /// calls) instead of the
-    /// resolver's own, so that it borrows the resolver immutably and robots may steer on
+    /// `collision.steering: KeepSide` the moving ones too; its capacity is kept between calls;
+    /// `Vec::new()` makes one) instead of the resolver's own, so that it borrows the resolver
+    /// immutably and robots may steer on
     /// several threads at once; and with a steering side `side`: `0` tries the turns right
     /// side first at each angle, as [`Resolver::steer`] (the same answer, bit for bit); `< 0`
     /// right turns first, `> 0` left turns first, within a bound (the side of the robot's
     /// last deflection, so that it keeps sliding along an obstacle one way; see
     /// `steering::pick_turn`).
-    pub(super) fn steer_with(
+    pub fn steer_with(
         &self,
         inputs: &[ResolverInput],
         i: usize,
@@ -622,23 +623,15 @@ impl Resolver {
         // only the intents, and a kept side may turn further than the smallest clear turn).
         let moving_too = self.params.steering == Steering::KeepSide;
         near.clear();
-        near.extend(
-            self.neighbour_lists
-                .of(i)
-                .iter()
-                .copied()
-                .filter(|&j| {
-                    let b = &inputs[j];
-                    j != i
-                        && b.layer == a.layer
-                        && (moving_too || still(b, j))
-                        && Self::sensed(a, b)
-                })
-                .map(|j| {
-                    let b = &inputs[j];
-                    NearRobot::new(b.pos - a.pos, still(b, j), b.intent, self.clearance(a, b))
-                }),
-        );
+        near.extend(self.neighbour_lists.of(i).iter().filter_map(|&j| {
+            let b = &inputs[j];
+            if j == i || b.layer != a.layer {
+                return None;
+            }
+            let b_still = still(b, j);
+            ((moving_too || b_still) && Self::sensed(a, b))
+                .then(|| NearRobot::new(b.pos - a.pos, b_still, b.intent, self.clearance(a, b)))
+        }));
         let obstacles = &*near;
         // The robot that blocked the last heading tried on the same side is tested first.
         let last_blocker = [const { Cell::new(None) }; 2];

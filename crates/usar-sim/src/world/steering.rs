@@ -32,11 +32,14 @@ pub(super) fn steer_turns() -> &'static [(f32, f32)] {
     })
 }
 
-/// A robot near the steering one as rule 5 tests headings against it (`Resolver::steer_with`),
-/// taken once per steering robot instead of once per heading tried: the same values and the
-/// same operations on them, so the same answer, bit for bit.
+/// A robot near the steering one as rule 5 (section V of the paper, the resolver's steering)
+/// tests headings against it: an entry of [`Resolver::steer_with`]'s scratch list, filled by
+/// it (fields private). Taken once per steering robot instead of once per heading tried: the
+/// same values and the same operations on them, so the same answer, bit for bit.
+///
+/// [`Resolver::steer_with`]: super::resolver::Resolver::steer_with
 #[derive(Debug, Clone, Copy)]
-pub(super) struct NearRobot {
+pub struct NearRobot {
     /// Its position relative to the steering robot's (world frame), metres.
     offset_m: Vec2,
     /// Whether it stands still (held, inactive or without intent): its velocity counts as 0.
