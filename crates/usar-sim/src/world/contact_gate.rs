@@ -110,10 +110,14 @@ impl ContactGate {
     /// `sim.physics: NearBodies`: marks in `near[id]` whether robot `id` may touch a wall,
     /// debris or another robot within the next step ([`GateView::robot_near_contact`]; both
     /// robots of a pair found near from either side are marked); returns whether any may.
-    /// `near` holds one flag per robot. With `parallel` the robots are tested on the calling
-    /// rayon pool, each writing its own flag and its partners to its chunk's list, which are
-    /// then marked in chunk order: the same flags on any number of threads (a flag is only
-    /// ever set). The robots near each robot come from the gate's neighbour lists
+    /// `near` holds one flag per robot. Each robot first writes whether it is near a static
+    /// ([`GateView::near_static`]); then each pair of robots is tested once, by its lower id,
+    /// with the answers of both sides ([`GateView::pairs_above`]), its two robots listed in
+    /// their chunk's list, and the lists are marked in chunk order. With `parallel` both
+    /// passes run on the calling rayon pool: the same flags on any number of threads (a flag
+    /// is only ever set), and the flags of a test of every robot from its own side, marked
+    /// with its partners, at half the pair tests. The robots near
+    /// each robot come from the gate's neighbour lists
     /// ([`ContactGate::refresh_lists`]; `neighbours` is rebuilt for them when they are
     /// rebuilt and `index_fresh` is false, which it then sets).
     pub(super) fn mark_near_bodies(
@@ -134,32 +138,49 @@ impl ContactGate {
         let mut cache = std::mem::take(&mut self.clearance);
         cache.resize(near.len(), UNREAD);
         let view = GateView::new(w, &gate, Some(&self.lists), None);
-        type Chunk<'a> = ((&'a mut [bool], &'a mut [(Vec2, f32)]), &'a mut Vec<usize>);
-        let mark_chunk = |(c, ((out, cached), found)): (usize, Chunk<'_>)| {
-            found.clear();
+        // First each robot's statics, then each pair once, by its lower id, reading both
+        // robots' statics flags.
+        type Chunk<'a> = (usize, (&'a mut [bool], &'a mut [(Vec2, f32)]));
+        let statics_chunk = |(c, (out, cached)): Chunk<'_>| {
             for (k, (o, cached)) in out.iter_mut().zip(cached).enumerate() {
-                *o = view.robot_near_contact(c * CHUNK_ROBOTS + k, cached, |j| found.push(j));
+                *o = view.near_static(c * CHUNK_ROBOTS + k, cached);
+            }
+        };
+        if parallel {
+            near.par_chunks_mut(CHUNK_ROBOTS)
+                .zip(cache.par_chunks_mut(CHUNK_ROBOTS))
+                .enumerate()
+                .with_max_len(1)
+                .for_each(statics_chunk);
+        } else {
+            near.chunks_mut(CHUNK_ROBOTS)
+                .zip(cache.chunks_mut(CHUNK_ROBOTS))
+                .enumerate()
+                .for_each(statics_chunk);
+        }
+        let static_near: &[bool] = near;
+        let pairs_chunk = |(c, found): (usize, &mut Vec<usize>)| {
+            found.clear();
+            let robots = c * CHUNK_ROBOTS..((c + 1) * CHUNK_ROBOTS).min(static_near.len());
+            for i in robots {
+                if view.pairs_above(i, &self.lists, static_near, |j| found.push(j)) {
+                    found.push(i);
+                }
             }
         };
         let used = &mut partners[..chunks];
         if parallel {
-            near.par_chunks_mut(CHUNK_ROBOTS)
-                .zip(cache.par_chunks_mut(CHUNK_ROBOTS))
-                .zip(used)
+            used.par_iter_mut()
                 .enumerate()
                 .with_max_len(1)
-                .for_each(mark_chunk);
+                .for_each(pairs_chunk);
         } else {
-            near.chunks_mut(CHUNK_ROBOTS)
-                .zip(cache.chunks_mut(CHUNK_ROBOTS))
-                .zip(used)
-                .enumerate()
-                .for_each(mark_chunk);
+            used.iter_mut().enumerate().for_each(pairs_chunk);
         }
-        let any = near.contains(&true);
         for &j in partners.iter().take(chunks).flatten() {
             near[j] = true;
         }
+        let any = near.contains(&true);
         self.partners = partners;
         self.clearance = cache;
         self.discs = gate.discs;
@@ -316,53 +337,111 @@ impl GateView<'_> {
         clearance: &mut (Vec2, f32),
         mut partner: impl FnMut(usize),
     ) -> bool {
-        let (dt, gate) = (self.dt, self.gate);
-        let discs = &gate.discs;
-        // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
-        let half_diagonal =
-            self.grid.cell_m() * std::f32::consts::FRAC_1_SQRT_2 + BOX_SKIP_MARGIN_M;
-        let a = &self.nav[i];
-        let va = discs[i].speed_m_per_s;
-        let reach = va * dt + gate.slack_m;
-        let ground = a.layer == Locomotion::Ground;
-        let moved = (a.pos - clearance.0).length() + MOVED_MARGIN_M;
-        // `!(x > reach)`, not `x <= reach`: a NaN (no reading yet) reads the grid.
-        let open = ground && clearance.1 - half_diagonal - moved - a.radius > reach;
-        if !open {
-            if ground {
-                *clearance = (a.pos, self.grid.clearance_at(a.pos));
-            }
-            let grid_gap = clearance.1 - half_diagonal - a.radius;
-            if (!ground || grid_gap <= reach)
-                && self.scene.static_within(a.pos, ground, a.radius, reach)
-            {
-                return true;
-            }
+        if self.near_static(i, clearance) {
+            return true;
         }
-        let others = self.max_radius_m[usize::from(!ground)] as f32;
-        let radius = a.radius + others + (va + gate.fastest_m_per_s) * dt + gate.slack_m;
-        // Robot `j` at `q` (its `nav[j].pos`): those beyond the query's radius (and a margin
-        // far above rounding) are out of reach, skipped before their state is read.
-        let bound = radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M;
+        let (a, disc) = (&self.nav[i], &self.gate.discs[i]);
+        let (radius, bound) = self.pair_reach(i);
         let mut near = false;
         let mut test = |j: usize, q: Vec2| {
             if j == i || (q - a.pos).length_squared() > bound * bound {
                 return;
             }
             debug_assert_eq!(self.nav[j].layer, a.layer, "a list holds its own layer");
-            let b = &discs[j];
-            let gap = (b.pos - a.pos).length() - a.radius - b.radius_m;
-            if gap <= (va + b.speed_m_per_s) * dt + gate.slack_m {
+            if self.pair_near(disc, &self.gate.discs[j]) {
                 near = true;
                 partner(j);
             }
         };
         match (self.lists, self.index) {
-            (Some(lists), _) => lists.of(i).iter().for_each(|&j| test(j, discs[j].pos)),
+            (Some(lists), _) => lists
+                .of(i)
+                .iter()
+                .for_each(|&j| test(j, self.gate.discs[j].pos)),
             (None, Some(index)) => index.grid(a.layer).for_each_candidate(a.pos, radius, test),
             (None, None) => for_each_near(self.nav, None, a.layer, a.pos, radius, |j| {
                 test(j, self.nav[j].pos)
             }),
+        }
+        near
+    }
+
+    /// Whether robot `i` may touch a wall or (ground robots) debris within the next step: the
+    /// statics part of [`GateView::robot_near_contact`], `clearance` its last reading.
+    fn near_static(&self, i: usize, clearance: &mut (Vec2, f32)) -> bool {
+        // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
+        let half_diagonal =
+            self.grid.cell_m() * std::f32::consts::FRAC_1_SQRT_2 + BOX_SKIP_MARGIN_M;
+        let a = &self.nav[i];
+        let reach = self.gate.discs[i].speed_m_per_s * self.dt + self.gate.slack_m;
+        let ground = a.layer == Locomotion::Ground;
+        let moved = (a.pos - clearance.0).length() + MOVED_MARGIN_M;
+        // `!(x > reach)`, not `x <= reach`: a NaN (no reading yet) reads the grid.
+        let open = ground && clearance.1 - half_diagonal - moved - a.radius > reach;
+        if open {
+            return false;
+        }
+        if ground {
+            *clearance = (a.pos, self.grid.clearance_at(a.pos));
+        }
+        let grid_gap = clearance.1 - half_diagonal - a.radius;
+        (!ground || grid_gap <= reach) && self.scene.static_within(a.pos, ground, a.radius, reach)
+    }
+
+    /// Robot `i`'s query radius for other robots (its radius, its layer's largest, what the two
+    /// can close in a step at its speed and the team's fastest, and the slack; metres) and
+    /// the distance beyond which a robot is skipped before its state is read: that radius and
+    /// a margin far above rounding, so a skipped robot fails [`GateView::pair_near`] too.
+    fn pair_reach(&self, i: usize) -> (f32, f32) {
+        let (a, gate) = (&self.nav[i], self.gate);
+        let others = self.max_radius_m[usize::from(a.layer != Locomotion::Ground)] as f32;
+        let va = gate.discs[i].speed_m_per_s;
+        let radius = a.radius + others + (va + gate.fastest_m_per_s) * self.dt + gate.slack_m;
+        (radius, radius * (1.0 + PAIR_SKIP_REL) + BOX_SKIP_MARGIN_M)
+    }
+
+    /// Whether robot `a` (read from its own side) may touch robot `b` within the next step:
+    /// their gap is at most what the two can close in a step, plus the slack.
+    fn pair_near(&self, a: &GateDisc, b: &GateDisc) -> bool {
+        let gap = (b.pos - a.pos).length() - a.radius_m - b.radius_m;
+        gap <= (a.speed_m_per_s + b.speed_m_per_s) * self.dt + self.gate.slack_m
+    }
+
+    /// The pairs of robot `i` with the robots above it in its list, each pair tested once, by
+    /// its lower id, with the answers of [`GateView::robot_near_contact`] from both sides:
+    /// `static_near` holds every robot's [`GateView::near_static`], and a robot near a static
+    /// tests no pair from its side (it stops there), so the pair `(i, j)` is near when `i` is
+    /// not near a static and finds `j` near from its side, or `j` is not and finds `i`. Calls
+    /// `partner(j)` for each `j` so found; returns whether there was one. Every pair that can
+    /// pass is in the lists (both robots within the query radius of each other), so marked
+    /// with `i` and its partners for every `i`, the flags are those of
+    /// [`GateView::robot_near_contact`] of every robot marked with its partners, bit for bit
+    /// (the two sides differ only in the order the radii are taken off the distance).
+    fn pairs_above(
+        &self,
+        i: usize,
+        lists: &NeighbourLists,
+        static_near: &[bool],
+        mut partner: impl FnMut(usize),
+    ) -> bool {
+        let discs = &self.gate.discs;
+        let (a, bound) = (&discs[i], self.pair_reach(i).1);
+        let mut near = false;
+        for &j in lists.above(i) {
+            let b = &discs[j];
+            if (b.pos - a.pos).length_squared() > bound * bound {
+                continue;
+            }
+            debug_assert_eq!(
+                self.nav[j].layer, self.nav[i].layer,
+                "a list holds its layer"
+            );
+            if (!static_near[i] && self.pair_near(a, b))
+                || (!static_near[j] && self.pair_near(b, a))
+            {
+                near = true;
+                partner(j);
+            }
         }
         near
     }
