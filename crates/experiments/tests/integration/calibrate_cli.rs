@@ -312,9 +312,9 @@ fn bad_input_gives_one_line_errors() {
         (
             "task.ron",
             &good[..],
-            "error: task.ron:6:31: targets[2].statistic: target \"easy / hard\": metric \
-             \"rescued_medium\" is about task \"medium\", which the scenario does not have \
-             (its tasks: hard, easy)",
+            "error: --targets: task.ron:6:31: targets[2].statistic: target \"easy / hard\": \
+             metric \"rescued_medium\" is about task \"medium\", which the scenario does not \
+             have (its tasks: hard, easy); scenario: ",
         ),
         (
             "t.ron",

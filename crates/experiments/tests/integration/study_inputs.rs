@@ -302,3 +302,55 @@ fn a_bad_targets_or_axes_file_names_its_flag() {
         assert!(!d.join("out").exists(), "{args:?} made its output folder");
     }
 }
+
+/// A targets or claims file that parses but names a task the scenario lacks is blamed on its
+/// flag, with the scenario, in every command that takes it, as `sweep` already did
+/// (`calibrate` and `multiverse` named only the file).
+#[test]
+fn a_file_about_a_task_the_scenario_lacks_names_its_flag() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let paper_file = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios")
+            .join(name);
+        std::fs::read_to_string(path)
+            .unwrap()
+            .replace("rescued_easy", "rescued_medium")
+    };
+    std::fs::write(d.join("t.ron"), paper_file("paper-targets.ron")).unwrap();
+    let targets = paper_file("paper-targets.ron").replace("rescued_medium", "rescued_easy");
+    std::fs::write(d.join("good.ron"), targets).unwrap();
+    std::fs::write(d.join("c.ron"), paper_file("paper-claims.ron")).unwrap();
+    std::fs::write(d.join("a.ron"), AXES).unwrap();
+    let out = d.join("out");
+    let out = text(&out);
+    let free = ["--free", "mission.pickup_s=0.5..2", "--out", out];
+    let calibrate = [&["calibrate", PAPER, "--targets", "t.ron"][..], &free].concat();
+    let multiverse = |targets: &'static str, claims: Option<&'static str>| {
+        let mut args = vec!["multiverse", PAPER, "--axes", "a.ron", "--targets", targets];
+        args.extend(claims.map_or(vec![], |c| vec!["--claims", c]));
+        [&args[..], &free].concat()
+    };
+    let sweep = vec!["sweep", PAPER, "--targets", "t.ron", "--out", out];
+    let cases: [(Vec<&str>, &str); 4] = [
+        (calibrate, "--targets: t.ron:"),
+        (multiverse("t.ron", None), "--targets: t.ron:"),
+        (multiverse("good.ron", Some("c.ron")), "--claims: c.ron:"),
+        (sweep, "--targets: t.ron:"),
+    ];
+    for (args, start) in cases {
+        let err = one_line_error(&usar_within_a_minute(d, &args));
+        assert!(
+            err.starts_with(&format!("error: {start}")),
+            "{args:?}: want {start:?}, got {err}"
+        );
+        assert!(
+            err.contains(
+                "\"rescued_medium\" is about task \"medium\", which the scenario does not have"
+            ) && err.trim_end().ends_with(&format!("; scenario: {PAPER}")),
+            "{args:?}: {err}"
+        );
+        assert!(!d.join("out").exists(), "{args:?} made its output folder");
+    }
+}

@@ -31,6 +31,7 @@ use usar_sweep::shard::shell_join;
 
 use usar_sweep::sweep::default_out_dir_of;
 
+use crate::shared::flag_tasks::check_file_tasks;
 use crate::shared::optimizer_arg::OptimizerArg;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
@@ -200,7 +201,11 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let base = scenario::parse_spec(&text, &origin)?;
     // The built-in targets are not the user's flag: only a given file is blamed on it.
     let mut targets = match &args.targets {
-        Some(path) => targets_or_paper(Some(path)).context("--targets")?,
+        Some(path) => {
+            let t = targets_or_paper(Some(path)).context("--targets")?;
+            check_file_tasks("--targets", &base, &origin, |tasks| t.check_tasks(tasks))?;
+            t
+        }
         None => targets_or_paper(None)?,
     };
     targets.set_required(&args.require)?;

@@ -21,6 +21,7 @@ use usar_sweep::sweep::default_out_dir_of;
 
 use usar_report::source_date::source_date;
 
+use super::flag_tasks::check_file_tasks;
 use super::optimizer_arg::OptimizerArg;
 use super::scenario_field::scenario_field;
 
@@ -160,6 +161,9 @@ pub fn setup_of(
     let base = scenario::parse_spec(&text, &origin)?;
     let axes = Axes::load(&spec.axes).context("--axes")?;
     let mut targets = Targets::load(&spec.targets).context("--targets")?;
+    check_file_tasks("--targets", &base, &origin, |tasks| {
+        targets.check_tasks(tasks)
+    })?;
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);
@@ -218,7 +222,11 @@ fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Cl
     } else {
         scenario_field(&spec.scenario, "report.claims")
     };
-    Ok(Some(Claims::load(&path).context(setting)?))
+    let claims = Claims::load(&path).context(setting.clone())?;
+    check_file_tasks(&setting, base, &path_text(&spec.scenario), |tasks| {
+        claims.check_tasks(tasks)
+    })?;
+    Ok(Some(claims))
 }
 
 /// The default output folder: `results/multiverse-<scenario name>/` (the name made safe as
