@@ -737,4 +737,98 @@ mod tests {
             );
         }
     }
+
+    /// The flags of every robot tested from its own side (a robot near a static stops there),
+    /// marked with its partners: the reference the gate's pairs-once test must give.
+    fn reference_flags(w: &mut World) -> Vec<bool> {
+        let n = w.parts().nav.len();
+        let (inputs, p) = w.gate_inputs();
+        let gate = p.gate.gate(&inputs, false);
+        let view = GateView::new(&inputs, &gate, None, None);
+        let mut flags = vec![false; n];
+        for i in 0..n {
+            let (mut found, mut unread) = (Vec::new(), UNREAD);
+            flags[i] |= view.robot_near_contact(i, &mut unread, |j| found.push(j));
+            for j in found {
+                flags[j] = true;
+            }
+        }
+        flags
+    }
+
+    /// Regression (pairs tested once): two ground robots of unequal radii (0.4 m and 0.1 m to
+    /// 0.3 m, either at the wall), one at rest against a wall, the other commanded at 2.5 m/s
+    /// at the distances where their gaps read from the two sides (the radii taken off in the
+    /// two orders) fall on either side of what they can close in a step. The robot near the
+    /// wall tests no pair, so the pair is near only if the other robot's side finds it: a test
+    /// of each pair once that took either side's answer would mark the free robot where the
+    /// reference does not. Both ways round (the robot at the wall the lower id and the higher).
+    #[test]
+    fn a_pair_of_unequal_robots_at_a_wall_is_marked_as_from_each_side() {
+        let s = paper(PhysicsStepping::NearBodies);
+        for (at_wall, free) in [(0, 1), (1, 0)] {
+            let mut w = World::new(&s, &ControlClock::of(&s.sim));
+            let start = w.parts().nav[at_wall].pos;
+            let slack = w
+                .parts()
+                .scene
+                .physics
+                .integration_parameters
+                .prediction_distance()
+                + NEAR_CONTACT_MARGIN_M;
+            let speed_m_per_s = 2.5;
+            w.parts().nav[free].command = Vec2::new(speed_m_per_s, 0.0);
+            let reach = speed_m_per_s * w.dt_s() as f32 + slack;
+            let (mut straddles, mut would_differ) = (0, 0);
+            for (k, small_at_wall) in (0..200).flat_map(|k| [(k, false), (k, true)]) {
+                let small = 0.1 + k as f32 * 1e-3;
+                let (ra, rb) = if small_at_wall {
+                    (small, 0.4)
+                } else {
+                    (0.4, small)
+                };
+                w.parts().nav[at_wall].radius = ra;
+                w.parts().nav[free].radius = rb;
+                // Robot `at_wall` moved down from its start until it is within half the
+                // slack of the wall below.
+                let mut p = start;
+                while w.parts().scene.static_distance(p, true) - ra > 0.5 * slack {
+                    p.y -= 1e-3;
+                }
+                w.parts().nav[at_wall].pos = p;
+                // The free robot up and to the side, a few steps of rounding apart.
+                let side = (ra + rb + reach) * std::f32::consts::FRAC_1_SQRT_2;
+                for (kx, ky) in (0..8).flat_map(|kx| (0..8).map(move |ky| (kx, ky))) {
+                    let q = Vec2::new(p.x + side, p.y + side)
+                        + Vec2::new(kx as f32 - 4.0, ky as f32 - 4.0) * 2e-7;
+                    let d = (q - p).length();
+                    let (from_wall, from_free) = (d - ra - rb <= reach, d - rb - ra <= reach);
+                    if from_wall == from_free {
+                        continue;
+                    }
+                    straddles += 1;
+                    w.parts().nav[free].pos = q;
+                    w.parts().pipelines.index_fresh = false;
+                    let mut near = vec![false; w.parts().nav.len()];
+                    w.mark_near_bodies(&mut near);
+                    let reference = reference_flags(&mut w);
+                    assert_eq!(
+                        near, reference,
+                        "robot {at_wall} at the wall, {free} at {q}"
+                    );
+                    assert!(near[at_wall], "robot {at_wall} is near the wall");
+                    assert_eq!(near[free], from_free, "only the free robot's side counts");
+                    would_differ += usize::from(!from_free);
+                }
+            }
+            assert!(
+                straddles > 0,
+                "robot {at_wall} at the wall: no distance straddles"
+            );
+            assert!(
+                would_differ > 0,
+                "robot {at_wall} at the wall: no case where its side's answer would mark"
+            );
+        }
+    }
 }
