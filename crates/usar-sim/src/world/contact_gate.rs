@@ -68,7 +68,8 @@ pub(super) struct ContactGate {
     clearance: Vec<(Vec2, f32)>,
     /// The gate's neighbour lists, kept over several steps.
     lists: NeighbourLists,
-    /// The partners each chunk of [`CHUNK_ROBOTS`] robots found near, by chunk.
+    /// Both robots of each pair found near whose lower id is in the chunk, for each chunk of
+    /// [`CHUNK_ROBOTS`] robots, by chunk.
     partners: Vec<Vec<usize>>,
 }
 
@@ -113,11 +114,11 @@ impl ContactGate {
     /// `near` holds one flag per robot. Each robot first writes whether it is near a static
     /// ([`GateView::near_static`]); then each pair of robots is tested once, by its lower id,
     /// with the answers of both sides ([`GateView::pairs_above`]), its two robots listed in
-    /// their chunk's list, and the lists are marked in chunk order. With `parallel` both
-    /// passes run on the calling rayon pool: the same flags on any number of threads (a flag
-    /// is only ever set), and the flags of a test of every robot from its own side, marked
-    /// with its partners, at half the pair tests. The robots near
-    /// each robot come from the gate's neighbour lists
+    /// their chunk's list, and the lists are marked in chunk order. These are the flags of a
+    /// test of every robot from its own side, marked with its partners, at half the pair
+    /// tests. With `parallel` both passes run on the calling rayon pool: the same flags on any
+    /// number of threads (each robot writes its own static flag; the marking only sets
+    /// flags). The robots near each robot come from the gate's neighbour lists
     /// ([`ContactGate::refresh_lists`]; `neighbours` is rebuilt for them when they are
     /// rebuilt and `index_fresh` is false, which it then sets).
     pub(super) fn mark_near_bodies(
@@ -318,19 +319,15 @@ impl GateView<'_> {
     /// Whether robot `i` may touch a wall, debris (ground robots) or another robot of its
     /// layer within the next step: its gap (distance between the surfaces, negative when they
     /// overlap) is at most what the two can close in a step at their speeds ([`Gate`]), plus
-    /// Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]. Statics by the clearance
-    /// grid first (a cell's clearance less half a diagonal bounds the distance from below),
-    /// then exactly; robots through the gate's lists (`NearBodies`), else the neighbour index,
-    /// else a scan of the layer, calling `partner(j)` for each robot `j` found near (the test
-    /// of a pair is the same from both sides up to rounding). The lists hold robots of the
-    /// robot's own layer only (they are built from the per-layer index).
-    ///
-    /// `clearance` is where the robot last read the (static) clearance grid and what it read
-    /// there: while the distance from there, taken off that reading, still bounds its gap to
-    /// the statics above its reach, the grid is not read again (a robot in open ground reads
-    /// it every few dozen steps instead of every step). The bound only decides whether the
-    /// exact test runs, and the exact test answers "no" whenever a bound is above the reach,
-    /// so the answers are those of reading the grid every step.
+    /// Rapier's prediction distance and [`NEAR_CONTACT_MARGIN_M`]. Statics first
+    /// ([`GateView::near_static`], `clearance` the robot's last reading; a robot near one
+    /// stops there), then every robot of its layer, each from this robot's side
+    /// ([`GateView::pair_near`]): through the gate's lists (`NearContacts`'
+    /// [`ContactGate::near_contact`]), else the neighbour index, else a scan of the layer,
+    /// calling `partner(j)` for each robot `j` found near (the test of a pair is the same from
+    /// both sides up to rounding). The lists hold robots of the robot's own layer only (they
+    /// are built from the per-layer index). `NearBodies` tests each pair once instead
+    /// ([`GateView::pairs_above`]); this is also the tests' reference for it.
     fn robot_near_contact(
         &self,
         i: usize,
@@ -366,8 +363,17 @@ impl GateView<'_> {
         near
     }
 
-    /// Whether robot `i` may touch a wall or (ground robots) debris within the next step: the
-    /// statics part of [`GateView::robot_near_contact`], `clearance` its last reading.
+    /// Whether robot `i` may touch a wall or (ground robots) debris within the next step: by
+    /// the clearance grid first (a cell's clearance less half a diagonal bounds the distance
+    /// from below), then exactly.
+    ///
+    /// `clearance` is where the robot last read the (static) clearance grid and what it read
+    /// there, overwritten whenever the grid is read: while the distance from there, taken off
+    /// that reading, still bounds its gap to the statics above its reach, the grid is not read
+    /// again (with the gate's kept readings, a robot in open ground reads it every few dozen
+    /// steps instead of every step). The bound only decides whether the exact test runs, and
+    /// the exact test answers "no" whenever a bound is above the reach, so the answers are
+    /// those of reading the grid every step.
     fn near_static(&self, i: usize, clearance: &mut (Vec2, f32)) -> bool {
         // A point lies within half a diagonal of its cell's centre; the margin covers rounding.
         let half_diagonal =
@@ -391,7 +397,9 @@ impl GateView<'_> {
     /// Robot `i`'s query radius for other robots (its radius, its layer's largest, what the two
     /// can close in a step at its speed and the team's fastest, and the slack; metres) and
     /// the distance beyond which a robot is skipped before its state is read: that radius and
-    /// a margin far above rounding, so a skipped robot fails [`GateView::pair_near`] too.
+    /// a margin far above rounding, so a skipped robot fails [`GateView::pair_near`] from
+    /// either side too (every robot's radius is at most its layer's largest, and its speed at
+    /// most the team's fastest).
     fn pair_reach(&self, i: usize) -> (f32, f32) {
         let (a, gate) = (&self.nav[i], self.gate);
         let others = self.max_radius_m[usize::from(a.layer != Locomotion::Ground)] as f32;
@@ -412,8 +420,10 @@ impl GateView<'_> {
     /// `static_near` holds every robot's [`GateView::near_static`], and a robot near a static
     /// tests no pair from its side (it stops there), so the pair `(i, j)` is near when `i` is
     /// not near a static and finds `j` near from its side, or `j` is not and finds `i`. Calls
-    /// `partner(j)` for each `j` so found; returns whether there was one. Every pair that can
-    /// pass is in the lists (both robots within the query radius of each other), so marked
+    /// `partner(j)` for each `j` so found; returns whether there was one. Only `i`'s bound
+    /// skips robots ([`GateView::pair_reach`]: it covers either side's test), and every pair
+    /// that can pass is in the lists (both robots within the query radius of each other), so
+    /// marked
     /// with `i` and its partners for every `i`, the flags are those of
     /// [`GateView::robot_near_contact`] of every robot marked with its partners, bit for bit
     /// (the two sides differ only in the order the radii are taken off the distance).
@@ -713,20 +723,7 @@ mod tests {
                     };
                     drive(&mut w, i, v);
                 }
-                let reference = {
-                    let (inputs, p) = w.gate_inputs();
-                    let gate = p.gate.gate(&inputs, false);
-                    let view = GateView::new(&inputs, &gate, None, None);
-                    let mut flags = vec![false; n];
-                    for i in 0..n {
-                        let (mut found, mut unread) = (Vec::new(), UNREAD);
-                        flags[i] |= view.robot_near_contact(i, &mut unread, |j| found.push(j));
-                        for j in found {
-                            flags[j] = true;
-                        }
-                    }
-                    flags
-                };
+                let reference = reference_flags(&mut w);
                 let near = gated_step(&mut w);
                 assert_eq!(near, reference, "skin {skin}, step {step}");
                 marked += near.iter().filter(|&&f| f).count();
@@ -796,11 +793,13 @@ mod tests {
                     p.y -= 1e-3;
                 }
                 w.parts().nav[at_wall].pos = p;
-                // The free robot up and to the side, a few steps of rounding apart.
+                // The free robot up and to the side, a few steps of rounding apart in each
+                // coordinate (so the distance takes nearly every value near the reach).
                 let side = (ra + rb + reach) * std::f32::consts::FRAC_1_SQRT_2;
+                let centre = Vec2::new(p.x + side, p.y + side);
+                let ulp = Vec2::new(centre.x.next_up() - centre.x, centre.y.next_up() - centre.y);
                 for (kx, ky) in (0..8).flat_map(|kx| (0..8).map(move |ky| (kx, ky))) {
-                    let q = Vec2::new(p.x + side, p.y + side)
-                        + Vec2::new(kx as f32 - 4.0, ky as f32 - 4.0) * 2e-7;
+                    let q = centre + Vec2::new(kx as f32 - 4.0, ky as f32 - 4.0) * ulp;
                     let d = (q - p).length();
                     let (from_wall, from_free) = (d - ra - rb <= reach, d - rb - ra <= reach);
                     if from_wall == from_free {
@@ -821,13 +820,12 @@ mod tests {
                     would_differ += usize::from(!from_free);
                 }
             }
+            // Both kinds of straddle: the free robot's side finds the pair, or only the side
+            // of the robot at the wall would.
             assert!(
-                straddles > 0,
-                "robot {at_wall} at the wall: no distance straddles"
-            );
-            assert!(
-                would_differ > 0,
-                "robot {at_wall} at the wall: no case where its side's answer would mark"
+                would_differ > 0 && straddles > would_differ,
+                "robot {at_wall} at the wall: {straddles} straddles, {would_differ} where only \
+                 its side finds the pair"
             );
         }
     }

@@ -31,7 +31,7 @@ use usar_sweep::shard::shell_join;
 
 use usar_sweep::sweep::default_out_dir_of;
 
-use crate::shared::flag_tasks::check_file_tasks;
+use crate::shared::flag_tasks::{check_file_tasks, scenario_tasks};
 use crate::shared::optimizer_arg::OptimizerArg;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
@@ -203,7 +203,8 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
     let mut targets = match &args.targets {
         Some(path) => {
             let t = targets_or_paper(Some(path)).context("--targets")?;
-            check_file_tasks("--targets", &base, &origin, |tasks| t.check_tasks(tasks))?;
+            let tasks = scenario_tasks(&base, &origin);
+            check_file_tasks("--targets", tasks.as_deref(), &origin, |n| t.check_tasks(n))?;
             t
         }
         None => targets_or_paper(None)?,

@@ -8,23 +8,29 @@ use std::fmt::Display;
 use anyhow::{Context, Result, anyhow};
 use usar_sim::scenario::ScenarioSpec;
 
-/// Runs `check` (a file's task check, such as `Targets::check_tasks`) on the task names of
-/// `base` (read from `origin`); its error gets `; scenario: ORIGIN` and the context `setting`
-/// (the flag, such as `--targets`, or where the scenario names the file).
+/// The task names of `base` (read from `origin`), or `None` when it does not validate: the
+/// command's own check reports that, and [`check_file_tasks`] then checks nothing.
+pub fn scenario_tasks(base: &ScenarioSpec, origin: &str) -> Option<Vec<String>> {
+    base.validate(origin).ok().map(|s| s.task_names())
+}
+
+/// Runs `check` (a file's task check, such as `Targets::check_tasks`) on `tasks`, the task
+/// names of the scenario read from `origin` ([`scenario_tasks`]; nothing is checked when
+/// `None`); its error gets `; scenario: ORIGIN` and the context `setting` (the flag, such as
+/// `--targets`, or where the scenario names the file).
 ///
 /// # Errors
-/// The error of `check`. A scenario that does not validate is left to the command's own
-/// check, which reports it: nothing is checked here then.
+/// The error of `check`.
 pub fn check_file_tasks<E: Display>(
     setting: &str,
-    base: &ScenarioSpec,
+    tasks: Option<&[String]>,
     origin: &str,
     check: impl FnOnce(&[String]) -> Result<(), E>,
 ) -> Result<()> {
-    let Ok(scenario) = base.validate(origin) else {
+    let Some(tasks) = tasks else {
         return Ok(());
     };
-    check(&scenario.task_names())
+    check(tasks)
         .map_err(|e| anyhow!("{e}; scenario: {origin}"))
         .with_context(|| setting.to_owned())
 }

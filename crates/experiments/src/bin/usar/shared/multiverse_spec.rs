@@ -21,7 +21,7 @@ use usar_sweep::sweep::default_out_dir_of;
 
 use usar_report::source_date::source_date;
 
-use super::flag_tasks::check_file_tasks;
+use super::flag_tasks::{check_file_tasks, scenario_tasks};
 use super::optimizer_arg::OptimizerArg;
 use super::scenario_field::scenario_field;
 
@@ -150,7 +150,8 @@ pub struct MultiverseSearchArgs {
 /// The setup of `spec` with `threads` worker threads, run as `shard`.
 ///
 /// # Errors
-/// A scenario, axes file, targets file or `--free` that cannot be read or parsed.
+/// A scenario, axes file, targets file or `--free` that cannot be read or parsed, or a
+/// targets or claims file about a task the scenario lacks (blamed on its flag).
 pub fn setup_of(
     spec: &MultiverseSpecArgs,
     threads: usize,
@@ -161,13 +162,14 @@ pub fn setup_of(
     let base = scenario::parse_spec(&text, &origin)?;
     let axes = Axes::load(&spec.axes).context("--axes")?;
     let mut targets = Targets::load(&spec.targets).context("--targets")?;
-    check_file_tasks("--targets", &base, &origin, |tasks| {
-        targets.check_tasks(tasks)
+    let tasks = scenario_tasks(&base, &origin);
+    check_file_tasks("--targets", tasks.as_deref(), &origin, |n| {
+        targets.check_tasks(n)
     })?;
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);
-    let claims = claims_of(spec, &base)?;
+    let claims = claims_of(spec, &base, tasks.as_deref())?;
     Ok(MultiverseSetup {
         claims,
         near_loss: spec.near_loss,
@@ -195,11 +197,16 @@ pub fn setup_of(
 }
 
 /// The claims of `--claims FILE`, or else of the file the scenario's `report: (claims: ...)`
-/// names (relative to its folder; a missing one is a warning and no claims).
+/// names (relative to its folder; a missing one is a warning and no claims), checked against
+/// `tasks`, the scenario's task names ([`scenario_tasks`]).
 ///
 /// # Errors
-/// A claims file that cannot be read or parsed.
-fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Claims>> {
+/// A claims file that cannot be read or parsed, or one about a task the scenario lacks.
+fn claims_of(
+    spec: &MultiverseSpecArgs,
+    base: &ScenarioSpec,
+    tasks: Option<&[String]>,
+) -> Result<Option<Claims>> {
     let path = match (&spec.claims, &base.report.claims) {
         (Some(p), _) => p.clone(),
         (None, None) => return Ok(None),
@@ -223,8 +230,8 @@ fn claims_of(spec: &MultiverseSpecArgs, base: &ScenarioSpec) -> Result<Option<Cl
         scenario_field(&spec.scenario, "report.claims")
     };
     let claims = Claims::load(&path).context(setting.clone())?;
-    check_file_tasks(&setting, base, &path_text(&spec.scenario), |tasks| {
-        claims.check_tasks(tasks)
+    check_file_tasks(&setting, tasks, &path_text(&spec.scenario), |n| {
+        claims.check_tasks(n)
     })?;
     Ok(Some(claims))
 }
