@@ -310,8 +310,9 @@ const GOOD_TARGETS: &str = concat!(
 );
 
 /// A targets or claims file given by a flag that parses but names a task the scenario lacks is
-/// blamed on its flag, with the scenario, in `calibrate` and `multiverse` as in `sweep`
-/// (the first two named only the file).
+/// blamed on its flag, with the scenario, in `calibrate` and `multiverse` as in `sweep` (the
+/// first two named only the file); so is a claims file naming a method neither built in nor
+/// run (`multiverse` named only the file).
 #[test]
 fn a_file_about_a_task_the_scenario_lacks_names_its_flag() {
     let tmp = tempfile::tempdir().unwrap();
@@ -326,10 +327,15 @@ fn a_file_about_a_task_the_scenario_lacks_names_its_flag() {
     };
     std::fs::write(d.join("t.ron"), paper_file("paper-targets.ron")).unwrap();
     std::fs::write(d.join("c.ron"), paper_file("paper-claims.ron")).unwrap();
+    let unknown_method = paper_file("paper-claims.ron")
+        .replace("rescued_medium", "rescued_easy")
+        .replacen("subject: \"RNE\"", "subject: \"RNX\"", 1);
+    std::fs::write(d.join("m.ron"), unknown_method).unwrap();
     std::fs::write(d.join("a.ron"), AXES).unwrap();
     let out = d.join("out");
     let out = text(&out);
-    let free = ["--free", "mission.pickup_s=0.5..2", "--out", out];
+    // A field the axes do not choose (they choose mission.pickup_s).
+    let free = ["--free", "mission.search_time_budget_s=8..30", "--out", out];
     let calibrate = [&["calibrate", PAPER, "--targets", "t.ron"][..], &free].concat();
     let multiverse = |targets: &'static str, claims: Option<&'static str>| {
         let mut args = vec!["multiverse", PAPER, "--axes", "a.ron", "--targets", targets];
@@ -343,6 +349,18 @@ fn a_file_about_a_task_the_scenario_lacks_names_its_flag() {
         (multiverse(GOOD_TARGETS, Some("c.ron")), "--claims: c.ron:"),
         (sweep, "--targets: t.ron:"),
     ];
+    // A claim naming a method neither built in nor run, as `sweep` reports it.
+    for args in [
+        multiverse(GOOD_TARGETS, Some("m.ron")),
+        vec!["sweep", PAPER, "--claims", "m.ron", "--out", out],
+    ] {
+        let err = one_line_error(&usar_within_a_minute(d, &args));
+        assert!(
+            err.starts_with("error: --claims: m.ron:") && err.contains("unknown method \"RNX\""),
+            "{args:?}: {err}"
+        );
+        assert!(!d.join("out").exists(), "{args:?} made its output folder");
+    }
     for (args, start) in cases {
         let err = one_line_error(&usar_within_a_minute(d, &args));
         assert!(

@@ -201,7 +201,8 @@ pub fn setup_of(
 /// `tasks`, the scenario's task names ([`scenario_tasks`]).
 ///
 /// # Errors
-/// A claims file that cannot be read or parsed, or one about a task the scenario lacks.
+/// A claims file that cannot be read or parsed, one about a task the scenario lacks, or one
+/// naming a method that is neither built in nor one of `--methods`.
 fn claims_of(
     spec: &MultiverseSpecArgs,
     base: &ScenarioSpec,
@@ -233,6 +234,11 @@ fn claims_of(
     check_file_tasks(&setting, tasks, &path_text(&spec.scenario), |n| {
         claims.check_tasks(n)
     })?;
+    // As `usar sweep` checks them: a method neither built in nor run, blamed on the setting.
+    let methods: Vec<String> = spec.methods.iter().map(|m| m.trim().to_string()).collect();
+    claims
+        .check_methods(&methods)
+        .with_context(|| setting.clone())?;
     Ok(Some(claims))
 }
 
