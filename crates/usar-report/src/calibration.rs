@@ -98,9 +98,7 @@ impl ReportOptions {
             Some(path)
         };
         let tasks = scenario.task_names();
-        let in_scenario = |message: &mut String| {
-            *message = format!("{message}; scenario: {}", path_text(scenario_path));
-        };
+        let origin = path_text(scenario_path);
         let targets_path = named(
             &asked.targets,
             "targets",
@@ -111,10 +109,7 @@ impl ReportOptions {
             None => None,
             Some(path) => {
                 let t = Targets::load(path)?;
-                t.check_tasks(&tasks).map_err(|mut e| {
-                    in_scenario(&mut e.0.message);
-                    e
-                })?;
+                t.check_tasks_of_scenario(&tasks, &origin)?;
                 Some(t)
             }
         };
@@ -128,10 +123,7 @@ impl ReportOptions {
             None => None,
             Some(path) => {
                 let c = Claims::load(path)?;
-                c.check_tasks(&tasks).map_err(|mut e| {
-                    in_scenario(&mut e.0.message);
-                    e
-                })?;
+                c.check_tasks_of_scenario(&tasks, &origin)?;
                 c.check_methods(methods)?;
                 Some(c)
             }

@@ -102,6 +102,59 @@ fn no_other_kind_writes_into_a_sharded_sweeps_folder() {
     ok(&merge(&s));
 }
 
+/// Regression: a folder of the user's own files (no run's) was used by any run, whose
+/// `report.md` and `trials.csv` then replaced theirs. Every kind, and `usar slurm` before it
+/// writes its scripts, now refuses it in one line naming `--out` and the first such file, with
+/// or without `--overwrite`, and the folder stays byte for byte.
+#[test]
+fn a_folder_of_the_users_own_files_is_refused_by_every_kind_of_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path().join("mine");
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("report.md"), "my notes").unwrap();
+    std::fs::write(d.join("trials.csv"), "my,data").unwrap();
+    let before = snapshot(&d);
+    let run = [
+        "--trials",
+        "2",
+        "--duration",
+        "10",
+        "--quiet",
+        "--out",
+        text(&d),
+    ];
+    let sweep = [&["sweep", PAPER, "--methods", "rne"][..], &run].concat();
+    let grid = [&sweep[..], &["--vary", "mission.pickup_s=1,2"]].concat();
+    let shard = [&sweep[..], &["--shard", "0/2"]].concat();
+    let free = ["--free", "mission.pickup_s=0.5..2", "--max-evals", "1"];
+    let calibrate = [&["calibrate", PAPER, "--methods", "rne"][..], &free, &run].concat();
+    let slurm = [
+        &["slurm", PAPER, "--methods", "rne"][..],
+        &run[..4],
+        &["--shards", "2", "--out", text(&d)],
+    ]
+    .concat();
+    let multiverse = multiverse_args(&d);
+    for overwrite in [false, true] {
+        for args in [&sweep, &grid, &shard, &calibrate, &multiverse, &slurm] {
+            let mut args = args.clone();
+            if overwrite && args[0] != "slurm" {
+                args.push("--overwrite");
+            }
+            let o = usar(&args);
+            let e = stderr(&o);
+            assert!(!o.status.success(), "{args:?} accepted: {e}");
+            let want = format!(
+                "error: --out: {} holds report.md, which no usar run wrote",
+                text(&d)
+            );
+            assert!(e.starts_with(&want), "{args:?}: {e}");
+            assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+            assert!(snapshot(&d) == before, "{args:?} changed the folder");
+        }
+    }
+}
+
 #[test]
 fn a_sharded_sweep_is_refused_in_a_multiverse_folder_and_merge_checks_every_shard() {
     let tmp = tempfile::tempdir().unwrap();

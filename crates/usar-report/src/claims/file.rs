@@ -141,6 +141,21 @@ impl Claims {
         Ok(())
     }
 
+    /// [`Claims::check_tasks`] against the task names `tasks` of the scenario read from
+    /// `scenario` (a path as given), which the error names (`...; scenario: PATH`).
+    ///
+    /// # Errors
+    /// As [`Claims::check_tasks`], with the scenario after the message
+    /// ([`Located::in_scenario`](crate::targets::ron_file::Located::in_scenario)).
+    pub fn check_tasks_of_scenario(
+        &self,
+        tasks: &[String],
+        scenario: &str,
+    ) -> Result<(), ClaimsError> {
+        self.check_tasks(tasks)
+            .map_err(|e| ClaimsError(e.0.in_scenario(scenario)))
+    }
+
     /// Checks that every method a claim names is one of `methods` (a sweep's, or the methods
     /// a factory knows) or a built-in method (`rne_core::grouping::METHOD_NAMES`; a built-in
     /// method left out of a sweep leaves its claims untested, not wrong).

@@ -253,6 +253,21 @@ impl Targets {
         Ok(())
     }
 
+    /// [`Targets::check_tasks`] against the task names `tasks` of the scenario read from
+    /// `scenario` (a path as given), which the error names (`...; scenario: PATH`).
+    ///
+    /// # Errors
+    /// As [`Targets::check_tasks`], with the scenario after the message
+    /// ([`ron_file::Located::in_scenario`]).
+    pub fn check_tasks_of_scenario(
+        &self,
+        tasks: &[String],
+        scenario: &str,
+    ) -> Result<(), TargetsError> {
+        self.check_tasks(tasks)
+            .map_err(|e| TargetsError(e.0.in_scenario(scenario)))
+    }
+
     /// Whether every metric of every target exists for task names `tasks`.
     pub fn apply_to(&self, tasks: &[String]) -> bool {
         self.check_tasks(tasks).is_ok()

@@ -32,6 +32,16 @@ pub struct Located {
     pub message: String,
 }
 
+impl Located {
+    /// This error with `; scenario: SCENARIO` after its message: a file's metric about a task
+    /// the scenario read from `scenario` (a path as given) lacks, as `usar sweep`, `usar
+    /// calibrate` and `usar multiverse` all report it.
+    pub fn in_scenario(mut self, scenario: &str) -> Self {
+        self.message = format!("{}; scenario: {scenario}", self.message);
+        self
+    }
+}
+
 /// Longest name in a study file, characters: a target's name, an axis's or an
 /// alternative's, a claim's sentence and the methods it names. Names are printed in tables,
 /// headers and errors, padded to the longest (a name of 65,536 characters could not be

@@ -19,6 +19,7 @@ use crate::calibrate::{FreeField, Optimizer, Target};
 use usar_report::claims::Claim;
 use usar_sweep::atomic::write_atomic;
 use usar_sweep::bounded_file::{MAX_MULTIVERSE_PLAN_BYTES, read_small};
+use usar_sweep::data::owner::RunKind;
 use usar_sweep::fingerprint::{fnv1a64_hex, scenario_hash};
 use usar_sweep::shard::{Shard, shell_join};
 use usar_sweep::slurm::ShardedWork;
@@ -362,6 +363,10 @@ impl MultiversePlan {
 impl ShardedWork for MultiversePlan {
     fn subcommand(&self) -> &'static str {
         "multiverse"
+    }
+
+    fn run_kind(&self) -> RunKind {
+        RunKind::Multiverse
     }
 
     fn scenario_file(&self) -> PathBuf {

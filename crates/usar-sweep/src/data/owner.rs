@@ -21,8 +21,11 @@
 //! ([`recognise`]): `journal.jsonl` (a sweep, or a grid when its header varies fields; in a
 //! shard's folder, or under `shards/`, a sharded sweep, as is a shard's `plan.json`),
 //! `trace.jsonl` (a calibration) and `multiverse.json` at the top or in a shard's folder (a
-//! multiverse). A folder holding none of them (an empty one, or one of the user's own files)
-//! belongs to no run yet: any kind may claim it.
+//! multiverse). A folder holding none of them belongs to no run yet: any kind may claim it
+//! when it is new or empty, or holds only what usar itself leaves there before a run claims
+//! it ([`before_claim`]). A folder of the user's own files is refused
+//! ([`OwnerError::NotARunFolder`]): a run's files (`report.md`, `trials.csv`, ...) would
+//! overwrite theirs.
 
 use std::fmt;
 use std::fs;
@@ -32,11 +35,12 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
-use crate::atomic::FileError;
+use crate::atomic::{FileError, is_temp_name};
 use crate::data::shard_folders::{SHARDS_DIR, shard_folders};
 use crate::data::shard_split::Shard;
 use crate::data::sweep_plan::PLAN_FILE as SHARD_PLAN_FILE;
 use crate::journal::{JOURNAL_FILE, read_header_unverified};
+use crate::lock::LOCK_FILE;
 
 /// The manifest's name in an output folder.
 pub const OWNER_FILE: &str = "usar-owner.json";
@@ -53,6 +57,19 @@ pub mod evidence {
     pub const TRACE: &str = "trace.jsonl";
     /// A multiverse's plan.
     pub const MULTIVERSE_PLAN: &str = "multiverse.json";
+}
+
+/// What a folder owned by no run may hold and still be claimed ([`claim`]): besides these,
+/// the manifest ([`OWNER_FILE`], written by a run claiming the folder at the same moment), a
+/// sweep's lock file ([`LOCK_FILE`]),
+/// temporary files, the manifest's and those of [`crate::atomic::write_atomic`]
+/// ([`is_temp_name`]), and anything at the name of a run's record ([`JOURNAL_FILE`],
+/// [`evidence`]'s files, [`SHARDS_DIR`]) that [`recognise`] did not take for one (a FIFO, a
+/// dangling link, a folder): the run's own checks name what is wrong with it.
+pub mod before_claim {
+    /// `usar slurm`'s scripts (`crate::slurm::SLURM_DIR` is defined as this), written into
+    /// the sweep's output folder before its shards run.
+    pub const SLURM_SCRIPTS: &str = "slurm";
 }
 
 /// The kind of run an output folder belongs to.
@@ -148,6 +165,21 @@ pub enum OwnerError {
         wanted: RunKind,
         /// The file that shows the owner.
         evidence: String,
+    },
+    /// The folder belongs to no run and holds something no usar run wrote there: a run's
+    /// files would overwrite the user's own (with or without `--overwrite`).
+    #[error(
+        "{dir} holds {entry}, which no usar run wrote; a {wanted} writes only into a new or \
+         empty folder or one of its own runs, so that it never overwrites your files: choose \
+         another output folder"
+    )]
+    NotARunFolder {
+        /// The folder.
+        dir: String,
+        /// The first foreign entry, by name (a folder's name ends in `/`).
+        entry: String,
+        /// The run that was refused.
+        wanted: RunKind,
     },
     /// The manifest cannot be read or is not one this build writes.
     #[error(
@@ -252,22 +284,19 @@ fn file_type_name(m: &fs::Metadata) -> &'static str {
 
 /// Claims `dir` for a run of `kind`: checks the path ([`check_out_dir`]), creates the folder,
 /// refuses it when it belongs to another kind (its manifest, or for a folder without one, its
-/// files: [`recognise`]), and writes the manifest if there is none yet. A manifest is created
-/// only if absent (never replaced), so two runs claiming one folder at the same time cannot
-/// both win. Call it before anything else of the run touches `dir`.
+/// files: [`recognise`]) or to no run but holds the user's own files (anything but what
+/// [`before_claim`] lists), and writes the manifest if there is none yet. A manifest is
+/// created only if absent (never replaced), so two runs claiming one folder at the same time
+/// cannot both win. Call it before anything else of the run touches `dir`.
 ///
 /// # Errors
-/// See [`check_out_dir`]; [`OwnerError::OtherKind`]; [`OwnerError::BadManifest`]; an I/O error
-/// creating the folder or writing the manifest.
+/// See [`check_out_dir`]; [`OwnerError::OtherKind`]; [`OwnerError::NotARunFolder`];
+/// [`OwnerError::BadManifest`]; an I/O error creating or listing the folder or writing the
+/// manifest.
 pub fn claim(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     check_out_dir(dir)?;
     fs::create_dir_all(dir).map_err(io("creating folder", dir))?;
-    if let Some(found) = checked_manifest(dir)? {
-        return refuse_other(dir, kind, Owner::of_manifest(dir, found));
-    }
-    if let Some(found) = recognise(dir)? {
-        refuse_other(dir, kind, found)?;
-    }
+    refuse_unusable(dir, kind)?;
     match write_new_manifest(dir, kind) {
         Ok(()) => Ok(()),
         // Another run wrote one since: its kind decides.
@@ -278,6 +307,41 @@ pub fn claim(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
             }
         }
         Err(e) => Err(e),
+    }
+}
+
+/// Checks, without writing anything, that a run of `kind` could claim `dir` ([`claim`]): a
+/// path that is no folder yet, or a folder of that kind or of none that holds none of the
+/// user's files. What `usar slurm` asks before it writes the scripts whose shards will claim
+/// the folder on the cluster.
+///
+/// # Errors
+/// As [`claim`], but for creating the folder and writing the manifest.
+pub fn check_claimable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    check_out_dir(dir)?;
+    if !dir.exists() {
+        return Ok(());
+    }
+    refuse_unusable(dir, kind)
+}
+
+/// Refuses the existing folder `dir` for a run of `kind` when it belongs to another kind (its
+/// manifest, or for a folder without one, its files: [`recognise`]) or to no run but holds
+/// the user's own files ([`foreign_entry`]).
+fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
+    if let Some(found) = checked_manifest(dir)? {
+        return refuse_other(dir, kind, Owner::of_manifest(dir, found));
+    }
+    if let Some(found) = recognise(dir)? {
+        return refuse_other(dir, kind, found);
+    }
+    match foreign_entry(dir)? {
+        Some(entry) => Err(OwnerError::NotARunFolder {
+            dir: path_text(dir),
+            entry,
+            wanted: kind,
+        }),
+        None => Ok(()),
     }
 }
 
@@ -391,6 +455,31 @@ fn write_new_manifest(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     let linked = fs::hard_link(&tmp, &path).map_err(io("writing", &path));
     let removed = fs::remove_file(&tmp).map_err(io("removing", &tmp));
     linked.and(removed)
+}
+
+/// The first entry of `dir` (by name) that no usar run leaves in a folder before claiming it
+/// ([`before_claim`]), as `name` or, for a folder, `name/`; `None` when there is none.
+///
+/// # Errors
+/// An I/O error listing the folder.
+fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
+    let listing = fs::read_dir(dir).map_err(io("listing", dir))?;
+    let mut foreign: Option<(String, bool)> = None;
+    for entry in listing {
+        let entry = entry.map_err(io("listing", dir))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+        let usar = match name.as_str() {
+            OWNER_FILE | LOCK_FILE => !is_dir,
+            before_claim::SLURM_SCRIPTS => is_dir,
+            JOURNAL_FILE | evidence::TRACE | evidence::MULTIVERSE_PLAN | SHARDS_DIR => true,
+            other => is_temp_name(other),
+        };
+        if !usar && foreign.as_ref().is_none_or(|(first, _)| name < *first) {
+            foreign = Some((name, is_dir));
+        }
+    }
+    Ok(foreign.map(|(name, is_dir)| if is_dir { format!("{name}/") } else { name }))
 }
 
 /// The manifest of `kind`, one JSON line.
@@ -541,6 +630,59 @@ mod tests {
         assert_eq!(fs::read_to_string(d.join(OWNER_FILE)).unwrap(), text);
         check_owner(&d, RunKind::Multiverse).unwrap();
         assert!(check_owner(&d, RunKind::Grid).is_err());
+    }
+
+    /// A folder of the user's own files is refused by every kind, naming the first foreign
+    /// entry, and nothing is written there; one holding only what usar leaves before a claim
+    /// (`usar slurm`'s scripts, a lock, temporary files) is claimed.
+    #[test]
+    fn a_folder_of_the_users_files_is_refused_and_usars_own_leftovers_are_not() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path().join("mine");
+        fs::create_dir_all(d.join("figures")).unwrap();
+        fs::write(d.join("report.md"), "my notes").unwrap();
+        for kind in [
+            RunKind::Sweep,
+            RunKind::Grid,
+            RunKind::ShardedSweep,
+            RunKind::Calibration,
+            RunKind::Multiverse,
+        ] {
+            let e = err(claim(&d, kind));
+            let want = format!(
+                "{} holds figures/, which no usar run wrote; a {kind} writes only",
+                path_text(&d)
+            );
+            assert!(e.starts_with(&want), "{e}");
+        }
+        fs::remove_dir(d.join("figures")).unwrap();
+        assert!(err(claim(&d, RunKind::Sweep)).contains("holds report.md,"));
+        assert!(check_claimable(&d, RunKind::ShardedSweep).is_err());
+        assert!(!d.join(OWNER_FILE).exists());
+        assert_eq!(fs::read_to_string(d.join("report.md")).unwrap(), "my notes");
+        check_claimable(&tmp.path().join("new"), RunKind::ShardedSweep).unwrap();
+        assert!(!tmp.path().join("new").exists());
+
+        let ours = tmp.path().join("ours");
+        fs::create_dir_all(ours.join(before_claim::SLURM_SCRIPTS)).unwrap();
+        fs::write(ours.join(LOCK_FILE), "").unwrap();
+        fs::write(ours.join(".trials.csv.tmp-12-a1B2"), "").unwrap();
+        fs::write(ours.join(format!(".{OWNER_FILE}.tmp-7-owner")), "").unwrap();
+        check_claimable(&ours, RunKind::ShardedSweep).unwrap();
+        assert!(!ours.join(OWNER_FILE).exists());
+        claim(&ours, RunKind::ShardedSweep).unwrap();
+        assert!(check_claimable(&ours, RunKind::Calibration).is_err());
+        // A file named as usar's folder, and a folder named as its file, are the user's.
+        for (name, folder) in [(before_claim::SLURM_SCRIPTS, false), (LOCK_FILE, true)] {
+            let d = tmp.path().join(format!("odd-{name}"));
+            fs::create_dir_all(&d).unwrap();
+            if folder {
+                fs::create_dir(d.join(name)).unwrap();
+            } else {
+                fs::write(d.join(name), "").unwrap();
+            }
+            assert!(err(claim(&d, RunKind::Sweep)).contains(&format!(" holds {name}")));
+        }
     }
 
     #[test]

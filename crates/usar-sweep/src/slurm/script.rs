@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use usar_sim::scenario::path_text;
 
 use crate::atomic::FileError;
+use crate::data::owner::RunKind;
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
 use crate::slurm::error::SlurmError;
 
@@ -26,6 +27,9 @@ pub trait ShardedWork {
     /// The `usar` subcommand each task runs: `sweep` or `multiverse`. It also names the
     /// array's script (`<subcommand>.sbatch`) and its logs.
     fn subcommand(&self) -> &'static str;
+    /// The kind of run whose folder the shards and the merge write into
+    /// ([`RunKind::ShardedSweep`] or [`RunKind::Multiverse`]).
+    fn run_kind(&self) -> RunKind;
     /// The scenario file as named on the command line (relative to the working folder).
     fn scenario_file(&self) -> PathBuf;
     /// The options after the scenario that repeat the work (without `--shard`, `--out`,
@@ -38,6 +42,10 @@ pub trait ShardedWork {
 impl ShardedWork for SweepPlan {
     fn subcommand(&self) -> &'static str {
         "sweep"
+    }
+
+    fn run_kind(&self) -> RunKind {
+        RunKind::ShardedSweep
     }
 
     fn scenario_file(&self) -> PathBuf {
@@ -54,7 +62,7 @@ impl ShardedWork for SweepPlan {
 }
 
 /// Name of the folder, under the sweep's output folder, that holds the Slurm files.
-pub const SLURM_DIR: &str = "slurm";
+pub const SLURM_DIR: &str = crate::data::owner::before_claim::SLURM_SCRIPTS;
 
 /// The Slurm resources of the array's tasks (and of the merge job, which takes one CPU).
 /// Each value is passed to `#SBATCH` as written; `None` leaves the cluster's default.

@@ -22,7 +22,7 @@ use usar_study::calibrate::setup::{
 };
 
 use usar_study::calibrate::{
-    CalibrationSetup, Progress, TrialPlan, calibrate, parse_free, summary_text,
+    CalibrationError, CalibrationSetup, Progress, TrialPlan, calibrate, parse_free, summary_text,
 };
 
 use usar_report::calibration::targets_or_paper;
@@ -33,6 +33,7 @@ use usar_sweep::sweep::default_out_dir_of;
 
 use crate::shared::flag_tasks::{check_file_tasks, scenario_tasks};
 use crate::shared::optimizer_arg::OptimizerArg;
+use crate::shared::out_flag::out_setting;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::STOP_EXIT_CODE;
 use usar_report::source_date::source_date;
@@ -204,7 +205,9 @@ fn setup_of(args: &CalibrateArgs) -> Result<CalibrationSetup> {
         Some(path) => {
             let t = targets_or_paper(Some(path)).context("--targets")?;
             let tasks = scenario_tasks(&base, &origin);
-            check_file_tasks("--targets", tasks.as_deref(), &origin, |n| t.check_tasks(n))?;
+            check_file_tasks("--targets", tasks.as_deref(), |n| {
+                t.check_tasks_of_scenario(n, &origin)
+            })?;
             t
         }
         None => targets_or_paper(None)?,
@@ -270,7 +273,12 @@ pub fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<()> {
             }
         }));
     }
-    let outcome = calibrate(&setup, &dir, progress)?;
+    let outcome = calibrate(&setup, &dir, progress).map_err(|e| match e {
+        CalibrationError::Owner(_) | CalibrationError::Lock(_) => {
+            anyhow::Error::new(e).context(out_setting(args.out.is_some()))
+        }
+        e => e.into(),
+    })?;
     out.write_all(summary_text(&outcome).as_bytes())?;
     Ok(())
 }

@@ -11,7 +11,9 @@ use anyhow::{Context, Result};
 
 use clap::Args;
 
-use usar_study::multiverse::{MultiverseHooks, MultiverseProgress, run_multiverse, summary_text};
+use usar_study::multiverse::{
+    MultiverseError, MultiverseHooks, MultiverseProgress, run_multiverse, summary_text,
+};
 
 use usar_sweep::shard::Shard;
 
@@ -19,6 +21,7 @@ use rne_core::{TrustModel, Weights};
 use usar_sweep::sweep::{MethodFactory, SweepHooks, canonical_method};
 
 use crate::shared::multiverse_spec::{MultiverseSpecArgs, default_dir, failed_universes, setup_of};
+use crate::shared::out_flag::out_setting;
 use crate::shared::sweep_spec::threads_of;
 use crate::shared::test_hooks::{STOP_EXIT_CODE, test_hooks};
 
@@ -179,7 +182,12 @@ pub fn run(args: &MultiverseArgs, out: &mut dyn Write) -> Result<()> {
     } else {
         MultiverseProgress::terminal()
     };
-    let o = run_multiverse(&setup, &dir, progress)?;
+    let o = run_multiverse(&setup, &dir, progress).map_err(|e| match e {
+        MultiverseError::Owner(_) | MultiverseError::Lock(_) => {
+            anyhow::Error::new(e).context(out_setting(args.spec.out.is_some()))
+        }
+        e => e.into(),
+    })?;
     out.write_all(summary_text(&o, &dir).as_bytes())?;
     failed_universes(&o, "run the same command again to retry them")
 }

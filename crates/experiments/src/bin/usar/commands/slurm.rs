@@ -14,6 +14,7 @@ use usar_study::multiverse::MultiversePlan;
 use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
 };
+use usar_sweep::data::owner::check_claimable;
 use usar_sweep::shard::shell_join;
 use usar_sweep::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
 use usar_sweep::sweep::default_out_dir;
@@ -275,6 +276,9 @@ fn write_and_submit(
         mem: args.mem.clone(),
         account: args.account.clone(),
     };
+    // The shards will claim the folder on the cluster: a folder they would refuse is refused
+    // now, before any script is written.
+    check_claimable(out_dir, work.run_kind()).context("--out")?;
     let job = SlurmJob {
         plan: work,
         out_dir,

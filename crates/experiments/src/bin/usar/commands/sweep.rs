@@ -15,6 +15,7 @@ use usar_sim::scenario::{self, Scenario, path_text};
 
 use usar_report::analysis::Analysis;
 
+use crate::shared::out_flag::out_setting;
 use crate::shared::scenario_warnings::{scenario_warnings, warn_about as warn_about_scenario};
 use crate::shared::sweep_spec::{
     ReportArgs, SweepSpecArgs, grid_metrics, threads_of, warn_if_rounded,
@@ -191,10 +192,7 @@ fn name_the_flag(e: SweepError, out_given: bool) -> anyhow::Error {
     let flag = match (&e, out_given) {
         (SweepError::Method(MethodError::NeedsWeights(_)), _) => return e.into(),
         (SweepError::Method(_), _) => "--methods",
-        (SweepError::Lock(_) | SweepError::Owner(_), true) => "--out",
-        (SweepError::Lock(_) | SweepError::Owner(_), false) => {
-            "the default output folder (--out DIR sets another)"
-        }
+        (SweepError::Lock(_) | SweepError::Owner(_), _) => out_setting(out_given),
         _ => return e.into(),
     };
     anyhow::Error::new(e).context(flag)

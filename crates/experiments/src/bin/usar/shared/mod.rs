@@ -11,6 +11,7 @@ pub mod error_text;
 pub mod flag_tasks;
 pub mod multiverse_spec;
 pub mod optimizer_arg;
+pub mod out_flag;
 pub mod progress;
 pub mod rounds_csv;
 pub mod scenario_field;

@@ -163,8 +163,8 @@ pub fn setup_of(
     let axes = Axes::load(&spec.axes).context("--axes")?;
     let mut targets = Targets::load(&spec.targets).context("--targets")?;
     let tasks = scenario_tasks(&base, &origin);
-    check_file_tasks("--targets", tasks.as_deref(), &origin, |n| {
-        targets.check_tasks(n)
+    check_file_tasks("--targets", tasks.as_deref(), |n| {
+        targets.check_tasks_of_scenario(n, &origin)
     })?;
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
@@ -231,8 +231,8 @@ fn claims_of(
         scenario_field(&spec.scenario, "report.claims")
     };
     let claims = Claims::load(&path).context(setting.clone())?;
-    check_file_tasks(&setting, tasks, &path_text(&spec.scenario), |n| {
-        claims.check_tasks(n)
+    check_file_tasks(&setting, tasks, |n| {
+        claims.check_tasks_of_scenario(n, &path_text(&spec.scenario))
     })?;
     // As `usar sweep` checks them: a method neither built in nor run, blamed on the setting.
     let methods: Vec<String> = spec.methods.iter().map(|m| m.trim().to_string()).collect();
