@@ -266,7 +266,8 @@ def sweep(
     ``usar sweep --out`` writes (journal.jsonl, trials.csv, trials_long.csv, summary.csv,
     report.md, figures); ``resume=True`` continues its journal; ``overwrite=True`` discards
     a sweep's journal, tables and figures already in ``out`` and starts afresh (other files
-    stay; a folder of another kind, such as a calibration's, is refused). ``progress``: a tqdm
+    stay; a folder of another kind, such as a calibration's, is refused, and so is a folder of
+    your own files that no run wrote). ``progress``: a tqdm
     bar (default: on a terminal or in a notebook, when tqdm is installed). With ``out``,
     ``targets`` (a targets file, as ``--targets``) and ``claims`` (a claims file, as
     ``--claims``, or a list of claims as dicts with a claims file's fields: ``{"id": "1",

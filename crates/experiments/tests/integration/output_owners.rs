@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 
 use common::{
     PAPER, merge, multiverse_args, ok, sharded_sweep, snapshot, stderr, sweep_shard, text, usar,
+    usar_in,
 };
 
 /// Asserts `o` failed with a one-line error naming the folder's owner and the refused kind.
@@ -153,6 +154,25 @@ fn a_folder_of_the_users_own_files_is_refused_by_every_kind_of_run() {
             assert!(snapshot(&d) == before, "{args:?} changed the folder");
         }
     }
+    // Without --out, the default folder (results/paper) is blamed as such.
+    let cwd = tmp.path();
+    let default = cwd.join("results/paper");
+    std::fs::create_dir_all(&default).unwrap();
+    std::fs::write(default.join("report.md"), "my notes").unwrap();
+    let run = ["--methods", "rne", "--trials", "2", "--duration", "10"];
+    for command in ["sweep", "slurm"] {
+        let mut args = [&[command, PAPER][..], &run].concat();
+        if command == "slurm" {
+            args.extend(["--shards", "2"]);
+        }
+        let e = stderr(&usar_in(cwd, &args));
+        assert!(
+            e.starts_with("error: the default output folder (--out DIR sets another): ")
+                && e.contains("results/paper holds report.md, which no usar run wrote"),
+            "{command}: {e}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(&default).unwrap().count(), 1);
 }
 
 #[test]

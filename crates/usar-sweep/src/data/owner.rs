@@ -23,7 +23,7 @@
 //! `trace.jsonl` (a calibration) and `multiverse.json` at the top or in a shard's folder (a
 //! multiverse). A folder holding none of them belongs to no run yet: any kind may claim it
 //! when it is new or empty, or holds only what usar itself leaves there before a run claims
-//! it ([`before_claim`]). A folder of the user's own files is refused
+//! it and hidden entries ([`before_claim`]). A folder of the user's own files is refused
 //! ([`OwnerError::NotARunFolder`]): a run's files (`report.md`, `trials.csv`, ...) would
 //! overwrite theirs.
 
@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
 
-use crate::atomic::{FileError, is_temp_name};
+use crate::atomic::FileError;
 use crate::data::shard_folders::{SHARDS_DIR, shard_folders};
 use crate::data::shard_split::Shard;
 use crate::data::sweep_plan::PLAN_FILE as SHARD_PLAN_FILE;
@@ -61,9 +61,9 @@ pub mod evidence {
 
 /// What a folder owned by no run may hold and still be claimed ([`claim`]): besides these,
 /// the manifest ([`OWNER_FILE`], written by a run claiming the folder at the same moment), a
-/// sweep's lock file ([`LOCK_FILE`]),
-/// temporary files, the manifest's and those of [`crate::atomic::write_atomic`]
-/// ([`is_temp_name`]), and anything at the name of a run's record ([`JOURNAL_FILE`],
+/// sweep's lock file ([`LOCK_FILE`]), hidden entries (`.DS_Store`, `.git`; the only hidden
+/// files a run writes are its temporary files, the manifest's and those of
+/// [`crate::atomic::write_atomic`]), and anything at the name of a run's record ([`JOURNAL_FILE`],
 /// [`evidence`]'s files, [`SHARDS_DIR`]) that [`recognise`] did not take for one (a FIFO, a
 /// dangling link, a folder): the run's own checks name what is wrong with it.
 pub mod before_claim {
@@ -327,7 +327,9 @@ pub fn check_claimable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
 
 /// Refuses the existing folder `dir` for a run of `kind` when it belongs to another kind (its
 /// manifest, or for a folder without one, its files: [`recognise`]) or to no run but holds
-/// the user's own files ([`foreign_entry`]).
+/// the user's own files ([`foreign_entry`]). A folder inside a run's folder (a universe's
+/// calibration, a shard's folder: a manifest at most [`NESTED_LEVELS`] folders up) is that
+/// run's to clear, so what it holds is not refused.
 fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     if let Some(found) = checked_manifest(dir)? {
         return refuse_other(dir, kind, Owner::of_manifest(dir, found));
@@ -335,14 +337,35 @@ fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     if let Some(found) = recognise(dir)? {
         return refuse_other(dir, kind, found);
     }
-    match foreign_entry(dir)? {
-        Some(entry) => Err(OwnerError::NotARunFolder {
-            dir: path_text(dir),
-            entry,
-            wanted: kind,
-        }),
-        None => Ok(()),
+    let Some(entry) = foreign_entry(dir)? else {
+        return Ok(());
+    };
+    // A run of this folder that claimed it since this one looked (its manifest comes first,
+    // then its files) decides, as in `claim`'s race.
+    if let Some(found) = checked_manifest(dir)? {
+        return refuse_other(dir, kind, Owner::of_manifest(dir, found));
     }
+    if inside_a_run(dir) {
+        return Ok(());
+    }
+    Err(OwnerError::NotARunFolder {
+        dir: path_text(dir),
+        entry,
+        wanted: kind,
+    })
+}
+
+/// How many folders up [`refuse_unusable`] looks for the run a folder lies inside: a
+/// multiverse's `universes/<id>/comparison/` is three below its top.
+const NESTED_LEVELS: usize = 3;
+
+/// Whether a folder at most [`NESTED_LEVELS`] above `dir` holds a manifest ([`OWNER_FILE`]):
+/// `dir` lies inside a run's folder, which its run's `--overwrite` clears.
+fn inside_a_run(dir: &Path) -> bool {
+    dir.ancestors()
+        .skip(1)
+        .take(NESTED_LEVELS)
+        .any(|a| fs::symlink_metadata(a.join(OWNER_FILE)).is_ok_and(|m| m.is_file()))
 }
 
 /// Records that `dir`, claimed by a run of `kind` ([`claim`]), now holds that kind's files:
@@ -470,16 +493,25 @@ fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
         let name = entry.file_name().to_string_lossy().into_owned();
         let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
         let usar = match name.as_str() {
+            // A hidden entry (`.DS_Store`, `.git`): no run writes one but its temporary files.
+            hidden if hidden.starts_with('.') => true,
             OWNER_FILE | LOCK_FILE => !is_dir,
             before_claim::SLURM_SCRIPTS => is_dir,
             JOURNAL_FILE | evidence::TRACE | evidence::MULTIVERSE_PLAN | SHARDS_DIR => true,
-            other => is_temp_name(other),
+            _ => false,
         };
         if !usar && foreign.as_ref().is_none_or(|(first, _)| name < *first) {
             foreign = Some((name, is_dir));
         }
     }
-    Ok(foreign.map(|(name, is_dir)| if is_dir { format!("{name}/") } else { name }))
+    let shown = |name: String| path_text(Path::new(&name));
+    Ok(foreign.map(|(name, is_dir)| {
+        if is_dir {
+            format!("{}/", shown(name))
+        } else {
+            shown(name)
+        }
+    }))
 }
 
 /// The manifest of `kind`, one JSON line.
@@ -668,6 +700,7 @@ mod tests {
         fs::write(ours.join(LOCK_FILE), "").unwrap();
         fs::write(ours.join(".trials.csv.tmp-12-a1B2"), "").unwrap();
         fs::write(ours.join(format!(".{OWNER_FILE}.tmp-7-owner")), "").unwrap();
+        fs::write(ours.join(".DS_Store"), "").unwrap();
         check_claimable(&ours, RunKind::ShardedSweep).unwrap();
         assert!(!ours.join(OWNER_FILE).exists());
         claim(&ours, RunKind::ShardedSweep).unwrap();
@@ -683,6 +716,21 @@ mod tests {
             }
             assert!(err(claim(&d, RunKind::Sweep)).contains(&format!(" holds {name}")));
         }
+        // A name with a line break is shown escaped: the error stays one line.
+        let odd = tmp.path().join("odd-name");
+        fs::create_dir_all(&odd).unwrap();
+        fs::write(odd.join("a\nb"), "").unwrap();
+        let e = err(claim(&odd, RunKind::Sweep));
+        assert!(e.contains("holds a\\nb,"), "{e}");
+        // Inside a run's folder (a universe's comparison after the multiverse's
+        // `--overwrite`, which leaves the user's files), a sub-run still claims its folder.
+        let top = tmp.path().join("mv");
+        claim(&top, RunKind::Multiverse).unwrap();
+        let sub = top.join("universes/u000/comparison");
+        fs::create_dir_all(&sub).unwrap();
+        fs::write(sub.join("notes.txt"), "mine").unwrap();
+        claim(&sub, RunKind::Sweep).unwrap();
+        assert_eq!(fs::read_to_string(sub.join("notes.txt")).unwrap(), "mine");
     }
 
     #[test]

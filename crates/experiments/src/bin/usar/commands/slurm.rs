@@ -15,6 +15,8 @@ use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
 };
 use usar_sweep::data::owner::check_claimable;
+
+use crate::shared::out_flag::out_setting;
 use usar_sweep::shard::shell_join;
 use usar_sweep::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
 use usar_sweep::sweep::default_out_dir;
@@ -215,7 +217,7 @@ pub fn run(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
             args.shards
         );
     }
-    write_and_submit(args, &plan, &out_dir, out)
+    write_and_submit(args, &plan, (&out_dir, args.spec.out.is_some()), out)
 }
 
 /// `usar slurm --axes ...`: checks the multiverse as `usar multiverse` would, then writes
@@ -255,15 +257,15 @@ fn run_multiverse(args: &SlurmArgs, out: &mut dyn Write) -> Result<()> {
         checked.universes.len(),
     )?;
     let plan = MultiversePlan::of(&setup, &checked, &out_dir)?;
-    write_and_submit(args, &plan, &out_dir, out)
+    write_and_submit(args, &plan, (&out_dir, s.out.is_some()), out)
 }
 
-/// Writes the scripts of `work` into `out_dir/slurm/`, then prints how to submit them or,
-/// with `--submit`, submits them.
+/// Writes the scripts of `work` into `out_dir/slurm/` (`out_dir` as `(path, given with
+/// --out)`), then prints how to submit them or, with `--submit`, submits them.
 fn write_and_submit(
     args: &SlurmArgs,
     work: &dyn ShardedWork,
-    out_dir: &Path,
+    (out_dir, out_given): (&Path, bool),
     out: &mut dyn Write,
 ) -> Result<()> {
     let workdir = std::env::current_dir().context("reading the current folder")?;
@@ -278,7 +280,7 @@ fn write_and_submit(
     };
     // The shards will claim the folder on the cluster: a folder they would refuse is refused
     // now, before any script is written.
-    check_claimable(out_dir, work.run_kind()).context("--out")?;
+    check_claimable(out_dir, work.run_kind()).context(out_setting(out_given))?;
     let job = SlurmJob {
         plan: work,
         out_dir,
