@@ -15,8 +15,6 @@ use usar_study::multiverse::setup::{
     DEFAULT_CALIBRATION_TRIALS, DEFAULT_MAX_EVALS, DEFAULT_SAMPLE_SEED,
 };
 use usar_sweep::data::owner::check_claimable;
-
-use crate::shared::out_flag::out_setting;
 use usar_sweep::shard::shell_join;
 use usar_sweep::slurm::{ShardedWork, SlurmJob, SlurmOptions, submit, write_scripts};
 use usar_sweep::sweep::default_out_dir;
@@ -24,6 +22,7 @@ use usar_sweep::sweep::default_out_dir;
 use crate::shared::multiverse_spec::{
     MultiverseSearchArgs, MultiverseSpecArgs, default_dir, setup_of,
 };
+use crate::shared::out_flag::out_setting;
 use crate::shared::sweep_spec::{ReportArgs, SweepSpecArgs, warn_if_rounded};
 
 const EXAMPLES: &str = "\

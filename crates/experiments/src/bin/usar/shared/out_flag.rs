@@ -4,7 +4,7 @@
 
 /// `--out` when the folder was given (`given`), else `the default output folder (--out DIR
 /// sets another)`: the context of an owner or lock error of `usar sweep`, `usar calibrate`
-/// and `usar multiverse`.
+/// and `usar multiverse`, and of `usar slurm`'s check of the folder its shards will claim.
 pub fn out_setting(given: bool) -> &'static str {
     if given {
         "--out"
