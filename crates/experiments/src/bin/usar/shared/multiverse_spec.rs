@@ -169,12 +169,13 @@ pub fn setup_of(
     targets.set_report_only(&spec.report_only)?;
     let free = parse_free(&spec.free)?;
     let seed = spec.seed.unwrap_or(base.sim.seed);
-    let claims = claims_of(spec, &base, tasks.as_deref())?;
+    let methods: Vec<String> = spec.methods.iter().map(|m| m.trim().to_string()).collect();
+    let claims = claims_of(spec, &base, tasks.as_deref(), &methods)?;
     Ok(MultiverseSetup {
         claims,
         near_loss: spec.near_loss,
         comparison: TrialPlan {
-            methods: spec.methods.iter().map(|m| m.trim().to_string()).collect(),
+            methods,
             duration_s: spec.duration,
             ..TrialPlan::builtin(spec.trials, seed)
         },
@@ -198,15 +199,17 @@ pub fn setup_of(
 
 /// The claims of `--claims FILE`, or else of the file the scenario's `report: (claims: ...)`
 /// names (relative to its folder; a missing one is a warning and no claims), checked against
-/// `tasks`, the scenario's task names ([`scenario_tasks`]).
+/// `tasks`, the scenario's task names ([`scenario_tasks`]), and `methods` (`--methods`,
+/// trimmed).
 ///
 /// # Errors
 /// A claims file that cannot be read or parsed, one about a task the scenario lacks, or one
-/// naming a method that is neither built in nor one of `--methods`.
+/// naming a method that is neither built in nor one of `methods`.
 fn claims_of(
     spec: &MultiverseSpecArgs,
     base: &ScenarioSpec,
     tasks: Option<&[String]>,
+    methods: &[String],
 ) -> Result<Option<Claims>> {
     let path = match (&spec.claims, &base.report.claims) {
         (Some(p), _) => p.clone(),
@@ -235,9 +238,8 @@ fn claims_of(
         claims.check_tasks_of_scenario(n, &path_text(&spec.scenario))
     })?;
     // As `usar sweep` checks them: a method neither built in nor run, blamed on the setting.
-    let methods: Vec<String> = spec.methods.iter().map(|m| m.trim().to_string()).collect();
     claims
-        .check_methods(&methods)
+        .check_methods(methods)
         .with_context(|| setting.clone())?;
     Ok(Some(claims))
 }
