@@ -173,6 +173,18 @@ fn a_folder_of_the_users_own_files_is_refused_by_every_kind_of_run() {
         );
     }
     assert_eq!(std::fs::read_dir(&default).unwrap().count(), 1);
+    // A folder of the user's inside a run's folder is theirs too.
+    let (top, inside) = (tmp.path().join("run"), tmp.path().join("run/mine"));
+    let sweep_into = |d: &Path| usar([&sweep[..sweep.len() - 1], &[text(d)]].concat());
+    ok(&sweep_into(&top));
+    std::fs::create_dir_all(&inside).unwrap();
+    std::fs::write(inside.join("report.md"), "my notes").unwrap();
+    let e = stderr(&sweep_into(&inside));
+    assert!(
+        e.contains("mine holds report.md, which no usar run wrote"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read_dir(&inside).unwrap().count(), 1);
 }
 
 #[test]

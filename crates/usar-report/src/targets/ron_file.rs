@@ -13,15 +13,17 @@ use usar_sim::scenario::{
 
 use usar_sim::scenario::SourceMap;
 
-/// A positioned error of a study file: one line, `origin[:line:col]: [field: ]message`, a
-/// number of more than 17 digits in the message written short ([`short_numbers`]: `1e308`,
-/// not 309 digits). Each kind of file wraps it in its own error type (`TargetsError`,
-/// `ClaimsError`, `AxesError`), so that a caller can tell which file was refused.
+/// A positioned error of a study file: one line, `origin[:line:col]: [field: ]message[;
+/// scenario: SCENARIO]`, a number of more than 17 digits in the message written short
+/// ([`short_numbers`]: `1e308`, not 309 digits; the scenario's path as it is). Each kind of
+/// file wraps it in its own error type (`TargetsError`, `ClaimsError`, `AxesError`), so that a
+/// caller can tell which file was refused.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "{location}: {}{}",
+    "{location}: {}{}{}",
     field.as_ref().map(|f| format!("{f}: ")).unwrap_or_default(),
-    short_numbers(message)
+    short_numbers(message),
+    scenario.as_ref().map(|s| format!("; scenario: {s}")).unwrap_or_default()
 )]
 pub struct Located {
     /// The file (as given) and, when known, the line and column.
@@ -30,6 +32,9 @@ pub struct Located {
     pub field: Option<String>,
     /// What is wrong.
     pub message: String,
+    /// The scenario (a path as given) the message is about, when it names one: a task the
+    /// scenario lacks ([`Located::in_scenario`]); `None` otherwise.
+    pub scenario: Option<String>,
 }
 
 impl Located {
@@ -37,7 +42,7 @@ impl Located {
     /// the scenario read from `scenario` (a path as given) lacks, as `usar sweep`, `usar
     /// calibrate` and `usar multiverse` all report it.
     pub fn in_scenario(mut self, scenario: &str) -> Self {
-        self.message = format!("{}; scenario: {scenario}", self.message);
+        self.scenario = Some(scenario.to_owned());
         self
     }
 }
@@ -87,6 +92,7 @@ pub fn read_text(path: &Path, max_bytes: u64, kind: &str) -> Result<(String, Str
         },
         field: None,
         message,
+        scenario: None,
     };
     let bare = kind.split_once(' ').map_or(kind, |(_, k)| k);
     let bytes = read_bounded(path, max_bytes).map_err(|e| match e {
@@ -120,6 +126,7 @@ pub fn parse<T: DeserializeOwned>(src: &str, origin: &str) -> Result<(T, Arc<Sou
             },
             field: field.filter(|f| !f.is_empty()).map(str::to_owned),
             message,
+            scenario: None,
         };
         match &e.code {
             ron::Error::MissingStructField { field, .. } => {
@@ -170,6 +177,7 @@ impl Source {
             },
             field: Some(field.to_owned()),
             message,
+            scenario: None,
         }
     }
 
@@ -182,6 +190,7 @@ impl Source {
             },
             field: None,
             message,
+            scenario: None,
         }
     }
 }
@@ -245,5 +254,21 @@ pub trait StudyFile: Sized {
     fn load_checked(path: &Path) -> Result<Self, Self::Error> {
         let (text, origin) = read_text(path, Self::MAX_BYTES, Self::KIND)?;
         Self::parse_checked(&text, &origin)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scenario_follows_the_message_as_given_and_only_the_message_is_written_short() {
+        let (long_number, long_path) = ("1".repeat(30), format!("runs/{}/s.ron", "9".repeat(20)));
+        let e = Source::given("t.ron").error("targets[0].task", format!("{long_number} m"));
+        let plain = e.to_string();
+        assert!(plain.starts_with("t.ron: targets[0].task: "), "{plain}");
+        assert!(!plain.contains(&long_number), "{plain}");
+        let text = e.in_scenario(&long_path).to_string();
+        assert_eq!(text, format!("{plain}; scenario: {long_path}"));
     }
 }

@@ -33,6 +33,7 @@ use usar_report::error::ReportError;
 use usar_report::output::write_outputs;
 use usar_sweep::atomic::{FileError, remove_stale_temps, write_atomic};
 use usar_sweep::data::hooks::{Stopped, SweepHooks};
+use usar_sweep::data::owner::sub_runs;
 use usar_sweep::spec_ron::spec_to_ron;
 use usar_sweep::sweep::{SweepConfig, SweepOutcome, run_sweep};
 use usar_sweep::vary::{Override, apply_overrides, rule_error};
@@ -41,13 +42,14 @@ use usar_sweep::vary::{Override, apply_overrides, rule_error};
 type Result<T, E = MultiverseError> = std::result::Result<T, E>;
 
 /// The folder, under the output folder, that holds the universes' folders.
-pub const UNIVERSES_DIR: &str = "universes";
+pub const UNIVERSES_DIR: &str = sub_runs::UNIVERSES;
 /// The universe's scenario in its folder.
 pub const SCENARIO_FILE: &str = "scenario.ron";
-/// The calibration's folder in a universe's folder.
-pub const CALIBRATION_DIR: &str = "calibration";
-/// The comparison's folder in a universe's folder.
-pub const COMPARISON_DIR: &str = "comparison";
+/// The calibration's folder in a universe's folder (a run of its own, claimed inside the
+/// multiverse's folder: [`sub_runs`]).
+pub const CALIBRATION_DIR: &str = sub_runs::CALIBRATION;
+/// The comparison's folder in a universe's folder (as [`CALIBRATION_DIR`]).
+pub const COMPARISON_DIR: &str = sub_runs::COMPARISON;
 
 /// The folder of universe `id` under the output folder `root`.
 pub fn universe_dir(root: &Path, id: &str) -> PathBuf {

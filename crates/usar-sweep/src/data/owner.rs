@@ -30,7 +30,7 @@
 use std::fmt;
 use std::fs;
 use std::io::ErrorKind;
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use usar_sim::scenario::path_text;
@@ -68,8 +68,33 @@ pub mod evidence {
 /// dangling link, a folder): the run's own checks name what is wrong with it.
 pub mod before_claim {
     /// `usar slurm`'s scripts (`crate::slurm::SLURM_DIR` is defined as this), written into
-    /// the sweep's output folder before its shards run.
+    /// the sweep's output folder before its shards run. Taken only while it holds nothing but
+    /// what `usar slurm` and its jobs write there: job scripts ([`SLURM_JOB_EXT`]), the
+    /// submit script ([`SLURM_SUBMIT`]), the logs' folder ([`SLURM_LOGS`]) of the jobs' logs
+    /// ([`SLURM_LOG_EXT`]), and hidden entries; a `slurm/` of the user's own is refused.
     pub const SLURM_SCRIPTS: &str = "slurm";
+    /// The script that submits the jobs, in [`SLURM_SCRIPTS`].
+    pub const SLURM_SUBMIT: &str = "submit.sh";
+    /// The jobs' logs' folder, in [`SLURM_SCRIPTS`].
+    pub const SLURM_LOGS: &str = "logs";
+    /// The extension of a job script in [`SLURM_SCRIPTS`] (`sweep.sbatch`, `merge.sbatch`).
+    pub const SLURM_JOB_EXT: &str = "sbatch";
+    /// The extension of a job's log in [`SLURM_LOGS`] (`sweep-1234_5.out`, `merge-1236.out`).
+    pub const SLURM_LOG_EXT: &str = "out";
+}
+
+/// The folders a run makes inside its own folder for runs of its own, by their names below
+/// it ([`claim`] takes one whatever it holds, as its run's `--overwrite` clears it): a
+/// multiverse's universes, `universes/<id>/calibration/` and `universes/<id>/comparison/`
+/// (`usar_study`'s `UNIVERSES_DIR`, `CALIBRATION_DIR` and `COMPARISON_DIR` are defined as
+/// these), and a sharded run's shards, `shards/<I>-of-<N>/` ([`SHARDS_DIR`]).
+pub mod sub_runs {
+    /// The folder of a multiverse's universes, in its output folder or a shard's.
+    pub const UNIVERSES: &str = "universes";
+    /// A universe's calibration, in the universe's folder.
+    pub const CALIBRATION: &str = "calibration";
+    /// A universe's comparison, in the universe's folder.
+    pub const COMPARISON: &str = "comparison";
 }
 
 /// The kind of run an output folder belongs to.
@@ -327,9 +352,8 @@ pub fn check_claimable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
 
 /// Refuses the existing folder `dir` for a run of `kind` when it belongs to another kind (its
 /// manifest, or for a folder without one, its files: [`recognise`]) or to no run but holds
-/// the user's own files ([`foreign_entry`]). A folder inside a run's folder (a universe's
-/// calibration, a shard's folder: a manifest at most [`NESTED_LEVELS`] folders up) is that
-/// run's to clear, so what it holds is not refused.
+/// the user's own files ([`foreign_entry`]). A folder a run made for a run of its own
+/// ([`sub_run_folder`]) is that run's to clear, so what it holds is not refused.
 fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     if let Some(found) = checked_manifest(dir)? {
         return refuse_other(dir, kind, Owner::of_manifest(dir, found));
@@ -345,7 +369,7 @@ fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     if let Some(found) = checked_manifest(dir)? {
         return refuse_other(dir, kind, Owner::of_manifest(dir, found));
     }
-    if inside_a_run(dir) {
+    if sub_run_folder(dir) {
         return Ok(());
     }
     Err(OwnerError::NotARunFolder {
@@ -355,17 +379,39 @@ fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
     })
 }
 
-/// How many folders up [`refuse_unusable`] looks for the run a folder lies inside: a
-/// multiverse's `universes/<id>/comparison/` is three below its top.
-const NESTED_LEVELS: usize = 3;
-
-/// Whether a folder at most [`NESTED_LEVELS`] above `dir` holds a manifest ([`OWNER_FILE`]):
-/// `dir` lies inside a run's folder, which its run's `--overwrite` clears.
-fn inside_a_run(dir: &Path) -> bool {
-    dir.ancestors()
-        .skip(1)
-        .take(NESTED_LEVELS)
-        .any(|a| fs::symlink_metadata(a.join(OWNER_FILE)).is_ok_and(|m| m.is_file()))
+/// Whether `dir` is a folder a run made inside its own folder for a run of its own
+/// ([`sub_runs`]): `universes/<id>/calibration` or `universes/<id>/comparison` three folders
+/// below a manifest ([`OWNER_FILE`]; a multiverse's folder or its shard's), or
+/// `shards/<I>-of-<N>` two below one (a sharded run's folder). Any other folder inside a run's
+/// folder (`results/paper/mine`) is the user's, as is one named so outside a run.
+fn sub_run_folder(dir: &Path) -> bool {
+    let names: Vec<Option<&str>> = dir
+        .components()
+        .rev()
+        .take(3)
+        .map(|c| match c {
+            Component::Normal(name) => name.to_str(),
+            _ => None,
+        })
+        .collect();
+    let manifest_up = |levels: usize| {
+        dir.ancestors()
+            .nth(levels)
+            .is_some_and(|a| fs::symlink_metadata(a.join(OWNER_FILE)).is_ok_and(|m| m.is_file()))
+    };
+    match names.as_slice() {
+        [Some(run), Some(_), Some(sub_runs::UNIVERSES)]
+            if [sub_runs::CALIBRATION, sub_runs::COMPARISON].contains(run) =>
+        {
+            manifest_up(3)
+        }
+        [Some(shard), Some(parent), ..]
+            if *parent == SHARDS_DIR && Shard::from_dir_name(shard).is_some() =>
+        {
+            manifest_up(2)
+        }
+        _ => false,
+    }
 }
 
 /// Records that `dir`, claimed by a run of `kind` ([`claim`]), now holds that kind's files:
@@ -496,7 +542,7 @@ fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
             // A hidden entry (`.DS_Store`, `.git`): no run writes one but its temporary files.
             hidden if hidden.starts_with('.') => true,
             OWNER_FILE | LOCK_FILE => !is_dir,
-            before_claim::SLURM_SCRIPTS => is_dir,
+            before_claim::SLURM_SCRIPTS => is_dir && only_slurm_files(&dir.join(&name)),
             JOURNAL_FILE | evidence::TRACE | evidence::MULTIVERSE_PLAN | SHARDS_DIR => true,
             _ => false,
         };
@@ -512,6 +558,38 @@ fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
             shown(name)
         }
     }))
+}
+
+/// Whether the folder `slurm` holds only what `usar slurm` and its jobs write there
+/// ([`before_claim::SLURM_SCRIPTS`]); a folder that cannot be listed does not.
+fn only_slurm_files(slurm: &Path) -> bool {
+    use before_claim::{SLURM_JOB_EXT, SLURM_LOG_EXT, SLURM_LOGS, SLURM_SUBMIT};
+    let has_ext = |name: &str, ext: &str| Path::new(name).extension().is_some_and(|e| e == ext);
+    every_entry(slurm, &|name, is_dir| {
+        if is_dir {
+            name == SLURM_LOGS
+                && every_entry(&slurm.join(name), &|log, is_dir| {
+                    !is_dir && has_ext(log, SLURM_LOG_EXT)
+                })
+        } else {
+            name == SLURM_SUBMIT || has_ext(name, SLURM_JOB_EXT)
+        }
+    })
+}
+
+/// Whether every entry of the folder `dir` but the hidden ones passes `ok(name, is_dir)`;
+/// `false` when it cannot be listed or holds a name that is not UTF-8.
+fn every_entry(dir: &Path, ok: &dyn Fn(&str, bool) -> bool) -> bool {
+    fs::read_dir(dir).is_ok_and(|listing| {
+        listing.into_iter().all(|entry| {
+            entry.is_ok_and(|e| {
+                let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
+                e.file_name()
+                    .to_str()
+                    .is_some_and(|name| name.starts_with('.') || ok(name, is_dir))
+            })
+        })
+    })
 }
 
 /// The manifest of `kind`, one JSON line.
@@ -722,15 +800,89 @@ mod tests {
         fs::write(odd.join("a\nb"), "").unwrap();
         let e = err(claim(&odd, RunKind::Sweep));
         assert!(e.contains("holds a\\nb,"), "{e}");
-        // Inside a run's folder (a universe's comparison after the multiverse's
-        // `--overwrite`, which leaves the user's files), a sub-run still claims its folder.
+    }
+
+    #[test]
+    fn a_runs_own_sub_run_folders_are_taken_and_other_folders_inside_it_are_not() {
+        let tmp = tempfile::tempdir().unwrap();
+        let with_notes = |d: &Path| {
+            fs::create_dir_all(d).unwrap();
+            fs::write(d.join("notes.txt"), "mine").unwrap();
+        };
+        // A universe's calibration and comparison after the multiverse's `--overwrite`, which
+        // leaves what else they hold, and a shard's folder: their sub-runs claim them.
         let top = tmp.path().join("mv");
         claim(&top, RunKind::Multiverse).unwrap();
-        let sub = top.join("universes/u000/comparison");
-        fs::create_dir_all(&sub).unwrap();
-        fs::write(sub.join("notes.txt"), "mine").unwrap();
-        claim(&sub, RunKind::Sweep).unwrap();
-        assert_eq!(fs::read_to_string(sub.join("notes.txt")).unwrap(), "mine");
+        for (sub, kind) in [
+            ("universes/u000/comparison", RunKind::Sweep),
+            ("universes/u000/calibration", RunKind::Calibration),
+            ("shards/1-of-2/universes/u001/comparison", RunKind::Sweep),
+        ] {
+            let sub = top.join(sub);
+            if sub.starts_with(top.join("shards")) {
+                claim(&top.join("shards/1-of-2"), RunKind::Multiverse).unwrap();
+            }
+            with_notes(&sub);
+            claim(&sub, kind).unwrap();
+            assert_eq!(fs::read_to_string(sub.join("notes.txt")).unwrap(), "mine");
+        }
+        let sweep = tmp.path().join("sweep");
+        claim(&sweep, RunKind::ShardedSweep).unwrap();
+        with_notes(&sweep.join("shards/1-of-2"));
+        claim(&sweep.join("shards/1-of-2"), RunKind::ShardedSweep).unwrap();
+        // Any other folder inside a run's folder, and one named as a sub-run's outside a
+        // run, holds the user's files.
+        for d in [
+            sweep.join("mine"),
+            top.join("universes/u000/mine"),
+            top.join("mine/u000/comparison"),
+            sweep.join("shards/mine"),
+            tmp.path().join("alone/universes/u000/comparison"),
+            tmp.path().join("alone/shards/1-of-2"),
+        ] {
+            with_notes(&d);
+            assert!(
+                err(claim(&d, RunKind::Sweep)).contains(" holds notes.txt,"),
+                "{d:?}"
+            );
+            assert!(!d.join(OWNER_FILE).exists());
+        }
+    }
+
+    #[test]
+    fn a_slurm_folder_is_usars_only_while_it_holds_usar_slurms_files() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path().join("out");
+        let slurm = d.join(before_claim::SLURM_SCRIPTS);
+        fs::create_dir_all(slurm.join("logs")).unwrap();
+        for f in [
+            "sweep.sbatch",
+            "merge.sbatch",
+            "submit.sh",
+            ".submit.sh.tmp-1-a",
+        ] {
+            fs::write(slurm.join(f), "").unwrap();
+        }
+        for f in ["sweep-1234_5.out", "merge-1236.out"] {
+            fs::write(slurm.join("logs").join(f), "").unwrap();
+        }
+        check_claimable(&d, RunKind::ShardedSweep).unwrap();
+        for (extra, folder) in [("job.sh", false), ("logs/notes.txt", false), ("runs", true)] {
+            let p = slurm.join(extra);
+            if folder {
+                fs::create_dir(&p).unwrap();
+            } else {
+                fs::write(&p, "").unwrap();
+            }
+            let e = err(check_claimable(&d, RunKind::ShardedSweep));
+            assert!(e.contains(" holds slurm/,"), "{extra}: {e}");
+            if folder {
+                fs::remove_dir(&p).unwrap();
+            } else {
+                fs::remove_file(&p).unwrap();
+            }
+        }
+        claim(&d, RunKind::ShardedSweep).unwrap();
     }
 
     #[test]

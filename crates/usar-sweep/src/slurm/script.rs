@@ -14,6 +14,7 @@ use usar_sim::scenario::path_text;
 
 use crate::atomic::FileError;
 use crate::data::owner::RunKind;
+use crate::data::owner::before_claim::{SLURM_JOB_EXT, SLURM_LOG_EXT, SLURM_LOGS, SLURM_SUBMIT};
 use crate::shard::{MAX_SHARDS, SweepPlan, shell_join};
 use crate::slurm::error::SlurmError;
 
@@ -136,10 +137,10 @@ impl SlurmFiles {
     pub fn of(out_dir: &Path, subcommand: &str) -> Self {
         let d = out_dir.join(SLURM_DIR);
         Self {
-            array: d.join(format!("{subcommand}.sbatch")),
-            merge: d.join("merge.sbatch"),
-            submit: d.join("submit.sh"),
-            logs: d.join("logs"),
+            array: d.join(format!("{subcommand}.{SLURM_JOB_EXT}")),
+            merge: d.join(format!("merge.{SLURM_JOB_EXT}")),
+            submit: d.join(SLURM_SUBMIT),
+            logs: d.join(SLURM_LOGS),
         }
     }
 }
@@ -317,7 +318,7 @@ pub fn array_script(job: &SlurmJob<'_>) -> String {
         }
     }
     resource_lines(&mut s, o);
-    let log = files.logs.join(format!("{work}-%A_%a.out"));
+    let log = files.logs.join(format!("{work}-%A_%a.{SLURM_LOG_EXT}"));
     let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
     let mut words = vec![
         job.usar.display().to_string(),
@@ -360,7 +361,7 @@ pub fn merge_script(job: &SlurmJob<'_>) -> String {
     let _ = writeln!(s, "#SBATCH --job-name={}-merge", job_name(job.plan));
     s.push_str("#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n");
     resource_lines(&mut s, job.options);
-    let log = files.logs.join("merge-%j.out");
+    let log = files.logs.join(format!("merge-%j.{SLURM_LOG_EXT}"));
     let _ = writeln!(s, "#SBATCH --output={}", directive_value(&log));
     let _ = write!(
         s,
