@@ -23,7 +23,8 @@
 //! `trace.jsonl` (a calibration) and `multiverse.json` at the top or in a shard's folder (a
 //! multiverse). A folder holding none of them belongs to no run yet: any kind may claim it
 //! when it is new or empty, or holds only what usar itself leaves there before a run claims
-//! it and hidden entries ([`before_claim`]). A folder of the user's own files is refused
+//! it and hidden entries ([`before_claim`]), or is a folder a run made inside its own folder
+//! for a run of its own ([`sub_runs`]). A folder of the user's own files is refused
 //! ([`OwnerError::NotARunFolder`]): a run's files (`report.md`, `trials.csv`, ...) would
 //! overwrite theirs.
 
@@ -68,10 +69,11 @@ pub mod evidence {
 /// dangling link, a folder): the run's own checks name what is wrong with it.
 pub mod before_claim {
     /// `usar slurm`'s scripts (`crate::slurm::SLURM_DIR` is defined as this), written into
-    /// the sweep's output folder before its shards run. Taken only while it holds nothing but
-    /// what `usar slurm` and its jobs write there: job scripts ([`SLURM_JOB_EXT`]), the
-    /// submit script ([`SLURM_SUBMIT`]), the logs' folder ([`SLURM_LOGS`]) of the jobs' logs
-    /// ([`SLURM_LOG_EXT`]), and hidden entries; a `slurm/` of the user's own is refused.
+    /// the sweep's output folder before its shards run. Taken when it holds one of
+    /// `usar slurm`'s scripts (the submit script, [`SLURM_SUBMIT`], or a job script,
+    /// [`SLURM_JOB_EXT`]), whatever else the user added (edits, backups, other logs), or
+    /// nothing but the logs' folder ([`SLURM_LOGS`]) and hidden entries; a `slurm/` of other
+    /// files is the user's. No run writes into it but `usar slurm`.
     pub const SLURM_SCRIPTS: &str = "slurm";
     /// The script that submits the jobs, in [`SLURM_SCRIPTS`].
     pub const SLURM_SUBMIT: &str = "submit.sh";
@@ -85,11 +87,11 @@ pub mod before_claim {
 
 /// The folders a run makes inside its own folder for runs of its own, by their names below
 /// it ([`claim`] takes one whatever it holds, as its run's `--overwrite` clears it): a
-/// multiverse's universes, `universes/<id>/calibration/` and `universes/<id>/comparison/`
-/// (`usar_study`'s `UNIVERSES_DIR`, `CALIBRATION_DIR` and `COMPARISON_DIR` are defined as
+/// multiverse's universes, `universes/<id>/calibration/` and `universes/<id>/comparison/` in
+/// its top folder (`usar_study`'s `UNIVERSES_DIR`, `CALIBRATION_DIR` and `COMPARISON_DIR` are defined as
 /// these), and a sharded run's shards, `shards/<I>-of-<N>/` ([`SHARDS_DIR`]).
 pub mod sub_runs {
-    /// The folder of a multiverse's universes, in its output folder or a shard's.
+    /// The folder of a multiverse's universes, in its output folder.
     pub const UNIVERSES: &str = "universes";
     /// A universe's calibration, in the universe's folder.
     pub const CALIBRATION: &str = "calibration";
@@ -381,7 +383,7 @@ fn refuse_unusable(dir: &Path, kind: RunKind) -> Result<(), OwnerError> {
 
 /// Whether `dir` is a folder a run made inside its own folder for a run of its own
 /// ([`sub_runs`]): `universes/<id>/calibration` or `universes/<id>/comparison` three folders
-/// below a manifest ([`OWNER_FILE`]; a multiverse's folder or its shard's), or
+/// below a manifest ([`OWNER_FILE`]; a multiverse's folder), or
 /// `shards/<I>-of-<N>` two below one (a sharded run's folder). Any other folder inside a run's
 /// folder (`results/paper/mine`) is the user's, as is one named so outside a run.
 fn sub_run_folder(dir: &Path) -> bool {
@@ -542,7 +544,7 @@ fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
             // A hidden entry (`.DS_Store`, `.git`): no run writes one but its temporary files.
             hidden if hidden.starts_with('.') => true,
             OWNER_FILE | LOCK_FILE => !is_dir,
-            before_claim::SLURM_SCRIPTS => is_dir && only_slurm_files(&dir.join(&name)),
+            before_claim::SLURM_SCRIPTS => is_dir && holds_slurm_scripts(&dir.join(&name)),
             JOURNAL_FILE | evidence::TRACE | evidence::MULTIVERSE_PLAN | SHARDS_DIR => true,
             _ => false,
         };
@@ -560,36 +562,33 @@ fn foreign_entry(dir: &Path) -> Result<Option<String>, OwnerError> {
     }))
 }
 
-/// Whether the folder `slurm` holds only what `usar slurm` and its jobs write there
-/// ([`before_claim::SLURM_SCRIPTS`]); a folder that cannot be listed does not.
-fn only_slurm_files(slurm: &Path) -> bool {
-    use before_claim::{SLURM_JOB_EXT, SLURM_LOG_EXT, SLURM_LOGS, SLURM_SUBMIT};
-    let has_ext = |name: &str, ext: &str| Path::new(name).extension().is_some_and(|e| e == ext);
-    every_entry(slurm, &|name, is_dir| {
-        if is_dir {
-            name == SLURM_LOGS
-                && every_entry(&slurm.join(name), &|log, is_dir| {
-                    !is_dir && has_ext(log, SLURM_LOG_EXT)
-                })
-        } else {
-            name == SLURM_SUBMIT || has_ext(name, SLURM_JOB_EXT)
+/// Whether the folder `slurm` is `usar slurm`'s ([`before_claim::SLURM_SCRIPTS`]): it holds
+/// one of its scripts (a file or a link to one), or nothing but the logs' folder and hidden
+/// entries; a folder that cannot be listed is not.
+fn holds_slurm_scripts(slurm: &Path) -> bool {
+    use before_claim::{SLURM_JOB_EXT, SLURM_LOGS, SLURM_SUBMIT};
+    let Ok(listing) = fs::read_dir(slurm) else {
+        return false;
+    };
+    let (mut script, mut other) = (false, false);
+    for entry in listing {
+        let Ok(entry) = entry else {
+            return false;
+        };
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if name.starts_with('.') || name == SLURM_LOGS {
+            continue;
         }
-    })
-}
-
-/// Whether every entry of the folder `dir` but the hidden ones passes `ok(name, is_dir)`;
-/// `false` when it cannot be listed or holds a name that is not UTF-8.
-fn every_entry(dir: &Path, ok: &dyn Fn(&str, bool) -> bool) -> bool {
-    fs::read_dir(dir).is_ok_and(|listing| {
-        listing.into_iter().all(|entry| {
-            entry.is_ok_and(|e| {
-                let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
-                e.file_name()
-                    .to_str()
-                    .is_some_and(|name| name.starts_with('.') || ok(name, is_dir))
-            })
-        })
-    })
+        let is_file = fs::metadata(entry.path()).is_ok_and(|m| m.is_file());
+        let named = name == SLURM_SUBMIT
+            || Path::new(&*name)
+                .extension()
+                .is_some_and(|e| e == SLURM_JOB_EXT);
+        script |= is_file && named;
+        other = true;
+    }
+    script || !other
 }
 
 /// The manifest of `kind`, one JSON line.
@@ -816,12 +815,8 @@ mod tests {
         for (sub, kind) in [
             ("universes/u000/comparison", RunKind::Sweep),
             ("universes/u000/calibration", RunKind::Calibration),
-            ("shards/1-of-2/universes/u001/comparison", RunKind::Sweep),
         ] {
             let sub = top.join(sub);
-            if sub.starts_with(top.join("shards")) {
-                claim(&top.join("shards/1-of-2"), RunKind::Multiverse).unwrap();
-            }
             with_notes(&sub);
             claim(&sub, kind).unwrap();
             assert_eq!(fs::read_to_string(sub.join("notes.txt")).unwrap(), "mine");
@@ -850,38 +845,29 @@ mod tests {
     }
 
     #[test]
-    fn a_slurm_folder_is_usars_only_while_it_holds_usar_slurms_files() {
+    fn a_slurm_folder_is_usars_while_it_holds_usar_slurms_scripts() {
         let tmp = tempfile::tempdir().unwrap();
         let d = tmp.path().join("out");
         let slurm = d.join(before_claim::SLURM_SCRIPTS);
         fs::create_dir_all(slurm.join("logs")).unwrap();
-        for f in [
-            "sweep.sbatch",
-            "merge.sbatch",
-            "submit.sh",
-            ".submit.sh.tmp-1-a",
-        ] {
-            fs::write(slurm.join(f), "").unwrap();
-        }
-        for f in ["sweep-1234_5.out", "merge-1236.out"] {
-            fs::write(slurm.join("logs").join(f), "").unwrap();
-        }
+        fs::write(slurm.join("logs/sweep-1234_5.out"), "").unwrap();
         check_claimable(&d, RunKind::ShardedSweep).unwrap();
-        for (extra, folder) in [("job.sh", false), ("logs/notes.txt", false), ("runs", true)] {
-            let p = slurm.join(extra);
-            if folder {
-                fs::create_dir(&p).unwrap();
-            } else {
-                fs::write(&p, "").unwrap();
-            }
-            let e = err(check_claimable(&d, RunKind::ShardedSweep));
-            assert!(e.contains(" holds slurm/,"), "{extra}: {e}");
-            if folder {
-                fs::remove_dir(&p).unwrap();
-            } else {
-                fs::remove_file(&p).unwrap();
-            }
+        fs::write(slurm.join("notes.txt"), "").unwrap();
+        let e = err(check_claimable(&d, RunKind::ShardedSweep));
+        assert!(e.contains(" holds slurm/,"), "{e}");
+        // A folder named as a script is not one.
+        fs::create_dir(slurm.join("sweep.sbatch")).unwrap();
+        assert!(check_claimable(&d, RunKind::ShardedSweep).is_err());
+        // One script, edited and backed up beside the user's files, makes it usar's.
+        for script in ["submit.sh", "merge.sbatch"] {
+            fs::write(slurm.join(script), "").unwrap();
+            fs::write(slurm.join(format!("{script}~")), "").unwrap();
+            check_claimable(&d, RunKind::ShardedSweep).unwrap();
+            fs::remove_file(slurm.join(script)).unwrap();
         }
+        assert!(check_claimable(&d, RunKind::ShardedSweep).is_err());
+        fs::write(slurm.join("sweep.sbatch~"), "").unwrap();
+        std::os::unix::fs::symlink("sweep.sbatch~", slurm.join("array.sbatch")).unwrap();
         claim(&d, RunKind::ShardedSweep).unwrap();
     }
 
